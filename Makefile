@@ -1,0 +1,122 @@
+# lumo — the one build entry point.
+#
+#   make            libraries and tools into build/
+#   make test       every test (host under ASan/UBSan, Cortex-M3 under QEMU,
+#                   check-embedded); ends with "N passed, N failed"
+#   make demo       the main job on the built-in default scene
+#   make bench      benchmarks -> docs/benchmarks.md
+#   make fuzz       longer libFuzzer runs of every decoder
+#   make check-embedded   prove the client rules on the Cortex-M3 objects
+#
+# Each part of the tree adds itself through its own fragment (sdk/sdk.mk,
+# server/server.mk, ...); this file holds only the shared machinery.
+
+.DEFAULT_GOAL := all
+.SUFFIXES:
+.DELETE_ON_ERROR:
+
+BUILD   ?= build
+BIN     := $(BUILD)/bin
+CC      ?= cc
+CXX     ?= c++
+ARM_CC  ?= arm-none-eabi-gcc
+ARM_NM  ?= arm-none-eabi-nm
+CLANG   ?= clang
+
+# ---- flags ------------------------------------------------------------------
+WARN        := -Wall -Wextra -Wshadow -Wpointer-arith -Wvla -Wstrict-prototypes \
+               -Wmissing-prototypes -Werror
+CLIENT_INC  := -Isdk/include -Irasterizer/include -Inet/include
+CLIENT_STD  := -std=c99 -pedantic
+# Client code (sdk/, rasterizer/soft/, the net codec): C99, no float, no heap.
+CLIENT_CFLAGS_rel := $(CLIENT_STD) $(WARN) $(CLIENT_INC) -O2 -g
+SAN_FLAGS         := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+CLIENT_CFLAGS_san := $(CLIENT_STD) $(WARN) $(CLIENT_INC) -O1 -g $(SAN_FLAGS)
+M3_ARCH           := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
+CLIENT_CFLAGS_m3  := $(CLIENT_STD) $(WARN) $(CLIENT_INC) $(M3_ARCH) -Os -g \
+                     -ffunction-sections -fdata-sections
+# Desktop code (server/, boards/host/, GL backends, tests): C11, POSIX.
+HOST_CFLAGS   := -std=c11 -D_GNU_SOURCE $(WARN) -Wno-missing-prototypes $(CLIENT_INC) -Iserver/include -O2 -g -pthread
+HOST_CXXFLAGS := -std=c++17 -Wall -Wextra -Werror -Iserver/include -O2 -g -pthread
+TEST_CFLAGS   := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror $(CLIENT_INC) -Iserver/include -Itests/include \
+                 -O1 -g $(SAN_FLAGS) -pthread
+TEST_LDLIBS   := -lcmocka -lm
+
+# ---- what the fragments fill in ---------------------------------------------
+CLIENT_SRCS :=      # client-side C99 sources (sdk, rasterizer/soft, net codec)
+HOST_TOOLS  :=      # binaries in $(BIN)
+UNIT_TESTS  :=      # cmocka test binaries, built with sanitizers
+TEST_STEPS  :=      # phony targets run by `make test` after the unit tests
+BENCH_STEPS :=      # phony targets run by `make bench`
+FUZZ_STEPS  :=      # phony targets run by `make fuzz`
+ALL_TARGETS :=
+
+include sdk/sdk.mk
+-include rasterizer/rasterizer.mk
+-include net/net.mk
+-include server/server.mk
+-include boards/host/host.mk
+-include boards/mps2-an385/board.mk
+include tests/tests.mk
+-include bench/bench.mk
+
+# ---- client libraries, one per variant ---------------------------------------
+# rel: host -O2 (tools, benchmarks); san: host ASan/UBSan (tests);
+# m3: Cortex-M3 soft-float (check-embedded, the QEMU board).
+CLIENT_OBJS_rel := $(patsubst %.c,$(BUILD)/rel/%.o,$(CLIENT_SRCS))
+CLIENT_OBJS_san := $(patsubst %.c,$(BUILD)/san/%.o,$(CLIENT_SRCS))
+CLIENT_OBJS_m3  := $(patsubst %.c,$(BUILD)/m3/%.o,$(CLIENT_SRCS))
+
+$(BUILD)/rel/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CLIENT_CFLAGS_rel) -MMD -MP -c $< -o $@
+$(BUILD)/san/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CLIENT_CFLAGS_san) -MMD -MP -c $< -o $@
+$(BUILD)/m3/%.o: %.c
+	@mkdir -p $(@D)
+	$(ARM_CC) $(CLIENT_CFLAGS_m3) -MMD -MP -c $< -o $@
+
+$(BUILD)/rel/liblumo.a: $(CLIENT_OBJS_rel)
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/san/liblumo.a: $(CLIENT_OBJS_san)
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/m3/liblumo.a: $(CLIENT_OBJS_m3)
+	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+
+# Desktop objects (server, host board, tests) keep their own trees.
+$(BUILD)/host/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/host/%.o: %.cc
+	@mkdir -p $(@D)
+	$(CXX) $(HOST_CXXFLAGS) -MMD -MP -c $< -o $@
+$(BUILD)/tests/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(TEST_CFLAGS) -MMD -MP -c $< -o $@
+
+# ---- top-level targets -------------------------------------------------------
+.PHONY: all setup test unit-tests bench fuzz demo clean check-embedded
+
+SETUP_STAMP := $(BUILD)/.setup-done
+setup: $(SETUP_STAMP)
+$(SETUP_STAMP): tools/setup.sh
+	@mkdir -p $(BUILD)
+	sh tools/setup.sh
+	@touch $@
+
+all: $(SETUP_STAMP) $(BUILD)/rel/liblumo.a $(ALL_TARGETS) $(HOST_TOOLS)
+
+test: $(SETUP_STAMP)
+	@$(MAKE) --no-print-directory all $(UNIT_TESTS) $(BUILD)/m3/liblumo.a
+	@sh tests/run.sh $(BUILD) "$(UNIT_TESTS)" "$(TEST_STEPS)"
+
+bench: $(SETUP_STAMP) all
+	@sh bench/run.sh $(BUILD) "$(BENCH_STEPS)"
+
+fuzz: $(SETUP_STAMP) $(FUZZ_STEPS)
+
+clean:
+	rm -rf $(BUILD)/rel $(BUILD)/san $(BUILD)/m3 $(BUILD)/host $(BUILD)/tests $(BIN) $(BUILD)/fuzz
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,2 @@
+# sdk/sdk.mk — the client SDK's sources (C99, fixed-point, allocation-free).
+CLIENT_SRCS += $(sort $(wildcard sdk/src/*.c))
