@@ -1,0 +1,101 @@
+/*
+ * lumo/ivg.h — the client half of the Irradiance Vector Grid (seed 000, §3-4.1).
+ *
+ * An IVG is an axis-aligned uniform grid of dims[0] x dims[1] x dims[2]
+ * vertices over the box [bmin, bmax]. Vertex (i, j, k) has the linear index
+ * i + dims[0] * (j + dims[1] * k). Each vertex stores six entries, one per
+ * hemisphere delta in the order +x, -x, +y, -y, +z, -z (lumo_ivg_axis). An
+ * entry is the paper's compressed 3x3 matrix M = (I^R | I^G | I^B): a unit
+ * direction d and a colour c with M n = c (d . n) for n = delta (§3.3).
+ *
+ * The grid holds what was received plus what push-pull filled in; a bitmap
+ * says which vertices were received. Received values are never changed by
+ * push-pull. docs/ivg-format.md gives the wire forms byte by byte.
+ *
+ * Memory: everything lives in the caller's arena; lumo_ivg_memory_size()
+ * tells how many bytes before anything is allocated. No float, no heap.
+ */
+#ifndef LUMO_IVG_H
+#define LUMO_IVG_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/arena.h"
+#include "lumo/fixed.h"
+#include "lumo/status.h"
+
+typedef enum lumo_ivg_axis {
+    LUMO_IVG_PX = 0, LUMO_IVG_NX, LUMO_IVG_PY, LUMO_IVG_NY, LUMO_IVG_PZ, LUMO_IVG_NZ,
+    LUMO_IVG_AXES
+} lumo_ivg_axis;
+
+/* Limits that bound every computation on hostile descriptors. */
+#define LUMO_IVG_MIN_DIM 2
+#define LUMO_IVG_MAX_DIM 256
+
+/* One hemisphere's compressed irradiance: colour c (UQ16.16, W/m^2 per
+ * channel) and direction d (Q1.14, unit length or zero). */
+typedef struct lumo_ivg_entry {
+    lumo_uq16_16 c[3];
+    lumo_q1_14   d[3];
+    int16_t      reserved;   /* keeps the entry at 20 bytes, always 0 */
+} lumo_ivg_entry;
+
+/* Grid shape and placement; bounds in scene units as Q16.16. */
+typedef struct lumo_ivg_desc {
+    uint16_t    dims[3];     /* vertices per axis, each in [2, 256] */
+    lumo_q16_16 bmin[3];
+    lumo_q16_16 bmax[3];     /* bmax > bmin on every axis */
+} lumo_ivg_desc;
+
+typedef struct lumo_ivg lumo_ivg;   /* opaque; lives in the arena */
+
+/* Wire forms of a sample bundle (docs/ivg-format.md). */
+typedef enum lumo_ivg_form {
+    LUMO_IVG_FORM_FLOAT = 0,       /* d: 3 x binary32, c: 3 x binary32 */
+    LUMO_IVG_FORM_QUANTIZED = 1    /* d: 3 x int8 (q/127), c: RGB9E5 */
+} lumo_ivg_form;
+
+/* Push-pull options (seed 000, §4.1). */
+#define LUMO_IVG_SMOOTH 1u   /* pyramidal filter after each push step */
+
+/* Arena bytes lumo_ivg_create() needs for this descriptor (including the
+ * push-pull pyramid), or 0 when the descriptor is invalid. */
+size_t lumo_ivg_memory_size(const lumo_ivg_desc *desc);
+
+/* Create an empty grid (nothing received) in the arena. On error the arena
+ * is left as it was. */
+lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_desc *desc);
+
+const lumo_ivg_desc *lumo_ivg_get_desc(const lumo_ivg *g);
+uint32_t lumo_ivg_vertex_count(const lumo_ivg *g);
+uint32_t lumo_ivg_received_count(const lumo_ivg *g);
+int lumo_ivg_is_received(const lumo_ivg *g, uint32_t vertex);
+
+/* The entry stored for (vertex, axis): received, filled by push-pull, or
+ * zero. NULL when out of range. */
+const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis);
+
+/* Decode one bundle of samples (header + records, docs/ivg-format.md) and
+ * store them as received. The whole bundle is validated before anything is
+ * stored: on any error the grid is unchanged. *applied (may be NULL) gets
+ * the number of records stored. */
+lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, uint32_t *applied);
+
+/* Fill every not-received vertex from the received ones by 3D push-pull;
+ * received vertices keep their exact values. flags: LUMO_IVG_SMOOTH. */
+lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags);
+
+/* Irradiance towards normal n at point p (§3.2): trilinear interpolation of
+ * the three hemispheres picked by the signs of n, I_n = sum I_a n_a^2, and
+ * out[k] = max(0, I_n^k . n) in W/m^2 (UQ16.16). p in scene units (Q16.16,
+ * clamped to the grid box), n unit length in Q1.14. */
+void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                         lumo_uq16_16 out[3]);
+
+/* Reflected indirect radiance L_r = rho/pi (I_n . n) per channel (eq. 2):
+ * albedo in Q1.14 ([0, 1]), result in UQ16.16 (W/m^2/sr). */
+void lumo_ivg_radiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                       const lumo_q1_14 albedo[3], lumo_uq16_16 out[3]);
+
+#endif /* LUMO_IVG_H */
