@@ -51,14 +51,11 @@ BENCH_STEPS :=      # phony targets run by `make bench`
 FUZZ_STEPS  :=      # phony targets run by `make fuzz`
 ALL_TARGETS :=
 
+# Fragments: every part of the tree owns one (sdk/sdk.mk, server/server.mk,
+# boards/host/host.mk, tests/draco/draco.mk, ...).
 include sdk/sdk.mk
--include rasterizer/rasterizer.mk
--include net/net.mk
--include server/server.mk
--include boards/host/host.mk
--include boards/mps2-an385/board.mk
-include tests/tests.mk
--include bench/bench.mk
+include $(sort $(filter-out sdk/sdk.mk,$(wildcard sdk/*.mk rasterizer/*.mk rasterizer/*/*.mk \
+        net/*.mk server/*.mk boards/*/*.mk tests/*.mk tests/*/*.mk bench/*.mk tools/*.mk)))
 
 # ---- client libraries, one per variant ---------------------------------------
 # rel: host -O2 (tools, benchmarks); san: host ASan/UBSan (tests);
@@ -94,6 +91,30 @@ $(BUILD)/host/%.o: %.cc
 $(BUILD)/tests/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(TEST_CFLAGS) -MMD -MP -c $< -o $@
+
+# ---- fuzz targets -------------------------------------------------------------
+# Every tests/fuzz/fuzz_NAME.c (LLVMFuzzerTestOneInput) is built with clang's
+# libFuzzer against a clang build of the client code. `make test` runs each for
+# FUZZ_SMOKE_SECONDS; `make fuzz` for FUZZ_SECONDS.
+FUZZ_SRCS   := $(sort $(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_BINS   := $(patsubst tests/fuzz/%.c,$(BUILD)/fuzz/bin/%,$(FUZZ_SRCS))
+FUZZ_CFLAGS := -std=c99 -g -O1 $(CLIENT_INC) -Itests/include -fsanitize=fuzzer,address,undefined \
+               -fno-sanitize-recover=all
+FUZZ_SMOKE_SECONDS ?= 8
+FUZZ_SECONDS       ?= 300
+
+$(BUILD)/fuzz/bin/%: tests/fuzz/%.c $(CLIENT_SRCS)
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/$*
+	$(CLANG) $(FUZZ_CFLAGS) -o $@ $< $(CLIENT_SRCS)
+
+.PHONY: fuzz-smoke
+fuzz-smoke: $(FUZZ_BINS)
+	@sh tests/fuzz/run.sh $(BUILD) $(FUZZ_SMOKE_SECONDS) $(FUZZ_BINS)
+FUZZ_STEPS += fuzz-long
+.PHONY: fuzz-long
+fuzz-long: $(FUZZ_BINS)
+	@sh tests/fuzz/run.sh $(BUILD) $(FUZZ_SECONDS) $(FUZZ_BINS)
+TEST_STEPS += fuzz-smoke
 
 # ---- top-level targets -------------------------------------------------------
 .PHONY: all setup test unit-tests bench fuzz demo clean check-embedded
