@@ -1,0 +1,155 @@
+/*
+ * lumo/draco.h — allocation-free, float-free decoder of Draco bitstreams
+ * (meshes v2.2, point clouds v2.3, as written by libdraco 1.5.5).
+ *
+ * The decoder produces the *portable* attribute values: the quantized
+ * integers libdraco holds before its final dequantization, in libdraco's
+ * point order and face order, byte for byte. Dequantization parameters are
+ * given both as the raw IEEE-754 bit patterns from the stream and in fixed
+ * point; lumo_draco_dequantize() turns a portable integer into fixed point.
+ *
+ * Usage:
+ *   lumo_draco_info info;
+ *   lumo_draco_peek(data, size, &info);        // counts, modes, arena bound
+ *   arena of lumo_draco_arena_bound(&info, max_components) bytes
+ *   lumo_draco_decode(data, size, &arena, &mesh);
+ *
+ * Memory: every output array is carved from the caller's arena; temporary
+ * work memory is taken from the top of the arena's free space and given back
+ * before returning, so after a successful decode the arena holds only the
+ * outputs (mesh.arena_bytes of them). On error the arena is unchanged.
+ * The input buffer is only read; it need not outlive the decode.
+ */
+#ifndef LUMO_DRACO_H
+#define LUMO_DRACO_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/arena.h"
+#include "lumo/status.h"
+
+/* Geometry kinds (Draco header byte). */
+#define LUMO_DRACO_POINT_CLOUD 0u
+#define LUMO_DRACO_MESH        1u
+
+/* Encoder methods: point clouds 0 sequential / 1 KD-tree; meshes 0
+ * sequential / 1 EdgeBreaker. */
+#define LUMO_DRACO_METHOD_SEQUENTIAL 0u
+#define LUMO_DRACO_METHOD_KD_TREE    1u
+#define LUMO_DRACO_METHOD_EDGEBREAKER 1u
+
+/* Attribute semantics (Draco GeometryAttribute::Type). */
+#define LUMO_DRACO_POSITION  0u
+#define LUMO_DRACO_NORMAL    1u
+#define LUMO_DRACO_COLOR     2u
+#define LUMO_DRACO_TEX_COORD 3u
+#define LUMO_DRACO_GENERIC   4u
+
+/* Original data types (Draco DataType). */
+#define LUMO_DRACO_DT_INT8    1u
+#define LUMO_DRACO_DT_UINT8   2u
+#define LUMO_DRACO_DT_INT16   3u
+#define LUMO_DRACO_DT_UINT16  4u
+#define LUMO_DRACO_DT_INT32   5u
+#define LUMO_DRACO_DT_UINT32  6u
+#define LUMO_DRACO_DT_FLOAT32 9u
+
+/* How the portable integers relate to the original values. */
+#define LUMO_DRACO_XFORM_NONE        0u  /* integers are the values */
+#define LUMO_DRACO_XFORM_QUANTIZED   1u  /* min + q * range / (2^bits - 1) */
+#define LUMO_DRACO_XFORM_OCTAHEDRAL  2u  /* 2 components, octahedral normal */
+
+/* Largest component count lumo decodes per attribute. */
+#define LUMO_DRACO_MAX_COMPONENTS 16u
+/* Largest number of attributes per geometry. */
+#define LUMO_DRACO_MAX_ATTRIBUTES 32u
+
+/* Decoding modes found, for diagnostics (`lumo-draco-decode --info`). */
+typedef struct lumo_draco_attr_modes {
+    uint8_t decoder_id;       /* attributes decoder the attribute belongs to */
+    uint8_t traversal;        /* 0 depth-first, 1 prediction degree */
+    uint8_t vertex_attribute; /* 1 per-vertex, 0 per-corner (seams) */
+    uint8_t seq_type;         /* 0 generic 1 integer 2 quantization 3 normals */
+    int8_t  prediction;       /* -2 none, 0 delta, 1 parallelogram, 2 multi,
+                                 4 constrained multi, 5 tex-coords portable,
+                                 6 geometric normal */
+    int8_t  transform;        /* -1 none, 1 wrap, 3 octahedron canonicalized */
+    uint8_t compressed;       /* 1 entropy coded, 0 raw bytes */
+    uint8_t symbol_coding;    /* 0 tagged, 1 raw rANS (when compressed) */
+} lumo_draco_attr_modes;
+
+/* One decoded attribute. Values are `num_values` entries of
+ * `num_portable` int32 components each; point p uses entry
+ * point_to_value[p] (or entry p when point_to_value is NULL). */
+typedef struct lumo_draco_attribute {
+    uint8_t  type;            /* LUMO_DRACO_POSITION ... GENERIC */
+    uint8_t  data_type;       /* original data type (LUMO_DRACO_DT_*) */
+    uint8_t  num_components;  /* components of the original attribute */
+    uint8_t  num_portable;    /* components of the portable values */
+    uint8_t  normalized;      /* Draco's normalized flag */
+    uint8_t  xform;           /* LUMO_DRACO_XFORM_* */
+    uint8_t  quant_bits;      /* quantization / octahedral bits, else 0 */
+    uint8_t  frac_bits;       /* fractional bits of min_fixed/range_fixed */
+    uint32_t unique_id;
+    uint32_t num_values;
+    int32_t  *values;         /* num_values * num_portable portable ints */
+    uint32_t *point_to_value; /* num_points entries, or NULL (identity) */
+    /* Quantization (xform == QUANTIZED): float32 bit patterns as stored,
+     * and the same in fixed point with frac_bits fractional bits. */
+    uint32_t *min_bits;       /* num_components */
+    uint32_t range_bits;
+    int32_t  *min_fixed;      /* num_components */
+    int32_t  range_fixed;
+    lumo_draco_attr_modes modes;
+} lumo_draco_attribute;
+
+typedef struct lumo_draco_info {
+    uint8_t  version_major, version_minor;
+    uint8_t  geometry;        /* LUMO_DRACO_POINT_CLOUD or LUMO_DRACO_MESH */
+    uint8_t  method;          /* LUMO_DRACO_METHOD_* */
+    uint16_t flags;           /* bit 15: metadata present */
+    uint8_t  connectivity;    /* meshes: sequential 0 compressed / 1 raw;
+                                 EdgeBreaker 0 standard / 2 valence */
+    uint32_t num_faces;       /* exact */
+    uint32_t num_points_max;  /* upper bound on decoded points */
+} lumo_draco_info;
+
+typedef struct lumo_draco_mesh {
+    uint8_t  geometry, method, connectivity;
+    uint32_t num_points;
+    uint32_t num_faces;
+    uint32_t *faces;          /* 3 * num_faces point indices, libdraco order */
+    uint32_t num_attributes;
+    lumo_draco_attribute *attributes;  /* in libdraco attribute-id order */
+    size_t   arena_bytes;     /* arena bytes the outputs occupy */
+    size_t   work_bytes;      /* peak temporary bytes the decode used */
+} lumo_draco_mesh;
+
+/* Parse the header and geometry counts only. */
+lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *info);
+
+/* Upper bound of the arena bytes a decode needs, for a geometry whose
+ * attributes hold at most `max_components` portable components per point
+ * in total (e.g. 3 position + 2 normal + 2 uv + 4 colour = 11). Includes
+ * LUMO_ARENA_SLACK. SIZE_MAX on overflow. */
+size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_components);
+
+/* Decode a whole stream. On success *out describes arrays in `arena`.
+ * On error the arena and *out are unchanged. */
+lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *arena,
+                              lumo_draco_mesh *out);
+
+/* Original value of component `comp` of a QUANTIZED portable value `q`, in
+ * fixed point with attr->frac_bits fractional bits (saturated to int32).
+ * Other transforms return q unchanged. */
+int32_t lumo_draco_dequantize(const lumo_draco_attribute *attr, unsigned comp, int32_t q);
+
+/* Portable value of point `point`, component `comp` (bounds unchecked). */
+static inline int32_t lumo_draco_value(const lumo_draco_attribute *a, uint32_t point,
+                                       unsigned comp)
+{
+    uint32_t e = a->point_to_value ? a->point_to_value[point] : point;
+    return a->values[(size_t)e * a->num_portable + comp];
+}
+
+#endif /* LUMO_DRACO_H */

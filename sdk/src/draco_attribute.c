@@ -1,0 +1,261 @@
+/*
+ * draco_attribute.c — attribute descriptors and the sequential attribute
+ * decoders (integer, quantization, octahedral normals): the portable
+ * integer values, their prediction, and the transform parameters.
+ *
+ * Stream order per attributes decoder (libdraco AttributesDecoder):
+ *   descriptors of all its attributes, one sequential-decoder type each;
+ *   then for each attribute: prediction header, values, prediction data;
+ *   then for each attribute: transform parameters (quantization / octahedron).
+ */
+#include "draco_internal.h"
+#include "lumo/fixed.h"
+
+#define LD_PRED_NONE (-2)
+#define LD_SEQ_GENERIC 0u
+#define LD_SEQ_INTEGER 1u
+#define LD_SEQ_QUANTIZATION 2u
+#define LD_SEQ_NORMALS 3u
+
+lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
+                                          uint32_t *first, uint32_t *count)
+{
+    uint32_t n, i;
+    lumo_status st = ld_varint32(&d->buf, &n);
+    if (st)
+        return st;
+    if (n == 0 || n > LUMO_DRACO_MAX_ATTRIBUTES - d->num_attrs)
+        return n ? LUMO_ERR_LIMIT : LUMO_ERR_CORRUPT;
+    *first = d->num_attrs;
+    *count = n;
+    for (i = 0; i < n; ++i) {
+        lumo_draco_attribute *a = &d->attrs[d->num_attrs + i];
+        uint8_t f[4];
+        unsigned k;
+        for (k = 0; k < 4; ++k)
+            if ((st = ld_u8(&d->buf, &f[k])))
+                return st;
+        if (f[0] > LUMO_DRACO_GENERIC || f[1] == 0 || f[1] > 11 || f[2] == 0)
+            return LUMO_ERR_CORRUPT;
+        if (f[2] > LUMO_DRACO_MAX_COMPONENTS)
+            return LUMO_ERR_UNSUPPORTED;
+        memset(a, 0, sizeof *a);
+        a->type = f[0];
+        a->data_type = f[1];
+        a->num_components = f[2];
+        a->num_portable = f[2];
+        a->normalized = f[3] ? 1 : 0;
+        a->modes.decoder_id = (uint8_t)decoder;
+        a->modes.prediction = LD_PRED_NONE;
+        a->modes.transform = -1;
+        if ((st = ld_varint32(&d->buf, &a->unique_id)))
+            return st;
+    }
+    d->num_attrs += n;
+    for (i = 0; i < n; ++i) {
+        lumo_draco_attribute *a = &d->attrs[*first + i];
+        uint8_t type;
+        if ((st = ld_u8(&d->buf, &type)))
+            return st;
+        if (type == LD_SEQ_GENERIC || type > LD_SEQ_NORMALS)
+            return type == LD_SEQ_GENERIC ? LUMO_ERR_UNSUPPORTED : LUMO_ERR_CORRUPT;
+        if ((type == LD_SEQ_QUANTIZATION || type == LD_SEQ_NORMALS) &&
+            a->data_type != LUMO_DRACO_DT_FLOAT32)
+            return LUMO_ERR_CORRUPT;
+        if (type == LD_SEQ_NORMALS && a->num_components != 3)
+            return LUMO_ERR_CORRUPT;
+        if (type == LD_SEQ_INTEGER && (a->data_type > LUMO_DRACO_DT_UINT32))
+            return LUMO_ERR_UNSUPPORTED;
+        a->modes.seq_type = type;
+        if (type == LD_SEQ_NORMALS)
+            a->num_portable = 2;  /* octahedral coordinates */
+    }
+    return LUMO_OK;
+}
+
+/* Values stored without entropy coding: num_bytes little-endian bytes each. */
+static lumo_status ld_raw_values(ld_buf *b, uint32_t n, int32_t *out)
+{
+    uint8_t nb;
+    uint32_t i;
+    lumo_status st = ld_u8(b, &nb);
+    if (st)
+        return st;
+    if (nb == 0 || nb > 4)
+        return LUMO_ERR_CORRUPT;
+    if ((uint64_t)nb * n > ld_remaining(b))
+        return LUMO_ERR_TRUNCATED;
+    for (i = 0; i < n; ++i) {
+        const uint8_t *p = ld_head(b);
+        uint32_t v = 0;
+        unsigned k;
+        for (k = 0; k < nb; ++k)
+            v |= (uint32_t)p[k] << (8 * k);
+        out[i] = (int32_t)v;
+        b->pos += nb;
+    }
+    return LUMO_OK;
+}
+
+/* Draco's zig-zag: even symbols are >= 0, odd ones negative. */
+static void ld_symbols_to_signed(int32_t *v, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; ++i) {
+        uint32_t s = (uint32_t)v[i];
+        v[i] = (s & 1u) ? -(int32_t)(s >> 1) - 1 : (int32_t)(s >> 1);
+    }
+}
+
+static const lumo_draco_attribute *ld_find_position(const ld_dec *d)
+{
+    uint32_t i;
+    for (i = 0; i < d->num_attrs; ++i)
+        if (d->attrs[i].type == LUMO_DRACO_POSITION)
+            return d->attrs[i].values ? &d->attrs[i] : NULL;
+    return NULL;
+}
+
+static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const ld_seq *seq)
+{
+    const uint32_t n = seq->num_entries;
+    const unsigned comps = a->num_portable;
+    size_t num_values = (size_t)n * comps;
+    ld_pred pred;
+    int8_t method, transform = -1;
+    uint8_t compressed, *state = NULL, *mark;
+    lumo_status st;
+
+    if (num_values > 0xFFFFFFFFu)
+        return LUMO_ERR_LIMIT;
+    a->num_values = n;
+    a->values = ld_out(&d->mem, num_values, sizeof(int32_t));
+    if (!a->values)
+        return LUMO_ERR_NOMEM;
+    if ((st = ld_u8(&d->buf, (uint8_t *)&method)))
+        return st;
+    if (method != LD_PRED_NONE) {
+        if ((st = ld_u8(&d->buf, (uint8_t *)&transform)))
+            return st;
+        if (transform < -1 || transform > 3)
+            return LUMO_ERR_CORRUPT;
+    }
+    a->modes.prediction = method;
+    a->modes.transform = transform;
+    memset(&pred, 0, sizeof pred);
+    pred.method = method;
+    pred.transform = transform;
+    pred.comps = comps;
+    pred.seq = seq;
+    pred.pos = ld_find_position(d);
+    if (method != LD_PRED_NONE) {
+        /* libdraco pairs integer attributes only with the wrap transform and
+         * normals only with the octahedron transforms. */
+        int normals = a->modes.seq_type == LD_SEQ_NORMALS;
+        if (normals ? (transform != 2 && transform != 3) : transform != 1)
+            return LUMO_ERR_UNSUPPORTED;
+    }
+    if ((st = ld_u8(&d->buf, &compressed)))
+        return st;
+    a->modes.compressed = compressed ? 1 : 0;
+    if (compressed)
+        st = ld_decode_symbols(&d->buf, &d->mem, (uint32_t)num_values, comps,
+                               (uint32_t *)a->values, &a->modes.symbol_coding);
+    else
+        st = ld_raw_values(&d->buf, (uint32_t)num_values, a->values);
+    if (st)
+        return st;
+    /* Octahedral corrections are stored as non-negative values. */
+    if (num_values && !(method != LD_PRED_NONE && transform >= 2))
+        ld_symbols_to_signed(a->values, (uint32_t)num_values);
+    if (method == LD_PRED_NONE)
+        return LUMO_OK;
+    mark = ld_tmp_mark(&d->mem);
+    st = ld_pred_decode_data(&pred, &d->buf, &d->mem, n, &state);
+    if (!st && num_values)
+        st = ld_pred_compute(&pred, &d->mem, a->values, n, state);
+    ld_tmp_release(&d->mem, mark);
+    return st;
+}
+
+/* Fractional bits for min/range in fixed point: as many as keep
+ * |min| + range below 2^30. */
+static unsigned ld_frac_bits(const uint32_t *min_bits, unsigned comps, uint32_t range_bits)
+{
+    int e = (int)((range_bits >> 23) & 0xFFu) - 127;
+    unsigned c;
+    int f;
+    for (c = 0; c < comps; ++c) {
+        int ec = (int)((min_bits[c] >> 23) & 0xFFu) - 127;
+        if (ec > e)
+            e = ec;
+    }
+    f = 27 - e;
+    return f < 0 ? 0u : (f > 30 ? 30u : (unsigned)f);
+}
+
+static lumo_status ld_decode_quantization(ld_dec *d, lumo_draco_attribute *a)
+{
+    unsigned c, comps = a->num_components;
+    uint8_t bits;
+    lumo_status st;
+    a->min_bits = ld_out(&d->mem, comps, sizeof(uint32_t));
+    a->min_fixed = ld_out(&d->mem, comps, sizeof(int32_t));
+    if (!a->min_bits || !a->min_fixed)
+        return LUMO_ERR_NOMEM;
+    for (c = 0; c < comps; ++c)
+        if ((st = ld_u32(&d->buf, &a->min_bits[c])))
+            return st;
+    if ((st = ld_u32(&d->buf, &a->range_bits)) || (st = ld_u8(&d->buf, &bits)))
+        return st;
+    if (bits < 1 || bits > 30)
+        return LUMO_ERR_CORRUPT;
+    a->xform = LUMO_DRACO_XFORM_QUANTIZED;
+    a->quant_bits = bits;
+    a->frac_bits = (uint8_t)ld_frac_bits(a->min_bits, comps, a->range_bits);
+    for (c = 0; c < comps; ++c)
+        if ((st = lumo_f32bits_to_fixed(a->min_bits[c], a->frac_bits, &a->min_fixed[c])))
+            return st;
+    return lumo_f32bits_to_fixed(a->range_bits, a->frac_bits, &a->range_fixed);
+}
+
+static lumo_status ld_decode_transform_params(ld_dec *d, lumo_draco_attribute *a)
+{
+    uint8_t bits;
+    lumo_status st;
+    if (a->modes.seq_type == LD_SEQ_QUANTIZATION)
+        return ld_decode_quantization(d, a);
+    if (a->modes.seq_type != LD_SEQ_NORMALS)
+        return LUMO_OK;
+    if ((st = ld_u8(&d->buf, &bits)))
+        return st;
+    a->xform = LUMO_DRACO_XFORM_OCTAHEDRAL;
+    a->quant_bits = bits;
+    return LUMO_OK;
+}
+
+lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count,
+                                 const ld_seq *seq)
+{
+    uint32_t i;
+    lumo_status st;
+    for (i = 0; i < count; ++i)
+        if ((st = ld_decode_portable(d, &d->attrs[first + i], seq)))
+            return st;
+    for (i = 0; i < count; ++i)
+        if ((st = ld_decode_transform_params(d, &d->attrs[first + i])))
+            return st;
+    return LUMO_OK;
+}
+
+int32_t lumo_draco_dequantize(const lumo_draco_attribute *attr, unsigned comp, int32_t q)
+{
+    int64_t max_q, num, v;
+    if (attr->xform != LUMO_DRACO_XFORM_QUANTIZED || comp >= attr->num_components)
+        return q;
+    max_q = ((int64_t)1 << attr->quant_bits) - 1;
+    num = (int64_t)q * attr->range_fixed;
+    /* round half away from zero */
+    v = num >= 0 ? (num + max_q / 2) / max_q : -((-num + max_q / 2) / max_q);
+    return lumo_sat_i32(v + attr->min_fixed[comp]);
+}

@@ -1,0 +1,116 @@
+/*
+ * draco_buffer.c — bounds-checked little-endian reader, Draco varints and
+ * the LSB-first bit reader (libdraco's DecoderBuffer::BitDecoder).
+ */
+#include "draco_internal.h"
+
+lumo_status ld_u8(ld_buf *b, uint8_t *v)
+{
+    if (ld_remaining(b) < 1)
+        return LUMO_ERR_TRUNCATED;
+    *v = b->data[b->pos++];
+    return LUMO_OK;
+}
+
+lumo_status ld_u16(ld_buf *b, uint16_t *v)
+{
+    const uint8_t *p;
+    if (ld_remaining(b) < 2)
+        return LUMO_ERR_TRUNCATED;
+    p = ld_head(b);
+    *v = (uint16_t)(p[0] | (p[1] << 8));
+    b->pos += 2;
+    return LUMO_OK;
+}
+
+lumo_status ld_u32(ld_buf *b, uint32_t *v)
+{
+    const uint8_t *p;
+    if (ld_remaining(b) < 4)
+        return LUMO_ERR_TRUNCATED;
+    p = ld_head(b);
+    *v = (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+    b->pos += 4;
+    return LUMO_OK;
+}
+
+/* LEB128, low groups first. libdraco accepts sizeof(T) + 1 + sizeof(T) / 8
+ * bytes and silently drops bits that overflow the type; so do we. */
+static lumo_status ld_varint(ld_buf *b, unsigned max_bytes, uint64_t *v)
+{
+    uint64_t r = 0;
+    unsigned i;
+    for (i = 0; i < max_bytes; ++i) {
+        uint8_t byte;
+        if (ld_u8(b, &byte))
+            return LUMO_ERR_TRUNCATED;
+        if (7 * i < 64)
+            r |= (uint64_t)(byte & 0x7Fu) << (7 * i);
+        if (!(byte & 0x80u)) {
+            *v = r;
+            return LUMO_OK;
+        }
+    }
+    return LUMO_ERR_CORRUPT;
+}
+
+lumo_status ld_varint32(ld_buf *b, uint32_t *v)
+{
+    uint64_t r;
+    lumo_status st = ld_varint(b, 5, &r);
+    if (st)
+        return st;
+    *v = (uint32_t)r;
+    return LUMO_OK;
+}
+
+lumo_status ld_varint64(ld_buf *b, uint64_t *v)
+{
+    return ld_varint(b, 10, v);
+}
+
+lumo_status ld_skip(ld_buf *b, uint64_t n)
+{
+    if (n > ld_remaining(b))
+        return LUMO_ERR_TRUNCATED;
+    b->pos += (size_t)n;
+    return LUMO_OK;
+}
+
+lumo_status ld_take(ld_buf *b, uint64_t n, ld_buf *sub)
+{
+    if (n > ld_remaining(b))
+        return LUMO_ERR_TRUNCATED;
+    sub->data = ld_head(b);
+    sub->size = (size_t)n;
+    sub->pos = 0;
+    b->pos += (size_t)n;
+    return LUMO_OK;
+}
+
+void ld_bits_start(ld_bits *r, const ld_buf *b)
+{
+    r->data = ld_head(b);
+    r->size = ld_remaining(b);
+    r->bit = 0;
+}
+
+uint32_t ld_bits_get(ld_bits *r, unsigned nbits)
+{
+    uint32_t v = 0;
+    unsigned i;
+    for (i = 0; i < nbits; ++i) {
+        size_t byte = r->bit >> 3;
+        if (byte >= r->size)
+            break;  /* libdraco: zero bits, position unchanged */
+        v |= (uint32_t)((r->data[byte] >> (r->bit & 7u)) & 1u) << i;
+        r->bit++;
+    }
+    return v;
+}
+
+void ld_bits_end(ld_bits *r, ld_buf *b)
+{
+    size_t bytes = (r->bit + 7u) >> 3;
+    b->pos += bytes;  /* bytes <= remaining by construction */
+}

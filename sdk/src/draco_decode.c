@@ -1,0 +1,362 @@
+/*
+ * draco_decode.c — the Draco container: header, metadata (skipped),
+ * sequential mesh connectivity, the attributes-decoder loop, and the public
+ * entry points of lumo/draco.h.
+ */
+#include "draco_internal.h"
+
+#define LD_FLAG_METADATA 0x8000u
+
+typedef struct ld_header {
+    uint8_t major, minor, geometry, method;
+    uint16_t flags;
+} ld_header;
+
+static lumo_status ld_read_header(ld_buf *b, ld_header *h)
+{
+    lumo_status st;
+    if (ld_remaining(b) < 11)
+        return LUMO_ERR_TRUNCATED;
+    if (memcmp(ld_head(b), "DRACO", 5) != 0)
+        return LUMO_ERR_CORRUPT;
+    b->pos += 5;
+    if ((st = ld_u8(b, &h->major)) || (st = ld_u8(b, &h->minor)) ||
+        (st = ld_u8(b, &h->geometry)) || (st = ld_u8(b, &h->method)) ||
+        (st = ld_u16(b, &h->flags)))
+        return st;
+    if (h->geometry > LUMO_DRACO_MESH)
+        return LUMO_ERR_UNSUPPORTED;
+    /* lumo decodes what libdraco 1.5.5 writes: meshes 2.2, point clouds 2.3. */
+    if (h->major != 2 || h->minor != (h->geometry == LUMO_DRACO_MESH ? 2 : 3))
+        return LUMO_ERR_VERSION;
+    if (h->method > 1)
+        return LUMO_ERR_UNSUPPORTED;
+    return LUMO_OK;
+}
+
+static lumo_status ld_skip_name(ld_buf *b)
+{
+    uint8_t len;
+    lumo_status st = ld_u8(b, &len);
+    return st ? st : ld_skip(b, len);
+}
+
+/* Metadata blocks form a tree stored depth first; every block after the
+ * root starts with its name, so a count of pending blocks suffices. Each
+ * block takes at least two bytes, which bounds the loop by the input. */
+static lumo_status ld_skip_metadata_blocks(ld_buf *b, uint64_t pending, int first_is_root)
+{
+    lumo_status st;
+    while (pending) {
+        uint32_t entries, subs, i;
+        --pending;
+        if (!first_is_root && (st = ld_skip_name(b)))
+            return st;
+        first_is_root = 0;
+        if ((st = ld_varint32(b, &entries)))
+            return st;
+        for (i = 0; i < entries; ++i) {
+            uint32_t size;
+            if ((st = ld_skip_name(b)) || (st = ld_varint32(b, &size)))
+                return st;
+            if (size == 0)
+                return LUMO_ERR_CORRUPT;
+            if ((st = ld_skip(b, size)))
+                return st;
+        }
+        if ((st = ld_varint32(b, &subs)))
+            return st;
+        if (subs > ld_remaining(b))
+            return LUMO_ERR_CORRUPT;
+        pending += subs;
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_skip_metadata(ld_buf *b)
+{
+    uint32_t n, i;
+    lumo_status st = ld_varint32(b, &n);
+    if (st)
+        return st;
+    for (i = 0; i < n; ++i) {
+        uint32_t id;
+        if ((st = ld_varint32(b, &id)) || (st = ld_skip_metadata_blocks(b, 1, 1)))
+            return st;
+    }
+    return ld_skip_metadata_blocks(b, 1, 1);
+}
+
+static lumo_status ld_start(ld_buf *b, const uint8_t *data, size_t size, ld_header *h)
+{
+    lumo_status st;
+    if (!data && size)
+        return LUMO_ERR_ARG;
+    b->data = data;
+    b->size = size;
+    b->pos = 0;
+    if ((st = ld_read_header(b, h)))
+        return st;
+    if (h->flags & LD_FLAG_METADATA)
+        return ld_skip_metadata(b);
+    return LUMO_OK;
+}
+
+/* ---- sequential mesh connectivity ------------------------------------------ */
+
+static lumo_status ld_seq_counts(ld_buf *b, uint32_t *faces, uint32_t *points)
+{
+    lumo_status st;
+    if ((st = ld_varint32(b, faces)) || (st = ld_varint32(b, points)))
+        return st;
+    if (*faces > 0xFFFFFFFFu / 3 || *faces > ld_remaining(b) / 3)
+        return LUMO_ERR_CORRUPT;
+    if ((uint64_t)*points > (uint64_t)*faces * 3)
+        return LUMO_ERR_CORRUPT;
+    return LUMO_OK;
+}
+
+/* Indices coded as zig-zag deltas from the previous index (method 0). */
+static lumo_status ld_seq_compressed_indices(ld_dec *d)
+{
+    uint32_t n = d->num_faces * 3u, i;
+    int32_t last = 0;
+    lumo_status st = ld_decode_symbols(&d->buf, &d->mem, n, 1, d->faces, NULL);
+    if (st)
+        return st;
+    for (i = 0; i < n; ++i) {
+        uint32_t s = d->faces[i];
+        int32_t diff = (int32_t)(s >> 1);
+        int64_t v = (int64_t)last + ((s & 1u) ? -(int64_t)diff : diff);
+        if (v < 0 || v > INT32_MAX)
+            return LUMO_ERR_CORRUPT;
+        last = (int32_t)v;
+        d->faces[i] = (uint32_t)v;
+    }
+    return LUMO_OK;
+}
+
+/* Plain indices (method 1), sized by the point count. */
+static lumo_status ld_seq_raw_indices(ld_dec *d)
+{
+    uint32_t n = d->num_faces * 3u, i, np = d->num_points;
+    lumo_status st = LUMO_OK;
+    for (i = 0; i < n && !st; ++i) {
+        if (np < 256u) {
+            uint8_t v;
+            st = ld_u8(&d->buf, &v);
+            d->faces[i] = v;
+        } else if (np < 65536u) {
+            uint16_t v;
+            st = ld_u16(&d->buf, &v);
+            d->faces[i] = v;
+        } else if (np < (1u << 21)) {
+            st = ld_varint32(&d->buf, &d->faces[i]);
+        } else {
+            st = ld_u32(&d->buf, &d->faces[i]);
+        }
+    }
+    return st;
+}
+
+static lumo_status ld_seq_connectivity(ld_dec *d)
+{
+    uint8_t method;
+    lumo_status st = ld_seq_counts(&d->buf, &d->num_faces, &d->num_points);
+    if (st)
+        return st;
+    if (d->num_faces > LD_MAX_FACES || d->num_points > LD_MAX_POINTS)
+        return LUMO_ERR_LIMIT;
+    if ((st = ld_u8(&d->buf, &method)))
+        return st;
+    d->faces = ld_out(&d->mem, (size_t)d->num_faces * 3u, sizeof(uint32_t));
+    if (!d->faces)
+        return LUMO_ERR_NOMEM;
+    return method == 0 ? ld_seq_compressed_indices(d) : ld_seq_raw_indices(d);
+}
+
+/* ---- attributes ---------------------------------------------------------------- */
+
+typedef struct ld_decoder_slot {
+    uint32_t first, count;
+    ld_seq seq;
+    uint8_t traversal, vertex_attr;
+} ld_decoder_slot;
+
+static lumo_status ld_all_attributes(ld_dec *d)
+{
+    ld_decoder_slot slots[LD_MAX_DECODERS];
+    uint8_t n, i;
+    lumo_status st = ld_u8(&d->buf, &n);
+    if (st)
+        return st;
+    if (n > LD_MAX_DECODERS)
+        return LUMO_ERR_LIMIT;
+    d->num_decoders = n;
+    memset(slots, 0, sizeof slots);
+    for (i = 0; i < n; ++i) {
+        if (d->eb && (st = ld_eb_create_attributes_decoder(d, i, &slots[i].seq,
+                                                           &slots[i].traversal,
+                                                           &slots[i].vertex_attr)))
+            return st;
+    }
+    for (i = 0; i < n; ++i) {
+        uint32_t k;
+        if ((st = ld_read_attribute_descriptors(d, i, &slots[i].first, &slots[i].count)))
+            return st;
+        for (k = 0; k < slots[i].count; ++k) {
+            d->attrs[slots[i].first + k].modes.traversal = slots[i].traversal;
+            d->attrs[slots[i].first + k].modes.vertex_attribute = slots[i].vertex_attr;
+        }
+    }
+    for (i = 0; i < n; ++i) {
+        uint8_t *mark = ld_tmp_mark(&d->mem);
+        ld_seq *seq = &slots[i].seq;
+        if (d->eb) {
+            if ((st = ld_eb_sequence(d, i, seq)))
+                return st;
+        } else {
+            seq->num_entries = d->num_points;  /* linear sequencer */
+        }
+        st = ld_decode_attributes(d, slots[i].first, slots[i].count, seq);
+        ld_tmp_release(&d->mem, mark);
+        if (st)
+            return st;
+        if (seq->point_ids) {
+            /* point_to_value outputs were made by ld_eb_sequence */
+        }
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_point_cloud_geometry(ld_dec *d)
+{
+    uint32_t n;
+    lumo_status st;
+    if (d->method != LUMO_DRACO_METHOD_SEQUENTIAL)
+        return LUMO_ERR_UNSUPPORTED;  /* KD-tree point clouds: not yet */
+    if ((st = ld_u32(&d->buf, &n)))
+        return st;
+    if (n > LD_MAX_POINTS)
+        return LUMO_ERR_LIMIT;
+    d->num_points = n;
+    return LUMO_OK;
+}
+
+static lumo_status ld_decode_all(ld_dec *d, lumo_draco_mesh *m)
+{
+    lumo_status st;
+    d->attrs = ld_out(&d->mem, LUMO_DRACO_MAX_ATTRIBUTES, sizeof(lumo_draco_attribute));
+    if (!d->attrs)
+        return LUMO_ERR_NOMEM;
+    if (d->geometry == LUMO_DRACO_POINT_CLOUD)
+        st = ld_point_cloud_geometry(d);
+    else if (d->method == LUMO_DRACO_METHOD_SEQUENTIAL)
+        st = ld_seq_connectivity(d);
+    else
+        st = ld_eb_decode_connectivity(d);
+    if (st || (st = ld_all_attributes(d)))
+        return st;
+    m->num_points = d->num_points;
+    m->num_faces = d->num_faces;
+    m->faces = d->faces;
+    m->num_attributes = d->num_attrs;
+    m->attributes = d->attrs;
+    return LUMO_OK;
+}
+
+lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *arena,
+                              lumo_draco_mesh *out)
+{
+    ld_dec d;
+    ld_header h;
+    lumo_draco_mesh m;
+    lumo_status st;
+    if (!arena || !out)
+        return LUMO_ERR_ARG;
+    memset(&d, 0, sizeof d);
+    memset(&m, 0, sizeof m);
+    if ((st = ld_start(&d.buf, data, size, &h)))
+        return st;
+    d.version = (uint16_t)(h.major << 8 | h.minor);
+    d.geometry = h.geometry;
+    d.method = h.method;
+    ld_mem_init(&d.mem, arena);
+    if ((st = ld_decode_all(&d, &m)))
+        return st;  /* nothing committed: the arena is unchanged */
+    m.geometry = h.geometry;
+    m.method = h.method;
+    m.connectivity = d.connectivity;
+    m.arena_bytes = (size_t)(d.mem.lo - d.mem.start);
+    m.work_bytes = d.mem.peak_work;
+    ld_mem_commit(&d.mem, arena);
+    *out = m;
+    return LUMO_OK;
+}
+
+lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *info)
+{
+    ld_buf b;
+    ld_header h;
+    lumo_draco_info r;
+    lumo_status st;
+    if (!info)
+        return LUMO_ERR_ARG;
+    if ((st = ld_start(&b, data, size, &h)))
+        return st;
+    memset(&r, 0, sizeof r);
+    r.version_major = h.major;
+    r.version_minor = h.minor;
+    r.geometry = h.geometry;
+    r.method = h.method;
+    r.flags = h.flags;
+    if (h.geometry == LUMO_DRACO_POINT_CLOUD) {
+        if (h.method == LUMO_DRACO_METHOD_SEQUENTIAL) {
+            if ((st = ld_u32(&b, &r.num_points_max)))
+                return st;
+        } else {
+            uint32_t bits;
+            if ((st = ld_u32(&b, &bits)) || (st = ld_u32(&b, &r.num_points_max)))
+                return st;
+        }
+    } else if (h.method == LUMO_DRACO_METHOD_SEQUENTIAL) {
+        if ((st = ld_seq_counts(&b, &r.num_faces, &r.num_points_max)) ||
+            (st = ld_u8(&b, &r.connectivity)))
+            return st;
+    } else {
+        uint32_t verts, faces;
+        uint8_t type;
+        if ((st = ld_u8(&b, &type)) || (st = ld_varint32(&b, &verts)) ||
+            (st = ld_varint32(&b, &faces)))
+            return st;
+        if (faces > LD_MAX_FACES)
+            return LUMO_ERR_LIMIT;
+        r.connectivity = type;
+        r.num_faces = faces;
+        r.num_points_max = faces * 3u;  /* attribute seams can split vertices */
+        (void)verts;
+    }
+    if (r.num_faces > LD_MAX_FACES || r.num_points_max > LD_MAX_POINTS)
+        return LUMO_ERR_LIMIT;
+    *info = r;
+    return LUMO_OK;
+}
+
+size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_components)
+{
+    size_t faces, points, out, work;
+    if (!info)
+        return SIZE_MAX;
+    faces = info->num_faces;
+    points = info->num_points_max;
+    /* outputs: attribute table, faces, values and point maps */
+    out = lumo_size_add(sizeof(lumo_draco_attribute) * LUMO_DRACO_MAX_ATTRIBUTES + 1024u,
+                        lumo_size_mul(faces, 12u));
+    out = lumo_size_add(out, lumo_size_mul(points, lumo_size_add(4u * max_components,
+                                                                 4u * LUMO_DRACO_MAX_ATTRIBUTES)));
+    /* work: corner table and traversal state (EdgeBreaker) or symbol
+     * tables (sequential), see docs/draco-decoder.md */
+    work = lumo_size_add(lumo_size_mul(faces, 64u), lumo_size_mul(points, 32u));
+    work = lumo_size_add(work, (size_t)1 << 20);
+    return lumo_size_add(lumo_size_add(out, work), LUMO_ARENA_SLACK);
+}

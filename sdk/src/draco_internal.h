@@ -1,0 +1,164 @@
+/*
+ * draco_internal.h — shared pieces of lumo's Draco decoder (not public).
+ *
+ * Module map (each file holds one concern):
+ *   draco_buffer.c      byte reader, varints, LSB-first bit reader
+ *   draco_mem.c         two-ended arena carving: outputs up, work memory down
+ *   draco_rans.c        rANS symbol decoder, tagged/raw symbol streams,
+ *                       rABS binary decoder
+ *   draco_decode.c      header, metadata skip, sequential connectivity, the
+ *                       attribute decoder dispatch, public entry points
+ *   draco_attribute.c   sequential integer / quantization / normal decoding
+ *   draco_predict.c     prediction schemes and their transforms
+ *   draco_edgebreaker.c EdgeBreaker connectivity (standard and valence)
+ *   draco_traverse.c    attribute seams, point assignment, traversal orders
+ *
+ * The libdraco 1.5.5 source is the authority for every behaviour here; the
+ * comments name the places where it differs from the written spec.
+ */
+#ifndef LUMO_DRACO_INTERNAL_H
+#define LUMO_DRACO_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include "lumo/draco.h"
+
+/* Work limits: no count read from a stream may exceed these. */
+#define LD_MAX_FACES   (1u << 26)
+#define LD_MAX_POINTS  (1u << 27)
+#define LD_MAX_DECODERS LUMO_DRACO_MAX_ATTRIBUTES
+
+/* ---- byte reader (draco_buffer.c) --------------------------------------- */
+typedef struct ld_buf {
+    const uint8_t *data;
+    size_t size;
+    size_t pos;
+} ld_buf;
+
+static inline size_t ld_remaining(const ld_buf *b) { return b->size - b->pos; }
+static inline const uint8_t *ld_head(const ld_buf *b) { return b->data + b->pos; }
+
+lumo_status ld_u8(ld_buf *b, uint8_t *v);
+lumo_status ld_u16(ld_buf *b, uint16_t *v);
+lumo_status ld_u32(ld_buf *b, uint32_t *v);
+lumo_status ld_varint32(ld_buf *b, uint32_t *v);
+lumo_status ld_varint64(ld_buf *b, uint64_t *v);
+lumo_status ld_skip(ld_buf *b, uint64_t n);
+/* A sub-reader of the next n bytes; the parent skips past them. */
+lumo_status ld_take(ld_buf *b, uint64_t n, ld_buf *sub);
+
+/* LSB-first bit reader over the rest of a buffer. Reading past the end
+ * yields zero bits without advancing, as libdraco's BitDecoder does. */
+typedef struct ld_bits {
+    const uint8_t *data;
+    size_t size;      /* bytes */
+    size_t bit;       /* bits consumed */
+} ld_bits;
+
+void ld_bits_start(ld_bits *r, const ld_buf *b);
+uint32_t ld_bits_get(ld_bits *r, unsigned nbits);  /* nbits <= 32 */
+/* Advance `b` past the whole bytes the reader touched. */
+void ld_bits_end(ld_bits *r, ld_buf *b);
+
+/* ---- memory (draco_mem.c) ------------------------------------------------ */
+typedef struct ld_mem {
+    uint8_t *lo;      /* next output byte (grows up) */
+    uint8_t *hi;      /* lowest work byte (grows down) */
+    uint8_t *start;   /* first byte of the carved region */
+    uint8_t *top;     /* one past the last byte */
+    size_t peak_work;
+} ld_mem;
+
+void ld_mem_init(ld_mem *m, lumo_arena *a);
+void *ld_out(ld_mem *m, size_t n, size_t size);     /* NULL when full */
+void *ld_tmp(ld_mem *m, size_t n, size_t size);     /* NULL when full */
+static inline uint8_t *ld_tmp_mark(const ld_mem *m) { return m->hi; }
+static inline void ld_tmp_release(ld_mem *m, uint8_t *mark) { m->hi = mark; }
+/* Commit the outputs to the arena. */
+void ld_mem_commit(ld_mem *m, lumo_arena *a);
+
+/* ---- entropy coding (draco_rans.c) --------------------------------------- */
+/* Symbols of a DecodeSymbols() stream (tagged or raw rANS). */
+lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
+                              unsigned num_components, uint32_t *out,
+                              uint8_t *scheme_out);
+
+/* libdraco's RAnsBitDecoder (rABS with one 8-bit zero probability). */
+typedef struct ld_rabs {
+    const uint8_t *buf;
+    uint32_t offset;
+    uint32_t state;
+    uint8_t p0;
+} ld_rabs;
+
+lumo_status ld_rabs_start(ld_rabs *d, ld_buf *b);
+int ld_rabs_bit(ld_rabs *d);
+
+/* ---- decoder state (draco_decode.c) ------------------------------------- */
+struct ld_eb;
+
+typedef struct ld_attr {
+    lumo_draco_attribute *out;
+    uint8_t decoder;          /* attributes decoder index */
+    uint8_t pred_parent_done; /* portable values available */
+} ld_attr;
+
+typedef struct ld_dec {
+    ld_buf buf;
+    ld_mem mem;
+    uint16_t version;         /* major << 8 | minor */
+    uint8_t geometry, method, connectivity;
+    uint32_t num_points;
+    uint32_t num_faces;
+    uint32_t *faces;          /* output */
+    lumo_draco_attribute *attrs;
+    uint32_t num_attrs;
+    struct ld_eb *eb;         /* EdgeBreaker state, NULL otherwise */
+    /* per attributes decoder: point sequence (entry order) */
+    uint8_t num_decoders;
+} ld_dec;
+
+/* One attributes decoder's point sequence and value mapping. */
+typedef struct ld_seq {
+    uint32_t *point_ids;      /* entry i decodes point point_ids[i]; NULL = identity */
+    uint32_t num_entries;
+    /* mesh prediction data (EdgeBreaker only) */
+    const int32_t *vertex_to_data;    /* corner-table vertex -> entry */
+    const int32_t *data_to_corner;    /* entry -> corner */
+    const uint32_t *corner_to_vertex; /* attribute corner table vertices */
+    const uint32_t *opposite;         /* opposites of the attribute corner table */
+    uint32_t num_corners;
+} ld_seq;
+
+/* draco_attribute.c */
+lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
+                                          uint32_t *first, uint32_t *count);
+lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count,
+                                 const ld_seq *seq);
+
+/* draco_predict.c */
+typedef struct ld_pred {
+    int8_t method;
+    int8_t transform;
+    unsigned comps;
+    const ld_seq *seq;
+    const lumo_draco_attribute *pos;  /* parent position attribute, portable */
+    /* wrap transform */
+    int32_t min_value, max_value;
+    /* octahedron transform */
+    int32_t max_quantized;
+} ld_pred;
+
+lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, uint32_t num_values,
+                                uint8_t **state);
+lumo_status ld_pred_compute(ld_pred *p, ld_mem *m, int32_t *values, uint32_t num_entries,
+                            const uint8_t *state);
+
+/* draco_edgebreaker.c */
+lumo_status ld_eb_decode_connectivity(ld_dec *d);
+lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
+                                            uint8_t *traversal, uint8_t *vertex_attr);
+lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq);
+
+#endif /* LUMO_DRACO_INTERNAL_H */

@@ -1,0 +1,265 @@
+/*
+ * draco_rans.c — Draco's entropy decoders: the rANS symbol decoder with its
+ * probability table, the tagged and raw symbol streams built on it
+ * (DecodeSymbols), and the rABS binary decoder (RAnsBitDecoder).
+ *
+ * Differences from the written spec that the library dictates:
+ *  - tagged symbols: one bit reader runs over all values (no per-value
+ *    reset), bits least-significant first;
+ *  - a 4-byte rANS state prefix (tag 3) exists for precisions above 12 bits.
+ */
+#include "draco_internal.h"
+
+/* Symbol lookup: a coarse table of 2^LD_LUT_BITS buckets gives the first
+ * symbol of each bucket, a short forward scan the exact one. This keeps the
+ * table small (libdraco keeps one entry per probability unit, up to 2^20). */
+#define LD_LUT_BITS 12u
+
+typedef struct ld_rans {
+    const uint8_t *buf;
+    uint32_t offset;
+    uint32_t state;
+    uint32_t prec_bits;
+    uint32_t num_symbols;
+    uint32_t *cum;     /* num_symbols + 1 cumulative probabilities */
+    uint32_t *lut;     /* 2^min(prec, LD_LUT_BITS) first symbols */
+    unsigned lut_shift;
+} ld_rans;
+
+/* Precision from the stream's symbol bit length: 3/2 of it, in 12..20. */
+static uint32_t ld_rans_precision(unsigned bit_length)
+{
+    uint32_t p = (3u * bit_length) / 2u;
+    return p < 12u ? 12u : (p > 20u ? 20u : p);
+}
+
+static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
+{
+    uint32_t n, i, total;
+    lumo_status st = ld_varint32(b, &n);
+    if (st)
+        return st;
+    if (n / 64u > ld_remaining(b) || n > (1u << 24))
+        return LUMO_ERR_CORRUPT;
+    r->num_symbols = n;
+    r->cum = ld_tmp(m, (size_t)n + 1u, sizeof(uint32_t));
+    if (!r->cum)
+        return LUMO_ERR_NOMEM;
+    r->cum[0] = 0;
+    for (i = 0; i < n; ++i) {
+        uint8_t byte;
+        uint32_t prob;
+        int extra, k;
+        if ((st = ld_u8(b, &byte)))
+            return st;
+        if ((byte & 3u) == 3u) {  /* run of zero-probability symbols */
+            uint32_t run = byte >> 2, j;
+            if (i + run >= n)
+                return LUMO_ERR_CORRUPT;
+            for (j = 0; j <= run; ++j)
+                r->cum[i + j + 1] = r->cum[i];
+            i += run;
+            continue;
+        }
+        extra = byte & 3;
+        prob = byte >> 2;
+        for (k = 0; k < extra; ++k) {
+            uint8_t eb;
+            if ((st = ld_u8(b, &eb)))
+                return st;
+            prob |= (uint32_t)eb << (8 * (k + 1) - 2);
+        }
+        total = r->cum[i] + prob;
+        if (total > (1u << r->prec_bits) || total < r->cum[i])
+            return LUMO_ERR_CORRUPT;
+        r->cum[i + 1] = total;
+    }
+    if (n && r->cum[n] != (1u << r->prec_bits))
+        return LUMO_ERR_CORRUPT;
+    return LUMO_OK;
+}
+
+static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m)
+{
+    unsigned bits = r->prec_bits < LD_LUT_BITS ? r->prec_bits : LD_LUT_BITS;
+    uint32_t buckets = 1u << bits, bkt, s = 0;
+    r->lut_shift = r->prec_bits - bits;
+    r->lut = ld_tmp(m, buckets, sizeof(uint32_t));
+    if (!r->lut)
+        return LUMO_ERR_NOMEM;
+    for (bkt = 0; bkt < buckets; ++bkt) {
+        uint32_t start = bkt << r->lut_shift;
+        while (r->cum[s + 1] <= start)
+            ++s;  /* terminates: cum[n] == 2^prec > start */
+        r->lut[bkt] = s;
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_rans_start(ld_rans *r, ld_buf *b)
+{
+    uint64_t bytes;
+    const uint8_t *p;
+    uint32_t off, x, l_base = 4u << r->prec_bits;
+    lumo_status st = ld_varint64(b, &bytes);
+    if (st)
+        return st;
+    if (bytes > ld_remaining(b) || bytes > 0x7FFFFFFFu)
+        return LUMO_ERR_CORRUPT;
+    p = ld_head(b);
+    off = (uint32_t)bytes;
+    b->pos += (size_t)bytes;
+    if (off < 1)
+        return LUMO_ERR_CORRUPT;
+    x = p[off - 1] >> 6;
+    if (off < x + 1)  /* libdraco does not check the 4-byte case */
+        return LUMO_ERR_CORRUPT;
+    off -= x + 1;
+    r->state = p[off];
+    if (x >= 1) r->state |= (uint32_t)p[off + 1] << 8;
+    if (x >= 2) r->state |= (uint32_t)p[off + 2] << 16;
+    if (x >= 3) r->state |= (uint32_t)p[off + 3] << 24;
+    r->state &= (1u << (6 + 8 * x)) - 1u;
+    r->state += l_base;
+    if (r->state >= l_base * 256u)
+        return LUMO_ERR_CORRUPT;
+    r->buf = p;
+    r->offset = off;
+    return LUMO_OK;
+}
+
+static inline uint32_t ld_rans_read(ld_rans *r)
+{
+    const uint32_t l_base = 4u << r->prec_bits, mask = (1u << r->prec_bits) - 1u;
+    uint32_t quo, rem, s;
+    while (r->state < l_base && r->offset > 0)
+        r->state = r->state * 256u + r->buf[--r->offset];
+    quo = r->state >> r->prec_bits;
+    rem = r->state & mask;
+    s = r->lut[rem >> r->lut_shift];
+    while (r->cum[s + 1] <= rem)
+        ++s;
+    r->state = quo * (r->cum[s + 1] - r->cum[s]) + rem - r->cum[s];
+    return s;
+}
+
+static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit_length)
+{
+    lumo_status st;
+    r->prec_bits = ld_rans_precision(bit_length);
+    if ((st = ld_rans_read_table(r, b, m)))
+        return st;
+    if (r->num_symbols == 0)
+        return LUMO_ERR_CORRUPT;  /* values announced but no alphabet */
+    return ld_rans_build_lut(r, m);
+}
+
+static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
+                                    unsigned comps, uint32_t *out)
+{
+    ld_rans tags;
+    ld_bits bits;
+    uint32_t i = 0;
+    unsigned j;
+    lumo_status st = ld_rans_create(&tags, b, m, 5);
+    if (st || (st = ld_rans_start(&tags, b)))
+        return st;
+    ld_bits_start(&bits, b);
+    while (i < num_values) {
+        uint32_t len = ld_rans_read(&tags);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        for (j = 0; j < comps && i < num_values; ++j)
+            out[i++] = ld_bits_get(&bits, len);
+    }
+    ld_bits_end(&bits, b);
+    return LUMO_OK;
+}
+
+static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out)
+{
+    ld_rans r;
+    uint8_t max_bits;
+    uint32_t i;
+    lumo_status st = ld_u8(b, &max_bits);
+    if (st)
+        return st;
+    if (max_bits < 1 || max_bits > 18)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_rans_create(&r, b, m, max_bits)) || (st = ld_rans_start(&r, b)))
+        return st;
+    for (i = 0; i < num_values; ++i)
+        out[i] = ld_rans_read(&r);
+    return LUMO_OK;
+}
+
+lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
+                              unsigned num_components, uint32_t *out,
+                              uint8_t *scheme_out)
+{
+    uint8_t scheme;
+    uint8_t *mark;
+    lumo_status st;
+    if (num_values == 0)
+        return LUMO_OK;  /* nothing at all is stored for an empty stream */
+    if (num_components == 0)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_u8(b, &scheme)))
+        return st;
+    if (scheme_out)
+        *scheme_out = scheme;
+    mark = ld_tmp_mark(m);
+    if (scheme == 0)
+        st = ld_decode_tagged(b, m, num_values, num_components, out);
+    else if (scheme == 1)
+        st = ld_decode_raw(b, m, num_values, out);
+    else
+        st = LUMO_ERR_CORRUPT;
+    ld_tmp_release(m, mark);
+    return st;
+}
+
+/* ---- rABS binary decoder --------------------------------------------------- */
+
+lumo_status ld_rabs_start(ld_rabs *d, ld_buf *b)
+{
+    uint32_t size, x;
+    const uint8_t *p;
+    lumo_status st = ld_u8(b, &d->p0);
+    if (st || (st = ld_varint32(b, &size)))
+        return st;
+    if (size > ld_remaining(b) || size < 1)
+        return LUMO_ERR_CORRUPT;
+    p = ld_head(b);
+    x = p[size - 1] >> 6;
+    if (x > 2 || size < x + 1)
+        return LUMO_ERR_CORRUPT;
+    d->offset = size - (x + 1);
+    d->state = p[d->offset];
+    if (x >= 1) d->state |= (uint32_t)p[d->offset + 1] << 8;
+    if (x >= 2) d->state |= (uint32_t)p[d->offset + 2] << 16;
+    d->state &= (1u << (6 + 8 * x)) - 1u;
+    d->state += 4096u;
+    if (d->state >= 4096u * 256u)
+        return LUMO_ERR_CORRUPT;
+    d->buf = p;
+    b->pos += size;
+    return LUMO_OK;
+}
+
+int ld_rabs_bit(ld_rabs *d)
+{
+    const uint32_t p = (256u - d->p0) & 0xFFu;  /* libdraco keeps p in 8 bits */
+    uint32_t quot, rem, xn;
+    if (d->state < 4096u && d->offset > 0)
+        d->state = d->state * 256u + d->buf[--d->offset];
+    quot = d->state >> 8;
+    rem = d->state & 0xFFu;
+    xn = quot * p;
+    if (rem < p) {
+        d->state = xn + rem;
+        return 1;
+    }
+    d->state = d->state - xn - p;
+    return 0;
+}
