@@ -1,0 +1,79 @@
+# boards/mps2-an385/board.mk — the Cortex-M3 board under QEMU, and the proof
+# of the client rules (docs/porting.md).
+#
+#   make check-embedded           nm + source rules on build/m3/liblumo.a
+#   make check-embedded-selftest  feeds the check deliberately bad objects
+#   make board-tests              tests/board/test_*.c under QEMU, and
+#                                 tests/board/golden_*.c hashed on host + board
+#
+# Adding a board test: drop tests/board/test_NAME.c (a main() using
+# tests/board/harness.h) — the wildcard below builds and runs it. A golden
+# program tests/board/golden_NAME.c prints "HASH <label> 0x<16 hex>" lines;
+# the step fails unless the host build prints exactly the same lines.
+
+MPS2_DIR  := boards/mps2-an385
+MPS2_OUT  := $(BUILD)/board/mps2-an385
+BHOST_OUT := $(BUILD)/board/host
+
+# The one QEMU invocation. -icount shift=0: 1 ns of virtual time per guest
+# instruction, so board_ticks() counts instructions deterministically;
+# `timeout` keeps a hung guest from hanging CI (exit 124).
+QEMU_TIMEOUT ?= 60
+MPS2_QEMU := timeout $(QEMU_TIMEOUT) qemu-system-arm -machine mps2-an385 -cpu cortex-m3 \
+             -nographic -monitor none -serial none -icount shift=0 \
+             -semihosting-config enable=on,target=native -kernel
+
+# Board runtime (startup, semihosting, timer) and the board-agnostic layer
+# every board program links (console, harness).
+MPS2_RT_SRCS   := $(MPS2_DIR)/startup.c $(MPS2_DIR)/semihost.c $(MPS2_DIR)/timer.c
+BOARD_LIB_SRCS := tests/board/console.c tests/board/harness.c
+BOARD_TEST_SRCS   := $(sort $(wildcard tests/board/test_*.c))
+BOARD_GOLDEN_SRCS := $(sort $(wildcard tests/board/golden_*.c))
+BOARD_PROGS := $(basename $(notdir $(BOARD_TEST_SRCS) $(BOARD_GOLDEN_SRCS)))
+
+MPS2_ELFS  := $(patsubst %,$(MPS2_OUT)/%.elf,$(BOARD_PROGS))
+BHOST_BINS := $(patsubst %,$(BHOST_OUT)/%,$(BOARD_PROGS))
+
+MPS2_LDFLAGS := $(M3_ARCH) -nostartfiles -specs=nano.specs -T $(MPS2_DIR)/mps2-an385.ld \
+                -Wl,--gc-sections -Wl,--no-warn-rwx-segments
+# Anything in a linked board image that means a heap (the harness must not
+# need one either: newlib's printf would pull _sbrk).
+BOARD_HEAP_SYMS := malloc|calloc|realloc|free|_sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r
+
+$(MPS2_OUT)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(ARM_CC) $(CLIENT_CFLAGS_m3) -Itests/board -MMD -MP -c $< -o $@
+$(BHOST_OUT)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CLIENT_CFLAGS_rel) -Itests/board -MMD -MP -c $< -o $@
+
+MPS2_RT_OBJS    := $(patsubst %.c,$(MPS2_OUT)/obj/%.o,$(MPS2_RT_SRCS) $(BOARD_LIB_SRCS))
+BHOST_RT_OBJS   := $(patsubst %.c,$(BHOST_OUT)/obj/%.o,tests/board/host_io.c $(BOARD_LIB_SRCS))
+
+$(MPS2_OUT)/%.elf: $(MPS2_OUT)/obj/tests/board/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
+	$(ARM_CC) $(MPS2_LDFLAGS) -Wl,-Map=$@.map -o $@ $< $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a
+	@if $(ARM_NM) $@ | awk '{print $$NF}' | grep -Ex '$(BOARD_HEAP_SYMS)'; then \
+	    echo "$@: links a heap symbol (above); board programs must not"; rm -f $@; exit 1; fi
+$(BHOST_OUT)/%: $(BHOST_OUT)/obj/tests/board/%.o $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
+	$(CC) -o $@ $< $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
+
+.PRECIOUS: $(MPS2_OUT)/obj/%.o $(BHOST_OUT)/obj/%.o
+.PHONY: board-tests board-elfs check-embedded-selftest
+board-elfs: $(MPS2_ELFS) $(BHOST_BINS)
+board-tests: board-elfs
+	@QEMU="$(MPS2_QEMU)" sh $(MPS2_DIR)/run-tests.sh $(MPS2_OUT) \
+	    "$(filter $(MPS2_OUT)/test_%,$(MPS2_ELFS))" "$(filter $(BHOST_OUT)/golden_%,$(BHOST_BINS))"
+
+# Client sources and headers the source rules apply to: everything the
+# fragments put in CLIENT_SRCS, the headers beside them and the public ones.
+CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(dir $(CLIENT_SRCS)))) \
+    sdk/include/lumo/*.h rasterizer/include/*.h rasterizer/include/*/*.h net/include/*.h net/include/*/*.h))
+
+check-embedded: $(BUILD)/m3/liblumo.a
+	@sh $(MPS2_DIR)/check-embedded.sh $(ARM_NM) "$(CLIENT_OBJS_m3)" "$(CHECK_EMBEDDED_SRCS)"
+
+check-embedded-selftest:
+	@sh tests/board/check_embedded_selftest.sh $(BUILD)/check-embedded-selftest \
+	    "$(ARM_CC) $(CLIENT_CFLAGS_m3)" $(ARM_NM) $(MPS2_DIR)/check-embedded.sh
+
+TEST_STEPS  += check-embedded check-embedded-selftest board-tests

@@ -1,0 +1,137 @@
+/*
+ * startup.c — reset and exceptions for the Cortex-M3 of mps2-an385 (QEMU).
+ *
+ * QEMU loads the ELF and then boots like the hardware: the initial stack
+ * pointer and the reset vector are the first two words at address 0 (the
+ * vector table, placed there by mps2-an385.ld). Reset copies .data from its
+ * load address, zeroes .bss, paints the stack to measure its peak, runs
+ * main() and exits QEMU with main's return value through semihosting.
+ *
+ * Any fault prints its name and the faulting pc on the console and exits
+ * with status 128 + exception number (HardFault 131, MemManage 132,
+ * BusFault 133, UsageFault 134), so a crash can never hang CI.
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include "board_io.h"
+#include "console.h"
+
+int main(void);
+void Reset_Handler(void);
+void Fault_Handler(void);
+void lumo_fault_report(const uint32_t *frame, uint32_t exc_return);
+
+/* Symbols of the linker script (addresses only). */
+extern uint32_t __data_load[], __data_start[], __data_end[];
+extern uint32_t __bss_start[], __bss_end[], __stack_top[], __stack_paint_low[];
+
+#define STACK_PAINT 0x5AC0FFEEu
+/* Bytes below the current frame left unpainted while painting. */
+#define PAINT_MARGIN 256u
+
+static uint32_t *g_paint_low;
+
+/* Index 0 is the initial stack pointer; 1 reset; 2..15 system exceptions.
+ * The AN385 interrupts (16..47) are never enabled by the board programs. */
+typedef void (*vector)(void);
+__attribute__((section(".vectors"), used))
+static const vector g_vectors[16] = {
+    (vector)(uintptr_t)__stack_top,
+    Reset_Handler,
+    Fault_Handler, /* NMI */
+    Fault_Handler, /* HardFault */
+    Fault_Handler, /* MemManage */
+    Fault_Handler, /* BusFault */
+    Fault_Handler, /* UsageFault */
+    0, 0, 0, 0,
+    Fault_Handler, /* SVCall */
+    Fault_Handler, /* DebugMonitor */
+    0,
+    Fault_Handler, /* PendSV */
+    Fault_Handler  /* SysTick */
+};
+
+static void paint_stack(void)
+{
+    uint32_t here;   /* its address approximates the current stack pointer */
+    uint32_t *p = __stack_paint_low;
+    uint32_t *end = (uint32_t *)((uintptr_t)&here - PAINT_MARGIN);
+
+    g_paint_low = p;
+    while (p < end)
+        *p++ = STACK_PAINT;
+}
+
+size_t board_stack_peak(void)
+{
+    const uint32_t *p = g_paint_low;
+
+    if (p == NULL)
+        return 0;
+    while (p < __stack_top && *p == STACK_PAINT)
+        p++;
+    return (size_t)((uintptr_t)__stack_top - (uintptr_t)p);
+}
+
+void Reset_Handler(void)
+{
+    size_t data = (size_t)((uintptr_t)__data_end - (uintptr_t)__data_start);
+    size_t bss = (size_t)((uintptr_t)__bss_end - (uintptr_t)__bss_start);
+
+    memcpy(__data_start, __data_load, data);
+    memset(__bss_start, 0, bss);
+    paint_stack();
+    board_exit(main());
+}
+
+/* Naked so that no prologue moves the stack before the exception frame
+ * (r0-r3, r12, lr, pc, xpsr) is located: EXC_RETURN bit 2 says whether it
+ * was pushed on the main or the process stack. */
+__attribute__((naked)) void Fault_Handler(void)
+{
+    __asm__ volatile(
+        "tst lr, #4\n"
+        "ite eq\n"
+        "mrseq r0, msp\n"
+        "mrsne r0, psp\n"
+        "mov r1, lr\n"
+        "b lumo_fault_report\n");
+}
+
+static const char *exception_name(uint32_t n)
+{
+    static const char *const names[16] = {
+        "thread", "reset", "NMI", "HardFault", "MemManage", "BusFault", "UsageFault",
+        "reserved", "reserved", "reserved", "reserved", "SVCall", "DebugMonitor",
+        "reserved", "PendSV", "SysTick"
+    };
+    return n < 16 ? names[n] : "interrupt";
+}
+
+/* Memory-mapped System Control Block fault status registers (ARMv7-M ARM
+ * B3.2): CFSR tells which Memmanage/Bus/Usage fault, HFSR why HardFault. */
+#define SCB_CFSR (*(volatile const uint32_t *)0xE000ED28u)
+#define SCB_HFSR (*(volatile const uint32_t *)0xE000ED2Cu)
+
+void lumo_fault_report(const uint32_t *frame, uint32_t exc_return)
+{
+    uint32_t ipsr;
+
+    __asm__ volatile("mrs %0, ipsr" : "=r"(ipsr));
+    ipsr &= 0x1FFu;
+    con_str("FAULT: ");
+    con_str(exception_name(ipsr));
+    con_str(" pc=");
+    con_hex(frame[6], 8);
+    con_str(" lr=");
+    con_hex(frame[5], 8);
+    con_str(" cfsr=");
+    con_hex(SCB_CFSR, 8);
+    con_str(" hfsr=");
+    con_hex(SCB_HFSR, 8);
+    con_str(" exc_return=");
+    con_hex(exc_return, 8);
+    con_nl();
+    board_exit((int)(128u + ipsr));
+}

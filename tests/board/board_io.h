@@ -1,0 +1,44 @@
+/*
+ * board_io.h — what a board gives the board test programs (tests/board/).
+ *
+ * Every board (boards/mps2-an385 over QEMU semihosting, the host shim
+ * tests/board/host_io.c, a real board over its UART) implements these few
+ * calls; the test harness and the golden programs use nothing else, so the
+ * same C99 program runs everywhere. No heap, no stdio, no float: the rules of
+ * the client code apply (docs/porting.md).
+ */
+#ifndef LUMO_BOARD_IO_H
+#define LUMO_BOARD_IO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Write n bytes of text to the board's console (QEMU: semihosting, which
+ * QEMU prints on its stderr; host: stdout). */
+void board_console_write(const char *s, size_t n);
+
+/* End the program with `status` (0 = success). Never returns. On QEMU this is
+ * SYS_EXIT_EXTENDED, so qemu-system-arm exits with `status` (mod 256). */
+void board_exit(int status);
+
+/* Read the whole file `path` (host path relative to QEMU's working directory)
+ * into buf[0..cap). *len gets its size. Returns 0 on success, -1 when it
+ * cannot be opened or read, -2 when it does not fit in cap bytes. */
+int board_read_file(const char *path, uint8_t *buf, size_t cap, size_t *len);
+
+/* Create or truncate `path` on the host and write len bytes. 0 or -1. */
+int board_write_file(const char *path, const uint8_t *buf, size_t len);
+
+/* A free-running counter for cost measurements, board_tick_hz() per second
+ * of (virtual) time; 0 Hz when the board has none. On mps2-an385 it runs at
+ * 25 MHz of QEMU's virtual clock, which with `-icount shift=0` advances 1 ns
+ * per guest instruction: one tick = 40 instructions, and the count is the
+ * same on every run (docs/porting.md). */
+uint32_t board_ticks(void);
+uint32_t board_tick_hz(void);
+
+/* Bytes of stack the program has used so far, measured by painting; 0 when
+ * the board cannot tell. */
+size_t board_stack_peak(void);
+
+#endif /* LUMO_BOARD_IO_H */

@@ -1,0 +1,62 @@
+/*
+ * host_io.c — board_io.h on the host (Linux): the same board test programs
+ * built natively, so a golden program's host hash can be compared with the
+ * board's. Desktop code: stdio allowed.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include "board_io.h"
+
+void board_console_write(const char *s, size_t n)
+{
+    fwrite(s, 1, n, stdout);
+    fflush(stdout);
+}
+
+void board_exit(int status)
+{
+    exit(status);
+}
+
+int board_read_file(const char *path, uint8_t *buf, size_t cap, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    size_t n;
+    int extra;
+
+    if (f == NULL)
+        return -1;
+    n = fread(buf, 1, cap, f);
+    extra = fgetc(f);
+    fclose(f);
+    if (extra != EOF)
+        return -2;
+    *len = n;
+    return 0;
+}
+
+int board_write_file(const char *path, const uint8_t *buf, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    int rc;
+
+    if (f == NULL)
+        return -1;
+    rc = fwrite(buf, 1, len, f) == len ? 0 : -1;
+    return fclose(f) == 0 ? rc : -1;
+}
+
+uint32_t board_ticks(void)
+{
+    return 0;
+}
+
+uint32_t board_tick_hz(void)
+{
+    return 0;
+}
+
+size_t board_stack_peak(void)
+{
+    return 0;
+}
