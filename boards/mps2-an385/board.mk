@@ -25,7 +25,7 @@ MPS2_QEMU := timeout $(QEMU_TIMEOUT) qemu-system-arm -machine mps2-an385 -cpu co
 
 # Board runtime (startup, semihosting, timer) and the board-agnostic layer
 # every board program links (console, harness).
-MPS2_RT_SRCS   := $(MPS2_DIR)/startup.c $(MPS2_DIR)/semihost.c $(MPS2_DIR)/timer.c
+MPS2_RT_SRCS   := $(MPS2_DIR)/startup.c $(MPS2_DIR)/semihost.c $(MPS2_DIR)/timer.c $(MPS2_DIR)/scratch.c
 BOARD_LIB_SRCS := tests/board/console.c tests/board/harness.c
 BOARD_TEST_SRCS   := $(sort $(wildcard tests/board/test_*.c))
 BOARD_GOLDEN_SRCS := $(sort $(wildcard tests/board/golden_*.c))

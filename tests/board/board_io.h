@@ -37,6 +37,12 @@ int board_write_file(const char *path, const uint8_t *buf, size_t len);
 uint32_t board_ticks(void);
 uint32_t board_tick_hz(void);
 
+/* A large board-owned buffer for arenas (frame buffers, big grids): its
+ * address, and its size in *bytes. Contents are undefined at start (the
+ * arena zero-fills what it hands out). mps2-an385: the 16 MiB PSRAM at
+ * 0x21000000; host: a 16 MiB static array. */
+uint8_t *board_scratch(size_t *bytes);
+
 /* Bytes of stack the program has used so far, measured by painting; 0 when
  * the board cannot tell. */
 size_t board_stack_peak(void);

@@ -56,6 +56,13 @@ uint32_t board_tick_hz(void)
     return 0;
 }
 
+uint8_t *board_scratch(size_t *bytes)
+{
+    static uint8_t scratch[16u << 20];
+    *bytes = sizeof scratch;
+    return scratch;
+}
+
 size_t board_stack_peak(void)
 {
     return 0;
