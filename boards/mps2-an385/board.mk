@@ -19,9 +19,9 @@ BHOST_OUT := $(BUILD)/board/host
 # instruction, so board_ticks() counts instructions deterministically;
 # `timeout` keeps a hung guest from hanging CI (exit 124).
 QEMU_TIMEOUT ?= 60
-MPS2_QEMU := timeout $(QEMU_TIMEOUT) qemu-system-arm -machine mps2-an385 -cpu cortex-m3 \
-             -nographic -monitor none -serial none -icount shift=0 \
-             -semihosting-config enable=on,target=native -kernel
+MPS2_QEMU_CMD := qemu-system-arm -machine mps2-an385 -cpu cortex-m3 -nographic \
+                 -monitor none -serial none -semihosting-config enable=on,target=native
+MPS2_QEMU := timeout $(QEMU_TIMEOUT) $(MPS2_QEMU_CMD) -icount shift=0 -kernel
 
 # Board runtime (startup, semihosting, timer) and the board-agnostic layer
 # every board program links (console, harness).
@@ -50,15 +50,26 @@ $(BHOST_OUT)/obj/%.o: %.c
 MPS2_RT_OBJS    := $(patsubst %.c,$(MPS2_OUT)/obj/%.o,$(MPS2_RT_SRCS) $(BOARD_LIB_SRCS))
 BHOST_RT_OBJS   := $(patsubst %.c,$(BHOST_OUT)/obj/%.o,tests/board/host_io.c $(BOARD_LIB_SRCS))
 
-$(MPS2_OUT)/%.elf: $(MPS2_OUT)/obj/tests/board/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
+define MPS2_LINK
 	$(ARM_CC) $(MPS2_LDFLAGS) -Wl,-Map=$@.map -o $@ $< $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a
 	@if $(ARM_NM) $@ | awk '{print $$NF}' | grep -Ex '$(BOARD_HEAP_SYMS)'; then \
 	    echo "$@: links a heap symbol (above); board programs must not"; rm -f $@; exit 1; fi
+endef
+$(MPS2_OUT)/%.elf: $(MPS2_OUT)/obj/tests/board/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
+	$(MPS2_LINK)
+$(MPS2_OUT)/facts/%.elf: $(MPS2_OUT)/obj/tests/board/facts/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
+	@mkdir -p $(@D)
+	$(MPS2_LINK)
 $(BHOST_OUT)/%: $(BHOST_OUT)/obj/tests/board/%.o $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
 	$(CC) -o $@ $< $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
 
 .PRECIOUS: $(MPS2_OUT)/obj/%.o $(BHOST_OUT)/obj/%.o
-.PHONY: board-tests board-elfs check-embedded-selftest
+# The QEMU facts the board relies on (docs/porting.md), checked every run.
+MPS2_FACTS := $(patsubst tests/board/facts/%.c,$(MPS2_OUT)/facts/%.elf,$(wildcard tests/board/facts/fact_*.c))
+board-facts: $(MPS2_FACTS)
+	@QEMU_CMD="$(MPS2_QEMU_CMD)" sh $(MPS2_DIR)/verify-facts.sh $(MPS2_OUT)/facts
+
+.PHONY: board-tests board-elfs board-facts check-embedded-selftest
 board-elfs: $(MPS2_ELFS) $(BHOST_BINS)
 board-tests: board-elfs
 	@QEMU="$(MPS2_QEMU)" sh $(MPS2_DIR)/run-tests.sh $(MPS2_OUT) \
@@ -76,4 +87,4 @@ check-embedded-selftest:
 	@sh tests/board/check_embedded_selftest.sh $(BUILD)/check-embedded-selftest \
 	    "$(ARM_CC) $(CLIENT_CFLAGS_m3)" $(ARM_NM) $(MPS2_DIR)/check-embedded.sh
 
-TEST_STEPS  += check-embedded check-embedded-selftest board-tests
+TEST_STEPS  += check-embedded check-embedded-selftest board-facts board-tests
