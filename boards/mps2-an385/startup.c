@@ -28,7 +28,7 @@ extern uint32_t __bss_start[], __bss_end[], __stack_top[], __stack_paint_low[];
 
 #define STACK_PAINT 0x5AC0FFEEu
 /* Bytes below the current frame left unpainted while painting. */
-#define PAINT_MARGIN 256u
+#define PAINT_MARGIN 64u
 
 static uint32_t *g_paint_low;
 
