@@ -10,7 +10,39 @@
  *
  * The grid holds what was received plus what push-pull filled in; a bitmap
  * says which vertices were received. Received values are never changed by
- * push-pull. docs/ivg-format.md gives the wire forms byte by byte.
+ * push-pull. A vertex may also be marked "solid" (inside geometry: the
+ * server has no irradiance for it); it counts as not received and push-pull
+ * fills it like any hole. docs/ivg-format.md gives the wire forms byte by byte.
+ *
+ * Bundle wire format (all multi-byte fields little-endian):
+ *
+ *   offset size  field
+ *   0      4     magic 'I' 'V' 'G' 'B' (0x49 0x56 0x47 0x42)
+ *   4      1     version, LUMO_IVG_BUNDLE_VERSION (1)
+ *   5      1     form: 0 = LUMO_IVG_FORM_FLOAT, 1 = LUMO_IVG_FORM_QUANTIZED
+ *   6      6     dims[0], dims[1], dims[2] as u16: must equal the grid's
+ *   12     4     record count, u32
+ *   16     ...   records, back to back; the bundle ends after the last one
+ *
+ *   record: u32 word: bits 0-30 vertex index i + dims[0] * (j + dims[1] * k),
+ *           bit 31 LUMO_IVG_SOLID_BIT. A solid record ends there; any other
+ *           record carries 6 entries in the order +x, -x, +y, -y, +z, -z.
+ *   quantized entry (7 bytes): d as 3 x int8 (value q / 127, q = -128 is
+ *           corrupt), then c as u32 RGB9E5 (R bits 0-8, G 9-17, B 18-26,
+ *           exponent 27-31; GL_EXT_texture_shared_exponent).
+ *   binary32 entry (24 bytes): d x, y, z then c r, g, b as IEEE-754 binary32.
+ *
+ * Rules (each breach rejects the whole bundle, the grid stays as it was):
+ *   fewer than 16 bytes, or records running past the end -> LUMO_ERR_TRUNCATED
+ *   wrong magic, bytes after the last record, a vertex twice in one bundle,
+ *   more records than the grid has vertices, q = -128     -> LUMO_ERR_CORRUPT
+ *   version other than 1                                  -> LUMO_ERR_VERSION
+ *   form other than 0 or 1                                -> LUMO_ERR_UNSUPPORTED
+ *   dims differ from the grid's, vertex index >= vertex count, colour < 0 or
+ *   > 65535, d neither zero nor of length within 1/16 of 1 -> LUMO_ERR_RANGE
+ *   NaN or infinity anywhere in a binary32 entry          -> LUMO_ERR_NONFINITE
+ * A record for a vertex received earlier replaces it (lighting updates);
+ * a solid record clears the vertex's data and its received flag.
  *
  * Memory: everything lives in the caller's arena; lumo_ivg_memory_size()
  * tells how many bytes before anything is allocated. No float, no heap.
@@ -56,11 +88,22 @@ typedef enum lumo_ivg_form {
     LUMO_IVG_FORM_QUANTIZED = 1    /* d: 3 x int8 (q/127), c: RGB9E5 */
 } lumo_ivg_form;
 
+#define LUMO_IVG_BUNDLE_VERSION  1u
+#define LUMO_IVG_BUNDLE_HEADER    16u   /* bytes before the first record */
+#define LUMO_IVG_SOLID_BIT        0x80000000u
+#define LUMO_IVG_QUANT_ENTRY      7u    /* bytes per quantized entry */
+#define LUMO_IVG_FLOAT_ENTRY      24u   /* bytes per binary32 entry */
+/* Bytes of one record with data: index word + 6 entries. */
+#define LUMO_IVG_QUANT_RECORD     (4u + LUMO_IVG_AXES * LUMO_IVG_QUANT_ENTRY)
+#define LUMO_IVG_FLOAT_RECORD     (4u + LUMO_IVG_AXES * LUMO_IVG_FLOAT_ENTRY)
+
 /* Push-pull options (seed 000, §4.1). */
 #define LUMO_IVG_SMOOTH 1u   /* pyramidal filter after each push step */
 
 /* Arena bytes lumo_ivg_create() needs for this descriptor (including the
- * push-pull pyramid), or 0 when the descriptor is invalid. */
+ * push-pull pyramid and its smoothing scratch), or 0 when the descriptor is
+ * invalid; SIZE_MAX when the size does not fit a size_t (no arena can hold
+ * it). The caller adds LUMO_ARENA_SLACK if its buffer may be unaligned. */
 size_t lumo_ivg_memory_size(const lumo_ivg_desc *desc);
 
 /* Create an empty grid (nothing received) in the arena. On error the arena
@@ -71,6 +114,9 @@ const lumo_ivg_desc *lumo_ivg_get_desc(const lumo_ivg *g);
 uint32_t lumo_ivg_vertex_count(const lumo_ivg *g);
 uint32_t lumo_ivg_received_count(const lumo_ivg *g);
 int lumo_ivg_is_received(const lumo_ivg *g, uint32_t vertex);
+/* Solid vertices (inside geometry, marked by the server): not received. */
+uint32_t lumo_ivg_solid_count(const lumo_ivg *g);
+int lumo_ivg_is_solid(const lumo_ivg *g, uint32_t vertex);
 
 /* The entry stored for (vertex, axis): received, filled by push-pull, or
  * zero. NULL when out of range. */
@@ -83,13 +129,19 @@ const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo
 lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, uint32_t *applied);
 
 /* Fill every not-received vertex from the received ones by 3D push-pull;
- * received vertices keep their exact values. flags: LUMO_IVG_SMOOTH. */
+ * received vertices keep their exact values. flags: LUMO_IVG_SMOOTH.
+ * Only received values are inputs, so a re-run after more bundles arrived
+ * recomputes every filled vertex; with nothing received all stay zero.
+ * Work is bounded by a constant times the vertex count; stack use < 512 B.
+ * LUMO_ERR_ARG for a NULL grid or unknown flags. */
 lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags);
 
 /* Irradiance towards normal n at point p (§3.2): trilinear interpolation of
- * the three hemispheres picked by the signs of n, I_n = sum I_a n_a^2, and
- * out[k] = max(0, I_n^k . n) in W/m^2 (UQ16.16). p in scene units (Q16.16,
- * clamped to the grid box), n unit length in Q1.14. */
+ * the three hemispheres picked by the signs of n (n_a >= 0 picks +a), with
+ * d and c interpolated separately (as two hardware-filtered 3D textures
+ * would be), I_n = sum I_a n_a^2, and out[k] = max(0, I_n^k . n) in W/m^2
+ * (UQ16.16, saturated). p in scene units (Q16.16, clamped to the grid box),
+ * n unit length in Q1.14 (a longer n gives clamped but defined results). */
 void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                          lumo_uq16_16 out[3]);
 

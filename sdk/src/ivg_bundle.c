@@ -1,0 +1,266 @@
+/*
+ * ivg_bundle.c — decoder of IVG sample bundles (seed 000 §3.3 and §4.1;
+ * wire format in lumo/ivg.h and docs/ivg-format.md).
+ *
+ * Every byte is hostile. The decoder walks the bundle twice: the first walk
+ * checks every record (and marks each vertex in seen_bits to catch
+ * duplicates), the second stores them. Nothing touches the grid's data until
+ * the whole bundle has passed, so a bad bundle leaves the grid as it was.
+ * Work is linear in the bundle's length.
+ */
+#include <string.h>
+#include "ivg_internal.h"
+
+static const uint8_t k_magic[4] = {0x49, 0x56, 0x47, 0x42};   /* "IVGB" */
+
+/* |d|^2 must be zero or within [(15/16)^2, (17/16)^2]: a server normalises
+ * d, and 8-bit quantization moves its length by less than 0.007. */
+#define D_TOL_LO 15
+#define D_TOL_HI 17
+
+typedef struct bundle {
+    const uint8_t *p;
+    size_t         len;
+    unsigned       form;
+    uint32_t       records;
+    size_t         entry_bytes;
+} bundle;
+
+static uint32_t rd_u16(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8;
+}
+
+static uint32_t rd_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t len, bundle *b)
+{
+    int a;
+
+    if (len < LUMO_IVG_BUNDLE_HEADER)
+        return LUMO_ERR_TRUNCATED;
+    if (memcmp(buf, k_magic, sizeof k_magic) != 0)
+        return LUMO_ERR_CORRUPT;
+    if (buf[4] != LUMO_IVG_BUNDLE_VERSION)
+        return LUMO_ERR_VERSION;
+    if (buf[5] != LUMO_IVG_FORM_FLOAT && buf[5] != LUMO_IVG_FORM_QUANTIZED)
+        return LUMO_ERR_UNSUPPORTED;
+    for (a = 0; a < 3; a++)
+        if (rd_u16(buf + 6 + 2 * a) != g->desc.dims[a])
+            return LUMO_ERR_RANGE;
+    b->p = buf;
+    b->len = len;
+    b->form = buf[5];
+    b->records = rd_u32(buf + 12);
+    b->entry_bytes = b->form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_ENTRY : LUMO_IVG_QUANT_ENTRY;
+    /* Each record is at least its 4-byte index word; with duplicates
+     * rejected no valid bundle has more records than the grid vertices. */
+    if (b->records > g->count)
+        return LUMO_ERR_CORRUPT;
+    if (b->records > (len - LUMO_IVG_BUNDLE_HEADER) / 4u)
+        return LUMO_ERR_TRUNCATED;
+    return LUMO_OK;
+}
+
+/* Length check of a direction given as integers at scale `one` (127 for
+ * q/127, 2^14 for Q1.14): zero, or |d| within 1/16 of one. */
+static lumo_status check_direction(int64_t x, int64_t y, int64_t z, int64_t one)
+{
+    int64_t len2 = x * x + y * y + z * z;
+    int64_t lo = D_TOL_LO * one, hi = D_TOL_HI * one;
+
+    if (len2 == 0)
+        return LUMO_OK;
+    if (256 * len2 < lo * lo || 256 * len2 > hi * hi)
+        return LUMO_ERR_RANGE;
+    return LUMO_OK;
+}
+
+/* q/127 in Q1.14, rounded to nearest, ties away from zero (q != -128). */
+static lumo_q1_14 snorm8_to_q14(int32_t q)
+{
+    int32_t mag = q < 0 ? -q : q;
+    int32_t v = (mag * LUMO_Q14_ONE + 63) / 127;
+    return (lumo_q1_14)(q < 0 ? -v : v);
+}
+
+static lumo_status decode_quantized(const uint8_t *p, lumo_ivg_entry *e)
+{
+    int32_t q[3];
+    lumo_status st;
+    int k;
+
+    for (k = 0; k < 3; k++) {
+        q[k] = p[k] < 128u ? (int32_t)p[k] : (int32_t)p[k] - 256;
+        if (q[k] == -128)
+            return LUMO_ERR_CORRUPT;
+    }
+    st = check_direction(q[0], q[1], q[2], 127);
+    if (st)
+        return st;
+    for (k = 0; k < 3; k++)
+        e->d[k] = snorm8_to_q14(q[k]);
+    lumo_rgb9e5_to_uq16(rd_u32(p + 3), e->c);
+    e->reserved = 0;
+    return LUMO_OK;
+}
+
+/* A binary32 colour channel as UQ16.16. Negative values (but -0) and values
+ * above 65535 are out of range. Below 2^15 the value converts with 16
+ * fraction bits; from 2^15 on a binary32 has at most 8 fraction bits, so
+ * converting with 8 and shifting is exact. */
+static lumo_status colour_to_uq16(uint32_t bits, lumo_uq16_16 *out)
+{
+    int32_t v;
+    lumo_status st;
+
+    if ((bits >> 31) != 0)
+        return (bits & 0x7FFFFFFFu) == 0 ? (*out = 0, LUMO_OK) : LUMO_ERR_RANGE;
+    if (bits > 0x477FFF00u)                         /* 65535.0 */
+        return LUMO_ERR_RANGE;
+    if (bits < 0x47000000u)                         /* 32768.0 */
+        st = lumo_f32bits_to_fixed(bits, 16, &v);
+    else
+        st = lumo_f32bits_to_fixed(bits, 8, &v);
+    if (st)
+        return st;
+    *out = bits < 0x47000000u ? (uint32_t)v : (uint32_t)v << 8;
+    return LUMO_OK;
+}
+
+static lumo_status decode_binary32(const uint8_t *p, lumo_ivg_entry *e)
+{
+    uint32_t bits[6];
+    int32_t d[3];
+    lumo_status st;
+    int k;
+
+    /* Non-finite values first, wherever they are: NaN is never a range error. */
+    for (k = 0; k < 6; k++) {
+        bits[k] = rd_u32(p + 4 * k);
+        if (!lumo_f32bits_is_finite(bits[k]))
+            return LUMO_ERR_NONFINITE;
+    }
+    for (k = 0; k < 3; k++) {
+        st = lumo_f32bits_to_fixed(bits[k], LUMO_Q14_SHIFT, &d[k]);
+        if (st)
+            return st;
+    }
+    st = check_direction(d[0], d[1], d[2], LUMO_Q14_ONE);
+    for (k = 0; k < 3 && st == LUMO_OK; k++)
+        st = colour_to_uq16(bits[3 + k], &e->c[k]);
+    if (st)
+        return st;
+    for (k = 0; k < 3; k++)
+        e->d[k] = (lumo_q1_14)d[k];   /* |d| <= 17/16 was checked: fits */
+    e->reserved = 0;
+    return LUMO_OK;
+}
+
+static lumo_status decode_entry(unsigned form, const uint8_t *p, lumo_ivg_entry *e)
+{
+    return form == LUMO_IVG_FORM_FLOAT ? decode_binary32(p, e) : decode_quantized(p, e);
+}
+
+/* Check record by record; on success every record's vertex is marked in
+ * seen_bits. *done gets the number of records fully checked (and marked). */
+static lumo_status validate(lumo_ivg *g, const bundle *b, uint32_t *done)
+{
+    size_t pos = LUMO_IVG_BUNDLE_HEADER;
+    lumo_ivg_entry tmp[LUMO_IVG_AXES];
+    uint32_t r;
+    lumo_status st;
+    int a;
+
+    for (r = 0; r < b->records; r++) {
+        uint32_t word, v;
+        *done = r;
+        if (b->len - pos < 4u)
+            return LUMO_ERR_TRUNCATED;
+        word = rd_u32(b->p + pos);
+        pos += 4u;
+        v = word & ~LUMO_IVG_SOLID_BIT;
+        if (v >= g->count)
+            return LUMO_ERR_RANGE;
+        if (ivg_bit(g->seen_bits, v))
+            return LUMO_ERR_CORRUPT;
+        if (!(word & LUMO_IVG_SOLID_BIT)) {
+            if (b->len - pos < LUMO_IVG_AXES * b->entry_bytes)
+                return LUMO_ERR_TRUNCATED;
+            for (a = 0; a < LUMO_IVG_AXES; a++, pos += b->entry_bytes) {
+                st = decode_entry(b->form, b->p + pos, &tmp[a]);
+                if (st)
+                    return st;
+            }
+        }
+        ivg_bit_set(g->seen_bits, v);
+    }
+    *done = r;
+    return pos == b->len ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
+/* Vertex v now holds received data, or is solid (data cleared). */
+static void mark_vertex(lumo_ivg *g, uint32_t v, int solid)
+{
+    g->received -= (uint32_t)ivg_bit(g->received_bits, v);
+    g->solid -= (uint32_t)ivg_bit(g->solid_bits, v);
+    if (solid) {
+        ivg_bit_clear(g->received_bits, v);
+        ivg_bit_set(g->solid_bits, v);
+        memset(&g->level[0].e[(size_t)v * LUMO_IVG_AXES], 0, LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
+        g->solid++;
+    } else {
+        ivg_bit_set(g->received_bits, v);
+        ivg_bit_clear(g->solid_bits, v);
+        g->received++;
+    }
+}
+
+/* Walk the first `records` records (already validated); store them when
+ * `store`, and clear their seen bits either way. */
+static void walk(lumo_ivg *g, const bundle *b, uint32_t records, int store)
+{
+    size_t pos = LUMO_IVG_BUNDLE_HEADER;
+    uint32_t r;
+    int a;
+
+    for (r = 0; r < records; r++) {
+        uint32_t word = rd_u32(b->p + pos);
+        uint32_t v = word & ~LUMO_IVG_SOLID_BIT;
+        lumo_ivg_entry *e = &g->level[0].e[(size_t)v * LUMO_IVG_AXES];
+        int solid = (word & LUMO_IVG_SOLID_BIT) != 0;
+
+        pos += 4u;
+        ivg_bit_clear(g->seen_bits, v);
+        if (!solid) {
+            for (a = 0; a < LUMO_IVG_AXES && store; a++)
+                (void)decode_entry(b->form, b->p + pos + a * b->entry_bytes, &e[a]);
+            pos += LUMO_IVG_AXES * b->entry_bytes;
+        }
+        if (store)
+            mark_vertex(g, v, solid);
+    }
+}
+
+lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, uint32_t *applied)
+{
+    bundle b;
+    uint32_t done = 0;
+    lumo_status st;
+
+    if (g == NULL || (buf == NULL && len != 0))
+        return LUMO_ERR_ARG;
+    st = parse_header(g, buf, len, &b);
+    if (st)
+        return st;
+    st = validate(g, &b, &done);
+    walk(g, &b, done, st == LUMO_OK);
+    if (st)
+        return st;
+    if (applied != NULL)
+        *applied = b.records;
+    return LUMO_OK;
+}

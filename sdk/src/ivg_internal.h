@@ -1,0 +1,63 @@
+/*
+ * ivg_internal.h — the layout of lumo_ivg shared by the sdk/src/ivg_*.c
+ * modules (grid, bundle decoder, push-pull, sampling). Not public.
+ */
+#ifndef LUMO_IVG_INTERNAL_H
+#define LUMO_IVG_INTERNAL_H
+
+#include "lumo/ivg.h"
+
+/* Pyramid levels including the grid itself: 256 -> 129 -> 65 -> 33 -> 17 ->
+ * 9 -> 5 -> 3 -> 2 -> 1 is the longest chain (10 levels). */
+#define IVG_MAX_LEVELS 12
+
+/* One pyramid level. Level 0 is the grid (validity = received bitmap);
+ * coarser levels keep one validity byte per vertex. */
+typedef struct ivg_level {
+    uint32_t        dims[3];
+    uint32_t        count;
+    lumo_ivg_entry *e;        /* count * LUMO_IVG_AXES entries */
+    uint8_t        *valid;    /* count bytes; NULL on level 0 */
+} ivg_level;
+
+struct lumo_ivg {
+    lumo_ivg_desc   desc;
+    uint32_t        count;            /* vertices */
+    uint32_t        received;         /* vertices with received data */
+    uint32_t        solid;            /* vertices marked solid */
+    uint8_t        *received_bits;    /* count bits */
+    uint8_t        *solid_bits;       /* count bits */
+    uint8_t        *seen_bits;        /* duplicate check of one bundle; all 0
+                                         between calls */
+    uint64_t        scale[3];         /* grid cells per Q16.16 unit, Q48:
+                                         round((dims-1) * 2^48 / extent) */
+    uint32_t        extent[3];        /* bmax - bmin, Q16.16 raw units */
+    unsigned        levels;           /* used entries of level[] */
+    ivg_level       level[IVG_MAX_LEVELS];
+    lumo_ivg_entry *scratch;          /* smoothing output, level 1 sized */
+};
+
+static inline int ivg_bit(const uint8_t *bits, uint32_t i)
+{
+    return (bits[i >> 3] >> (i & 7u)) & 1u;
+}
+
+static inline void ivg_bit_set(uint8_t *bits, uint32_t i)
+{
+    bits[i >> 3] = (uint8_t)(bits[i >> 3] | (1u << (i & 7u)));
+}
+
+static inline void ivg_bit_clear(uint8_t *bits, uint32_t i)
+{
+    bits[i >> 3] = (uint8_t)(bits[i >> 3] & ~(1u << (i & 7u)));
+}
+
+/* Dims of the next coarser level along one axis (seed 000 §4.1 pyramid for
+ * any size): coarse vertex i sits on fine vertex 2i, so F >= 3 vertices need
+ * F/2 + 1; an axis of 2 collapses to 1 and 1 stays 1. */
+static inline uint32_t ivg_coarse_dim(uint32_t fine)
+{
+    return fine >= 3u ? fine / 2u + 1u : 1u;
+}
+
+#endif /* LUMO_IVG_INTERNAL_H */

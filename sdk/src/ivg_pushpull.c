@@ -1,0 +1,269 @@
+/*
+ * ivg_pushpull.c — 3D push-pull hole filling of the IVG (seed 000 §4.1).
+ *
+ * A pyramid of coarser grids sits above the received grid (level 0); coarse
+ * vertex i lies on fine vertex 2i along every axis of 3 or more vertices, an
+ * axis of 2 collapses to 1 (ivg_coarse_dim), so any dims work.
+ *
+ *  push   level l -> l+1: every coarse vertex is the tent-weighted (1,2,1)
+ *         average of the valid fine vertices around it; valid when any was.
+ *  smooth (LUMO_IVG_SMOOTH) right after each push: the valid vertices of
+ *         the new level are replaced by the (1,2,1)^3 weighted average of
+ *         their valid neighbours (the paper's pyramidal filter).
+ *  pull   level l+1 -> l, top down: every invalid vertex of level l is the
+ *         trilinear interpolation of level l+1 (weights 1/2 or 1 per axis).
+ *
+ * Only received values are read at level 0 and only non-received vertices
+ * are written there, so received data stay bit-identical and a re-run after
+ * more samples recomputes every filled vertex. d and c are averaged
+ * separately and d is not renormalised, as trilinear texture filtering of
+ * two 3D textures would do (§3.3).
+ *
+ * Arithmetic: integer weights summing to at most 64, 64-bit colour sums
+ * (< 2^38), rounding to nearest with ties away from zero. Each division is
+ * done as two 32-bit divisions (the Cortex-M3 has a 32-bit UDIV; a 64-bit
+ * division is a slow library call). Bit-exact on every target.
+ */
+#include <string.h>
+#include "ivg_internal.h"
+
+/* Weighted sum of entries. Weights are <= 64 per vertex (tent products),
+ * so colour sums stay below 2^38 and direction sums below 2^22. */
+typedef struct ivg_acc {
+    uint64_t c[LUMO_IVG_AXES][3];
+    int32_t  d[LUMO_IVG_AXES][3];
+    uint32_t w;
+} ivg_acc;
+
+/* Up to three (index, weight) pairs along one axis. */
+typedef struct ivg_taps {
+    unsigned n;
+    uint32_t idx[3];
+    uint32_t w[3];
+} ivg_taps;
+
+static void taps_add(ivg_taps *t, uint32_t idx, uint32_t w)
+{
+    t->idx[t->n] = idx;
+    t->w[t->n] = w;
+    t->n++;
+}
+
+/* Fine vertices feeding coarse vertex i (push): tent weights 1,2,1 around
+ * fine 2i; a collapsing axis (2 -> 1) averages both; 1 -> 1 is identity. */
+static void push_taps(uint32_t i, uint32_t fine, uint32_t coarse, ivg_taps *t)
+{
+    t->n = 0;
+    if (fine == coarse) {
+        taps_add(t, i, 1);
+    } else if (coarse == 1u) {
+        taps_add(t, 0, 1);
+        taps_add(t, 1, 1);
+    } else {
+        if (i > 0u)
+            taps_add(t, 2u * i - 1u, 1);
+        taps_add(t, 2u * i, 2);
+        if (2u * i + 1u < fine)
+            taps_add(t, 2u * i + 1u, 1);
+    }
+}
+
+/* Coarse vertices fine vertex f interpolates from (pull), weights in
+ * halves: on a coarse vertex (2) or between two (1, 1). */
+static void pull_taps(uint32_t f, uint32_t fine, uint32_t coarse, ivg_taps *t)
+{
+    t->n = 0;
+    if (fine == coarse) {
+        taps_add(t, f, 2);
+    } else if (coarse == 1u) {
+        taps_add(t, 0, 2);
+    } else if ((f & 1u) == 0u) {
+        taps_add(t, f / 2u, 2);
+    } else {
+        taps_add(t, f / 2u, 1);
+        taps_add(t, f / 2u + 1u, 1);
+    }
+}
+
+/* Neighbours of i on its own level (smoothing): (1,2,1), clipped. */
+static void smooth_taps(uint32_t i, uint32_t dim, ivg_taps *t)
+{
+    t->n = 0;
+    if (i > 0u)
+        taps_add(t, i - 1u, 1);
+    taps_add(t, i, 2);
+    if (i + 1u < dim)
+        taps_add(t, i + 1u, 1);
+}
+
+static int vertex_valid(const lumo_ivg *g, unsigned l, uint32_t v)
+{
+    return l == 0 ? ivg_bit(g->received_bits, v) : g->level[l].valid[v];
+}
+
+static void acc_add(ivg_acc *acc, const lumo_ivg_entry *e, uint32_t w)
+{
+    int a, k;
+
+    for (a = 0; a < LUMO_IVG_AXES; a++) {
+        for (k = 0; k < 3; k++) {
+            acc->c[a][k] += (uint64_t)e[a].c[k] * w;
+            acc->d[a][k] += (int32_t)e[a].d[k] * (int32_t)w;
+        }
+    }
+    acc->w += w;
+}
+
+/* round(n / d), ties up, for n < 2^48 and 0 < d < 128, as two 32-bit
+ * divisions: round(n/d) = floor((2n + d) / 2d), split at bit 24 so each
+ * partial dividend fits 32 bits. */
+static uint32_t div_round_u48(uint64_t n, uint32_t d)
+{
+    uint64_t m = 2u * n + d;
+    uint32_t dd = 2u * d;
+    uint32_t hi = (uint32_t)(m >> 24);
+    uint32_t lo = (hi % dd) << 24 | (uint32_t)(m & 0xFFFFFFu);
+    return (uint32_t)(((uint64_t)(hi / dd) << 24) + lo / dd);
+}
+
+/* round(n / d), ties away from zero, for |n| < 2^30, 0 < d < 128. */
+static int32_t div_round_i32(int32_t n, uint32_t d)
+{
+    uint32_t mag = n < 0 ? (uint32_t)-n : (uint32_t)n;
+    uint32_t q = (2u * mag + d) / (2u * d);
+    return n < 0 ? -(int32_t)q : (int32_t)q;
+}
+
+/* The weighted average; a weighted average of values in range is in range. */
+static void acc_store(const ivg_acc *acc, lumo_ivg_entry *e)
+{
+    int a, k;
+
+    for (a = 0; a < LUMO_IVG_AXES; a++) {
+        for (k = 0; k < 3; k++) {
+            e[a].c[k] = div_round_u48(acc->c[a][k], acc->w);
+            e[a].d[k] = (lumo_q1_14)div_round_i32(acc->d[a][k], acc->w);
+        }
+        e[a].reserved = 0;
+    }
+}
+
+/* Sum the vertices of level l at the product of the three tap lists,
+ * skipping invalid ones when valid_only. */
+static void gather(const lumo_ivg *g, unsigned l, const ivg_taps t[3], int valid_only, ivg_acc *acc)
+{
+    const ivg_level *lv = &g->level[l];
+    unsigned x, y, z;
+
+    memset(acc, 0, sizeof *acc);
+    for (z = 0; z < t[2].n; z++) {
+        for (y = 0; y < t[1].n; y++) {
+            uint32_t row = lv->dims[0] * (t[1].idx[y] + lv->dims[1] * t[2].idx[z]);
+            uint32_t wyz = t[1].w[y] * t[2].w[z];
+            for (x = 0; x < t[0].n; x++) {
+                uint32_t v = row + t[0].idx[x];
+                if (valid_only && !vertex_valid(g, l, v))
+                    continue;
+                acc_add(acc, &lv->e[(size_t)v * LUMO_IVG_AXES], wyz * t[0].w[x]);
+            }
+        }
+    }
+}
+
+static lumo_ivg_entry *entries_of(const ivg_level *lv, uint32_t v)
+{
+    return &lv->e[(size_t)v * LUMO_IVG_AXES];
+}
+
+/* Level l -> l+1: tent-weighted average of the valid fine vertices. */
+static void push(lumo_ivg *g, unsigned l)
+{
+    const ivg_level *f = &g->level[l];
+    ivg_level *c = &g->level[l + 1];
+    uint32_t i, j, k, v = 0;
+    ivg_taps t[3];
+    ivg_acc acc;
+
+    for (k = 0; k < c->dims[2]; k++) {
+        push_taps(k, f->dims[2], c->dims[2], &t[2]);
+        for (j = 0; j < c->dims[1]; j++) {
+            push_taps(j, f->dims[1], c->dims[1], &t[1]);
+            for (i = 0; i < c->dims[0]; i++, v++) {
+                push_taps(i, f->dims[0], c->dims[0], &t[0]);
+                gather(g, l, t, 1, &acc);
+                c->valid[v] = acc.w != 0u;
+                if (acc.w != 0u)
+                    acc_store(&acc, entries_of(c, v));
+                else
+                    memset(entries_of(c, v), 0, LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
+            }
+        }
+    }
+}
+
+/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l. */
+static void smooth(lumo_ivg *g, unsigned l)
+{
+    ivg_level *lv = &g->level[l];
+    uint32_t i, j, k, v = 0;
+    ivg_taps t[3];
+    ivg_acc acc;
+
+    for (k = 0; k < lv->dims[2]; k++) {
+        smooth_taps(k, lv->dims[2], &t[2]);
+        for (j = 0; j < lv->dims[1]; j++) {
+            smooth_taps(j, lv->dims[1], &t[1]);
+            for (i = 0; i < lv->dims[0]; i++, v++) {
+                lumo_ivg_entry *out = &g->scratch[(size_t)v * LUMO_IVG_AXES];
+                if (!lv->valid[v]) {
+                    memset(out, 0, LUMO_IVG_AXES * sizeof *out);
+                    continue;
+                }
+                smooth_taps(i, lv->dims[0], &t[0]);
+                gather(g, l, t, 1, &acc);
+                acc_store(&acc, out);
+            }
+        }
+    }
+    memcpy(lv->e, g->scratch, (size_t)lv->count * LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
+}
+
+/* Level l+1 -> l: trilinear fill of the invalid vertices of level l. */
+static void pull(lumo_ivg *g, unsigned l)
+{
+    ivg_level *f = &g->level[l];
+    const ivg_level *c = &g->level[l + 1];
+    uint32_t i, j, k, v = 0;
+    ivg_taps t[3];
+    ivg_acc acc;
+
+    for (k = 0; k < f->dims[2]; k++) {
+        pull_taps(k, f->dims[2], c->dims[2], &t[2]);
+        for (j = 0; j < f->dims[1]; j++) {
+            pull_taps(j, f->dims[1], c->dims[1], &t[1]);
+            for (i = 0; i < f->dims[0]; i++, v++) {
+                if (vertex_valid(g, l, v))
+                    continue;
+                pull_taps(i, f->dims[0], c->dims[0], &t[0]);
+                gather(g, l + 1, t, 0, &acc);
+                acc_store(&acc, entries_of(f, v));
+            }
+        }
+    }
+}
+
+lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags)
+{
+    unsigned l;
+
+    if (g == NULL || (flags & ~LUMO_IVG_SMOOTH) != 0u)
+        return LUMO_ERR_ARG;
+    for (l = 0; l + 1 < g->levels; l++) {
+        push(g, l);
+        if (flags & LUMO_IVG_SMOOTH)
+            smooth(g, l + 1);
+    }
+    for (l = g->levels - 1; l-- > 0;)
+        pull(g, l);
+    return LUMO_OK;
+}
