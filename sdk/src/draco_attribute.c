@@ -129,6 +129,7 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const 
     if (num_values > 0xFFFFFFFFu)
         return LUMO_ERR_LIMIT;
     a->num_values = n;
+    a->point_to_value = seq->point_to_value;
     a->values = ld_out(&d->mem, num_values, sizeof(int32_t));
     if (!a->values)
         return LUMO_ERR_NOMEM;

@@ -1,23 +1,861 @@
 /*
- * draco_edgebreaker.c — EdgeBreaker connectivity (standard and valence).
+ * draco_edgebreaker.c — EdgeBreaker connectivity (paper §3; libdraco
+ * MeshEdgebreakerDecoderImpl with the standard and valence traversal
+ * decoders), attribute seams, and the assignment of points to corners.
+ *
+ * The decoder rebuilds libdraco's corner table exactly, including its
+ * left-most corners as set during decoding, because attribute traversal
+ * order, and therefore point order, depend on them.
  */
 #include "draco_internal.h"
 
+#define LD_TOPO_C 0u
+#define LD_TOPO_S 1u
+#define LD_TOPO_L 3u
+#define LD_TOPO_R 5u
+#define LD_TOPO_E 7u
+#define LD_TOPO_INVALID 9u
+#define LD_MAX_ATTR_DATA 16u
+#define LD_VALENCE_CONTEXTS 6u   /* valences 2..7 */
+
+typedef struct ld_attr_data {
+    int32_t decoder_id;
+    uint8_t connectivity_used;
+    ld_rabs seams;
+    uint8_t *seam;         /* per corner: opposite edge is a seam */
+    uint8_t *vseam;        /* per mesh vertex: on a seam */
+    uint32_t *c2v;         /* attribute vertex of each corner */
+    uint32_t *lmc;         /* attribute vertex -> left-most corner */
+    ld_ct ct;
+} ld_attr_data;
+
+struct ld_eb {
+    uint8_t valence;
+    uint32_t num_faces, num_corners, max_vertices, num_vertices, num_conn_vertices;
+    uint32_t *c2v, *opp, *lmc;
+    uint8_t *hole;
+    ld_ct ct;
+    uint32_t num_attr_data;
+    ld_attr_data ad[LD_MAX_ATTR_DATA];
+    int32_t pos_decoder;
+    int8_t dec_att_data[LD_MAX_DECODERS];
+    uint8_t dec_type[LD_MAX_DECODERS];
+    uint8_t dec_traversal[LD_MAX_DECODERS];
+    /* traversal symbols */
+    ld_bits sym_bits;
+    ld_rabs start_faces;
+    /* valence coding */
+    uint32_t *valences;
+    uint32_t *ctx_symbols[LD_VALENCE_CONTEXTS];
+    uint32_t ctx_count[LD_VALENCE_CONTEXTS];
+    int active_ctx;
+    uint32_t last_symbol;
+    /* topology splits, stored in stream order and consumed from the back */
+    uint32_t num_splits;
+    uint32_t *split_source, *split_target;
+    uint8_t *split_edge;
+    /* work budget against crafted fans */
+    uint64_t budget;
+};
+
+/* Bounded work: fan walks are charged here. */
+static int ld_eb_charge(struct ld_eb *e)
+{
+    if (e->budget == 0)
+        return 0;
+    --e->budget;
+    return 1;
+}
+
+static void ld_set_opp(struct ld_eb *e, uint32_t a, uint32_t b)
+{
+    e->opp[a] = b;
+    e->opp[b] = a;
+}
+
+/* ---- header and split events ----------------------------------------------- */
+
+static lumo_status ld_eb_splits(ld_dec *d, struct ld_eb *e)
+{
+    uint32_t n, i, last = 0;
+    ld_bits bits;
+    lumo_status st = ld_varint32(&d->buf, &n);
+    if (st)
+        return st;
+    e->num_splits = n;
+    if (n == 0)
+        return LUMO_OK;
+    if (n > e->num_faces)
+        return LUMO_ERR_CORRUPT;
+    e->split_source = ld_tmp(&d->mem, n, sizeof(uint32_t));
+    e->split_target = ld_tmp(&d->mem, n, sizeof(uint32_t));
+    e->split_edge = ld_tmp(&d->mem, n, 1);
+    if (!e->split_source || !e->split_target || !e->split_edge)
+        return LUMO_ERR_NOMEM;
+    for (i = 0; i < n; ++i) {
+        uint32_t delta, src;
+        if ((st = ld_varint32(&d->buf, &delta)))
+            return st;
+        src = delta + last;
+        if ((st = ld_varint32(&d->buf, &delta)))
+            return st;
+        if (delta > src)
+            return LUMO_ERR_CORRUPT;
+        e->split_source[i] = src;
+        e->split_target[i] = src - delta;
+        last = src;
+    }
+    ld_bits_start(&bits, &d->buf);
+    for (i = 0; i < n; ++i)
+        e->split_edge[i] = (uint8_t)(ld_bits_get(&bits, 1) & 1u);
+    ld_bits_end(&bits, &d->buf);
+    return LUMO_OK;
+}
+
+/* Standard traversal: symbols are a bit stream of its own size; then the
+ * start-face and seam rABS streams follow. */
+static lumo_status ld_eb_start_standard(ld_dec *d, struct ld_eb *e)
+{
+    uint64_t size;
+    lumo_status st = ld_varint64(&d->buf, &size);
+    if (st)
+        return st;
+    ld_bits_start(&e->sym_bits, &d->buf);  /* reads on past `size`, like libdraco */
+    return ld_skip(&d->buf, size);
+}
+
+static lumo_status ld_eb_start_common(ld_dec *d, struct ld_eb *e)
+{
+    uint32_t i;
+    lumo_status st = ld_rabs_start(&e->start_faces, &d->buf);
+    for (i = 0; i < e->num_attr_data && !st; ++i)
+        st = ld_rabs_start(&e->ad[i].seams, &d->buf);
+    return st;
+}
+
+static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
+{
+    unsigned i;
+    lumo_status st;
+    e->valences = ld_tmp(&d->mem, e->max_vertices + 3u, sizeof(uint32_t));
+    if (!e->valences)
+        return LUMO_ERR_NOMEM;
+    memset(e->valences, 0, ((size_t)e->max_vertices + 3u) * sizeof(uint32_t));
+    e->active_ctx = -1;
+    for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
+        uint32_t n;
+        if ((st = ld_varint32(&d->buf, &n)))
+            return st;
+        if (n > e->num_faces)
+            return LUMO_ERR_CORRUPT;
+        e->ctx_count[i] = n;
+        if (n == 0)
+            continue;
+        e->ctx_symbols[i] = ld_tmp(&d->mem, n, sizeof(uint32_t));
+        if (!e->ctx_symbols[i])
+            return LUMO_ERR_NOMEM;
+        /* libdraco ignores a failure here (the symbols stay zero); a
+         * stream that fails to decode is rejected by lumo instead. */
+        if ((st = ld_decode_symbols(&d->buf, &d->mem, n, 1, e->ctx_symbols[i], NULL)))
+            return st;
+    }
+    return LUMO_OK;
+}
+
+/* ---- traversal symbols ------------------------------------------------------- */
+
+static uint32_t ld_eb_symbol(struct ld_eb *e)
+{
+    static const uint8_t to_topology[5] = {LD_TOPO_C, LD_TOPO_S, LD_TOPO_L, LD_TOPO_R, LD_TOPO_E};
+    uint32_t s;
+    if (!e->valence) {
+        s = ld_bits_get(&e->sym_bits, 1);
+        if (s != LD_TOPO_C)
+            s |= ld_bits_get(&e->sym_bits, 2) << 1;
+        return s;
+    }
+    if (e->active_ctx < 0) {
+        e->last_symbol = LD_TOPO_E;
+        return LD_TOPO_E;
+    }
+    if (e->ctx_count[e->active_ctx] == 0)
+        return LD_TOPO_INVALID;
+    s = e->ctx_symbols[e->active_ctx][--e->ctx_count[e->active_ctx]];
+    if (s > 4)
+        return LD_TOPO_INVALID;
+    e->last_symbol = to_topology[s];
+    return e->last_symbol;
+}
+
+/* Valence contexts: the valence of the next vertex selects the context of
+ * the next symbol (libdraco MeshEdgebreakerTraversalValenceDecoder). */
+static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
+{
+    uint32_t *val = e->valences, next, prev, v;
+    if (!e->valence)
+        return;
+    next = e->c2v[ld_next(corner)];
+    prev = e->c2v[ld_prev(corner)];
+    switch (e->last_symbol) {
+    case LD_TOPO_C:
+    case LD_TOPO_S:
+        val[next] += 1; val[prev] += 1;
+        break;
+    case LD_TOPO_R:
+        val[e->c2v[corner]] += 1; val[next] += 1; val[prev] += 2;
+        break;
+    case LD_TOPO_L:
+        val[e->c2v[corner]] += 1; val[next] += 2; val[prev] += 1;
+        break;
+    case LD_TOPO_E:
+        val[e->c2v[corner]] += 2; val[next] += 2; val[prev] += 2;
+        break;
+    default:
+        break;
+    }
+    v = val[next];
+    v = v < 2u ? 2u : (v > 7u ? 7u : v);
+    e->active_ctx = (int)(v - 2u);
+}
+
+static uint32_t ld_eb_new_vertex(struct ld_eb *e)
+{
+    e->lmc[e->num_vertices] = LD_INV;
+    return e->num_vertices++;
+}
+
+/* ---- the symbol loop ----------------------------------------------------------- */
+
+typedef struct ld_eb_state {
+    uint32_t *stack, top;          /* active corners */
+    uint32_t *split_key, *split_val, split_mask;  /* open-addressed map */
+    uint32_t *invalid, num_invalid, max_invalid;
+    uint32_t faces;                /* faces decoded so far */
+} ld_eb_state;
+
+static void ld_split_put(ld_eb_state *s, uint32_t key, uint32_t corner)
+{
+    uint32_t h = (key * 2654435761u) & s->split_mask;
+    while (s->split_key[h] != LD_INV && s->split_key[h] != key)
+        h = (h + 1u) & s->split_mask;
+    s->split_key[h] = key;
+    s->split_val[h] = corner;
+}
+
+static uint32_t ld_split_get(const ld_eb_state *s, uint32_t key)
+{
+    uint32_t h;
+    if (!s->split_key)
+        return LD_INV;
+    h = (key * 2654435761u) & s->split_mask;
+    while (s->split_key[h] != LD_INV) {
+        if (s->split_key[h] == key)
+            return s->split_val[h];
+        h = (h + 1u) & s->split_mask;
+    }
+    return LD_INV;
+}
+
+static int ld_valid_vertex(const struct ld_eb *e, uint32_t v)
+{
+    return v < e->num_vertices;
+}
+
+static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
+{
+    uint32_t a, b, x, corner = 3u * face, ap, bn;
+    if (s->top == 0)
+        return LUMO_ERR_CORRUPT;
+    a = s->stack[s->top - 1];
+    x = e->c2v[ld_next(a)];
+    if (!ld_valid_vertex(e, x))
+        return LUMO_ERR_CORRUPT;
+    b = ld_next(e->lmc[x]);
+    if (a == b || b == LD_INV || e->opp[a] != LD_INV || e->opp[b] != LD_INV)
+        return LUMO_ERR_CORRUPT;
+    ld_set_opp(e, a, corner + 1u);
+    ld_set_opp(e, b, corner + 2u);
+    ap = e->c2v[ld_prev(a)];
+    bn = e->c2v[ld_next(b)];
+    if (x == ap || x == bn || !ld_valid_vertex(e, ap))
+        return LUMO_ERR_CORRUPT;
+    e->c2v[corner] = x;
+    e->c2v[corner + 1u] = bn;
+    e->c2v[corner + 2u] = ap;
+    e->lmc[ap] = corner + 2u;
+    e->hole[x] = 0;
+    s->stack[s->top - 1] = corner;
+    return LUMO_OK;
+}
+
+static lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s, uint32_t face, int right)
+{
+    uint32_t a, corner = 3u * face, oc, cl, cr, nv, vr;
+    if (s->top == 0)
+        return LUMO_ERR_CORRUPT;
+    a = s->stack[s->top - 1];
+    if (e->opp[a] != LD_INV)
+        return LUMO_ERR_CORRUPT;
+    oc = right ? corner + 2u : corner + 1u;
+    cl = right ? corner + 1u : corner;
+    cr = right ? corner : corner + 2u;
+    ld_set_opp(e, oc, a);
+    if (e->num_vertices >= e->max_vertices)
+        return LUMO_ERR_CORRUPT;
+    nv = ld_eb_new_vertex(e);
+    e->c2v[oc] = nv;
+    e->lmc[nv] = oc;
+    vr = e->c2v[ld_prev(a)];
+    if (!ld_valid_vertex(e, vr))
+        return LUMO_ERR_CORRUPT;
+    e->c2v[cr] = vr;
+    e->lmc[vr] = cr;
+    e->c2v[cl] = e->c2v[ld_next(a)];
+    s->stack[s->top - 1] = corner;
+    return LUMO_OK;
+}
+
+static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, uint32_t symbol_id)
+{
+    uint32_t a, b, corner = 3u * face, vp, vbp, cn, vn, first, split;
+    if (s->top == 0)
+        return LUMO_ERR_CORRUPT;
+    b = s->stack[--s->top];
+    split = ld_split_get(s, symbol_id);
+    if (split != LD_INV)
+        s->stack[s->top++] = split;
+    if (s->top == 0)
+        return LUMO_ERR_CORRUPT;
+    a = s->stack[s->top - 1];
+    if (a == b || e->opp[a] != LD_INV || e->opp[b] != LD_INV)
+        return LUMO_ERR_CORRUPT;
+    ld_set_opp(e, a, corner + 2u);
+    ld_set_opp(e, b, corner + 1u);
+    vp = e->c2v[ld_prev(a)];
+    e->c2v[corner] = vp;
+    e->c2v[corner + 1u] = e->c2v[ld_next(a)];
+    vbp = e->c2v[ld_prev(b)];
+    cn = ld_next(b);
+    vn = e->c2v[cn];
+    if (!ld_valid_vertex(e, vp) || !ld_valid_vertex(e, vbp) || !ld_valid_vertex(e, vn))
+        return LUMO_ERR_CORRUPT;
+    e->c2v[corner + 2u] = vbp;
+    e->lmc[vbp] = corner + 2u;
+    if (e->valence)
+        e->valences[vp] += e->valences[vn];
+    e->lmc[vp] = e->lmc[vn];
+    first = cn;
+    while (cn != LD_INV) {
+        if (!ld_eb_charge(e))
+            return LUMO_ERR_LIMIT;
+        e->c2v[cn] = vp;
+        cn = ld_swing_left(&e->ct, cn);
+        if (cn == first)
+            return LUMO_ERR_CORRUPT;
+    }
+    e->lmc[vn] = LD_INV;
+    if (s->invalid) {
+        if (s->num_invalid >= s->max_invalid)
+            return LUMO_ERR_CORRUPT;
+        s->invalid[s->num_invalid++] = vn;
+    }
+    s->stack[s->top - 1] = corner;
+    return LUMO_OK;
+}
+
+static lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face)
+{
+    uint32_t corner = 3u * face, v;
+    if (e->num_vertices + 3u > e->max_vertices)
+        return LUMO_ERR_CORRUPT;
+    v = ld_eb_new_vertex(e);
+    ld_eb_new_vertex(e);
+    ld_eb_new_vertex(e);
+    e->c2v[corner] = v;
+    e->c2v[corner + 1u] = v + 1u;
+    e->c2v[corner + 2u] = v + 2u;
+    e->lmc[v] = corner;
+    e->lmc[v + 1u] = corner + 1u;
+    e->lmc[v + 2u] = corner + 2u;
+    s->stack[s->top++] = corner;
+    return LUMO_OK;
+}
+
+/* Splits whose source is the current symbol schedule an active corner for
+ * the S symbol that will consume it. */
+static lumo_status ld_eb_check_split(struct ld_eb *e, ld_eb_state *s, uint32_t num_symbols,
+                                     uint32_t symbol_id)
+{
+    const uint32_t enc_id = num_symbols - symbol_id - 1u;
+    while (e->num_splits) {
+        uint32_t i = e->num_splits - 1u, act, corner;
+        if (e->split_source[i] > enc_id)
+            return LUMO_ERR_CORRUPT;
+        if (e->split_source[i] != enc_id)
+            return LUMO_OK;
+        if (e->split_target[i] > 0x7FFFFFFFu)
+            return LUMO_ERR_CORRUPT;
+        act = s->stack[s->top - 1];
+        corner = e->split_edge[i] ? ld_next(act) : ld_prev(act);
+        ld_split_put(s, num_symbols - e->split_target[i] - 1u, corner);
+        e->num_splits--;
+    }
+    return LUMO_OK;
+}
+
+/* Close the remaining active boundaries: one bit says whether the start
+ * face was an interior face that the encoder removed. */
+static lumo_status ld_eb_start_faces(struct ld_eb *e, ld_eb_state *s)
+{
+    while (s->top) {
+        uint32_t corner = s->stack[--s->top], vn, b, vx, c, vp, nc, k;
+        if (!ld_rabs_bit(&e->start_faces))
+            continue;
+        if (s->faces >= e->num_faces)
+            return LUMO_ERR_CORRUPT;
+        vn = e->c2v[ld_next(corner)];
+        if (!ld_valid_vertex(e, vn))
+            return LUMO_ERR_CORRUPT;
+        b = ld_next(e->lmc[vn]);
+        vx = ld_vert(&e->ct, ld_next(b));
+        if (!ld_valid_vertex(e, vx))
+            return LUMO_ERR_CORRUPT;
+        c = ld_next(e->lmc[vx]);
+        if (corner == b || corner == c || b == c || b == LD_INV || c == LD_INV)
+            return LUMO_ERR_CORRUPT;
+        if (e->opp[corner] != LD_INV || e->opp[b] != LD_INV || e->opp[c] != LD_INV)
+            return LUMO_ERR_CORRUPT;
+        vp = e->c2v[ld_next(c)];
+        nc = 3u * s->faces++;
+        ld_set_opp(e, nc, corner);
+        ld_set_opp(e, nc + 1u, b);
+        ld_set_opp(e, nc + 2u, c);
+        e->c2v[nc] = vx;
+        e->c2v[nc + 1u] = vp;
+        e->c2v[nc + 2u] = vn;
+        for (k = 0; k < 3; ++k)
+            if (e->c2v[nc + k] < e->num_vertices)
+                e->hole[e->c2v[nc + k]] = 0;
+    }
+    return s->faces == e->num_faces ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
+/* Without attributes, vertices merged away by S symbols are filled with
+ * the last live vertices so the vertex ids stay dense. */
+static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_out)
+{
+    uint32_t nv = e->num_vertices, i;
+    for (i = 0; i < s->num_invalid; ++i) {
+        uint32_t iv = s->invalid[i], src, c, start;
+        int left = 1;
+        if (nv == 0)
+            return LUMO_ERR_CORRUPT;
+        src = nv - 1u;
+        while (e->lmc[src] == LD_INV) {
+            if (--nv == 0)
+                return LUMO_ERR_CORRUPT;
+            src = nv - 1u;
+        }
+        if (src < iv)
+            continue;
+        start = c = e->lmc[src];
+        while (c != LD_INV) {  /* VertexCornersIterator */
+            if (!ld_eb_charge(e))
+                return LUMO_ERR_LIMIT;
+            if (e->c2v[c] != src)
+                return LUMO_ERR_CORRUPT;
+            e->c2v[c] = iv;
+            if (left) {
+                c = ld_swing_left(&e->ct, c);
+                if (c == LD_INV) {
+                    c = ld_swing_right(&e->ct, start);
+                    left = 0;
+                } else if (c == start) {
+                    c = LD_INV;
+                }
+            } else {
+                c = ld_swing_right(&e->ct, c);
+            }
+        }
+        e->lmc[iv] = e->lmc[src];
+        e->lmc[src] = LD_INV;
+        e->hole[iv] = e->hole[src];
+        e->hole[src] = 0;
+        nv--;
+    }
+    *num_out = nv;
+    return LUMO_OK;
+}
+
+static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbols)
+{
+    ld_eb_state s;
+    uint32_t id;
+    lumo_status st = LUMO_OK;
+    memset(&s, 0, sizeof s);
+    s.stack = ld_tmp(&d->mem, (size_t)num_symbols + 1u, sizeof(uint32_t));
+    if (!s.stack)
+        return LUMO_ERR_NOMEM;
+    if (e->num_splits) {
+        uint32_t cap = 2u;
+        while (cap < 2u * e->num_splits)
+            cap <<= 1;
+        s.split_key = ld_tmp(&d->mem, cap, sizeof(uint32_t));
+        s.split_val = ld_tmp(&d->mem, cap, sizeof(uint32_t));
+        if (!s.split_key || !s.split_val)
+            return LUMO_ERR_NOMEM;
+        memset(s.split_key, 0xFF, (size_t)cap * sizeof(uint32_t));
+        s.split_mask = cap - 1u;
+    }
+    if (e->num_attr_data == 0) {
+        s.max_invalid = e->max_vertices;
+        s.invalid = ld_tmp(&d->mem, (size_t)s.max_invalid + 1u, sizeof(uint32_t));
+        if (!s.invalid)
+            return LUMO_ERR_NOMEM;
+    }
+    for (id = 0; id < num_symbols && !st; ++id) {
+        uint32_t face = s.faces++, sym = ld_eb_symbol(e);
+        int split = 0;
+        switch (sym) {
+        case LD_TOPO_C: st = ld_eb_sym_c(e, &s, face); break;
+        case LD_TOPO_R: st = ld_eb_sym_rl(e, &s, face, 1); split = 1; break;
+        case LD_TOPO_L: st = ld_eb_sym_rl(e, &s, face, 0); split = 1; break;
+        case LD_TOPO_S: st = ld_eb_sym_s(e, &s, face, id); break;
+        case LD_TOPO_E: st = ld_eb_sym_e(e, &s, face); split = 1; break;
+        default: st = LUMO_ERR_CORRUPT; break;
+        }
+        if (st)
+            break;
+        ld_eb_new_active_corner(e, s.stack[s.top - 1]);
+        if (split)
+            st = ld_eb_check_split(e, &s, num_symbols, id);
+    }
+    if (st || (st = ld_eb_start_faces(e, &s)))
+        return st;
+    return ld_eb_compact(e, &s, &e->num_conn_vertices);
+}
+
+/* ---- attribute seams ----------------------------------------------------------- */
+
+static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
+{
+    uint32_t o = e->opp[c];
+    a->seam[c] = 1;
+    a->vseam[e->c2v[ld_next(c)]] = 1;
+    a->vseam[e->c2v[ld_prev(c)]] = 1;
+    if (o != LD_INV) {
+        a->seam[o] = 1;
+        a->vseam[e->c2v[ld_next(o)]] = 1;
+        a->vseam[e->c2v[ld_prev(o)]] = 1;
+    }
+}
+
+static lumo_status ld_eb_seams(struct ld_eb *e)
+{
+    uint32_t f, k, i;
+    for (f = 0; f < e->num_faces; ++f) {
+        const uint32_t c0 = 3u * f, cs[3] = {c0, c0 + 1u, c0 + 2u};
+        for (k = 0; k < 3; ++k) {
+            uint32_t o = e->opp[cs[k]];
+            if (o == LD_INV) {
+                for (i = 0; i < e->num_attr_data; ++i)
+                    ld_add_seam(e, &e->ad[i], cs[k]);
+                continue;
+            }
+            if (o / 3u < f)
+                continue;
+            for (i = 0; i < e->num_attr_data; ++i)
+                if (ld_rabs_bit(&e->ad[i].seams))
+                    ld_add_seam(e, &e->ad[i], cs[k]);
+        }
+    }
+    return LUMO_OK;
+}
+
+/* MeshAttributeCornerTable::RecomputeVertices: split mesh vertices into
+ * attribute vertices along seam edges. */
+static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
+{
+    uint32_t v, n = 0;
+    a->ct.c2v = a->c2v;
+    a->ct.opp = e->opp;
+    a->ct.seam = a->seam;
+    a->ct.lmc = a->lmc;
+    a->ct.num_corners = e->num_corners;
+    for (v = 0; v < e->num_vertices; ++v) {
+        uint32_t c = e->lmc[v], first, act, vid;
+        if (c == LD_INV)
+            continue;
+        vid = n++;
+        first = c;
+        if (a->vseam[v]) {
+            act = ld_swing_left(&a->ct, first);
+            while (act != LD_INV) {
+                if (!ld_eb_charge(e))
+                    return LUMO_ERR_LIMIT;
+                first = act;
+                act = ld_swing_left(&a->ct, act);
+                if (act == c)
+                    return LUMO_ERR_CORRUPT;
+            }
+        }
+        a->c2v[first] = vid;
+        a->lmc[vid] = first;
+        act = ld_swing_right(&e->ct, first);
+        while (act != LD_INV && act != first) {
+            if (!ld_eb_charge(e))
+                return LUMO_ERR_LIMIT;
+            if (a->seam[ld_next(act)]) {
+                if (n >= e->num_corners)
+                    return LUMO_ERR_CORRUPT;
+                vid = n++;
+                a->lmc[vid] = act;
+            }
+            a->c2v[act] = vid;
+            act = ld_swing_right(&e->ct, act);
+        }
+    }
+    a->ct.num_vertices = n;
+    return LUMO_OK;
+}
+
+/* AssignPointsToCorners: one point per distinct combination of attribute
+ * vertices around each mesh vertex, numbered in vertex order. */
+static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
+{
+    uint32_t v, i, np = 0;
+    uint32_t *pts = d->faces;
+    if (e->num_attr_data == 0) {
+        memcpy(pts, e->c2v, (size_t)e->num_corners * sizeof(uint32_t));
+        d->num_points = e->num_conn_vertices;
+        return LUMO_OK;
+    }
+    memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
+    for (v = 0; v < e->num_vertices; ++v) {
+        uint32_t c = e->lmc[v], dedup, prev;
+        if (c == LD_INV)
+            continue;
+        dedup = c;
+        for (i = 0; i < e->num_attr_data && !e->hole[v]; ++i) {
+            const ld_attr_data *a = &e->ad[i];
+            uint32_t vid, act;
+            int found = 0;
+            if (!a->vseam[e->c2v[c]])
+                continue;
+            vid = a->c2v[c];
+            act = ld_swing_right(&e->ct, c);
+            while (act != c) {
+                if (act == LD_INV)
+                    return LUMO_ERR_CORRUPT;
+                if (!ld_eb_charge(e))
+                    return LUMO_ERR_LIMIT;
+                if (a->c2v[act] != vid) {
+                    dedup = act;
+                    found = 1;
+                    break;
+                }
+                act = ld_swing_right(&e->ct, act);
+            }
+            if (found)
+                break;
+        }
+        c = dedup;
+        pts[c] = np++;
+        prev = c;
+        c = ld_swing_right(&e->ct, c);
+        while (c != LD_INV && c != dedup) {
+            int seam = 0;
+            if (!ld_eb_charge(e))
+                return LUMO_ERR_LIMIT;
+            for (i = 0; i < e->num_attr_data && !seam; ++i)
+                seam = e->ad[i].c2v[c] != e->ad[i].c2v[prev];
+            pts[c] = seam ? np++ : pts[prev];
+            prev = c;
+            c = ld_swing_right(&e->ct, c);
+        }
+    }
+    d->num_points = np;
+    return LUMO_OK;
+}
+
+/* ---- entry points ----------------------------------------------------------------- */
+
+static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e, uint32_t num_split_symbols)
+{
+    uint32_t i;
+    e->num_corners = 3u * e->num_faces;
+    e->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+    e->opp = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+    e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
+    e->hole = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1);
+    d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
+    if (!e->c2v || !e->opp || !e->lmc || !e->hole || !d->faces)
+        return LUMO_ERR_NOMEM;
+    memset(e->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
+    memset(e->opp, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
+    memset(e->hole, 1, (size_t)e->max_vertices + 3u);
+    e->ct.c2v = e->c2v;
+    e->ct.opp = e->opp;
+    e->ct.seam = NULL;
+    e->ct.lmc = e->lmc;
+    e->ct.num_corners = e->num_corners;
+    e->pos_decoder = -1;
+    e->budget = (uint64_t)64u * e->num_corners + 4096u;
+    (void)num_split_symbols;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->decoder_id = -1;
+        a->connectivity_used = 1;
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
+{
+    uint32_t i;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->seam = ld_tmp(&d->mem, e->num_corners, 1);
+        a->vseam = ld_tmp(&d->mem, e->num_vertices + 1u, 1);
+        a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+        a->lmc = ld_tmp(&d->mem, e->num_corners + 1u, sizeof(uint32_t));
+        if (!a->seam || !a->vseam || !a->c2v || !a->lmc)
+            return LUMO_ERR_NOMEM;
+        memset(a->seam, 0, e->num_corners);
+        memset(a->vseam, 0, e->num_vertices + 1u);
+        memset(a->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
+    }
+    return LUMO_OK;
+}
+
 lumo_status ld_eb_decode_connectivity(ld_dec *d)
 {
-    (void)d;
-    return LUMO_ERR_UNSUPPORTED;
+    struct ld_eb *e;
+    uint32_t verts, faces, symbols, splits, i;
+    uint8_t type, nad;
+    lumo_status st;
+    if ((st = ld_u8(&d->buf, &type)))
+        return st;
+    if (type != 0 && type != 2)
+        return LUMO_ERR_UNSUPPORTED;  /* predictive EdgeBreaker: pre-2.2 only */
+    if ((st = ld_varint32(&d->buf, &verts)) || (st = ld_varint32(&d->buf, &faces)))
+        return st;
+    if (faces > LD_MAX_FACES)
+        return LUMO_ERR_LIMIT;
+    if ((uint64_t)verts > (uint64_t)faces * 3u)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_u8(&d->buf, &nad)) || (st = ld_varint32(&d->buf, &symbols)))
+        return st;
+    if (faces < symbols || faces > symbols + symbols / 3u)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_varint32(&d->buf, &splits)))
+        return st;
+    if (splits > symbols)
+        return LUMO_ERR_CORRUPT;
+    if (nad > LD_MAX_ATTR_DATA)
+        return LUMO_ERR_UNSUPPORTED;
+    e = ld_tmp(&d->mem, 1, sizeof *e);
+    if (!e)
+        return LUMO_ERR_NOMEM;
+    memset(e, 0, sizeof *e);
+    d->eb = e;
+    d->connectivity = type;
+    e->valence = type == 2;
+    e->num_faces = faces;
+    e->num_attr_data = nad;
+    e->max_vertices = verts + splits;
+    if ((st = ld_eb_alloc(d, e, splits)) || (st = ld_eb_splits(d, e)))
+        return st;
+    if (!e->valence && (st = ld_eb_start_standard(d, e)))
+        return st;
+    if ((st = ld_eb_start_common(d, e)))
+        return st;
+    if (e->valence && (st = ld_eb_start_valence(d, e)))
+        return st;
+    if ((st = ld_eb_traverse(d, e, symbols)))
+        return st;
+    e->ct.num_vertices = e->num_vertices;
+    d->num_faces = faces;
+    if ((st = ld_eb_alloc_attr_data(d, e)))
+        return st;
+    if (nad && (st = ld_eb_seams(e)))
+        return st;
+    for (i = 0; i < nad; ++i)
+        if ((st = ld_eb_attr_vertices(e, &e->ad[i])))
+            return st;
+    return ld_eb_points(d, e);
 }
 
 lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
                                             uint8_t *traversal, uint8_t *vertex_attr)
 {
-    (void)d; (void)decoder; (void)seq; (void)traversal; (void)vertex_attr;
-    return LUMO_ERR_UNSUPPORTED;
+    struct ld_eb *e = d->eb;
+    int8_t att_data;
+    uint8_t type, trav;
+    lumo_status st;
+    (void)seq;
+    if ((st = ld_u8(&d->buf, (uint8_t *)&att_data)) || (st = ld_u8(&d->buf, &type)) ||
+        (st = ld_u8(&d->buf, &trav)))
+        return st;
+    if (trav > 1)
+        return LUMO_ERR_CORRUPT;
+    if (att_data >= 0) {
+        if ((uint32_t)att_data >= e->num_attr_data || e->ad[att_data].decoder_id >= 0)
+            return LUMO_ERR_CORRUPT;
+        e->ad[att_data].decoder_id = (int32_t)decoder;
+    } else {
+        if (e->pos_decoder >= 0)
+            return LUMO_ERR_CORRUPT;
+        e->pos_decoder = (int32_t)decoder;
+    }
+    if (type == 0) {  /* MESH_VERTEX_ATTRIBUTE */
+        if (att_data >= 0)
+            e->ad[att_data].connectivity_used = 0;
+    } else if (trav != 0 || att_data < 0) {
+        return LUMO_ERR_CORRUPT;
+    }
+    e->dec_att_data[decoder] = att_data;
+    e->dec_type[decoder] = type;
+    e->dec_traversal[decoder] = trav;
+    *traversal = trav;
+    *vertex_attr = type == 0;
+    return LUMO_OK;
 }
 
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 {
-    (void)d; (void)decoder; (void)seq;
-    return LUMO_ERR_UNSUPPORTED;
+    struct ld_eb *e = d->eb;
+    const ld_ct *ct = &e->ct;
+    uint32_t vmap = e->num_vertices, c;
+    int8_t ad = e->dec_att_data[decoder];
+    ld_order o;
+    lumo_status st;
+    if (ad >= 0) {
+        if (e->dec_type[decoder] != 0)
+            ct = &e->ad[ad].ct;
+        if (e->ad[ad].ct.num_vertices > vmap)
+            vmap = e->ad[ad].ct.num_vertices;
+    }
+    if ((st = ld_traverse(&d->mem, ct, vmap, e->dec_traversal[decoder], d->faces, &o)))
+        return st;
+    seq->num_entries = o.num_values;
+    seq->point_ids = o.point_ids;
+    seq->ct = ct;
+    seq->vertex_to_value = o.vertex_to_value;
+    seq->value_to_corner = o.value_to_corner;
+    seq->point_to_value = ld_out(&d->mem, d->num_points, sizeof(uint32_t));
+    if (!seq->point_to_value)
+        return LUMO_ERR_NOMEM;
+    memset(seq->point_to_value, 0xFF, (size_t)d->num_points * sizeof(uint32_t));
+    for (c = 0; c < e->num_corners; ++c) {
+        uint32_t p = d->faces[c], v = ld_vert(ct, c);
+        int32_t entry;
+        if (v == LD_INV || v >= vmap)
+            return LUMO_ERR_CORRUPT;
+        entry = o.vertex_to_value[v];
+        if (p >= d->num_points || entry < 0 || (uint32_t)entry >= d->num_points)
+            return LUMO_ERR_CORRUPT;
+        seq->point_to_value[p] = (uint32_t)entry;
+    }
+    return LUMO_OK;
 }

@@ -97,6 +97,7 @@ int ld_rabs_bit(ld_rabs *d);
 
 /* ---- decoder state (draco_decode.c) ------------------------------------- */
 struct ld_eb;
+struct ld_ct;
 
 typedef struct ld_attr {
     lumo_draco_attribute *out;
@@ -121,14 +122,14 @@ typedef struct ld_dec {
 
 /* One attributes decoder's point sequence and value mapping. */
 typedef struct ld_seq {
-    uint32_t *point_ids;      /* entry i decodes point point_ids[i]; NULL = identity */
     uint32_t num_entries;
-    /* mesh prediction data (EdgeBreaker only) */
-    const int32_t *vertex_to_data;    /* corner-table vertex -> entry */
-    const int32_t *data_to_corner;    /* entry -> corner */
-    const uint32_t *corner_to_vertex; /* attribute corner table vertices */
-    const uint32_t *opposite;         /* opposites of the attribute corner table */
-    uint32_t num_corners;
+    const uint32_t *point_ids;        /* entry -> point; NULL = identity */
+    uint32_t *point_to_value;         /* output map shared by the decoder's
+                                         attributes; NULL = identity */
+    /* mesh prediction data (EdgeBreaker only, else ct == NULL) */
+    const struct ld_ct *ct;
+    const int32_t *vertex_to_value;
+    const uint32_t *value_to_corner;
 } ld_seq;
 
 /* draco_attribute.c */
@@ -155,7 +156,61 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, uint32_t num_v
 lumo_status ld_pred_compute(ld_pred *p, ld_mem *m, int32_t *values, uint32_t num_entries,
                             const uint8_t *state);
 
-/* draco_edgebreaker.c */
+/* ---- corner tables (draco_traverse.c) ------------------------------------ */
+#define LD_INV 0xFFFFFFFFu
+
+/* A view of a corner table: the mesh's own, or an attribute's (whose seam
+ * edges have no opposite and whose vertices are split along seams). */
+typedef struct ld_ct {
+    const uint32_t *c2v;      /* corner -> vertex */
+    const uint32_t *opp;      /* corner -> opposite corner of the mesh */
+    const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
+    const uint32_t *lmc;      /* vertex -> left-most corner */
+    uint32_t num_vertices;
+    uint32_t num_corners;
+} ld_ct;
+
+static inline uint32_t ld_next(uint32_t c)
+{
+    return c == LD_INV ? c : (c % 3u == 2u ? c - 2u : c + 1u);
+}
+static inline uint32_t ld_prev(uint32_t c)
+{
+    return c == LD_INV ? c : (c % 3u == 0u ? c + 2u : c - 1u);
+}
+static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
+{
+    if (c == LD_INV || (t->seam && t->seam[c]))
+        return LD_INV;
+    return t->opp[c];
+}
+static inline uint32_t ld_vert(const ld_ct *t, uint32_t c)
+{
+    return c == LD_INV ? LD_INV : t->c2v[c];
+}
+static inline uint32_t ld_swing_right(const ld_ct *t, uint32_t c)
+{
+    return ld_prev(ld_opp(t, ld_prev(c)));
+}
+static inline uint32_t ld_swing_left(const ld_ct *t, uint32_t c)
+{
+    return ld_next(ld_opp(t, ld_next(c)));
+}
+
+/* Encoded order of one attributes decoder's values (libdraco
+ * MeshAttributeIndicesEncodingData + the traversal sequencer). */
+typedef struct ld_order {
+    const ld_ct *ct;
+    int32_t *vertex_to_value;   /* per ct vertex; -1 unvisited */
+    uint32_t *value_to_corner;
+    uint32_t *point_ids;        /* value -> point */
+    uint32_t num_values;
+} ld_order;
+
+lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
+                        const uint32_t *faces, ld_order *o);
+
+/* ---- EdgeBreaker (draco_edgebreaker.c) ----------------------------------- */
 lumo_status ld_eb_decode_connectivity(ld_dec *d);
 lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
                                             uint8_t *traversal, uint8_t *vertex_attr);

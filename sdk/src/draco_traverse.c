@@ -1,0 +1,255 @@
+/*
+ * draco_traverse.c — the order in which an attributes decoder visits
+ * vertices (libdraco DepthFirstTraverser and MaxPredictionDegreeTraverser
+ * driven by MeshTraversalSequencer): it fixes the order of the encoded
+ * values and, through the points met, the value of every point.
+ */
+#include "draco_internal.h"
+
+typedef struct ld_walk {
+    const ld_ct *ct;
+    const uint32_t *faces;     /* corner -> point */
+    uint8_t *face_seen, *vert_seen;
+    uint32_t num_faces;
+    ld_order *o;
+} ld_walk;
+
+static int ld_face_seen(const ld_walk *w, uint32_t corner)
+{
+    return corner == LD_INV || w->face_seen[corner / 3u];
+}
+
+/* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
+static void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
+{
+    ld_order *o = w->o;
+    w->vert_seen[v] = 1;
+    o->point_ids[o->num_values] = w->faces[corner];
+    o->value_to_corner[o->num_values] = corner;
+    o->vertex_to_value[v] = (int32_t)o->num_values;
+    o->num_values++;
+}
+
+static int ld_on_boundary(const ld_ct *ct, uint32_t v)
+{
+    uint32_t c = ct->lmc[v];
+    return c == LD_INV || ld_swing_left(ct, c) == LD_INV;
+}
+
+static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
+{
+    uint32_t n = ld_vert(w->ct, ld_next(corner)), p = ld_vert(w->ct, ld_prev(corner));
+    if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
+        return LUMO_ERR_CORRUPT;
+    if (!w->vert_seen[n])
+        ld_visit(w, n, ld_next(corner));
+    if (!w->vert_seen[p])
+        ld_visit(w, p, ld_prev(corner));
+    return LUMO_OK;
+}
+
+static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
+{
+    uint32_t top = 0;
+    lumo_status st;
+    if (ld_face_seen(w, corner))
+        return LUMO_OK;
+    stack[top++] = corner;
+    if ((st = ld_visit_edge(w, corner)))
+        return st;
+    while (top) {
+        uint32_t c = stack[top - 1];
+        if (ld_face_seen(w, c)) {
+            --top;
+            continue;
+        }
+        for (;;) {
+            uint32_t v, r, l;
+            w->face_seen[c / 3u] = 1;
+            v = ld_vert(w->ct, c);
+            if (v >= w->ct->num_vertices)
+                return LUMO_ERR_CORRUPT;
+            if (!w->vert_seen[v]) {
+                int boundary = ld_on_boundary(w->ct, v);
+                ld_visit(w, v, c);
+                if (!boundary) {
+                    c = ld_opp(w->ct, ld_next(c));
+                    if (c == LD_INV || w->face_seen[c / 3u])
+                        return LUMO_ERR_CORRUPT;  /* libdraco reads out of bounds */
+                    continue;
+                }
+            }
+            r = ld_opp(w->ct, ld_next(c));
+            l = ld_opp(w->ct, ld_prev(c));
+            if (ld_face_seen(w, r)) {
+                if (ld_face_seen(w, l)) {
+                    --top;
+                    break;
+                }
+                c = l;
+            } else if (ld_face_seen(w, l)) {
+                c = r;
+            } else {
+                stack[top - 1] = l;
+                stack[top++] = r;
+                break;
+            }
+        }
+    }
+    return LUMO_OK;
+}
+
+/* Prediction-degree traversal: three priority stacks sharing one node pool
+ * with a free list. */
+typedef struct ld_pq {
+    uint32_t *corner, *next;
+    uint32_t head[3], free, used, cap;
+    int best;
+    uint32_t *degree;
+} ld_pq;
+
+static lumo_status ld_pq_push(ld_pq *q, uint32_t corner, int pri)
+{
+    uint32_t n;
+    if (q->free != LD_INV) {
+        n = q->free;
+        q->free = q->next[n];
+    } else {
+        if (q->used >= q->cap)
+            return LUMO_ERR_CORRUPT;
+        n = q->used++;
+    }
+    q->corner[n] = corner;
+    q->next[n] = q->head[pri];
+    q->head[pri] = n;
+    if (pri < q->best)
+        q->best = pri;
+    return LUMO_OK;
+}
+
+static uint32_t ld_pq_pop(ld_pq *q)
+{
+    int i;
+    for (i = q->best; i < 3; ++i) {
+        uint32_t n = q->head[i];
+        if (n == LD_INV)
+            continue;
+        q->head[i] = q->next[n];
+        q->next[n] = q->free;
+        q->free = n;
+        q->best = i;
+        return q->corner[n];
+    }
+    return LD_INV;
+}
+
+static int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner)
+{
+    uint32_t tip = ld_vert(w->ct, corner);
+    if (tip >= w->ct->num_vertices || w->vert_seen[tip])
+        return 0;
+    return ++q->degree[tip] > 1 ? 1 : 2;
+}
+
+static lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q)
+{
+    uint32_t tip;
+    lumo_status st;
+    if (w->ct->num_vertices == 0)
+        return LUMO_OK;
+    if ((st = ld_pq_push(q, corner, 0)))
+        return st;
+    q->best = 0;
+    if ((st = ld_visit_edge(w, corner)))
+        return st;
+    tip = ld_vert(w->ct, corner);
+    if (tip >= w->ct->num_vertices)
+        return LUMO_ERR_CORRUPT;
+    if (!w->vert_seen[tip])
+        ld_visit(w, tip, corner);
+    while ((corner = ld_pq_pop(q)) != LD_INV) {
+        if (w->face_seen[corner / 3u])
+            continue;
+        for (;;) {
+            uint32_t v, r, l;
+            int rs, ls, pri;
+            w->face_seen[corner / 3u] = 1;
+            v = ld_vert(w->ct, corner);
+            if (v >= w->ct->num_vertices)
+                return LUMO_ERR_CORRUPT;
+            if (!w->vert_seen[v])
+                ld_visit(w, v, corner);
+            r = ld_opp(w->ct, ld_next(corner));
+            l = ld_opp(w->ct, ld_prev(corner));
+            rs = ld_face_seen(w, r);
+            ls = ld_face_seen(w, l);
+            if (!ls) {
+                pri = ld_priority(w, q, l);
+                if (rs && pri <= q->best) {
+                    corner = l;
+                    continue;
+                }
+                if ((st = ld_pq_push(q, l, pri)))
+                    return st;
+            }
+            if (!rs) {
+                pri = ld_priority(w, q, r);
+                if (pri <= q->best) {
+                    corner = r;
+                    continue;
+                }
+                if ((st = ld_pq_push(q, r, pri)))
+                    return st;
+            }
+            break;
+        }
+    }
+    return LUMO_OK;
+}
+
+lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
+                        const uint32_t *faces, ld_order *o)
+{
+    ld_walk w;
+    ld_pq q;
+    uint32_t *stack = NULL, f, nv = ct->num_vertices, i;
+    lumo_status st = LUMO_OK;
+    memset(o, 0, sizeof *o);
+    memset(&w, 0, sizeof w);
+    memset(&q, 0, sizeof q);
+    o->ct = ct;
+    o->vertex_to_value = ld_tmp(m, vmap_size, sizeof(int32_t));
+    o->value_to_corner = ld_tmp(m, nv, sizeof(uint32_t));
+    o->point_ids = ld_tmp(m, nv, sizeof(uint32_t));
+    w.ct = ct;
+    w.faces = faces;
+    w.o = o;
+    w.num_faces = ct->num_corners / 3u;
+    w.face_seen = ld_tmp(m, w.num_faces, 1);
+    w.vert_seen = ld_tmp(m, nv, 1);
+    if (!o->vertex_to_value || !o->value_to_corner || !o->point_ids || !w.face_seen ||
+        !w.vert_seen)
+        return LUMO_ERR_NOMEM;
+    for (i = 0; i < vmap_size; ++i)
+        o->vertex_to_value[i] = -1;
+    memset(w.face_seen, 0, w.num_faces);
+    memset(w.vert_seen, 0, nv);
+    if (prediction_degree) {
+        q.cap = 2u * w.num_faces + 2u;
+        q.corner = ld_tmp(m, q.cap, sizeof(uint32_t));
+        q.next = ld_tmp(m, q.cap, sizeof(uint32_t));
+        q.degree = ld_tmp(m, nv, sizeof(uint32_t));
+        if (!q.corner || !q.next || !q.degree)
+            return LUMO_ERR_NOMEM;
+        memset(q.degree, 0, (size_t)nv * sizeof(uint32_t));
+        q.head[0] = q.head[1] = q.head[2] = LD_INV;
+        q.free = LD_INV;
+    } else {
+        stack = ld_tmp(m, (size_t)w.num_faces + 2u, sizeof(uint32_t));
+        if (!stack)
+            return LUMO_ERR_NOMEM;
+    }
+    for (f = 0; f < w.num_faces && !st; ++f)
+        st = prediction_degree ? ld_max_degree(&w, 3u * f, &q) : ld_dfs(&w, 3u * f, stack);
+    return st;
+}
