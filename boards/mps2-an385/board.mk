@@ -26,7 +26,7 @@ MPS2_QEMU := timeout $(QEMU_TIMEOUT) $(MPS2_QEMU_CMD) -icount shift=0 -kernel
 # Board runtime (startup, semihosting, timer) and the board-agnostic layer
 # every board program links (console, harness).
 MPS2_RT_SRCS   := $(MPS2_DIR)/startup.c $(MPS2_DIR)/semihost.c $(MPS2_DIR)/timer.c $(MPS2_DIR)/scratch.c
-BOARD_LIB_SRCS := tests/board/console.c tests/board/harness.c tests/board/golden.c
+BOARD_LIB_SRCS := tests/board/console.c tests/board/harness.c tests/board/golden.c tests/board/ivg_wire.c
 BOARD_TEST_SRCS   := $(sort $(wildcard tests/board/test_*.c))
 BOARD_GOLDEN_SRCS := $(sort $(wildcard tests/board/golden_*.c))
 BOARD_PROGS := $(basename $(notdir $(BOARD_TEST_SRCS) $(BOARD_GOLDEN_SRCS)))
