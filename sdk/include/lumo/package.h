@@ -1,0 +1,121 @@
+/*
+ * lumo/package.h — reading a .lumo package (docs/package-format.md): a
+ * versioned container of checksummed chunks (scene info, meshes, IVG).
+ *
+ * The package is read in place: lumo_package_open() validates the header,
+ * the chunk table and every chunk's CRC-32 over the caller's buffer, which
+ * must then stay alive and unchanged while the lumo_package is used. No
+ * memory is allocated; getters convert the file's binary32 fields to lumo
+ * fixed point with integer code only (lumo_f32bits_to_fixed).
+ *
+ * Every byte is hostile: each function bounds-checks what it reads, returns
+ * a lumo_status, and writes its outputs only on success.
+ */
+#ifndef LUMO_PACKAGE_H
+#define LUMO_PACKAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/fixed.h"
+#include "lumo/ivg.h"
+#include "lumo/status.h"
+
+#define LUMO_PKG_VERSION_MAJOR 1u
+#define LUMO_PKG_VERSION_MINOR 0u
+#define LUMO_PKG_HEADER_SIZE   24u
+#define LUMO_PKG_ENTRY_SIZE    16u
+#define LUMO_PKG_MAX_CHUNKS    256u
+#define LUMO_PKG_MAX_LIGHTS    64u
+
+/* Chunk types: four ASCII characters, first character in the lowest byte. */
+#define LUMO_PKG_FOURCC(a, b, c, d) \
+    ((uint32_t)(a) | ((uint32_t)(b) << 8) | ((uint32_t)(c) << 16) | ((uint32_t)(d) << 24))
+#define LUMO_PKG_INFO LUMO_PKG_FOURCC('I', 'N', 'F', 'O')  /* scene info, exactly one */
+#define LUMO_PKG_MESH LUMO_PKG_FOURCC('M', 'E', 'S', 'H')  /* raw mesh, one per mesh */
+#define LUMO_PKG_IVGD LUMO_PKG_FOURCC('I', 'V', 'G', 'D')  /* IVG grid descriptor */
+#define LUMO_PKG_IVGQ LUMO_PKG_FOURCC('I', 'V', 'G', 'Q')  /* IVG bundle, quantized form */
+#define LUMO_PKG_IVGF LUMO_PKG_FOURCC('I', 'V', 'G', 'F')  /* IVG bundle, float form */
+
+typedef struct lumo_pkg_chunk {
+    uint32_t type, offset, length, crc;
+} lumo_pkg_chunk;
+
+typedef struct lumo_package {
+    const uint8_t *data;     /* the caller's buffer (not owned) */
+    size_t         size;
+    uint16_t       version_major, version_minor;
+    uint32_t       chunk_count;
+} lumo_package;
+
+/* Light kinds, as in docs/scene-format.md. */
+typedef enum lumo_pkg_light_kind {
+    LUMO_PKG_LIGHT_POINT = 0, LUMO_PKG_LIGHT_SPOT = 1,
+    LUMO_PKG_LIGHT_DIRECTIONAL = 2, LUMO_PKG_LIGHT_AREA = 3
+} lumo_pkg_light_kind;
+
+/* One light in fixed point. power: W per channel (point/spot/area) or
+ * irradiance W/m^2 (directional), UQ16.16. pos, u, v in metres (Q16.16);
+ * dir unit (Q1.14): spot axis, direction of travel, or area normal u x v.
+ * cos_half: cosine of the spot's half angle (Q1.14). */
+typedef struct lumo_pkg_light {
+    lumo_pkg_light_kind kind;
+    lumo_q16_16  pos[3], u[3], v[3];
+    lumo_q1_14   dir[3];
+    lumo_q1_14   cos_half;
+    lumo_q16_16  half_angle_deg;
+    lumo_uq16_16 power[3];
+} lumo_pkg_light;
+
+/* Scene info: counts, bounds (metres, Q16.16) and the default camera
+ * (docs/scene-format.md "Camera"; fovy in degrees, Q16.16). */
+typedef struct lumo_pkg_info {
+    uint32_t    mesh_count, light_count, triangle_count;
+    lumo_q16_16 bmin[3], bmax[3];
+    lumo_q16_16 eye[3], target[3], up[3], fovy_deg;
+} lumo_pkg_info;
+
+typedef struct lumo_pkg_mesh_info {
+    uint32_t nverts, ntris;
+    uint32_t flags;          /* LUMO_PKG_MESH_EMITTER */
+} lumo_pkg_mesh_info;
+#define LUMO_PKG_MESH_EMITTER 1u
+
+/* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout),
+ * VERSION (other major), CHECKSUM, LIMIT (too many chunks); *pkg is written
+ * only on success. Work is linear in size. */
+lumo_status lumo_package_open(lumo_package *pkg, const uint8_t *data, size_t size);
+
+/* Table entry `index` (0-based). */
+lumo_status lumo_package_chunk(const lumo_package *pkg, uint32_t index, lumo_pkg_chunk *out);
+
+/* The nth (0-based) chunk of a type: payload pointer into the buffer and its
+ * length. LUMO_ERR_RANGE when there is no such chunk. */
+lumo_status lumo_package_find(const lumo_package *pkg, uint32_t type, uint32_t nth,
+                              const uint8_t **payload, uint32_t *len);
+
+lumo_status lumo_package_info(const lumo_package *pkg, lumo_pkg_info *out);
+lumo_status lumo_package_light(const lumo_package *pkg, uint32_t index, lumo_pkg_light *out);
+
+lumo_status lumo_package_mesh_info(const lumo_package *pkg, uint32_t index, lumo_pkg_mesh_info *out);
+
+/* Read mesh `index` into caller arrays sized from lumo_package_mesh_info:
+ * pos 3*nverts (Q16.16 metres), nrm 3*nverts (Q1.14 unit, may be NULL),
+ * albedo 3*nverts (Q1.14 in [0,1], may be NULL), tris 3*ntris (may be
+ * NULL). The whole chunk is validated (finite values, ranges, indices <
+ * nverts) before any output is written. */
+lumo_status lumo_package_mesh_read(const lumo_package *pkg, uint32_t index, lumo_q16_16 *pos,
+                                   lumo_q1_14 *nrm, lumo_q1_14 *albedo, uint32_t *tris);
+
+/* The IVG descriptor stored in the package (dims, bounds in Q16.16). */
+lumo_status lumo_package_ivg_desc(const lumo_package *pkg, lumo_ivg_desc *out);
+
+/* Apply the package's IVG bundle of the given form to a grid created from
+ * lumo_package_ivg_desc (through lumo_ivg_apply_bundle: all or nothing). */
+lumo_status lumo_package_load_ivg(const lumo_package *pkg, lumo_ivg *g, lumo_ivg_form form,
+                                  uint32_t *applied);
+
+/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32): continue `crc` (0 to
+ * start) over len bytes. */
+uint32_t lumo_package_crc32(uint32_t crc, const uint8_t *buf, size_t len);
+
+#endif /* LUMO_PACKAGE_H */

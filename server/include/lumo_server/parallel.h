@@ -1,0 +1,16 @@
+/* parallel.h — run fn(ctx, item, worker) for item in [0, n) on `threads`
+ * pthreads pulling items from a shared counter; the calling thread draws
+ * the progress bar. Results must be written per item so that the output
+ * does not depend on which worker ran what. */
+#ifndef LUMO_SERVER_PARALLEL_H
+#define LUMO_SERVER_PARALLEL_H
+
+#include <stddef.h>
+
+typedef void (*lumo_item_fn)(void *ctx, size_t item, int worker);
+
+/* 0, or -1 when threads could not be started. */
+int lumo_parallel_for(size_t n, int threads, lumo_item_fn fn, void *ctx, const char *label,
+                      int progress);
+
+#endif

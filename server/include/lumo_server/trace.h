@@ -1,0 +1,40 @@
+/*
+ * trace.h — the path tracer shared by the IVG bake and the reference
+ * renderer: diffuse surfaces, next-event estimation towards every light,
+ * Russian roulette (seed 000 §3.1: the IVG holds indirect light only).
+ */
+#ifndef LUMO_SERVER_TRACE_H
+#define LUMO_SERVER_TRACE_H
+
+#include <stdint.h>
+#include "lumo_server/rng.h"
+#include "lumo_server/rt.h"
+
+typedef struct lumo_tracer {
+    const lumo_scene *s;
+    const lumo_rt    *rt;
+    float             eps;
+} lumo_tracer;
+
+/* Per-thread counter of rays cast (for rays/s). */
+typedef struct { uint64_t rays; } lumo_trace_stats;
+
+void lumo_tracer_init(lumo_tracer *t, const lumo_scene *s, const lumo_rt *rt);
+
+/* Indirect radiance arriving at p from direction d (unit): radiance that
+ * bounced at least once (light sources seen directly count zero). Also
+ * reports whether the first hit was a back face (*back, may be NULL). */
+vec3 lumo_trace_indirect(const lumo_tracer *t, vec3 p, vec3 d, lumo_rng *r, lumo_trace_stats *st,
+                         int *back);
+
+/* Radiance seen along a camera ray: emitters + direct + indirect, or only
+ * the indirect part reflected by the first surface (indirect_only), which
+ * is what the client's IVG term reproduces. */
+vec3 lumo_trace_camera(const lumo_tracer *t, vec3 eye, vec3 d, int indirect_only, lumo_rng *r,
+                       lumo_trace_stats *st);
+
+/* Direct irradiance (W/m^2 per channel) at x with unit normal n from every
+ * light, with shadow rays (one sample per area light). */
+vec3 lumo_direct_irradiance(const lumo_tracer *t, vec3 x, vec3 n, lumo_rng *r, lumo_trace_stats *st);
+
+#endif

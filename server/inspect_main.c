@@ -1,0 +1,71 @@
+/* inspect_main.c — lumo-inspect: dispatch to the registered subcommands
+ * (inspect.h), the package summary by default. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_server/inspect.h"
+
+#define MAX_COMMANDS 16
+
+static const lumo_inspect_cmd *g_cmds[MAX_COMMANDS];
+static int g_ncmds;
+
+void lumo_inspect_register(const lumo_inspect_cmd *cmd)
+{
+    if (g_ncmds < MAX_COMMANDS)
+        g_cmds[g_ncmds++] = cmd;
+}
+
+int lumo_inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pkg)
+{
+    FILE *f = fopen(path, "rb");
+    long n;
+    *data = NULL;
+    if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET)) {
+        fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path);
+        if (f)
+            fclose(f);
+        return -1;
+    }
+    *data = malloc(n ? (size_t)n : 1);
+    *len = (size_t)n;
+    int ok = *data && fread(*data, 1, *len, f) == *len;
+    fclose(f);
+    lumo_status st = ok ? lumo_package_open(pkg, *data, *len) : LUMO_ERR_IO;
+    if (st) {
+        fprintf(stderr, "lumo-inspect: error: %s: not a valid package: %s\n", path, lumo_strerror(st));
+        free(*data);
+        *data = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+const char *lumo_inspect_file_arg(int argc, char **argv)
+{
+    return argc > 1 && argv[argc - 1][0] != '-' ? argv[argc - 1] : NULL;
+}
+
+int lumo_inspect_summary(int argc, char **argv);
+
+int main(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: lumo-inspect FILE.lumo            summary of a package\n");
+            for (int c = 0; c < g_ncmds; c++)
+                printf("       lumo-inspect %s\n", g_cmds[c]->usage);
+            printf("Package format: docs/package-format.md\n");
+            return 0;
+        }
+    for (int i = 1; i < argc; i++)
+        for (int c = 0; c < g_ncmds; c++)
+            if (!strcmp(argv[i], g_cmds[c]->flag))
+                return g_cmds[c]->run(argc, argv);
+    for (int i = 1; i < argc; i++)
+        if (argv[i][0] == '-') {
+            fprintf(stderr, "lumo-inspect: error: unknown option '%s' (try --help)\n", argv[i]);
+            return 1;
+        }
+    return lumo_inspect_summary(argc, argv);
+}

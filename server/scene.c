@@ -1,0 +1,232 @@
+/* scene.c — scene container, validation and light parsing
+ * (docs/scene-format.md). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_server/scene.h"
+
+void lumo_scene_init(lumo_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->camera = lumo_camera_default();
+}
+
+void lumo_scene_free(lumo_scene *s)
+{
+    for (size_t i = 0; i < s->nmeshes; i++) {
+        free(s->meshes[i].pos);
+        free(s->meshes[i].albedo);
+        free(s->meshes[i].tris);
+    }
+    free(s->meshes);
+    free(s->lights);
+    lumo_scene_init(s);
+}
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return 0;
+    size_t ncap = *cap ? *cap * 2 : 8;
+    while (ncap < need)
+        ncap *= 2;
+    void *q = realloc(*p, ncap * elem);
+    if (!q)
+        return -1;
+    *p = q;
+    *cap = ncap;
+    return 0;
+}
+
+lumo_mesh *lumo_scene_add_mesh(lumo_scene *s, const char *name, uint32_t nverts, uint32_t ntris)
+{
+    if (grow((void **)&s->meshes, &s->cap_meshes, s->nmeshes + 1, sizeof *s->meshes))
+        return NULL;
+    lumo_mesh *m = &s->meshes[s->nmeshes];
+    memset(m, 0, sizeof *m);
+    snprintf(m->name, sizeof m->name, "%s", name ? name : "mesh");
+    m->pos = calloc(nverts ? nverts : 1, sizeof *m->pos);
+    m->albedo = calloc(nverts ? nverts : 1, sizeof *m->albedo);
+    m->tris = calloc(ntris ? 3u * ntris : 1, sizeof *m->tris);
+    if (!m->pos || !m->albedo || !m->tris) {
+        free(m->pos);
+        free(m->albedo);
+        free(m->tris);
+        return NULL;
+    }
+    m->nverts = nverts;
+    m->ntris = ntris;
+    s->nmeshes++;
+    return m;
+}
+
+int lumo_scene_add_light(lumo_scene *s, const lumo_light *l)
+{
+    if (grow((void **)&s->lights, &s->cap_lights, s->nlights + 1, sizeof *s->lights))
+        return -1;
+    s->lights[s->nlights++] = *l;
+    return 0;
+}
+
+void lumo_scene_override_albedo(lumo_scene *s, vec3 albedo)
+{
+    for (size_t i = 0; i < s->nmeshes; i++)
+        for (uint32_t v = 0; v < s->meshes[i].nverts && !s->meshes[i].emitter; v++)
+            s->meshes[i].albedo[v] = albedo;
+}
+
+int lumo_scene_bounds(const lumo_scene *s, vec3 *bmin, vec3 *bmax)
+{
+    int any = 0;
+    for (size_t i = 0; i < s->nmeshes; i++)
+        for (uint32_t v = 0; v < s->meshes[i].nverts; v++) {
+            vec3 p = s->meshes[i].pos[v];
+            *bmin = any ? v3_min(*bmin, p) : p;
+            *bmax = any ? v3_max(*bmax, p) : p;
+            any = 1;
+        }
+    return any;
+}
+
+size_t lumo_scene_triangle_count(const lumo_scene *s)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < s->nmeshes; i++)
+        n += s->meshes[i].ntris;
+    return n;
+}
+
+static int validate_mesh(const lumo_mesh *m, float min_area, char *err, size_t errlen)
+{
+    for (uint32_t v = 0; v < m->nverts; v++)
+        if (!v3_finite(m->pos[v])) {
+            snprintf(err, errlen, "mesh '%s': vertex %u has a non-finite coordinate", m->name, v);
+            return -1;
+        }
+    for (uint32_t t = 0; t < m->ntris; t++) {
+        const uint32_t *ix = &m->tris[3 * t];
+        if (ix[0] >= m->nverts || ix[1] >= m->nverts || ix[2] >= m->nverts) {
+            snprintf(err, errlen, "mesh '%s': face %u indexes a missing vertex", m->name, t);
+            return -1;
+        }
+        vec3 a = m->pos[ix[0]];
+        float area = 0.5f * v3_len(v3_cross(v3_sub(m->pos[ix[1]], a), v3_sub(m->pos[ix[2]], a)));
+        if (!(area > min_area)) {
+            snprintf(err, errlen, "mesh '%s': face %u has zero area", m->name, t);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int lumo_scene_validate(const lumo_scene *s, char *err, size_t errlen)
+{
+    vec3 lo, hi;
+    if (lumo_scene_triangle_count(s) == 0 || !lumo_scene_bounds(s, &lo, &hi)) {
+        snprintf(err, errlen, "the scene has no geometry");
+        return -1;
+    }
+    if (s->nlights == 0) {
+        snprintf(err, errlen, "the scene has no light (add one with --light)");
+        return -1;
+    }
+    /* Zero area relative to the scene's size: float cross products of a
+     * metre-sized scene cannot resolve less than ~1e-14 of its extent^2. */
+    float ext = v3_len(v3_sub(hi, lo));
+    for (size_t i = 0; i < s->nmeshes; i++)
+        if (validate_mesh(&s->meshes[i], 1e-14f * ext * ext, err, errlen))
+            return -1;
+    for (size_t i = 0; i < s->nlights; i++) {
+        const lumo_light *l = &s->lights[i];
+        if (!v3_finite(l->pos) || !v3_finite(l->dir) || !v3_finite(l->power) ||
+            l->power.x < 0 || l->power.y < 0 || l->power.z < 0) {
+            snprintf(err, errlen, "light %zu: non-finite or negative value", i);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int lumo_parse_floats(const char *text, float *out, int n)
+{
+    const char *p = text;
+    for (int i = 0; i < n; i++) {
+        char *end;
+        errno = 0;
+        float f = strtof(p, &end);
+        if (end == p || errno || !isfinite(f))
+            return -1;
+        out[i] = f;
+        p = end;
+        if (i + 1 < n) {
+            if (*p != ',')
+                return -1;
+            p++;
+        }
+    }
+    return *p ? -1 : 0;
+}
+
+/* Split "kind:a:b:..." into at most 6 fields; returns the field count. */
+static int split_fields(char *buf, char **f, int max)
+{
+    int n = 0;
+    char *save = NULL;
+    for (char *p = strtok_r(buf, ":", &save); p; p = strtok_r(NULL, ":", &save)) {
+        if (n == max)
+            return max + 1;
+        f[n++] = p;
+    }
+    return n;
+}
+
+static int parse_vec(const char *t, vec3 *v)
+{
+    float f[3];
+    if (lumo_parse_floats(t, f, 3))
+        return -1;
+    *v = v3(f[0], f[1], f[2]);
+    return 0;
+}
+
+int lumo_light_parse(const char *text, lumo_light *out, char *err, size_t errlen)
+{
+    char buf[512], *f[7];
+    lumo_light l;
+    float ha = 0.0f;
+    memset(&l, 0, sizeof l);
+    if (strlen(text) >= sizeof buf) {
+        snprintf(err, errlen, "light '%s': too long", text);
+        return -1;
+    }
+    strcpy(buf, text);
+    int n = split_fields(buf, f, 6);
+    int ok = 0;
+    if (n == 3 && !strcmp(f[0], "point")) {
+        l.kind = LUMO_LIGHT_POINT;
+        ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.power);
+    } else if (n == 5 && !strcmp(f[0], "spot")) {
+        l.kind = LUMO_LIGHT_SPOT;
+        ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.dir) &&
+             !lumo_parse_floats(f[3], &ha, 1) && !parse_vec(f[4], &l.power) &&
+             ha > 0.0f && ha <= 180.0f && v3_len(l.dir) > 0.0f;
+    } else if (n == 3 && !strcmp(f[0], "directional")) {
+        l.kind = LUMO_LIGHT_DIRECTIONAL;
+        ok = !parse_vec(f[1], &l.dir) && !parse_vec(f[2], &l.power) && v3_len(l.dir) > 0.0f;
+    } else if (n == 5 && !strcmp(f[0], "area")) {
+        l.kind = LUMO_LIGHT_AREA;
+        ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.u) && !parse_vec(f[3], &l.v) &&
+             !parse_vec(f[4], &l.power) && v3_len(v3_cross(l.u, l.v)) > 0.0f;
+    }
+    if (!ok || l.power.x < 0 || l.power.y < 0 || l.power.z < 0) {
+        snprintf(err, errlen, "bad light '%s' (see docs/scene-format.md)", text);
+        return -1;
+    }
+    l.dir = v3_norm(l.kind == LUMO_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
+    l.half_angle_deg = ha;
+    l.cos_half = cosf(ha * (float)M_PI / 180.0f);
+    *out = l;
+    return 0;
+}
