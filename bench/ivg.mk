@@ -1,0 +1,9 @@
+# bench/ivg.mk — the IVG client core's extra build rules: its unit tests link
+# the server-side encoder (they build bundles the way the server does), and
+# the push-pull / sampling benchmark (BENCH_STEPS += bench-ivg).
+
+# Unit tests: tests/unit/test_ivg*.c also link server/ivg_encode.c (built with
+# the test flags, sanitizers on). The generic link rule of tests/tests.mk
+# picks up the extra object through $^.
+IVG_TEST_BINS := $(patsubst tests/unit/%.c,$(BUILD)/tests/bin/%,$(wildcard tests/unit/test_ivg*.c))
+$(IVG_TEST_BINS): $(BUILD)/tests/server/ivg_encode.o
