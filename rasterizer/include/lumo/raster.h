@@ -1,0 +1,214 @@
+/*
+ * lumo/raster.h — the backend-neutral rasterizer interface (seed 000, §3.2-3.3).
+ *
+ * One description of a frame — a camera, the scene's lights, an optional
+ * indirect-light source (the IVG), a mesh and a target — drawn by three
+ * backends: rasterizer/soft (this API's functions, client rules: C99, no heap,
+ * no float, bit-exact), and the desktop GL backends (lumo/raster_gl.h) that
+ * take the very same structures.
+ *
+ * Shading model (docs/rasterizer.md):
+ *   L = rho/pi * (E_direct + E_indirect)         diffuse only, per channel
+ *   E_direct: point light of intensity I = Phi/(4 pi) W/sr: I cos(theta)/r^2;
+ *             spot: the same inside a hard cone, 0 outside;
+ *             directional: E cos(theta). No shadows in the client.
+ *   E_indirect = max(0, I_n . n) from the IVG (§3.2), or 0.
+ *   Surfaces are two-sided: n is turned towards the eye before shading.
+ *   pixel = sRGB(clamp(L * exposure, 0, 1)) to 8 bits (integer table), then
+ *           XRGB8888, or RGB565 with a 4x4 ordered dither.
+ * Lighting is evaluated per vertex (Gouraud: L interpolated) or per pixel
+ * (position, normal and albedo interpolated, normal renormalised).
+ *
+ * Geometry: right-handed world, camera looks from eye to target; front faces
+ * are counter-clockwise as seen by the camera (OpenGL's default). Depth is
+ * near/w (1 at the near plane, towards 0 far away; no far plane), larger is
+ * nearer; depth buffers are cleared to 0.
+ *
+ * Units: positions in scene units as Q16.16; normals and albedo Q1.14;
+ * power, intensity, irradiance and radiance UQ16.16 (W, W/sr, W/m^2,
+ * W/m^2/sr per channel).
+ */
+#ifndef LUMO_RASTER_H
+#define LUMO_RASTER_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/fixed.h"
+#include "lumo/status.h"
+
+/* Largest frame the rasterizer accepts, per axis (bounds the edge-function
+ * ranges: see docs/rasterizer.md, "ranges"). */
+#define LUMO_RASTER_MAX_DIM 2048
+/* Most lights one frame may carry. */
+#define LUMO_RASTER_MAX_LIGHTS 16
+
+/* ---- camera ------------------------------------------------------------- */
+
+typedef struct lumo_raster_camera {
+    lumo_q16_16 eye[3];
+    lumo_q16_16 target[3];
+    lumo_q16_16 up[3];
+    lumo_q16_16 fovy_deg;   /* vertical field of view in degrees, [1, 179] */
+    lumo_q16_16 znear;      /* near plane distance (> 0), scene units */
+} lumo_raster_camera;
+
+/* ---- lights ------------------------------------------------------------- */
+
+typedef enum lumo_raster_light_kind {
+    LUMO_LIGHT_POINT = 0,
+    LUMO_LIGHT_SPOT,
+    LUMO_LIGHT_DIRECTIONAL
+} lumo_raster_light_kind;
+
+typedef struct lumo_raster_light {
+    lumo_raster_light_kind kind;
+    lumo_q16_16  pos[3];       /* point, spot: position */
+    lumo_q1_14   dir[3];       /* spot: cone axis; directional: the direction
+                                * the light travels. Unit length. */
+    lumo_q1_14   cos_cutoff;   /* spot: cos of the cone's half angle */
+    lumo_uq16_16 value[3];     /* point, spot: power Phi (W per channel);
+                                * directional: irradiance E (W/m^2) on a
+                                * surface facing it */
+} lumo_raster_light;
+
+/* Indirect irradiance towards unit normal n at p (W/m^2, UQ16.16 per channel).
+ * lumo_raster_ivg_irradiance() adapts lumo/ivg.h to it. */
+typedef void (*lumo_raster_indirect_fn)(const void *ctx, const lumo_q16_16 p[3],
+                                        const lumo_q1_14 n[3], lumo_uq16_16 out[3]);
+
+/* Adapter: ctx is a const lumo_ivg *; calls lumo_ivg_irradiance. Lives in
+ * its own object so programs without an IVG do not link the IVG code. */
+void lumo_raster_ivg_irradiance(const void *ivg, const lumo_q16_16 p[3],
+                                const lumo_q1_14 n[3], lumo_uq16_16 out[3]);
+
+/* Flags of a frame. */
+#define LUMO_RASTER_PER_PIXEL 1u   /* per-pixel lighting (default: per vertex) */
+#define LUMO_RASTER_CULL_BACK 2u   /* drop back faces (closed meshes) */
+
+typedef struct lumo_raster_scene {
+    const lumo_raster_light *lights;   /* light_count entries (may be NULL if 0) */
+    uint32_t light_count;              /* <= LUMO_RASTER_MAX_LIGHTS */
+    lumo_raster_indirect_fn indirect;  /* NULL: no indirect light */
+    const void *indirect_ctx;
+    lumo_uq16_16 exposure;             /* multiplies radiance; 1.0 = LUMO_Q16_ONE */
+    uint32_t flags;                    /* LUMO_RASTER_* */
+} lumo_raster_scene;
+
+/* ---- mesh ---------------------------------------------------------------- */
+
+typedef struct lumo_raster_mesh {
+    const lumo_q16_16 *pos;       /* 3 per vertex, scene units */
+    const lumo_q1_14  *normal;    /* 3 per vertex, unit length */
+    const lumo_q1_14  *albedo;    /* 3 per vertex in [0, 1], or NULL ... */
+    lumo_q1_14 mesh_albedo[3];    /* ... then this one for the whole mesh */
+    const uint32_t *tris;         /* 3 vertex indices per triangle */
+    uint32_t vertex_count;
+    uint32_t tri_count;
+} lumo_raster_mesh;
+
+/* ---- target: a frame, or one band of K rows of it ------------------------ */
+
+typedef enum lumo_pixel_format {
+    LUMO_PIXEL_XRGB8888 = 0,   /* uint32 0x00RRGGBB */
+    LUMO_PIXEL_RGB565          /* uint16, ordered dither on absolute (x, y) */
+} lumo_pixel_format;
+
+typedef struct lumo_raster_target {
+    uint16_t width, height;    /* the whole frame, <= LUMO_RASTER_MAX_DIM */
+    uint16_t band_y;           /* first frame row held in the buffers */
+    uint16_t band_rows;        /* rows held (K); band_y + K <= height */
+    lumo_pixel_format format;
+    void    *color;            /* band_rows rows of color_stride bytes */
+    uint32_t color_stride;     /* bytes between rows, >= width * pixel size */
+    void    *depth;            /* band_rows * width entries of depth_bits */
+    uint8_t  depth_bits;       /* 16 or 32 */
+} lumo_raster_target;
+
+/* Bytes of colour plus depth buffer for a band of `rows` rows (tight rows),
+ * 0 for invalid arguments. */
+size_t lumo_raster_band_bytes(uint16_t width, uint16_t rows, lumo_pixel_format format,
+                              uint8_t depth_bits);
+
+/* Validate a target (dimensions, band, stride, buffers, depth_bits). */
+lumo_status lumo_raster_target_check(const lumo_raster_target *t);
+
+/* Fill the band with `rgb` (0xRRGGBB, already display-encoded) and the
+ * depth buffer with 0 (infinitely far). */
+lumo_status lumo_raster_clear(lumo_raster_target *t, uint32_t rgb);
+
+/* ---- the view: camera reduced to integer matrices ------------------------ */
+
+typedef struct lumo_raster_view {
+    lumo_q16_16 eye[3];
+    lumo_q1_14  rot[3][3];     /* rows: right, up, forward (camera basis) */
+    lumo_q16_16 cot_half;      /* cot(fovy / 2) */
+    lumo_q16_16 znear;
+    uint16_t width, height;
+} lumo_raster_view;
+
+/* Build the view for a frame of width x height. LUMO_ERR_RANGE when the
+ * camera is degenerate (eye == target, up parallel to the view direction,
+ * fovy outside [1, 179], znear <= 0) or the size is out of range. */
+lumo_status lumo_raster_view_init(lumo_raster_view *v, const lumo_raster_camera *cam,
+                                  uint16_t width, uint16_t height);
+
+/* cot(deg / 2) for deg (Q16.16 degrees) in [1, 179], computed from an integer
+ * sine table (no float); exposed for tests and the GL backends' agreement. */
+lumo_q16_16 lumo_raster_cot_half_deg(lumo_q16_16 deg);
+
+/* ---- shading (shared by the per-vertex and per-pixel paths) ------------- */
+
+/* Irradiance (direct + indirect) at p with unit normal n, W/m^2 per channel. */
+void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
+                            const lumo_q1_14 n[3], lumo_uq16_16 out[3]);
+
+/* rho/pi * E per channel. */
+void lumo_raster_radiance(const lumo_uq16_16 e[3], const lumo_q1_14 albedo[3],
+                          lumo_uq16_16 out[3]);
+
+/* Tone map one channel: sRGB(clamp(L * exposure, 0, 1)) rounded to 8 bits. */
+uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure);
+
+/* ---- transformed-vertex cache ------------------------------------------- */
+
+/* Clip-space position and the varyings of one vertex (per-vertex mode: the
+ * lit radiance; per-pixel mode: position, normal, albedo). */
+#define LUMO_RASTER_MAX_VARYINGS 9
+typedef struct lumo_raster_vertex {
+    int32_t clip[3];           /* x, y, w in scene units, Q16.16 */
+    int32_t var[LUMO_RASTER_MAX_VARYINGS];
+} lumo_raster_vertex;
+
+/* Bytes a cache for n vertices needs (SIZE_MAX on overflow). */
+size_t lumo_raster_cache_bytes(uint32_t vertex_count);
+
+/* Transform (and, per vertex, light) every vertex of the mesh into `cache`
+ * (vertex_count entries). Done once per frame, it saves the work each band
+ * and each triangle would repeat. */
+lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_scene *s,
+                                const lumo_raster_mesh *m, lumo_raster_vertex *cache);
+
+/* ---- drawing ------------------------------------------------------------- */
+
+/* Draw the mesh's triangles into the target's band. `cache` is the output of
+ * lumo_raster_prepare for the same view, scene and mesh, or NULL (vertices are
+ * then transformed per triangle: no memory, more work). The bytes drawn do
+ * not depend on the band split nor on the cache.
+ * Errors (nothing drawn): LUMO_ERR_ARG, LUMO_ERR_RANGE (a triangle index
+ * >= vertex_count, a bad target, view size != target size). Uses about
+ * 1.5 KB of stack (the clipped polygon) and no other memory. */
+lumo_status lumo_raster_draw(const lumo_raster_view *v, const lumo_raster_scene *s,
+                             const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
+                             lumo_raster_target *t);
+
+/* Statistics of the last draw, for tests and benchmarks (optional). */
+typedef struct lumo_raster_stats {
+    uint32_t tris_in, tris_culled, tris_clipped, tris_drawn;
+    uint32_t pixels_tested, pixels_written;
+} lumo_raster_stats;
+
+lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,
+                                   const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
+                                   lumo_raster_target *t, lumo_raster_stats *stats);
+
+#endif /* LUMO_RASTER_H */

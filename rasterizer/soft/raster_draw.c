@@ -1,0 +1,503 @@
+/*
+ * raster_draw.c — triangles to pixels, in integers only.
+ *
+ * Pipeline (docs/rasterizer.md): vertex -> camera space -> clip space
+ * (x, y scaled by cot(fovy/2), w = depth along the view axis) -> homogeneous
+ * clipping against the near plane and a guard band -> screen coordinates
+ * with 4 sub-pixel bits -> edge functions with the top-left fill rule (exact
+ * 64-bit integers: shared edges are watertight) -> per pixel: depth near/w,
+ * perspective-correct barycentrics, varyings, shading, tone map.
+ *
+ * Every pixel's value is a function of the triangle and the pixel alone, so
+ * drawing a frame in bands of any height gives the same bytes.
+ */
+#include "lumo/arena.h"
+#include "raster_internal.h"
+
+/* Guard band: vertices are clipped to 4096 pixels around the frame centre,
+ * so screen coordinates stay under 2^17 sub-pixels and edge functions under
+ * 2^37 (int64 with room to spare). */
+#define GUARD_PX 4096
+#define CLIP_PLANES 5
+#define MAX_POLY (3 + CLIP_PLANES)
+/* Barycentric precision of the per-pixel interpolation. */
+#define BARY_BITS 16
+/* Edge functions are scaled down to < 2^24 before the perspective products. */
+#define EDGE_BITS 24
+
+typedef struct screen_vertex {
+    int32_t x, y;           /* sub-pixels, y down */
+    uint32_t q;             /* znear / w, Q0.30 (the depth value) */
+    const int32_t *var;
+} screen_vertex;
+
+typedef struct draw_ctx {
+    const lumo_raster_view  *view;
+    const lumo_raster_scene *scene;
+    lumo_raster_target      *target;
+    lumo_raster_stats       *stats;
+    unsigned nvar;
+} draw_ctx;
+
+/* ---- vertices ------------------------------------------------------------ */
+
+static int32_t sat32(int64_t v)
+{
+    return lumo_sat_i32(v);
+}
+
+void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_scene *s,
+                                  const lumo_raster_mesh *m, uint32_t index,
+                                  lumo_raster_vertex *out)
+{
+    const lumo_q16_16 *p = &m->pos[3 * (size_t)index];
+    const lumo_q1_14 *n = &m->normal[3 * (size_t)index];
+    const lumo_q1_14 *rho = m->albedo ? &m->albedo[3 * (size_t)index] : m->mesh_albedo;
+    int64_t d[3], c[3];
+    int i;
+
+    for (i = 0; i < 3; i++)
+        d[i] = (int64_t)p[i] - v->eye[i];
+    for (i = 0; i < 3; i++)
+        c[i] = lumo_round_shift(d[0] * v->rot[i][0] + d[1] * v->rot[i][1] + d[2] * v->rot[i][2],
+                                LUMO_Q14_SHIFT);
+    out->clip[0] = sat32(lumo_round_shift(c[0] * v->cot_half, 16));
+    out->clip[1] = sat32(lumo_round_shift(c[1] * v->cot_half, 16));
+    out->clip[2] = sat32(c[2]);
+    for (i = 0; i < LUMO_RASTER_MAX_VARYINGS; i++)
+        out->var[i] = 0;
+    if (s->flags & LUMO_RASTER_PER_PIXEL) {
+        for (i = 0; i < 3; i++) {
+            out->var[i] = p[i];
+            out->var[3 + i] = n[i];
+            out->var[6 + i] = rho[i];
+        }
+    } else {
+        lumo_uq16_16 e[3], l[3];
+        lumo_q1_14 nf[3];
+        lumo_raster_face_viewer(v, p, n, nf);
+        lumo_raster_irradiance(s, p, nf, e);
+        lumo_raster_radiance(e, rho, l);
+        for (i = 0; i < 3; i++)
+            out->var[i] = l[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)l[i];
+    }
+}
+
+/* Surfaces are two-sided (docs/scene-format.md): the shading normal is
+ * turned towards the viewer. out may alias n. */
+void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
+                             const lumo_q1_14 n[3], lumo_q1_14 out[3])
+{
+    int64_t d = 0;
+    int i;
+
+    for (i = 0; i < 3; i++)
+        d += ((int64_t)v->eye[i] - p[i]) * n[i];
+    for (i = 0; i < 3; i++)
+        out[i] = (lumo_q1_14)(d < 0 ? -n[i] : n[i]);
+}
+
+size_t lumo_raster_cache_bytes(uint32_t vertex_count)
+{
+    return lumo_size_mul(vertex_count, sizeof(lumo_raster_vertex));
+}
+
+static lumo_status check_inputs(const lumo_raster_view *v, const lumo_raster_scene *s,
+                                const lumo_raster_mesh *m)
+{
+    if (!v || !s || !m)
+        return LUMO_ERR_ARG;
+    if ((m->vertex_count && (!m->pos || !m->normal)) || (m->tri_count && !m->tris))
+        return LUMO_ERR_ARG;
+    if (s->light_count > LUMO_RASTER_MAX_LIGHTS || (s->light_count && !s->lights))
+        return LUMO_ERR_RANGE;
+    if (v->znear <= 0 || v->width == 0 || v->height == 0)
+        return LUMO_ERR_RANGE;
+    return LUMO_OK;
+}
+
+lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_scene *s,
+                                const lumo_raster_mesh *m, lumo_raster_vertex *cache)
+{
+    lumo_status st = check_inputs(v, s, m);
+    uint32_t i;
+
+    if (st)
+        return st;
+    if (!cache && m->vertex_count)
+        return LUMO_ERR_ARG;
+    for (i = 0; i < m->vertex_count; i++)
+        lumo_raster_transform_vertex(v, s, m, i, &cache[i]);
+    return LUMO_OK;
+}
+
+/* ---- clipping ------------------------------------------------------------ */
+
+/* Signed distance of a clip-space vertex to plane k (inside when >= 0):
+ * the near plane w >= znear, then |x| and |y| within the guard band,
+ * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0. */
+static int64_t plane_dist(const draw_ctx *c, int k, const lumo_raster_vertex *v)
+{
+    int64_t g = (int64_t)2 * GUARD_PX * v->clip[2];
+    int64_t h = c->view->height;
+
+    switch (k) {
+    case 0:  return (int64_t)v->clip[2] - c->view->znear;
+    case 1:  return g - (int64_t)v->clip[0] * h;
+    case 2:  return g + (int64_t)v->clip[0] * h;
+    case 3:  return g - (int64_t)v->clip[1] * h;
+    default: return g + (int64_t)v->clip[1] * h;
+    }
+}
+
+static unsigned outcode(const draw_ctx *c, const lumo_raster_vertex *v)
+{
+    unsigned code = 0;
+    int k;
+
+    for (k = 0; k < CLIP_PLANES; k++)
+        if (plane_dist(c, k, v) < 0)
+            code |= 1u << k;
+    return code;
+}
+
+/* The point where the segment from the inside vertex a (da >= 0) to the
+ * outside vertex b (db < 0) meets the plane. Always computed from the inside
+ * end, so the two triangles sharing an edge get the very same point. */
+static void intersect(const lumo_raster_vertex *a, int64_t da, const lumo_raster_vertex *b,
+                      int64_t db, unsigned nvar, lumo_raster_vertex *out)
+{
+    uint64_t num = (uint64_t)da, den = (uint64_t)da + (uint64_t)(-db);
+    int64_t t;
+    unsigned i;
+
+    while (den >= ((uint64_t)1 << 32)) {   /* keep t * (b - a) within 64 bits */
+        num >>= 1;
+        den >>= 1;
+    }
+    t = (int64_t)((num << 30) / den);      /* Q0.30 in [0, 1] */
+    for (i = 0; i < 3; i++)
+        out->clip[i] = sat32(a->clip[i] + lumo_round_shift(((int64_t)b->clip[i] - a->clip[i]) * t, 30));
+    for (i = 0; i < nvar; i++)
+        out->var[i] = sat32(a->var[i] + lumo_round_shift(((int64_t)b->var[i] - a->var[i]) * t, 30));
+}
+
+/* Sutherland-Hodgman against one plane; returns the new vertex count. */
+static int clip_plane(const draw_ctx *c, int k, const lumo_raster_vertex *in, int n,
+                      lumo_raster_vertex *out)
+{
+    int i, m = 0;
+
+    for (i = 0; i < n; i++) {
+        const lumo_raster_vertex *a = &in[i], *b = &in[(i + 1) % n];
+        int64_t da = plane_dist(c, k, a), db = plane_dist(c, k, b);
+        if (da >= 0)
+            out[m++] = *a;
+        if (da >= 0 && db < 0)
+            intersect(a, da, b, db, c->nvar, &out[m++]);
+        else if (da < 0 && db >= 0)
+            intersect(b, db, a, da, c->nvar, &out[m++]);
+    }
+    return m;
+}
+
+/* ---- triangle setup and scan ---------------------------------------------- */
+
+static int64_t floor_div16(int64_t v)
+{
+    return v >= 0 ? v / 16 : -((-v + 15) / 16);
+}
+
+static int32_t clamp_sub(int64_t v)
+{
+    const int64_t lim = (int64_t)1 << 18;
+    return (int32_t)(v > lim ? lim : v < -lim ? -lim : v);
+}
+
+static int64_t div_round(int64_t n, int64_t d)   /* d > 0 */
+{
+    return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
+}
+
+static void project(const draw_ctx *c, const lumo_raster_vertex *v, screen_vertex *s)
+{
+    int64_t w = v->clip[2] < c->view->znear ? c->view->znear : v->clip[2];
+    int64_t h8 = (int64_t)c->view->height * 8;
+    int64_t q = (((int64_t)c->view->znear << 30) + w / 2) / w;
+
+    s->x = clamp_sub((int64_t)c->view->width * 8 + div_round((int64_t)v->clip[0] * h8, w));
+    s->y = clamp_sub(h8 - div_round((int64_t)v->clip[1] * h8, w));
+    s->q = (uint32_t)(q > ((int64_t)1 << 30) ? ((int64_t)1 << 30) : q);
+    s->var = v->var;
+}
+
+/* Top-left rule for an edge a -> b of a triangle with positive area in
+ * y-down screen space: top edges are horizontal going right, left edges go up. */
+static int is_top_left(const screen_vertex *a, const screen_vertex *b)
+{
+    int32_t dx = b->x - a->x, dy = b->y - a->y;
+    return dy < 0 || (dy == 0 && dx > 0);
+}
+
+typedef struct edge {
+    int64_t a, b;      /* E(x, y) = a * (x - x0) + b * (y - y0) + e0 */
+    int32_t x0, y0;
+    int64_t bias;      /* 0 on top-left edges, 1 elsewhere */
+} edge;
+
+static void edge_setup(edge *e, const screen_vertex *p, const screen_vertex *q)
+{
+    e->a = -((int64_t)q->y - p->y);
+    e->b = (int64_t)q->x - p->x;
+    e->x0 = p->x;
+    e->y0 = p->y;
+    e->bias = is_top_left(p, q) ? 0 : 1;
+}
+
+static int64_t edge_at(const edge *e, int64_t x, int64_t y)
+{
+    return e->a * (x - e->x0) + e->b * (y - e->y0);
+}
+
+static void store_depth(lumo_raster_target *t, size_t i, uint32_t z)
+{
+    if (t->depth_bits == 16)
+        ((uint16_t *)t->depth)[i] = (uint16_t)z;
+    else
+        ((uint32_t *)t->depth)[i] = z;
+}
+
+static uint32_t load_depth(const lumo_raster_target *t, size_t i)
+{
+    return t->depth_bits == 16 ? ((const uint16_t *)t->depth)[i] : ((const uint32_t *)t->depth)[i];
+}
+
+/* Depth value in the buffer's width; 0 is reserved for "cleared". */
+static uint32_t depth_value(const lumo_raster_target *t, uint64_t z30)
+{
+    uint64_t z = t->depth_bits == 16 ? z30 >> 14 : z30 << 2;
+    uint64_t max = t->depth_bits == 16 ? 0xFFFFu : 0xFFFFFFFFu;
+
+    if (z > max) z = max;
+    return z == 0 ? 1u : (uint32_t)z;
+}
+
+static void shade_pixel(const draw_ctx *c, const screen_vertex *v, const int32_t b[3],
+                        int x, int y)
+{
+    int32_t var[LUMO_RASTER_MAX_VARYINGS];
+    lumo_uq16_16 l[3];
+    unsigned i;
+
+    for (i = 0; i < c->nvar; i++) {
+        int64_t d1 = (int64_t)v[1].var[i] - v[0].var[i], d2 = (int64_t)v[2].var[i] - v[0].var[i];
+        var[i] = sat32(v[0].var[i] + lumo_round_shift(d1 * b[1] + d2 * b[2], BARY_BITS));
+    }
+    if (c->scene->flags & LUMO_RASTER_PER_PIXEL) {
+        lumo_q1_14 n[3], rho[3];
+        lumo_uq16_16 e[3];
+        int32_t nv[3] = {var[3], var[4], var[5]};
+        if (lumo_normalize3_q14(nv, n))
+            n[0] = n[1] = n[2] = 0;
+        lumo_raster_face_viewer(c->view, var, n, n);
+        for (i = 0; i < 3; i++)
+            rho[i] = (lumo_q1_14)(var[6 + i] < 0 ? 0 : var[6 + i] > LUMO_Q14_ONE ? LUMO_Q14_ONE : var[6 + i]);
+        lumo_raster_irradiance(c->scene, var, n, e);
+        lumo_raster_radiance(e, rho, l);
+    } else {
+        for (i = 0; i < 3; i++)
+            l[i] = var[i] < 0 ? 0u : (uint32_t)var[i];
+    }
+    lumo_raster_put_pixel(c->target, x, y, l, c->scene->exposure);
+}
+
+/* Rasterize one screen triangle with positive area. */
+static void raster_triangle(const draw_ctx *c, const screen_vertex *v, int64_t area)
+{
+    lumo_raster_target *t = c->target;
+    edge e[3];
+    int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py;
+    uint64_t r[3], qmax;
+    unsigned sh = 0;
+    int i;
+
+    minx = maxx = v[0].x;
+    miny = maxy = v[0].y;
+    for (i = 1; i < 3; i++) {
+        if (v[i].x < minx) minx = v[i].x;
+        if (v[i].x > maxx) maxx = v[i].x;
+        if (v[i].y < miny) miny = v[i].y;
+        if (v[i].y > maxy) maxy = v[i].y;
+    }
+    /* Pixel centres (16 p + 8) inside the bounding box, within the band. */
+    px0 = floor_div16(minx - 8 + 15);
+    px1 = floor_div16(maxx - 8);
+    py0 = floor_div16(miny - 8 + 15);
+    py1 = floor_div16(maxy - 8);
+    if (px0 < 0) px0 = 0;
+    if (px1 > (int64_t)t->width - 1) px1 = (int64_t)t->width - 1;
+    if (py0 < t->band_y) py0 = t->band_y;
+    if (py1 > (int64_t)t->band_y + t->band_rows - 1) py1 = (int64_t)t->band_y + t->band_rows - 1;
+    if (px0 > px1 || py0 > py1)
+        return;
+    if (c->stats)
+        c->stats->tris_drawn++;
+    edge_setup(&e[0], &v[1], &v[2]);
+    edge_setup(&e[1], &v[2], &v[0]);
+    edge_setup(&e[2], &v[0], &v[1]);
+    while ((area >> sh) >= ((int64_t)1 << EDGE_BITS))
+        sh++;
+    /* Perspective weights: q_i scaled by the largest, to 20 bits (the
+     * barycentrics are ratios, so a common factor cancels). */
+    qmax = v[0].q;
+    for (i = 1; i < 3; i++)
+        if (v[i].q > qmax) qmax = v[i].q;
+    for (i = 0; i < 3; i++)
+        r[i] = ((uint64_t)v[i].q << 20) / qmax;
+
+    for (py = py0; py <= py1; py++) {
+        int64_t sy = py * 16 + 8, sx = px0 * 16 + 8;
+        int64_t E[3];
+        size_t row = (size_t)(py - t->band_y) * t->width;
+        int64_t px;
+        for (i = 0; i < 3; i++)
+            E[i] = edge_at(&e[i], sx, sy);
+        for (px = px0; px <= px1; px++) {
+            if (E[0] >= e[0].bias && E[1] >= e[1].bias && E[2] >= e[2].bias) {
+                uint64_t w0 = (uint64_t)E[0] >> sh, w1 = (uint64_t)E[1] >> sh, w2 = (uint64_t)E[2] >> sh;
+                uint64_t se = w0 + w1 + w2;
+                uint64_t z = (w0 * v[0].q + w1 * v[1].q + w2 * v[2].q) / (se ? se : 1);
+                uint32_t dz = depth_value(t, z);
+                if (c->stats)
+                    c->stats->pixels_tested++;
+                if (dz > load_depth(t, row + (size_t)px)) {
+                    uint64_t p0 = w0 * r[0], p1 = w1 * r[1], p2 = w2 * r[2], ps = p0 + p1 + p2;
+                    int32_t b[3];
+                    if (ps == 0) {
+                        p1 = w1; p2 = w2; ps = se ? se : 1;
+                    }
+                    b[1] = (int32_t)((p1 << BARY_BITS) / ps);
+                    b[2] = (int32_t)((p2 << BARY_BITS) / ps);
+                    b[0] = (1 << BARY_BITS) - b[1] - b[2];
+                    store_depth(t, row + (size_t)px, dz);
+                    shade_pixel(c, v, b, (int)px, (int)py);
+                    if (c->stats)
+                        c->stats->pixels_written++;
+                }
+            }
+            for (i = 0; i < 3; i++)
+                E[i] += e[i].a * 16;
+        }
+    }
+}
+
+/* Project a clipped convex polygon and draw it as a fan. */
+static void draw_polygon(const draw_ctx *c, const lumo_raster_vertex *poly, int n)
+{
+    screen_vertex s[MAX_POLY];
+    int i;
+
+    for (i = 0; i < n; i++)
+        project(c, &poly[i], &s[i]);
+    for (i = 1; i + 1 < n; i++) {
+        screen_vertex tri[3];
+        int64_t area;
+        tri[0] = s[0];
+        tri[1] = s[i];
+        tri[2] = s[i + 1];
+        area = ((int64_t)tri[1].x - tri[0].x) * ((int64_t)tri[2].y - tri[0].y)
+             - ((int64_t)tri[1].y - tri[0].y) * ((int64_t)tri[2].x - tri[0].x);
+        if (area == 0)
+            continue;
+        /* Front faces are counter-clockwise with y up, so negative here. */
+        if (area > 0 && (c->scene->flags & LUMO_RASTER_CULL_BACK)) {
+            if (c->stats)
+                c->stats->tris_culled++;
+            continue;
+        }
+        if (area < 0) {          /* the edge functions want positive area */
+            screen_vertex tmp = tri[1];
+            tri[1] = tri[2];
+            tri[2] = tmp;
+            area = -area;
+        }
+        raster_triangle(c, tri, area);
+    }
+}
+
+static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
+                          const lumo_raster_vertex *b, const lumo_raster_vertex *d)
+{
+    lumo_raster_vertex buf[2][MAX_POLY];
+    unsigned oa = outcode(c, a), ob = outcode(c, b), od = outcode(c, d);
+    int n = 3, cur = 0, k;
+
+    if (oa & ob & od)
+        return;                              /* all outside one plane */
+    buf[0][0] = *a;
+    buf[0][1] = *b;
+    buf[0][2] = *d;
+    if (oa | ob | od) {
+        if (c->stats)
+            c->stats->tris_clipped++;
+        for (k = 0; k < CLIP_PLANES && n >= 3; k++) {
+            if (!((oa | ob | od) & (1u << k)))
+                continue;
+            n = clip_plane(c, k, buf[cur], n, buf[cur ^ 1]);
+            cur ^= 1;
+        }
+        if (n < 3)
+            return;
+    }
+    draw_polygon(c, buf[cur], n);
+}
+
+lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,
+                                   const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
+                                   lumo_raster_target *t, lumo_raster_stats *stats)
+{
+    draw_ctx c;
+    lumo_status st = check_inputs(v, s, m);
+    uint32_t i;
+
+    if (st)
+        return st;
+    st = lumo_raster_target_check(t);
+    if (st)
+        return st;
+    if (t->width != v->width || t->height != v->height)
+        return LUMO_ERR_RANGE;
+    for (i = 0; i < 3 * m->tri_count; i++)
+        if (m->tris[i] >= m->vertex_count)
+            return LUMO_ERR_RANGE;
+    c.view = v;
+    c.scene = s;
+    c.target = t;
+    c.stats = stats;
+    c.nvar = lumo_raster_varyings(s);
+    if (stats) {
+        lumo_raster_stats zero = {0, 0, 0, 0, 0, 0};
+        *stats = zero;
+        stats->tris_in = m->tri_count;
+    }
+    for (i = 0; i < m->tri_count; i++) {
+        const uint32_t *tri = &m->tris[3 * (size_t)i];
+        if (cache) {
+            draw_triangle(&c, &cache[tri[0]], &cache[tri[1]], &cache[tri[2]]);
+        } else {
+            lumo_raster_vertex tv[3];
+            int k;
+            for (k = 0; k < 3; k++)
+                lumo_raster_transform_vertex(v, s, m, tri[k], &tv[k]);
+            draw_triangle(&c, &tv[0], &tv[1], &tv[2]);
+        }
+    }
+    return LUMO_OK;
+}
+
+lumo_status lumo_raster_draw(const lumo_raster_view *v, const lumo_raster_scene *s,
+                             const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
+                             lumo_raster_target *t)
+{
+    return lumo_raster_draw_stats(v, s, m, cache, t, NULL);
+}

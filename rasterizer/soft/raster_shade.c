@@ -1,0 +1,162 @@
+/*
+ * raster_shade.c — the shading model shared by per-vertex and per-pixel
+ * lighting (docs/rasterizer.md): diffuse direct light without shadows plus
+ * the IVG's indirect irradiance (seed 000, §3.2), rho/pi, sRGB tone map.
+ */
+#include "raster_internal.h"
+
+/* 1/(4 pi) and 1/pi in Q0.32, rounded. */
+#define INV_4PI_Q32 341782638u
+#define INV_PI_Q32  1367130551u
+/* Squared distances below this (Q16.16, ~0.004 units^2) are clamped: a light
+ * touching a surface would otherwise saturate everything. */
+#define MIN_DIST2   256
+
+static uint32_t sat_add_u32(uint32_t a, uint32_t b)
+{
+    return a > UINT32_MAX - b ? UINT32_MAX : a + b;
+}
+
+static int32_t clamp_i32(int64_t v, int32_t lim)
+{
+    if (v > lim) return lim;
+    if (v < -lim) return -lim;
+    return (int32_t)v;
+}
+
+/* Dot product of two Q1.14 vectors, Q1.14. */
+static int32_t dot_q14(const lumo_q1_14 a[3], const lumo_q1_14 b[3])
+{
+    int32_t d = (int32_t)a[0] * b[0] + (int32_t)a[1] * b[1] + (int32_t)a[2] * b[2];
+    return (int32_t)lumo_round_shift(d, LUMO_Q14_SHIFT);
+}
+
+/* Irradiance of a point or spot light at p facing n (W/m^2, UQ16.16 each):
+ * I cos(theta) / r^2 with I = Phi / (4 pi). */
+static void add_local_light(const lumo_raster_light *L, const lumo_q16_16 p[3],
+                            const lumo_q1_14 n[3], lumo_uq16_16 e[3])
+{
+    int32_t d[3];
+    lumo_q1_14 dir[3];
+    uint64_t dist2 = 0;
+    int32_t cos_n;
+    int i;
+
+    /* Components beyond +-16384 units are clamped: such a light is too far
+     * to matter and the squares must fit 64 bits. */
+    for (i = 0; i < 3; i++) {
+        d[i] = clamp_i32((int64_t)L->pos[i] - p[i], (int32_t)1 << 30);
+        dist2 += (uint64_t)((int64_t)d[i] * d[i]);
+    }
+    if (lumo_normalize3_q14(d, dir))
+        return;
+    cos_n = dot_q14(n, dir);
+    if (cos_n <= 0)
+        return;
+    if (L->kind == LUMO_LIGHT_SPOT && -dot_q14(dir, L->dir) < L->cos_cutoff)
+        return;
+    dist2 >>= 16;
+    if (dist2 < MIN_DIST2)
+        dist2 = MIN_DIST2;
+    for (i = 0; i < 3; i++) {
+        uint64_t inten = ((uint64_t)L->value[i] * INV_4PI_Q32 + ((uint64_t)1 << 31)) >> 32;
+        uint64_t num = (inten * (uint64_t)cos_n) << 2;   /* Q30 -> Q32 / Q16 */
+        uint64_t q = (num + dist2 / 2) / dist2;
+        e[i] = sat_add_u32(e[i], q > UINT32_MAX ? UINT32_MAX : (uint32_t)q);
+    }
+}
+
+static void add_directional(const lumo_raster_light *L, const lumo_q1_14 n[3], lumo_uq16_16 e[3])
+{
+    int32_t cos_n = -dot_q14(n, L->dir);
+    int i;
+
+    if (cos_n <= 0)
+        return;
+    for (i = 0; i < 3; i++)
+        e[i] = sat_add_u32(e[i], lumo_uq16_mul_q14(L->value[i], (lumo_q1_14)cos_n));
+}
+
+void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
+                            const lumo_q1_14 n[3], lumo_uq16_16 out[3])
+{
+    lumo_uq16_16 e[3] = {0, 0, 0};
+    uint32_t i, count = s->light_count;
+
+    if (count > LUMO_RASTER_MAX_LIGHTS)
+        count = LUMO_RASTER_MAX_LIGHTS;
+    for (i = 0; i < count; i++) {
+        const lumo_raster_light *L = &s->lights[i];
+        if (L->kind == LUMO_LIGHT_DIRECTIONAL)
+            add_directional(L, n, e);
+        else
+            add_local_light(L, p, n, e);
+    }
+    if (s->indirect) {
+        lumo_uq16_16 ind[3];
+        s->indirect(s->indirect_ctx, p, n, ind);
+        for (i = 0; i < 3; i++)
+            e[i] = sat_add_u32(e[i], ind[i]);
+    }
+    out[0] = e[0];
+    out[1] = e[1];
+    out[2] = e[2];
+}
+
+void lumo_raster_radiance(const lumo_uq16_16 e[3], const lumo_q1_14 albedo[3],
+                          lumo_uq16_16 out[3])
+{
+    int i;
+
+    for (i = 0; i < 3; i++) {
+        uint64_t rho = albedo[i] < 0 ? 0 : (uint64_t)albedo[i];
+        uint64_t er;
+        if (rho > (uint64_t)LUMO_Q14_ONE)
+            rho = (uint64_t)LUMO_Q14_ONE;
+        er = ((uint64_t)e[i] * rho + ((uint64_t)1 << 13)) >> LUMO_Q14_SHIFT;
+        out[i] = (lumo_uq16_16)((er * INV_PI_Q32 + ((uint64_t)1 << 31)) >> 32);
+    }
+}
+
+uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
+{
+    const uint32_t lim = (uint32_t)1 << 31;
+    uint64_t v = (uint64_t)(radiance > lim ? lim : radiance) * (exposure > lim ? lim : exposure);
+    unsigned code = 0, step;
+
+    v >>= 8;                                   /* UQ32 -> UQ24 */
+    if (v >= ((uint64_t)1 << 24))
+        return 255;
+    for (step = 128; step != 0; step >>= 1)    /* largest k with t[k] <= v */
+        if (lumo_raster_srgb_threshold[code + step] <= v)
+            code += step;
+    return (uint8_t)code;
+}
+
+/* 4x4 Bayer matrix: thresholds 0..15 for the RGB565 ordered dither. */
+static const uint8_t bayer4[4][4] = {
+    { 0,  8,  2, 10}, {12,  4, 14,  6}, { 3, 11,  1,  9}, {15,  7, 13,  5}
+};
+
+/* floor(c * maxv / 255 + (b + 1/2) / 16): an 8-bit code to `maxv` levels. */
+static uint32_t dither(unsigned c, unsigned maxv, unsigned b)
+{
+    return ((uint32_t)c * maxv * 32u + (2u * b + 1u) * 255u) / (255u * 32u);
+}
+
+void lumo_raster_put_pixel(lumo_raster_target *t, int x, int y, const lumo_uq16_16 rgb[3],
+                           lumo_uq16_16 exposure)
+{
+    unsigned r = lumo_raster_tonemap(rgb[0], exposure);
+    unsigned g = lumo_raster_tonemap(rgb[1], exposure);
+    unsigned b = lumo_raster_tonemap(rgb[2], exposure);
+    uint8_t *row = (uint8_t *)t->color + (size_t)(y - t->band_y) * t->color_stride;
+
+    if (t->format == LUMO_PIXEL_RGB565) {
+        unsigned k = bayer4[y & 3][x & 3];
+        ((uint16_t *)row)[x] = (uint16_t)((dither(r, 31, k) << 11) | (dither(g, 63, k) << 5)
+                                          | dither(b, 31, k));
+    } else {
+        ((uint32_t *)row)[x] = ((uint32_t)r << 16) | ((uint32_t)g << 8) | b;
+    }
+}

@@ -1,0 +1,58 @@
+/*
+ * raster_target.c — frame and band buffers: sizes, checks, clearing.
+ * A band is rows [band_y, band_y + band_rows) of the frame; a full frame is
+ * the band with band_y = 0 and band_rows = height.
+ */
+#include <string.h>
+#include "raster_internal.h"
+
+static size_t pixel_bytes(lumo_pixel_format f)
+{
+    return f == LUMO_PIXEL_RGB565 ? 2u : 4u;
+}
+
+size_t lumo_raster_band_bytes(uint16_t width, uint16_t rows, lumo_pixel_format format,
+                              uint8_t depth_bits)
+{
+    if (width == 0 || rows == 0 || width > LUMO_RASTER_MAX_DIM || rows > LUMO_RASTER_MAX_DIM)
+        return 0;
+    if ((format != LUMO_PIXEL_XRGB8888 && format != LUMO_PIXEL_RGB565)
+        || (depth_bits != 16 && depth_bits != 32))
+        return 0;
+    return (size_t)width * rows * (pixel_bytes(format) + depth_bits / 8u);
+}
+
+lumo_status lumo_raster_target_check(const lumo_raster_target *t)
+{
+    if (!t || !t->color || !t->depth)
+        return LUMO_ERR_ARG;
+    if (lumo_raster_band_bytes(t->width, t->band_rows, t->format, t->depth_bits) == 0)
+        return LUMO_ERR_RANGE;
+    if (t->height == 0 || t->height > LUMO_RASTER_MAX_DIM
+        || (uint32_t)t->band_y + t->band_rows > t->height)
+        return LUMO_ERR_RANGE;
+    if (t->color_stride < t->width * pixel_bytes(t->format) || t->color_stride % pixel_bytes(t->format))
+        return LUMO_ERR_RANGE;
+    return LUMO_OK;
+}
+
+lumo_status lumo_raster_clear(lumo_raster_target *t, uint32_t rgb)
+{
+    lumo_status st = lumo_raster_target_check(t);
+    uint32_t x, y;
+
+    if (st)
+        return st;
+    for (y = 0; y < t->band_rows; y++) {
+        uint8_t *row = (uint8_t *)t->color + (size_t)y * t->color_stride;
+        for (x = 0; x < t->width; x++) {
+            if (t->format == LUMO_PIXEL_RGB565)
+                ((uint16_t *)row)[x] = (uint16_t)(((rgb >> 8) & 0xF800u) | ((rgb >> 5) & 0x07E0u)
+                                                  | ((rgb >> 3) & 0x001Fu));
+            else
+                ((uint32_t *)row)[x] = rgb & 0xFFFFFFu;
+        }
+    }
+    memset(t->depth, 0, (size_t)t->width * t->band_rows * (t->depth_bits / 8u));
+    return LUMO_OK;
+}
