@@ -123,7 +123,7 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const 
     size_t num_values = (size_t)n * comps;
     ld_pred pred;
     int8_t method, transform = -1;
-    uint8_t compressed, *state = NULL, *mark;
+    uint8_t compressed, *mark;
     lumo_status st;
 
     if (num_values > 0xFFFFFFFFu)
@@ -172,9 +172,9 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const 
     if (method == LD_PRED_NONE)
         return LUMO_OK;
     mark = ld_tmp_mark(&d->mem);
-    st = ld_pred_decode_data(&pred, &d->buf, &d->mem, n, &state);
+    st = ld_pred_decode_data(&pred, &d->buf, &d->mem);
     if (!st && num_values)
-        st = ld_pred_compute(&pred, &d->mem, a->values, n, state);
+        st = ld_pred_compute(&pred, a->values, n);
     ld_tmp_release(&d->mem, mark);
     return st;
 }

@@ -144,17 +144,22 @@ typedef struct ld_pred {
     int8_t transform;
     unsigned comps;
     const ld_seq *seq;
-    const lumo_draco_attribute *pos;  /* parent position attribute, portable */
+    const lumo_draco_attribute *pos;  /* portable positions (parent) */
     /* wrap transform */
     int32_t min_value, max_value;
-    /* octahedron transform */
-    int32_t max_quantized;
+    /* octahedron transforms */
+    int32_t oct_max_q, oct_center;
+    unsigned oct_bits;
+    /* scheme data */
+    uint8_t *crease[4];
+    uint32_t num_crease[4];
+    uint8_t *orient;
+    uint32_t num_orient;
+    ld_rabs flip;
 } ld_pred;
 
-lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, uint32_t num_values,
-                                uint8_t **state);
-lumo_status ld_pred_compute(ld_pred *p, ld_mem *m, int32_t *values, uint32_t num_entries,
-                            const uint8_t *state);
+lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m);
+lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
 
 /* ---- corner tables (draco_traverse.c) ------------------------------------ */
 #define LD_INV 0xFFFFFFFFu

@@ -1,18 +1,30 @@
 /*
- * draco_predict.c — prediction schemes and their transforms (paper §3,
- * libdraco compression/attributes/prediction_schemes): the corrections in
- * the stream plus a prediction give the portable values.
+ * draco_predict.c — prediction schemes and their transforms (paper §3;
+ * libdraco compression/attributes/prediction_schemes). The stream holds
+ * corrections; prediction + correction, folded by the transform, gives the
+ * portable values. All arithmetic is integer, as in libdraco (int64
+ * intermediates, wrapping adds where libdraco adds as unsigned).
  */
 #include "draco_internal.h"
 
 #define LD_PRED_DIFFERENCE 0
+#define LD_PRED_PARALLELOGRAM 1
+#define LD_PRED_CONSTRAINED_MULTI 4
+#define LD_PRED_TEX_COORDS_PORTABLE 5
+#define LD_PRED_GEOMETRIC_NORMAL 6
 #define LD_XFORM_WRAP 1
+#define LD_XFORM_OCTAHEDRON 2
+#define LD_XFORM_OCTAHEDRON_CANON 3
+#define LD_MAX_PARALLELOGRAMS 4
 
-/* Integer adds wrap modulo 2^32 like libdraco's uint32 arithmetic. */
 static inline int32_t ld_wrap_add(int32_t a, int32_t b)
 {
     return (int32_t)((uint32_t)a + (uint32_t)b);
 }
+
+static inline int64_t ld_abs64(int64_t v) { return v < 0 ? -v : v; }
+
+/* ---- transforms ------------------------------------------------------------- */
 
 static lumo_status ld_wrap_read(ld_pred *p, ld_buf *b)
 {
@@ -28,10 +40,38 @@ static lumo_status ld_wrap_read(ld_pred *p, ld_buf *b)
     return LUMO_OK;
 }
 
-/* Wrap transform: clamp the prediction into [min, max], add the
- * correction, fold the result back into the range. */
-static inline void ld_wrap_original(const ld_pred *p, const int32_t *pred,
-                                    const int32_t *corr, int32_t *out)
+static lumo_status ld_octahedron_read(ld_pred *p, ld_buf *b)
+{
+    uint32_t maxq, center;
+    unsigned bits = 0;
+    lumo_status st;
+    if ((st = ld_u32(b, &maxq)) || (st = ld_u32(b, &center)))
+        return st;
+    if ((int32_t)maxq <= 0 || (maxq & 1u) == 0)
+        return LUMO_ERR_CORRUPT;
+    while (bits < 32 && (maxq >> bits) > 1u)
+        ++bits;  /* most significant bit */
+    bits += 1;
+    if (bits < 2 || bits > 30)
+        return LUMO_ERR_CORRUPT;
+    p->oct_bits = bits;
+    p->oct_max_q = (int32_t)((1u << bits) - 1u);
+    p->oct_center = (p->oct_max_q - 1) / 2;
+    return LUMO_OK;
+}
+
+static lumo_status ld_transform_read(ld_pred *p, ld_buf *b)
+{
+    if (p->transform == LD_XFORM_WRAP)
+        return ld_wrap_read(p, b);
+    if (p->transform == LD_XFORM_OCTAHEDRON_CANON)
+        return ld_octahedron_read(p, b);
+    return LUMO_ERR_UNSUPPORTED;
+}
+
+/* Wrap: clamp the prediction into [min, max], add, fold back. */
+static void ld_wrap_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
+                             int32_t *out)
 {
     const int32_t max_dif = (int32_t)(1 + p->max_value - p->min_value);
     unsigned c;
@@ -47,41 +87,558 @@ static inline void ld_wrap_original(const ld_pred *p, const int32_t *pred,
     }
 }
 
-lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, uint32_t num_values,
-                                uint8_t **state)
+/* Octahedron diamond folding (OctahedronToolBox::InvertDiamond), in the
+ * unsigned arithmetic libdraco uses. */
+static void ld_invert_diamond(int32_t center, int32_t *s, int32_t *t)
 {
-    (void)m;
-    (void)num_values;
-    *state = NULL;
-    if (p->transform != LD_XFORM_WRAP)
-        return LUMO_ERR_UNSUPPORTED;
-    switch (p->method) {
-    case LD_PRED_DIFFERENCE:
-        return ld_wrap_read(p, b);
-    default:
-        return LUMO_ERR_UNSUPPORTED;
+    int32_t ss, st;
+    uint32_t cs, ct, us, ut;
+    if (*s >= 0 && *t >= 0) {
+        ss = 1; st = 1;
+    } else if (*s <= 0 && *t <= 0) {
+        ss = -1; st = -1;
+    } else {
+        ss = *s > 0 ? 1 : -1;
+        st = *t > 0 ? 1 : -1;
+    }
+    cs = (uint32_t)(ss * center);
+    ct = (uint32_t)(st * center);
+    us = (uint32_t)*s;
+    ut = (uint32_t)*t;
+    us = us + us - cs;
+    ut = ut + ut - ct;
+    if (ss * st >= 0) {
+        uint32_t tmp = us;
+        us = 0u - ut;
+        ut = 0u - tmp;
+    } else {
+        uint32_t tmp = us;
+        us = ut;
+        ut = tmp;
+    }
+    us += cs;
+    ut += ct;
+    *s = (int32_t)us / 2;
+    *t = (int32_t)ut / 2;
+}
+
+static int32_t ld_mod_max(const ld_pred *p, int32_t x)
+{
+    if (x > p->oct_center)
+        return x - p->oct_max_q;
+    if (x < -p->oct_center)
+        return x + p->oct_max_q;
+    return x;
+}
+
+static void ld_rotate(int32_t *x, int32_t *y, int count)
+{
+    int32_t a = *x, b = *y;
+    switch (count) {
+    case 1: *x = b; *y = -a; break;
+    case 2: *x = -a; *y = -b; break;
+    case 3: *x = -b; *y = a; break;
+    default: break;
     }
 }
 
-static lumo_status ld_delta_compute(ld_pred *p, int32_t *v, uint32_t n)
+static int ld_rotation_count(int32_t x, int32_t y)
+{
+    if (x == 0)
+        return y == 0 ? 0 : (y > 0 ? 3 : 1);
+    if (x > 0)
+        return y >= 0 ? 2 : 1;
+    return y <= 0 ? 0 : 3;
+}
+
+/* PredictionSchemeNormalOctahedronCanonicalizedDecodingTransform */
+static void ld_octa_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
+                             int32_t *out)
+{
+    const int32_t c = p->oct_center;
+    int32_t s = pred[0] - c, t = pred[1] - c, os, ot;
+    int in_diamond = (uint32_t)(s < 0 ? -s : s) + (uint32_t)(t < 0 ? -t : t) <= (uint32_t)c;
+    int bottom_left, rot;
+    if (!in_diamond)
+        ld_invert_diamond(c, &s, &t);
+    bottom_left = (s == 0 && t == 0) || (s < 0 && t <= 0);
+    rot = ld_rotation_count(s, t);
+    if (!bottom_left)
+        ld_rotate(&s, &t, rot);
+    os = ld_mod_max(p, ld_wrap_add(s, corr[0]));
+    ot = ld_mod_max(p, ld_wrap_add(t, corr[1]));
+    if (!bottom_left)
+        ld_rotate(&os, &ot, (4 - rot) % 4);
+    if (!in_diamond)
+        ld_invert_diamond(c, &os, &ot);
+    out[0] = os + c;
+    out[1] = ot + c;
+}
+
+static void ld_original(const ld_pred *p, const int32_t *pred, const int32_t *corr, int32_t *out)
+{
+    if (p->transform == LD_XFORM_WRAP)
+        ld_wrap_original(p, pred, corr, out);
+    else
+        ld_octa_original(p, pred, corr, out);
+}
+
+/* ---- scheme data ---------------------------------------------------------------- */
+
+static lumo_status ld_read_bits(ld_buf *b, ld_mem *m, uint32_t n, uint8_t **out)
+{
+    ld_rabs r;
+    uint32_t i;
+    lumo_status st = ld_rabs_start(&r, b);
+    if (st)
+        return st;
+    *out = ld_tmp(m, n, 1);
+    if (!*out)
+        return LUMO_ERR_NOMEM;
+    for (i = 0; i < n; ++i)
+        (*out)[i] = (uint8_t)ld_rabs_bit(&r);
+    return LUMO_OK;
+}
+
+/* Mesh schemes need the mesh's traversal data; without it (sequential
+ * connectivity) libdraco falls back to delta coding, and so does any
+ * method number it does not know. */
+static int ld_effective_method(const ld_pred *p)
+{
+    int m = p->method;
+    if (m == LD_PRED_PARALLELOGRAM || m == LD_PRED_CONSTRAINED_MULTI ||
+        m == LD_PRED_TEX_COORDS_PORTABLE || m == LD_PRED_GEOMETRIC_NORMAL ||
+        m == 2 || m == 3)
+        return p->seq->ct ? m : LD_PRED_DIFFERENCE;
+    return LD_PRED_DIFFERENCE;
+}
+
+lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m)
+{
+    lumo_status st;
+    uint32_t i, n;
+    int method = ld_effective_method(p);
+    if (p->transform == LD_XFORM_OCTAHEDRON_CANON && p->comps != 2)
+        return LUMO_ERR_CORRUPT;
+    switch (method) {
+    case LD_PRED_DIFFERENCE:
+    case LD_PRED_PARALLELOGRAM:
+        return ld_transform_read(p, b);
+    case LD_PRED_CONSTRAINED_MULTI:
+        for (i = 0; i < LD_MAX_PARALLELOGRAMS; ++i) {
+            if ((st = ld_varint32(b, &n)))
+                return st;
+            if (n > p->seq->ct->num_corners)
+                return LUMO_ERR_CORRUPT;
+            p->num_crease[i] = n;
+            if (n && (st = ld_read_bits(b, m, n, &p->crease[i])))
+                return st;
+        }
+        return ld_transform_read(p, b);
+    case LD_PRED_TEX_COORDS_PORTABLE:
+        if ((st = ld_u32(b, &n)))
+            return st;
+        if ((int32_t)n < 0 || n > p->seq->num_entries)
+            return LUMO_ERR_CORRUPT;
+        p->num_orient = n;
+        if ((st = ld_read_bits(b, m, n, &p->orient)))
+            return st;
+        /* bit 0 flips the running orientation, starting from "true" */
+        for (i = 0; i < n; ++i) {
+            uint8_t last = i ? p->orient[i - 1] : 1u;
+            p->orient[i] = p->orient[i] ? last : (uint8_t)!last;
+        }
+        return ld_transform_read(p, b);
+    case LD_PRED_GEOMETRIC_NORMAL:
+        if (p->transform != LD_XFORM_OCTAHEDRON_CANON)
+            return LUMO_ERR_UNSUPPORTED;
+        if ((st = ld_transform_read(p, b)))
+            return st;
+        return ld_rabs_start(&p->flip, b);
+    default:
+        return LUMO_ERR_UNSUPPORTED;  /* pre-2.2 schemes */
+    }
+}
+
+/* ---- schemes ------------------------------------------------------------------ */
+
+static lumo_status ld_delta(ld_pred *p, int32_t *v, uint32_t n)
 {
     static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
     const unsigned k = p->comps;
     uint32_t i;
-    ld_wrap_original(p, zero, v, v);
+    ld_original(p, zero, v, v);
     for (i = 1; i < n; ++i)
-        ld_wrap_original(p, v + (size_t)(i - 1) * k, v + (size_t)i * k, v + (size_t)i * k);
+        ld_original(p, v + (size_t)(i - 1) * k, v + (size_t)i * k, v + (size_t)i * k);
     return LUMO_OK;
 }
 
-lumo_status ld_pred_compute(ld_pred *p, ld_mem *m, int32_t *values, uint32_t num_entries,
-                            const uint8_t *state)
+static int32_t ld_value_of_vertex(const ld_pred *p, uint32_t v)
 {
-    (void)m;
-    (void)state;
-    switch (p->method) {
+    return v == LD_INV ? -1 : p->seq->vertex_to_value[v];
+}
+
+/* ComputeParallelogramPrediction: the vertex opposite `ci` across its
+ * edge, reflected: next + prev - opposite, when all three are decoded. */
+static int ld_parallelogram(const ld_pred *p, int32_t entry, uint32_t ci, const int32_t *data,
+                            int32_t *out)
+{
+    const ld_ct *ct = p->seq->ct;
+    uint32_t oci = ld_opp(ct, ci), c;
+    int32_t eo, en, ep;
+    if (oci == LD_INV)
+        return 0;
+    eo = ld_value_of_vertex(p, ld_vert(ct, oci));
+    en = ld_value_of_vertex(p, ld_vert(ct, ld_next(oci)));
+    ep = ld_value_of_vertex(p, ld_vert(ct, ld_prev(oci)));
+    if (eo < 0 || en < 0 || ep < 0 || eo >= entry || en >= entry || ep >= entry)
+        return 0;
+    for (c = 0; c < p->comps; ++c) {
+        int64_t r = (int64_t)data[(size_t)en * p->comps + c] + data[(size_t)ep * p->comps + c] -
+                    data[(size_t)eo * p->comps + c];
+        out[c] = (int32_t)(uint32_t)(uint64_t)r;
+    }
+    return 1;
+}
+
+static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
+{
+    static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
+    int32_t pred[LUMO_DRACO_MAX_COMPONENTS];
+    const unsigned k = p->comps;
+    uint32_t i;
+    ld_original(p, zero, v, v);
+    for (i = 1; i < n; ++i) {
+        int32_t *dst = v + (size_t)i * k;
+        if (ld_parallelogram(p, (int32_t)i, p->seq->value_to_corner[i], v, pred))
+            ld_original(p, pred, dst, dst);
+        else
+            ld_original(p, dst - k, dst, dst);
+    }
+    return LUMO_OK;
+}
+
+/* Constrained multi-parallelogram: average the parallelograms around the
+ * vertex that the encoder did not flag as crossing a crease. */
+static lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
+{
+    static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
+    int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
+    int32_t multi[LUMO_DRACO_MAX_COMPONENTS];
+    uint32_t pos[LD_MAX_PARALLELOGRAMS] = {0, 0, 0, 0};
+    const ld_ct *ct = p->seq->ct;
+    const unsigned k = p->comps;
+    uint32_t i, guard;
+    ld_original(p, zero, v, v);
+    for (i = 1; i < n; ++i) {
+        const uint32_t start = p->seq->value_to_corner[i];
+        uint32_t corner = start, c;
+        int count = 0, used = 0, first_pass = 1, j;
+        int32_t *dst = v + (size_t)i * k;
+        for (guard = 0; corner != LD_INV; ++guard) {
+            if (guard > ct->num_corners)
+                return LUMO_ERR_LIMIT;
+            if (ld_parallelogram(p, (int32_t)i, corner, v, preds[count]) &&
+                ++count == LD_MAX_PARALLELOGRAMS)
+                break;
+            corner = first_pass ? ld_swing_left(ct, corner) : ld_swing_right(ct, corner);
+            if (corner == start)
+                break;
+            if (corner == LD_INV && first_pass) {
+                first_pass = 0;
+                corner = ld_swing_right(ct, start);
+            }
+        }
+        for (c = 0; c < k; ++c)
+            multi[c] = 0;
+        for (j = 0; j < count; ++j) {
+            const int ctx = count - 1;
+            if (pos[ctx] >= p->num_crease[ctx])
+                return LUMO_ERR_CORRUPT;
+            if (p->crease[ctx][pos[ctx]++])
+                continue;
+            ++used;
+            for (c = 0; c < k; ++c)
+                multi[c] = ld_wrap_add(multi[c], preds[j][c]);
+        }
+        if (used == 0) {
+            ld_original(p, dst - k, dst, dst);
+            continue;
+        }
+        for (c = 0; c < k; ++c)
+            multi[c] /= used;
+        ld_original(p, multi, dst, dst);
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
+{
+    uint32_t point, c;
+    if (entry < 0 || (uint32_t)entry >= p->seq->num_entries)
+        return LUMO_ERR_CORRUPT;
+    point = p->seq->point_ids ? p->seq->point_ids[entry] : (uint32_t)entry;
+    for (c = 0; c < 3; ++c)
+        out[c] = lumo_draco_value(p->pos, point, c);
+    return LUMO_OK;
+}
+
+/* libdraco's IntSqrt, step for step (floor of the square root). */
+static uint64_t ld_int_sqrt(uint64_t n)
+{
+    uint64_t act = n, r = 1;
+    if (n == 0)
+        return 0;
+    while (act >= 2) {
+        r *= 2;
+        act /= 4;
+    }
+    do {
+        r = (r + n / r) / 2;
+    } while (r * r > n);
+    return r;
+}
+
+/* MeshPredictionSchemeTexCoordsPortablePredictor::ComputePredictedValue */
+static lumo_status ld_tex_predict(ld_pred *p, uint32_t corner, const int32_t *data,
+                                  int32_t id, int32_t out[2])
+{
+    const ld_ct *ct = p->seq->ct;
+    const int32_t nid = ld_value_of_vertex(p, ld_vert(ct, ld_next(corner)));
+    const int32_t pid = ld_value_of_vertex(p, ld_vert(ct, ld_prev(corner)));
+    int32_t off;
+    if (nid < 0 || pid < 0)
+        return LUMO_ERR_CORRUPT;
+    if (pid < id && nid < id) {
+        int64_t nu = data[2 * nid], nv = data[2 * nid + 1];
+        int64_t pu = data[2 * pid], pv = data[2 * pid + 1];
+        int64_t tip[3], nx[3], pr[3], pn[3], cn[3], xpos[3], cx[3];
+        uint64_t pn2, cx2, norm;
+        int64_t dot, pnu, pnv, xu, xv, absmax, pn_absmax, cxu, cxv;
+        lumo_status st;
+        unsigned c;
+        if (pu == nu && pv == nv) {
+            out[0] = (int32_t)pu;
+            out[1] = (int32_t)pv;
+            return LUMO_OK;
+        }
+        if ((st = ld_position(p, id, tip)) || (st = ld_position(p, nid, nx)) ||
+            (st = ld_position(p, pid, pr)))
+            return st;
+        for (c = 0; c < 3; ++c)
+            pn[c] = pr[c] - nx[c];
+        pn2 = (uint64_t)(pn[0] * pn[0] + pn[1] * pn[1] + pn[2] * pn[2]);
+        if (pn2 != 0) {
+            for (c = 0; c < 3; ++c)
+                cn[c] = tip[c] - nx[c];
+            dot = pn[0] * cn[0] + pn[1] * cn[1] + pn[2] * cn[2];
+            pnu = pu - nu;
+            pnv = pv - nv;
+            absmax = ld_abs64(nu) > ld_abs64(nv) ? ld_abs64(nu) : ld_abs64(nv);
+            if ((uint64_t)absmax > (uint64_t)INT64_MAX / pn2)
+                return LUMO_ERR_CORRUPT;
+            xu = (int64_t)((uint64_t)nu * pn2 + (uint64_t)(dot * pnu));
+            xv = (int64_t)((uint64_t)nv * pn2 + (uint64_t)(dot * pnv));
+            pn_absmax = ld_abs64(pn[0]);
+            if (ld_abs64(pn[1]) > pn_absmax) pn_absmax = ld_abs64(pn[1]);
+            if (ld_abs64(pn[2]) > pn_absmax) pn_absmax = ld_abs64(pn[2]);
+            if (dot > INT64_MAX / pn_absmax)
+                return LUMO_ERR_CORRUPT;
+            for (c = 0; c < 3; ++c) {
+                xpos[c] = nx[c] + (dot * pn[c]) / (int64_t)pn2;
+                cx[c] = tip[c] - xpos[c];
+            }
+            cx2 = (uint64_t)(cx[0] * cx[0] + cx[1] * cx[1] + cx[2] * cx[2]);
+            norm = ld_int_sqrt(cx2 * pn2);
+            cxu = (int64_t)((uint64_t)pnv * norm);
+            cxv = (int64_t)((0u - (uint64_t)pnu) * norm);
+            if (p->num_orient == 0)
+                return LUMO_ERR_CORRUPT;
+            if (p->orient[--p->num_orient]) {
+                out[0] = (int32_t)((int64_t)((uint64_t)xu + (uint64_t)cxu) / (int64_t)pn2);
+                out[1] = (int32_t)((int64_t)((uint64_t)xv + (uint64_t)cxv) / (int64_t)pn2);
+            } else {
+                out[0] = (int32_t)((int64_t)((uint64_t)xu - (uint64_t)cxu) / (int64_t)pn2);
+                out[1] = (int32_t)((int64_t)((uint64_t)xv - (uint64_t)cxv) / (int64_t)pn2);
+            }
+            return LUMO_OK;
+        }
+    }
+    off = 0;
+    if (pid < id)
+        off = pid * 2;
+    if (nid < id) {
+        off = nid * 2;
+    } else if (id > 0) {
+        off = (id - 1) * 2;
+    } else {
+        out[0] = out[1] = 0;
+        return LUMO_OK;
+    }
+    out[0] = data[off];
+    out[1] = data[off + 1];
+    return LUMO_OK;
+}
+
+static lumo_status ld_tex_coords(ld_pred *p, int32_t *v, uint32_t n)
+{
+    uint32_t i;
+    lumo_status st;
+    if (p->comps != 2 || !p->pos || p->pos->num_portable != 3)
+        return LUMO_ERR_CORRUPT;
+    for (i = 0; i < n; ++i) {
+        int32_t pred[2];
+        if ((st = ld_tex_predict(p, p->seq->value_to_corner[i], v, (int32_t)i, pred)))
+            return st;
+        ld_original(p, pred, v + 2 * (size_t)i, v + 2 * (size_t)i);
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
+{
+    return ld_position(p, ld_value_of_vertex(p, ld_vert(p->seq->ct, corner)), out);
+}
+
+/* Area-weighted normal of the triangle fan around the corner's vertex
+ * (MeshPredictionSchemeGeometricNormalPredictorArea), scaled below 2^29. */
+static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[3])
+{
+    const ld_ct *ct = p->seq->ct;
+    uint64_t nrm[3] = {0, 0, 0};
+    int64_t cent[3], n[3], sum;
+    uint32_t c = corner, guard = 0;
+    int left = 1;
+    lumo_status st = ld_corner_position(p, corner, cent);
+    if (st)
+        return st;
+    while (c != LD_INV) {
+        int64_t pn[3], pp[3], a[3], b[3];
+        unsigned k;
+        if (++guard > ct->num_corners + 1u)
+            return LUMO_ERR_LIMIT;
+        if ((st = ld_corner_position(p, ld_next(c), pn)) ||
+            (st = ld_corner_position(p, ld_prev(c), pp)))
+            return st;
+        for (k = 0; k < 3; ++k) {
+            a[k] = pn[k] - cent[k];
+            b[k] = pp[k] - cent[k];
+        }
+        nrm[0] += (uint64_t)(a[1] * b[2] - a[2] * b[1]);
+        nrm[1] += (uint64_t)(a[2] * b[0] - a[0] * b[2]);
+        nrm[2] += (uint64_t)(a[0] * b[1] - a[1] * b[0]);
+        if (left) {  /* VertexCornersIterator */
+            c = ld_swing_left(ct, c);
+            if (c == LD_INV) {
+                c = ld_swing_right(ct, corner);
+                left = 0;
+            } else if (c == corner) {
+                c = LD_INV;
+            }
+        } else {
+            c = ld_swing_right(ct, c);
+        }
+    }
+    n[0] = (int64_t)nrm[0];
+    n[1] = (int64_t)nrm[1];
+    n[2] = (int64_t)nrm[2];
+    sum = ld_abs64(n[0]) + ld_abs64(n[1]) + ld_abs64(n[2]);
+    if (sum > ((int64_t)1 << 29)) {
+        int64_t q = sum / ((int64_t)1 << 29);
+        n[0] /= q;
+        n[1] /= q;
+        n[2] /= q;
+    }
+    out[0] = (int32_t)n[0];
+    out[1] = (int32_t)n[1];
+    out[2] = (int32_t)n[2];
+    return LUMO_OK;
+}
+
+static int32_t ld_abs32(int32_t v) { return v < 0 ? -v : v; }
+
+/* OctahedronToolBox::CanonicalizeIntegerVector: scale onto the L1 sphere
+ * of radius center. */
+static void ld_canonicalize(const ld_pred *p, int32_t v[3])
+{
+    const int32_t center = p->oct_center;
+    int64_t sum = ld_abs64(v[0]) + ld_abs64(v[1]) + ld_abs64(v[2]);
+    int32_t r;
+    if (sum == 0) {
+        v[0] = center;
+        return;
+    }
+    v[0] = (int32_t)(((int64_t)v[0] * center) / sum);
+    v[1] = (int32_t)(((int64_t)v[1] * center) / sum);
+    r = center - ld_abs32(v[0]) - ld_abs32(v[1]);
+    v[2] = v[2] >= 0 ? r : -r;
+}
+
+/* IntegerVectorToQuantizedOctahedralCoords + CanonicalizeOctahedralCoords */
+static void ld_int_to_octa(const ld_pred *p, const int32_t v[3], int32_t out[2])
+{
+    const int32_t center = p->oct_center, maxv = p->oct_max_q - 1;
+    int32_t s, t;
+    if (v[0] >= 0) {
+        s = v[1] + center;
+        t = v[2] + center;
+    } else {
+        s = v[1] < 0 ? ld_abs32(v[2]) : maxv - ld_abs32(v[2]);
+        t = v[2] < 0 ? ld_abs32(v[1]) : maxv - ld_abs32(v[1]);
+    }
+    if ((s == 0 && t == 0) || (s == 0 && t == maxv) || (s == maxv && t == 0)) {
+        s = maxv;
+        t = maxv;
+    } else if (s == 0 && t > center) {
+        t = center - (t - center);
+    } else if (s == maxv && t < center) {
+        t = center + (center - t);
+    } else if (t == maxv && s < center) {
+        s = center + (center - s);
+    } else if (t == 0 && s > center) {
+        s = center - (s - center);
+    }
+    out[0] = s;
+    out[1] = t;
+}
+
+/* MeshPredictionSchemeGeometricNormalDecoder: predict from the fan normal,
+ * a flip bit per value says the normal points the other way. */
+static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
+{
+    uint32_t i;
+    lumo_status st;
+    if (!p->pos || p->pos->num_portable != 3)
+        return LUMO_ERR_CORRUPT;
+    for (i = 0; i < n; ++i) {
+        int32_t vec[3], oct[2];
+        if ((st = ld_fan_normal(p, p->seq->value_to_corner[i], vec)))
+            return st;
+        ld_canonicalize(p, vec);
+        if (ld_rabs_bit(&p->flip)) {
+            vec[0] = -vec[0];
+            vec[1] = -vec[1];
+            vec[2] = -vec[2];
+        }
+        ld_int_to_octa(p, vec, oct);
+        ld_original(p, oct, v + 2 * (size_t)i, v + 2 * (size_t)i);
+    }
+    return LUMO_OK;
+}
+
+lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries)
+{
+    switch (ld_effective_method(p)) {
     case LD_PRED_DIFFERENCE:
-        return ld_delta_compute(p, values, num_entries);
+        return ld_delta(p, values, num_entries);
+    case LD_PRED_PARALLELOGRAM:
+        return ld_parallelogram_all(p, values, num_entries);
+    case LD_PRED_CONSTRAINED_MULTI:
+        return ld_multi_parallelogram(p, values, num_entries);
+    case LD_PRED_TEX_COORDS_PORTABLE:
+        return ld_tex_coords(p, values, num_entries);
+    case LD_PRED_GEOMETRIC_NORMAL:
+        return ld_geometric_normal(p, values, num_entries);
     default:
         return LUMO_ERR_UNSUPPORTED;
     }
