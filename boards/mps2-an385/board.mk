@@ -37,33 +37,37 @@ BHOST_BINS := $(patsubst %,$(BHOST_OUT)/%,$(BOARD_PROGS))
 MPS2_LDFLAGS := $(M3_ARCH) -nostartfiles -specs=nano.specs -T $(MPS2_DIR)/mps2-an385.ld \
                 -Wl,--gc-sections -Wl,--no-warn-rwx-segments
 # Anything in a linked board image that means a heap (the harness must not
-# need one either: newlib's printf would pull _sbrk).
-BOARD_HEAP_SYMS := malloc|calloc|realloc|free|_sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r
+# need one either: newlib's printf would pull _sbrk) or float arithmetic.
+BOARD_BANNED_SYMS := malloc|calloc|realloc|free|_sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r|__aeabi_[fd].*
 
-$(MPS2_OUT)/obj/%.o: %.c
+# Board program objects, Cortex-M3 (shared by every M3 board: the same
+# flags as the client library) and host; board-agnostic code in both.
+BOARD_M3_OBJ   := $(BUILD)/board/obj-m3
+BOARD_HOST_OBJ := $(BUILD)/board/obj-host
+$(BOARD_M3_OBJ)/%.o: %.c
 	@mkdir -p $(@D)
 	$(ARM_CC) $(CLIENT_CFLAGS_m3) -Itests/board -MMD -MP -c $< -o $@
-$(BHOST_OUT)/obj/%.o: %.c
+$(BOARD_HOST_OBJ)/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(CLIENT_CFLAGS_rel) -Itests/board -MMD -MP -c $< -o $@
 
-MPS2_RT_OBJS    := $(patsubst %.c,$(MPS2_OUT)/obj/%.o,$(MPS2_RT_SRCS) $(BOARD_LIB_SRCS))
-BHOST_RT_OBJS   := $(patsubst %.c,$(BHOST_OUT)/obj/%.o,tests/board/host_io.c $(BOARD_LIB_SRCS))
+MPS2_RT_OBJS    := $(patsubst %.c,$(BOARD_M3_OBJ)/%.o,$(MPS2_RT_SRCS) $(BOARD_LIB_SRCS))
+BHOST_RT_OBJS   := $(patsubst %.c,$(BOARD_HOST_OBJ)/%.o,tests/board/host_io.c $(BOARD_LIB_SRCS))
 
 define MPS2_LINK
 	$(ARM_CC) $(MPS2_LDFLAGS) -Wl,-Map=$@.map -o $@ $< $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a
-	@if $(ARM_NM) $@ | awk '{print $$NF}' | grep -Ex '$(BOARD_HEAP_SYMS)'; then \
-	    echo "$@: links a heap symbol (above); board programs must not"; rm -f $@; exit 1; fi
+	@if $(ARM_NM) $@ | awk '{print $$NF}' | grep -Ex '$(BOARD_BANNED_SYMS)'; then \
+	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
 endef
-$(MPS2_OUT)/%.elf: $(MPS2_OUT)/obj/tests/board/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
+$(MPS2_OUT)/%.elf: $(BOARD_M3_OBJ)/tests/board/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
 	$(MPS2_LINK)
-$(MPS2_OUT)/facts/%.elf: $(MPS2_OUT)/obj/tests/board/facts/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
+$(MPS2_OUT)/facts/%.elf: $(BOARD_M3_OBJ)/tests/board/facts/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
 	@mkdir -p $(@D)
 	$(MPS2_LINK)
-$(BHOST_OUT)/%: $(BHOST_OUT)/obj/tests/board/%.o $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
+$(BHOST_OUT)/%: $(BOARD_HOST_OBJ)/tests/board/%.o $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
 	$(CC) -o $@ $< $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
 
-.PRECIOUS: $(MPS2_OUT)/obj/%.o $(BHOST_OUT)/obj/%.o
+.PRECIOUS: $(BOARD_M3_OBJ)/%.o $(BOARD_HOST_OBJ)/%.o
 # The QEMU facts the board relies on (docs/porting.md), checked every run.
 MPS2_FACTS := $(patsubst tests/board/facts/%.c,$(MPS2_OUT)/facts/%.elf,$(wildcard tests/board/facts/fact_*.c))
 board-facts: $(MPS2_FACTS)

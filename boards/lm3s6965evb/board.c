@@ -1,0 +1,30 @@
+/*
+ * board.c — the lm3s6965evb parts of board_io.h that differ from
+ * mps2-an385 (whose generic ARMv7-M startup.c and semihost.c it reuses):
+ * no cost timer, and scratch memory is a static array inside the 64 KiB
+ * SRAM, sized so .bss + stack still fit (lm3s6965evb.ld checks it).
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include "board_io.h"
+
+#ifndef LM3S_SCRATCH_BYTES
+#define LM3S_SCRATCH_BYTES (48u << 10)
+#endif
+
+uint32_t board_ticks(void)
+{
+    return 0;
+}
+
+uint32_t board_tick_hz(void)
+{
+    return 0;
+}
+
+uint8_t *board_scratch(size_t *bytes)
+{
+    static uint8_t scratch[LM3S_SCRATCH_BYTES] __attribute__((aligned(8)));
+    *bytes = sizeof scratch;
+    return scratch;
+}
