@@ -311,14 +311,9 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
     r.method = h.method;
     r.flags = h.flags;
     if (h.geometry == LUMO_DRACO_POINT_CLOUD) {
-        if (h.method == LUMO_DRACO_METHOD_SEQUENTIAL) {
-            if ((st = ld_u32(&b, &r.num_points_max)))
-                return st;
-        } else {
-            uint32_t bits;
-            if ((st = ld_u32(&b, &bits)) || (st = ld_u32(&b, &r.num_points_max)))
-                return st;
-        }
+        /* both point-cloud methods start with a 32-bit point count */
+        if ((st = ld_u32(&b, &r.num_points_max)))
+            return st;
     } else if (h.method == LUMO_DRACO_METHOD_SEQUENTIAL) {
         if ((st = ld_seq_counts(&b, &r.num_faces, &r.num_points_max)) ||
             (st = ld_u8(&b, &r.connectivity)))

@@ -1,0 +1,93 @@
+#!/bin/sh
+# tests/draco/conformance.sh BUILD quick|full — lumo's Draco decoder against
+# libdraco 1.5.5, byte for byte on the portable integers and connectivity.
+#
+# Every case encodes a mesh with draco_encoder, decodes it with the libdraco
+# oracle (tests/draco/draco_oracle.cc) and with lumo (lumo-draco-decode
+# --dump, sanitizer build), and compares the two dumps. Cases named
+# "unsupported:..." must instead make lumo fail cleanly with "unsupported".
+# Prints one line per failing case and "RESULT: N passed, M failed".
+build=${1:-build}; mode=${2:-quick}
+bin="$build/bin"
+work="$build/draco-conformance"
+models="$build/data/models"
+lumo="$bin/lumo-draco-decode-san"
+[ -x "$lumo" ] || lumo="$bin/lumo-draco-decode"
+rm -rf "$work"; mkdir -p "$work/gen" "$work/cases"
+"$bin/gen-meshes" "$work/gen" || { echo "RESULT: 0 passed, 1 failed"; exit 1; }
+
+gen="sphere_uv.obj small.obj cube_seams.obj torus_color.ply cornell.obj nonmanifold.ply"
+cases="$work/cases.txt"; : > "$cases"
+add() { echo "$1|$2|$3" >> "$cases"; }   # kind|model|encoder options
+
+if [ "$mode" = full ]; then
+    levels="0 1 2 3 4 5 6 7 8 9 10"
+    quants="default 8 9 10 11 12 13 14 15 16"
+    for m in $gen; do for cl in $levels; do for q in $quants; do
+        if [ "$q" = default ]; then add mesh "$work/gen/$m" "-cl $cl"
+        else add mesh "$work/gen/$m" "-cl $cl -qp $q -qt $q -qn $((q > 12 ? 12 : q)) -qg $q"; fi
+    done; done; done
+    for m in bunny.obj dragon_11k.ply dragon_48k.ply; do for cl in $levels; do for q in default 8 12 16; do
+        if [ "$q" = default ]; then add mesh "$models/$m" "-cl $cl"
+        else add mesh "$models/$m" "-cl $cl -qp $q"; fi
+    done; done; done
+else
+    for m in $gen bunny.obj; do
+        case $m in bunny.obj) p="$models/$m" ;; *) p="$work/gen/$m" ;; esac
+        for cl in 0 1 2 3 4 5 6 7 8 9 10; do
+            add mesh "$p" "-cl $cl"
+            case $cl in
+                0|3|6|9) add mesh "$p" "-cl $cl -qp 8 -qt 8 -qn 6 -qg 8" ;;
+                1|4|7|10) add mesh "$p" "-cl $cl -qp 16 -qt 14 -qn 12 -qg 16" ;;
+                *) add mesh "$p" "-cl $cl -qp 13 -qt 11 -qn 9 -qg 12" ;;
+            esac
+        done
+    done
+    for cl in 0 1 2 3 4 5 6 7 8 9 10; do add mesh "$models/dragon_11k.ply" "-cl $cl"; done
+    for cl in 0 7 10; do add mesh "$models/dragon_11k.ply" "-cl $cl -qp 14"; done
+    for cl in 0 5 7 10; do add mesh "$models/dragon_48k.ply" "-cl $cl"; done
+fi
+# point clouds: sequential decoded; KD-tree must be refused cleanly
+add cloud "$work/gen/cloud.ply" "-point_cloud -cl 0"
+add cloud "$models/dragon_11k.ply" "-point_cloud -cl 0 -qp 12"
+for cl in 1 6 10; do add unsupported "$work/gen/cloud.ply" "-point_cloud -cl $cl"; done
+
+run_case() {  # run_case N LINE
+    n=$1; kind=${2%%|*}; rest=${2#*|}; model=${rest%%|*}; opts=${rest#*|}
+    name="$(basename "$model") $opts"
+    d="$work/cases/$n"; mkdir -p "$d"
+    if ! draco_encoder -i "$model" -o "$d/in.drc" $opts > "$d/enc.log" 2>&1; then
+        echo "FAIL encode: $name"; return
+    fi
+    if [ "$kind" = unsupported ]; then
+        if "$lumo" --dump "$d/in.drc" "$d/lumo.txt" 2> "$d/lumo.err"; then
+            echo "FAIL expected unsupported: $name"
+        elif grep -q "unsupported" "$d/lumo.err"; then echo "PASS $name"
+        else echo "FAIL wrong error ($(cat "$d/lumo.err")): $name"; fi
+        return
+    fi
+    if ! "$bin/draco-oracle" "$d/in.drc" "$d/oracle.txt" 2> "$d/oracle.err"; then
+        echo "FAIL oracle: $name"; return
+    fi
+    if ! "$lumo" --dump "$d/in.drc" "$d/lumo.txt" 2> "$d/lumo.err"; then
+        echo "FAIL lumo ($(head -c 200 "$d/lumo.err")): $name"; return
+    fi
+    if cmp -s "$d/oracle.txt" "$d/lumo.txt"; then echo "PASS $name"; rm -rf "$d"
+    else echo "FAIL differs (see $d): $name"; fi
+}
+
+jobs=${DRACO_JOBS:-2}
+i=0
+while IFS= read -r line; do
+    i=$((i + 1))
+    run_case "$i" "$line" > "$work/cases/r$i.txt" &
+    if [ $((i % jobs)) -eq 0 ]; then wait; fi
+done < "$cases"
+wait
+cat "$work"/cases/r*.txt > "$work/results.txt"
+grep '^FAIL' "$work/results.txt"
+pass=$(grep -c '^PASS' "$work/results.txt")
+fail=$(grep -c '^FAIL' "$work/results.txt")
+echo "conformance ($mode): $(wc -l < "$cases") cases"
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

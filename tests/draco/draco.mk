@@ -1,0 +1,31 @@
+# tests/draco/draco.mk — Draco conformance: the libdraco oracle, the mesh
+# generator, a sanitizer build of lumo-draco-decode, and the test steps.
+#
+#   make draco-conformance        sampled grid (part of `make test`)
+#   make draco-conformance-full   levels x quantization bits x all meshes
+DRACO_ORACLE := $(BIN)/draco-oracle
+DRACO_GEN    := $(BIN)/gen-meshes
+DRACO_SAN    := $(BIN)/lumo-draco-decode-san
+HOST_TOOLS   += $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN)
+
+$(DRACO_ORACLE): $(BUILD)/host/tests/draco/draco_oracle.o
+	@mkdir -p $(@D)
+	$(CXX) -o $@ $^ -ldraco -pthread
+
+$(DRACO_GEN): $(BUILD)/host/tests/draco/gen_meshes.o
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^ -lm
+
+$(DRACO_SAN): $(BUILD)/tests/tools/lumo_draco_decode.o $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
+
+DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(BIN)/lumo-draco-decode
+
+.PHONY: draco-conformance draco-conformance-full
+draco-conformance: $(DRACO_CONF_DEPS)
+	@sh tests/draco/conformance.sh $(BUILD) quick
+draco-conformance-full: $(DRACO_CONF_DEPS)
+	@DRACO_JOBS=4 sh tests/draco/conformance.sh $(BUILD) full
+
+TEST_STEPS += draco-conformance
