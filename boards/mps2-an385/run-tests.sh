@@ -71,7 +71,7 @@ for host in $goldens; do
         pass=$((pass + 1))
         echo "ok   golden $name: $nh hashes equal on host and board"
         sed 's/^/    /' "$blog.hash"
-        grep '^COST ' "$blog" | sed 's/^/    board /'
+        grep -E "^(COST|stack peak)" "$blog" | sed "s/^/    board /"
     else
         fail=$((fail + 1))
         echo "FAIL golden $name: host exit $hrc, board exit $brc, $nh host hashes"

@@ -26,3 +26,16 @@ void golden_cost(const char *label, uint32_t t0)
     con_str(" instructions");
     con_nl();
 }
+
+int golden_done(int rc)
+{
+    size_t stack = board_stack_peak();
+
+    if (stack != 0) {
+        con_str("stack peak: ");
+        con_u64(stack);
+        con_str(" bytes");
+        con_nl();
+    }
+    return rc;
+}

@@ -20,4 +20,8 @@ void golden_hash(const char *label, uint64_t h);
  * nothing on a board without ticks (the host). */
 void golden_cost(const char *label, uint32_t t0);
 
+/* Print the board's stack peak (if it measures one) and return rc: the
+ * last statement of a golden main(). */
+int golden_done(int rc);
+
 #endif

@@ -75,5 +75,5 @@ int main(void)
 {
     hash_arith();
     hash_conversions();
-    return 0;
+    return golden_done(0);
 }
