@@ -60,9 +60,12 @@ static void push_taps(uint32_t i, uint32_t fine, uint32_t coarse, ivg_taps *t)
         taps_add(t, 0, 1);
         taps_add(t, 1, 1);
     } else {
+        /* for even fine dims the last coarse vertex lies one past the
+         * fine grid (fine = 2i): only 2i - 1 feeds it */
         if (i > 0u)
             taps_add(t, 2u * i - 1u, 1);
-        taps_add(t, 2u * i, 2);
+        if (2u * i < fine)
+            taps_add(t, 2u * i, 2);
         if (2u * i + 1u < fine)
             taps_add(t, 2u * i + 1u, 1);
     }
