@@ -69,6 +69,11 @@ static lumo_status check_chunks(const uint8_t *d, size_t size, uint32_t count)
         uint64_t off = rd32(e + 4), len = rd32(e + 8);
         if (off < pos || (off & 3u) || off - pos > 3u)
             return LUMO_ERR_CORRUPT;
+        if (off > (uint64_t)size)
+            return LUMO_ERR_TRUNCATED;
+        for (; pos < off; pos++)   /* alignment padding is zero: every byte is checked */
+            if (d[pos] != 0)
+                return LUMO_ERR_CORRUPT;
         if (off + len > (uint64_t)size)
             return LUMO_ERR_TRUNCATED;
         if (lumo_package_crc32(0, d + off, (size_t)len) != rd32(e + 12))
@@ -302,7 +307,7 @@ lumo_status lumo_package_mesh_info(const lumo_package *pkg, uint32_t index, lumo
     return LUMO_OK;
 }
 
-/* One vertex record: position, normal, albedo. write == 0 only validates. */
+/* One vertex record: position, normal, albedo; NULL outputs only validate. */
 static lumo_status mesh_vertex(const uint8_t *p, lumo_q16_16 *pos, lumo_q1_14 *nrm, lumo_q1_14 *alb)
 {
     lumo_q16_16 tp[3];
