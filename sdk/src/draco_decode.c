@@ -159,6 +159,17 @@ static lumo_status ld_seq_raw_indices(ld_dec *d)
     return st;
 }
 
+/* libdraco does not check indices against the point count; lumo promises
+ * every index is a valid point. */
+static lumo_status ld_check_indices(const ld_dec *d)
+{
+    uint32_t i, n = d->num_faces * 3u;
+    for (i = 0; i < n; ++i)
+        if (d->faces[i] >= d->num_points)
+            return LUMO_ERR_CORRUPT;
+    return LUMO_OK;
+}
+
 static lumo_status ld_seq_connectivity(ld_dec *d)
 {
     uint8_t method;
@@ -172,7 +183,8 @@ static lumo_status ld_seq_connectivity(ld_dec *d)
     d->faces = ld_out(&d->mem, (size_t)d->num_faces * 3u, sizeof(uint32_t));
     if (!d->faces)
         return LUMO_ERR_NOMEM;
-    return method == 0 ? ld_seq_compressed_indices(d) : ld_seq_raw_indices(d);
+    st = method == 0 ? ld_seq_compressed_indices(d) : ld_seq_raw_indices(d);
+    return st ? st : ld_check_indices(d);
 }
 
 /* ---- attributes ---------------------------------------------------------------- */
@@ -288,7 +300,7 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
     m.method = h.method;
     m.connectivity = d.connectivity;
     m.arena_bytes = (size_t)(d.mem.lo - d.mem.start);
-    m.work_bytes = d.mem.peak_work;
+    m.work_bytes = d.mem.peak - m.arena_bytes;
     ld_mem_commit(&d.mem, arena);
     *out = m;
     return LUMO_OK;
@@ -339,19 +351,23 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
 
 size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_components)
 {
-    size_t faces, points, out, work;
+    size_t f, p, mc, out, work;
     if (!info)
         return SIZE_MAX;
-    faces = info->num_faces;
-    points = info->num_points_max;
-    /* outputs: attribute table, faces, values and point maps */
-    out = lumo_size_add(sizeof(lumo_draco_attribute) * LUMO_DRACO_MAX_ATTRIBUTES + 1024u,
-                        lumo_size_mul(faces, 12u));
-    out = lumo_size_add(out, lumo_size_mul(points, lumo_size_add(4u * max_components,
-                                                                 4u * LUMO_DRACO_MAX_ATTRIBUTES)));
-    /* work: corner table and traversal state (EdgeBreaker) or symbol
-     * tables (sequential), see docs/draco-decoder.md */
-    work = lumo_size_add(lumo_size_mul(faces, 64u), lumo_size_mul(points, 32u));
-    work = lumo_size_add(work, (size_t)1 << 20);
+    f = info->num_faces;
+    p = info->num_points_max;
+    mc = max_components ? max_components : 1u;
+    /* outputs: attribute table, faces, per attribute its values, its
+     * quantization parameters and (one per attributes decoder at most)
+     * a point map */
+    out = sizeof(lumo_draco_attribute) * LUMO_DRACO_MAX_ATTRIBUTES + 64u * mc;
+    out = lumo_size_add(out, lumo_size_mul(f, 12u));
+    out = lumo_size_add(out, lumo_size_mul(p, 8u * mc));
+    /* work (docs/draco-decoder.md): corner table and traversal ~128 B per
+     * face, 32 B per face per attribute seam table, 24 B per point for the
+     * attribute traversal, and the largest rANS table (2^18 symbols). */
+    work = lumo_size_mul(f, lumo_size_add(128u, 32u * mc));
+    work = lumo_size_add(work, lumo_size_mul(p, 24u));
+    work = lumo_size_add(work, ((size_t)1 << 20) + 65536u);
     return lumo_size_add(lumo_size_add(out, work), LUMO_ARENA_SLACK);
 }

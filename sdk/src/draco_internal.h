@@ -67,7 +67,7 @@ typedef struct ld_mem {
     uint8_t *hi;      /* lowest work byte (grows down) */
     uint8_t *start;   /* first byte of the carved region */
     uint8_t *top;     /* one past the last byte */
-    size_t peak_work;
+    size_t peak;      /* most bytes in use at once, outputs + work */
 } ld_mem;
 
 void ld_mem_init(ld_mem *m, lumo_arena *a);

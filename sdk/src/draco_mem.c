@@ -17,7 +17,14 @@ void ld_mem_init(ld_mem *m, lumo_arena *a)
     m->lo = m->start;
     m->top = a->base + (a->size & ~(size_t)7u);  /* keep work memory aligned */
     m->hi = m->top;
-    m->peak_work = 0;
+    m->peak = 0;
+}
+
+static void ld_track(ld_mem *m)
+{
+    size_t in_use = (size_t)(m->lo - m->start) + (size_t)(m->top - m->hi);
+    if (in_use > m->peak)
+        m->peak = in_use;
 }
 
 static int ld_bytes(size_t n, size_t size, size_t *out)
@@ -36,18 +43,17 @@ void *ld_out(ld_mem *m, size_t n, size_t size)
         return NULL;
     p = m->lo;
     m->lo += bytes;
+    ld_track(m);
     return p;
 }
 
 void *ld_tmp(ld_mem *m, size_t n, size_t size)
 {
-    size_t bytes, work;
+    size_t bytes;
     if (!ld_bytes(n, size, &bytes) || bytes > (size_t)(m->hi - m->lo))
         return NULL;
     m->hi -= bytes;
-    work = (size_t)(m->top - m->hi);
-    if (work > m->peak_work)
-        m->peak_work = work;
+    ld_track(m);
     return m->hi;
 }
 
@@ -56,6 +62,6 @@ void ld_mem_commit(ld_mem *m, lumo_arena *a)
     a->used = (size_t)(m->lo - a->base);
     if (a->used > a->peak)
         a->peak = a->used;
-    if (a->used + m->peak_work > a->peak)
-        a->peak = a->used + m->peak_work;
+    if ((size_t)(m->start - a->base) + m->peak > a->peak)
+        a->peak = (size_t)(m->start - a->base) + m->peak;
 }

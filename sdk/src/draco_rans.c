@@ -39,8 +39,10 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
     lumo_status st = ld_varint32(b, &n);
     if (st)
         return st;
-    if (n / 64u > ld_remaining(b) || n > (1u << 24))
+    if (n / 64u > ld_remaining(b))
         return LUMO_ERR_CORRUPT;
+    if (n > (1u << 18))
+        return LUMO_ERR_LIMIT;  /* 18-bit symbols at most (raw coding) */
     r->num_symbols = n;
     r->cum = ld_tmp(m, (size_t)n + 1u, sizeof(uint32_t));
     if (!r->cum)

@@ -9,7 +9,7 @@
 # Prints one line per failing case and "RESULT: N passed, M failed".
 build=${1:-build}; mode=${2:-quick}
 bin="$build/bin"
-work="$build/draco-conformance"
+work="$build/draco-conformance-$mode"
 models="$build/data/models"
 lumo="$bin/lumo-draco-decode-san"
 [ -x "$lumo" ] || lumo="$bin/lumo-draco-decode"

@@ -122,7 +122,8 @@ typedef struct lumo_draco_mesh {
     uint32_t num_attributes;
     lumo_draco_attribute *attributes;  /* in libdraco attribute-id order */
     size_t   arena_bytes;     /* arena bytes the outputs occupy */
-    size_t   work_bytes;      /* peak temporary bytes the decode used */
+    size_t   work_bytes;      /* arena_bytes + work_bytes is the exact arena
+                                 size this decode needs (peak use) */
 } lumo_draco_mesh;
 
 /* Parse the header and geometry counts only. */
