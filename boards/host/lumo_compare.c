@@ -1,0 +1,172 @@
+/*
+ * lumo_compare.c — lumo-compare A.png B.png [C.png] -o SIDE.png
+ *     [--labels "A,B,C"] [--max-mean-de X]
+ *
+ * Places the images side by side with a label under each, and prints the
+ * mean CIE Lab Delta E (CIE76) and the PSNR of every pair. With
+ * --max-mean-de, exits 1 when the first image differs from another by more.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "image_metrics.h"
+#include "png_rw.h"
+
+/* A 5x7 font for labels: upper case, digits and a little punctuation. */
+static const struct glyph { char c; const char *rows[7]; } font[] = {
+    {'A', {".###.", "#...#", "#...#", "#####", "#...#", "#...#", "#...#"}},
+    {'B', {"####.", "#...#", "#...#", "####.", "#...#", "#...#", "####."}},
+    {'C', {".###.", "#...#", "#....", "#....", "#....", "#...#", ".###."}},
+    {'D', {"####.", "#...#", "#...#", "#...#", "#...#", "#...#", "####."}},
+    {'E', {"#####", "#....", "#....", "####.", "#....", "#....", "#####"}},
+    {'F', {"#####", "#....", "#....", "####.", "#....", "#....", "#...."}},
+    {'G', {".###.", "#...#", "#....", "#.###", "#...#", "#...#", ".####"}},
+    {'H', {"#...#", "#...#", "#...#", "#####", "#...#", "#...#", "#...#"}},
+    {'I', {".###.", "..#..", "..#..", "..#..", "..#..", "..#..", ".###."}},
+    {'J', {"..###", "...#.", "...#.", "...#.", "...#.", "#..#.", ".##.."}},
+    {'K', {"#...#", "#..#.", "#.#..", "##...", "#.#..", "#..#.", "#...#"}},
+    {'L', {"#....", "#....", "#....", "#....", "#....", "#....", "#####"}},
+    {'M', {"#...#", "##.##", "#.#.#", "#.#.#", "#...#", "#...#", "#...#"}},
+    {'N', {"#...#", "#...#", "##..#", "#.#.#", "#..##", "#...#", "#...#"}},
+    {'O', {".###.", "#...#", "#...#", "#...#", "#...#", "#...#", ".###."}},
+    {'P', {"####.", "#...#", "#...#", "####.", "#....", "#....", "#...."}},
+    {'Q', {".###.", "#...#", "#...#", "#...#", "#.#.#", "#..#.", ".##.#"}},
+    {'R', {"####.", "#...#", "#...#", "####.", "#.#..", "#..#.", "#...#"}},
+    {'S', {".####", "#....", "#....", ".###.", "....#", "....#", "####."}},
+    {'T', {"#####", "..#..", "..#..", "..#..", "..#..", "..#..", "..#.."}},
+    {'U', {"#...#", "#...#", "#...#", "#...#", "#...#", "#...#", ".###."}},
+    {'V', {"#...#", "#...#", "#...#", "#...#", "#...#", ".#.#.", "..#.."}},
+    {'W', {"#...#", "#...#", "#...#", "#.#.#", "#.#.#", "#.#.#", ".#.#."}},
+    {'X', {"#...#", "#...#", ".#.#.", "..#..", ".#.#.", "#...#", "#...#"}},
+    {'Y', {"#...#", "#...#", ".#.#.", "..#..", "..#..", "..#..", "..#.."}},
+    {'Z', {"#####", "....#", "...#.", "..#..", ".#...", "#....", "#####"}},
+    {'0', {".###.", "#...#", "#..##", "#.#.#", "##..#", "#...#", ".###."}},
+    {'1', {"..#..", ".##..", "..#..", "..#..", "..#..", "..#..", ".###."}},
+    {'2', {".###.", "#...#", "....#", "...#.", "..#..", ".#...", "#####"}},
+    {'3', {"#####", "...#.", "..#..", "...#.", "....#", "#...#", ".###."}},
+    {'4', {"...#.", "..##.", ".#.#.", "#..#.", "#####", "...#.", "...#."}},
+    {'5', {"#####", "#....", "####.", "....#", "....#", "#...#", ".###."}},
+    {'6', {"..##.", ".#...", "#....", "####.", "#...#", "#...#", ".###."}},
+    {'7', {"#####", "....#", "...#.", "..#..", ".#...", ".#...", ".#..."}},
+    {'8', {".###.", "#...#", "#...#", ".###.", "#...#", "#...#", ".###."}},
+    {'9', {".###.", "#...#", "#...#", ".####", "....#", "...#.", ".##.."}},
+    {'.', {".....", ".....", ".....", ".....", ".....", ".##..", ".##.."}},
+    {',', {".....", ".....", ".....", ".....", ".##..", "..#..", ".#..."}},
+    {'-', {".....", ".....", ".....", "#####", ".....", ".....", "....."}},
+    {'+', {".....", "..#..", "..#..", "#####", "..#..", "..#..", "....."}},
+    {'=', {".....", ".....", "#####", ".....", "#####", ".....", "....."}},
+    {':', {".....", ".##..", ".##..", ".....", ".##..", ".##..", "....."}},
+    {'/', {".....", "....#", "...#.", "..#..", ".#...", "#....", "....."}},
+    {'(', {"...#.", "..#..", ".#...", ".#...", ".#...", "..#..", "...#."}},
+    {')', {".#...", "..#..", "...#.", "...#.", "...#.", "..#..", ".#..."}},
+    {'_', {".....", ".....", ".....", ".....", ".....", ".....", "#####"}},
+    {'%', {"##...", "##..#", "...#.", "..#..", ".#...", "#..##", "...##"}},
+};
+
+#define SCALE 2
+#define LABEL_H (7 * SCALE + 8)
+
+static const struct glyph *find_glyph(char c)
+{
+    size_t i;
+    if (c >= 'a' && c <= 'z')
+        c = (char)(c - 'a' + 'A');
+    for (i = 0; i < sizeof font / sizeof font[0]; i++)
+        if (font[i].c == c)
+            return &font[i];
+    return NULL;
+}
+
+static void draw_text(uint8_t *img, int w, int h, int x0, int y0, const char *s)
+{
+    for (; *s; s++, x0 += 6 * SCALE) {
+        const struct glyph *g = find_glyph(*s);
+        int r, c, dy, dx;
+        if (!g)
+            continue;
+        for (r = 0; r < 7; r++)
+            for (c = 0; c < 5; c++)
+                if (g->rows[r][c] == '#')
+                    for (dy = 0; dy < SCALE; dy++)
+                        for (dx = 0; dx < SCALE; dx++) {
+                            int x = x0 + c * SCALE + dx, y = y0 + r * SCALE + dy;
+                            if (x >= 0 && x < w && y >= 0 && y < h)
+                                memset(img + ((size_t)y * w + x) * 3, 255, 3);
+                        }
+    }
+}
+
+static const char *base_name(const char *p)
+{
+    const char *s = strrchr(p, '/');
+    return s ? s + 1 : p;
+}
+
+int main(int argc, char **argv)
+{
+    const char *in[3], *out = NULL, *labels = NULL;
+    char label[3][64];
+    uint8_t *img[3], *side;
+    int w[3], h[3], n = 0, i, j, sw, sh, fail = 0;
+    double max_de = -1;
+
+    for (i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "-o") && i + 1 < argc) out = argv[++i];
+        else if (!strcmp(argv[i], "--labels") && i + 1 < argc) labels = argv[++i];
+        else if (!strcmp(argv[i], "--max-mean-de") && i + 1 < argc) max_de = atof(argv[++i]);
+        else if (n < 3 && argv[i][0] != '-') in[n++] = argv[i];
+        else n = 99;
+    }
+    if (n < 2 || n > 3) {
+        fputs("usage: lumo-compare A.png B.png [C.png] [-o SIDE.png] [--labels A,B,C] [--max-mean-de X]\n",
+              stderr);
+        return 2;
+    }
+    for (i = 0; i < n; i++) {
+        if (png_read_rgb(in[i], &img[i], &w[i], &h[i])) {
+            fprintf(stderr, "lumo-compare: error: cannot read %s\n", in[i]);
+            return 1;
+        }
+        snprintf(label[i], sizeof label[i], "%s", base_name(in[i]));
+    }
+    if (labels) {
+        const char *p = labels;
+        for (i = 0; i < n && *p; i++) {
+            size_t len = strcspn(p, ",");
+            snprintf(label[i], sizeof label[i], "%.*s", (int)len, p);
+            p += len + (p[len] == ',');
+        }
+    }
+    for (i = 0; i < n; i++)
+        for (j = i + 1; j < n; j++) {
+            image_diff d;
+            if (w[i] != w[j] || h[i] != h[j]) {
+                fprintf(stderr, "lumo-compare: error: %s and %s differ in size\n", in[i], in[j]);
+                return 1;
+            }
+            image_compare(img[i], img[j], (size_t)w[i] * h[i], &d);
+            printf("%s vs %s: mean dE76 %.3f, p99 dE %.2f, max dE %.2f, PSNR %.2f dB\n", label[i],
+                   label[j], d.mean_de, d.p99_de, d.max_de, d.psnr_db);
+            if (i == 0 && max_de >= 0 && d.mean_de > max_de)
+                fail = 1;
+        }
+    if (out) {
+        sw = w[0] * n + 4 * (n - 1);
+        sh = h[0] + LABEL_H;
+        side = calloc((size_t)sw * sh, 3);
+        for (i = 0; side && i < n; i++) {
+            int x0 = i * (w[0] + 4), y;
+            for (y = 0; y < h[0]; y++)
+                memcpy(side + ((size_t)y * sw + x0) * 3, img[i] + (size_t)y * w[0] * 3, (size_t)w[0] * 3);
+            draw_text(side, sw, sh, x0 + 4, h[0] + 4, label[i]);
+        }
+        if (!side || png_write_rgb(out, side, sw, sh)) {
+            fprintf(stderr, "lumo-compare: error: cannot write %s\n", out);
+            return 1;
+        }
+        free(side);
+    }
+    for (i = 0; i < n; i++)
+        free(img[i]);
+    return fail;
+}

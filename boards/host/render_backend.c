@@ -1,0 +1,174 @@
+/*
+ * render_backend.c — see render_backend.h.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo/raster_gl.h"
+#include "render_backend.h"
+
+enum kind { SOFT, OSMESA, EGL };
+
+struct host_renderer {
+    enum kind kind;
+    render_opts o;
+    const lumo_raster_mesh *mesh;
+    lumo_raster_vertex *cache;
+    void *color, *depth;
+    lumo_osmesa *osmesa;
+    lumo_egl *egl;
+    lumo_gl *gl;
+    char desc[160];
+};
+
+static int open_soft(host_renderer *r, char *err, size_t errlen)
+{
+    const render_opts *o = &r->o;
+    uint16_t rows = o->band_rows && o->band_rows < o->height ? o->band_rows : o->height;
+    size_t px = o->format == LUMO_PIXEL_RGB565 ? 2 : 4;
+
+    r->o.band_rows = rows;
+    r->color = malloc((size_t)o->width * rows * px);
+    r->depth = malloc((size_t)o->width * rows * (o->depth_bits / 8u));
+    if (!o->no_cache)
+        r->cache = malloc(lumo_raster_cache_bytes(r->mesh->vertex_count) + 1);
+    if (!r->color || !r->depth || (!o->no_cache && !r->cache)) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    snprintf(r->desc, sizeof r->desc, "soft (fixed point, %s, %u-bit depth, %u-row bands%s)",
+             o->format == LUMO_PIXEL_RGB565 ? "RGB565" : "XRGB8888", o->depth_bits, rows,
+             o->no_cache ? ", no vertex cache" : "");
+    return 0;
+}
+
+host_renderer *host_renderer_open(const char *backend, const lumo_raster_mesh *mesh,
+                                  const lumo_ivg *ivg, const render_opts *o,
+                                  char *err, size_t errlen)
+{
+    host_renderer *r = calloc(1, sizeof *r);
+
+    if (!r) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    r->o = *o;
+    r->mesh = mesh;
+    if (!strcmp(backend, "soft")) {
+        r->kind = SOFT;
+        if (open_soft(r, err, errlen))
+            goto fail;
+        return r;
+    }
+    if (!strcmp(backend, "osmesa")) {
+        r->kind = OSMESA;
+        r->osmesa = lumo_osmesa_open(o->width, o->height, err, errlen);
+        r->gl = r->osmesa ? lumo_osmesa_gl(r->osmesa) : NULL;
+        if (r->gl)
+            snprintf(r->desc, sizeof r->desc, "osmesa: %s", lumo_gl_renderer(r->gl));
+    } else if (!strcmp(backend, "egl")) {
+        r->kind = EGL;
+        r->egl = lumo_egl_open(o->width, o->height, err, errlen);
+        r->gl = r->egl ? lumo_egl_gl(r->egl) : NULL;
+        if (r->gl)
+            snprintf(r->desc, sizeof r->desc, "egl (%s): %s", lumo_egl_describe(r->egl),
+                     lumo_gl_renderer(r->gl));
+    } else {
+        snprintf(err, errlen, "unknown backend '%s' (soft, osmesa, egl)", backend);
+        goto fail;
+    }
+    if (!r->gl)
+        goto fail;
+    if (lumo_gl_set_mesh(r->gl, mesh) || lumo_gl_set_ivg(r->gl, ivg)) {
+        snprintf(err, errlen, "%s: uploading the scene failed", backend);
+        goto fail;
+    }
+    return r;
+fail:
+    host_renderer_close(r);
+    return NULL;
+}
+
+static void band_to_rgb(const host_renderer *r, const lumo_raster_target *t, uint8_t *rgb)
+{
+    uint32_t x, y;
+
+    for (y = 0; y < t->band_rows; y++) {
+        uint8_t *dst = rgb + ((size_t)(t->band_y + y) * t->width) * 3;
+        for (x = 0; x < t->width; x++) {
+            if (r->o.format == LUMO_PIXEL_RGB565) {
+                uint16_t p = ((const uint16_t *)t->color)[(size_t)y * t->width + x];
+                dst[3 * x] = (uint8_t)(((p >> 11) * 255 + 15) / 31);
+                dst[3 * x + 1] = (uint8_t)((((p >> 5) & 63) * 255 + 31) / 63);
+                dst[3 * x + 2] = (uint8_t)(((p & 31) * 255 + 15) / 31);
+            } else {
+                uint32_t p = ((const uint32_t *)t->color)[(size_t)y * t->width + x];
+                dst[3 * x] = (uint8_t)(p >> 16);
+                dst[3 * x + 1] = (uint8_t)(p >> 8);
+                dst[3 * x + 2] = (uint8_t)p;
+            }
+        }
+    }
+}
+
+static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo_raster_scene *s,
+                     uint8_t *rgb)
+{
+    lumo_raster_view v;
+    lumo_raster_target t;
+    uint32_t y0;
+
+    if (lumo_raster_view_init(&v, cam, r->o.width, r->o.height))
+        return -1;
+    if (r->cache && lumo_raster_prepare(&v, s, r->mesh, r->cache))
+        return -1;
+    memset(&t, 0, sizeof t);
+    t.width = r->o.width;
+    t.height = r->o.height;
+    t.format = r->o.format;
+    t.color = r->color;
+    t.color_stride = (uint32_t)r->o.width * (r->o.format == LUMO_PIXEL_RGB565 ? 2u : 4u);
+    t.depth = r->depth;
+    t.depth_bits = r->o.depth_bits;
+    for (y0 = 0; y0 < r->o.height; y0 += r->o.band_rows) {
+        t.band_y = (uint16_t)y0;
+        t.band_rows = (uint16_t)(r->o.height - y0 < r->o.band_rows ? r->o.height - y0 : r->o.band_rows);
+        if (lumo_raster_clear(&t, 0) || lumo_raster_draw(&v, s, r->mesh, r->cache, &t))
+            return -1;
+        band_to_rgb(r, &t, rgb);
+    }
+    return 0;
+}
+
+int host_renderer_draw(host_renderer *r, const lumo_raster_camera *cam,
+                       const lumo_raster_scene *s, uint8_t *rgb)
+{
+    if (r->kind == SOFT)
+        return draw_soft(r, cam, s, rgb);
+    return lumo_gl_draw(r->gl, cam, s, rgb);
+}
+
+const char *host_renderer_describe(const host_renderer *r)
+{
+    return r->desc;
+}
+
+size_t host_renderer_soft_bytes(const host_renderer *r)
+{
+    if (r->kind != SOFT)
+        return 0;
+    return lumo_raster_band_bytes(r->o.width, r->o.band_rows, r->o.format, r->o.depth_bits)
+         + (r->cache ? lumo_raster_cache_bytes(r->mesh->vertex_count) : 0);
+}
+
+void host_renderer_close(host_renderer *r)
+{
+    if (!r)
+        return;
+    lumo_osmesa_close(r->osmesa);
+    lumo_egl_close(r->egl);
+    free(r->cache);
+    free(r->color);
+    free(r->depth);
+    free(r);
+}

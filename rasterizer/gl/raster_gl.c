@@ -1,0 +1,495 @@
+/*
+ * raster_gl.c — the shared GL renderer of the OSMesa and EGL backends
+ * (lumo/raster_gl.h). Desktop code: floats and heap are fine here.
+ *
+ * GL entry points come from the backend's get-proc-address function into a
+ * table, so the renderer never links a GL library itself: OSMesa and EGL
+ * (libglvnd) can live in one program. Frames go to an off-screen
+ * framebuffer object (RGBA8 + 24-bit depth) and are read back.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <GL/glcorearb.h>
+#include "lumo/raster_gl.h"
+#include "raster_gl_shaders.h"
+
+#define GL_FUNCS(X)                                                            \
+    X(PFNGLCREATESHADERPROC, CreateShader)                                     \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                                   \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                                       \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                             \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                                     \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                   \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                                     \
+    X(PFNGLBINDATTRIBLOCATIONPROC, BindAttribLocation)                         \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                       \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                     \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                           \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                   \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                         \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                                           \
+    X(PFNGLUNIFORM1IVPROC, Uniform1iv)                                         \
+    X(PFNGLUNIFORM1FPROC, Uniform1f)                                           \
+    X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                         \
+    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                                         \
+    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                               \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                         \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                                         \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                                         \
+    X(PFNGLBUFFERDATAPROC, BufferData)                                         \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                       \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)               \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)               \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
+    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                             \
+    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                             \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                       \
+    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                       \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
+    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                         \
+    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
+    X(PFNGLVIEWPORTPROC, Viewport)                                             \
+    X(PFNGLCLEARCOLORPROC, ClearColor)                                         \
+    X(PFNGLCLEARPROC, Clear)                                                   \
+    X(PFNGLENABLEPROC, Enable)                                                 \
+    X(PFNGLDISABLEPROC, Disable)                                               \
+    X(PFNGLCULLFACEPROC, CullFace)                                             \
+    X(PFNGLFRONTFACEPROC, FrontFace)                                           \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \
+    X(PFNGLGETSTRINGPROC, GetString)                                           \
+    X(PFNGLGETERRORPROC, GetError)                                             \
+    X(PFNGLFINISHPROC, Finish)
+
+typedef struct gl_api {
+#define GL_MEMBER(type, name) type name;
+    GL_FUNCS(GL_MEMBER)
+#undef GL_MEMBER
+} gl_api;
+
+enum { ATTR_POS = 0, ATTR_NRM = 1, ATTR_ALB = 2 };
+#define IVG_TEXTURES 12
+
+struct lumo_gl {
+    gl_api gl;
+    int gles, width, height;
+    GLuint prog[2];                 /* per vertex, per pixel */
+    GLuint fbo, rb_color, rb_depth;
+    GLuint vao, vbo, ebo;
+    GLsizei index_count;
+    GLuint tex[IVG_TEXTURES];       /* c+x c-x c+y c-y c+z c-z, then d */
+    int have_ivg;
+    float gmin[3], gext[3], tscale[3], toff[3];
+    float scene_radius;
+    char renderer[128];
+    uint8_t *rgba;
+};
+
+static const char *const tex_names[IVG_TEXTURES] = {
+    "u_cpx", "u_cnx", "u_cpy", "u_cny", "u_cpz", "u_cnz",
+    "u_dpx", "u_dnx", "u_dpy", "u_dny", "u_dpz", "u_dnz"
+};
+
+static int load_api(gl_api *gl, lumo_gl_getproc_fn getproc, char *err, size_t errlen)
+{
+#define GL_LOAD(type, name)                                                    \
+    gl->name = (type)getproc("gl" #name);                                      \
+    if (!gl->name) {                                                           \
+        snprintf(err, errlen, "GL entry point gl%s missing", #name);           \
+        return -1;                                                             \
+    }
+    GL_FUNCS(GL_LOAD)
+#undef GL_LOAD
+    return 0;
+}
+
+static GLuint compile(lumo_gl *g, GLenum stage, int per_pixel, const char *body, char *err, size_t errlen)
+{
+    const char *head = g->gles ? "#version 300 es\nprecision highp float;\nprecision highp int;\n"
+                               : "#version 330 core\n";
+    const char *src[4] = {head, per_pixel ? "#define PER_PIXEL 1\n" : "", lumo_gl_common_glsl, body};
+    GLuint s = g->gl.CreateShader(stage);
+    GLint ok = 0;
+
+    g->gl.ShaderSource(s, 4, src, NULL);
+    g->gl.CompileShader(s);
+    g->gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        g->gl.GetShaderInfoLog(s, sizeof log, NULL, log);
+        snprintf(err, errlen, "shader compile failed: %s", log);
+        g->gl.DeleteShader(s);
+        return 0;
+    }
+    return s;
+}
+
+static GLuint build_program(lumo_gl *g, int per_pixel, char *err, size_t errlen)
+{
+    GLuint vs = compile(g, GL_VERTEX_SHADER, per_pixel, lumo_gl_vertex_glsl, err, errlen);
+    GLuint fs = vs ? compile(g, GL_FRAGMENT_SHADER, per_pixel, lumo_gl_fragment_glsl, err, errlen) : 0;
+    GLuint p;
+    GLint ok = 0;
+    int i;
+
+    if (!fs) {
+        if (vs) g->gl.DeleteShader(vs);
+        return 0;
+    }
+    p = g->gl.CreateProgram();
+    g->gl.AttachShader(p, vs);
+    g->gl.AttachShader(p, fs);
+    g->gl.BindAttribLocation(p, ATTR_POS, "a_pos");
+    g->gl.BindAttribLocation(p, ATTR_NRM, "a_nrm");
+    g->gl.BindAttribLocation(p, ATTR_ALB, "a_alb");
+    g->gl.LinkProgram(p);
+    g->gl.DeleteShader(vs);
+    g->gl.DeleteShader(fs);
+    g->gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        g->gl.GetProgramInfoLog(p, sizeof log, NULL, log);
+        snprintf(err, errlen, "program link failed: %s", log);
+        g->gl.DeleteProgram(p);
+        return 0;
+    }
+    g->gl.UseProgram(p);
+    for (i = 0; i < IVG_TEXTURES; i++)
+        g->gl.Uniform1i(g->gl.GetUniformLocation(p, tex_names[i]), i);
+    return p;
+}
+
+static int make_framebuffer(lumo_gl *g, char *err, size_t errlen)
+{
+    g->gl.GenFramebuffers(1, &g->fbo);
+    g->gl.BindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    g->gl.GenRenderbuffers(1, &g->rb_color);
+    g->gl.BindRenderbuffer(GL_RENDERBUFFER, g->rb_color);
+    g->gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, g->width, g->height);
+    g->gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g->rb_color);
+    g->gl.GenRenderbuffers(1, &g->rb_depth);
+    g->gl.BindRenderbuffer(GL_RENDERBUFFER, g->rb_depth);
+    g->gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, g->width, g->height);
+    g->gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g->rb_depth);
+    if (g->gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        snprintf(err, errlen, "framebuffer incomplete");
+        return -1;
+    }
+    return 0;
+}
+
+lumo_gl *lumo_gl_create(lumo_gl_getproc_fn getproc, int gles, int width, int height,
+                        char *err, size_t errlen)
+{
+    lumo_gl *g = calloc(1, sizeof *g);
+    const GLubyte *name;
+
+    if (!g) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    g->gles = gles;
+    g->width = width;
+    g->height = height;
+    g->rgba = malloc((size_t)width * height * 4);
+    if (!g->rgba || load_api(&g->gl, getproc, err, errlen))
+        goto fail;
+    name = g->gl.GetString(GL_RENDERER);
+    snprintf(g->renderer, sizeof g->renderer, "%s", name ? (const char *)name : "?");
+    if (!(g->prog[0] = build_program(g, 0, err, errlen)) || !(g->prog[1] = build_program(g, 1, err, errlen)))
+        goto fail;
+    if (make_framebuffer(g, err, errlen))
+        goto fail;
+    g->gl.GenVertexArrays(1, &g->vao);
+    g->gl.GenBuffers(1, &g->vbo);
+    g->gl.GenBuffers(1, &g->ebo);
+    return g;
+fail:
+    lumo_gl_destroy(g);
+    return NULL;
+}
+
+const char *lumo_gl_renderer(const lumo_gl *g)
+{
+    return g->renderer;
+}
+
+int lumo_gl_set_mesh(lumo_gl *g, const lumo_raster_mesh *m)
+{
+    float *v = malloc((size_t)m->vertex_count * 9 * sizeof *v + 1);
+    float r2 = 0;
+    uint32_t i;
+    int k;
+
+    if (!v)
+        return -1;
+    for (i = 0; i < m->vertex_count; i++) {
+        const lumo_q1_14 *a = m->albedo ? &m->albedo[3 * (size_t)i] : m->mesh_albedo;
+        float d2 = 0;
+        for (k = 0; k < 3; k++) {
+            v[9 * (size_t)i + k] = (float)(m->pos[3 * (size_t)i + k] / 65536.0);
+            v[9 * (size_t)i + 3 + k] = (float)(m->normal[3 * (size_t)i + k] / 16384.0);
+            v[9 * (size_t)i + 6 + k] = (float)(a[k] < 0 ? 0 : a[k] / 16384.0);
+            d2 += v[9 * (size_t)i + k] * v[9 * (size_t)i + k];
+        }
+        if (d2 > r2) r2 = d2;
+    }
+    g->scene_radius = sqrtf(r2);
+    g->gl.BindVertexArray(g->vao);
+    g->gl.BindBuffer(GL_ARRAY_BUFFER, g->vbo);
+    g->gl.BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)m->vertex_count * 9 * sizeof *v, v, GL_STATIC_DRAW);
+    free(v);
+    g->gl.VertexAttribPointer(ATTR_POS, 3, GL_FLOAT, GL_FALSE, 36, (const void *)0);
+    g->gl.VertexAttribPointer(ATTR_NRM, 3, GL_FLOAT, GL_FALSE, 36, (const void *)12);
+    g->gl.VertexAttribPointer(ATTR_ALB, 3, GL_FLOAT, GL_FALSE, 36, (const void *)24);
+    g->gl.EnableVertexAttribArray(ATTR_POS);
+    g->gl.EnableVertexAttribArray(ATTR_NRM);
+    g->gl.EnableVertexAttribArray(ATTR_ALB);
+    g->gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
+    g->gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)m->tri_count * 3 * sizeof(uint32_t), m->tris,
+                     GL_STATIC_DRAW);
+    g->index_count = (GLsizei)(m->tri_count * 3);
+    return g->gl.GetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+/* One hemisphere's colour (RGB9E5 from floats: the driver packs) and
+ * direction (RGB8, d * 0.5 + 0.5) as 3D textures with trilinear filtering. */
+static void upload_hemisphere(lumo_gl *g, const lumo_ivg *ivg, int axis, float *cbuf, uint8_t *dbuf)
+{
+    const lumo_ivg_desc *d = lumo_ivg_get_desc(ivg);
+    uint32_t n = (uint32_t)d->dims[0] * d->dims[1] * d->dims[2], i;
+    int t, k;
+
+    for (i = 0; i < n; i++) {
+        const lumo_ivg_entry *e = lumo_ivg_entry_at(ivg, i, (lumo_ivg_axis)axis);
+        for (k = 0; k < 3; k++) {
+            double dv = e->d[k] / 16384.0;
+            cbuf[3 * (size_t)i + k] = (float)(e->c[k] / 65536.0);
+            dv = dv < -1 ? -1 : dv > 1 ? 1 : dv;
+            dbuf[3 * (size_t)i + k] = (uint8_t)floor((dv * 0.5 + 0.5) * 255.0 + 0.5);
+        }
+    }
+    for (t = 0; t < 2; t++) {
+        GLuint tex = g->tex[axis + 6 * t];
+        g->gl.ActiveTexture(GL_TEXTURE0 + (GLenum)(axis + 6 * t));
+        g->gl.BindTexture(GL_TEXTURE_3D, tex);
+        g->gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        if (t == 0)
+            g->gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RGB9_E5, d->dims[0], d->dims[1], d->dims[2], 0,
+                             GL_RGB, GL_FLOAT, cbuf);
+        else
+            g->gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RGB8, d->dims[0], d->dims[1], d->dims[2], 0,
+                             GL_RGB, GL_UNSIGNED_BYTE, dbuf);
+        g->gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        g->gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        g->gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        g->gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        g->gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    }
+}
+
+int lumo_gl_set_ivg(lumo_gl *g, const lumo_ivg *ivg)
+{
+    const lumo_ivg_desc *d;
+    size_t n;
+    float *cbuf;
+    uint8_t *dbuf;
+    int a, k;
+
+    if (g->have_ivg)
+        g->gl.DeleteTextures(IVG_TEXTURES, g->tex);
+    g->have_ivg = 0;
+    if (!ivg)
+        return 0;
+    d = lumo_ivg_get_desc(ivg);
+    n = (size_t)d->dims[0] * d->dims[1] * d->dims[2];
+    cbuf = malloc(n * 3 * sizeof *cbuf);
+    dbuf = malloc(n * 3);
+    if (!cbuf || !dbuf) {
+        free(cbuf);
+        free(dbuf);
+        return -1;
+    }
+    g->gl.GenTextures(IVG_TEXTURES, g->tex);
+    for (a = 0; a < 6; a++)
+        upload_hemisphere(g, ivg, a, cbuf, dbuf);
+    free(cbuf);
+    free(dbuf);
+    /* Grid vertex i sits at the centre of texel i: t = (i + 0.5) / dims. */
+    for (k = 0; k < 3; k++) {
+        g->gmin[k] = (float)(d->bmin[k] / 65536.0);
+        g->gext[k] = (float)((d->bmax[k] - (double)d->bmin[k]) / 65536.0);
+        g->tscale[k] = (float)((d->dims[k] - 1.0) / d->dims[k]);
+        g->toff[k] = (float)(0.5 / d->dims[k]);
+    }
+    g->have_ivg = 1;
+    return g->gl.GetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+/* gluLookAt x gluPerspective (docs/scene-format.md), column-major. */
+static void camera_matrix(const lumo_gl *g, const lumo_raster_camera *cam, float out[16], float eye[3])
+{
+    double e[3], f[3], u[3], r[3], up[3], l;
+    double fovy = cam->fovy_deg / 65536.0, zn = cam->znear / 65536.0, zf, ct, a;
+    double view[16], proj[16];
+    int i, j, k;
+
+    for (k = 0; k < 3; k++) {
+        e[k] = cam->eye[k] / 65536.0;
+        f[k] = cam->target[k] / 65536.0 - e[k];
+        up[k] = cam->up[k] / 65536.0;
+        eye[k] = (float)e[k];
+    }
+    l = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (k = 0; k < 3; k++) f[k] /= l;
+    r[0] = f[1] * up[2] - f[2] * up[1];
+    r[1] = f[2] * up[0] - f[0] * up[2];
+    r[2] = f[0] * up[1] - f[1] * up[0];
+    l = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    for (k = 0; k < 3; k++) r[k] /= l;
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    memset(view, 0, sizeof view);
+    for (k = 0; k < 3; k++) {
+        view[4 * k + 0] = r[k];
+        view[4 * k + 1] = u[k];
+        view[4 * k + 2] = -f[k];
+    }
+    view[12] = -(r[0] * e[0] + r[1] * e[1] + r[2] * e[2]);
+    view[13] = -(u[0] * e[0] + u[1] * e[1] + u[2] * e[2]);
+    view[14] = f[0] * e[0] + f[1] * e[1] + f[2] * e[2];
+    view[15] = 1;
+    /* Far plane beyond everything: the soft rasterizer has none. */
+    zf = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + 2.0 * g->scene_radius + 1.0;
+    ct = 1.0 / tan(fovy * M_PI / 360.0);
+    a = (double)g->width / g->height;
+    memset(proj, 0, sizeof proj);
+    proj[0] = ct / a;
+    proj[5] = ct;
+    proj[10] = (zf + zn) / (zn - zf);
+    proj[11] = -1;
+    proj[14] = 2 * zf * zn / (zn - zf);
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 4; j++) {
+            double s = 0;
+            for (k = 0; k < 4; k++)
+                s += proj[4 * k + j] * view[4 * i + k];
+            out[4 * i + j] = (float)s;
+        }
+}
+
+static void set_lights(lumo_gl *g, GLuint p, const lumo_raster_scene *s)
+{
+    GLint kind[16];
+    float pos[48], dir[48], cosv[16], val[48];
+    uint32_t i, n = s->light_count > 16 ? 16 : s->light_count;
+    int k;
+
+    for (i = 0; i < n; i++) {
+        const lumo_raster_light *L = &s->lights[i];
+        kind[i] = L->kind == LUMO_LIGHT_DIRECTIONAL ? 2 : L->kind == LUMO_LIGHT_SPOT ? 1 : 0;
+        cosv[i] = (float)(L->cos_cutoff / 16384.0);
+        for (k = 0; k < 3; k++) {
+            pos[3 * i + k] = (float)(L->pos[k] / 65536.0);
+            dir[3 * i + k] = (float)(L->dir[k] / 16384.0);
+            /* point and spot carry power: intensity = Phi / (4 pi) */
+            val[3 * i + k] = (float)(L->value[k] / 65536.0 / (kind[i] == 2 ? 1.0 : 4.0 * M_PI));
+        }
+    }
+    g->gl.Uniform1i(g->gl.GetUniformLocation(p, "u_nlights"), (GLint)n);
+    if (!n)
+        return;
+    g->gl.Uniform1iv(g->gl.GetUniformLocation(p, "u_kind"), (GLsizei)n, kind);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_lpos"), (GLsizei)n, pos);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_ldir"), (GLsizei)n, dir);
+    g->gl.Uniform1fv(g->gl.GetUniformLocation(p, "u_lcos"), (GLsizei)n, cosv);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_lval"), (GLsizei)n, val);
+}
+
+int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_scene *s,
+                 uint8_t *rgb)
+{
+    GLuint p = g->prog[(s->flags & LUMO_RASTER_PER_PIXEL) ? 1 : 0];
+    float mvp[16], eye[3];
+    int y, x, ind = s->indirect != NULL && g->have_ivg;
+
+    camera_matrix(g, cam, mvp, eye);
+    g->gl.BindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    g->gl.Viewport(0, 0, g->width, g->height);
+    g->gl.ClearColor(0, 0, 0, 1);
+    g->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    g->gl.Enable(GL_DEPTH_TEST);
+    g->gl.DepthFunc(GL_LESS);
+    if (s->flags & LUMO_RASTER_CULL_BACK) {
+        g->gl.Enable(GL_CULL_FACE);
+        g->gl.FrontFace(GL_CCW);
+        g->gl.CullFace(GL_BACK);
+    } else {
+        g->gl.Disable(GL_CULL_FACE);
+    }
+    g->gl.UseProgram(p);
+    g->gl.UniformMatrix4fv(g->gl.GetUniformLocation(p, "u_mvp"), 1, GL_FALSE, mvp);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_eye"), 1, eye);
+    g->gl.Uniform1f(g->gl.GetUniformLocation(p, "u_exposure"), (float)(s->exposure / 65536.0));
+    g->gl.Uniform1i(g->gl.GetUniformLocation(p, "u_indirect"), ind);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_gmin"), 1, g->gmin);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_gext"), 1, g->gext);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_tscale"), 1, g->tscale);
+    g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_toff"), 1, g->toff);
+    set_lights(g, p, s);
+    if (g->have_ivg)
+        for (x = 0; x < IVG_TEXTURES; x++) {
+            g->gl.ActiveTexture(GL_TEXTURE0 + (GLenum)x);
+            g->gl.BindTexture(GL_TEXTURE_3D, g->tex[x]);
+        }
+    g->gl.BindVertexArray(g->vao);
+    g->gl.DrawElements(GL_TRIANGLES, g->index_count, GL_UNSIGNED_INT, (const void *)0);
+    g->gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    g->gl.ReadPixels(0, 0, g->width, g->height, GL_RGBA, GL_UNSIGNED_BYTE, g->rgba);
+    /* GL's rows go bottom-up; PNG's top-down. */
+    for (y = 0; y < g->height; y++) {
+        const uint8_t *src = g->rgba + (size_t)(g->height - 1 - y) * g->width * 4;
+        uint8_t *dst = rgb + (size_t)y * g->width * 3;
+        for (x = 0; x < g->width; x++) {
+            dst[3 * x] = src[4 * x];
+            dst[3 * x + 1] = src[4 * x + 1];
+            dst[3 * x + 2] = src[4 * x + 2];
+        }
+    }
+    return g->gl.GetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+void lumo_gl_destroy(lumo_gl *g)
+{
+    if (!g)
+        return;
+    if (g->gl.DeleteProgram) {
+        if (g->prog[0]) g->gl.DeleteProgram(g->prog[0]);
+        if (g->prog[1]) g->gl.DeleteProgram(g->prog[1]);
+        if (g->have_ivg) g->gl.DeleteTextures(IVG_TEXTURES, g->tex);
+        if (g->vbo) g->gl.DeleteBuffers(1, &g->vbo);
+        if (g->ebo) g->gl.DeleteBuffers(1, &g->ebo);
+        if (g->vao) g->gl.DeleteVertexArrays(1, &g->vao);
+        if (g->fbo) g->gl.DeleteFramebuffers(1, &g->fbo);
+        if (g->rb_color) g->gl.DeleteRenderbuffers(1, &g->rb_color);
+        if (g->rb_depth) g->gl.DeleteRenderbuffers(1, &g->rb_depth);
+    }
+    free(g->rgba);
+    free(g);
+}
