@@ -137,6 +137,9 @@ bench: $(SETUP_STAMP) all
 
 fuzz: $(SETUP_STAMP) $(FUZZ_STEPS)
 
+demo: $(SETUP_STAMP) all
+	@sh tools/demo.sh $(BUILD)
+
 clean:
 	rm -rf $(BUILD)/rel $(BUILD)/san $(BUILD)/m3 $(BUILD)/host $(BUILD)/tests $(BIN) $(BUILD)/fuzz
 
