@@ -24,6 +24,13 @@ lumo_grid lumo_grid_over(const lumo_scene *s, const int dims[3])
     for (int a = 0; a < 3; a++)
         g.dims[a] = dims[a];
     lumo_scene_bounds(s, &g.bmin, &g.bmax);
+    /* A flat scene (one floor quad) still needs a box with volume: the
+     * client requires bmax > bmin on every axis. */
+    float ext = v3_maxc(v3_sub(g.bmax, g.bmin)), pad = fmaxf(0.01f * ext, 1e-3f);
+    vec3 lo = g.bmin, hi = g.bmax;
+    if (hi.x - lo.x < pad) g.bmin.x -= pad, g.bmax.x += pad;
+    if (hi.y - lo.y < pad) g.bmin.y -= pad, g.bmax.y += pad;
+    if (hi.z - lo.z < pad) g.bmin.z -= pad, g.bmax.z += pad;
     return g;
 }
 

@@ -176,10 +176,26 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     return 0;
 }
 
+/* A scene description ends in .txt or .scene; any other file is a mesh
+ * for assimp (docs/server.md). */
+static int is_description(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && (!strcmp(dot, ".txt") || !strcmp(dot, ".scene"));
+}
+
+static int load_file(const char *path, lumo_scene *s, char *err, size_t errlen)
+{
+    lumo_xform x = lumo_xform_identity();
+    if (is_description(path))
+        return lumo_scene_load(s, path, err, errlen);
+    return lumo_import_file(s, path, &x, NULL, err, errlen);
+}
+
 static int load_scene(const options *o, lumo_scene *s, char *err, size_t errlen)
 {
     const char *dragon = o->dragon ? o->dragon : getenv("LUMO_DRAGON") ? getenv("LUMO_DRAGON") : DEFAULT_DRAGON;
-    if (o->use_default ? lumo_default_scene(s, dragon, err, errlen) : lumo_scene_load(s, o->scene, err, errlen))
+    if (o->use_default ? lumo_default_scene(s, dragon, err, errlen) : load_file(o->scene, s, err, errlen))
         return -1;
     for (int i = 0; i < o->nlights; i++) {
         lumo_light l;

@@ -1,0 +1,103 @@
+/* fuzz_package.c — hostile bytes into the .lumo reader: open, then every
+ * getter (info, lights, meshes into fixed buffers, IVG descriptor and both
+ * bundles into a grid). Nothing may read or write out of bounds. The CRCs
+ * would stop almost every mutation at open(), so each input is also tried
+ * with its checksums recomputed: the content checks get fuzzed too. Seeds
+ * in tests/fuzz/seeds/fuzz_package/ are real packages from lumo-bake. */
+#include <stdint.h>
+#include <stddef.h>
+#include <string.h>
+#include "lumo/package.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+#define MAX_V 4096u
+#define MAX_T 8192u
+static lumo_q16_16 g_pos[3 * MAX_V];
+static lumo_q1_14 g_nrm[3 * MAX_V], g_alb[3 * MAX_V];
+static uint32_t g_tris[3 * MAX_T];
+static uint8_t g_mem[1u << 22];
+
+static void read_meshes(const lumo_package *pkg)
+{
+    lumo_pkg_mesh_info mi;
+    uint32_t i;
+    for (i = 0; i < 64 && lumo_package_mesh_info(pkg, i, &mi) == LUMO_OK; i++)
+        if (mi.nverts <= MAX_V && mi.ntris <= MAX_T)
+            lumo_package_mesh_read(pkg, i, g_pos, g_nrm, g_alb, g_tris);
+}
+
+static void read_ivg(const lumo_package *pkg)
+{
+    lumo_ivg_desc d;
+    lumo_arena arena;
+    lumo_ivg *g;
+    if (lumo_package_ivg_desc(pkg, &d) != LUMO_OK)
+        return;
+    lumo_arena_init(&arena, g_mem, sizeof g_mem);
+    if (lumo_ivg_create(&g, &arena, &d) != LUMO_OK)
+        return;
+    lumo_package_load_ivg(pkg, g, LUMO_IVG_FORM_QUANTIZED, NULL);
+    lumo_package_load_ivg(pkg, g, LUMO_IVG_FORM_FLOAT, NULL);
+}
+
+static uint8_t g_copy[1u << 20];
+
+static void wr32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8), p[2] = (uint8_t)(v >> 16), p[3] = (uint8_t)(v >> 24);
+}
+static uint32_t rd32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+}
+
+/* Recompute every CRC field that lies inside the buffer. */
+static void fix_crcs(uint8_t *d, size_t size)
+{
+    uint32_t n, i;
+    if (size < LUMO_PKG_HEADER_SIZE)
+        return;
+    n = rd32(d + 8);
+    if (n > LUMO_PKG_MAX_CHUNKS || LUMO_PKG_HEADER_SIZE + (size_t)n * LUMO_PKG_ENTRY_SIZE > size)
+        n = 0;
+    for (i = 0; i < n; i++) {
+        uint8_t *e = d + LUMO_PKG_HEADER_SIZE + (size_t)i * LUMO_PKG_ENTRY_SIZE;
+        uint32_t off = rd32(e + 4), len = rd32(e + 8);
+        if (off <= size && len <= size - off)
+            wr32(e + 12, lumo_package_crc32(0, d + off, len));
+    }
+    wr32(d + 16, lumo_package_crc32(0, d + LUMO_PKG_HEADER_SIZE, (size_t)n * LUMO_PKG_ENTRY_SIZE));
+    wr32(d + 20, lumo_package_crc32(0, d, 20));
+}
+
+static void exercise(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    exercise(data, size);
+    if (size <= sizeof g_copy) {
+        memcpy(g_copy, data, size);
+        fix_crcs(g_copy, size);
+        exercise(g_copy, size);
+    }
+    return 0;
+}
+
+static void exercise(const uint8_t *data, size_t size)
+{
+    lumo_package pkg;
+    lumo_pkg_info in;
+    lumo_pkg_light l;
+    lumo_pkg_chunk c;
+    uint32_t i;
+    if (lumo_package_open(&pkg, data, size) != LUMO_OK)
+        return;
+    for (i = 0; i < pkg.chunk_count; i++)
+        lumo_package_chunk(&pkg, i, &c);
+    if (lumo_package_info(&pkg, &in) == LUMO_OK)
+        for (i = 0; i < in.light_count && i < 80; i++)
+            lumo_package_light(&pkg, i, &l);
+    read_meshes(&pkg);
+    read_ivg(&pkg);
+}

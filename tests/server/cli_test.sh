@@ -1,0 +1,91 @@
+#!/bin/sh
+# tests/server/cli_test.sh BIN WORKDIR — lumo-bake / lumo-inspect from the
+# outside: --help, bad input gives exactly one error line and exit 1, the
+# same seed gives a byte-identical package for 1 and 2 threads, a damaged
+# package is refused. Prints "RESULT: N passed, M failed".
+bin=$1; dir=$2
+mkdir -p "$dir"
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); echo "ok   $1"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+
+# expect_error NAME CMD...: exit status 1 and exactly one stderr line with "error:"
+expect_error() {
+    name=$1; shift
+    "$@" >"$dir/out" 2>"$dir/err"; st=$?
+    lines=$(wc -l <"$dir/err")
+    if [ $st -eq 1 ] && [ "$lines" -eq 1 ] && grep -q "error:" "$dir/err"; then
+        ok "$name: $(cat "$dir/err")"
+    else
+        bad "$name (status $st, $lines stderr lines)"; sed 's/^/    /' "$dir/err"
+    fi
+}
+
+bake=$bin/lumo-bake; inspect=$bin/lumo-inspect
+light="--light point:0,1,0:10,10,10"
+
+"$bake" --help | grep -q "usage: lumo-bake" && ok "lumo-bake --help" || bad "lumo-bake --help"
+"$inspect" --help | grep -q -- "--ivg" && ok "lumo-inspect --help lists --ivg" || bad "lumo-inspect --help"
+
+# Scene files with one defect each.
+printf 'v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n' >"$dir/good.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n' >"$dir/flat.obj"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\nnan 0 0\n0 0 1\n3 0 1 2\n' >"$dir/nan.ply"
+printf 'this is not a mesh \001\002\003\n' >"$dir/broken.ply"
+printf 'mesh good.obj\n' >"$dir/nolight.txt"
+printf 'light point:0,1,0:1,1,1\n' >"$dir/empty.txt"
+printf 'mesh good.obj\nteapot 1\n' >"$dir/unknown.txt"
+printf 'mesh missing.obj\n' >"$dir/missing.txt"
+
+expect_error "missing scene file"   "$bake" "$dir/none.txt" -o "$dir/x.lumo"
+expect_error "missing mesh file"    "$bake" "$dir/missing.txt" -o "$dir/x.lumo" $light
+expect_error "broken mesh"          "$bake" "$dir/broken.ply" -o "$dir/x.lumo" $light
+expect_error "NaN vertex"           "$bake" "$dir/nan.ply" -o "$dir/x.lumo" $light
+expect_error "zero-area face"       "$bake" "$dir/flat.obj" -o "$dir/x.lumo" $light
+expect_error "empty scene"          "$bake" "$dir/empty.txt" -o "$dir/x.lumo"
+expect_error "no light"             "$bake" "$dir/nolight.txt" -o "$dir/x.lumo"
+expect_error "unknown statement"    "$bake" "$dir/unknown.txt" -o "$dir/x.lumo"
+expect_error "unknown option"       "$bake" --default --frobnicate -o "$dir/x.lumo"
+expect_error "bad light"            "$bake" --default --light point:1,2 -o "$dir/x.lumo"
+expect_error "bad grid"             "$bake" --default --grid 1 -o "$dir/x.lumo"
+expect_error "bad camera"           "$bake" --default --reference 8x8 --camera 0,0,0:0,0,0:0,1,0:40 -o "$dir/x.png"
+expect_error "no output"            "$bake" --default
+expect_error "scene and --default"  "$bake" --default "$dir/good.obj" -o "$dir/x.lumo"
+expect_error "unwritable output"    "$bake" --default --grid 2 --spp 1 -o /nonexistent/dir/x.lumo
+expect_error "inspect missing file" "$inspect" "$dir/none.lumo"
+expect_error "inspect unknown opt"  "$inspect" --frobnicate "$dir/none.lumo"
+
+# A single mesh file is a scene too (with lights from the command line).
+if "$bake" "$dir/good.obj" $light --grid 3 --spp 4 -o "$dir/tri.lumo" 2>/dev/null &&
+   "$inspect" --ivg "$dir/tri.lumo" >/dev/null; then ok "bake a flat mesh file, read its IVG"; else bad "bake a mesh file"; fi
+
+# Same seed -> identical bytes, whatever the thread count; another seed differs.
+common="--default --grid 6 --spp 16 --no-progress"
+"$bake" $common --seed 7 --threads 1 -o "$dir/a.lumo" 2>/dev/null
+"$bake" $common --seed 7 --threads 2 -o "$dir/b.lumo" 2>/dev/null
+"$bake" $common --seed 8 --threads 2 -o "$dir/c.lumo" 2>/dev/null
+cmp -s "$dir/a.lumo" "$dir/b.lumo" && ok "same seed, 1 vs 2 threads: identical package" || bad "same seed differs"
+cmp -s "$dir/a.lumo" "$dir/c.lumo" && bad "another seed gives the same package" || ok "another seed differs"
+
+# The summary and the per-vertex dump.
+"$inspect" "$dir/a.lumo" >"$dir/sum.txt" 2>&1 && grep -q "ivg       6x6x6" "$dir/sum.txt" \
+    && ok "inspect summary" || bad "inspect summary"
+n=$("$inspect" --ivg "$dir/a.lumo" | awk 'NF == 11' | wc -l)
+[ "$n" -eq $((6 * 6 * 6 * 6)) ] && ok "inspect --ivg: $n lines of 11 fields" || bad "inspect --ivg: $n lines"
+
+# Damaged packages: one flipped byte in the IVG, and a truncated file.
+size=$(wc -c <"$dir/a.lumo")
+cp "$dir/a.lumo" "$dir/flip.lumo"
+printf '\377' | dd of="$dir/flip.lumo" bs=1 seek=$((size - 100)) conv=notrunc 2>/dev/null
+expect_error "inspect flipped byte" "$inspect" "$dir/flip.lumo"
+head -c $((size - 1)) "$dir/a.lumo" >"$dir/trunc.lumo"
+expect_error "inspect truncated"    "$inspect" "$dir/trunc.lumo"
+
+# Reference images: full and indirect-only, PNG signature.
+"$bake" --default --reference 32x24 --spp 4 -o "$dir/ref.png" 2>/dev/null && \
+    head -c 8 "$dir/ref.png" | od -An -c | grep -q "P   N   G" && ok "reference PNG" || bad "reference PNG"
+"$bake" --default --reference 32x24 --spp 4 --indirect-only -o "$dir/ind.png" 2>/dev/null && \
+    ok "indirect-only PNG" || bad "indirect-only PNG"
+
+echo "RESULT: $pass passed, $fail failed"
+[ $fail -eq 0 ]
