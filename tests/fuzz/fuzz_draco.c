@@ -1,0 +1,43 @@
+/* fuzz_draco.c — hostile bytes into lumo's Draco decoder: it must return an
+ * error (arena unchanged) or a decode whose every index is in range, never
+ * read or write out of bounds, and finish in bounded time. Seeds:
+ * tests/fuzz/seeds/fuzz_draco/ (draco_encoder output over all levels). */
+#include <stdint.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include "lumo/draco.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static uint8_t g_mem[8u << 20];
+
+static void check(const lumo_draco_mesh *m)
+{
+    uint32_t i, p;
+    for (i = 0; i < 3 * m->num_faces; ++i)
+        if (m->faces[i] >= m->num_points)
+            abort();
+    for (i = 0; i < m->num_attributes; ++i) {
+        const lumo_draco_attribute *a = &m->attributes[i];
+        for (p = 0; p < m->num_points; ++p) {
+            uint32_t e = a->point_to_value ? a->point_to_value[p] : p;
+            if (e >= a->num_values)
+                abort();
+            (void)lumo_draco_dequantize(a, 0, lumo_draco_value(a, p, 0));
+        }
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    lumo_arena arena;
+    lumo_draco_mesh m;
+    lumo_draco_info info;
+    (void)lumo_draco_peek(data, size, &info);
+    lumo_arena_init(&arena, g_mem, sizeof g_mem);
+    if (lumo_draco_decode(data, size, &arena, &m) == LUMO_OK)
+        check(&m);
+    else if (arena.used != 0)
+        abort();
+    return 0;
+}
