@@ -73,11 +73,29 @@ MPS2_FACTS := $(patsubst tests/board/facts/%.c,$(MPS2_OUT)/facts/%.elf,$(wildcar
 board-facts: $(MPS2_FACTS)
 	@QEMU_CMD="$(MPS2_QEMU_CMD)" sh $(MPS2_DIR)/verify-facts.sh $(MPS2_OUT)/facts
 
-.PHONY: board-tests board-elfs board-facts check-embedded-selftest
+.PHONY: board-tests board-elfs board-facts check-embedded-selftest bench-board
 board-elfs: $(MPS2_ELFS) $(BHOST_BINS)
 board-tests: board-elfs
 	@QEMU="$(MPS2_QEMU)" sh $(MPS2_DIR)/run-tests.sh $(MPS2_OUT) \
 	    "$(filter $(MPS2_OUT)/test_%,$(MPS2_ELFS))" "$(filter $(BHOST_OUT)/golden_%,$(BHOST_BINS))"
+
+# Cortex-M3 instruction counts of the IVG core (tests/board/bench_ivg.c),
+# a section of docs/benchmarks.md.
+BOARD_BENCH_MD := $(BUILD)/bench/sections/60-board-ivg.md
+bench-board: $(MPS2_OUT)/bench_ivg.elf
+	@mkdir -p $(dir $(BOARD_BENCH_MD))
+	@$(MPS2_QEMU) $< </dev/null >$(MPS2_OUT)/bench_ivg.log 2>&1 || { cat $(MPS2_OUT)/bench_ivg.log; exit 1; }
+	@{ echo "## IVG on the Cortex-M3 (QEMU mps2-an385, instruction counts)"; echo; \
+	   echo "Command: \`make bench-board\` — runs \`build/board/mps2-an385/bench_ivg.elf\` under"; \
+	   echo "\`$(MPS2_QEMU)\`."; \
+	   echo "Counts are guest instructions (-icount shift=0: the 25 MHz board timer ticks every"; \
+	   echo "40 instructions), not cycles; arm-none-eabi-gcc -Os, Thumb-2, soft float. Quantized"; \
+	   echo "bundles with a random subset of vertices; irradiance is the mean over 1000 random"; \
+	   echo "points and normals on the grid without smoothing. 64^3 (41 MB of arena) does not fit"; \
+	   echo "the board's 16 MiB PSRAM."; echo; \
+	   grep '^|' $(MPS2_OUT)/bench_ivg.log; } >$(BOARD_BENCH_MD)
+	@cat $(BOARD_BENCH_MD)
+BENCH_STEPS += bench-board
 
 # Client sources and headers the source rules apply to: everything the
 # fragments put in CLIENT_SRCS, the headers beside them and the public ones.
