@@ -1,10 +1,10 @@
 /*
  * lumo_compare.c — lumo-compare A.png B.png [C.png] -o SIDE.png
- *     [--labels "A,B,C"] [--max-mean-de X]
+ *     [--labels "A,B,C"] [--max-mean-de X] [--min-psnr DB]
  *
  * Places the images side by side with a label under each, and prints the
- * mean CIE Lab Delta E (CIE76) and the PSNR of every pair. With
- * --max-mean-de, exits 1 when the first image differs from another by more.
+ * mean CIE Lab Delta E (CIE76) and the PSNR of every pair. With the bounds,
+ * exits 1 when the first image differs from another by more (tests).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -108,17 +108,18 @@ int main(int argc, char **argv)
     char label[3][64];
     uint8_t *img[3], *side;
     int w[3], h[3], n = 0, i, j, sw, sh, fail = 0;
-    double max_de = -1;
+    double max_de = -1, min_psnr = -1;
 
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "-o") && i + 1 < argc) out = argv[++i];
         else if (!strcmp(argv[i], "--labels") && i + 1 < argc) labels = argv[++i];
         else if (!strcmp(argv[i], "--max-mean-de") && i + 1 < argc) max_de = atof(argv[++i]);
+        else if (!strcmp(argv[i], "--min-psnr") && i + 1 < argc) min_psnr = atof(argv[++i]);
         else if (n < 3 && argv[i][0] != '-') in[n++] = argv[i];
         else n = 99;
     }
     if (n < 2 || n > 3) {
-        fputs("usage: lumo-compare A.png B.png [C.png] [-o SIDE.png] [--labels A,B,C] [--max-mean-de X]\n",
+        fputs("usage: lumo-compare A.png B.png [C.png] [-o SIDE.png] [--labels A,B,C] [--max-mean-de X] [--min-psnr DB]\n",
               stderr);
         return 2;
     }
@@ -147,7 +148,7 @@ int main(int argc, char **argv)
             image_compare(img[i], img[j], (size_t)w[i] * h[i], &d);
             printf("%s vs %s: mean dE76 %.3f, p99 dE %.2f, max dE %.2f, PSNR %.2f dB\n", label[i],
                    label[j], d.mean_de, d.p99_de, d.max_de, d.psnr_db);
-            if (i == 0 && max_de >= 0 && d.mean_de > max_de)
+            if (i == 0 && ((max_de >= 0 && d.mean_de > max_de) || (min_psnr >= 0 && d.psnr_db < min_psnr)))
                 fail = 1;
         }
     if (out) {

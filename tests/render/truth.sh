@@ -1,0 +1,39 @@
+#!/bin/sh
+# tests/render/truth.sh BUILD — the client against the server's path-traced
+# reference on the default scene (docs/rasterizer.md, "Error against truth").
+# The soft client with direct + IVG indirect light must stay within mean CIE
+# Lab Delta E <= 5 of the reference (128 spp, so the reference's own noise is
+# part of the error), and must be at least twice as close as direct light
+# alone: the IVG has to earn its bytes.
+set -u
+build=$1
+bin=$build/bin
+out=$build/render/truth
+mkdir -p "$out"
+pass=0; fail=0
+MAX_DE=5
+
+"$bin/lumo-bake" --default -o "$out/default.lumo" --spp 256 --no-progress >/dev/null || exit 1
+"$bin/lumo-bake" --default --reference 320x240 --spp 128 -o "$out/reference.png" --no-progress \
+    >/dev/null || exit 1
+for mode in per-pixel per-vertex; do
+    "$bin/lumo-render" "$out/default.lumo" --$mode -o "$out/client-$mode.png" >/dev/null || exit 1
+    "$bin/lumo-render" "$out/default.lumo" --$mode --no-indirect -o "$out/direct-$mode.png" >/dev/null || exit 1
+    "$bin/lumo-compare" "$out/client-$mode.png" "$out/direct-$mode.png" "$out/reference.png" \
+        --labels "client $mode,direct only,reference" -o "$out/side-$mode.png" | tee "$out/$mode.txt"
+done
+de() {  # de FILE PAIR -> mean dE of that line
+    sed -n "s/^$2: mean dE76 \([0-9.]*\),.*/\1/p" "$1"
+}
+c=$(de "$out/per-pixel.txt" "client per-pixel vs reference")
+d=$(de "$out/per-pixel.txt" "direct only vs reference")
+if awk -v c="$c" -v m=$MAX_DE 'BEGIN { exit !(c <= m) }'; then pass=$((pass + 1))
+else echo "FAIL per-pixel client vs reference: mean dE $c > $MAX_DE"; fail=$((fail + 1)); fi
+if awk -v c="$c" -v d="$d" 'BEGIN { exit !(2 * c <= d) }'; then pass=$((pass + 1))
+else echo "FAIL IVG does not halve the error: client $c vs direct only $d"; fail=$((fail + 1)); fi
+cv=$(de "$out/per-vertex.txt" "client per-vertex vs reference")
+dv=$(de "$out/per-vertex.txt" "direct only vs reference")
+if awk -v c="$cv" -v d="$dv" 'BEGIN { exit !(c < d) }'; then pass=$((pass + 1))
+else echo "FAIL per-vertex: IVG does not reduce the error ($cv vs $dv)"; fail=$((fail + 1)); fi
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
