@@ -66,12 +66,16 @@ static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t le
 }
 
 /* Length check of a direction given as integers at scale `one` (127 for
- * q/127, 2^14 for Q1.14): zero, or |d| within 1/16 of one. */
+ * q/127, 2^14 for Q1.14): zero, or |d| within 1/16 of one. A component
+ * beyond 2 * one fails first, which keeps the squares far from overflow
+ * whatever a hostile binary32 held. */
 static lumo_status check_direction(int64_t x, int64_t y, int64_t z, int64_t one)
 {
-    int64_t len2 = x * x + y * y + z * z;
-    int64_t lo = D_TOL_LO * one, hi = D_TOL_HI * one;
+    int64_t len2, lo = D_TOL_LO * one, hi = D_TOL_HI * one;
 
+    if (x > 2 * one || x < -2 * one || y > 2 * one || y < -2 * one || z > 2 * one || z < -2 * one)
+        return LUMO_ERR_RANGE;
+    len2 = x * x + y * y + z * z;
     if (len2 == 0)
         return LUMO_OK;
     if (256 * len2 < lo * lo || 256 * len2 > hi * hi)

@@ -365,6 +365,9 @@ static void test_reject_float(void **state)
     float_case(&x, b, len, 4, 65535.5f, LUMO_ERR_RANGE, "colour 65535.5");
     float_case(&x, b, len, 1, 1e10f, LUMO_ERR_RANGE, "huge d");
     float_case(&x, b, len, 2, 3.0f, LUMO_ERR_RANGE, "long d");
+    /* fits int32 as Q1.14 but its square times 256 would not (fuzz find) */
+    float_case(&x, b, len, 0, 100000.0f, LUMO_ERR_RANGE, "d = 1e5");
+    float_case(&x, b, len, 1, -131071.0f, LUMO_ERR_RANGE, "d = -131071");
     /* accepted edge values */
     float_case(&x, b, len, 3, -0.0f, LUMO_OK, "-0 colour");
     float_case(&x, b, len, 4, 65535.0f, LUMO_OK, "colour 65535");
