@@ -23,9 +23,9 @@ $(LM3S_OUT)/lm3s_ivg.elf: $(LM3S_OBJS) $(BUILD)/m3/liblumo.a $(LM3S_DIR)/lm3s696
 	$(ARM_CC) $(M3_ARCH) -nostartfiles -specs=nano.specs -T $(LM3S_DIR)/lm3s6965evb.ld \
 	    -Wl,--gc-sections -Wl,--no-warn-rwx-segments -Wl,--print-memory-usage \
 	    -Wl,-Map=$@.map -o $@ $(LM3S_OBJS) $(BUILD)/m3/liblumo.a >$(LM3S_OUT)/memory-usage.txt
-$(LM3S_OUT)/lm3s_ivg.host: $(LM3S_HOST_OBJS) $(BUILD)/rel/liblumo.a
+$(LM3S_OUT)/lm3s_ivg.host: $(LM3S_HOST_OBJS) $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) -o $@ $(LM3S_HOST_OBJS) $(BUILD)/rel/liblumo.a
+	$(CC) $(SAN_FLAGS) -o $@ $(LM3S_HOST_OBJS) $(BUILD)/san/liblumo.a
 
 .PHONY: board-lm3s
 board-lm3s: $(LM3S_OUT)/lm3s_ivg.elf $(LM3S_OUT)/lm3s_ivg.host

@@ -47,9 +47,11 @@ BOARD_HOST_OBJ := $(BUILD)/board/obj-host
 $(BOARD_M3_OBJ)/%.o: %.c
 	@mkdir -p $(@D)
 	$(ARM_CC) $(CLIENT_CFLAGS_m3) -Itests/board -MMD -MP -c $< -o $@
+# Host builds run under ASan/UBSan against the sanitizer build of the SDK,
+# so the board programs double as sanitizer tests of the code they drive.
 $(BOARD_HOST_OBJ)/%.o: %.c
 	@mkdir -p $(@D)
-	$(CC) $(CLIENT_CFLAGS_rel) -Itests/board -MMD -MP -c $< -o $@
+	$(CC) $(CLIENT_CFLAGS_san) -Itests/board -MMD -MP -c $< -o $@
 
 MPS2_RT_OBJS    := $(patsubst %.c,$(BOARD_M3_OBJ)/%.o,$(MPS2_RT_SRCS) $(BOARD_LIB_SRCS))
 BHOST_RT_OBJS   := $(patsubst %.c,$(BOARD_HOST_OBJ)/%.o,tests/board/host_io.c $(BOARD_LIB_SRCS))
@@ -64,8 +66,9 @@ $(MPS2_OUT)/%.elf: $(BOARD_M3_OBJ)/tests/board/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/l
 $(MPS2_OUT)/facts/%.elf: $(BOARD_M3_OBJ)/tests/board/facts/%.o $(MPS2_RT_OBJS) $(BUILD)/m3/liblumo.a $(MPS2_DIR)/mps2-an385.ld
 	@mkdir -p $(@D)
 	$(MPS2_LINK)
-$(BHOST_OUT)/%: $(BOARD_HOST_OBJ)/tests/board/%.o $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
-	$(CC) -o $@ $< $(BHOST_RT_OBJS) $(BUILD)/rel/liblumo.a
+$(BHOST_OUT)/%: $(BOARD_HOST_OBJ)/tests/board/%.o $(BHOST_RT_OBJS) $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $< $(BHOST_RT_OBJS) $(BUILD)/san/liblumo.a
 
 .PRECIOUS: $(BOARD_M3_OBJ)/%.o $(BOARD_HOST_OBJ)/%.o
 # The QEMU facts the board relies on (docs/porting.md), checked every run.

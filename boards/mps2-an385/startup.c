@@ -10,6 +10,12 @@
  * Any fault prints its name and the faulting pc on the console and exits
  * with status 128 + exception number (HardFault 131, MemManage 132,
  * BusFault 133, UsageFault 134), so a crash can never hang CI.
+ *
+ * The stack is bounded: the lowest STACK_GUARD bytes of the stack area
+ * (from __stack_paint_low) are made inaccessible with the ARMv7-M MPU, so
+ * overflowing it raises MemManage ("FAULT: stack overflow", exit 132)
+ * instead of silently overwriting .bss. The fault handler runs on its own
+ * small stack for that reason.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -27,6 +33,9 @@ extern uint32_t __data_load[], __data_start[], __data_end[];
 extern uint32_t __bss_start[], __bss_end[], __stack_top[], __stack_paint_low[];
 
 #define STACK_PAINT 0x5AC0FFEEu
+/* MPU guard at the bottom of the stack area: 1 KiB, the linker scripts
+ * keep __stack_paint_low 1 KiB aligned (an MPU region is size aligned). */
+#define STACK_GUARD 1024u
 /* Bytes below the current frame left unpainted while painting. */
 #define PAINT_MARGIN 64u
 
@@ -52,10 +61,13 @@ static const vector g_vectors[16] = {
     Fault_Handler  /* SysTick */
 };
 
+/* The fault handler's own stack (the main one may be what overflowed). */
+uint32_t lumo_fault_stack[128];
+
 static void paint_stack(void)
 {
     uint32_t here;   /* its address approximates the current stack pointer */
-    uint32_t *p = __stack_paint_low;
+    uint32_t *p = __stack_paint_low + STACK_GUARD / 4u;
     uint32_t *end = (uint32_t *)((uintptr_t)&here - PAINT_MARGIN);
 
     g_paint_low = p;
@@ -74,6 +86,34 @@ size_t board_stack_peak(void)
     return (size_t)((uintptr_t)__stack_top - (uintptr_t)p);
 }
 
+/* ARMv7-M MPU and System Control Block registers (ARMv7-M ARM B3.2, B3.5). */
+#define MPU_CTRL   (*(volatile uint32_t *)0xE000ED94u)
+#define MPU_RNR    (*(volatile uint32_t *)0xE000ED98u)
+#define MPU_RBAR   (*(volatile uint32_t *)0xE000ED9Cu)
+#define MPU_RASR   (*(volatile uint32_t *)0xE000EDA0u)
+#define SCB_SHCSR  (*(volatile uint32_t *)0xE000ED24u)
+/* Fault status: CFSR says which MemManage/Bus/Usage fault, HFSR why HardFault. */
+#define SCB_CFSR   (*(volatile const uint32_t *)0xE000ED28u)
+#define SCB_HFSR   (*(volatile const uint32_t *)0xE000ED2Cu)
+#define MPU_CTRL_ENABLE     1u
+#define MPU_CTRL_PRIVDEFENA 4u         /* default memory map elsewhere */
+#define RASR_XN             (1u << 28)
+#define RASR_AP_NONE        (0u << 24)
+#define RASR_SIZE(log2)     (((log2) - 1u) << 1)
+#define RASR_ENABLE         1u
+#define SHCSR_MEMFAULTENA   (1u << 16)
+
+/* Region 0: no access, no execute, over the guard. */
+static void guard_stack(void)
+{
+    MPU_RNR = 0;
+    MPU_RBAR = (uint32_t)(uintptr_t)__stack_paint_low;
+    MPU_RASR = RASR_XN | RASR_AP_NONE | RASR_SIZE(10u) | RASR_ENABLE;   /* 2^10 */
+    MPU_CTRL = MPU_CTRL_ENABLE | MPU_CTRL_PRIVDEFENA;
+    SCB_SHCSR |= SHCSR_MEMFAULTENA;
+    __asm__ volatile("dsb\n isb" ::: "memory");
+}
+
 void Reset_Handler(void)
 {
     size_t data = (size_t)((uintptr_t)__data_end - (uintptr_t)__data_start);
@@ -82,12 +122,14 @@ void Reset_Handler(void)
     memcpy(__data_start, __data_load, data);
     memset(__bss_start, 0, bss);
     paint_stack();
+    guard_stack();
     board_exit(main());
 }
 
 /* Naked so that no prologue moves the stack before the exception frame
  * (r0-r3, r12, lr, pc, xpsr) is located: EXC_RETURN bit 2 says whether it
- * was pushed on the main or the process stack. */
+ * was pushed on the main or the process stack. Then the handler switches
+ * to its own stack. */
 __attribute__((naked)) void Fault_Handler(void)
 {
     __asm__ volatile(
@@ -96,6 +138,8 @@ __attribute__((naked)) void Fault_Handler(void)
         "mrseq r0, msp\n"
         "mrsne r0, psp\n"
         "mov r1, lr\n"
+        "ldr r2, =lumo_fault_stack + 512\n"
+        "mov sp, r2\n"
         "b lumo_fault_report\n");
 }
 
@@ -109,10 +153,16 @@ static const char *exception_name(uint32_t n)
     return n < 16 ? names[n] : "interrupt";
 }
 
-/* Memory-mapped System Control Block fault status registers (ARMv7-M ARM
- * B3.2): CFSR tells which Memmanage/Bus/Usage fault, HFSR why HardFault. */
-#define SCB_CFSR (*(volatile const uint32_t *)0xE000ED28u)
-#define SCB_HFSR (*(volatile const uint32_t *)0xE000ED2Cu)
+
+/* CFSR.MSTKERR: the exception frame could not be pushed (stack overflow
+ * into the guard), so there is no frame to read. */
+#define CFSR_MSTKERR (1u << 4)
+
+static int in_guard(const uint32_t *frame)
+{
+    uintptr_t f = (uintptr_t)frame, lo = (uintptr_t)__stack_paint_low;
+    return f >= lo && f < lo + STACK_GUARD + 32u;
+}
 
 void lumo_fault_report(const uint32_t *frame, uint32_t exc_return)
 {
@@ -121,6 +171,15 @@ void lumo_fault_report(const uint32_t *frame, uint32_t exc_return)
     __asm__ volatile("mrs %0, ipsr" : "=r"(ipsr));
     ipsr &= 0x1FFu;
     con_str("FAULT: ");
+    if ((SCB_CFSR & CFSR_MSTKERR) != 0 || in_guard(frame)) {
+        con_str("stack overflow (");
+        con_str(exception_name(ipsr));
+        con_str(", sp=");
+        con_hex((uint32_t)(uintptr_t)frame, 8);
+        con_str(")");
+        con_nl();
+        board_exit((int)(128u + ipsr));
+    }
     con_str(exception_name(ipsr));
     con_str(" pc=");
     con_hex(frame[6], 8);

@@ -33,6 +33,11 @@ run 20 "$dir/fact_fault.elf" "$dir/fault"; rc=$?
 [ "$rc" -eq 131 ] && grep -q '^FAULT: HardFault pc=0x' "$dir/fault.err" && ! grep -q 'still running' "$dir/fault.err"
 verdict $? "undefined instruction -> '$(head -c 60 "$dir/fault.err" | grep FAULT | head -n 1)...' exit 131 (got $rc)"
 
+# 2b. Stack overflow hits the MPU guard below the stack: MemManage, 132.
+run 20 "$dir/fact_overflow.elf" "$dir/overflow" -icount shift=0; rc=$?
+[ "$rc" -eq 132 ] && grep -q '^FAULT: stack overflow' "$dir/overflow.err" && ! grep -q 'overwritten' "$dir/overflow.err"
+verdict $? "stack overflow -> '$(grep FAULT "$dir/overflow.err" | head -n 1)' exit 132 (got $rc)"
+
 # 3. A guest that never ends is stopped by timeout (status 124).
 run 3 "$dir/fact_hang.elf" "$dir/hang" -icount shift=0; rc=$?
 [ "$rc" -eq 124 ]
