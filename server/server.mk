@@ -8,7 +8,7 @@
 # it registers itself with LUMO_INSPECT_COMMAND (server/include/lumo_server/inspect.h).
 
 SERVER_CORE := camera scene shapes import scene_file default_scene rt pathtrace parallel \
-               progress bake reference png_io package_write pack ivg_encode
+               progress bake reference png_io color_diff package_write pack ivg_encode
 SERVER_OBJS := $(patsubst %,$(BUILD)/host/server/%.o,$(SERVER_CORE))
 SERVER_LIB  := $(BUILD)/host/libserver.a
 SERVER_LIBS := -lembree3 -lassimp -lpng -lm -pthread

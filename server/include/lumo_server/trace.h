@@ -16,8 +16,9 @@ typedef struct lumo_tracer {
     float             eps;
 } lumo_tracer;
 
-/* Per-thread counter of rays cast (for rays/s). */
-typedef struct { uint64_t rays; } lumo_trace_stats;
+/* Per-thread counter of rays cast (for rays/s), one cache line each so
+ * that workers counting side by side do not share a line. */
+typedef struct { uint64_t rays; uint8_t pad[56]; } lumo_trace_stats;
 
 void lumo_tracer_init(lumo_tracer *t, const lumo_scene *s, const lumo_rt *rt);
 

@@ -1,0 +1,134 @@
+/* bench_bake.c — `make bench-bake`: bake time and rays/s for 16^3 and 32^3
+ * grids on the default scene and the dragon at several spp with 1 and 2
+ * threads, and the reference renderer's mean CIE Lab Delta E between spp
+ * levels. Writes the markdown section on stdout (numbers, not pass/fail). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_server/bake.h"
+#include "lumo_server/color_diff.h"
+#include "lumo_server/import.h"
+#include "lumo_server/progress.h"
+#include "lumo_server/reference.h"
+#include "lumo_server/shapes.h"
+
+#define DRAGON48 "build/data/models/dragon_48k.ply"
+#define DRAGON203 "build/data/models/dragon_203k.ply"
+
+typedef struct { const char *name; lumo_scene s; lumo_rt *rt; lumo_tracer t; } bench_scene;
+
+static int make_scene(bench_scene *b, const char *name, int dragon_only)
+{
+    char err[256];
+    lumo_xform x = lumo_xform_identity();
+    b->name = name;
+    lumo_scene_init(&b->s);
+    int rc = dragon_only ? lumo_import_file(&b->s, DRAGON203, &x, NULL, err, sizeof err)
+                         : lumo_default_scene(&b->s, DRAGON48, err, sizeof err);
+    if (!rc && dragon_only) {
+        lumo_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, 0.35f, 0.2f}, .power = {1, 1, 1}};
+        rc = lumo_scene_add_light(&b->s, &l);
+    }
+    if (rc || lumo_scene_validate(&b->s, err, sizeof err) || !(b->rt = lumo_rt_create(&b->s, 2, err, sizeof err))) {
+        fprintf(stderr, "bench-bake: %s: %s\n", name, err);
+        return -1;
+    }
+    lumo_tracer_init(&b->t, &b->s, b->rt);
+    return 0;
+}
+
+static void bake_rows(bench_scene *b)
+{
+    static const int grids[] = {16, 32}, spps[] = {16, 64, 256};
+    char err[256];
+    for (int gi = 0; gi < 2; gi++)
+        for (int si = 0; si < 3; si++) {
+            if (grids[gi] == 32 && spps[si] > 64)
+                continue;   /* keeps the step within its time budget */
+            double t1 = 0.0;
+            for (int threads = 1; threads <= 2; threads++) {
+                int dims[3] = {grids[gi], grids[gi], grids[gi]};
+                lumo_grid g = lumo_grid_over(&b->s, dims);
+                lumo_bake_opts o = {spps[si], 1, threads, 0, 0.25f};
+                lumo_bake_result r;
+                if (lumo_bake(&b->t, &g, &o, &r, err, sizeof err))
+                    continue;
+                if (threads == 1)
+                    t1 = r.seconds;
+                printf("| %s | %zu | %d³ | %d | %d | %.2f | %.2f | %.2f | %s |\n", b->name,
+                       lumo_scene_triangle_count(&b->s), grids[gi], spps[si], threads, r.seconds,
+                       (double)r.rays * 1e-6, (double)r.rays * 1e-6 / r.seconds,
+                       threads == 1 ? "1.00" : (snprintf(err, sizeof err, "%.2f", t1 / r.seconds), err));
+                fflush(stdout);
+                lumo_bake_result_free(&r);
+            }
+        }
+}
+
+static uint8_t *render8(bench_scene *b, int w, int h, int spp, int indirect, double *secs)
+{
+    lumo_image img;
+    lumo_render_opts o = {spp, 99, 2, indirect, 0};
+    double t0 = lumo_now();
+    if (lumo_render_reference(&b->t, &b->s.camera, w, h, &o, &img, NULL))
+        return NULL;
+    *secs = lumo_now() - t0;
+    size_t n = (size_t)w * (size_t)h * 3;
+    uint8_t *px = malloc(n);
+    for (size_t i = 0; px && i < n; i++)
+        px[i] = lumo_tonemap(img.rgb[i], 1.0f);
+    lumo_image_free(&img);
+    return px;
+}
+
+static void reference_rows(bench_scene *b, int indirect)
+{
+    enum { W = 160, H = 120, TRUTH = 1024 };
+    static const int spps[] = {4, 16, 64, 256};
+    double secs;
+    uint8_t *truth = render8(b, W, H, TRUTH, indirect, &secs);
+    if (!truth)
+        return;
+    for (int i = 0; i < 4; i++) {
+        uint8_t *img = render8(b, W, H, spps[i], indirect, &secs);
+        if (!img)
+            continue;
+        printf("| %s | %d | %.2f | %.3f |\n", indirect ? "indirect only" : "full", spps[i], secs,
+               lumo_mean_delta_e(img, truth, (size_t)W * H));
+        free(img);
+    }
+    free(truth);
+}
+
+int main(void)
+{
+    bench_scene def, dragon;
+    if (make_scene(&def, "default (Cornell + dragon 48k)", 0) || make_scene(&dragon, "dragon 203k alone", 1))
+        return 1;
+    printf("## IVG bake and reference renderer (lumo-bake)\n\n");
+    printf("Command: `make bench-bake` (runs `build/host/bench/lumo-bench-bake`, source server/bench_bake.c). "
+           "Seed 1; grid over the scene bounds; Embree 3, paths with NEE + Russian roulette; "
+           "rays = all rays cast (path segments + shadow rays). Speed-up = time(1 thread) / time(2 threads).\n\n");
+    FILE *la = fopen("/proc/loadavg", "r");
+    char load[64] = "?";
+    if (la && fgets(load, sizeof load, la))
+        load[strcspn(load, " ")] = 0;
+    if (la)
+        fclose(la);
+    printf("1-minute load average when the run started: %s (other jobs on the machine slow the "
+           "2-thread rows most).\n\n", load);
+    printf("| scene | triangles | grid | spp | threads | time (s) | rays (M) | M rays/s | speed-up |\n");
+    printf("|---|---|---|---|---|---|---|---|---|\n");
+    bake_rows(&def);
+    bake_rows(&dragon);
+    printf("\nReference renderer on the default scene, 160×120, 2 threads: mean CIE Lab ΔE (CIE76, "
+           "8-bit sRGB after tone mapping) against a 1024-spp render of the same view.\n\n");
+    printf("| image | spp | time (s) | mean ΔE vs 1024 spp |\n|---|---|---|---|\n");
+    reference_rows(&def, 0);
+    reference_rows(&def, 1);
+    lumo_rt_free(def.rt);
+    lumo_rt_free(dragon.rt);
+    lumo_scene_free(&def.s);
+    lumo_scene_free(&dragon.s);
+    return 0;
+}
