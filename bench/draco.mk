@@ -1,0 +1,17 @@
+# bench/draco.mk — `make bench-draco`: lumo's Draco decoder vs libdraco.
+DRACO_BENCH     := $(BIN)/draco-bench
+DRACO_BENCH_LIB := $(BIN)/draco-bench-libdraco
+HOST_TOOLS      += $(DRACO_BENCH) $(DRACO_BENCH_LIB)
+
+$(DRACO_BENCH): $(BUILD)/host/bench/draco_bench.o $(BUILD)/rel/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^
+
+$(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o
+	@mkdir -p $(@D)
+	$(CXX) -o $@ $^ -ldraco -pthread
+
+.PHONY: bench-draco
+bench-draco: $(DRACO_BENCH) $(DRACO_BENCH_LIB) $(BUILD)/m3/liblumo.a
+	@sh bench/draco_bench.sh $(BUILD)
+BENCH_STEPS += bench-draco

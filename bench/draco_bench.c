@@ -1,0 +1,70 @@
+/*
+ * draco_bench — time lumo's Draco decoder on one file.
+ *
+ *   draco-bench FILE.drc REPS
+ *
+ * Prints one line: "lumo ns=<best ns per decode> out=<output bytes>
+ * arena=<exact arena bytes> faces=<n> points=<n>". The arena is sized
+ * from lumo_draco_arena_bound(); the reported arena is the exact peak.
+ * Under callgrind run with REPS=1 and --toggle-collect=lumo_draco_decode.
+ */
+#define _POSIX_C_SOURCE 199309L
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include "lumo/draco.h"
+
+static uint64_t now_ns(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (uint64_t)t.tv_sec * 1000000000u + (uint64_t)t.tv_nsec;
+}
+
+int main(int argc, char **argv)
+{
+    FILE *f;
+    uint8_t *data, *mem;
+    long size;
+    int reps, i;
+    uint64_t best = UINT64_MAX;
+    lumo_draco_info info;
+    lumo_draco_mesh m;
+    size_t bytes;
+    if (argc != 3 || !(f = fopen(argv[1], "rb")))
+        return 2;
+    reps = atoi(argv[2]);
+    fseek(f, 0, SEEK_END);
+    size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    data = malloc((size_t)size);
+    if (!data || fread(data, 1, (size_t)size, f) != (size_t)size)
+        return 1;
+    fclose(f);
+    if (lumo_draco_peek(data, (size_t)size, &info))
+        return 1;
+    bytes = lumo_draco_arena_bound(&info, 16);
+    mem = malloc(bytes);
+    if (!mem)
+        return 1;
+    for (i = 0; i < reps; ++i) {
+        lumo_arena a;
+        uint64_t t0;
+        lumo_status st;
+        lumo_arena_init(&a, mem, bytes);
+        t0 = now_ns();
+        st = lumo_draco_decode(data, (size_t)size, &a, &m);
+        t0 = now_ns() - t0;
+        if (st) {
+            fprintf(stderr, "draco-bench: %s\n", lumo_strerror(st));
+            return 1;
+        }
+        if (t0 < best)
+            best = t0;
+    }
+    printf("lumo ns=%llu out=%zu arena=%zu faces=%u points=%u\n", (unsigned long long)best,
+           m.arena_bytes, m.arena_bytes + m.work_bytes, m.num_faces, m.num_points);
+    free(mem);
+    free(data);
+    return 0;
+}
