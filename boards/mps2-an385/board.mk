@@ -44,14 +44,15 @@ BOARD_BANNED_SYMS := malloc|calloc|realloc|free|_sbrk|_sbrk_r|_malloc_r|_free_r|
 # flags as the client library) and host; board-agnostic code in both.
 BOARD_M3_OBJ   := $(BUILD)/board/obj-m3
 BOARD_HOST_OBJ := $(BUILD)/board/obj-host
+BOARD_CPPFLAGS := -Itests/board -DLUMO_BUILD_DIR='"$(BUILD)"'
 $(BOARD_M3_OBJ)/%.o: %.c
 	@mkdir -p $(@D)
-	$(ARM_CC) $(CLIENT_CFLAGS_m3) -Itests/board -MMD -MP -c $< -o $@
+	$(ARM_CC) $(CLIENT_CFLAGS_m3) $(BOARD_CPPFLAGS) -MMD -MP -c $< -o $@
 # Host builds run under ASan/UBSan against the sanitizer build of the SDK,
 # so the board programs double as sanitizer tests of the code they drive.
 $(BOARD_HOST_OBJ)/%.o: %.c
 	@mkdir -p $(@D)
-	$(CC) $(CLIENT_CFLAGS_san) -Itests/board -MMD -MP -c $< -o $@
+	$(CC) $(CLIENT_CFLAGS_san) $(BOARD_CPPFLAGS) -MMD -MP -c $< -o $@
 
 MPS2_RT_OBJS    := $(patsubst %.c,$(BOARD_M3_OBJ)/%.o,$(MPS2_RT_SRCS) $(BOARD_LIB_SRCS))
 BHOST_RT_OBJS   := $(patsubst %.c,$(BOARD_HOST_OBJ)/%.o,tests/board/host_io.c $(BOARD_LIB_SRCS))
@@ -76,9 +77,27 @@ MPS2_FACTS := $(patsubst tests/board/facts/%.c,$(MPS2_OUT)/facts/%.elf,$(wildcar
 board-facts: $(MPS2_FACTS)
 	@QEMU_CMD="$(MPS2_QEMU_CMD)" sh $(MPS2_DIR)/verify-facts.sh $(MPS2_OUT)/facts
 
+# Draco streams for golden_draco: the committed fuzz seeds plus real meshes
+# encoded here from the test models (skipped when the models are absent).
+BOARD_DRACO     := $(BUILD)/board/draco
+BOARD_DRACO_SEEDS := $(sort $(wildcard tests/fuzz/seeds/fuzz_draco/*.drc))
+BOARD_DRACO_GEN := $(BOARD_DRACO)/bunny_cl0.drc $(BOARD_DRACO)/bunny_cl7.drc \
+                   $(BOARD_DRACO)/bunny_cl10.drc $(BOARD_DRACO)/dragon_48k_cl7.drc
+$(BOARD_DRACO)/bunny_cl%.drc:
+	@mkdir -p $(@D)
+	@if [ -f $(BUILD)/data/models/bunny.obj ]; then \
+	    draco_encoder -i $(BUILD)/data/models/bunny.obj -o $@ -cl $* >/dev/null; fi
+$(BOARD_DRACO)/dragon_48k_cl%.drc:
+	@mkdir -p $(@D)
+	@if [ -f $(BUILD)/data/models/dragon_48k.ply ]; then \
+	    draco_encoder -i $(BUILD)/data/models/dragon_48k.ply -o $@ -cl $* >/dev/null; fi
+$(BOARD_DRACO)/list.txt: $(BOARD_DRACO_GEN) $(BOARD_DRACO_SEEDS)
+	@mkdir -p $(@D)
+	@for f in $(BOARD_DRACO_SEEDS) $(BOARD_DRACO_GEN); do [ -f $$f ] && echo $$f; done >$@; true
+
 .PHONY: board-tests board-elfs board-facts check-embedded-selftest bench-board
 board-elfs: $(MPS2_ELFS) $(BHOST_BINS)
-board-tests: board-elfs
+board-tests: board-elfs $(BOARD_DRACO)/list.txt
 	@QEMU="$(MPS2_QEMU)" sh $(MPS2_DIR)/run-tests.sh $(MPS2_OUT) \
 	    "$(filter $(MPS2_OUT)/test_%,$(MPS2_ELFS))" "$(filter $(BHOST_OUT)/golden_%,$(BHOST_BINS))"
 

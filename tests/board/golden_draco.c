@@ -1,0 +1,156 @@
+/*
+ * golden_draco.c — the Draco decoder (lumo/draco.h) on the board, bit-exact
+ * against the host. Reads the list LUMO_BUILD_DIR/board/draco/list.txt (one
+ * .drc path per line, written by board.mk: the committed fuzz seeds plus
+ * real meshes encoded with draco_encoder from the test models), decodes
+ * each file with its arena in scratch memory and hashes everything decoded:
+ * counts, faces, every attribute's portable values, point map and
+ * dequantization parameters. Host and board must print the same HASH lines.
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include "lumo/draco.h"
+#include "board_io.h"
+#include "golden.h"
+
+int main(void);
+
+#ifndef LUMO_BUILD_DIR
+#define LUMO_BUILD_DIR "build"
+#endif
+#define LIST_PATH LUMO_BUILD_DIR "/board/draco/list.txt"
+#define MAX_INPUT (2u << 20)
+#define MAX_PATH 200u
+
+static uint8_t g_list[8192];
+static uint8_t g_input[MAX_INPUT];
+
+static uint64_t hash_u32s(uint64_t h, const uint32_t *v, size_t n)
+{
+    size_t i;
+
+    for (i = 0; v != NULL && i < n; i++)
+        h = bt_fnv1a_u32(h, v[i]);
+    return h;
+}
+
+static uint64_t hash_attribute(uint64_t h, const lumo_draco_attribute *a, uint32_t num_points)
+{
+    size_t i, n = (size_t)a->num_values * a->num_portable;
+
+    h = bt_fnv1a(h, &a->type, 8);   /* the eight uint8_t descriptors */
+    h = bt_fnv1a_u32(h, a->unique_id);
+    h = bt_fnv1a_u32(h, a->num_values);
+    for (i = 0; i < n; i++)
+        h = bt_fnv1a_u32(h, (uint32_t)a->values[i]);
+    h = hash_u32s(h, a->point_to_value, num_points);
+    if (a->xform == LUMO_DRACO_XFORM_QUANTIZED) {
+        h = hash_u32s(h, a->min_bits, a->num_components);
+        h = hash_u32s(h, (const uint32_t *)a->min_fixed, a->num_components);
+        h = bt_fnv1a_u32(h, a->range_bits);
+        h = bt_fnv1a_u32(h, (uint32_t)a->range_fixed);
+        for (i = 0; i < a->num_values && i < 64u; i++)
+            h = bt_fnv1a_u32(h, (uint32_t)lumo_draco_dequantize(a, 0, a->values[i * a->num_portable]));
+    }
+    return h;
+}
+
+/* Label "draco.<file name>" from a path. */
+static void label_of(const char *path, char *out, size_t cap)
+{
+    const char *base = path, *p;
+    size_t n;
+
+    for (p = path; *p != '\0'; p++)
+        if (*p == '/')
+            base = p + 1;
+    memcpy(out, "draco.", 6);
+    n = strlen(base);
+    if (n > cap - 7)
+        n = cap - 7;
+    memcpy(out + 6, base, n);
+    out[6 + n] = '\0';
+}
+
+static int decode_one(const char *path)
+{
+    size_t len = 0, bytes = 0;
+    uint8_t *mem = board_scratch(&bytes);
+    lumo_draco_info info;
+    lumo_draco_mesh mesh;
+    lumo_arena a;
+    lumo_status st;
+    char label[96];
+    uint64_t h = BT_FNV_OFFSET;
+    uint32_t i, t0;
+
+    label_of(path, label, sizeof label);
+    if (board_read_file(path, g_input, sizeof g_input, &len) != 0) {
+        con_str("golden_draco: cannot read ");
+        con_str(path);
+        con_nl();
+        return 1;
+    }
+    lumo_arena_init(&a, mem, bytes);
+    t0 = board_ticks();
+    st = lumo_draco_peek(g_input, len, &info);
+    if (st == LUMO_OK)
+        st = lumo_draco_decode(g_input, len, &a, &mesh);
+    golden_cost(label, t0);
+    /* a clean rejection (unsupported feature) is an outcome to hash too */
+    h = bt_fnv1a_u32(h, (uint32_t)st);
+    if (st == LUMO_OK) {
+        h = bt_fnv1a_u32(h, mesh.num_points);
+        h = bt_fnv1a_u32(h, mesh.num_faces);
+        h = hash_u32s(h, mesh.faces, (size_t)mesh.num_faces * 3u);
+        h = bt_fnv1a_u32(h, mesh.num_attributes);
+        for (i = 0; i < mesh.num_attributes; i++)
+            h = hash_attribute(h, &mesh.attributes[i], mesh.num_points);
+        /* not mesh.arena_bytes: it counts pointer-holding structs, whose
+         * size differs between 32- and 64-bit targets */
+    }
+    golden_hash(label, h);
+    con_str(label);
+    if (st != LUMO_OK) {
+        con_str(": ");
+        con_str(lumo_strerror(st));
+        con_nl();
+        return 0;
+    }
+    con_str(": ");
+    con_u64(mesh.num_points);
+    con_str(" points, ");
+    con_u64(mesh.num_faces);
+    con_str(" faces, ");
+    con_u64(mesh.num_attributes);
+    con_str(" attributes");
+    con_nl();
+    return 0;
+}
+
+int main(void)
+{
+    size_t len = 0, i = 0;
+    int failed = 0;
+
+    if (board_read_file(LIST_PATH, g_list, sizeof g_list - 1, &len) != 0) {
+        con_str("golden_draco: cannot read " LIST_PATH "\n");
+        return golden_done(1);
+    }
+    g_list[len] = '\n';
+    while (i < len) {
+        char path[MAX_PATH];
+        size_t n = 0;
+        while (i < len && g_list[i] != '\n') {
+            if (n < MAX_PATH - 1)
+                path[n++] = (char)g_list[i];
+            i++;
+        }
+        i++;
+        path[n] = '\0';
+        if (n > 0)
+            failed |= decode_one(path);
+    }
+    return golden_done(failed);
+}
