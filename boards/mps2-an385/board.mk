@@ -120,12 +120,19 @@ bench-board: $(MPS2_OUT)/bench_ivg.elf
 BENCH_STEPS += bench-board
 
 # Client sources and headers the source rules apply to: everything the
-# fragments put in CLIENT_SRCS, the headers beside them and the public ones.
-CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(dir $(CLIENT_SRCS)))) \
-    sdk/include/lumo/*.h rasterizer/include/*.h rasterizer/include/*/*.h net/include/*.h net/include/*/*.h))
+# fragments put in CLIENT_SRCS, the headers beside them, the SDK's public
+# headers, and every other header a client object was compiled with (from
+# the compiler's .d files; system headers have absolute paths and are left
+# to the include rule). Desktop-only headers nobody on the client includes
+# (rasterizer/include/lumo/raster_gl.h) are not client code.
+CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(dir $(CLIENT_SRCS))))) \
+    $(wildcard sdk/include/lumo/*.h))
 
 check-embedded: $(BUILD)/m3/liblumo.a
-	@sh $(MPS2_DIR)/check-embedded.sh $(ARM_NM) "$(CLIENT_OBJS_m3)" "$(CHECK_EMBEDDED_SRCS)"
+	@deps=$$(cat $(CLIENT_OBJS_m3:.o=.d) 2>/dev/null | tr ' \\' '\n\n' | sed 's/:$$//' \
+	        | grep '\.h$$' | grep -v '^/' | sort -u); \
+	srcs=$$(for f in $(CHECK_EMBEDDED_SRCS) $$deps; do echo $$f; done | sort -u); \
+	sh $(MPS2_DIR)/check-embedded.sh $(ARM_NM) "$(CLIENT_OBJS_m3)" "$$srcs"
 
 check-embedded-selftest:
 	@sh tests/board/check_embedded_selftest.sh $(BUILD)/check-embedded-selftest \
