@@ -24,3 +24,8 @@ $(BIN)/lumo-compare: $(BUILD)/host/boards/host/lumo_compare.o $(BUILD)/host/boar
                      $(BUILD)/host/boards/host/image_metrics.o
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lpng -lm
+
+HOST_TOOLS += $(BIN)/lumo-raster-ram
+$(BIN)/lumo-raster-ram: $(BUILD)/host/boards/host/raster_ram.o $(BUILD)/rel/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^

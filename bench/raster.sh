@@ -1,0 +1,89 @@
+#!/bin/sh
+# bench/raster.sh BUILD — the soft rasterizer against Mesa through OSMesa
+# (llvmpipe on one thread, LP_NUM_THREADS=0, and softpipe), same packages,
+# same camera orbit, in one run; callgrind instructions per frame; RAM per
+# resolution and band height. Writes BUILD/bench/sections/50-raster.md.
+set -eu
+build=$1
+bin=$build/bin
+work=$build/bench/raster
+out=$build/bench/sections/50-raster.md
+mkdir -p "$work" "$(dirname "$out")"
+FRAMES=${RASTER_BENCH_FRAMES:-6}
+SP_FRAMES=${RASTER_BENCH_SOFTPIPE_FRAMES:-2}
+
+for m in 48k 203k; do
+    [ -f "$work/dragon_$m.lumo" ] || "$bin/lumo-bake" --default --dragon "build/data/models/dragon_$m.ply" \
+        --spp 16 -o "$work/dragon_$m.lumo" --no-progress >/dev/null
+done
+
+ms() {  # ms BACKEND DRIVER FRAMES ARGS... -> mean ms/frame
+    be=$1; drv=$2; n=$3; shift 3
+    LP_NUM_THREADS=0 GALLIUM_DRIVER=$drv "$bin/lumo-render" "$@" --backend "$be" --frames "$n" --orbit \
+        --warmup 1 -o "$work/frame.png" | sed -n 's/.* \([0-9.]*\) ms\/frame mean.*/\1/p'
+}
+
+{
+echo "## Rasterizer: soft (fixed point) vs Mesa llvmpipe and softpipe"
+echo
+echo "Made by \`make bench-raster\` (bench/raster.sh): \`lumo-render PKG --backend B --size WxH"
+echo "--per-vertex|--per-pixel --frames $FRAMES --orbit --warmup 1\` with \`LP_NUM_THREADS=0\`"
+echo "(llvmpipe rasterizes on the calling thread) and \`GALLIUM_DRIVER=llvmpipe|softpipe\`;"
+echo "softpipe runs $SP_FRAMES frames. Scene: the default Cornell box with the Stanford dragon"
+echo "(\`lumo-bake --default --dragon dragon_N.ply --spp 16\`), direct spot light + IVG indirect"
+echo "light, an orbit of the camera around the target. ms/frame is the mean over the orbit, after"
+echo "one untimed frame (GL shader compilation). Ratio = Mesa time / soft time (> 1: soft is faster)."
+echo "All three read the same package and draw the same shading model (tests/render/cross_backend.sh)."
+echo
+echo "| mesh | size | lighting | soft ms | llvmpipe ms | softpipe ms | llvmpipe/soft | softpipe/soft |"
+echo "|---|---|---|---|---|---|---|---|"
+for m in 48k 203k; do
+    for size in 320x240 640x480; do
+        for mode in per-vertex per-pixel; do
+            a="$work/dragon_$m.lumo --size $size --$mode"
+            s=$(ms soft llvmpipe "$FRAMES" $a)
+            l=$(ms osmesa llvmpipe "$FRAMES" $a)
+            p=$(ms osmesa softpipe "$SP_FRAMES" $a)
+            echo "| dragon $m | $size | $mode | $s | $l | $p | $(awk -v a="$l" -v b="$s" 'BEGIN{printf "%.2f", a/b}') | $(awk -v a="$p" -v b="$s" 'BEGIN{printf "%.2f", a/b}') |"
+        done
+    done
+done
+echo
+echo "### Instructions per frame (callgrind)"
+echo
+echo "\`valgrind --tool=callgrind --toggle-collect=timed_frame lumo-render PKG --frames 2 --orbit --warmup 1 ...\`:"
+echo "instructions executed inside the timed frames (the draw and, for GL, the read-back), divided by 2."
+echo
+echo "| backend | mesh | size | lighting | instructions / frame |"
+echo "|---|---|---|---|---|"
+cg() {  # cg LABEL BACKEND ARGS...
+    label=$1; be=$2; shift 2
+    n=$(LP_NUM_THREADS=0 GALLIUM_DRIVER=llvmpipe valgrind --tool=callgrind --toggle-collect=timed_frame \
+        --callgrind-out-file=/dev/null "$bin/lumo-render" "$@" --backend "$be" --frames 2 --orbit --warmup 1 \
+        -o "$work/cg.png" 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
+    echo "| $label | $(echo "$@" | sed 's/.*dragon_\([0-9k]*\).lumo --size \([0-9x]*\) --\(.*\)/dragon \1 | \2 | \3/') | $(awk -v n="$n" 'BEGIN{printf "%.1f M", n/2e6}') |"
+}
+for mode in per-vertex per-pixel; do
+    cg soft soft "$work/dragon_48k.lumo" --size 320x240 --$mode
+    cg soft soft "$work/dragon_203k.lumo" --size 320x240 --$mode
+done
+cg "osmesa llvmpipe" osmesa "$work/dragon_48k.lumo" --size 320x240 --per-vertex
+echo
+echo "### RAM of the soft rasterizer per resolution and band height"
+echo
+echo "\`lumo-raster-ram\`: colour + depth bytes of one band (lumo_raster_band_bytes); a frame is drawn"
+echo "as ceil(H / K) bands, each a pass over the mesh. Plus about 1.5 KB of stack in lumo_raster_draw"
+echo "(docs/rasterizer.md) and the mesh itself."
+echo
+"$bin/lumo-raster-ram"
+echo
+echo "Band height trades RAM for time (dragon 48k, 320x240, per-vertex, RGB565 + 16-bit depth, soft):"
+echo
+echo "| K | ms/frame |"
+echo "|---|---|"
+for k in 240 60 16 4; do
+    echo "| $k | $(ms soft llvmpipe "$FRAMES" "$work/dragon_48k.lumo" --size 320x240 --per-vertex --rgb565 --depth16 --bands $k) |"
+done
+} > "$out.tmp"
+mv "$out.tmp" "$out"
+echo "bench-raster: wrote $out" >&2
