@@ -146,8 +146,9 @@ static int import_light(lumo_scene *s, const struct aiScene *sc, const struct ai
     case aiLightSource_DIRECTIONAL: l.kind = LUMO_LIGHT_DIRECTIONAL; l.power = col; break;
     default: return 0;   /* ambient / area lights of the file format: not imported */
     }
-    if (!v3_finite(l.pos) || !v3_finite(l.dir) || v3_len(l.dir) == 0.0f)
-        return 0;
+    if (!v3_finite(l.pos) || !v3_finite(l.dir) || !v3_finite(l.power) ||
+        (l.kind != LUMO_LIGHT_POINT && v3_len(l.dir) == 0.0f))
+        return 0;   /* a light the file cannot place is skipped, not guessed */
     return lumo_scene_add_light(s, &l);
 }
 

@@ -279,6 +279,18 @@ static void test_import_models(void **state)
     } else {
         print_message("bunny.obj not present (run tools/setup.sh): %s\n", err);
     }
+    /* glTF: base colour as albedo, a KHR_lights_punctual point light of
+     * intensity 2 W/sr (Phi = 8 pi), placed by its node. */
+    lumo_scene_free(&s);
+    assert_int_equal(lumo_import_file(&s, "tests/server/data/tri_light.gltf", &x, NULL, err, sizeof err), 0);
+    assert_int_equal(lumo_scene_triangle_count(&s), 1);
+    assert_close(s.meshes[0].albedo[0].y, 0.4, 1e-6);
+    assert_close(s.meshes[0].albedo[2].z, 0.6, 1e-6);
+    assert_int_equal(s.nlights, 1);
+    assert_int_equal(s.lights[0].kind, LUMO_LIGHT_POINT);
+    assert_close(s.lights[0].power.x, 8 * M_PI, 1e-4);
+    assert_close(s.lights[0].pos.y, 1.0, 1e-6);
+    assert_close(s.lights[0].pos.x, 0.3, 1e-6);
     assert_int_equal(lumo_import_file(&s, "build/nonexistent.obj", &x, NULL, err, sizeof err), -1);
     assert_non_null(strstr(err, "no such file"));
     lumo_scene_free(&s);
