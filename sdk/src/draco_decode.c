@@ -234,9 +234,6 @@ static lumo_status ld_all_attributes(ld_dec *d)
         ld_tmp_release(&d->mem, mark);
         if (st)
             return st;
-        if (seq->point_ids) {
-            /* point_to_value outputs were made by ld_eb_sequence */
-        }
     }
     return LUMO_OK;
 }

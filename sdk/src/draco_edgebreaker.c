@@ -227,7 +227,7 @@ static uint32_t ld_eb_new_vertex(struct ld_eb *e)
 /* ---- the symbol loop ----------------------------------------------------------- */
 
 typedef struct ld_eb_state {
-    uint32_t *stack, top;          /* active corners */
+    uint32_t *stack, top, cap, max_top;  /* active corners */
     uint32_t *split_key, *split_val, split_mask;  /* open-addressed map */
     uint32_t *invalid, num_invalid, max_invalid;
     uint32_t faces;                /* faces decoded so far */
@@ -323,7 +323,7 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
     b = s->stack[--s->top];
     split = ld_split_get(s, symbol_id);
     if (split != LD_INV)
-        s->stack[s->top++] = split;
+        s->stack[s->top++] = split;  /* room: one was just popped */
     if (s->top == 0)
         return LUMO_ERR_CORRUPT;
     a = s->stack[s->top - 1];
@@ -377,7 +377,11 @@ static lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face)
     e->lmc[v] = corner;
     e->lmc[v + 1u] = corner + 1u;
     e->lmc[v + 2u] = corner + 2u;
+    if (s->top >= s->cap)
+        return LUMO_ERR_NOMEM;
     s->stack[s->top++] = corner;
+    if (s->top > s->max_top)
+        s->max_top = s->top;
     return LUMO_OK;
 }
 
@@ -487,32 +491,35 @@ static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_
     return LUMO_OK;
 }
 
-static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbols)
+static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbols,
+                                  uint32_t num_split_symbols)
 {
     ld_eb_state s;
     uint32_t id;
     lumo_status st = LUMO_OK;
+    size_t cap;
     memset(&s, 0, sizeof s);
-    s.stack = ld_tmp(&d->mem, (size_t)num_symbols + 1u, sizeof(uint32_t));
-    if (!s.stack)
-        return LUMO_ERR_NOMEM;
     if (e->num_splits) {
-        uint32_t cap = 2u;
-        while (cap < 2u * e->num_splits)
-            cap <<= 1;
-        s.split_key = ld_tmp(&d->mem, cap, sizeof(uint32_t));
-        s.split_val = ld_tmp(&d->mem, cap, sizeof(uint32_t));
+        uint32_t slots = 2u;
+        while (slots < 2u * e->num_splits)
+            slots <<= 1;
+        s.split_key = ld_tmp(&d->mem, slots, sizeof(uint32_t));
+        s.split_val = ld_tmp(&d->mem, slots, sizeof(uint32_t));
         if (!s.split_key || !s.split_val)
             return LUMO_ERR_NOMEM;
-        memset(s.split_key, 0xFF, (size_t)cap * sizeof(uint32_t));
-        s.split_mask = cap - 1u;
+        memset(s.split_key, 0xFF, (size_t)slots * sizeof(uint32_t));
+        s.split_mask = slots - 1u;
     }
     if (e->num_attr_data == 0) {
-        s.max_invalid = e->max_vertices;
+        s.max_invalid = num_split_symbols;  /* one merged vertex per S symbol */
         s.invalid = ld_tmp(&d->mem, (size_t)s.max_invalid + 1u, sizeof(uint32_t));
         if (!s.invalid)
             return LUMO_ERR_NOMEM;
     }
+    /* the active-corner stack takes the free space; its depth is booked
+     * when the symbols are done */
+    s.stack = ld_free_space(&d->mem, &cap);
+    s.cap = cap > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)cap;
     for (id = 0; id < num_symbols && !st; ++id) {
         uint32_t face = s.faces++, sym = ld_eb_symbol(e);
         int split = 0;
@@ -530,6 +537,7 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
         if (split)
             st = ld_eb_check_split(e, &s, num_symbols, id);
     }
+    ld_free_used(&d->mem, (size_t)s.max_top * sizeof(uint32_t));
     if (st || (st = ld_eb_start_faces(e, &s)))
         return st;
     return ld_eb_compact(e, &s, &e->num_conn_vertices);
@@ -625,8 +633,7 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 {
     uint32_t v, i, np = 0;
     uint32_t *pts = d->faces;
-    if (e->num_attr_data == 0) {
-        memcpy(pts, e->c2v, (size_t)e->num_corners * sizeof(uint32_t));
+    if (e->num_attr_data == 0) {  /* pts == e->c2v */
         d->num_points = e->num_conn_vertices;
         return LUMO_OK;
     }
@@ -684,11 +691,13 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e, uint32_t num_split_sy
 {
     uint32_t i;
     e->num_corners = 3u * e->num_faces;
-    e->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+    d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
+    /* Without attribute seams every vertex is a point: the corner table's
+     * vertex map is the output face array itself. */
+    e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
     e->opp = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
     e->hole = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1);
-    d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
     if (!e->c2v || !e->opp || !e->lmc || !e->hole || !d->faces)
         return LUMO_ERR_NOMEM;
     memset(e->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
@@ -731,6 +740,7 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
 lumo_status ld_eb_decode_connectivity(ld_dec *d)
 {
     struct ld_eb *e;
+    uint8_t *mark;
     uint32_t verts, faces, symbols, splits, i;
     uint8_t type, nad;
     lumo_status st;
@@ -764,7 +774,10 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->num_faces = faces;
     e->num_attr_data = nad;
     e->max_vertices = verts + splits;
-    if ((st = ld_eb_alloc(d, e, splits)) || (st = ld_eb_splits(d, e)))
+    if ((st = ld_eb_alloc(d, e, splits)))
+        return st;
+    mark = ld_tmp_mark(&d->mem);  /* symbol-phase work memory from here */
+    if ((st = ld_eb_splits(d, e)))
         return st;
     if (!e->valence && (st = ld_eb_start_standard(d, e)))
         return st;
@@ -772,8 +785,10 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
         return st;
     if (e->valence && (st = ld_eb_start_valence(d, e)))
         return st;
-    if ((st = ld_eb_traverse(d, e, symbols)))
+    if ((st = ld_eb_traverse(d, e, symbols, splits)))
         return st;
+    ld_tmp_release(&d->mem, mark);
+    e->valences = NULL;
     e->ct.num_vertices = e->num_vertices;
     d->num_faces = faces;
     if ((st = ld_eb_alloc_attr_data(d, e)))
@@ -836,13 +851,28 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (e->ad[ad].ct.num_vertices > vmap)
             vmap = e->ad[ad].ct.num_vertices;
     }
+    o.vertex_to_value = NULL;
+    if (e->num_attr_data == 0) {
+        /* points are the mesh vertices: the vertex -> value map is the
+         * point map, decoded straight into the output */
+        o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
+        if (!o.vertex_to_value)
+            return LUMO_ERR_NOMEM;
+    }
     if ((st = ld_traverse(&d->mem, ct, vmap, e->dec_traversal[decoder], d->faces, &o)))
         return st;
     seq->num_entries = o.num_values;
-    seq->point_ids = o.point_ids;
+    seq->faces = d->faces;
     seq->ct = ct;
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
+    if (e->num_attr_data == 0) {
+        for (c = 0; c < d->num_points; ++c)
+            if (o.vertex_to_value[c] < 0 || (uint32_t)o.vertex_to_value[c] >= o.num_values)
+                return LUMO_ERR_CORRUPT;
+        seq->point_to_value = (uint32_t *)o.vertex_to_value;
+        return LUMO_OK;
+    }
     seq->point_to_value = ld_out(&d->mem, d->num_points, sizeof(uint32_t));
     if (!seq->point_to_value)
         return LUMO_ERR_NOMEM;

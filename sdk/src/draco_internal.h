@@ -75,6 +75,15 @@ void *ld_out(ld_mem *m, size_t n, size_t size);     /* NULL when full */
 void *ld_tmp(ld_mem *m, size_t n, size_t size);     /* NULL when full */
 static inline uint8_t *ld_tmp_mark(const ld_mem *m) { return m->hi; }
 static inline void ld_tmp_release(ld_mem *m, uint8_t *mark) { m->hi = mark; }
+/* A stack of uint32 in all the free space, for traversals whose depth the
+ * stream decides; ld_free_used() books the depth reached into the peak.
+ * Nothing else may be allocated while it is in use. */
+static inline uint32_t *ld_free_space(const ld_mem *m, size_t *cap)
+{
+    *cap = (size_t)(m->hi - m->lo) / sizeof(uint32_t);
+    return (uint32_t *)(void *)m->lo;
+}
+void ld_free_used(ld_mem *m, size_t bytes);
 /* Commit the outputs to the arena. */
 void ld_mem_commit(ld_mem *m, lumo_arena *a);
 
@@ -123,7 +132,7 @@ typedef struct ld_dec {
 /* One attributes decoder's point sequence and value mapping. */
 typedef struct ld_seq {
     uint32_t num_entries;
-    const uint32_t *point_ids;        /* entry -> point; NULL = identity */
+    const uint32_t *faces;            /* corner -> point (EdgeBreaker) */
     uint32_t *point_to_value;         /* output map shared by the decoder's
                                          attributes; NULL = identity */
     /* mesh prediction data (EdgeBreaker only, else ct == NULL) */
@@ -208,10 +217,10 @@ typedef struct ld_order {
     const ld_ct *ct;
     int32_t *vertex_to_value;   /* per ct vertex; -1 unvisited */
     uint32_t *value_to_corner;
-    uint32_t *point_ids;        /* value -> point */
     uint32_t num_values;
 } ld_order;
 
+/* o->vertex_to_value: NULL, or an array of vmap_size entries to fill. */
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
                         const uint32_t *faces, ld_order *o);
 

@@ -65,3 +65,10 @@ void ld_mem_commit(ld_mem *m, lumo_arena *a)
     if ((size_t)(m->start - a->base) + m->peak > a->peak)
         a->peak = (size_t)(m->start - a->base) + m->peak;
 }
+
+void ld_free_used(ld_mem *m, size_t bytes)
+{
+    size_t in_use = (size_t)(m->lo - m->start) + (size_t)(m->top - m->hi) + bytes;
+    if (in_use > m->peak)
+        m->peak = in_use;
+}

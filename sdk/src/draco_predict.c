@@ -377,7 +377,7 @@ static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
     uint32_t point, c;
     if (entry < 0 || (uint32_t)entry >= p->seq->num_entries)
         return LUMO_ERR_CORRUPT;
-    point = p->seq->point_ids ? p->seq->point_ids[entry] : (uint32_t)entry;
+    point = p->seq->faces ? p->seq->faces[p->seq->value_to_corner[entry]] : (uint32_t)entry;
     for (c = 0; c < 3; ++c)
         out[c] = lumo_draco_value(p->pos, point, c);
     return LUMO_OK;

@@ -13,7 +13,7 @@
 /* Symbol lookup: a coarse table of 2^LD_LUT_BITS buckets gives the first
  * symbol of each bucket, a short forward scan the exact one. This keeps the
  * table small (libdraco keeps one entry per probability unit, up to 2^20). */
-#define LD_LUT_BITS 12u
+#define LD_LUT_BITS 14u
 
 typedef struct ld_rans {
     const uint8_t *buf;

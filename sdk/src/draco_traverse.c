@@ -11,6 +11,7 @@ typedef struct ld_walk {
     const uint32_t *faces;     /* corner -> point */
     uint8_t *face_seen, *vert_seen;
     uint32_t num_faces;
+    uint32_t cap, max_depth;   /* DFS stack in free space */
     ld_order *o;
 } ld_walk;
 
@@ -24,7 +25,6 @@ static void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
 {
     ld_order *o = w->o;
     w->vert_seen[v] = 1;
-    o->point_ids[o->num_values] = w->faces[corner];
     o->value_to_corner[o->num_values] = corner;
     o->vertex_to_value[v] = (int32_t)o->num_values;
     o->num_values++;
@@ -51,6 +51,8 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
 {
     uint32_t top = 0;
+    if (w->cap < 2)
+        return LUMO_ERR_NOMEM;
     lumo_status st;
     if (ld_face_seen(w, corner))
         return LUMO_OK;
@@ -90,8 +92,12 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
             } else if (ld_face_seen(w, l)) {
                 c = r;
             } else {
+                if (top >= w->cap)
+                    return LUMO_ERR_NOMEM;
                 stack[top - 1] = l;
                 stack[top++] = r;
+                if (top > w->max_depth)
+                    w->max_depth = top;
                 break;
             }
         }
@@ -116,7 +122,7 @@ static lumo_status ld_pq_push(ld_pq *q, uint32_t corner, int pri)
         q->free = q->next[n];
     } else {
         if (q->used >= q->cap)
-            return LUMO_ERR_CORRUPT;
+            return LUMO_ERR_NOMEM;
         n = q->used++;
     }
     q->corner[n] = corner;
@@ -214,20 +220,20 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     ld_pq q;
     uint32_t *stack = NULL, f, nv = ct->num_vertices, i;
     lumo_status st = LUMO_OK;
+    int32_t *vmap = o->vertex_to_value;  /* caller may provide the array */
     memset(o, 0, sizeof *o);
     memset(&w, 0, sizeof w);
     memset(&q, 0, sizeof q);
     o->ct = ct;
-    o->vertex_to_value = ld_tmp(m, vmap_size, sizeof(int32_t));
+    o->vertex_to_value = vmap ? vmap : ld_tmp(m, vmap_size, sizeof(int32_t));
     o->value_to_corner = ld_tmp(m, nv, sizeof(uint32_t));
-    o->point_ids = ld_tmp(m, nv, sizeof(uint32_t));
     w.ct = ct;
     w.faces = faces;
     w.o = o;
     w.num_faces = ct->num_corners / 3u;
     w.face_seen = ld_tmp(m, w.num_faces, 1);
     w.vert_seen = ld_tmp(m, nv, 1);
-    if (!o->vertex_to_value || !o->value_to_corner || !o->point_ids || !w.face_seen ||
+    if (!o->vertex_to_value || !o->value_to_corner || !w.face_seen ||
         !w.vert_seen)
         return LUMO_ERR_NOMEM;
     for (i = 0; i < vmap_size; ++i)
@@ -235,21 +241,26 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     memset(w.face_seen, 0, w.num_faces);
     memset(w.vert_seen, 0, nv);
     if (prediction_degree) {
-        q.cap = 2u * w.num_faces + 2u;
-        q.corner = ld_tmp(m, q.cap, sizeof(uint32_t));
-        q.next = ld_tmp(m, q.cap, sizeof(uint32_t));
+        size_t cap;
         q.degree = ld_tmp(m, nv, sizeof(uint32_t));
-        if (!q.corner || !q.next || !q.degree)
+        if (!q.degree)
             return LUMO_ERR_NOMEM;
         memset(q.degree, 0, (size_t)nv * sizeof(uint32_t));
+        /* node pool (corner, next) pairs in the free space */
+        q.corner = ld_free_space(m, &cap);
+        cap /= 2u;
+        q.cap = cap > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)cap;
+        q.next = q.corner + q.cap;
         q.head[0] = q.head[1] = q.head[2] = LD_INV;
         q.free = LD_INV;
     } else {
-        stack = ld_tmp(m, (size_t)w.num_faces + 2u, sizeof(uint32_t));
-        if (!stack)
-            return LUMO_ERR_NOMEM;
+        size_t cap;
+        stack = ld_free_space(m, &cap);
+        w.cap = cap > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)cap;
+        w.max_depth = 2;  /* ld_dfs needs room for two entries */
     }
     for (f = 0; f < w.num_faces && !st; ++f)
         st = prediction_degree ? ld_max_degree(&w, 3u * f, &q) : ld_dfs(&w, 3u * f, stack);
+    ld_free_used(m, prediction_degree ? (size_t)q.used * 8u : (size_t)w.max_depth * 4u);
     return st;
 }
