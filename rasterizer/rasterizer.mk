@@ -10,3 +10,4 @@ raster-tables:
 # Unit tests of the soft rasterizer build their scenes with the host mesh
 # builder (floats are fine in tests).
 $(BUILD)/tests/bin/test_raster: $(BUILD)/tests/boards/host/mesh_build.o
+$(BUILD)/tests/bin/test_raster_shading: $(BUILD)/tests/boards/host/mesh_build.o

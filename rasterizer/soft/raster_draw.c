@@ -311,14 +311,55 @@ static void shade_pixel(const draw_ctx *c, const screen_vertex *v, const int32_t
     lumo_raster_put_pixel(c->target, x, y, l, c->scene->exposure);
 }
 
+/* One covered pixel: depth near/w interpolated linearly in screen space
+ * (exact for 1/w), depth test, perspective-correct barycentrics
+ * b_i = e_i q_i / sum e_j q_j (Q0.16), shading. E are the edge functions at
+ * the pixel centre, sh and qsh the triangle's scaling shifts. */
+static void fragment(const draw_ctx *c, const screen_vertex *v, const int64_t E[3], unsigned sh,
+                     unsigned qsh, size_t at, int x, int y)
+{
+    lumo_raster_target *t = c->target;
+    uint64_t w[3], p[3], se, ps, z;
+    int32_t b[3];
+    uint32_t dz;
+    int i;
+
+    for (i = 0; i < 3; i++) {
+        w[i] = (uint64_t)E[i] >> sh;
+        p[i] = w[i] * v[i].q;                /* < 2^54 */
+    }
+    se = w[0] + w[1] + w[2];
+    z = (p[0] + p[1] + p[2]) / (se ? se : 1);
+    dz = depth_value(t, z);
+    if (c->stats)
+        c->stats->pixels_tested++;
+    if (dz <= load_depth(t, at))
+        return;
+    for (i = 0; i < 3; i++)
+        p[i] >>= qsh;
+    ps = p[0] + p[1] + p[2];
+    if (ps == 0) {                           /* only at a vertex of weight 0 */
+        p[1] = w[1];
+        p[2] = w[2];
+        ps = se ? se : 1;
+    }
+    b[1] = (int32_t)((p[1] << BARY_BITS) / ps);
+    b[2] = (int32_t)((p[2] << BARY_BITS) / ps);
+    b[0] = (1 << BARY_BITS) - b[1] - b[2];
+    store_depth(t, at, dz);
+    shade_pixel(c, v, b, x, y);
+    if (c->stats)
+        c->stats->pixels_written++;
+}
+
 /* Rasterize one screen triangle with positive area. */
 static void raster_triangle(const draw_ctx *c, const screen_vertex *v, int64_t area)
 {
     lumo_raster_target *t = c->target;
     edge e[3];
     int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py;
-    uint64_t r[3], qmax;
-    unsigned sh = 0;
+    uint64_t qmax, bound;
+    unsigned sh = 0, qsh = 0;
     int i;
 
     minx = maxx = v[0].x;
@@ -347,13 +388,17 @@ static void raster_triangle(const draw_ctx *c, const screen_vertex *v, int64_t a
     edge_setup(&e[2], &v[0], &v[1]);
     while ((area >> sh) >= ((int64_t)1 << EDGE_BITS))
         sh++;
-    /* Perspective weights: q_i scaled by the largest, to 20 bits (the
-     * barycentrics are ratios, so a common factor cancels). */
+    /* Perspective weights e_i q_i are < (area >> sh) * qmax inside the
+     * triangle; shifting them by qsh keeps them under 2^46, so that the
+     * barycentric division below has 16 bits of headroom, while their
+     * smallest sum, (area >> sh) * qmin, keeps far more than 16 significant
+     * bits for any depth ratio the near plane allows. The barycentrics are
+     * ratios: a common shift cancels. */
     qmax = v[0].q;
     for (i = 1; i < 3; i++)
         if (v[i].q > qmax) qmax = v[i].q;
-    for (i = 0; i < 3; i++)
-        r[i] = ((uint64_t)v[i].q << 20) / qmax;
+    for (bound = ((uint64_t)area >> sh) * qmax; bound >= ((uint64_t)1 << 46); bound >>= 1)
+        qsh++;
 
     for (py = py0; py <= py1; py++) {
         int64_t sy = py * 16 + 8, sx = px0 * 16 + 8;
@@ -363,28 +408,8 @@ static void raster_triangle(const draw_ctx *c, const screen_vertex *v, int64_t a
         for (i = 0; i < 3; i++)
             E[i] = edge_at(&e[i], sx, sy);
         for (px = px0; px <= px1; px++) {
-            if (E[0] >= e[0].bias && E[1] >= e[1].bias && E[2] >= e[2].bias) {
-                uint64_t w0 = (uint64_t)E[0] >> sh, w1 = (uint64_t)E[1] >> sh, w2 = (uint64_t)E[2] >> sh;
-                uint64_t se = w0 + w1 + w2;
-                uint64_t z = (w0 * v[0].q + w1 * v[1].q + w2 * v[2].q) / (se ? se : 1);
-                uint32_t dz = depth_value(t, z);
-                if (c->stats)
-                    c->stats->pixels_tested++;
-                if (dz > load_depth(t, row + (size_t)px)) {
-                    uint64_t p0 = w0 * r[0], p1 = w1 * r[1], p2 = w2 * r[2], ps = p0 + p1 + p2;
-                    int32_t b[3];
-                    if (ps == 0) {
-                        p1 = w1; p2 = w2; ps = se ? se : 1;
-                    }
-                    b[1] = (int32_t)((p1 << BARY_BITS) / ps);
-                    b[2] = (int32_t)((p2 << BARY_BITS) / ps);
-                    b[0] = (1 << BARY_BITS) - b[1] - b[2];
-                    store_depth(t, row + (size_t)px, dz);
-                    shade_pixel(c, v, b, (int)px, (int)py);
-                    if (c->stats)
-                        c->stats->pixels_written++;
-                }
-            }
+            if (E[0] >= e[0].bias && E[1] >= e[1].bias && E[2] >= e[2].bias)
+                fragment(c, v, E, sh, qsh, row + (size_t)px, (int)px, (int)py);
             for (i = 0; i < 3; i++)
                 E[i] += e[i].a * 16;
         }
