@@ -131,7 +131,8 @@ CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(
 check-embedded: $(BUILD)/m3/liblumo.a
 	@deps=$$(cat $(CLIENT_OBJS_m3:.o=.d) 2>/dev/null | tr ' \\' '\n\n' | sed 's/:$$//' \
 	        | grep '\.h$$' | grep -v '^/' | sort -u); \
-	srcs=$$(for f in $(CHECK_EMBEDDED_SRCS) $$deps; do echo $$f; done | sort -u); \
+	srcs=$$({ for f in $(CHECK_EMBEDDED_SRCS); do echo $$f; done; \
+	          for f in $$deps; do [ -f $$f ] && echo $$f; done; } | sort -u); \
 	sh $(MPS2_DIR)/check-embedded.sh $(ARM_NM) "$(CLIENT_OBJS_m3)" "$$srcs"
 
 check-embedded-selftest:
