@@ -3,8 +3,11 @@
 #
 #   make check-embedded           nm + source rules on build/m3/liblumo.a
 #   make check-embedded-selftest  feeds the check deliberately bad objects
-#   make board-tests              tests/board/test_*.c under QEMU, and
-#                                 tests/board/golden_*.c hashed on host + board
+#   make board-facts              the QEMU facts the board relies on
+#   make board-tests              tests/board/test_*.c under QEMU (and on the
+#                                 host), tests/board/golden_*.c hashed on
+#                                 host + board, must be equal
+#   make bench-board              Cortex-M3 instruction counts (make bench)
 #
 # Adding a board test: drop tests/board/test_NAME.c (a main() using
 # tests/board/harness.h) — the wildcard below builds and runs it. A golden
@@ -23,8 +26,9 @@ MPS2_QEMU_CMD := qemu-system-arm -machine mps2-an385 -cpu cortex-m3 -nographic \
                  -monitor none -serial none -semihosting-config enable=on,target=native
 MPS2_QEMU := timeout $(QEMU_TIMEOUT) $(MPS2_QEMU_CMD) -icount shift=0 -kernel
 
-# Board runtime (startup, semihosting, timer) and the board-agnostic layer
-# every board program links (console, harness).
+# Board runtime (startup, semihosting, timer, scratch memory) and the
+# board-agnostic layer every board program links (console, harness, golden
+# output, IVG bundle encoder; --gc-sections drops what a program ignores).
 MPS2_RT_SRCS   := $(MPS2_DIR)/startup.c $(MPS2_DIR)/semihost.c $(MPS2_DIR)/timer.c $(MPS2_DIR)/scratch.c
 BOARD_LIB_SRCS := tests/board/console.c tests/board/harness.c tests/board/golden.c tests/board/ivg_wire.c
 BOARD_TEST_SRCS   := $(sort $(wildcard tests/board/test_*.c))
