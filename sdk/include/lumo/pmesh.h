@@ -1,0 +1,124 @@
+/*
+ * lumo/pmesh.h — progressive meshes on the client (seed 000 §4.2; the
+ * stream is specified byte by byte in docs/progressive-mesh.md).
+ *
+ * A stream is a header followed by batches. The first batch is the base
+ * mesh; each later batch adds the next `vertex_count` vertices, in the
+ * server's significance order, by vertex splits (the inverse of the
+ * server's half-edge collapses). Vertex positions ride in a Draco point
+ * cloud decoded with lumo's own decoder (lumo/draco.h); the lookup table and
+ * the connectivity ride beside it in a small bit-packed block.
+ *
+ * Usage:
+ *   lumo_pmesh_header h;  lumo_pmesh_read_header(stream, size, &h);
+ *   arena of lumo_pmesh_arena_bytes(&h) bytes;  lumo_pmesh_init(&pm, &h, &arena);
+ *   for each batch record B:  lumo_pmesh_apply(&pm, B, lumo_pmesh_record_size(B...));
+ *   lumo_pmesh_get_view(&pm, &view);  -> hand to the rasterizer
+ *
+ * Memory: everything lives in the arena given to init, sized up front from
+ * the header's counts; applying a batch allocates nothing. Work per batch
+ * grows with the batch (its vertices, the faces they touch and the
+ * valences of their parents), never with the mesh.
+ *
+ * Hostile input: every batch is checked (CRC-32, counts, indices, bits);
+ * a batch that fails is rejected whole with an error and the mesh stays at
+ * its last good level, so a retransmitted good batch and the ones after it
+ * still apply. No level ever holds a degenerate triangle.
+ */
+#ifndef LUMO_PMESH_H
+#define LUMO_PMESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/arena.h"
+#include "lumo/fixed.h"
+#include "lumo/status.h"
+
+#define LUMO_PMESH_HEADER_SIZE 68u   /* bytes of the stream header */
+#define LUMO_PMESH_BATCH_HEAD  36u   /* bytes of a batch record's header */
+#define LUMO_PMESH_VERSION     1u
+#define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
+/* "LPM1" and "LPMB", first character in the lowest byte. */
+#define LUMO_PMESH_MAGIC       0x314d504cu
+#define LUMO_PMESH_BATCH_MAGIC 0x424d504cu
+
+/* The stream header (all counts validated by lumo_pmesh_read_header). */
+typedef struct lumo_pmesh_header {
+    uint32_t vertices;          /* n: vertices of the full mesh */
+    uint32_t faces;             /* triangles of the full mesh */
+    uint32_t base_vertices;     /* vertices of the base mesh (first batch) */
+    uint32_t base_faces;
+    uint32_t batch_vertices;    /* nominal vertices per batch (the last may be short) */
+    uint32_t batch_count;       /* batch records following the header */
+    uint32_t max_batch_faces;   /* largest face count of one batch */
+    uint32_t max_batch_moves;   /* largest corner-move count of one batch */
+    uint32_t max_batch_bytes;   /* largest batch record, header included */
+    uint32_t quant_bits;        /* position quantization (1..LUMO_PMESH_MAX_QBITS) */
+    uint32_t origin_bits[3];    /* grid origin, IEEE-754 binary32 bits, metres */
+    uint32_t range_bits;        /* grid edge length, binary32 bits, metres */
+} lumo_pmesh_header;
+
+/* The current level, as the rasterizer wants it. Arrays belong to the
+ * pmesh (its arena) and change with every applied batch. */
+typedef struct lumo_pmesh_view {
+    uint32_t           vertex_count;
+    uint32_t           face_count;
+    const lumo_q16_16 *positions;  /* 3 per vertex, metres */
+    const lumo_q1_14  *normals;    /* 3 per vertex, unit (area-weighted face
+                                      normals of the current level); 0,0,0
+                                      for a vertex with no face */
+    const uint32_t    *triangles;  /* 3 per face, counter-clockwise front,
+                                      every index < vertex_count, never
+                                      two equal indices in one triangle */
+} lumo_pmesh_view;
+
+/* The object. Fields are private; read the level through lumo_pmesh_view. */
+typedef struct lumo_pmesh {
+    lumo_pmesh_header h;
+    uint32_t     vertex_count, face_count, batches_applied;
+    lumo_q16_16  origin[3], range;    /* dequantization, metres */
+    lumo_q16_16 *pos;                 /* 3 * vertices */
+    int32_t     *qpos;                /* 3 * vertices: quantized grid integers */
+    lumo_q1_14  *nrm;                 /* 3 * vertices */
+    uint32_t    *tris;                /* 3 * faces: the index buffer */
+    uint32_t    *next;                /* 3 * faces: corner lists per vertex */
+    uint32_t    *head;                /* vertices: first corner showing it */
+    uint32_t    *mark;                /* vertices: last batch that touched it */
+    uint32_t    *journal;             /* undo log of one batch */
+    uint32_t    *dirty;               /* vertices whose normal to refresh */
+    uint8_t     *scratch;             /* Draco decoder work memory */
+    size_t       scratch_bytes;
+} lumo_pmesh;
+
+/* Parse and validate the stream header (the first LUMO_PMESH_HEADER_SIZE
+ * bytes). Errors: TRUNCATED, CORRUPT (magic, counts), VERSION, CHECKSUM,
+ * UNSUPPORTED (quantization bits), NONFINITE (grid). */
+lumo_status lumo_pmesh_read_header(const uint8_t *data, size_t size, lumo_pmesh_header *h);
+
+/* Arena bytes lumo_pmesh_init needs for this header (LUMO_ARENA_SLACK
+ * included); SIZE_MAX on overflow. */
+size_t lumo_pmesh_arena_bytes(const lumo_pmesh_header *h);
+
+/* Carve the mesh from the arena: level "nothing received" (0 vertices).
+ * NOMEM when the arena is too small (arena and *pm then unchanged). */
+lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_arena *arena);
+
+/* Size of the batch record starting at data (header + payloads), for
+ * splitting a stream: TRUNCATED when fewer than LUMO_PMESH_BATCH_HEAD bytes,
+ * CORRUPT for a bad magic or an impossible size. The record itself may
+ * still be shorter than the size returned. */
+lumo_status lumo_pmesh_record_size(const uint8_t *data, size_t size, size_t *record_bytes);
+
+/* Apply one batch record (exactly one record: `size` is its length).
+ * STATE when it is not the next batch (out of order, repeated);
+ * TRUNCATED, CORRUPT, CHECKSUM, RANGE, LIMIT, UNSUPPORTED, NOMEM for bad
+ * records or Draco payloads. On any error the mesh is unchanged. */
+lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size);
+
+/* The current level. */
+void lumo_pmesh_get_view(const lumo_pmesh *pm, lumo_pmesh_view *out);
+
+/* 1 when every vertex of the stream has arrived. */
+int lumo_pmesh_complete(const lumo_pmesh *pm);
+
+#endif /* LUMO_PMESH_H */

@@ -1,0 +1,179 @@
+/* pmesh.c — progressive-mesh stream header, arena sizing and the view
+ * (docs/progressive-mesh.md; seed 000 §4.2). Batches: pmesh_batch.c. */
+#include <string.h>
+#include "lumo/draco.h"
+#include "lumo/package.h"
+#include "lumo/pmesh.h"
+
+/* Counts above this are refused (LIMIT) so 3 * count and byte sizes fit. */
+#define MAX_COUNT (1u << 28)
+
+static uint32_t rd32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static uint32_t max_u32(uint32_t a, uint32_t b) { return a > b ? a : b; }
+
+/* Batches: the base mesh, then ceil((n - base) / batch_vertices) splits. */
+static uint32_t expected_batches(const lumo_pmesh_header *h)
+{
+    uint32_t rest = h->vertices - h->base_vertices;
+    return 1u + rest / h->batch_vertices + (rest % h->batch_vertices != 0);
+}
+
+static lumo_status check_counts(const lumo_pmesh_header *h)
+{
+    if (h->vertices > MAX_COUNT || h->faces > MAX_COUNT || h->batch_vertices > MAX_COUNT)
+        return LUMO_ERR_LIMIT;
+    if (h->base_vertices < 1 || h->base_vertices > h->vertices || h->base_faces > h->faces ||
+        h->batch_vertices < 1 || h->max_batch_faces > h->faces ||
+        h->max_batch_faces < h->base_faces || h->max_batch_moves > 3u * h->faces ||
+        h->max_batch_bytes < LUMO_PMESH_BATCH_HEAD)
+        return LUMO_ERR_CORRUPT;
+    if (h->batch_count != expected_batches(h))
+        return LUMO_ERR_CORRUPT;
+    if (h->quant_bits < 1 || h->quant_bits > LUMO_PMESH_MAX_QBITS)
+        return LUMO_ERR_UNSUPPORTED;
+    return LUMO_OK;
+}
+
+lumo_status lumo_pmesh_read_header(const uint8_t *d, size_t size, lumo_pmesh_header *out)
+{
+    lumo_pmesh_header h;
+    int32_t probe;
+    if (!d || !out)
+        return LUMO_ERR_ARG;
+    if (size < LUMO_PMESH_HEADER_SIZE)
+        return LUMO_ERR_TRUNCATED;
+    if (rd32(d) != LUMO_PMESH_MAGIC)
+        return LUMO_ERR_CORRUPT;
+    if ((d[4] | d[5] << 8) != LUMO_PMESH_VERSION)
+        return LUMO_ERR_VERSION;
+    if ((d[6] | d[7] << 8) != LUMO_PMESH_HEADER_SIZE)
+        return LUMO_ERR_CORRUPT;
+    if (lumo_package_crc32(0, d, 64) != rd32(d + 64))
+        return LUMO_ERR_CHECKSUM;
+    h.vertices = rd32(d + 8), h.faces = rd32(d + 12);
+    h.base_vertices = rd32(d + 16), h.base_faces = rd32(d + 20);
+    h.batch_vertices = rd32(d + 24), h.batch_count = rd32(d + 28);
+    h.max_batch_faces = rd32(d + 32), h.max_batch_moves = rd32(d + 36);
+    h.max_batch_bytes = rd32(d + 40), h.quant_bits = rd32(d + 44);
+    for (int i = 0; i < 3; i++)
+        h.origin_bits[i] = rd32(d + 48 + 4 * i);
+    h.range_bits = rd32(d + 60);
+    lumo_status st = check_counts(&h);
+    if (st)
+        return st;
+    for (int i = 0; i < 3; i++)
+        if ((st = lumo_f32bits_to_fixed(h.origin_bits[i], LUMO_Q16_SHIFT, &probe)))
+            return st;
+    if ((st = lumo_f32bits_to_fixed(h.range_bits, LUMO_Q16_SHIFT, &probe)))
+        return st;
+    if (probe <= 0)
+        return LUMO_ERR_RANGE;
+    /* The whole grid must be representable in Q16.16. */
+    for (int i = 0; i < 3; i++) {
+        int32_t o;
+        (void)lumo_f32bits_to_fixed(h.origin_bits[i], LUMO_Q16_SHIFT, &o);
+        if ((int64_t)o + probe > INT32_MAX)
+            return LUMO_ERR_RANGE;
+    }
+    *out = h;
+    return LUMO_OK;
+}
+
+/* Draco work memory for the largest point payload of the stream. */
+static size_t scratch_bytes(const lumo_pmesh_header *h)
+{
+    lumo_draco_info info;
+    memset(&info, 0, sizeof info);
+    info.geometry = LUMO_DRACO_POINT_CLOUD;
+    info.method = LUMO_DRACO_METHOD_SEQUENTIAL;
+    info.num_points_max = max_u32(h->base_vertices, h->batch_vertices);
+    return lumo_draco_arena_bound(&info, 3);
+}
+
+/* Undo-log and dirty-list entries: three words per corner move or face. */
+static size_t log_words(const lumo_pmesh_header *h)
+{
+    return lumo_size_mul(3u, lumo_size_add(h->max_batch_moves, h->max_batch_faces));
+}
+
+/* The arrays init carves, in order: {count, element size}. */
+static void layout(const lumo_pmesh_header *h, size_t n[10], size_t sz[10])
+{
+    size_t v = h->vertices, c = lumo_size_mul(3u, h->faces), vv = lumo_size_mul(3u, v);
+    size_t cnt[10] = {vv, vv, vv, c, c, v, v, log_words(h), log_words(h), scratch_bytes(h)};
+    size_t el[10] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 1};
+    memcpy(n, cnt, sizeof cnt);
+    memcpy(sz, el, sizeof el);
+}
+
+size_t lumo_pmesh_arena_bytes(const lumo_pmesh_header *h)
+{
+    size_t n[10], sz[10], total = LUMO_ARENA_SLACK;
+    if (!h || check_counts(h))
+        return SIZE_MAX;
+    layout(h, n, sz);
+    for (int i = 0; i < 10; i++)
+        total = lumo_size_add(total, lumo_arena_round(lumo_size_mul(n[i], sz[i])));
+    return total;
+}
+
+lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_arena *arena)
+{
+    size_t n[10], sz[10];
+    void *p[10];
+    lumo_status st;
+    if (!pm || !h || !arena)
+        return LUMO_ERR_ARG;
+    if ((st = check_counts(h)))
+        return st;
+    lumo_arena_mark mark = lumo_arena_get_mark(arena);
+    layout(h, n, sz);
+    for (int i = 0; i < 10; i++)
+        if (!(p[i] = lumo_arena_alloc_array(arena, n[i], sz[i]))) {
+            lumo_arena_reset(arena, mark);
+            return LUMO_ERR_NOMEM;
+        }
+    memset(pm, 0, sizeof *pm);
+    pm->h = *h;
+    pm->pos = p[0], pm->qpos = p[1], pm->nrm = p[2], pm->tris = p[3], pm->next = p[4];
+    pm->head = p[5], pm->mark = p[6], pm->journal = p[7], pm->dirty = p[8];
+    pm->scratch = p[9], pm->scratch_bytes = n[9];
+    for (size_t i = 0; i < 3; i++)
+        (void)lumo_f32bits_to_fixed(h->origin_bits[i], LUMO_Q16_SHIFT, &pm->origin[i]);
+    (void)lumo_f32bits_to_fixed(h->range_bits, LUMO_Q16_SHIFT, &pm->range);
+    memset(pm->head, 0xff, n[5] * sizeof(uint32_t));
+    return LUMO_OK;
+}
+
+lumo_status lumo_pmesh_record_size(const uint8_t *d, size_t size, size_t *record_bytes)
+{
+    if (!d || !record_bytes)
+        return LUMO_ERR_ARG;
+    if (size < LUMO_PMESH_BATCH_HEAD)
+        return LUMO_ERR_TRUNCATED;
+    if (rd32(d) != LUMO_PMESH_BATCH_MAGIC)
+        return LUMO_ERR_CORRUPT;
+    uint32_t side = rd32(d + 24), draco = rd32(d + 28);
+    if (side > MAX_COUNT || draco > MAX_COUNT)
+        return LUMO_ERR_CORRUPT;
+    *record_bytes = (size_t)LUMO_PMESH_BATCH_HEAD + side + draco;
+    return LUMO_OK;
+}
+
+void lumo_pmesh_get_view(const lumo_pmesh *pm, lumo_pmesh_view *out)
+{
+    out->vertex_count = pm->vertex_count;
+    out->face_count = pm->face_count;
+    out->positions = pm->pos;
+    out->normals = pm->nrm;
+    out->triangles = pm->tris;
+}
+
+int lumo_pmesh_complete(const lumo_pmesh *pm)
+{
+    return pm->vertex_count == pm->h.vertices;
+}

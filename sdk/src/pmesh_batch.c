@@ -1,0 +1,420 @@
+/* pmesh_batch.c — applying one batch record of a progressive-mesh stream
+ * (docs/progressive-mesh.md "Batch record"; seed 000 §4.2).
+ *
+ * Each vertex k of a batch is a vertex split, the inverse of the server's
+ * half-edge collapse of k onto its lookup-table parent p. The client keeps,
+ * for every vertex, the list of index-buffer corners that currently show
+ * it; a split walks only p's list, moving the corners the mask selects to
+ * k, then appends the faces that reappear. The work is that of the batch:
+ * its vertices, their parents' valences and the new faces, never the mesh.
+ *
+ * A batch is checked whole before it is kept: the record's CRC and counts,
+ * then the Draco payload is decoded into scratch memory, then the splits
+ * run while logging every change; any error rolls the log back, so the
+ * mesh stays at its last good level. */
+#include <string.h>
+#include "lumo/draco.h"
+#include "lumo/package.h"
+#include "lumo/pmesh.h"
+
+#define NIL 0xffffffffu
+
+static uint32_t rd32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* ---- bits: LSB-first within each byte ------------------------------------ */
+typedef struct {
+    const uint8_t *p;
+    size_t nbits, pos;
+} bitreader;
+
+static int read_bits(bitreader *b, unsigned n, uint32_t *out)
+{
+    uint32_t v = 0;
+    if (n > b->nbits - b->pos)
+        return -1;
+    for (unsigned i = 0; i < n; i++, b->pos++)
+        v |= (uint32_t)(b->p[b->pos >> 3] >> (b->pos & 7) & 1u) << i;
+    *out = v;
+    return 0;
+}
+
+/* Bits of a value in [0, count): 0 for count <= 1. */
+static unsigned bits_for(uint32_t count)
+{
+    unsigned n = 0;
+    while (n < 32 && ((uint64_t)1 << n) < count)
+        n++;
+    return n;
+}
+
+/* ---- one batch in flight --------------------------------------------------- */
+typedef struct {
+    uint32_t index, first, count, faces, moves;
+    const uint8_t *side, *draco;
+    uint32_t side_bytes, draco_bytes;
+} batch;
+
+typedef struct {
+    lumo_pmesh *pm;
+    bitreader   br;
+    const batch *b;
+    uint32_t    log_n;       /* journal entries (3 words each) */
+    uint32_t    faces, moves;
+} split_ctx;
+
+static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t size, batch *b)
+{
+    size_t need;
+    lumo_status st = lumo_pmesh_record_size(r, size, &need);
+    if (st)
+        return st;
+    if (size < need)
+        return LUMO_ERR_TRUNCATED;
+    if (size > need)
+        return LUMO_ERR_CORRUPT;
+    uint32_t crc = lumo_package_crc32(0, r, 32);
+    crc = lumo_package_crc32(crc, r + LUMO_PMESH_BATCH_HEAD, need - LUMO_PMESH_BATCH_HEAD);
+    if (crc != rd32(r + 32))
+        return LUMO_ERR_CHECKSUM;
+    b->index = rd32(r + 4), b->first = rd32(r + 8), b->count = rd32(r + 12);
+    b->faces = rd32(r + 16), b->moves = rd32(r + 20);
+    b->side_bytes = rd32(r + 24), b->draco_bytes = rd32(r + 28);
+    b->side = r + LUMO_PMESH_BATCH_HEAD, b->draco = b->side + b->side_bytes;
+    if (b->index != pm->batches_applied || b->first != pm->vertex_count)
+        return LUMO_ERR_STATE;  /* not the next batch: out of order or repeated */
+    const lumo_pmesh_header *h = &pm->h;
+    if (b->count < 1 || b->count > h->vertices - b->first)
+        return LUMO_ERR_CORRUPT;
+    if (b->first == 0 ? b->count != h->base_vertices : b->count > h->batch_vertices)
+        return LUMO_ERR_CORRUPT;
+    if (b->faces > h->max_batch_faces || b->moves > h->max_batch_moves ||
+        b->faces > h->faces - pm->face_count)
+        return LUMO_ERR_LIMIT;
+    return LUMO_OK;
+}
+
+/* ---- positions: the Draco point cloud ------------------------------------- */
+static lumo_status check_positions(const lumo_pmesh *pm, const batch *b,
+                                   const lumo_draco_mesh *m, const lumo_draco_attribute **pos)
+{
+    const lumo_pmesh_header *h = &pm->h;
+    const lumo_draco_attribute *a = NULL;
+    if (m->geometry != LUMO_DRACO_POINT_CLOUD || m->num_points != b->count || m->num_faces)
+        return LUMO_ERR_CORRUPT;
+    for (uint32_t i = 0; i < m->num_attributes && !a; i++)
+        if (m->attributes[i].type == LUMO_DRACO_POSITION)
+            a = &m->attributes[i];
+    if (!a || a->xform != LUMO_DRACO_XFORM_QUANTIZED || a->num_portable != 3 ||
+        a->num_components != 3 || a->quant_bits != h->quant_bits || a->range_bits != h->range_bits)
+        return LUMO_ERR_CORRUPT;
+    for (int c = 0; c < 3; c++)
+        if (a->min_bits[c] != h->origin_bits[c])
+            return LUMO_ERR_CORRUPT;  /* every payload shares the stream's grid */
+    int32_t qmax = (int32_t)((1u << h->quant_bits) - 1u);
+    for (uint32_t p = 0; p < b->count; p++)
+        for (unsigned c = 0; c < 3; c++) {
+            int32_t q = lumo_draco_value(a, p, c);
+            if (q < 0 || q > qmax)
+                return LUMO_ERR_RANGE;
+        }
+    *pos = a;
+    return LUMO_OK;
+}
+
+static lumo_status decode_positions(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute **pos,
+                                    lumo_draco_mesh *m)
+{
+    lumo_arena a;
+    lumo_draco_info info;
+    lumo_status st = lumo_draco_peek(b->draco, b->draco_bytes, &info);
+    if (st)
+        return st;
+    if (info.geometry != LUMO_DRACO_POINT_CLOUD || info.num_faces)
+        return LUMO_ERR_CORRUPT;
+    lumo_arena_init(&a, pm->scratch, pm->scratch_bytes);
+    st = lumo_draco_decode(b->draco, b->draco_bytes, &a, m);
+    if (st == LUMO_ERR_NOMEM)
+        return LUMO_ERR_LIMIT;  /* bigger than the header promised */
+    return st ? st : check_positions(pm, b, m, pos);
+}
+
+/* Grid integer -> metres: origin + q * range / (2^bits - 1), rounded. */
+static void store_positions(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute *a)
+{
+    int64_t qmax = (int64_t)((1u << pm->h.quant_bits) - 1u);
+    for (uint32_t i = 0; i < b->count; i++)
+        for (unsigned c = 0; c < 3; c++) {
+            int32_t q = lumo_draco_value(a, i, c);
+            size_t at = 3 * (size_t)(b->first + i) + c;
+            pm->qpos[at] = q;
+            pm->pos[at] = pm->origin[c] + (int32_t)(((int64_t)q * pm->range + qmax / 2) / qmax);
+        }
+}
+
+/* ---- the corner lists and their undo log ---------------------------------- */
+static void list_push(lumo_pmesh *pm, uint32_t v, uint32_t corner)
+{
+    pm->next[corner] = pm->head[v];
+    pm->head[v] = corner;
+}
+
+static void log_entry(split_ctx *s, uint32_t a, uint32_t b, uint32_t c)
+{
+    uint32_t *e = s->pm->journal + 3 * (size_t)s->log_n++;
+    e[0] = a, e[1] = b, e[2] = c;
+}
+
+static lumo_status add_face(split_ctx *s, uint32_t a, uint32_t b, uint32_t c)
+{
+    lumo_pmesh *pm = s->pm;
+    if (s->faces >= s->b->faces)
+        return LUMO_ERR_CORRUPT;  /* more faces than the record declared */
+    uint32_t f = pm->face_count++, t[3] = {a, b, c};
+    for (uint32_t i = 0; i < 3; i++) {
+        pm->tris[3 * (size_t)f + i] = t[i];
+        list_push(pm, t[i], 3 * f + i);
+    }
+    log_entry(s, NIL, f, 0);
+    s->faces++;
+    return LUMO_OK;
+}
+
+/* Undo the log newest first: every entry's corners are at the front of
+ * their lists again when their turn comes. */
+static void rollback(split_ctx *s)
+{
+    lumo_pmesh *pm = s->pm;
+    while (s->log_n) {
+        const uint32_t *e = pm->journal + 3 * (size_t)--s->log_n;
+        if (e[0] == NIL) {
+            for (uint32_t i = 3; i-- > 0;) {
+                uint32_t c = 3 * e[1] + i;
+                pm->head[pm->tris[c]] = pm->next[c];
+            }
+            pm->face_count--;
+            continue;
+        }
+        uint32_t c = e[0], prev = e[1], p = e[2];
+        pm->head[pm->tris[c]] = pm->next[c];
+        pm->tris[c] = p;
+        if (prev == NIL)
+            list_push(pm, p, c);
+        else
+            pm->next[c] = pm->next[prev], pm->next[prev] = c;
+    }
+}
+
+/* ---- base mesh and vertex splits ------------------------------------------- */
+static lumo_status read_base(split_ctx *s)
+{
+    unsigned w = bits_for(s->b->count);
+    for (uint32_t f = 0; f < s->b->faces; f++) {
+        uint32_t t[3];
+        for (int i = 0; i < 3; i++)
+            if (read_bits(&s->br, w, &t[i]))
+                return LUMO_ERR_TRUNCATED;
+        if (t[0] >= s->b->count || t[1] >= s->b->count || t[2] >= s->b->count)
+            return LUMO_ERR_RANGE;
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            return LUMO_ERR_CORRUPT;
+        lumo_status st = add_face(s, t[0], t[1], t[2]);
+        if (st)
+            return st;
+    }
+    return LUMO_OK;
+}
+
+/* Walk p's corners; each mask bit 1 moves that corner to k. Every step
+ * reads a bit, so the walk is bounded by the record's size. */
+static lumo_status move_corners(split_ctx *s, uint32_t p, uint32_t k, uint32_t *lenp)
+{
+    lumo_pmesh *pm = s->pm;
+    uint32_t prev = NIL, c = pm->head[p], bit;
+    *lenp = 0;
+    while (c != NIL) {
+        uint32_t nextc = pm->next[c];
+        if (read_bits(&s->br, 1, &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (!bit) {
+            prev = c, c = nextc, (*lenp)++;
+            continue;
+        }
+        if (s->moves >= s->b->moves)
+            return LUMO_ERR_CORRUPT;
+        if (prev == NIL)
+            pm->head[p] = nextc;
+        else
+            pm->next[prev] = nextc;
+        list_push(pm, k, c);
+        pm->tris[c] = k;
+        log_entry(s, c, prev, p);
+        s->moves++;
+        c = nextc;
+    }
+    return LUMO_OK;
+}
+
+/* Candidate j: corner j/2 of p's list followed by k's list; its face's
+ * next (j even) or previous (j odd) vertex. */
+static uint32_t candidate(const lumo_pmesh *pm, uint32_t p, uint32_t k, uint32_t j)
+{
+    uint32_t c = pm->head[p], i = j >> 1;
+    for (; c != NIL && i > 0; i--)
+        c = pm->next[c];
+    if (c == NIL)  /* past p's list: continue in k's (the lengths are exact) */
+        for (c = pm->head[k]; c != NIL && i > 0; i--)
+            c = pm->next[c];
+    if (c == NIL)
+        return NIL;  /* unreachable with exact lengths; rejected by the caller */
+    uint32_t f = c / 3, r = c % 3;
+    return pm->tris[3 * f + (r + 1 + (j & 1)) % 3];
+}
+
+static lumo_status read_face_count(split_ctx *s, uint32_t *n)
+{
+    uint32_t bit;
+    if (read_bits(&s->br, 1, &bit))
+        return LUMO_ERR_TRUNCATED;
+    if (bit)
+        return *n = 2, LUMO_OK;
+    if (read_bits(&s->br, 1, &bit))
+        return LUMO_ERR_TRUNCATED;
+    if (bit)
+        return *n = 1, LUMO_OK;
+    return read_bits(&s->br, 4, n) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+}
+
+/* One reappearing face: it holds k and p; `cfg` says where k sits and the
+ * winding; the third vertex x is a candidate index or an escape. */
+static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t m)
+{
+    uint32_t cfg, j, x, t[3];
+    if (read_bits(&s->br, 3, &cfg) || read_bits(&s->br, bits_for(2 * m + 1), &j))
+        return LUMO_ERR_TRUNCATED;
+    if (cfg > 5 || j > 2 * m)
+        return LUMO_ERR_CORRUPT;
+    if (j < 2 * m)
+        x = candidate(s->pm, p, k, j);
+    else if (read_bits(&s->br, bits_for(k), &x))
+        return LUMO_ERR_TRUNCATED;
+    if (x >= k || x == p)
+        return LUMO_ERR_CORRUPT;
+    uint32_t r = cfg >> 1, flip = cfg & 1;
+    t[r] = k;
+    t[(r + 1) % 3] = flip ? x : p;
+    t[(r + 2) % 3] = flip ? p : x;
+    return add_face(s, t[0], t[1], t[2]);
+}
+
+static lumo_status split(split_ctx *s, uint32_t k)
+{
+    uint32_t p, lenp, n;
+    lumo_status st;
+    if (read_bits(&s->br, bits_for(k), &p))
+        return LUMO_ERR_TRUNCATED;
+    if (p >= k)
+        return LUMO_ERR_RANGE;
+    s->pm->head[k] = NIL;
+    uint32_t moves_before = s->moves;
+    if ((st = move_corners(s, p, k, &lenp)) || (st = read_face_count(s, &n)))
+        return st;
+    uint32_t lenk = s->moves - moves_before;
+    for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
+        if ((st = read_new_face(s, p, k, lenp + lenk)))
+            return st;
+    return LUMO_OK;
+}
+
+static lumo_status run_splits(split_ctx *s)
+{
+    lumo_status st = LUMO_OK;
+    if (s->b->first == 0)
+        st = read_base(s);
+    else
+        for (uint32_t i = 0; i < s->b->count && !st; i++)
+            st = split(s, s->b->first + i);
+    if (st)
+        return st;
+    if (s->faces != s->b->faces || s->moves != s->b->moves)
+        return LUMO_ERR_CORRUPT;
+    if ((s->br.pos + 7) / 8 != s->b->side_bytes)
+        return LUMO_ERR_CORRUPT;  /* trailing bytes */
+    return LUMO_OK;
+}
+
+/* ---- normals of the touched vertices ---------------------------------------- */
+static void mark_face(lumo_pmesh *pm, uint32_t f, uint32_t stamp, uint32_t *nd)
+{
+    for (uint32_t i = 0; i < 3; i++) {
+        uint32_t v = pm->tris[3 * (size_t)f + i];
+        if (pm->mark[v] != stamp)
+            pm->mark[v] = stamp, pm->dirty[(*nd)++] = v;
+    }
+}
+
+/* Scale an int64 vector down until it fits lumo_normalize3_q14's int32
+ * input; direction is all that matters here. */
+static void normal_from_sum(int64_t s[3], lumo_q1_14 out[3])
+{
+    int32_t v[3];
+    while (s[0] > INT32_MAX / 2 || s[0] < -(INT32_MAX / 2) || s[1] > INT32_MAX / 2 ||
+           s[1] < -(INT32_MAX / 2) || s[2] > INT32_MAX / 2 || s[2] < -(INT32_MAX / 2))
+        s[0] /= 2, s[1] /= 2, s[2] /= 2;
+    v[0] = (int32_t)s[0], v[1] = (int32_t)s[1], v[2] = (int32_t)s[2];
+    if (lumo_normalize3_q14(v, out))
+        out[0] = out[1] = out[2] = 0;
+}
+
+/* Area-weighted face normals from the grid integers: exact int64 sums. */
+static void vertex_normal(lumo_pmesh *pm, uint32_t v)
+{
+    int64_t s[3] = {0, 0, 0};
+    for (uint32_t c = pm->head[v]; c != NIL; c = pm->next[c]) {
+        const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
+        const int32_t *a = pm->qpos + 3 * (size_t)t[0], *b = pm->qpos + 3 * (size_t)t[1],
+                      *d = pm->qpos + 3 * (size_t)t[2];
+        int64_t e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        int64_t e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        s[0] += e1[1] * e2[2] - e1[2] * e2[1];
+        s[1] += e1[2] * e2[0] - e1[0] * e2[2];
+        s[2] += e1[0] * e2[1] - e1[1] * e2[0];
+    }
+    normal_from_sum(s, pm->nrm + 3 * (size_t)v);
+}
+
+static void refresh_normals(split_ctx *s)
+{
+    lumo_pmesh *pm = s->pm;
+    uint32_t stamp = pm->batches_applied + 1, nd = 0;
+    for (uint32_t i = 0; i < s->log_n; i++) {
+        const uint32_t *e = pm->journal + 3 * (size_t)i;
+        mark_face(pm, e[0] == NIL ? e[1] : e[0] / 3, stamp, &nd);
+    }
+    for (uint32_t i = 0; i < nd; i++)
+        vertex_normal(pm, pm->dirty[i]);
+}
+
+lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
+{
+    batch b;
+    lumo_draco_mesh m;
+    const lumo_draco_attribute *pos = NULL;
+    lumo_status st;
+    if (!pm || !record)
+        return LUMO_ERR_ARG;
+    if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &m)))
+        return st;
+    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, 0, 0, 0};
+    if ((st = run_splits(&s))) {
+        rollback(&s);
+        return st;
+    }
+    store_positions(pm, &b, pos);
+    pm->vertex_count += b.count;
+    refresh_normals(&s);
+    pm->batches_applied++;
+    return LUMO_OK;
+}

@@ -1,0 +1,131 @@
+// server/draco_shim.cc — the only C++ in lumo: libdraco's encoder behind the
+// extern "C" API of lumo_server/draco_shim.h. Exceptions never cross the
+// boundary (libdraco reports through draco::Status; allocation failure ends
+// the process as any C tool would).
+#include "lumo_server/draco_shim.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+#include <draco/point_cloud/point_cloud.h>
+
+namespace {
+
+// Fill `pc` with one float32 xyz POSITION attribute, one value per point.
+int add_positions(draco::PointCloud *pc, const float *xyz, size_t n)
+{
+    pc->set_num_points(static_cast<draco::PointIndex::ValueType>(n));
+    draco::GeometryAttribute ga;
+    ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false,
+            sizeof(float) * 3, 0);
+    const int id = pc->AddAttribute(ga, true, static_cast<uint32_t>(n));
+    if (id < 0)
+        return -1;
+    draco::PointAttribute *att = pc->attribute(id);
+    for (size_t i = 0; i < n; ++i)
+        att->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), xyz + 3 * i);
+    return 0;
+}
+
+int copy_out(const draco::EncoderBuffer &buf, uint8_t **out, size_t *out_len)
+{
+    *out_len = buf.size();
+    *out = static_cast<uint8_t *>(std::malloc(buf.size() ? buf.size() : 1));
+    if (!*out)
+        return -1;
+    std::memcpy(*out, buf.data(), buf.size());
+    return 0;
+}
+
+int report(const draco::Status &st, const char *what)
+{
+    if (st.ok())
+        return 0;
+    std::fprintf(stderr, "draco: %s: %s\n", what, st.error_msg());
+    return -1;
+}
+
+void set_quant(draco::Encoder *enc, const lumo_draco_quant *q)
+{
+    enc->SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, q->bits, 3,
+                                          q->origin, q->range);
+}
+
+}  // namespace
+
+extern "C" lumo_draco_settings lumo_draco_default_settings(void)
+{
+    // Sequential point clouds keep point order, which the vertex numbering of
+    // the stream relies on. Speed 5 lets libdraco use rANS-coded differences.
+    lumo_draco_settings s;
+    s.speed = 5;
+    s.method = draco::POINT_CLOUD_SEQUENTIAL_ENCODING;
+    return s;
+}
+
+extern "C" int lumo_draco_encode_points(const float *xyz, size_t n, const lumo_draco_quant *q,
+                                        lumo_draco_settings s, uint8_t **out, size_t *out_len)
+{
+    draco::PointCloud pc;
+    if (add_positions(&pc, xyz, n))
+        return -1;
+    draco::Encoder enc;
+    set_quant(&enc, q);
+    enc.SetSpeedOptions(s.speed, s.speed);
+    enc.SetEncodingMethod(s.method);
+    draco::EncoderBuffer buf;
+    if (report(enc.EncodePointCloudToBuffer(pc, &buf), "encode points"))
+        return -1;
+    return copy_out(buf, out, out_len);
+}
+
+extern "C" int lumo_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
+                                      const lumo_draco_quant *q, int cl, uint8_t **out,
+                                      size_t *out_len)
+{
+    draco::Mesh mesh;
+    if (add_positions(&mesh, xyz, nv))
+        return -1;
+    mesh.SetNumFaces(nt);
+    for (size_t f = 0; f < nt; ++f) {
+        draco::Mesh::Face face;
+        for (int c = 0; c < 3; ++c)
+            face[c] = draco::PointIndex(tris[3 * f + c]);
+        mesh.SetFace(draco::FaceIndex(static_cast<uint32_t>(f)), face);
+    }
+    draco::Encoder enc;
+    set_quant(&enc, q);
+    enc.SetSpeedOptions(10 - cl, 10 - cl);
+    enc.SetEncodingMethod(cl == 0 ? draco::MESH_SEQUENTIAL_ENCODING
+                                  : draco::MESH_EDGEBREAKER_ENCODING);
+    draco::EncoderBuffer buf;
+    if (report(enc.EncodeMeshToBuffer(mesh, &buf), "encode mesh"))
+        return -1;
+    return copy_out(buf, out, out_len);
+}
+
+extern "C" int lumo_draco_decode_points(const uint8_t *data, size_t len, float **xyz, size_t *n)
+{
+    draco::DecoderBuffer in;
+    in.Init(reinterpret_cast<const char *>(data), len);
+    draco::Decoder dec;
+    auto res = dec.DecodePointCloudFromBuffer(&in);
+    if (report(res.status(), "decode"))
+        return -1;
+    std::unique_ptr<draco::PointCloud> pc = std::move(res).value();
+    const draco::PointAttribute *att = pc->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    if (!att)
+        return -1;
+    *n = pc->num_points();
+    *xyz = static_cast<float *>(std::malloc(sizeof(float) * 3 * (*n ? *n : 1)));
+    if (!*xyz)
+        return -1;
+    for (uint32_t i = 0; i < *n; ++i)
+        att->GetMappedValue(draco::PointIndex(i), *xyz + 3 * i);
+    return 0;
+}

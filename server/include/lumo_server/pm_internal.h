@@ -1,0 +1,37 @@
+/*
+ * lumo_server/pm_internal.h — the stages of lumo_pm_build() (server/pm_*.c),
+ * exposed for the stream builder and the tests.
+ */
+#ifndef LUMO_SERVER_PM_INTERNAL_H
+#define LUMO_SERVER_PM_INTERNAL_H
+
+#include <stdint.h>
+#include "lumo_server/pm.h"
+
+/* A cleaned indexed face set: duplicate positions welded, degenerate and
+ * duplicate (same vertex set) faces dropped, unreferenced vertices removed.
+ * source[v] is the first input vertex of v's weld class. */
+typedef struct pm_clean_mesh {
+    uint32_t  nv, nf;
+    float    *xyz;
+    uint32_t *tris;
+    uint32_t *source;
+    uint32_t  welded, dropped_faces;
+} pm_clean_mesh;
+
+int  pm_clean(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf, pm_clean_mesh *out);
+void pm_clean_free(pm_clean_mesh *m);
+
+/* The collapse sequence of pm_simplify(): at step t vertex removed[t]
+ * collapses onto target[t]; face_die[f] is the step that removed face f, or
+ * UINT32_MAX for faces of the base mesh. */
+typedef struct pm_collapses {
+    uint32_t  count;
+    uint32_t *removed, *target;
+    uint32_t *face_die;
+} pm_collapses;
+
+int  pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses *out);
+void pm_collapses_free(pm_collapses *c);
+
+#endif

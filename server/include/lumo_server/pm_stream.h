@@ -1,0 +1,37 @@
+/*
+ * lumo_server/pm_stream.h — writing the progressive-mesh stream of
+ * docs/progressive-mesh.md from a lumo_pm (server/pm_build.c). The client
+ * reads it with lumo/pmesh.h.
+ */
+#ifndef LUMO_SERVER_PM_STREAM_H
+#define LUMO_SERVER_PM_STREAM_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo_server/draco_shim.h"
+#include "lumo_server/pm.h"
+
+typedef struct lumo_pm_stream_options {
+    uint32_t            batch_vertices;  /* vertices per batch (paper: 250) */
+    int                 quant_bits;      /* position grid bits (12) */
+    lumo_draco_settings draco;           /* the payload encoder choice */
+} lumo_pm_stream_options;
+
+void lumo_pm_stream_default_options(lumo_pm_stream_options *o);
+
+/* One record's place in the stream, for listings and benchmarks. */
+typedef struct lumo_pm_batch_info {
+    uint32_t first_vertex, vertex_count, face_count, move_count;
+    size_t   offset, bytes, side_bytes, draco_bytes;
+} lumo_pm_batch_info;
+
+/* Build the whole stream (header + every batch record) into one malloc'ed
+ * buffer. If `batches` is not NULL it receives a malloc'ed array of
+ * *nbatches entries. 0, or -1 with a message on stderr. */
+int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uint8_t **out,
+                         size_t *len, lumo_pm_batch_info **batches, uint32_t *nbatches);
+
+/* The package chunk type that carries a stream ("PMSH"). */
+#define LUMO_PM_CHUNK 0x48534d50u
+
+#endif

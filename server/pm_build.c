@@ -1,0 +1,152 @@
+/* pm_build.c — the progressive mesh of seed 000 §4.2: vertices renumbered by
+ * significance (base mesh first, then the last collapsed first), the vertex
+ * lookup table, and faces sorted by the level at which they appear. */
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_server/pm_internal.h"
+
+void lumo_pm_default_options(lumo_pm_options *o)
+{
+    o->min_vertices = 3;
+    o->boundary_weight = 100.0;
+    o->flip_cos = 0.2;
+}
+
+static const uint32_t *g_level; /* qsort context */
+
+static int cmp_level(const void *a, const void *b)
+{
+    uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
+    if (g_level[i] != g_level[j])
+        return g_level[i] < g_level[j] ? -1 : 1;
+    return (i > j) - (i < j);
+}
+
+/* newv[v]: base vertices keep their relative order at 0..b-1; the vertex
+ * removed at step t becomes n-1-t, so the last collapsed streams first. */
+static void renumber(const pm_clean_mesh *m, const pm_collapses *c, uint32_t *newv)
+{
+    uint32_t n = m->nv, b = 0;
+    memset(newv, 0xff, sizeof *newv * n);
+    for (uint32_t t = 0; t < c->count; t++)
+        newv[c->removed[t]] = n - 1 - t;
+    for (uint32_t v = 0; v < n; v++)
+        if (newv[v] == UINT32_MAX)
+            newv[v] = b++;
+}
+
+static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
+{
+    uint32_t n = m->nv, nf = m->nf;
+    uint32_t *newv = malloc(sizeof *newv * (n ? n : 1));
+    uint32_t *lvl = malloc(sizeof *lvl * (nf ? nf : 1));
+    uint32_t *order = malloc(sizeof *order * (nf ? nf : 1));
+    int rc = -1;
+    if (!newv || !lvl || !order)
+        goto done;
+    renumber(m, c, newv);
+    pm->vertices = n, pm->faces = nf;
+    pm->base_vertices = n - c->count;
+    for (uint32_t v = 0; v < n; v++) {
+        memcpy(pm->xyz + 3 * (size_t)newv[v], m->xyz + 3 * (size_t)v, 3 * sizeof(float));
+        pm->source[newv[v]] = m->source[v];
+        pm->parent[newv[v]] = newv[v];
+    }
+    for (uint32_t t = 0; t < c->count; t++)
+        pm->parent[newv[c->removed[t]]] = newv[c->target[t]];
+    /* A face removed at step t comes back with vertex n-1-t. */
+    for (uint32_t f = 0; f < nf; f++) {
+        lvl[f] = c->face_die[f] == UINT32_MAX ? pm->base_vertices : n - c->face_die[f];
+        pm->base_faces += c->face_die[f] == UINT32_MAX;
+        order[f] = f;
+    }
+    g_level = lvl;
+    qsort(order, nf, sizeof *order, cmp_level);
+    for (uint32_t i = 0; i < nf; i++) {
+        pm->level[i] = lvl[order[i]];
+        for (int k = 0; k < 3; k++)
+            pm->tris[3 * (size_t)i + k] = newv[m->tris[3 * (size_t)order[i] + k]];
+    }
+    rc = 0;
+done:
+    free(newv);
+    free(lvl);
+    free(order);
+    return rc;
+}
+
+int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
+                  const lumo_pm_options *opt, lumo_pm *out)
+{
+    lumo_pm_options def;
+    pm_clean_mesh m;
+    pm_collapses c;
+    memset(out, 0, sizeof *out);
+    memset(&c, 0, sizeof c);
+    if (!opt) {
+        lumo_pm_default_options(&def);
+        opt = &def;
+    }
+    if (pm_clean(xyz, nv, tris, nf, &m))
+        return -1;
+    int rc = -1;
+    if (pm_simplify(&m, opt, &c))
+        goto done;
+    size_t n = m.nv ? m.nv : 1, f = m.nf ? m.nf : 1;
+    out->xyz = malloc(sizeof *out->xyz * 3 * n);
+    out->parent = malloc(sizeof *out->parent * n);
+    out->source = malloc(sizeof *out->source * n);
+    out->tris = malloc(sizeof *out->tris * 3 * f);
+    out->level = malloc(sizeof *out->level * f);
+    if (!out->xyz || !out->parent || !out->source || !out->tris || !out->level)
+        goto done;
+    if (assemble(&m, &c, out))
+        goto done;
+    out->welded = m.welded;
+    out->dropped_faces = m.dropped_faces;
+    rc = 0;
+done:
+    pm_clean_free(&m);
+    pm_collapses_free(&c);
+    if (rc)
+        lumo_pm_free(out);
+    return rc;
+}
+
+void lumo_pm_free(lumo_pm *pm)
+{
+    free(pm->xyz);
+    free(pm->parent);
+    free(pm->tris);
+    free(pm->level);
+    free(pm->source);
+    memset(pm, 0, sizeof *pm);
+}
+
+uint32_t lumo_pm_resolve(const lumo_pm *pm, uint32_t v, uint32_t k)
+{
+    while (v >= k)
+        v = pm->parent[v];
+    return v;
+}
+
+uint32_t lumo_pm_level_faces(const lumo_pm *pm, uint32_t k)
+{
+    uint32_t lo = 0, hi = pm->faces;  /* faces are sorted by level */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (pm->level[mid] <= k)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+uint32_t lumo_pm_level(const lumo_pm *pm, uint32_t k, uint32_t *out)
+{
+    uint32_t nf = lumo_pm_level_faces(pm, k);
+    for (size_t i = 0; i < 3 * (size_t)nf; i++)
+        out[i] = lumo_pm_resolve(pm, pm->tris[i], k);
+    return nf;
+}

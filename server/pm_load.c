@@ -1,0 +1,68 @@
+/* pm_load.c — mesh files for the progressive-mesh tools (assimp through
+ * server/import.c in; binary PLY out, which stock draco_encoder reads). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_server/import.h"
+#include "lumo_server/pm_load.h"
+
+static int merge(const lumo_scene *s, float **xyz, uint32_t *nv, uint32_t **tris, uint32_t *nf)
+{
+    size_t v = 0, f = 0;
+    for (size_t m = 0; m < s->nmeshes; m++)
+        v += s->meshes[m].nverts, f += s->meshes[m].ntris;
+    *xyz = malloc(sizeof **xyz * 3 * (v ? v : 1));
+    *tris = malloc(sizeof **tris * 3 * (f ? f : 1));
+    if (!*xyz || !*tris || v > UINT32_MAX / 4 || f > UINT32_MAX / 4)
+        return -1;
+    *nv = 0, *nf = 0;
+    for (size_t m = 0; m < s->nmeshes; m++) {
+        const lumo_mesh *me = &s->meshes[m];
+        for (uint32_t i = 0; i < me->nverts; i++) {
+            float *p = *xyz + 3 * (size_t)(*nv + i);
+            p[0] = me->pos[i].x, p[1] = me->pos[i].y, p[2] = me->pos[i].z;
+        }
+        for (size_t i = 0; i < 3 * (size_t)me->ntris; i++)
+            (*tris)[3 * (size_t)*nf + i] = me->tris[i] + *nv;
+        *nv += me->nverts, *nf += me->ntris;
+    }
+    return 0;
+}
+
+int lumo_pm_load(const char *path, float **xyz, uint32_t *nv, uint32_t **tris, uint32_t *nf,
+                 char *err, size_t errlen)
+{
+    lumo_scene s;
+    lumo_xform x = lumo_xform_identity();
+    lumo_scene_init(&s);
+    *xyz = NULL, *tris = NULL;
+    int rc = lumo_import_file(&s, path, &x, NULL, err, errlen);
+    if (!rc && merge(&s, xyz, nv, tris, nf)) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        rc = -1;
+    }
+    lumo_scene_free(&s);
+    if (rc) {
+        free(*xyz), free(*tris);
+        *xyz = NULL, *tris = NULL;
+    }
+    return rc;
+}
+
+int lumo_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
+                      uint32_t nf)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    fprintf(f, "ply\nformat binary_little_endian 1.0\nelement vertex %u\n"
+               "property float x\nproperty float y\nproperty float z\nelement face %u\n"
+               "property list uchar int vertex_indices\nend_header\n", nv, nf);
+    fwrite(xyz, sizeof(float), 3 * (size_t)nv, f);  /* the host is little-endian */
+    for (uint32_t i = 0; i < nf; i++) {
+        uint8_t three = 3;
+        fwrite(&three, 1, 1, f);
+        fwrite(tris + 3 * (size_t)i, sizeof(uint32_t), 3, f);
+    }
+    return fclose(f) ? -1 : 0;
+}

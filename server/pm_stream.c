@@ -1,0 +1,351 @@
+/* pm_stream.c — the progressive-mesh stream writer (docs/progressive-mesh.md).
+ *
+ * The writer replays exactly what the client (sdk/src/pmesh_batch.c) will
+ * do: the same per-vertex corner lists, updated in the same order, so each
+ * vertex split can be told as "which of p's corners move to k" (one bit
+ * each) and "which neighbour closes each reappearing face" (a short index
+ * into the corners around p and k). Seed 000 §4.2 sends vertices, faces and
+ * lookup tables; here the lookup-table entry of k is its parent p. */
+#include <float.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo/package.h"
+#include "lumo/pmesh.h"
+#include "lumo_server/pm_stream.h"
+
+#define NIL 0xffffffffu
+
+/* ---- growable bytes and bits ------------------------------------------------ */
+typedef struct { uint8_t *p; size_t len, cap; int failed; } bytes;
+
+static void put(bytes *b, const void *d, size_t n)
+{
+    if (b->failed)
+        return;
+    if (b->len + n > b->cap) {
+        size_t cap = b->cap ? b->cap : 256;
+        while (cap < b->len + n)
+            cap *= 2;
+        uint8_t *p = realloc(b->p, cap);
+        if (!p) {
+            b->failed = 1;
+            return;
+        }
+        b->p = p, b->cap = cap;
+    }
+    memcpy(b->p + b->len, d, n);
+    b->len += n;
+}
+
+static void put32(bytes *b, uint32_t v)
+{
+    uint8_t d[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
+    put(b, d, 4);
+}
+
+typedef struct { bytes b; size_t nbits; } bitwriter;
+
+static void put_bits(bitwriter *w, uint32_t v, unsigned n)
+{
+    for (unsigned i = 0; i < n; i++, w->nbits++) {
+        if ((w->nbits & 7) == 0) {
+            uint8_t z = 0;
+            put(&w->b, &z, 1);
+        }
+        if (!w->b.failed)
+            w->b.p[w->nbits >> 3] |= (uint8_t)((v >> i & 1u) << (w->nbits & 7));
+    }
+}
+
+static unsigned bits_for(uint32_t count)
+{
+    unsigned n = 0;
+    while (n < 32 && ((uint64_t)1 << n) < count)
+        n++;
+    return n;
+}
+
+/* ---- the client's state, replayed --------------------------------------------- */
+typedef struct {
+    const lumo_pm *pm;
+    uint32_t *disp, *next, *head;
+    uint32_t  face_count;
+    uint32_t  faces, moves;   /* of the batch being written */
+} replay;
+
+static void list_push(replay *r, uint32_t v, uint32_t c)
+{
+    r->next[c] = r->head[v];
+    r->head[v] = c;
+}
+
+static void add_face(replay *r, const uint32_t t[3])
+{
+    uint32_t f = r->face_count++;
+    for (uint32_t i = 0; i < 3; i++) {
+        r->disp[3 * f + i] = t[i];
+        list_push(r, t[i], 3 * f + i);
+    }
+    r->faces++;
+}
+
+static void write_base(replay *r, bitwriter *w)
+{
+    const lumo_pm *pm = r->pm;
+    unsigned width = bits_for(pm->base_vertices);
+    for (uint32_t f = 0; f < pm->base_faces; f++) {
+        uint32_t t[3];
+        for (int i = 0; i < 3; i++) {
+            t[i] = lumo_pm_resolve(pm, pm->tris[3 * (size_t)f + i], pm->base_vertices);
+            put_bits(w, t[i], width);
+        }
+        add_face(r, t);
+    }
+}
+
+/* Mask: corners of p whose full-resolution vertex now resolves to k. */
+static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
+{
+    uint32_t prev = NIL, c = r->head[p], lenp = 0;
+    while (c != NIL) {
+        uint32_t nextc = r->next[c];
+        int move = lumo_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
+        put_bits(w, (uint32_t)move, 1);
+        if (!move) {
+            prev = c, c = nextc, lenp++;
+            continue;
+        }
+        if (prev == NIL)
+            r->head[p] = nextc;
+        else
+            r->next[prev] = nextc;
+        list_push(r, k, c);
+        r->disp[c] = k;
+        r->moves++;
+        c = nextc;
+    }
+    return lenp;
+}
+
+/* Index of x among the candidates (p's corners then k's, two neighbours
+ * each), or 2m for the escape. Mirrors candidate() in pmesh_batch.c. */
+static uint32_t find_candidate(const replay *r, uint32_t p, uint32_t k, uint32_t m, uint32_t x)
+{
+    uint32_t j = 0, lists[2] = {p, k};
+    for (int l = 0; l < 2; l++)
+        for (uint32_t c = r->head[lists[l]]; c != NIL && j < 2 * m; c = r->next[c], j += 2) {
+            uint32_t f = c / 3, q = c % 3;
+            if (r->disp[3 * f + (q + 1) % 3] == x)
+                return j;
+            if (r->disp[3 * f + (q + 2) % 3] == x)
+                return j + 1;
+        }
+    return 2 * m;
+}
+
+static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint32_t k, uint32_t m)
+{
+    uint32_t t[3], rot = 3, flip = 0, x = 0;
+    for (int i = 0; i < 3; i++)
+        t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+    for (uint32_t i = 0; i < 3; i++)
+        if (t[i] == k)
+            rot = i;
+    if (rot == 3)
+        return -1;
+    if (t[(rot + 1) % 3] == p)
+        x = t[(rot + 2) % 3];
+    else if (t[(rot + 2) % 3] == p)
+        flip = 1, x = t[(rot + 1) % 3];
+    else
+        return -1;  /* a reappearing face always holds edge (k, p) */
+    uint32_t j = find_candidate(r, p, k, m, x);
+    put_bits(w, rot * 2 + flip, 3);
+    put_bits(w, j, bits_for(2 * m + 1));
+    if (j == 2 * m)
+        put_bits(w, x, bits_for(k));
+    add_face(r, t);
+    return 0;
+}
+
+static int write_split(replay *r, bitwriter *w, uint32_t k)
+{
+    const lumo_pm *pm = r->pm;
+    uint32_t p = pm->parent[k], moves0 = r->moves;
+    put_bits(w, p, bits_for(k));
+    uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
+    uint32_t f0 = r->face_count, n = 0;
+    while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
+        n++;
+    if (n == 2)
+        put_bits(w, 1, 1);
+    else if (n == 1)
+        put_bits(w, 2, 2);
+    else if (n < 16)
+        put_bits(w, 0, 2), put_bits(w, n, 4);
+    else
+        return -1;
+    for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
+        if (write_new_face(r, w, f0 + i, p, k, lenp + lenk))
+            return -1;
+    return 0;
+}
+
+/* ---- records -------------------------------------------------------------------- */
+static void grid_of(const lumo_pm *pm, int bits, lumo_draco_quant *q)
+{
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    for (uint32_t v = 0; v < pm->vertices; v++)
+        for (int c = 0; c < 3; c++) {
+            float x = pm->xyz[3 * (size_t)v + c];
+            lo[c] = x < lo[c] ? x : lo[c];
+            hi[c] = x > hi[c] ? x : hi[c];
+        }
+    q->bits = bits;
+    q->range = 0;
+    for (int c = 0; c < 3; c++) {
+        q->origin[c] = pm->vertices ? lo[c] : 0;
+        if (pm->vertices && hi[c] - lo[c] > q->range)
+            q->range = hi[c] - lo[c];
+    }
+    if (q->range <= 0)
+        q->range = 1;
+}
+
+static uint32_t f32bits(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, 4);
+    return u;
+}
+
+static int write_record(bytes *out, uint32_t index, uint32_t first, uint32_t count,
+                        const replay *r, const bitwriter *w, const lumo_pm_stream_options *o,
+                        const lumo_draco_quant *q, lumo_pm_batch_info *info)
+{
+    uint8_t *drc = NULL;
+    size_t drc_len = 0;
+    if (lumo_draco_encode_points(r->pm->xyz + 3 * (size_t)first, count, q, o->draco, &drc, &drc_len))
+        return -1;
+    bytes rec = {0};
+    put32(&rec, LUMO_PMESH_BATCH_MAGIC);
+    put32(&rec, index), put32(&rec, first), put32(&rec, count);
+    put32(&rec, r->faces), put32(&rec, r->moves);
+    put32(&rec, (uint32_t)w->b.len), put32(&rec, (uint32_t)drc_len);
+    put(&rec, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    put(&rec, drc, drc_len);
+    free(drc);
+    if (rec.failed)
+        return free(rec.p), -1;
+    uint32_t crc = lumo_package_crc32(0, rec.p, 32);
+    crc = lumo_package_crc32(crc, rec.p + 32, rec.len - 32);
+    uint8_t head[32];
+    memcpy(head, rec.p, 32);
+    *info = (lumo_pm_batch_info){first, count, r->faces, r->moves, out->len,
+                                 rec.len + 4, w->b.len, drc_len};
+    put(out, head, 32);
+    put32(out, crc);
+    put(out, rec.p + 32, rec.len - 32);
+    free(rec.p);
+    return out->failed ? -1 : 0;
+}
+
+static void write_header(uint8_t *d, const lumo_pm *pm, const lumo_pm_stream_options *o,
+                         const lumo_draco_quant *q, uint32_t nb, const lumo_pm_batch_info *bi)
+{
+    uint32_t maxf = 0, maxm = 0, maxb = 0;
+    for (uint32_t i = 0; i < nb; i++) {
+        maxf = bi[i].face_count > maxf ? bi[i].face_count : maxf;
+        maxm = bi[i].move_count > maxm ? bi[i].move_count : maxm;
+        maxb = bi[i].bytes > maxb ? (uint32_t)bi[i].bytes : maxb;
+    }
+    uint32_t f[16] = {LUMO_PMESH_MAGIC, LUMO_PMESH_VERSION | LUMO_PMESH_HEADER_SIZE << 16,
+                      pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
+                      o->batch_vertices, nb, maxf, maxm, maxb, (uint32_t)q->bits,
+                      f32bits(q->origin[0]), f32bits(q->origin[1]), f32bits(q->origin[2]),
+                      f32bits(q->range)};
+    for (int i = 0; i < 16; i++)
+        for (int k = 0; k < 4; k++)
+            d[4 * i + k] = (uint8_t)(f[i] >> (8 * k));
+    uint32_t crc = lumo_package_crc32(0, d, 64);
+    for (int k = 0; k < 4; k++)
+        d[64 + k] = (uint8_t)(crc >> (8 * k));
+}
+
+void lumo_pm_stream_default_options(lumo_pm_stream_options *o)
+{
+    o->batch_vertices = 250;
+    o->quant_bits = 12;
+    o->draco = lumo_draco_default_settings();
+}
+
+static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_draco_quant *q,
+                         bytes *out, lumo_pm_batch_info *bi, uint32_t nb)
+{
+    const lumo_pm *pm = r->pm;
+    for (uint32_t i = 0; i < nb; i++) {
+        uint32_t first = i ? pm->base_vertices + (i - 1) * o->batch_vertices : 0;
+        uint32_t count = i ? pm->vertices - first : pm->base_vertices;
+        if (i && count > o->batch_vertices)
+            count = o->batch_vertices;
+        bitwriter w = {{0}, 0};
+        r->faces = r->moves = 0;
+        int rc = 0;
+        if (!i)
+            write_base(r, &w);
+        for (uint32_t k = first; i && k < first + count && !rc; k++)
+            rc = write_split(r, &w, k);
+        if (!rc && !w.b.failed)
+            rc = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
+        free(w.b.p);
+        if (rc || w.b.failed) {
+            fprintf(stderr, "lumo pm stream: cannot write batch %u\n", i);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uint8_t **out,
+                         size_t *len, lumo_pm_batch_info **batches, uint32_t *nbatches)
+{
+    lumo_pm_stream_options def;
+    if (!o) {
+        lumo_pm_stream_default_options(&def);
+        o = &def;
+    }
+    if (!pm->vertices || !o->batch_vertices || o->quant_bits < 1 ||
+        o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
+        return -1;
+    uint32_t rest = pm->vertices - pm->base_vertices;
+    uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
+    lumo_draco_quant q;
+    grid_of(pm, o->quant_bits, &q);
+    replay r = {pm, malloc(12 * (size_t)pm->faces + 4), malloc(12 * (size_t)pm->faces + 4),
+                malloc(4 * (size_t)pm->vertices), 0, 0, 0};
+    lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
+    bytes s = {0};
+    uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
+    put(&s, header, sizeof header);
+    int rc = -1;
+    if (!r.disp || !r.next || !r.head || !bi)
+        goto done;
+    memset(r.head, 0xff, 4 * (size_t)pm->vertices);
+    if (write_batches(&r, o, &q, &s, bi, nb) || s.failed)
+        goto done;
+    write_header(s.p, pm, o, &q, nb, bi);
+    *out = s.p, *len = s.len, s.p = NULL;
+    if (batches)
+        *batches = bi, bi = NULL;
+    if (nbatches)
+        *nbatches = nb;
+    rc = 0;
+done:
+    free(r.disp);
+    free(r.next);
+    free(r.head);
+    free(bi);
+    free(s.p);
+    return rc;
+}

@@ -1,0 +1,128 @@
+/* pm_tool.c — lumo-pm: build a progressive-mesh stream from a mesh file
+ * (docs/progressive-mesh.md), and the pm benchmark driver (pm_bench.c).
+ *
+ *   lumo-pm build IN.ply -o OUT.lumo [--batch N] [--bits B] [--raw]
+ *   lumo-pm clean IN.ply -o OUT.ply      the welded, cleaned input mesh
+ *   lumo-pm bench ...                    see pm_bench.c
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_server/package_write.h"
+#include "lumo_server/pm_load.h"
+#include "lumo_server/pm_stream.h"
+
+int lumo_pm_bench_main(int argc, char **argv);
+
+typedef struct {
+    const char *in, *out;
+    lumo_pm_stream_options so;
+    lumo_pm_options po;
+    int raw;
+} args;
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--raw]\n"
+                    "       lumo-pm clean IN -o OUT.ply\n"
+                    "       lumo-pm bench --out SECTION.md MODEL...\n");
+    return 2;
+}
+
+static int parse(int argc, char **argv, args *a)
+{
+    memset(a, 0, sizeof *a);
+    lumo_pm_stream_default_options(&a->so);
+    lumo_pm_default_options(&a->po);
+    for (int i = 2; i < argc; i++) {
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(argv[i], "-o") && v)
+            a->out = v, i++;
+        else if (!strcmp(argv[i], "--batch") && v)
+            a->so.batch_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
+        else if (!strcmp(argv[i], "--bits") && v)
+            a->so.quant_bits = atoi(v), i++;
+        else if (!strcmp(argv[i], "--min-vertices") && v)
+            a->po.min_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
+        else if (!strcmp(argv[i], "--raw"))
+            a->raw = 1;
+        else if (argv[i][0] != '-' && !a->in)
+            a->in = argv[i];
+        else
+            return -1;
+    }
+    return a->in && a->out && a->so.batch_vertices ? 0 : -1;
+}
+
+static int write_file(const char *path, const uint8_t *d, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(d, 1, n, f) == n;
+    if (f && fclose(f))
+        ok = 0;
+    return ok ? 0 : -1;
+}
+
+static int write_output(const args *a, const uint8_t *s, size_t n)
+{
+    if (a->raw)
+        return write_file(a->out, s, n);
+    lumo_pkg_writer w;
+    char err[256];
+    lumo_pkgw_init(&w);
+    int rc = lumo_pkgw_add(&w, LUMO_PM_CHUNK, s, n) || lumo_pkgw_write_file(&w, a->out, err, sizeof err);
+    lumo_pkgw_free(&w);
+    return rc ? -1 : 0;
+}
+
+static int cmd_build(const args *a, int clean_only)
+{
+    float *xyz;
+    uint32_t *tris, nv, nf, nb;
+    char err[256];
+    lumo_pm pm;
+    uint8_t *s = NULL;
+    size_t n = 0;
+    if (lumo_pm_load(a->in, &xyz, &nv, &tris, &nf, err, sizeof err)) {
+        fprintf(stderr, "lumo-pm: error: %s\n", err);
+        return 1;
+    }
+    int rc = 1;
+    if (lumo_pm_build(xyz, nv, tris, nf, &a->po, &pm)) {
+        fprintf(stderr, "lumo-pm: error: %s: cannot simplify (bad indices or out of memory)\n", a->in);
+        goto done;
+    }
+    if (clean_only) {
+        rc = lumo_pm_write_ply(a->out, pm.xyz, pm.vertices, pm.tris, pm.faces) ? 1 : 0;
+        goto done;
+    }
+    if (lumo_pm_stream_build(&pm, &a->so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
+        fprintf(stderr, "lumo-pm: error: %s: cannot write the stream\n", a->out);
+        goto done;
+    }
+    printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
+           "%u batches of %u, %zu bytes, %.2f bits/triangle\n",
+           a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
+           pm.base_faces, nb, a->so.batch_vertices, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
+    rc = 0;
+done:
+    free(s);
+    lumo_pm_free(&pm);
+    free(xyz);
+    free(tris);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    args a;
+    if (argc >= 2 && !strcmp(argv[1], "bench"))
+        return lumo_pm_bench_main(argc - 1, argv + 1);
+    if (argc < 2 || parse(argc, argv, &a))
+        return usage();
+    if (!strcmp(argv[1], "build"))
+        return cmd_build(&a, 0);
+    if (!strcmp(argv[1], "clean"))
+        return cmd_build(&a, 1);
+    return usage();
+}
