@@ -41,11 +41,17 @@ static vec3 clamp_albedo(vec3 a)
               fminf(fmaxf(a.z, 0.0f), MAX_ALBEDO));
 }
 
-/* The material's diffuse colour (glTF: base colour), or 0 when it has none. */
+/* The material's diffuse colour (glTF: base colour), or 0 when it has none
+ * (assimp's stand-in "DefaultMaterial" for files without materials counts
+ * as none, so such meshes get lumo's documented default). */
 static int material_albedo(const struct aiScene *sc, unsigned idx, vec3 *out)
 {
     struct aiColor4D c;
+    struct aiString name;
     if (idx >= sc->mNumMaterials)
+        return 0;
+    if (aiGetMaterialString(sc->mMaterials[idx], AI_MATKEY_NAME, &name) == aiReturn_SUCCESS &&
+        !strcmp(name.data, AI_DEFAULT_MATERIAL_NAME))
         return 0;
     if (aiGetMaterialColor(sc->mMaterials[idx], AI_MATKEY_BASE_COLOR, &c) != aiReturn_SUCCESS &&
         aiGetMaterialColor(sc->mMaterials[idx], AI_MATKEY_COLOR_DIFFUSE, &c) != aiReturn_SUCCESS)
@@ -67,14 +73,15 @@ static int import_mesh(lumo_scene *s, const struct aiScene *sc, const struct aiM
     if (!m)
         return -1;
     vec3 mat = v3(DEFAULT_ALBEDO, DEFAULT_ALBEDO, DEFAULT_ALBEDO);
-    int has_mat = material_albedo(sc, am->mMaterialIndex, &mat);
+    material_albedo(sc, am->mMaterialIndex, &mat);
     for (unsigned v = 0; v < am->mNumVertices; v++) {
         struct aiVector3D p = am->mVertices[v];
         m->pos[v] = lumo_xform_apply(x, v3(p.x, p.y, p.z));
+        /* Priority: the caller's override, vertex colours, the material. */
         vec3 a = mat;
         if (albedo)
             a = *albedo;
-        else if (!has_mat && am->mColors[0])
+        else if (am->mColors[0])
             a = v3(am->mColors[0][v].r, am->mColors[0][v].g, am->mColors[0][v].b);
         m->albedo[v] = clamp_albedo(a);
     }

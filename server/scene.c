@@ -132,6 +132,11 @@ int lumo_scene_validate(const lumo_scene *s, char *err, size_t errlen)
         snprintf(err, errlen, "the scene has no light (add one with --light)");
         return -1;
     }
+    if (s->nlights > LUMO_SCENE_MAX_LIGHTS) {
+        snprintf(err, errlen, "the scene has %zu lights, at most %d are supported", s->nlights,
+                 LUMO_SCENE_MAX_LIGHTS);
+        return -1;
+    }
     /* Zero area relative to the scene's size: float cross products of a
      * metre-sized scene cannot resolve less than ~1e-14 of its extent^2. */
     float ext = v3_len(v3_sub(hi, lo));

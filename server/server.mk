@@ -22,12 +22,13 @@ $(SERVER_LIB): $(SERVER_OBJS)
 
 $(BIN)/lumo-bake: $(BUILD)/host/server/bake_main.o $(SERVER_LIB) $(BUILD)/rel/liblumo.a $(LUMO_SERVER_EXTRA_OBJS)
 	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $(BUILD)/host/server/bake_main.o $(SERVER_LIB) $(LUMO_SERVER_EXTRA_OBJS) \
+	$(CC) -pthread -o $@ $(BUILD)/host/server/bake_main.o $(LUMO_SERVER_EXTRA_OBJS) $(SERVER_LIB) \
 	    $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)
 
-# --whole-archive is not needed: inspect objects are linked directly, so their
-# registration constructors are kept.
+# Inspect objects are linked directly (not from an archive), so their
+# registration constructors are kept. Extra objects come before the server
+# library because they may call into it.
 $(BIN)/lumo-inspect: $(INSPECT_OBJS) $(SERVER_LIB) $(BUILD)/rel/liblumo.a $(LUMO_SERVER_EXTRA_OBJS)
 	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $(INSPECT_OBJS) $(SERVER_LIB) $(LUMO_SERVER_EXTRA_OBJS) \
+	$(CC) -pthread -o $@ $(INSPECT_OBJS) $(LUMO_SERVER_EXTRA_OBJS) $(SERVER_LIB) \
 	    $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)

@@ -67,6 +67,10 @@ common="--default --grid 6 --spp 16 --no-progress"
 cmp -s "$dir/a.lumo" "$dir/b.lumo" && ok "same seed, 1 vs 2 threads: identical package" || bad "same seed differs"
 cmp -s "$dir/a.lumo" "$dir/c.lumo" && bad "another seed gives the same package" || ok "another seed differs"
 
+# --cell: spacing 0.5 m over the 2 m box -> 5 vertices per axis.
+"$bake" --default --cell 0.5 --spp 2 -o "$dir/cell.lumo" 2>/dev/null && "$inspect" "$dir/cell.lumo" | grep -q "ivg       5x5x5" \
+    && ok "--cell 0.5 gives a 5x5x5 grid" || bad "--cell"
+
 # The summary and the per-vertex dump.
 "$inspect" "$dir/a.lumo" >"$dir/sum.txt" 2>&1 && grep -q "ivg       6x6x6" "$dir/sum.txt" \
     && ok "inspect summary" || bad "inspect summary"

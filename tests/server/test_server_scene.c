@@ -275,7 +275,7 @@ static void test_import_models(void **state)
     lumo_scene_init(&s);
     if (lumo_import_file(&s, "build/data/models/bunny.obj", &x, NULL, err, sizeof err) == 0) {
         assert_true(lumo_scene_triangle_count(&s) > 1000);
-        assert_close(s.meshes[0].albedo[0].x, 0.8, 0.2);
+        assert_close(s.meshes[0].albedo[0].x, 0.8, 1e-6);   /* no material: lumo's default */
     } else {
         print_message("bunny.obj not present (run tools/setup.sh): %s\n", err);
     }
@@ -291,6 +291,12 @@ static void test_import_models(void **state)
     assert_close(s.lights[0].power.x, 8 * M_PI, 1e-4);
     assert_close(s.lights[0].pos.y, 1.0, 1e-6);
     assert_close(s.lights[0].pos.x, 0.3, 1e-6);
+    /* PLY vertex colours become per-vertex albedo (clamped to 0.98). */
+    lumo_scene_free(&s);
+    assert_int_equal(lumo_import_file(&s, "tests/server/data/colours.ply", &x, NULL, err, sizeof err), 0);
+    assert_close(s.meshes[0].albedo[0].x, 0.98, 1e-6);
+    assert_close(s.meshes[0].albedo[0].z, 0.0, 1e-6);
+    assert_close(s.meshes[0].albedo[2].z, 0.98, 1e-6);
     assert_int_equal(lumo_import_file(&s, "build/nonexistent.obj", &x, NULL, err, sizeof err), -1);
     assert_non_null(strstr(err, "no such file"));
     lumo_scene_free(&s);

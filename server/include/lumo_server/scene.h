@@ -14,6 +14,9 @@
 #include "lumo_server/camera.h"
 #include "lumo_server/vec3.h"
 
+/* The package holds at most this many lights (LUMO_PKG_MAX_LIGHTS). */
+#define LUMO_SCENE_MAX_LIGHTS 64
+
 typedef enum lumo_light_kind {
     LUMO_LIGHT_POINT = 0, LUMO_LIGHT_SPOT = 1, LUMO_LIGHT_DIRECTIONAL = 2, LUMO_LIGHT_AREA = 3
 } lumo_light_kind;
