@@ -194,8 +194,8 @@ static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
     uint32_t *val = e->valences, next, prev, v;
     if (!e->valence)
         return;
-    next = e->c2v[ld_next(corner)];
-    prev = e->c2v[ld_prev(corner)];
+    next = e->c2v[ld_next_v(corner)];
+    prev = e->c2v[ld_prev_v(corner)];
     switch (e->last_symbol) {
     case LD_TOPO_C:
     case LD_TOPO_S:
@@ -267,7 +267,7 @@ static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
     if (s->top == 0)
         return LUMO_ERR_CORRUPT;
     a = s->stack[s->top - 1];
-    x = e->c2v[ld_next(a)];
+    x = e->c2v[ld_next_v(a)];
     if (!ld_valid_vertex(e, x))
         return LUMO_ERR_CORRUPT;
     b = ld_next(e->lmc[x]);
@@ -275,8 +275,8 @@ static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
         return LUMO_ERR_CORRUPT;
     ld_set_opp(e, a, corner + 1u);
     ld_set_opp(e, b, corner + 2u);
-    ap = e->c2v[ld_prev(a)];
-    bn = e->c2v[ld_next(b)];
+    ap = e->c2v[ld_prev_v(a)];
+    bn = e->c2v[ld_next_v(b)];
     if (x == ap || x == bn || !ld_valid_vertex(e, ap))
         return LUMO_ERR_CORRUPT;
     e->c2v[corner] = x;
@@ -305,12 +305,12 @@ static lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s, uint32_t face, 
     nv = ld_eb_new_vertex(e);
     e->c2v[oc] = nv;
     e->lmc[nv] = oc;
-    vr = e->c2v[ld_prev(a)];
+    vr = e->c2v[ld_prev_v(a)];
     if (!ld_valid_vertex(e, vr))
         return LUMO_ERR_CORRUPT;
     e->c2v[cr] = vr;
     e->lmc[vr] = cr;
-    e->c2v[cl] = e->c2v[ld_next(a)];
+    e->c2v[cl] = e->c2v[ld_next_v(a)];
     s->stack[s->top - 1] = corner;
     return LUMO_OK;
 }
@@ -331,11 +331,11 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
         return LUMO_ERR_CORRUPT;
     ld_set_opp(e, a, corner + 2u);
     ld_set_opp(e, b, corner + 1u);
-    vp = e->c2v[ld_prev(a)];
+    vp = e->c2v[ld_prev_v(a)];
     e->c2v[corner] = vp;
-    e->c2v[corner + 1u] = e->c2v[ld_next(a)];
-    vbp = e->c2v[ld_prev(b)];
-    cn = ld_next(b);
+    e->c2v[corner + 1u] = e->c2v[ld_next_v(a)];
+    vbp = e->c2v[ld_prev_v(b)];
+    cn = ld_next_v(b);
     vn = e->c2v[cn];
     if (!ld_valid_vertex(e, vp) || !ld_valid_vertex(e, vbp) || !ld_valid_vertex(e, vn))
         return LUMO_ERR_CORRUPT;
@@ -400,7 +400,7 @@ static lumo_status ld_eb_check_split(struct ld_eb *e, ld_eb_state *s, uint32_t n
         if (e->split_target[i] > 0x7FFFFFFFu)
             return LUMO_ERR_CORRUPT;
         act = s->stack[s->top - 1];
-        corner = e->split_edge[i] ? ld_next(act) : ld_prev(act);
+        corner = e->split_edge[i] ? ld_next_v(act) : ld_prev_v(act);
         ld_split_put(s, num_symbols - e->split_target[i] - 1u, corner);
         e->num_splits--;
     }

@@ -192,6 +192,9 @@ static inline uint32_t ld_prev(uint32_t c)
 {
     return c == LD_INV ? c : (c % 3u == 0u ? c + 2u : c - 1u);
 }
+/* The same for corners known to be valid (no LD_INV check). */
+static inline uint32_t ld_next_v(uint32_t c) { return c % 3u == 2u ? c - 2u : c + 1u; }
+static inline uint32_t ld_prev_v(uint32_t c) { return c % 3u == 0u ? c + 2u : c - 1u; }
 static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
 {
     if (c == LD_INV || (t->seam && t->seam[c]))
@@ -202,13 +205,14 @@ static inline uint32_t ld_vert(const ld_ct *t, uint32_t c)
 {
     return c == LD_INV ? LD_INV : t->c2v[c];
 }
+/* Swings take a valid corner and may return LD_INV. */
 static inline uint32_t ld_swing_right(const ld_ct *t, uint32_t c)
 {
-    return ld_prev(ld_opp(t, ld_prev(c)));
+    return ld_prev(ld_opp(t, ld_prev_v(c)));
 }
 static inline uint32_t ld_swing_left(const ld_ct *t, uint32_t c)
 {
-    return ld_next(ld_opp(t, ld_next(c)));
+    return ld_next(ld_opp(t, ld_next_v(c)));
 }
 
 /* Encoded order of one attributes decoder's values (libdraco

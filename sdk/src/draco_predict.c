@@ -70,7 +70,7 @@ static lumo_status ld_transform_read(ld_pred *p, ld_buf *b)
 }
 
 /* Wrap: clamp the prediction into [min, max], add, fold back. */
-static void ld_wrap_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
+static inline void ld_wrap_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
                              int32_t *out)
 {
     const int32_t max_dif = (int32_t)(1 + p->max_value - p->min_value);
@@ -175,7 +175,7 @@ static void ld_octa_original(const ld_pred *p, const int32_t *pred, const int32_
     out[1] = ot + c;
 }
 
-static void ld_original(const ld_pred *p, const int32_t *pred, const int32_t *corr, int32_t *out)
+static inline void ld_original(const ld_pred *p, const int32_t *pred, const int32_t *corr, int32_t *out)
 {
     if (p->transform == LD_XFORM_WRAP)
         ld_wrap_original(p, pred, corr, out);
@@ -279,25 +279,30 @@ static int32_t ld_value_of_vertex(const ld_pred *p, uint32_t v)
 }
 
 /* ComputeParallelogramPrediction: the vertex opposite `ci` across its
- * edge, reflected: next + prev - opposite, when all three are decoded. */
+ * edge, reflected: next + prev - opposite, when all three are decoded.
+ * (libdraco sums in int64 and truncates; uint32 arithmetic is the same.) */
 static int ld_parallelogram(const ld_pred *p, int32_t entry, uint32_t ci, const int32_t *data,
                             int32_t *out)
 {
     const ld_ct *ct = p->seq->ct;
-    uint32_t oci = ld_opp(ct, ci), c;
-    int32_t eo, en, ep;
+    const int32_t *v2v = p->seq->vertex_to_value;
+    const uint32_t k = p->comps;
+    uint32_t oci = ld_opp(ct, ci), c, r, eo, en, ep;
+    const int32_t *po, *pn, *pp;
     if (oci == LD_INV)
         return 0;
-    eo = ld_value_of_vertex(p, ld_vert(ct, oci));
-    en = ld_value_of_vertex(p, ld_vert(ct, ld_next(oci)));
-    ep = ld_value_of_vertex(p, ld_vert(ct, ld_prev(oci)));
-    if (eo < 0 || en < 0 || ep < 0 || eo >= entry || en >= entry || ep >= entry)
+    r = oci % 3u;  /* next and prev of oci within its face */
+    eo = (uint32_t)v2v[ct->c2v[oci]];
+    en = (uint32_t)v2v[ct->c2v[r == 2u ? oci - 2u : oci + 1u]];
+    ep = (uint32_t)v2v[ct->c2v[r == 0u ? oci + 2u : oci - 1u]];
+    /* unvisited (-1) entries become huge and fail the test */
+    if (eo >= (uint32_t)entry || en >= (uint32_t)entry || ep >= (uint32_t)entry)
         return 0;
-    for (c = 0; c < p->comps; ++c) {
-        int64_t r = (int64_t)data[(size_t)en * p->comps + c] + data[(size_t)ep * p->comps + c] -
-                    data[(size_t)eo * p->comps + c];
-        out[c] = (int32_t)(uint32_t)(uint64_t)r;
-    }
+    po = data + (size_t)eo * k;
+    pn = data + (size_t)en * k;
+    pp = data + (size_t)ep * k;
+    for (c = 0; c < k; ++c)
+        out[c] = (int32_t)((uint32_t)pn[c] + (uint32_t)pp[c] - (uint32_t)po[c]);
     return 1;
 }
 
@@ -306,11 +311,12 @@ static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
     static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
     int32_t pred[LUMO_DRACO_MAX_COMPONENTS];
     const unsigned k = p->comps;
+    const uint32_t *v2c = p->seq->value_to_corner;
     uint32_t i;
     ld_original(p, zero, v, v);
     for (i = 1; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k;
-        if (ld_parallelogram(p, (int32_t)i, p->seq->value_to_corner[i], v, pred))
+        if (ld_parallelogram(p, (int32_t)i, v2c[i], v, pred))
             ld_original(p, pred, dst, dst);
         else
             ld_original(p, dst - k, dst, dst);
@@ -404,8 +410,8 @@ static lumo_status ld_tex_predict(ld_pred *p, uint32_t corner, const int32_t *da
                                   int32_t id, int32_t out[2])
 {
     const ld_ct *ct = p->seq->ct;
-    const int32_t nid = ld_value_of_vertex(p, ld_vert(ct, ld_next(corner)));
-    const int32_t pid = ld_value_of_vertex(p, ld_vert(ct, ld_prev(corner)));
+    const int32_t nid = ld_value_of_vertex(p, ld_vert(ct, ld_next_v(corner)));
+    const int32_t pid = ld_value_of_vertex(p, ld_vert(ct, ld_prev_v(corner)));
     int32_t off;
     if (nid < 0 || pid < 0)
         return LUMO_ERR_CORRUPT;
@@ -517,8 +523,8 @@ static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[
         unsigned k;
         if (++guard > ct->num_corners + 1u)
             return LUMO_ERR_LIMIT;
-        if ((st = ld_corner_position(p, ld_next(c), pn)) ||
-            (st = ld_corner_position(p, ld_prev(c), pp)))
+        if ((st = ld_corner_position(p, ld_next_v(c), pn)) ||
+            (st = ld_corner_position(p, ld_prev_v(c), pp)))
             return st;
         for (k = 0; k < 3; ++k) {
             a[k] = pn[k] - cent[k];

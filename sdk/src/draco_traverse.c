@@ -38,13 +38,13 @@ static int ld_on_boundary(const ld_ct *ct, uint32_t v)
 
 static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 {
-    uint32_t n = ld_vert(w->ct, ld_next(corner)), p = ld_vert(w->ct, ld_prev(corner));
+    uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
     if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
         return LUMO_ERR_CORRUPT;
     if (!w->vert_seen[n])
-        ld_visit(w, n, ld_next(corner));
+        ld_visit(w, n, ld_next_v(corner));
     if (!w->vert_seen[p])
-        ld_visit(w, p, ld_prev(corner));
+        ld_visit(w, p, ld_prev_v(corner));
     return LUMO_OK;
 }
 
@@ -75,14 +75,14 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
                 int boundary = ld_on_boundary(w->ct, v);
                 ld_visit(w, v, c);
                 if (!boundary) {
-                    c = ld_opp(w->ct, ld_next(c));
+                    c = ld_opp(w->ct, ld_next_v(c));
                     if (c == LD_INV || w->face_seen[c / 3u])
                         return LUMO_ERR_CORRUPT;  /* libdraco reads out of bounds */
                     continue;
                 }
             }
-            r = ld_opp(w->ct, ld_next(c));
-            l = ld_opp(w->ct, ld_prev(c));
+            r = ld_opp(w->ct, ld_next_v(c));
+            l = ld_opp(w->ct, ld_prev_v(c));
             if (ld_face_seen(w, r)) {
                 if (ld_face_seen(w, l)) {
                     --top;
@@ -185,8 +185,8 @@ static lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q)
                 return LUMO_ERR_CORRUPT;
             if (!w->vert_seen[v])
                 ld_visit(w, v, corner);
-            r = ld_opp(w->ct, ld_next(corner));
-            l = ld_opp(w->ct, ld_prev(corner));
+            r = ld_opp(w->ct, ld_next_v(corner));
+            l = ld_opp(w->ct, ld_prev_v(corner));
             rs = ld_face_seen(w, r);
             ls = ld_face_seen(w, l);
             if (!ls) {
