@@ -7,3 +7,14 @@
 # picks up the extra object through $^.
 IVG_TEST_BINS := $(patsubst tests/unit/%.c,$(BUILD)/tests/bin/%,$(wildcard tests/unit/test_ivg*.c))
 $(IVG_TEST_BINS): $(BUILD)/tests/server/ivg_encode.o
+# Benchmark: build/bin/lumo-bench-ivg (host -O2 against the rel library).
+IVG_BENCH := $(BIN)/lumo-bench-ivg
+HOST_TOOLS += $(IVG_BENCH)
+$(IVG_BENCH): $(BUILD)/host/bench/ivg_bench.o $(BUILD)/host/server/ivg_encode.o $(BUILD)/rel/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^ -lm
+
+BENCH_STEPS += bench-ivg
+.PHONY: bench-ivg
+bench-ivg: $(IVG_BENCH)
+	@sh bench/ivg_run.sh $(BUILD) $(IVG_BENCH)

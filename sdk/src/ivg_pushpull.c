@@ -137,11 +137,47 @@ static int32_t div_round_i32(int32_t n, uint32_t d)
     return n < 0 ? -(int32_t)q : (int32_t)q;
 }
 
+/* log2(w) when w is a power of two, else -1. */
+static int pow2_shift(uint32_t w)
+{
+    int s = 0;
+
+    if ((w & (w - 1u)) != 0u)
+        return -1;
+    while ((1u << s) < w)
+        s++;
+    return s;
+}
+
+/* The same rounding as div_round_u48 / div_round_i32 by a shift: pull
+ * weights always sum to 8 and interior push and smoothing weights to 64,
+ * so most vertices take this path. Results are identical either way. */
+static void acc_store_shift(const ivg_acc *acc, lumo_ivg_entry *e, int s)
+{
+    uint64_t half = ((uint64_t)1 << s) >> 1;
+    int a, k;
+
+    for (a = 0; a < LUMO_IVG_AXES; a++) {
+        for (k = 0; k < 3; k++) {
+            int32_t d = acc->d[a][k];
+            uint32_t mag = d < 0 ? (uint32_t)-d : (uint32_t)d;
+            e[a].c[k] = (uint32_t)((acc->c[a][k] + half) >> s);
+            mag = (uint32_t)((mag + half) >> s);
+            e[a].d[k] = (lumo_q1_14)(d < 0 ? -(int32_t)mag : (int32_t)mag);
+        }
+        e[a].reserved = 0;
+    }
+}
+
 /* The weighted average; a weighted average of values in range is in range. */
 static void acc_store(const ivg_acc *acc, lumo_ivg_entry *e)
 {
-    int a, k;
+    int a, k, s = pow2_shift(acc->w);
 
+    if (s >= 0) {
+        acc_store_shift(acc, e, s);
+        return;
+    }
     for (a = 0; a < LUMO_IVG_AXES; a++) {
         for (k = 0; k < 3; k++) {
             e[a].c[k] = div_round_u48(acc->c[a][k], acc->w);

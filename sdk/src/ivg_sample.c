@@ -8,9 +8,10 @@
  * at 0, and L_r = albedo/pi times that.
  *
  * Fixed point: grid coordinates and trilinear weights in Q16 (one 64-bit
- * multiply per axis, no division per sample); interpolation by three
- * rounds of lerps, so a constant field comes back exactly; n_a^2 and d.n
- * are kept exact in Q28 and their product rounded once to Q28.
+ * multiply per axis, no division per sample); eight Q16 corner weights per
+ * point that sum to exactly 2^16 (a constant field comes back exactly),
+ * shared by the three hemispheres, one rounding per interpolated value;
+ * n_a^2 and d.n are kept exact in Q28 and their product rounded once.
  */
 #include "ivg_internal.h"
 
@@ -37,48 +38,80 @@ static void locate(const lumo_ivg *g, int a, lumo_q16_16 p, uint32_t *cell, uint
     *t = (uint32_t)(u & 0xFFFFu);
 }
 
-/* One channel of the interpolated hemisphere: d in Q1.14, c in UQ16.16. */
+/* One interpolated hemisphere: c in UQ16.16, d in Q1.14. */
 typedef struct ivg_hemi {
-    int64_t c[3];
-    int64_t d[3];
+    uint32_t c[3];
+    int32_t  d[3];
 } ivg_hemi;
 
-static int64_t lerp(int64_t a, int64_t b, uint32_t t)
+/* d is offset by D_BIAS while it is weighted so every sum is non-negative
+ * and rounds the same way as c's (no shifts of negative numbers). */
+#define D_BIAS 32768
+
+/* a * t / 2^16 rounded half up; a, t <= 2^16. */
+static uint32_t part(uint32_t a, uint32_t t)
 {
-    return a + lumo_round_shift((b - a) * (int64_t)t, 16);
+    return (uint32_t)(((uint64_t)a * t + (1u << 15)) >> 16);
 }
 
-static void lerp_hemi(ivg_hemi *out, const ivg_hemi *a, const ivg_hemi *b, uint32_t t)
+/* The eight trilinear weights of a cell (corner n = x + 2y + 4z) in Q16,
+ * summing to exactly 2^16 so a constant field comes back bit for bit: each
+ * weight is split into its two children along the next axis as (w - p, p),
+ * p = round(w t), so every split keeps the sum and every weight is within
+ * one ulp of the exact product and never negative. */
+static void cell_weights(const uint32_t t[3], uint32_t w[8])
 {
-    int k;
+    uint32_t z[2] = {(1u << 16) - t[2], t[2]}, yz[4];   /* yz[y + 2z] */
+    int n;
 
-    for (k = 0; k < 3; k++) {
-        out->c[k] = lerp(a->c[k], b->c[k], t);
-        out->d[k] = lerp(a->d[k], b->d[k], t);
+    for (n = 0; n < 2; n++) {
+        yz[2 * n + 1] = part(z[n], t[1]);
+        yz[2 * n] = z[n] - yz[2 * n + 1];
+    }
+    for (n = 0; n < 4; n++) {
+        uint32_t x1 = part(yz[n], t[0]);
+        w[2 * n + 1] = x1;
+        w[2 * n] = yz[n] - x1;
     }
 }
 
-/* Trilinear interpolation of hemisphere `axis` in the cell at base vertex
- * `v0` with Q16 weights t[3]: lerp along x, then y, then z. */
-static void interpolate(const lumo_ivg *g, uint32_t v0, const uint32_t t[3], int axis, ivg_hemi *out)
+/* Trilinear interpolation of one hemisphere: base is its entry at the
+ * cell's first vertex, off[n] the entry offset of corner n. The colour
+ * sums stay below 2^48; the biased direction sums below
+ * 2^16 * 65535 + 2^15 < 2^32, so they fit 32 bits (cheaper on the M3). */
+static void interpolate(const lumo_ivg_entry *base, const uint32_t off[8], const uint32_t w[8],
+                        ivg_hemi *out)
 {
-    uint32_t sx = 1, sy = g->desc.dims[0], sz = sy * g->desc.dims[1];
-    ivg_hemi h[8];
-    int n, k;
+    uint64_t c0 = 0, c1 = 0, c2 = 0;
+    uint32_t d0 = 0, d1 = 0, d2 = 0;
+    int n;
 
     for (n = 0; n < 8; n++) {
-        uint32_t v = v0 + (n & 1 ? sx : 0) + (n & 2 ? sy : 0) + (n & 4 ? sz : 0);
-        const lumo_ivg_entry *e = &g->level[0].e[(size_t)v * LUMO_IVG_AXES + axis];
-        for (k = 0; k < 3; k++) {
-            h[n].c[k] = e->c[k];
-            h[n].d[k] = e->d[k];
-        }
+        const lumo_ivg_entry *e = base + off[n];
+        uint32_t wn = w[n];
+        c0 += (uint64_t)e->c[0] * wn;
+        c1 += (uint64_t)e->c[1] * wn;
+        c2 += (uint64_t)e->c[2] * wn;
+        d0 += (uint32_t)(e->d[0] + D_BIAS) * wn;
+        d1 += (uint32_t)(e->d[1] + D_BIAS) * wn;
+        d2 += (uint32_t)(e->d[2] + D_BIAS) * wn;
     }
-    for (n = 0; n < 4; n++)
-        lerp_hemi(&h[n], &h[2 * n], &h[2 * n + 1], t[0]);
-    for (n = 0; n < 2; n++)
-        lerp_hemi(&h[n], &h[2 * n], &h[2 * n + 1], t[1]);
-    lerp_hemi(out, &h[0], &h[1], t[2]);
+    out->c[0] = (uint32_t)((c0 + (1u << 15)) >> 16);
+    out->c[1] = (uint32_t)((c1 + (1u << 15)) >> 16);
+    out->c[2] = (uint32_t)((c2 + (1u << 15)) >> 16);
+    out->d[0] = (int32_t)((d0 + (1u << 15)) >> 16) - D_BIAS;
+    out->d[1] = (int32_t)((d1 + (1u << 15)) >> 16) - D_BIAS;
+    out->d[2] = (int32_t)((d2 + (1u << 15)) >> 16) - D_BIAS;
+}
+
+/* Entry offsets of the eight corners of a cell (corner n = x + 2y + 4z). */
+static void corner_offsets(const lumo_ivg *g, uint32_t off[8])
+{
+    uint32_t sy = g->desc.dims[0] * LUMO_IVG_AXES, sz = sy * g->desc.dims[1];
+    int n;
+
+    for (n = 0; n < 8; n++)
+        off[n] = (n & 1 ? (uint32_t)LUMO_IVG_AXES : 0u) + (n & 2 ? sy : 0u) + (n & 4 ? sz : 0u);
 }
 
 /* Largest |n_a^2 (d_a . n)| kept, Q28 (2.0): unreachable with unit n and
@@ -88,7 +121,8 @@ static void interpolate(const lumo_ivg *g, uint32_t v0, const uint32_t t[3], int
 void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                          lumo_uq16_16 out[3])
 {
-    uint32_t cell[3], t[3], v0;
+    uint32_t cell[3], t[3], w[8], off[8];
+    const lumo_ivg_entry *base;
     int64_t sum[3] = {0, 0, 0};
     int a, k;
 
@@ -97,20 +131,23 @@ void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q
         return;
     for (a = 0; a < 3; a++)
         locate(g, a, p[a], &cell[a], &t[a]);
-    v0 = cell[0] + g->desc.dims[0] * (cell[1] + g->desc.dims[1] * cell[2]);
+    base = &g->level[0].e[(size_t)(cell[0] + g->desc.dims[0] * (cell[1] + g->desc.dims[1] * cell[2]))
+                          * LUMO_IVG_AXES];
+    cell_weights(t, w);
+    corner_offsets(g, off);
     for (a = 0; a < 3; a++) {
         int64_t n2 = (int64_t)n[a] * n[a];               /* Q28 */
         int64_t dn = 0, f;
         ivg_hemi h;
         if (n2 == 0)
             continue;                                     /* no weight: skip */
-        interpolate(g, v0, t, 2 * a + (n[a] < 0), &h);
+        interpolate(base + 2 * a + (n[a] < 0), off, w, &h);
         for (k = 0; k < 3; k++)
-            dn += h.d[k] * n[k];                          /* Q28 */
+            dn += (int64_t)h.d[k] * n[k];                 /* Q28 */
         f = lumo_round_shift(n2 * dn, 28);                /* Q28 */
         f = f > FACTOR_MAX ? FACTOR_MAX : f < -FACTOR_MAX ? -FACTOR_MAX : f;
         for (k = 0; k < 3; k++)
-            sum[k] += h.c[k] * f;                         /* Q44, |.| < 2^61 */
+            sum[k] += (int64_t)h.c[k] * f;                /* Q44, |.| < 2^61 */
     }
     for (k = 0; k < 3; k++)
         out[k] = lumo_sat_u32(lumo_round_shift(sum[k], 28));
