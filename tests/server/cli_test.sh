@@ -90,6 +90,10 @@ expect_error "inspect truncated"    "$inspect" "$dir/trunc.lumo"
     head -c 8 "$dir/ref.png" | od -An -c | grep -q "P   N   G" && ok "reference PNG" || bad "reference PNG"
 "$bake" --default --reference 32x24 --spp 4 --indirect-only -o "$dir/ind.png" 2>/dev/null && \
     ok "indirect-only PNG" || bad "indirect-only PNG"
+"$bake" --default --reference 32x24 --spp 4 --threads 1 -o "$dir/ref1.png" 2>/dev/null
+cmp -s "$dir/ref.png" "$dir/ref1.png" && ok "reference: same seed, 1 vs 2 threads: identical PNG" \
+    || bad "reference differs between thread counts"
+cmp -s "$dir/ref.png" "$dir/ind.png" && bad "indirect-only equals full" || ok "indirect-only differs from full"
 
 echo "RESULT: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -73,6 +73,42 @@ static void test_solid_vertices(void **state)
     fixture_free(&f);
 }
 
+/* The default scene with the scanned dragon (when installed): solid
+ * vertices exist (the dragon is closed enough) and all lie inside the
+ * dragon's bounding box; none on the room's walls. */
+static void test_dragon_solid_only_inside(void **state)
+{
+    (void)state;
+    bake_fixture f;
+    char err[256];
+    const char *path = "build/data/models/dragon_48k.ply";
+    memset(&f, 0, sizeof f);
+    lumo_scene_init(&f.scene);
+    assert_int_equal(lumo_default_scene(&f.scene, path, err, sizeof err), 0);
+    const lumo_mesh *d = &f.scene.meshes[f.scene.nmeshes - 1];
+    if (strcmp(d->name, "dragon")) {
+        print_message("%s not present (run tools/setup.sh): skipped\n", path);
+        lumo_scene_free(&f.scene);
+        skip();
+    }
+    vec3 lo = d->pos[0], hi = d->pos[0];
+    for (uint32_t v = 1; v < d->nverts; v++)
+        lo = v3_min(lo, d->pos[v]), hi = v3_max(hi, d->pos[v]);
+    int dims[3] = {21, 21, 21};
+    lumo_grid g = lumo_grid_over(&f.scene, dims);
+    fixture_bake(&f, &g, 32, 1, 2);
+    int solid = 0;
+    for (size_t v = 0; v < f.res.nverts; v++) {
+        if (f.res.valid[v])
+            continue;
+        vec3 p = lumo_grid_vertex(&g, (int)(v % 21), (int)(v / 21 % 21), (int)(v / 441));
+        assert_true(p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z);
+        solid++;
+    }
+    assert_true(solid > 0);
+    fixture_free(&f);
+}
+
 /* Same seed: identical floats for 1 and 2 threads; another seed differs. */
 static void test_same_seed_same_bytes(void **state)
 {
@@ -306,7 +342,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cornell_sense),      cmocka_unit_test(test_solid_vertices),
-        cmocka_unit_test(test_same_seed_same_bytes), cmocka_unit_test(test_quantized_vs_float),
+        cmocka_unit_test(test_dragon_solid_only_inside), cmocka_unit_test(test_same_seed_same_bytes), cmocka_unit_test(test_quantized_vs_float),
         cmocka_unit_test(test_package_round_trip), cmocka_unit_test(test_validate_errors),
         cmocka_unit_test(test_parsers),            cmocka_unit_test(test_import_models),
     };
