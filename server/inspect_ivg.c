@@ -48,6 +48,11 @@ static int run_ivg(int argc, char **argv)
     if (lumo_inspect_load(path, &data, &len, &pkg))
         return 1;
     lumo_status st = lumo_package_ivg_desc(&pkg, &d);
+    if (st == LUMO_ERR_RANGE && lumo_package_find(&pkg, LUMO_PKG_IVGD, 0, &(const uint8_t *){0}, &(uint32_t){0})) {
+        fprintf(stderr, "lumo-inspect: error: %s: the package has no IVG\n", path);
+        free(data);
+        return 1;
+    }
     size_t bytes = st ? 0 : lumo_ivg_memory_size(&d) + LUMO_ARENA_SLACK;
     void *mem = bytes ? malloc(bytes) : NULL;
     lumo_arena arena;

@@ -150,6 +150,11 @@ int lumo_scene_load(lumo_scene *s, const char *path, char *err, size_t errlen)
     snprintf(p.dir, sizeof p.dir, "%s", dirname(tmp));
     for (int lineno = 1; fgets(line, sizeof line, f); lineno++) {
         char *hash = strchr(line, '#'), *save = NULL;
+        if (!strchr(line, '\n') && !feof(f)) {
+            snprintf(err, errlen, "%s:%d: line longer than %zu characters", path, lineno, sizeof line - 2);
+            fclose(f);
+            return -1;
+        }
         if (hash)
             *hash = 0;
         p.n = 0;

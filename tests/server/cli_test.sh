@@ -45,6 +45,8 @@ expect_error "zero-area face"       "$bake" "$dir/flat.obj" -o "$dir/x.lumo" $li
 expect_error "empty scene"          "$bake" "$dir/empty.txt" -o "$dir/x.lumo"
 expect_error "no light"             "$bake" "$dir/nolight.txt" -o "$dir/x.lumo"
 expect_error "unknown statement"    "$bake" "$dir/unknown.txt" -o "$dir/x.lumo"
+awk 'BEGIN { printf "quad"; for (i = 0; i < 600; i++) printf " 0,0,0"; print "" }' >"$dir/long.txt"
+expect_error "overlong line"        "$bake" "$dir/long.txt" -o "$dir/x.lumo"
 expect_error "unknown option"       "$bake" --default --frobnicate -o "$dir/x.lumo"
 expect_error "bad light"            "$bake" --default --light point:1,2 -o "$dir/x.lumo"
 expect_error "bad grid"             "$bake" --default --grid 1 -o "$dir/x.lumo"
