@@ -13,6 +13,7 @@
 #include "test_common.h"
 #include <stdio.h>
 #include <stdlib.h>
+#include "lumo_server/bake.h"
 #include "lumo_server/reference.h"
 #include "lumo_server/shapes.h"
 
@@ -138,11 +139,57 @@ static void test_area_light(void **state)
     lumo_scene_free(&s);
 }
 
+/* The bake and the indirect-only reference estimate the same quantity on
+ * a floor point of the Cornell box: E_ind = I_{+y} . y from the bake and
+ * pi L / rho from the renderer. Independent estimators, so the tolerance is
+ * K_SIGMA times their combined standard error (+ the view's footprint). */
+static void test_bake_matches_reference(void **state)
+{
+    (void)state;
+    lumo_scene s;
+    char err[256];
+    lumo_scene_init(&s);
+    assert_int_equal(lumo_default_scene(&s, NULL, err, sizeof err), 0);
+    lumo_rt *rt = lumo_rt_create(&s, 2, err, sizeof err);
+    lumo_tracer t;
+    lumo_tracer_init(&t, &s, rt);
+    /* Vertex (1, 0, 0) of this grid is the floor point (0, 0, -0.5). */
+    lumo_grid g = {{3, 3, 3}, {-0.5f, 0, -0.5f}, {0.5f, 1, 0.5f}};
+    lumo_bake_opts bo = {32768, 3, 2, 0, 0.25f};
+    lumo_bake_result r;
+    assert_int_equal(lumo_bake(&t, &g, &bo, &r, err, sizeof err), 0);
+    double e_bake = r.I[LUMO_BAKE_I(&r, 1, 2, 1) + 1], se_bake = r.se[(1 * 6 + 2) * 3 + 1];
+    lumo_bake_result_free(&r);
+    lumo_rt_free(rt);
+    /* Looking straight down at it from 0.3 m with a 1-degree view. */
+    lumo_camera cam;
+    assert_int_equal(lumo_camera_parse("0,0.3,-0.5:0,0,-0.5:0,0,-1:1", &cam), 0);
+    s.camera = cam;
+    rt = lumo_rt_create(&s, 2, err, sizeof err);
+    lumo_tracer_init(&t, &s, rt);
+    lumo_render_opts o = {512, 5, 2, 1, 0};
+    lumo_image img;
+    assert_int_equal(lumo_render_reference(&t, &s.camera, N, N, &o, &img, NULL), 0);
+    double sum = 0, sq = 0, k = M_PI / 0.75;   /* white floor, rho = 0.75 */
+    for (int i = 0; i < N * N; i++) {
+        double e = k * img.rgb[3 * i + 1];
+        sum += e, sq += e * e;
+    }
+    double e_ref = sum / (N * N), se_ref = sqrt(fmax(sq / (N * N) - e_ref * e_ref, 0) / (N * N));
+    print_message("E_ind bake %.5f +- %.5f, reference %.5f +- %.5f\n", e_bake, se_bake, e_ref, se_ref);
+    assert_true(e_bake > 0.05);
+    assert_close(e_bake, e_ref, K_SIGMA * sqrt(se_bake * se_bake + se_ref * se_ref) + FOOTPRINT * e_ref);
+    lumo_image_free(&img);
+    lumo_rt_free(rt);
+    lumo_scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_point_light), cmocka_unit_test(test_spot_cutoff),
         cmocka_unit_test(test_directional), cmocka_unit_test(test_area_light),
+        cmocka_unit_test(test_bake_matches_reference),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
