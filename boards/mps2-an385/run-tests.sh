@@ -15,6 +15,11 @@ out=$1; tests=$2; goldens=$3
 logs="$out/logs"
 mkdir -p "$logs"
 pass=0; fail=0
+if ! command -v qemu-system-arm >/dev/null 2>&1; then
+    echo "qemu-system-arm is not installed: run sh tools/setup.sh"
+    echo "RESULT: 0 passed, 1 failed"
+    exit 1
+fi
 
 run_board() {  # run_board ELF LOG -> exit status of QEMU
     $QEMU "$1" </dev/null >"$2" 2>&1
