@@ -4,6 +4,7 @@
 // the process as any C tool would).
 #include "lumo_server/draco_shim.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -57,6 +58,33 @@ void set_quant(draco::Encoder *enc, const lumo_draco_quant *q)
 }
 
 }  // namespace
+
+// The float libdraco will hold after its std::to_string round trip.
+static float draco_text_float(double v)
+{
+    char text[64];
+    std::snprintf(text, sizeof text, "%f", static_cast<float>(v));
+    return std::strtof(text, nullptr);
+}
+
+extern "C" void lumo_draco_grid(const float lo[3], const float hi[3], int bits, lumo_draco_quant *q)
+{
+    double extent = 0;
+    q->bits = bits;
+    for (int c = 0; c < 3; ++c) {
+        q->origin[c] = draco_text_float(std::floor(static_cast<double>(lo[c]) * 1e6) / 1e6 - 1e-6);
+        while (q->origin[c] > lo[c])  // text rounding went up: step down
+            q->origin[c] = draco_text_float(static_cast<double>(q->origin[c]) - 1e-6);
+        double e = static_cast<double>(hi[c]) - q->origin[c];
+        extent = e > extent ? e : extent;
+    }
+    q->range = draco_text_float(std::ceil(extent * 1e6) / 1e6 + 1e-6);
+    for (int c = 0; c < 3; ++c)
+        while (static_cast<double>(q->origin[c]) + q->range < hi[c])
+            q->range = draco_text_float(static_cast<double>(q->range) + 1e-6);
+    if (q->range <= 0)
+        q->range = 1;
+}
 
 extern "C" lumo_draco_settings lumo_draco_default_settings(void)
 {

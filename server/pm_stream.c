@@ -202,15 +202,7 @@ static void grid_of(const lumo_pm *pm, int bits, lumo_draco_quant *q)
             lo[c] = x < lo[c] ? x : lo[c];
             hi[c] = x > hi[c] ? x : hi[c];
         }
-    q->bits = bits;
-    q->range = 0;
-    for (int c = 0; c < 3; c++) {
-        q->origin[c] = pm->vertices ? lo[c] : 0;
-        if (pm->vertices && hi[c] - lo[c] > q->range)
-            q->range = hi[c] - lo[c];
-    }
-    if (q->range <= 0)
-        q->range = 1;
+    lumo_draco_grid(lo, hi, bits, q);
 }
 
 static uint32_t f32bits(float f)

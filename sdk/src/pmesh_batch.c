@@ -88,7 +88,8 @@ static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t s
     const lumo_pmesh_header *h = &pm->h;
     if (b->count < 1 || b->count > h->vertices - b->first)
         return LUMO_ERR_CORRUPT;
-    if (b->first == 0 ? b->count != h->base_vertices : b->count > h->batch_vertices)
+    if (b->first == 0 ? b->count != h->base_vertices || b->faces != h->base_faces
+                      : b->count > h->batch_vertices)
         return LUMO_ERR_CORRUPT;
     if (b->faces > h->max_batch_faces || b->moves > h->max_batch_moves ||
         b->faces > h->faces - pm->face_count)
@@ -342,6 +343,9 @@ static lumo_status run_splits(split_ctx *s)
         return LUMO_ERR_CORRUPT;
     if ((s->br.pos + 7) / 8 != s->b->side_bytes)
         return LUMO_ERR_CORRUPT;  /* trailing bytes */
+    uint32_t pad;
+    if (read_bits(&s->br, (unsigned)(s->br.nbits - s->br.pos), &pad) || pad)
+        return LUMO_ERR_CORRUPT;  /* padding bits must be zero */
     return LUMO_OK;
 }
 

@@ -28,6 +28,12 @@ typedef struct lumo_draco_quant {
     float range;       /* metres: the cube's edge length, > 0 */
 } lumo_draco_quant;
 
+/* A grid covering [lo, hi] on every axis whose origin and range survive
+ * libdraco's option storage unchanged (it keeps floats as std::to_string
+ * text: six decimals), so the stream header can state the exact binary32
+ * values every payload carries. Requires coordinates well above 1e-6. */
+void lumo_draco_grid(const float lo[3], const float hi[3], int bits, lumo_draco_quant *q);
+
 /* The encoder choice for point payloads. `speed` is Draco's 0..10 (10 - cl);
  * `method` 0 = sequential (keeps point order: required by the stream). */
 typedef struct lumo_draco_settings {

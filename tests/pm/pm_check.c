@@ -1,0 +1,465 @@
+/* pm_check.c — end-to-end checks of the progressive mesh (issue 5): the
+ * server's levels, the stream, and the real client (sanitizer build of
+ * liblumo) decoding it.
+ *
+ *   pm_check (--gen NAME | MODEL.ply) [--batch N] [--bits B]
+ *
+ * Prints one line per check and "RESULT: N passed, M failed". */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo/package.h"
+#include "lumo/pmesh.h"
+#include "lumo_server/pm.h"
+#include "lumo_server/pm_client.h"
+#include "lumo_server/pm_load.h"
+#include "lumo_server/pm_stream.h"
+#include "pm_meshes.h"
+
+static int g_pass, g_fail;
+static char g_name[256];
+
+static void check(int ok, const char *what, const char *detail)
+{
+    if (ok)
+        g_pass++;
+    else
+        g_fail++;
+    printf("%s %s: %s%s%s\n", ok ? "ok  " : "FAIL", g_name, what, detail[0] ? " — " : "", detail);
+}
+
+/* ---- every level, by an incremental sweep --------------------------------- */
+/* Corner events: at level `level` corner `corner` starts showing `value`. */
+typedef struct { uint32_t level, corner, value; } event;
+
+static int cmp_event(const void *a, const void *b)
+{
+    const event *x = a, *y = b;
+    if (x->level != y->level)
+        return x->level < y->level ? -1 : 1;
+    return (x->corner > y->corner) - (x->corner < y->corner);
+}
+
+typedef struct { uint64_t *key; uint32_t *count; size_t mask; } multiset;
+
+static uint64_t face_key(const uint32_t *t)
+{
+    uint32_t a = t[0], b = t[1], c = t[2], x;
+    if (a > b) x = a, a = b, b = x;
+    if (b > c) x = b, b = c, c = x;
+    if (a > b) x = a, a = b, b = x;
+    return ((uint64_t)a * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)b << 21) ^ ((uint64_t)c << 42) ^ c ^ (b >> 11);
+}
+
+/* Keys are hashes of sorted triples; a 64-bit collision would only make a
+ * false duplicate report, never hide one. */
+static uint32_t *ms_slot(multiset *m, uint64_t k)
+{
+    size_t i = (size_t)(k * 0xff51afd7ed558ccdull >> 20) & m->mask;
+    while (m->count[i] != UINT32_MAX && m->key[i] != k)
+        i = (i + 1) & m->mask;
+    if (m->count[i] == UINT32_MAX)
+        m->key[i] = k, m->count[i] = 0;
+    return &m->count[i];
+}
+
+static int face_bad(const uint32_t *t, uint32_t k)
+{
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || t[0] >= k || t[1] >= k || t[2] >= k;
+}
+
+static void check_all_levels(const lumo_pm *pm)
+{
+    size_t nev = 0, cap = 3 * (size_t)pm->faces;
+    event *ev = malloc(sizeof *ev * (cap ? cap : 1));
+    for (uint32_t f = 0; f < pm->faces; f++)
+        for (int c = 0; c < 3; c++) {
+            uint32_t o = pm->tris[3 * (size_t)f + c], L = pm->level[f];
+            for (uint32_t a = o; a >= L; a = pm->parent[a]) {
+                if (nev == cap)
+                    ev = realloc(ev, sizeof *ev * (cap *= 2));
+                ev[nev++] = (event){a + 1, 3 * f + (uint32_t)c, a};
+            }
+        }
+    qsort(ev, nev, sizeof *ev, cmp_event);
+    size_t slots = 1;
+    while (slots < 2 * (nev + pm->faces) + 16)
+        slots *= 2;
+    multiset ms = {malloc(sizeof(uint64_t) * slots), malloc(sizeof(uint32_t) * slots), slots - 1};
+    memset(ms.count, 0xff, sizeof(uint32_t) * slots);
+    uint32_t *disp = malloc(sizeof *disp * 3 * (size_t)(pm->faces ? pm->faces : 1));
+    uint32_t nf = 0, bad = 0, dups = 0, levels = 0, first_bad = 0;
+    size_t e = 0;
+    for (uint32_t k = pm->base_vertices; k <= pm->vertices; k++, levels++) {
+        for (; e < nev && ev[e].level <= k; e++) {  /* corner moves to a new vertex */
+            uint32_t f = ev[e].corner / 3;
+            if (f >= nf)
+                continue;  /* face not shown yet: it enters resolved below */
+            (*ms_slot(&ms, face_key(disp + 3 * f)))--;
+            disp[ev[e].corner] = ev[e].value;
+            uint32_t *cnt = ms_slot(&ms, face_key(disp + 3 * f));
+            dups += ++*cnt > 1;
+            if (face_bad(disp + 3 * f, k) && !bad++)
+                first_bad = k;
+        }
+        for (; nf < pm->faces && pm->level[nf] <= k; nf++) {
+            for (int c = 0; c < 3; c++)
+                disp[3 * nf + c] = lumo_pm_resolve(pm, pm->tris[3 * nf + c], k);
+            uint32_t *cnt = ms_slot(&ms, face_key(disp + 3 * nf));
+            dups += ++*cnt > 1;
+            if (face_bad(disp + 3 * nf, k) && !bad++)
+                first_bad = k;
+        }
+        /* the sweep must agree with lumo_pm_level on sampled levels */
+        if (k % 97 == 0 || k == pm->vertices) {
+            uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1));
+            uint32_t rn = lumo_pm_level(pm, k, ref);
+            if (rn != nf || memcmp(ref, disp, sizeof *ref * 3 * nf))
+                bad++;
+            free(ref);
+        }
+    }
+    /* Faces that did not change since the previous level stay valid: every
+     * face is checked whenever it enters or one of its corners moves. */
+    char d[160];
+    snprintf(d, sizeof d, "%u levels (%u..%u vertices), %u bad, %u duplicated faces (first bad %u)",
+             levels, pm->base_vertices, pm->vertices, bad, dups, first_bad);
+    check(bad == 0 && dups == 0, "every level valid, no degenerate or duplicated face", d);
+    free(ev), free(ms.key), free(ms.count), free(disp);
+}
+
+/* ---- the full level against the input mesh ------------------------------- */
+typedef struct { float p[9]; } ptri;
+
+/* Rotate so the lexicographically smallest corner comes first (winding kept). */
+static ptri canon(const float *a, const float *b, const float *c)
+{
+    const float *v[3] = {a, b, c};
+    int m = 0;
+    for (int i = 1; i < 3; i++)
+        if (v[i][0] < v[m][0] || (v[i][0] == v[m][0] && (v[i][1] < v[m][1] ||
+            (v[i][1] == v[m][1] && v[i][2] < v[m][2]))))
+            m = i;
+    ptri t;
+    for (int i = 0; i < 3; i++)
+        memcpy(t.p + 3 * i, v[(m + i) % 3], 3 * sizeof(float));
+    return t;
+}
+
+static int cmp_ptri(const void *a, const void *b)
+{
+    const float *x = ((const ptri *)a)->p, *y = ((const ptri *)b)->p;
+    for (int i = 0; i < 9; i++)
+        if (x[i] != y[i])
+            return x[i] < y[i] ? -1 : 1;
+    return 0;
+}
+
+/* Same vertex set (either winding): compare sorted corners. */
+static ptri unordered(ptri t)
+{
+    ptri u = t;
+    for (int i = 0; i < 3; i++)
+        for (int j = i + 1; j < 3; j++)
+            if (cmp_ptri(&(ptri){{u.p[3 * j], u.p[3 * j + 1], u.p[3 * j + 2]}},
+                         &(ptri){{u.p[3 * i], u.p[3 * i + 1], u.p[3 * i + 2]}}) < 0)
+                for (int k = 0; k < 3; k++) {
+                    float x = u.p[3 * i + k];
+                    u.p[3 * i + k] = u.p[3 * j + k], u.p[3 * j + k] = x;
+                }
+    return u;
+}
+
+typedef struct { ptri u; uint32_t f; } keyed;
+
+static int cmp_keyed(const void *a, const void *b)
+{
+    const keyed *x = a, *y = b;
+    int c = cmp_ptri(&x->u, &y->u);
+    return c ? c : (x->f > y->f) - (x->f < y->f);
+}
+
+/* The input's faces minus degenerate ones and later copies of a vertex set
+ * (the same rule as server/pm_clean.c, stated on positions here). */
+static size_t input_faces(const pm_test_mesh *in, ptri *out)
+{
+    keyed *k = malloc(sizeof *k * (in->nf + 1));
+    uint8_t *keep = calloc(in->nf + 1, 1);
+    size_t n = 0, nk = 0;
+    for (uint32_t f = 0; f < in->nf; f++) {
+        const float *a = in->xyz + 3 * in->tris[3 * f], *b = in->xyz + 3 * in->tris[3 * f + 1],
+                    *c = in->xyz + 3 * in->tris[3 * f + 2];
+        if (!memcmp(a, b, 12) || !memcmp(b, c, 12) || !memcmp(a, c, 12))
+            continue;
+        k[nk].u = unordered(canon(a, b, c));
+        k[nk++].f = f;
+    }
+    qsort(k, nk, sizeof *k, cmp_keyed);
+    for (size_t i = 0; i < nk; i++)
+        keep[k[i].f] = i == 0 || cmp_ptri(&k[i].u, &k[i - 1].u) != 0;
+    for (uint32_t f = 0; f < in->nf; f++)
+        if (keep[f])
+            out[n++] = canon(in->xyz + 3 * in->tris[3 * f], in->xyz + 3 * in->tris[3 * f + 1],
+                             in->xyz + 3 * in->tris[3 * f + 2]);
+    free(k), free(keep);
+    return n;
+}
+
+static void check_full_level(const pm_test_mesh *in, const lumo_pm *pm, const lumo_pmesh_view *v,
+                             double step)
+{
+    ptri *want = malloc(sizeof *want * (in->nf + 1)), *got = malloc(sizeof *got * (v->face_count + 1));
+    size_t nw = input_faces(in, want), bad_pos = 0;
+    for (uint32_t f = 0; f < v->face_count; f++) {
+        const uint32_t *t = v->triangles + 3 * f;
+        got[f] = canon(pm->xyz + 3 * t[0], pm->xyz + 3 * t[1], pm->xyz + 3 * t[2]);
+    }
+    qsort(want, nw, sizeof *want, cmp_ptri);
+    qsort(got, v->face_count, sizeof *got, cmp_ptri);
+    int same = nw == v->face_count && !memcmp(want, got, sizeof *got * nw);
+    double worst = 0;
+    for (uint32_t i = 0; i < 3 * v->vertex_count; i++) {
+        double d = fabs(v->positions[i] / 65536.0 - pm->xyz[i]);
+        worst = d > worst ? d : worst;
+        bad_pos += d > step;
+    }
+    char d[200];
+    snprintf(d, sizeof d, "%u faces vs %zu input faces kept (%u input, %u vertices)", v->face_count,
+             nw, in->nf, v->vertex_count);
+    check(same && v->vertex_count == pm->vertices, "full level = input mesh (faces as sets, winding kept)", d);
+    snprintf(d, sizeof d, "worst %.3g m, quantization step %.3g m", worst, step);
+    check(bad_pos == 0, "full-level positions within the quantization step", d);
+    free(want), free(got);
+}
+
+/* ---- the client against the server, level by level --------------------------- */
+static int client_matches(const lumo_pm *pm, const lumo_pmesh_view *v, uint32_t *ref, double step,
+                          char *why, size_t n)
+{
+    uint32_t k = v->vertex_count, nf = lumo_pm_level(pm, k, ref);
+    if (nf != v->face_count || memcmp(ref, v->triangles, sizeof *ref * 3 * nf)) {
+        snprintf(why, n, "level %u: %u faces, server %u, or indices differ", k, v->face_count, nf);
+        return 0;
+    }
+    for (uint32_t i = 0; i < 3 * k; i++)
+        if (fabs(v->positions[i] / 65536.0 - pm->xyz[i]) > step) {
+            snprintf(why, n, "level %u: vertex %u off by more than a step", k, i / 3);
+            return 0;
+        }
+    for (uint32_t i = 0; i < k; i++) {
+        const lumo_q1_14 *q = v->normals + 3 * i;
+        double len = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2]) / 16384.0;
+        if (len != 0 && fabs(len - 1) > 0.01) {
+            snprintf(why, n, "level %u: normal %u has length %.4f", k, i, len);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Returns the client's final view through *cl (left open for the caller). */
+static void check_client(const lumo_pm *pm, const uint8_t *s, size_t len, double step, lumo_pm_client *cl)
+{
+    uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1));
+    char why[200] = "";
+    lumo_status st = lumo_pm_client_open(cl, s, len);
+    uint32_t levels = 0;
+    int ok = !st;
+    while (ok && !lumo_pmesh_complete(&cl->pm)) {
+        if ((st = lumo_pm_client_step(cl))) {
+            snprintf(why, sizeof why, "batch %u: %s", cl->pm.batches_applied, lumo_strerror(st));
+            ok = 0;
+            break;
+        }
+        lumo_pmesh_view v;
+        lumo_pmesh_get_view(&cl->pm, &v);
+        ok = client_matches(pm, &v, ref, step, why, sizeof why);
+        levels++;
+    }
+    if (ok)
+        snprintf(why, sizeof why, "%u batches, each level identical to lumo_pm_level, arena %zu bytes",
+                 levels, cl->arena_bytes);
+    check(ok, "client applying batches in order reproduces the server's levels", why);
+    free(ref);
+}
+
+/* ---- corrupt and truncated batches -------------------------------------------- */
+typedef struct {
+    uint32_t vc, fc, ba;
+    uint32_t *tris, *next, *head;
+    lumo_q16_16 *pos;
+    lumo_q1_14 *nrm;
+} snapshot;
+
+static void snap(const lumo_pmesh *pm, snapshot *s)
+{
+    size_t c = 3 * (size_t)pm->h.faces, v = pm->h.vertices;
+    s->vc = pm->vertex_count, s->fc = pm->face_count, s->ba = pm->batches_applied;
+    s->tris = malloc(4 * c + 4), s->next = malloc(4 * c + 4), s->head = malloc(4 * v + 4);
+    s->pos = malloc(12 * v + 4), s->nrm = malloc(6 * v + 4);
+    memcpy(s->tris, pm->tris, 4 * c), memcpy(s->next, pm->next, 4 * c);
+    memcpy(s->head, pm->head, 4 * v), memcpy(s->pos, pm->pos, 12 * v), memcpy(s->nrm, pm->nrm, 6 * v);
+}
+
+static int same_as(const lumo_pmesh *pm, const snapshot *s)
+{
+    size_t c = 3 * (size_t)pm->h.faces, v = pm->h.vertices;
+    /* head[] of vertices not yet received is scratch until they arrive */
+    return s->vc == pm->vertex_count && s->fc == pm->face_count && s->ba == pm->batches_applied &&
+           !memcmp(s->tris, pm->tris, 4 * 3 * (size_t)s->fc) && !memcmp(s->next, pm->next, 4 * 3 * (size_t)s->fc) &&
+           !memcmp(s->head, pm->head, 4 * (size_t)s->vc) && !memcmp(s->pos, pm->pos, 12 * (size_t)s->vc) &&
+           !memcmp(s->nrm, pm->nrm, 6 * (size_t)s->vc) && c + v > 0;
+}
+
+static void unsnap(snapshot *s)
+{
+    free(s->tris), free(s->next), free(s->head), free(s->pos), free(s->nrm);
+}
+
+static void put32(uint8_t *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        p[i] = (uint8_t)(v >> (8 * i));
+}
+
+static void fix_crc(uint8_t *r, size_t n)
+{
+    uint32_t crc = lumo_package_crc32(0, r, 32);
+    put32(r + 32, lumo_package_crc32(crc, r + 36, n - 36));
+}
+
+/* One bad variant of the next record must fail and leave the mesh as it was. */
+static int reject(lumo_pm_client *cl, const uint8_t *r, size_t n, const snapshot *s, int *errs,
+                  const char *what, size_t at)
+{
+    lumo_status st = lumo_pmesh_apply(&cl->pm, r, n);
+    *errs += st != LUMO_OK;
+    int ok = st != LUMO_OK && same_as(&cl->pm, s);
+    if (!ok)
+        fprintf(stderr, "batch %u, %s at %zu: %s, mesh %s\n", cl->pm.batches_applied, what, at,
+                st ? lumo_strerror(st) : "accepted", same_as(&cl->pm, s) ? "unchanged" : "CHANGED");
+    return ok;
+}
+
+static int corrupt_variants(lumo_pm_client *cl, const uint8_t *rec, size_t n, const uint8_t *later,
+                            size_t later_n, int *tried)
+{
+    snapshot s;
+    snap(&cl->pm, &s);
+    uint8_t *b = malloc(n + 1);
+    int ok = 1, errs = 0;
+    for (size_t i = 0; i < n; i += 1 + n / 23) {     /* byte flips everywhere */
+        memcpy(b, rec, n);
+        b[i] ^= (uint8_t)(0x5a + i);
+        ok &= reject(cl, b, n, &s, &errs, "byte flip", i), (*tried)++;
+    }
+    for (size_t cut = 0; cut < n; cut += 1 + n / 7)  /* truncations */
+        ok &= reject(cl, rec, cut, &s, &errs, "truncation", cut), (*tried)++;
+    const uint32_t fields[2] = {16, 20};             /* face and move counts, CRC fixed: */
+    for (int f = 0; f < 2; f++) {                    /* fails late, after changes to undo */
+        uint32_t v = rec[fields[f]] | rec[fields[f] + 1] << 8 | rec[fields[f] + 2] << 16 | (uint32_t)rec[fields[f] + 3] << 24;
+        if (!v)
+            continue;
+        memcpy(b, rec, n);
+        put32(b + fields[f], v - 1);
+        fix_crc(b, n);
+        ok &= reject(cl, b, n, &s, &errs, f ? "move count - 1" : "face count - 1", 0), (*tried)++;
+    }
+    if (later)                                        /* out of order */
+        ok &= lumo_pmesh_apply(&cl->pm, later, later_n) == LUMO_ERR_STATE && same_as(&cl->pm, &s), (*tried)++;
+    ok &= lumo_pmesh_apply(&cl->pm, rec, n) == LUMO_OK;  /* the good copy still applies */
+    free(b);
+    unsnap(&s);
+    return ok;
+}
+
+static void check_corruption(const lumo_pm *pm, const uint8_t *s, size_t len, double step)
+{
+    lumo_pm_client cl;
+    int ok = !lumo_pm_client_open(&cl, s, len), tried = 0;
+    uint32_t nb = cl.h.batch_count;
+    for (uint32_t i = 0; ok && i < nb; i++) {
+        const uint8_t *rec, *later = NULL;
+        size_t n, later_n = 0;
+        ok = !lumo_pm_client_next(&cl, &rec, &n);
+        if (ok && i + 1 < nb)
+            later = rec + n, later_n = len - (size_t)(later - s);
+        if (later && lumo_pmesh_record_size(later, later_n, &later_n))
+            later = NULL;
+        int pick = i < 2 || i == nb / 2 || i + 1 == nb;
+        if (ok && pick)
+            ok = corrupt_variants(&cl, rec, n, later, later_n, &tried);
+        else if (ok)
+            ok = !lumo_pmesh_apply(&cl.pm, rec, n);
+        cl.at += n;
+    }
+    lumo_pmesh_view v;
+    lumo_pmesh_get_view(&cl.pm, &v);
+    uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1));
+    char why[200] = "";
+    ok = ok && lumo_pmesh_complete(&cl.pm) && client_matches(pm, &v, ref, step, why, sizeof why);
+    snprintf(why + strlen(why), sizeof why - strlen(why), "%s%d bad records rejected, mesh unchanged each time",
+             why[0] ? "; " : "", tried);
+    check(ok, "corrupt/truncated/out-of-order batches rejected whole, good ones still apply", why);
+    free(ref);
+    lumo_pm_client_close(&cl);
+}
+
+/* ---- driver ------------------------------------------------------------------------ */
+int main(int argc, char **argv)
+{
+    const char *gen = NULL, *file = NULL;
+    lumo_pm_stream_options so;
+    lumo_pm_stream_default_options(&so);
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--gen") && i + 1 < argc)
+            gen = argv[++i];
+        else if (!strcmp(argv[i], "--batch") && i + 1 < argc)
+            so.batch_vertices = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--bits") && i + 1 < argc)
+            so.quant_bits = atoi(argv[++i]);
+        else
+            file = argv[i];
+    }
+    pm_test_mesh in = {0};
+    char err[256];
+    if (gen ? pm_test_mesh_make(gen, &in) : !file || lumo_pm_load(file, &in.xyz, &in.nv, &in.tris, &in.nf, err, sizeof err)) {
+        fprintf(stderr, "pm_check: cannot load %s\n", gen ? gen : file ? file : "(nothing)");
+        printf("RESULT: 0 passed, 1 failed\n");
+        return 1;
+    }
+    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits", gen ? gen : file, so.batch_vertices, so.quant_bits);
+    lumo_pm pm;
+    uint8_t *s = NULL;
+    size_t len = 0;
+    int built = !lumo_pm_build(in.xyz, in.nv, in.tris, in.nf, NULL, &pm);
+    snprintf(err, sizeof err, "%u -> %u vertices (%u welded), %u faces (%u dropped), base %u/%u",
+             in.nv, built ? pm.vertices : 0, built ? pm.welded : 0, built ? pm.faces : 0,
+             built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0);
+    check(built, "half-edge collapse build", err);
+    if (built) {
+        check_all_levels(&pm);
+        int streamed = !lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);
+        snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
+        check(streamed, "stream written", err);
+        if (streamed) {
+            float range;
+            uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
+            memcpy(&range, &rb, 4);
+            double step = range / ((1 << so.quant_bits) - 1) + 2.0 / 65536;
+            lumo_pm_client cl;
+            check_client(&pm, s, len, step, &cl);
+            lumo_pmesh_view v;
+            lumo_pmesh_get_view(&cl.pm, &v);
+            check_full_level(&in, &pm, &v, step);
+            lumo_pm_client_close(&cl);
+            check_corruption(&pm, s, len, step);
+        }
+    }
+    free(s);
+    lumo_pm_free(&pm);
+    pm_test_mesh_free(&in);
+    printf("RESULT: %d passed, %d failed\n", g_pass, g_fail);
+    return g_fail != 0;
+}

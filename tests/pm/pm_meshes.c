@@ -1,0 +1,154 @@
+/* pm_meshes.c — generated test meshes for the progressive-mesh checks:
+ * closed sphere, open noisy grid (boundary), a Cornell-style box of
+ * separate walls and a cube (several components), and a "scan" with every
+ * defect of real scans (unwelded duplicates, holes, a non-manifold fin,
+ * duplicate and degenerate faces, two components). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "pm_meshes.h"
+
+static void grow(pm_test_mesh *m, uint32_t nv, uint32_t nf)
+{
+    m->xyz = realloc(m->xyz, sizeof *m->xyz * 3 * (m->nv + nv + 1));
+    m->tris = realloc(m->tris, sizeof *m->tris * 3 * (m->nf + nf + 1));
+    if (!m->xyz || !m->tris)
+        abort();
+}
+
+static uint32_t vert(pm_test_mesh *m, double x, double y, double z)
+{
+    grow(m, 1, 0);
+    m->xyz[3 * m->nv] = (float)x, m->xyz[3 * m->nv + 1] = (float)y, m->xyz[3 * m->nv + 2] = (float)z;
+    return m->nv++;
+}
+
+static void tri(pm_test_mesh *m, uint32_t a, uint32_t b, uint32_t c)
+{
+    grow(m, 0, 1);
+    m->tris[3 * m->nf] = a, m->tris[3 * m->nf + 1] = b, m->tris[3 * m->nf + 2] = c;
+    m->nf++;
+}
+
+static double noise(uint32_t i)
+{
+    i = (i ^ 61) ^ (i >> 16), i *= 9, i ^= i >> 4, i *= 0x27d4eb2d, i ^= i >> 15;
+    return (double)(i % 1000) / 1000.0 - 0.5;
+}
+
+static void sphere(pm_test_mesh *m, int nu, int nv, double r, double cx)
+{
+    uint32_t top = vert(m, cx, 0, r), first = m->nv;
+    for (int j = 1; j < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            double th = M_PI * j / nv, ph = 2 * M_PI * i / nu;
+            double rr = r * (1 + 0.05 * noise((uint32_t)(j * nu + i)));
+            vert(m, cx + rr * sin(th) * cos(ph), rr * sin(th) * sin(ph), rr * cos(th));
+        }
+    uint32_t bot = vert(m, cx, 0, -r);
+    for (int i = 0; i < nu; i++) {
+        uint32_t a = first + (uint32_t)i, b = first + (uint32_t)((i + 1) % nu);
+        tri(m, top, a, b);
+        uint32_t la = first + (uint32_t)((nv - 2) * nu + i), lb = first + (uint32_t)((nv - 2) * nu + (i + 1) % nu);
+        tri(m, bot, lb, la);
+    }
+    for (int j = 0; j + 2 < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            uint32_t a = first + (uint32_t)(j * nu + i), b = first + (uint32_t)(j * nu + (i + 1) % nu);
+            uint32_t c = a + (uint32_t)nu, d = b + (uint32_t)nu;
+            tri(m, a, c, d);
+            tri(m, a, d, b);
+        }
+}
+
+/* A subdivided quad: origin o, edge vectors u, v, n x n cells. */
+static void quad(pm_test_mesh *m, const double o[3], const double u[3], const double v[3], int n,
+                 double bump)
+{
+    uint32_t first = m->nv;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            double s = (double)i / n, t = (double)j / n, h = bump * noise(first + (uint32_t)(j * (n + 1) + i));
+            double nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2], nz = u[0] * v[1] - u[1] * v[0];
+            vert(m, o[0] + s * u[0] + t * v[0] + h * nx, o[1] + s * u[1] + t * v[1] + h * ny,
+                 o[2] + s * u[2] + t * v[2] + h * nz);
+        }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            uint32_t a = first + (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)(n + 1), d = c + 1;
+            tri(m, a, b, d);
+            tri(m, a, d, c);
+        }
+}
+
+static void cornell(pm_test_mesh *m)
+{
+    const double O[3] = {0, 0, 0}, X[3] = {1, 0, 0}, Y[3] = {0, 1, 0}, Z[3] = {0, 0, 1};
+    const double top[3] = {0, 1, 0}, back[3] = {0, 0, 1}, right[3] = {1, 0, 0};
+    quad(m, O, Z, X, 8, 0);         /* floor */
+    quad(m, top, X, Z, 8, 0);       /* ceiling */
+    quad(m, back, X, Y, 8, 0.01);   /* back wall */
+    quad(m, O, Y, Z, 8, 0);         /* left wall */
+    quad(m, right, Z, Y, 8, 0);     /* right wall */
+    /* A closed cube: six quads welded through shared positions. */
+    const double c0[3] = {0.2, 0, 0.2}, c1[3] = {0.5, 0.3, 0.5};
+    const double a[3] = {0.3, 0, 0}, b[3] = {0, 0.3, 0}, c[3] = {0, 0, 0.3};
+    const double na[3] = {-0.3, 0, 0}, nb[3] = {0, -0.3, 0}, nc[3] = {0, 0, -0.3};
+    quad(m, c0, b, a, 4, 0), quad(m, c0, a, c, 4, 0), quad(m, c0, c, b, 4, 0);
+    quad(m, c1, na, nb, 4, 0), quad(m, c1, nc, na, 4, 0), quad(m, c1, nb, nc, 4, 0);
+}
+
+/* A sphere with unwelded corners, holes, a fin on a non-manifold edge,
+ * a duplicate and a degenerate face, plus a separate noisy patch. */
+static void scan(pm_test_mesh *m)
+{
+    pm_test_mesh s = {0};
+    sphere(&s, 24, 14, 1.0, 0);
+    for (uint32_t f = 0; f < s.nf; f++) {
+        if (f % 97 == 13)
+            continue;  /* holes */
+        uint32_t t[3];
+        for (int c = 0; c < 3; c++) {
+            const float *p = s.xyz + 3 * s.tris[3 * f + c];
+            t[c] = vert(m, p[0], p[1], p[2]);  /* every corner its own vertex */
+        }
+        tri(m, t[0], t[1], t[2]);
+    }
+    const uint32_t *e = s.tris + 3 * 200;
+    const float *p0 = s.xyz + 3 * e[0], *p1 = s.xyz + 3 * e[1];
+    uint32_t a = vert(m, p0[0], p0[1], p0[2]), b = vert(m, p1[0], p1[1], p1[2]);
+    uint32_t fin = vert(m, 1.5 * p0[0], 1.5 * p0[1], 1.5 * p0[2] + 0.1);
+    tri(m, a, b, fin);                                   /* non-manifold fin */
+    tri(m, m->tris[0], m->tris[1], m->tris[2]);          /* duplicate face */
+    tri(m, m->tris[3], m->tris[3], m->tris[4]);          /* degenerate face */
+    const double o[3] = {2, -1, -1}, u[3] = {1, 0, 0}, v[3] = {0, 1, 0};
+    quad(m, o, u, v, 10, 0.05);
+    free(s.xyz);
+    free(s.tris);
+}
+
+int pm_test_mesh_make(const char *name, pm_test_mesh *m)
+{
+    memset(m, 0, sizeof *m);
+    if (!strcmp(name, "sphere"))
+        sphere(m, 32, 18, 1.0, 0);
+    else if (!strcmp(name, "grid")) {
+        const double o[3] = {0, 0, 0}, u[3] = {1, 0, 0}, v[3] = {0, 1, 0};
+        quad(m, o, u, v, 24, 0.03);
+    } else if (!strcmp(name, "cornell"))
+        cornell(m);
+    else if (!strcmp(name, "scan"))
+        scan(m);
+    else if (!strcmp(name, "tiny")) {
+        sphere(m, 6, 4, 1.0, 0);
+    } else
+        return -1;
+    return 0;
+}
+
+void pm_test_mesh_free(pm_test_mesh *m)
+{
+    free(m->xyz);
+    free(m->tris);
+    memset(m, 0, sizeof *m);
+}
