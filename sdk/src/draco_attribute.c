@@ -18,7 +18,7 @@
 #define LD_SEQ_NORMALS 3u
 
 lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
-                                          uint32_t *first, uint32_t *count)
+                                          uint32_t *first, uint32_t *count, int with_types)
 {
     uint32_t n, i;
     lumo_status st = ld_varint32(&d->buf, &n);
@@ -52,7 +52,7 @@ lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
             return st;
     }
     d->num_attrs += n;
-    for (i = 0; i < n; ++i) {
+    for (i = 0; i < n && with_types; ++i) {
         lumo_draco_attribute *a = &d->attrs[*first + i];
         uint8_t type;
         if ((st = ld_u8(&d->buf, &type)))
@@ -195,6 +195,19 @@ static unsigned ld_frac_bits(const uint32_t *min_bits, unsigned comps, uint32_t 
     return f < 0 ? 0u : (f > 30 ? 30u : (unsigned)f);
 }
 
+lumo_status ld_set_quantization(lumo_draco_attribute *a, unsigned bits)
+{
+    unsigned c;
+    lumo_status st;
+    a->xform = LUMO_DRACO_XFORM_QUANTIZED;
+    a->quant_bits = (uint8_t)bits;
+    a->frac_bits = (uint8_t)ld_frac_bits(a->min_bits, a->num_components, a->range_bits);
+    for (c = 0; c < a->num_components; ++c)
+        if ((st = lumo_f32bits_to_fixed(a->min_bits[c], a->frac_bits, &a->min_fixed[c])))
+            return st;
+    return lumo_f32bits_to_fixed(a->range_bits, a->frac_bits, &a->range_fixed);
+}
+
 static lumo_status ld_decode_quantization(ld_dec *d, lumo_draco_attribute *a)
 {
     unsigned c, comps = a->num_components;
@@ -211,13 +224,7 @@ static lumo_status ld_decode_quantization(ld_dec *d, lumo_draco_attribute *a)
         return st;
     if (bits < 1 || bits > 30)
         return LUMO_ERR_CORRUPT;
-    a->xform = LUMO_DRACO_XFORM_QUANTIZED;
-    a->quant_bits = bits;
-    a->frac_bits = (uint8_t)ld_frac_bits(a->min_bits, comps, a->range_bits);
-    for (c = 0; c < comps; ++c)
-        if ((st = lumo_f32bits_to_fixed(a->min_bits[c], a->frac_bits, &a->min_fixed[c])))
-            return st;
-    return lumo_f32bits_to_fixed(a->range_bits, a->frac_bits, &a->range_fixed);
+    return ld_set_quantization(a, bits);
 }
 
 static lumo_status ld_decode_transform_params(ld_dec *d, lumo_draco_attribute *a)

@@ -198,6 +198,7 @@ typedef struct ld_decoder_slot {
 static lumo_status ld_all_attributes(ld_dec *d)
 {
     ld_decoder_slot slots[LD_MAX_DECODERS];
+    const int kd = d->geometry == LUMO_DRACO_POINT_CLOUD && d->method == LUMO_DRACO_METHOD_KD_TREE;
     uint8_t n, i;
     lumo_status st = ld_u8(&d->buf, &n);
     if (st)
@@ -214,7 +215,7 @@ static lumo_status ld_all_attributes(ld_dec *d)
     }
     for (i = 0; i < n; ++i) {
         uint32_t k;
-        if ((st = ld_read_attribute_descriptors(d, i, &slots[i].first, &slots[i].count)))
+        if ((st = ld_read_attribute_descriptors(d, i, &slots[i].first, &slots[i].count, !kd)))
             return st;
         for (k = 0; k < slots[i].count; ++k) {
             d->attrs[slots[i].first + k].modes.traversal = slots[i].traversal;
@@ -224,6 +225,11 @@ static lumo_status ld_all_attributes(ld_dec *d)
     for (i = 0; i < n; ++i) {
         uint8_t *mark = ld_tmp_mark(&d->mem);
         ld_seq *seq = &slots[i].seq;
+        if (kd) {
+            if ((st = ld_kd_decode_attributes(d, slots[i].first, slots[i].count)))
+                return st;
+            continue;
+        }
         if (d->eb) {
             if ((st = ld_eb_sequence(d, i, seq)))
                 return st;
@@ -242,8 +248,7 @@ static lumo_status ld_point_cloud_geometry(ld_dec *d)
 {
     uint32_t n;
     lumo_status st;
-    if (d->method != LUMO_DRACO_METHOD_SEQUENTIAL)
-        return LUMO_ERR_UNSUPPORTED;  /* KD-tree point clouds: not yet */
+    /* sequential and KD-tree: a 32-bit (signed) point count */
     if ((st = ld_u32(&d->buf, &n)))
         return st;
     if (n > LD_MAX_POINTS)

@@ -143,7 +143,11 @@ typedef struct ld_seq {
 
 /* draco_attribute.c */
 lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
-                                          uint32_t *first, uint32_t *count);
+                                          uint32_t *first, uint32_t *count, int with_types);
+/* Quantization parameters in min_bits/range_bits -> fixed point. */
+lumo_status ld_set_quantization(lumo_draco_attribute *a, unsigned bits);
+/* draco_kdtree.c: one KD-tree attributes decoder, values and parameters */
+lumo_status ld_kd_decode_attributes(ld_dec *d, uint32_t first, uint32_t count);
 lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count,
                                  const ld_seq *seq);
 

@@ -47,10 +47,15 @@ else
     for cl in 0 7 10; do add mesh "$models/dragon_11k.ply" "-cl $cl -qp 14"; done
     for cl in 0 5 7 10; do add mesh "$models/dragon_48k.ply" "-cl $cl"; done
 fi
-# point clouds: sequential decoded; KD-tree must be refused cleanly
-add cloud "$work/gen/cloud.ply" "-point_cloud -cl 0"
-add cloud "$models/dragon_11k.ply" "-point_cloud -cl 0 -qp 12"
-for cl in 1 6 10; do add unsupported "$work/gen/cloud.ply" "-point_cloud -cl $cl"; done
+# point clouds: sequential (cl 0) and KD-tree (cl 1-10)
+for cl in 0 1 2 3 4 5 6 7 8 9 10; do
+    add cloud "$work/gen/cloud.ply" "-point_cloud -cl $cl"
+    add cloud "$work/gen/torus_color.ply" "-point_cloud -cl $cl -qp 14 -qn 9"
+done
+for cl in 0 2 4 6 10; do add cloud "$models/dragon_11k.ply" "-point_cloud -cl $cl -qp 12"; done
+# not decoded, must be refused cleanly: unquantized floats (generic coding)
+add unsupported "$work/gen/small.obj" "-cl 7 -qp 0 -qt 0 -qn 0"
+add unsupported "$work/gen/torus_color.ply" "-cl 0 -qp 0 -qn 0"
 
 run_case() {  # run_case N LINE
     n=$1; kind=${2%%|*}; rest=${2#*|}; model=${rest%%|*}; opts=${rest#*|}
