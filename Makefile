@@ -141,6 +141,6 @@ demo: $(SETUP_STAMP) all
 	@sh tools/demo.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD)/rel $(BUILD)/san $(BUILD)/m3 $(BUILD)/host $(BUILD)/tests $(BIN) $(BUILD)/fuzz
+	rm -rf $(BUILD)/rel $(BUILD)/san $(BUILD)/m3 $(BUILD)/host $(BUILD)/tests $(BIN) $(BUILD)/fuzz $(BUILD)/board
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
