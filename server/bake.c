@@ -98,7 +98,7 @@ static void bake_vertex(void *ctx, size_t v, int worker)
             double var = sq[h][ch] / spp - mean * mean;
             res->se[(v * 6 + (size_t)h) * 3 + (size_t)ch] = (float)sqrt(fmax(var, 0.0) / spp);
             for (int c = 0; c < 3; c++)
-                res->I[LUMO_BAKE_I(res, v, h, ch) + (size_t)c] =
+                res->I[LUMO_BAKE_I(v, h, ch) + (size_t)c] =
                     res->valid[v] ? (float)(sum[h][ch][c] / spp) : 0.0f;
         }
 }

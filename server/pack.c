@@ -136,7 +136,7 @@ static int pack_bundle(lumo_pkg_writer *w, const lumo_bake_result *r, lumo_ivg_f
             continue;
         }
         for (int h = 0; h < LUMO_IVG_AXES; h++)
-            lumo_ivg_compress((const float(*)[3]) & r->I[LUMO_BAKE_I(r, v, h, 0)], (lumo_ivg_axis)h, &e[h]);
+            lumo_ivg_compress((const float(*)[3]) & r->I[LUMO_BAKE_I(v, h, 0)], (lumo_ivg_axis)h, &e[h]);
         lumo_ivg_writer_add(&iw, (uint32_t)v, e);
     }
     size_t len = lumo_ivg_writer_finish(&iw);

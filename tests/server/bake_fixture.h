@@ -38,7 +38,7 @@ static inline void fixture_free(bake_fixture *f)
 /* I_delta . delta of vertex v, hemisphere h, channel ch. */
 static inline double fixture_normal_component(const bake_fixture *f, size_t v, int h, int ch)
 {
-    double x = f->res.I[LUMO_BAKE_I(&f->res, v, h, ch) + (size_t)(h / 2)];
+    double x = f->res.I[LUMO_BAKE_I(v, h, ch) + (size_t)(h / 2)];
     return h & 1 ? -x : x;
 }
 

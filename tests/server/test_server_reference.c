@@ -158,7 +158,7 @@ static void test_bake_matches_reference(void **state)
     lumo_bake_opts bo = {32768, 3, 2, 0, 0.25f};
     lumo_bake_result r;
     assert_int_equal(lumo_bake(&t, &g, &bo, &r, err, sizeof err), 0);
-    double e_bake = r.I[LUMO_BAKE_I(&r, 1, 2, 1) + 1], se_bake = r.se[(1 * 6 + 2) * 3 + 1];
+    double e_bake = r.I[LUMO_BAKE_I(1, 2, 1) + 1], se_bake = r.se[(1 * 6 + 2) * 3 + 1];
     lumo_bake_result_free(&r);
     lumo_rt_free(rt);
     /* Looking straight down at it from 0.3 m with a 1-degree view. */

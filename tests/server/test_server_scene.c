@@ -177,7 +177,7 @@ static void test_quantized_vs_float(void **state)
             continue;
         for (int h = 0; h < 6; h++) {
             lumo_ivg_fentry e;
-            lumo_ivg_compress((const float(*)[3]) & f.res.I[LUMO_BAKE_I(&f.res, v, h, 0)], (lumo_ivg_axis)h, &e);
+            lumo_ivg_compress((const float(*)[3]) & f.res.I[LUMO_BAKE_I(v, h, 0)], (lumo_ivg_axis)h, &e);
             const lumo_ivg_entry *ef = lumo_ivg_entry_at(gf, v, (lumo_ivg_axis)h);
             const lumo_ivg_entry *eq = lumo_ivg_entry_at(gq, v, (lumo_ivg_axis)h);
             double cmax = fmax(e.c[0], fmax(e.c[1], e.c[2]));

@@ -34,8 +34,9 @@ typedef struct lumo_bake_opts {
     float    solid_fraction; /* back-face share of first hits above which a vertex is solid */
 } lumo_bake_opts;
 
-/* Index helpers: vertex v = i + nx*(j + ny*k) (lumo/ivg.h order). */
-#define LUMO_BAKE_I(res, v, h, ch) ((((size_t)(v) * 6 + (h)) * 3 + (ch)) * 3)
+/* Offset in lumo_bake_result.I of the 3-vector of vertex v (i + nx*(j + ny*k),
+ * the lumo/ivg.h order), hemisphere h (lumo_ivg_axis order), channel ch. */
+#define LUMO_BAKE_I(v, h, ch) ((((size_t)(v) * 6 + (h)) * 3 + (ch)) * 3)
 
 typedef struct lumo_bake_result {
     lumo_grid grid;
