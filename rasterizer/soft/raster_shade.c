@@ -24,10 +24,11 @@ static int32_t clamp_i32(int64_t v, int32_t lim)
     return (int32_t)v;
 }
 
-/* Dot product of two Q1.14 vectors, Q1.14. */
+/* Dot product of two Q1.14 vectors, Q1.14; 64-bit because a caller's
+ * "unit" vectors may be anything in [-2, 2) (hostile meshes). */
 static int32_t dot_q14(const lumo_q1_14 a[3], const lumo_q1_14 b[3])
 {
-    int32_t d = (int32_t)a[0] * b[0] + (int32_t)a[1] * b[1] + (int32_t)a[2] * b[2];
+    int64_t d = (int64_t)a[0] * b[0] + (int64_t)a[1] * b[1] + (int64_t)a[2] * b[2];
     return (int32_t)lumo_round_shift(d, LUMO_Q14_SHIFT);
 }
 
