@@ -338,6 +338,29 @@ static void test_import_models(void **state)
     lumo_scene_free(&s);
 }
 
+static void test_scene_file(void **state)
+{
+    (void)state;
+    lumo_scene s;
+    char err[512];
+    lumo_scene_init(&s);
+    assert_int_equal(lumo_scene_load(&s, "tests/server/data/scene.txt", err, sizeof err), 0);
+    /* 2 meshes + quad + 6 box faces + sphere + the area light's emitter */
+    assert_int_equal(s.nmeshes, 11);
+    assert_int_equal(s.nlights, 2);
+    assert_true(s.has_camera);
+    assert_close(s.camera.fovy_deg, 45.0, 0.0);
+    /* scale 2, rotate 90 deg about y, translate: (0,0,1) -> (0,0,2) -> (2,0,0) -> (3,0,0) */
+    assert_close(s.meshes[0].pos[1].x, 3.0, 1e-5);
+    assert_close(s.meshes[0].pos[1].z, 0.0, 1e-5);
+    assert_close(s.meshes[0].albedo[0].x, 0.98, 1e-6);      /* vertex colour */
+    assert_close(s.meshes[1].pos[1].y, 5.0, 1e-6);
+    assert_close(s.meshes[1].albedo[0].z, 0.3, 1e-6);       /* line override */
+    assert_int_equal(s.meshes[10].emitter, 1);
+    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), 0);
+    lumo_scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -345,6 +368,7 @@ int main(void)
         cmocka_unit_test(test_dragon_solid_only_inside), cmocka_unit_test(test_same_seed_same_bytes), cmocka_unit_test(test_quantized_vs_float),
         cmocka_unit_test(test_package_round_trip), cmocka_unit_test(test_validate_errors),
         cmocka_unit_test(test_parsers),            cmocka_unit_test(test_import_models),
+        cmocka_unit_test(test_scene_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
