@@ -13,6 +13,10 @@
 #include "lumo_server/shapes.h"
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
+/* A bake vertex is cheap (one per grid point): 256 paths keep the IVG's
+ * noise low; a reference pixel needs far fewer for a preview. */
+#define DEFAULT_BAKE_SPP 256
+#define DEFAULT_REF_SPP 64
 
 typedef struct {
     const char *scene, *out, *dragon;
@@ -35,7 +39,7 @@ static const char usage[] =
     "  -o, --output FILE      package (.lumo) or, with --reference, PNG\n"
     "  --grid N|NX,NY,NZ      grid vertices per axis, 2..256 (default 16)\n"
     "  --cell SIZE            or: grid spacing in metres\n"
-    "  --spp N                paths per grid vertex / per pixel (default 64)\n"
+    "  --spp N                paths per grid vertex (default 256) / per pixel (default 64)\n"
     "  --seed S               random seed; same seed, same bytes (default 1)\n"
     "  --threads N            worker threads (default: all cores)\n"
     "  --light SPEC           add a light (repeatable): point:X,Y,Z:R,G,B |\n"
@@ -143,7 +147,7 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     int c;
     memset(o, 0, sizeof *o);
     o->dims[0] = o->dims[1] = o->dims[2] = 16;
-    o->spp = 64;
+    o->spp = 0;   /* 0: the default of the mode, set after parsing */
     o->seed = 1;
     o->exposure = 1.0f;
     o->progress = 1;
@@ -173,6 +177,8 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
         snprintf(err, errlen, "no output file (-o)");
         return -1;
     }
+    if (o->spp == 0)
+        o->spp = o->ref_w ? DEFAULT_REF_SPP : DEFAULT_BAKE_SPP;
     return 0;
 }
 
