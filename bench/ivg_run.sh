@@ -58,9 +58,8 @@ done
     echo "or without smoothing; the paper does not say which levels it filters."
     echo
     awk '$2 == 25 { i[$1] = $4 }
-         END { printf "Growth with the grid (25 %% received, with smoothing): 32^3 costs %.2f x and 64^3 %.2f x the
-instructions of the size below (8 x = linear in the vertex count).
-", i[32] / i[16], i[64] / i[32] }' "$dir/instr.txt"
+         END { printf "Growth with the grid (25 %% received, with smoothing): 32^3 costs %.2f x and 64^3 %.2f x\n", i[32] / i[16], i[64] / i[32]
+               printf "the instructions of the size below (8 x = linear in the vertex count).\n" }' "$dir/instr.txt"
     echo
     echo "Shading cost per point (\`lumo_ivg_irradiance\`; 32^3 grid, 25 % received, push-pulled):"
     echo
@@ -71,7 +70,7 @@ instructions of the size below (8 x = linear in the vertex count).
          NR != FNR { printf "| %s | %.0f | %.0f |\n", nm[$1], ns[$1], $2 / n }' "$dir/time.txt" "$dir/sample_instr.txt"
     echo
     echo "A normal along an axis interpolates one hemisphere instead of three (the other two have"
-    echo "n_a = 0 and are skipped). The first two rows run the same instructions; their time"
-    echo "difference is memory locality (random points touch scattered grid cells)."
+    echo "n_a = 0 and are skipped). The first two rows run the same instructions and differ only"
+    echo "in memory locality; on a loaded host their times move more with the load than with it."
 } > "$out"
 echo "bench-ivg: wrote $out"
