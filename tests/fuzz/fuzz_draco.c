@@ -9,7 +9,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static uint8_t g_mem[8u << 20];
+static uint8_t g_mem[2u << 20];
 
 static void check(const lumo_draco_mesh *m)
 {
