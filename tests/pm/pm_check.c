@@ -409,7 +409,7 @@ static void check_corruption(const lumo_pm *pm, const uint8_t *s, size_t len, do
 /* ---- driver ------------------------------------------------------------------------ */
 int main(int argc, char **argv)
 {
-    const char *gen = NULL, *file = NULL;
+    const char *gen = NULL, *file = NULL, *dump = NULL;
     lumo_pm_stream_options so;
     lumo_pm_stream_default_options(&so);
     for (int i = 1; i < argc; i++) {
@@ -417,6 +417,8 @@ int main(int argc, char **argv)
             gen = argv[++i];
         else if (!strcmp(argv[i], "--batch") && i + 1 < argc)
             so.batch_vertices = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--write-stream") && i + 1 < argc)
+            dump = argv[++i];  /* for fuzz seeds and the unit test's data */
         else if (!strcmp(argv[i], "--bits") && i + 1 < argc)
             so.quant_bits = atoi(argv[++i]);
         else
@@ -443,6 +445,10 @@ int main(int argc, char **argv)
         int streamed = !lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);
         snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
         check(streamed, "stream written", err);
+        if (streamed && dump) {
+            FILE *f = fopen(dump, "wb");
+            check(f && fwrite(s, 1, len, f) == len && !fclose(f), "stream saved", dump);
+        }
         if (streamed) {
             float range;
             uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
