@@ -297,8 +297,7 @@ static void shade_pixel(const draw_ctx *c, const screen_vertex *v, const int32_t
         lumo_q1_14 n[3], rho[3];
         lumo_uq16_16 e[3];
         int32_t nv[3] = {var[3], var[4], var[5]};
-        if (lumo_normalize3_q14(nv, n))
-            n[0] = n[1] = n[2] = 0;
+        lumo_raster_normalize_q14(nv, n);
         lumo_raster_face_viewer(c->view, var, n, n);
         for (i = 0; i < 3; i++)
             rho[i] = (lumo_q1_14)(var[6 + i] < 0 ? 0 : var[6 + i] > LUMO_Q14_ONE ? LUMO_Q14_ONE : var[6 + i]);

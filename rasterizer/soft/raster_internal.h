@@ -31,6 +31,9 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
                                   const lumo_raster_mesh *m, uint32_t index,
                                   lumo_raster_vertex *out);
 
+/* Any Q1.14 vector (components in [-2, 2)) to unit length, <= 1 ulp. */
+void lumo_raster_normalize_q14(const int32_t v[3], lumo_q1_14 out[3]);
+
 /* n turned towards the eye (two-sided surfaces); out may alias n. */
 void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
                              const lumo_q1_14 n[3], lumo_q1_14 out[3]);

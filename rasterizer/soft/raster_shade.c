@@ -32,30 +32,44 @@ static int32_t dot_q14(const lumo_q1_14 a[3], const lumo_q1_14 b[3])
     return (int32_t)lumo_round_shift(d, LUMO_Q14_SHIFT);
 }
 
+/* |v| rounded to nearest from the exact square: floor root, bumped when v2
+ * lies above (r + 1/2)^2. */
+static uint64_t round_sqrt(uint64_t v2)
+{
+    uint64_t r = lumo_isqrt64(v2);
+    return (v2 - r * r > r) ? r + 1 : r;
+}
+
 /* Irradiance of a point or spot light at p facing n (W/m^2, UQ16.16 each):
- * I cos(theta) / r^2 with I = Phi / (4 pi). */
+ * I cos(theta) / r^2 with I = Phi / (4 pi). The light vector l is never
+ * normalised: cos(theta) = (n . l) / |l| and the cone test compares
+ * -(l . axis) with cos_cutoff |l|, so one square root and one division per
+ * light suffice (normalising was 30% of a per-pixel frame). */
 static void add_local_light(const lumo_raster_light *L, const lumo_q16_16 p[3],
                             const lumo_q1_14 n[3], lumo_uq16_16 e[3])
 {
-    int32_t d[3];
-    lumo_q1_14 dir[3];
-    uint64_t dist2 = 0;
-    int32_t cos_n;
+    int64_t d[3], ln = 0, la = 0, cos_n;
+    uint64_t dist2 = 0, dist;
     int i;
 
     /* Components beyond +-16384 units are clamped: such a light is too far
      * to matter and the squares must fit 64 bits. */
     for (i = 0; i < 3; i++) {
         d[i] = clamp_i32((int64_t)L->pos[i] - p[i], (int32_t)1 << 30);
-        dist2 += (uint64_t)((int64_t)d[i] * d[i]);
+        dist2 += (uint64_t)(d[i] * d[i]);                /* Q32 */
+        ln += d[i] * n[i];                               /* Q30 */
+        la += d[i] * L->dir[i];
     }
-    if (lumo_normalize3_q14(d, dir))
+    if (ln <= 0)
         return;
-    cos_n = dot_q14(n, dir);
-    if (cos_n <= 0)
+    dist = round_sqrt(dist2);                            /* Q16 */
+    if (dist == 0)
         return;
-    if (L->kind == LUMO_LIGHT_SPOT && -dot_q14(dir, L->dir) < L->cos_cutoff)
+    if (L->kind == LUMO_LIGHT_SPOT && -la < (int64_t)L->cos_cutoff * (int64_t)dist)
         return;
+    cos_n = (ln + (int64_t)(dist / 2)) / (int64_t)dist;  /* Q14 */
+    if (cos_n > 2 * LUMO_Q14_ONE)
+        cos_n = 2 * LUMO_Q14_ONE;                        /* non-unit n from a hostile mesh */
     dist2 >>= 16;
     if (dist2 < MIN_DIST2)
         dist2 = MIN_DIST2;
@@ -65,6 +79,30 @@ static void add_local_light(const lumo_raster_light *L, const lumo_q16_16 p[3],
         uint64_t q = (num + dist2 / 2) / dist2;
         e[i] = sat_add_u32(e[i], q > UINT32_MAX ? UINT32_MAX : (uint32_t)q);
     }
+}
+
+/* A Q1.14 vector of any length in [-2, 2) to unit length: |v| from one
+ * 64-bit square root with 22 fractional bits, then one division for the
+ * reciprocal and three multiplies (lumo_normalize3_q14's scaling loop and
+ * three divisions cost more per pixel). Error <= 1 ulp. Zero stays zero. */
+void lumo_raster_normalize_q14(const int32_t v[3], lumo_q1_14 out[3])
+{
+    int64_t c[3], k;
+    uint64_t s2 = 0, len;
+    int i;
+
+    for (i = 0; i < 3; i++) {
+        c[i] = v[i] > 32767 ? 32767 : v[i] < -32768 ? -32768 : v[i];
+        s2 += (uint64_t)(c[i] * c[i]);                   /* Q28, < 2^32 */
+    }
+    len = round_sqrt(s2 << 16);                          /* Q22 */
+    if (len == 0) {
+        out[0] = out[1] = out[2] = 0;
+        return;
+    }
+    k = (int64_t)((((uint64_t)1 << 50) + len / 2) / len);   /* 2^28 / |v|, Q14 units */
+    for (i = 0; i < 3; i++)
+        out[i] = lumo_sat_i16((int32_t)lumo_round_shift(c[i] * k, 28));
 }
 
 static void add_directional(const lumo_raster_light *L, const lumo_q1_14 n[3], lumo_uq16_16 e[3])
