@@ -102,8 +102,8 @@ static void ld_symbols_to_signed(int32_t *v, uint32_t n)
 {
     uint32_t i;
     for (i = 0; i < n; ++i) {
-        uint32_t s = (uint32_t)v[i];
-        v[i] = (s & 1u) ? -(int32_t)(s >> 1) - 1 : (int32_t)(s >> 1);
+        const uint32_t s = (uint32_t)v[i];
+        v[i] = (int32_t)((s >> 1) ^ (0u - (s & 1u)));  /* odd: -(s >> 1) - 1 */
     }
 }
 

@@ -139,8 +139,9 @@ static inline uint32_t ld_rans_read(ld_rans *r)
     quo = r->state >> r->prec_bits;
     rem = r->state & mask;
     s = r->lut[rem >> r->lut_shift];
-    while (r->cum[s + 1] <= rem)
-        ++s;
+    if (r->lut_shift)  /* coarse bucket: find the exact symbol */
+        while (r->cum[s + 1] <= rem)
+            ++s;
     r->state = quo * (r->cum[s + 1] - r->cum[s]) + rem - r->cum[s];
     return s;
 }
