@@ -94,37 +94,41 @@ static size_t scratch_bytes(const lumo_pmesh_header *h)
     return lumo_draco_arena_bound(&info, 3);
 }
 
-/* Undo-log and dirty-list entries: three words per corner move or face. */
-static size_t log_words(const lumo_pmesh_header *h)
+/* Undo-log words: three per corner move or face. Dirty vertices: up to
+ * four per move (its face and the old vertex), three per face. */
+static size_t log_words(const lumo_pmesh_header *h, size_t per)
 {
-    return lumo_size_mul(3u, lumo_size_add(h->max_batch_moves, h->max_batch_faces));
+    return lumo_size_mul(per, lumo_size_add(h->max_batch_moves, h->max_batch_faces));
 }
 
+#define NARRAYS 11
+
 /* The arrays init carves, in order: {count, element size}. */
-static void layout(const lumo_pmesh_header *h, size_t n[10], size_t sz[10])
+static void layout(const lumo_pmesh_header *h, size_t n[NARRAYS], size_t sz[NARRAYS])
 {
     size_t v = h->vertices, c = lumo_size_mul(3u, h->faces), vv = lumo_size_mul(3u, v);
-    size_t cnt[10] = {vv, vv, vv, c, c, v, v, log_words(h), log_words(h), scratch_bytes(h)};
-    size_t el[10] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 1};
+    size_t splits = lumo_size_add(max_u32(h->base_vertices, h->batch_vertices), 1u);
+    size_t cnt[NARRAYS] = {vv, vv, vv, c, c, v, v, log_words(h, 3u), log_words(h, 4u), splits, scratch_bytes(h)};
+    size_t el[NARRAYS] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 4, 1};
     memcpy(n, cnt, sizeof cnt);
     memcpy(sz, el, sizeof el);
 }
 
 size_t lumo_pmesh_arena_bytes(const lumo_pmesh_header *h)
 {
-    size_t n[10], sz[10], total = LUMO_ARENA_SLACK;
+    size_t n[NARRAYS], sz[NARRAYS], total = LUMO_ARENA_SLACK;
     if (!h || check_counts(h))
         return SIZE_MAX;
     layout(h, n, sz);
-    for (int i = 0; i < 10; i++)
+    for (int i = 0; i < NARRAYS; i++)
         total = lumo_size_add(total, lumo_arena_round(lumo_size_mul(n[i], sz[i])));
     return total;
 }
 
 lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_arena *arena)
 {
-    size_t n[10], sz[10];
-    void *p[10];
+    size_t n[NARRAYS], sz[NARRAYS];
+    void *p[NARRAYS];
     lumo_status st;
     if (!pm || !h || !arena)
         return LUMO_ERR_ARG;
@@ -132,7 +136,7 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
         return st;
     lumo_arena_mark mark = lumo_arena_get_mark(arena);
     layout(h, n, sz);
-    for (int i = 0; i < 10; i++)
+    for (int i = 0; i < NARRAYS; i++)
         if (!(p[i] = lumo_arena_alloc_array(arena, n[i], sz[i]))) {
             lumo_arena_reset(arena, mark);
             return LUMO_ERR_NOMEM;
@@ -141,7 +145,7 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
     pm->h = *h;
     pm->pos = p[0], pm->qpos = p[1], pm->nrm = p[2], pm->tris = p[3], pm->next = p[4];
     pm->head = p[5], pm->mark = p[6], pm->journal = p[7], pm->dirty = p[8];
-    pm->scratch = p[9], pm->scratch_bytes = n[9];
+    pm->split_log = p[9], pm->scratch = p[10], pm->scratch_bytes = n[10];
     for (size_t i = 0; i < 3; i++)
         (void)lumo_f32bits_to_fixed(h->origin_bits[i], LUMO_Q16_SHIFT, &pm->origin[i]);
     (void)lumo_f32bits_to_fixed(h->range_bits, LUMO_Q16_SHIFT, &pm->range);

@@ -185,10 +185,10 @@ static lumo_status add_face(split_ctx *s, uint32_t a, uint32_t b, uint32_t c)
 
 /* Undo the log newest first: every entry's corners are at the front of
  * their lists again when their turn comes. */
-static void rollback(split_ctx *s)
+static void rollback_to(split_ctx *s, uint32_t keep)
 {
     lumo_pmesh *pm = s->pm;
-    while (s->log_n) {
+    while (s->log_n > keep) {
         const uint32_t *e = pm->journal + 3 * (size_t)--s->log_n;
         if (e[0] == NIL) {
             for (uint32_t i = 3; i-- > 0;) {
@@ -335,8 +335,10 @@ static lumo_status run_splits(split_ctx *s)
     if (s->b->first == 0)
         st = read_base(s);
     else
-        for (uint32_t i = 0; i < s->b->count && !st; i++)
+        for (uint32_t i = 0; i < s->b->count && !st; i++) {
+            s->pm->split_log[i] = s->log_n;
             st = split(s, s->b->first + i);
+        }
     if (st)
         return st;
     if (s->faces != s->b->faces || s->moves != s->b->moves)
@@ -389,16 +391,25 @@ static void vertex_normal(lumo_pmesh *pm, uint32_t v)
     normal_from_sum(s, pm->nrm + 3 * (size_t)v);
 }
 
-static void refresh_normals(split_ctx *s)
+/* Collect the vertices of every face the log entries from `from` on touch. */
+static uint32_t mark_log(const split_ctx *s, uint32_t from, uint32_t stamp)
 {
     lumo_pmesh *pm = s->pm;
-    uint32_t stamp = pm->batches_applied + 1, nd = 0;
-    for (uint32_t i = 0; i < s->log_n; i++) {
+    uint32_t nd = 0;
+    for (uint32_t i = from; i < s->log_n; i++) {
         const uint32_t *e = pm->journal + 3 * (size_t)i;
         mark_face(pm, e[0] == NIL ? e[1] : e[0] / 3, stamp, &nd);
+        if (e[0] != NIL && pm->mark[e[2]] != stamp)  /* p gained or lost the corner */
+            pm->mark[e[2]] = stamp, pm->dirty[nd++] = e[2];
     }
+    return nd;
+}
+
+static void refresh_normals(split_ctx *s, uint32_t from)
+{
+    uint32_t nd = mark_log(s, from, s->pm->batches_applied + 1);
     for (uint32_t i = 0; i < nd; i++)
-        vertex_normal(pm, pm->dirty[i]);
+        vertex_normal(s->pm, s->pm->dirty[i]);
 }
 
 lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
@@ -409,16 +420,43 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     lumo_status st;
     if (!pm || !record)
         return LUMO_ERR_ARG;
+    if (pm->rewound)
+        return LUMO_ERR_STATE;
     if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &m)))
         return st;
     split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, 0, 0, 0};
     if ((st = run_splits(&s))) {
-        rollback(&s);
+        rollback_to(&s, 0);
         return st;
     }
     store_positions(pm, &b, pos);
+    pm->split_log[b.first ? b.count : 0] = s.log_n;
+    pm->log_n = s.log_n, pm->last_first = b.first;
     pm->vertex_count += b.count;
-    refresh_normals(&s);
+    refresh_normals(&s, 0);
     pm->batches_applied++;
+    return LUMO_OK;
+}
+
+lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices)
+{
+    if (!pm)
+        return LUMO_ERR_ARG;
+    if (!pm->batches_applied || vertices > pm->vertex_count ||
+        vertices < (pm->last_first ? pm->last_first : pm->vertex_count))
+        return LUMO_ERR_RANGE;
+    pm->rewound = 1;
+    if (vertices == pm->vertex_count)
+        return LUMO_OK;
+    split_ctx s = {pm, {NULL, 0, 0}, NULL, pm->log_n, 0, 0};
+    uint32_t keep = pm->split_log[vertices - pm->last_first];
+    /* Vertices of the faces about to change get fresh normals afterwards. */
+    uint32_t nd = mark_log(&s, keep, pm->batches_applied + 1);
+    rollback_to(&s, keep);
+    pm->vertex_count = vertices;
+    pm->log_n = keep;
+    for (uint32_t i = 0; i < nd; i++)
+        if (pm->dirty[i] < vertices)
+            vertex_normal(pm, pm->dirty[i]);
     return LUMO_OK;
 }

@@ -234,9 +234,42 @@ static void check_full_level(const pm_test_mesh *in, const lumo_pm *pm, const lu
 }
 
 /* ---- the client against the server, level by level --------------------------- */
-static int client_matches(const lumo_pm *pm, const lumo_pmesh_view *v, uint32_t *ref, double step,
+/* Normals from scratch over the whole level, the client's formula (area-
+ * weighted integer face normals, scaled into int32, lumo_normalize3_q14):
+ * the client's incremental normals must equal them exactly. */
+static int normals_exact(const lumo_pmesh *pm)
+{
+    size_t n = pm->vertex_count;
+    int64_t *sum = calloc(3 * n + 3, sizeof *sum);
+    for (uint32_t f = 0; f < pm->face_count; f++) {
+        const uint32_t *t = pm->tris + 3 * f;
+        const int32_t *a = pm->qpos + 3 * t[0], *b = pm->qpos + 3 * t[1], *d = pm->qpos + 3 * t[2];
+        int64_t e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        int64_t c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int k = 0; k < 3; k++)
+            for (int i = 0; i < 3; i++)
+                sum[3 * t[k] + i] += c[i];
+    }
+    int ok = 1;
+    for (size_t v = 0; v < n && ok; v++) {
+        int64_t *s = sum + 3 * v;
+        while (llabs(s[0]) > INT32_MAX / 2 || llabs(s[1]) > INT32_MAX / 2 || llabs(s[2]) > INT32_MAX / 2)
+            s[0] /= 2, s[1] /= 2, s[2] /= 2;
+        int32_t iv[3] = {(int32_t)s[0], (int32_t)s[1], (int32_t)s[2]};
+        lumo_q1_14 want[3];
+        if (lumo_normalize3_q14(iv, want))
+            want[0] = want[1] = want[2] = 0;
+        ok = !memcmp(want, pm->nrm + 3 * v, sizeof want);
+    }
+    free(sum);
+    return ok;
+}
+
+static int client_matches(const lumo_pm *pm, const lumo_pmesh *pm_client, uint32_t *ref, double step,
                           char *why, size_t n)
 {
+    lumo_pmesh_view view, *v = &view;
+    lumo_pmesh_get_view(pm_client, v);
     uint32_t k = v->vertex_count, nf = lumo_pm_level(pm, k, ref);
     if (nf != v->face_count || memcmp(ref, v->triangles, sizeof *ref * 3 * nf)) {
         snprintf(why, n, "level %u: %u faces, server %u, or indices differ", k, v->face_count, nf);
@@ -247,6 +280,10 @@ static int client_matches(const lumo_pm *pm, const lumo_pmesh_view *v, uint32_t 
             snprintf(why, n, "level %u: vertex %u off by more than a step", k, i / 3);
             return 0;
         }
+    if (!normals_exact(pm_client)) {
+        snprintf(why, n, "level %u: incremental normals differ from a full recomputation", k);
+        return 0;
+    }
     for (uint32_t i = 0; i < k; i++) {
         const lumo_q1_14 *q = v->normals + 3 * i;
         double len = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2]) / 16384.0;
@@ -272,9 +309,7 @@ static void check_client(const lumo_pm *pm, const uint8_t *s, size_t len, double
             ok = 0;
             break;
         }
-        lumo_pmesh_view v;
-        lumo_pmesh_get_view(&cl->pm, &v);
-        ok = client_matches(pm, &v, ref, step, why, sizeof why);
+        ok = client_matches(pm, &cl->pm, ref, step, why, sizeof why);
         levels++;
     }
     if (ok)
@@ -398,12 +433,40 @@ static void check_corruption(const lumo_pm *pm, const uint8_t *s, size_t len, do
     lumo_pmesh_get_view(&cl.pm, &v);
     uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1));
     char why[200] = "";
-    ok = ok && lumo_pmesh_complete(&cl.pm) && client_matches(pm, &v, ref, step, why, sizeof why);
+    ok = ok && lumo_pmesh_complete(&cl.pm) && client_matches(pm, &cl.pm, ref, step, why, sizeof why);
     snprintf(why + strlen(why), sizeof why - strlen(why), "%s%d bad records rejected, mesh unchanged each time",
              why[0] ? "; " : "", tried);
     check(ok, "corrupt/truncated/out-of-order batches rejected whole, good ones still apply", why);
     free(ref);
     lumo_pm_client_close(&cl);
+}
+
+/* Every level, not only batch boundaries: decode to the batch holding k,
+ * rewind inside it, compare. One fresh client per level, so small meshes. */
+static void check_rewind(const lumo_pm *pm, const uint8_t *s, size_t len, double step)
+{
+    uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1)), levels = 0;
+    char why[200] = "";
+    int ok = 1;
+    for (uint32_t k = pm->base_vertices; ok && k <= pm->vertices; k++, levels++) {
+        lumo_pm_client cl;
+        lumo_status st = lumo_pm_client_open(&cl, s, len);
+        if (!st)
+            st = lumo_pm_client_until(&cl, k);
+        if (!st)
+            st = lumo_pmesh_rewind(&cl.pm, k);
+        ok = !st && cl.pm.vertex_count == k && client_matches(pm, &cl.pm, ref, step, why, sizeof why);
+        if (ok)  /* a rewound mesh is final */
+            ok = lumo_pm_client_step(&cl) == (lumo_pmesh_complete(&cl.pm) ? LUMO_ERR_TRUNCATED : LUMO_ERR_STATE) ||
+                 cl.at >= len;
+        if (!ok && !why[0])
+            snprintf(why, sizeof why, "level %u: %s", k, lumo_strerror(st));
+        lumo_pm_client_close(&cl);
+    }
+    if (ok)
+        snprintf(why, sizeof why, "%u levels, one vertex per step, each identical to lumo_pm_level", levels);
+    check(ok, "client rewinds to every level (lumo_pmesh_rewind)", why);
+    free(ref);
 }
 
 /* ---- driver ------------------------------------------------------------------------ */
@@ -461,6 +524,8 @@ int main(int argc, char **argv)
             check_full_level(&in, &pm, &v, step);
             lumo_pm_client_close(&cl);
             check_corruption(&pm, s, len, step);
+            if (pm.vertices <= 2500)
+                check_rewind(&pm, s, len, step);
         }
     }
     free(s);

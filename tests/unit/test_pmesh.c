@@ -370,6 +370,31 @@ static void test_order(void **state)
     free(f.mem);
 }
 
+/* Rewinding inside the last batch gives every level; the mesh is final. */
+static void test_rewind(void **state)
+{
+    (void)state;
+    for (uint32_t k = 4; k <= 20; k++) {
+        fixture f;
+        open_fixture(&f);
+        while (f.pm.vertex_count < k)
+            step(&f);
+        uint32_t first = f.pm.last_first;
+        assert_int_equal(lumo_pmesh_rewind(&f.pm, f.pm.vertex_count + 1), LUMO_ERR_RANGE);
+        if (first > 0)
+            assert_int_equal(lumo_pmesh_rewind(&f.pm, first - 1), LUMO_ERR_RANGE);
+        assert_int_equal(lumo_pmesh_rewind(&f.pm, k), LUMO_OK);
+        assert_int_equal(f.pm.vertex_count, k);
+        check_level(&f.pm);
+        if (f.at < sizeof k_stream) {
+            const uint8_t *rec;
+            size_t n = next_record(&f, &rec);
+            assert_int_equal(lumo_pmesh_apply(&f.pm, rec, n), LUMO_ERR_STATE);
+        }
+        free(f.mem);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -379,6 +404,7 @@ int main(void)
         cmocka_unit_test(test_truncation_and_flips),
         cmocka_unit_test(test_tampered_batches),
         cmocka_unit_test(test_order),
+        cmocka_unit_test(test_rewind),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

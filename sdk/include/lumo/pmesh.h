@@ -86,6 +86,11 @@ typedef struct lumo_pmesh {
     uint32_t    *mark;                /* vertices: last batch that touched it */
     uint32_t    *journal;             /* undo log of one batch */
     uint32_t    *dirty;               /* vertices whose normal to refresh */
+    uint32_t    *split_log;           /* journal length before each split of
+                                         the last batch (batch_vertices + 1) */
+    uint32_t     log_n;               /* journal entries of the last batch */
+    uint32_t     last_first;          /* first vertex of the last batch */
+    int          rewound;             /* lumo_pmesh_rewind was used */
     uint8_t     *scratch;             /* Draco decoder work memory */
     size_t       scratch_bytes;
 } lumo_pmesh;
@@ -117,6 +122,14 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
 
 /* The current level. */
 void lumo_pmesh_get_view(const lumo_pmesh *pm, lumo_pmesh_view *out);
+
+/* Step back to the level with `vertices` vertices inside the last applied
+ * batch (first vertex of that batch <= vertices <= vertex_count), undoing
+ * its last splits from the batch's log: any level of the stream can be
+ * shown, not only batch boundaries (lumo-inspect --lod N). Work is that of
+ * the undone splits. Afterwards the mesh is final: lumo_pmesh_apply returns
+ * STATE. RANGE when `vertices` is outside the last batch. */
+lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices);
 
 /* 1 when every vertex of the stream has arrived. */
 int lumo_pmesh_complete(const lumo_pmesh *pm);
