@@ -29,3 +29,16 @@ th = [0] + [math.ceil(srgb_decode((k - 0.5) / 255) * (1 << 24)) for k in range(1
 for i in range(0, 256, 8):
     print("    " + ", ".join("%du" % v for v in th[i:i + 8]) + ",")
 print("};")
+print()
+print("/* The code at the start of each 2^-10 segment of [0, 1): a search in")
+print(" * lumo_raster_srgb_threshold starts here and moves at most 4 steps. */")
+print("const uint8_t lumo_raster_srgb_segment[1024] = {")
+seg = []
+for i in range(1024):
+    v = i << 14
+    code = max(k for k in range(256) if th[k] <= v)
+    seg.append(code)
+for i in range(0, 1024, 16):
+    print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
+print("};")
+

@@ -161,14 +161,15 @@ uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
 {
     const uint32_t lim = (uint32_t)1 << 31;
     uint64_t v = (uint64_t)(radiance > lim ? lim : radiance) * (exposure > lim ? lim : exposure);
-    unsigned code = 0, step;
+    unsigned code;
 
     v >>= 8;                                   /* UQ32 -> UQ24 */
     if (v >= ((uint64_t)1 << 24))
         return 255;
-    for (step = 128; step != 0; step >>= 1)    /* largest k with t[k] <= v */
-        if (lumo_raster_srgb_threshold[code + step] <= v)
-            code += step;
+    /* largest k with t[k] <= v: from the segment's first code upwards */
+    code = lumo_raster_srgb_segment[v >> 14];
+    while (code < 255 && lumo_raster_srgb_threshold[code + 1] <= v)
+        code++;
     return (uint8_t)code;
 }
 
