@@ -123,19 +123,23 @@ static void write_info(const lumo_draco_mesh *m, size_t in_size)
     }
 }
 
-/* Octahedral (s, t) in [0, 2^bits - 1] to a unit vector (desktop floats). */
+/* Octahedral (s, t) to a unit vector, libdraco's convention: s -> y,
+ * t -> z, scaled by 2 / (2^bits - 2), the lower half folded (desktop
+ * floats; the client keeps the integers). */
 static void octa_to_vec(int32_t s, int32_t t, unsigned bits, double out[3])
 {
-    double max = (double)((1 << bits) - 1);
-    double x = s / max * 2.0 - 1.0, y = t / max * 2.0 - 1.0;
-    double z = 1.0 - fabs(x) - fabs(y), n;
-    if (z < 0) {
-        double ox = x;
-        x = (1.0 - fabs(y)) * (ox >= 0 ? 1 : -1);
-        y = (1.0 - fabs(ox)) * (y >= 0 ? 1 : -1);
+    double scale = 2.0 / (double)((1 << bits) - 2);
+    double y = s * scale - 1.0, z = t * scale - 1.0;
+    double x = 1.0 - fabs(y) - fabs(z), off = x < 0 ? -x : 0, n2;
+    y += y < 0 ? off : -off;
+    z += z < 0 ? off : -off;
+    n2 = x * x + y * y + z * z;
+    if (n2 < 1e-6) {
+        out[0] = out[1] = out[2] = 0;
+        return;
     }
-    n = sqrt(x * x + y * y + z * z);
-    out[0] = x / n; out[1] = y / n; out[2] = z / n;
+    n2 = sqrt(n2);
+    out[0] = x / n2; out[1] = y / n2; out[2] = z / n2;
 }
 
 static double value_of(const lumo_draco_attribute *a, uint32_t p, unsigned c)

@@ -53,6 +53,13 @@ for cl in 0 1 2 3 4 5 6 7 8 9 10; do
     add cloud "$work/gen/torus_color.ply" "-point_cloud -cl $cl -qp 14 -qn 9"
 done
 for cl in 0 2 4 6 10; do add cloud "$models/dragon_11k.ply" "-point_cloud -cl $cl -qp 12"; done
+# dequantized PLY output of lumo-draco-decode against draco_decoder's
+add ply "$work/gen/sphere_uv.obj" "-cl 7"
+add ply "$work/gen/torus_color.ply" "-cl 10 -qp 16 -qn 12"
+add ply "$work/gen/cube_seams.obj" "-cl 5 -qp 8"
+add ply "$models/bunny.obj" "-cl 0"
+add ply "$models/dragon_11k.ply" "-cl 9 -qp 14"
+add ply "$work/gen/cloud.ply" "-point_cloud -cl 6"
 # not decoded, must be refused cleanly: unquantized floats (generic coding)
 add unsupported "$work/gen/small.obj" "-cl 7 -qp 0 -qt 0 -qn 0"
 add unsupported "$work/gen/torus_color.ply" "-cl 0 -qp 0 -qn 0"
@@ -69,6 +76,18 @@ run_case() {  # run_case N LINE
             echo "FAIL expected unsupported: $name"
         elif grep -q "unsupported" "$d/lumo.err"; then echo "PASS $name"
         else echo "FAIL wrong error ($(cat "$d/lumo.err")): $name"; fi
+        return
+    fi
+    if [ "$kind" = ply ]; then
+        if ! draco_decoder -i "$d/in.drc" -o "$d/ref.ply" > "$d/dec.log" 2>&1; then
+            echo "FAIL draco_decoder: $name"; return
+        fi
+        if ! "$bin/lumo-draco-decode" "$d/in.drc" "$d/lumo.ply" 2> "$d/lumo.err"; then
+            echo "FAIL lumo ply ($(head -c 200 "$d/lumo.err")): $name"; return
+        fi
+        if "$bin/ply-compare" "$d/ref.ply" "$d/lumo.ply" > "$d/cmp.txt" 2>&1; then
+            echo "PASS ply $name"; rm -rf "$d"
+        else echo "FAIL ply differs (see $d/cmp.txt): $name"; fi
         return
     fi
     if ! "$bin/draco-oracle" "$d/in.drc" "$d/oracle.txt" 2> "$d/oracle.err"; then

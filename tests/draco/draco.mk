@@ -6,7 +6,8 @@
 DRACO_ORACLE := $(BIN)/draco-oracle
 DRACO_GEN    := $(BIN)/gen-meshes
 DRACO_SAN    := $(BIN)/lumo-draco-decode-san
-HOST_TOOLS   += $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN)
+DRACO_PLYCMP := $(BIN)/ply-compare
+HOST_TOOLS   += $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(DRACO_PLYCMP)
 
 $(DRACO_ORACLE): $(BUILD)/host/tests/draco/draco_oracle.o
 	@mkdir -p $(@D)
@@ -16,11 +17,15 @@ $(DRACO_GEN): $(BUILD)/host/tests/draco/gen_meshes.o
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lm
 
+$(DRACO_PLYCMP): $(BUILD)/host/tests/draco/ply_compare.o
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^ -lm
+
 $(DRACO_SAN): $(BUILD)/tests/tools/lumo_draco_decode.o $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
-DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(BIN)/lumo-draco-decode
+DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(DRACO_PLYCMP) $(BIN)/lumo-draco-decode
 
 .PHONY: draco-conformance draco-conformance-full
 draco-conformance: $(DRACO_CONF_DEPS)
