@@ -34,29 +34,26 @@ static uint8_t *read_file(const char *path, size_t *size)
     return p;
 }
 
-/* Decode with an arena grown until it fits (desktop tool: heap allowed). */
+/* Decode into an arena of exactly lumo_draco_arena_bound(info, 16) bytes:
+ * the bound is part of the API, so a decode that does not fit in it (with
+ * at most 16 portable components per point) is reported as a failure. */
 static lumo_status decode(const uint8_t *data, size_t size, lumo_draco_mesh *m, void **mem)
 {
     lumo_draco_info info;
+    lumo_arena a;
     lumo_status st = lumo_draco_peek(data, size, &info);
     size_t bytes;
     if (st)
         return st;
     bytes = lumo_draco_arena_bound(&info, 16);
-    if (bytes == SIZE_MAX || bytes > ((size_t)1 << 33))
-        bytes = (size_t)1 << 30;
-    for (;;) {
-        lumo_arena a;
-        *mem = malloc(bytes);
-        if (!*mem)
-            return LUMO_ERR_NOMEM;
-        lumo_arena_init(&a, *mem, bytes);
-        st = lumo_draco_decode(data, size, &a, m);
-        if (st != LUMO_ERR_NOMEM || bytes > ((size_t)1 << 33))
-            return st;
-        free(*mem);
-        bytes *= 2;
-    }
+    if (bytes == SIZE_MAX || !(*mem = malloc(bytes)))
+        return LUMO_ERR_NOMEM;
+    lumo_arena_init(&a, *mem, bytes);
+    st = lumo_draco_decode(data, size, &a, m);
+    if (st == LUMO_ERR_NOMEM)
+        fprintf(stderr, "lumo-draco-decode: decode needs more than lumo_draco_arena_bound() = %zu bytes\n",
+                bytes);
+    return st;
 }
 
 static void write_dump(FILE *f, const lumo_draco_mesh *m)

@@ -1,8 +1,9 @@
 # tests/draco/draco.mk — Draco conformance: the libdraco oracle, the mesh
 # generator, a sanitizer build of lumo-draco-decode, and the test steps.
 #
-#   make draco-conformance        sampled grid (part of `make test`)
-#   make draco-conformance-full   levels x quantization bits x all meshes
+#   make draco-conformance        full grid: levels x quantization bits x all
+#                                 meshes (part of `make test`, ~1 min)
+#   make draco-conformance-quick  a sampled grid for quick iteration
 DRACO_ORACLE := $(BIN)/draco-oracle
 DRACO_GEN    := $(BIN)/gen-meshes
 DRACO_SAN    := $(BIN)/lumo-draco-decode-san
@@ -27,10 +28,11 @@ $(DRACO_SAN): $(BUILD)/tests/tools/lumo_draco_decode.o $(BUILD)/san/liblumo.a
 
 DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(DRACO_PLYCMP) $(BIN)/lumo-draco-decode
 
-.PHONY: draco-conformance draco-conformance-full
+.PHONY: draco-conformance draco-conformance-quick draco-conformance-full
 draco-conformance: $(DRACO_CONF_DEPS)
-	@sh tests/draco/conformance.sh $(BUILD) quick
-draco-conformance-full: $(DRACO_CONF_DEPS)
 	@DRACO_JOBS=4 sh tests/draco/conformance.sh $(BUILD) full
+draco-conformance-full: draco-conformance
+draco-conformance-quick: $(DRACO_CONF_DEPS)
+	@sh tests/draco/conformance.sh $(BUILD) quick
 
 TEST_STEPS += draco-conformance
