@@ -112,6 +112,32 @@ extern "C" int lumo_draco_encode_points(const float *xyz, size_t n, const lumo_d
     return copy_out(buf, out, out_len);
 }
 
+extern "C" int lumo_draco_encode_ints(const int32_t *values, size_t n, int comps,
+                                      lumo_draco_settings s, uint8_t **out, size_t *out_len)
+{
+    draco::PointCloud pc;
+    pc.set_num_points(static_cast<draco::PointIndex::ValueType>(n));
+    draco::GeometryAttribute ga;
+    ga.Init(draco::GeometryAttribute::GENERIC, nullptr, static_cast<uint8_t>(comps), draco::DT_INT32,
+            false, sizeof(int32_t) * comps, 0);
+    const int id = pc.AddAttribute(ga, true, static_cast<uint32_t>(n));
+    if (id < 0)
+        return -1;
+    for (size_t i = 0; i < n; ++i)
+        pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
+                                            values + comps * i);
+    draco::Encoder enc;
+    enc.SetSpeedOptions(s.speed, s.speed);
+    enc.SetEncodingMethod(s.method);
+    if (report(enc.SetAttributePredictionScheme(draco::GeometryAttribute::GENERIC,
+                                                draco::PREDICTION_NONE), "prediction"))
+        return -1;
+    draco::EncoderBuffer buf;
+    if (report(enc.EncodePointCloudToBuffer(pc, &buf), "encode ints"))
+        return -1;
+    return copy_out(buf, out, out_len);
+}
+
 extern "C" int lumo_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
                                       const lumo_draco_quant *q, int cl, uint8_t **out,
                                       size_t *out_len)

@@ -7,6 +7,7 @@
  * into the corners around p and k). Seed 000 §4.2 sends vertices, faces and
  * lookup tables; here the lookup-table entry of k is its parent p. */
 #include <float.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,6 +70,8 @@ static unsigned bits_for(uint32_t count)
 /* ---- the client's state, replayed --------------------------------------------- */
 typedef struct {
     const lumo_pm *pm;
+    int32_t  *q;              /* grid integers, 3 per vertex */
+    int32_t  *res;            /* their residuals from the client's prediction */
     uint32_t *disp, *next, *head;
     uint32_t  face_count;
     uint32_t  faces, moves;   /* of the batch being written */
@@ -101,6 +104,28 @@ static void write_base(replay *r, bitwriter *w)
             put_bits(w, t[i], width);
         }
         add_face(r, t);
+    }
+    for (uint32_t v = 0; v < pm->base_vertices; v++)
+        for (int c = 0; c < 3; c++)
+            r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
+}
+
+/* Mirrors predict_split() in pmesh_batch.c: the rounded mean of the corners
+ * of k's faces right after its split. */
+static void predict(replay *r, uint32_t k)
+{
+    int64_t sum[3] = {0, 0, 0};
+    uint32_t n = 0;
+    for (uint32_t c = r->head[k]; c != NIL; c = r->next[c], n += 2) {
+        const uint32_t *t = r->disp + 3 * (size_t)(c / 3);
+        for (int i = 0; i < 3; i++)
+            if (t[i] != k)
+                for (int d = 0; d < 3; d++)
+                    sum[d] += r->q[3 * (size_t)t[i] + d];
+    }
+    for (int d = 0; d < 3; d++) {
+        int32_t pred = n ? (int32_t)((sum[d] + n / 2) / n) : r->q[3 * (size_t)r->pm->parent[k] + d];
+        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - pred;
     }
 }
 
@@ -189,6 +214,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp + lenk))
             return -1;
+    predict(r, k);
     return 0;
 }
 
@@ -212,13 +238,36 @@ static uint32_t f32bits(float f)
     return u;
 }
 
+/* Grid integer of x: round((x - origin) / range * (2^bits - 1)), clamped;
+ * the client turns it back into metres (pmesh_batch.c store_positions). */
+static void quantize(const lumo_pm *pm, const lumo_draco_quant *q, int32_t *out)
+{
+    double qmax = (double)((1u << q->bits) - 1u);
+    for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
+        double t = ((double)pm->xyz[i] - q->origin[i % 3]) / q->range * qmax;
+        int32_t v = (int32_t)floor(t + 0.5);
+        out[i] = v < 0 ? 0 : v > (int32_t)qmax ? (int32_t)qmax : v;
+    }
+}
+
+/* The batch's Draco payload: the residuals the replay recorded (split
+ * vertices from their neighbours' mean, base vertices from the previous
+ * one), or absolute positions on the shared grid. */
+static int encode_payload(const replay *r, uint32_t first, uint32_t count, const lumo_pm_stream_options *o,
+                          const lumo_draco_quant *q, uint8_t **drc, size_t *len)
+{
+    if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
+        return lumo_draco_encode_points(r->pm->xyz + 3 * (size_t)first, count, q, o->draco, drc, len);
+    return lumo_draco_encode_ints(r->res + 3 * (size_t)first, count, 3, o->draco, drc, len);
+}
+
 static int write_record(bytes *out, uint32_t index, uint32_t first, uint32_t count,
                         const replay *r, const bitwriter *w, const lumo_pm_stream_options *o,
                         const lumo_draco_quant *q, lumo_pm_batch_info *info)
 {
     uint8_t *drc = NULL;
     size_t drc_len = 0;
-    if (lumo_draco_encode_points(r->pm->xyz + 3 * (size_t)first, count, q, o->draco, &drc, &drc_len))
+    if (encode_payload(r, first, count, o, q, &drc, &drc_len))
         return -1;
     bytes rec = {0};
     put32(&rec, LUMO_PMESH_BATCH_MAGIC);
@@ -254,7 +303,8 @@ static void write_header(uint8_t *d, const lumo_pm *pm, const lumo_pm_stream_opt
     }
     uint32_t f[16] = {LUMO_PMESH_MAGIC, LUMO_PMESH_VERSION | LUMO_PMESH_HEADER_SIZE << 16,
                       pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
-                      o->batch_vertices, nb, maxf, maxm, maxb, (uint32_t)q->bits,
+                      o->batch_vertices, nb, maxf, maxm, maxb,
+                      (uint32_t)q->bits | (uint32_t)o->position_coding << 8,
                       f32bits(q->origin[0]), f32bits(q->origin[1]), f32bits(q->origin[2]),
                       f32bits(q->range)};
     for (int i = 0; i < 16; i++)
@@ -270,6 +320,7 @@ void lumo_pm_stream_default_options(lumo_pm_stream_options *o)
     o->batch_vertices = 250;
     o->quant_bits = 12;
     o->draco = lumo_draco_default_settings();
+    o->position_coding = LUMO_PMESH_POS_PREDICTED;
 }
 
 static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_draco_quant *q,
@@ -314,15 +365,17 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
     lumo_draco_quant q;
     grid_of(pm, o->quant_bits, &q);
-    replay r = {pm, malloc(12 * (size_t)pm->faces + 4), malloc(12 * (size_t)pm->faces + 4),
-                malloc(4 * (size_t)pm->vertices), 0, 0, 0};
+    replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
+                malloc(12 * (size_t)pm->faces + 4),
+                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0};
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
     bytes s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
     put(&s, header, sizeof header);
     int rc = -1;
-    if (!r.disp || !r.next || !r.head || !bi)
+    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !bi)
         goto done;
+    quantize(pm, &q, r.q);
     memset(r.head, 0xff, 4 * (size_t)pm->vertices);
     if (write_batches(&r, o, &q, &s, bi, nb) || s.failed)
         goto done;
@@ -334,6 +387,8 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
         *nbatches = nb;
     rc = 0;
 done:
+    free(r.q);
+    free(r.res);
     free(r.disp);
     free(r.next);
     free(r.head);

@@ -61,6 +61,7 @@ typedef struct {
     lumo_pmesh *pm;
     bitreader   br;
     const batch *b;
+    const lumo_draco_attribute *res;  /* PREDICTED coding: the residuals */
     uint32_t    log_n;       /* journal entries (3 words each) */
     uint32_t    faces, moves;
 } split_ctx;
@@ -98,29 +99,31 @@ static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t s
 }
 
 /* ---- positions: the Draco point cloud ------------------------------------- */
+/* The payload must be b->count points with the attribute the stream's
+ * position coding names, on the stream's grid. */
 static lumo_status check_positions(const lumo_pmesh *pm, const batch *b,
                                    const lumo_draco_mesh *m, const lumo_draco_attribute **pos)
 {
     const lumo_pmesh_header *h = &pm->h;
     const lumo_draco_attribute *a = NULL;
+    int parent = h->position_coding == LUMO_PMESH_POS_PREDICTED;  /* residuals */
     if (m->geometry != LUMO_DRACO_POINT_CLOUD || m->num_points != b->count || m->num_faces)
         return LUMO_ERR_CORRUPT;
     for (uint32_t i = 0; i < m->num_attributes && !a; i++)
-        if (m->attributes[i].type == LUMO_DRACO_POSITION)
+        if (m->attributes[i].type == (parent ? LUMO_DRACO_GENERIC : LUMO_DRACO_POSITION))
             a = &m->attributes[i];
-    if (!a || a->xform != LUMO_DRACO_XFORM_QUANTIZED || a->num_portable != 3 ||
-        a->num_components != 3 || a->quant_bits != h->quant_bits || a->range_bits != h->range_bits)
+    if (!a || a->num_portable != 3 || a->num_components != 3)
         return LUMO_ERR_CORRUPT;
-    for (int c = 0; c < 3; c++)
-        if (a->min_bits[c] != h->origin_bits[c])
-            return LUMO_ERR_CORRUPT;  /* every payload shares the stream's grid */
-    int32_t qmax = (int32_t)((1u << h->quant_bits) - 1u);
-    for (uint32_t p = 0; p < b->count; p++)
-        for (unsigned c = 0; c < 3; c++) {
-            int32_t q = lumo_draco_value(a, p, c);
-            if (q < 0 || q > qmax)
-                return LUMO_ERR_RANGE;
-        }
+    if (parent && (a->xform != LUMO_DRACO_XFORM_NONE || a->data_type != LUMO_DRACO_DT_INT32))
+        return LUMO_ERR_CORRUPT;
+    if (!parent) {
+        if (a->xform != LUMO_DRACO_XFORM_QUANTIZED || a->quant_bits != h->quant_bits ||
+            a->range_bits != h->range_bits)
+            return LUMO_ERR_CORRUPT;
+        for (int c = 0; c < 3; c++)
+            if (a->min_bits[c] != h->origin_bits[c])
+                return LUMO_ERR_CORRUPT;  /* every payload shares the stream's grid */
+    }
     *pos = a;
     return LUMO_OK;
 }
@@ -142,17 +145,47 @@ static lumo_status decode_positions(lumo_pmesh *pm, const batch *b, const lumo_d
     return st ? st : check_positions(pm, b, m, pos);
 }
 
+/* Grid integers of the batch's vertices into qpos (invisible until the
+ * batch is kept): absolute values, or in a PREDICTED base mesh residuals
+ * from the previous vertex. Split vertices of PREDICTED streams get theirs
+ * during the split (predict_split). */
+static lumo_status grid_value(lumo_pmesh *pm, uint32_t k, const int32_t *pred,
+                              const lumo_draco_attribute *a, uint32_t i)
+{
+    int32_t qmax = (int32_t)((1u << pm->h.quant_bits) - 1u);
+    for (unsigned c = 0; c < 3; c++) {
+        int32_t r = lumo_draco_value(a, i, c);
+        if (r < -qmax || r > qmax)
+            return LUMO_ERR_RANGE;
+        int32_t q = pred ? pred[c] + r : r;
+        if (q < 0 || q > qmax)
+            return LUMO_ERR_RANGE;
+        pm->qpos[3 * (size_t)k + c] = q;
+    }
+    return LUMO_OK;
+}
+
+static lumo_status grid_positions(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute *a)
+{
+    int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
+    lumo_status st = LUMO_OK;
+    if (predicted && b->first)
+        return LUMO_OK;
+    for (uint32_t i = 0; i < b->count && !st; i++) {
+        uint32_t k = b->first + i;
+        st = grid_value(pm, k, predicted && i ? pm->qpos + 3 * (size_t)(k - 1) : NULL, a, i);
+    }
+    return st;
+}
+
 /* Grid integer -> metres: origin + q * range / (2^bits - 1), rounded. */
-static void store_positions(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute *a)
+static void store_positions(lumo_pmesh *pm, const batch *b)
 {
     int64_t qmax = (int64_t)((1u << pm->h.quant_bits) - 1u);
-    for (uint32_t i = 0; i < b->count; i++)
-        for (unsigned c = 0; c < 3; c++) {
-            int32_t q = lumo_draco_value(a, i, c);
-            size_t at = 3 * (size_t)(b->first + i) + c;
-            pm->qpos[at] = q;
-            pm->pos[at] = pm->origin[c] + (int32_t)(((int64_t)q * pm->range + qmax / 2) / qmax);
-        }
+    for (size_t at = 3 * (size_t)b->first; at < 3 * (size_t)(b->first + b->count); at++) {
+        int32_t q = pm->qpos[at];
+        pm->pos[at] = pm->origin[at % 3] + (int32_t)(((int64_t)q * pm->range + qmax / 2) / qmax);
+    }
 }
 
 /* ---- the corner lists and their undo log ---------------------------------- */
@@ -310,6 +343,26 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
     return add_face(s, t[0], t[1], t[2]);
 }
 
+/* k appears among its neighbours: predict it by their mean (rounded), the
+ * corners of k's faces right after its split. Work: k's valence. */
+static lumo_status predict_split(split_ctx *s, uint32_t k)
+{
+    lumo_pmesh *pm = s->pm;
+    int64_t sum[3] = {0, 0, 0};
+    uint32_t n = 0;
+    for (uint32_t c = pm->head[k]; c != NIL; c = pm->next[c], n += 2) {
+        const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
+        for (unsigned i = 0; i < 3; i++)
+            if (t[i] != k)
+                for (unsigned d = 0; d < 3; d++)
+                    sum[d] += pm->qpos[3 * (size_t)t[i] + d];
+    }
+    int32_t pred[3];
+    for (unsigned d = 0; d < 3; d++)
+        pred[d] = n ? (int32_t)((sum[d] + n / 2) / n) : pm->qpos[3 * (size_t)pm->batch_parent[k - s->b->first] + d];
+    return grid_value(pm, k, pred, s->res, k - s->b->first);
+}
+
 static lumo_status split(split_ctx *s, uint32_t k)
 {
     uint32_t p, lenp, n;
@@ -319,6 +372,7 @@ static lumo_status split(split_ctx *s, uint32_t k)
     if (p >= k)
         return LUMO_ERR_RANGE;
     s->pm->head[k] = NIL;
+    s->pm->batch_parent[k - s->b->first] = p;
     uint32_t moves_before = s->moves;
     if ((st = move_corners(s, p, k, &lenp)) || (st = read_face_count(s, &n)))
         return st;
@@ -326,7 +380,7 @@ static lumo_status split(split_ctx *s, uint32_t k)
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if ((st = read_new_face(s, p, k, lenp + lenk)))
             return st;
-    return LUMO_OK;
+    return s->res ? predict_split(s, k) : LUMO_OK;
 }
 
 static lumo_status run_splits(split_ctx *s)
@@ -424,12 +478,13 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
         return LUMO_ERR_STATE;
     if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &m)))
         return st;
-    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, 0, 0, 0};
-    if ((st = run_splits(&s))) {
+    int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
+    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0};
+    if ((st = run_splits(&s)) || (st = grid_positions(pm, &b, pos))) {
         rollback_to(&s, 0);
         return st;
     }
-    store_positions(pm, &b, pos);
+    store_positions(pm, &b);
     pm->split_log[b.first ? b.count : 0] = s.log_n;
     pm->log_n = s.log_n, pm->last_first = b.first;
     pm->vertex_count += b.count;
@@ -448,7 +503,7 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices)
     pm->rewound = 1;
     if (vertices == pm->vertex_count)
         return LUMO_OK;
-    split_ctx s = {pm, {NULL, 0, 0}, NULL, pm->log_n, 0, 0};
+    split_ctx s = {pm, {NULL, 0, 0}, NULL, NULL, pm->log_n, 0, 0};
     uint32_t keep = pm->split_log[vertices - pm->last_first];
     /* Vertices of the faces about to change get fresh normals afterwards. */
     uint32_t nd = mark_log(&s, keep, pm->batches_applied + 1);

@@ -386,7 +386,7 @@ static int corrupt_variants(lumo_pm_client *cl, const uint8_t *rec, size_t n, co
     int ok = 1, errs = 0;
     for (size_t i = 0; i < n; i += 1 + n / 23) {     /* byte flips everywhere */
         memcpy(b, rec, n);
-        b[i] ^= (uint8_t)(0x5a + i);
+        b[i] ^= (uint8_t)((0x5a + i) | 1);  /* never zero */
         ok &= reject(cl, b, n, &s, &errs, "byte flip", i), (*tried)++;
     }
     for (size_t cut = 0; cut < n; cut += 1 + n / 7)  /* truncations */
@@ -480,6 +480,8 @@ int main(int argc, char **argv)
             gen = argv[++i];
         else if (!strcmp(argv[i], "--batch") && i + 1 < argc)
             so.batch_vertices = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--absolute"))
+            so.position_coding = LUMO_PMESH_POS_ABSOLUTE;
         else if (!strcmp(argv[i], "--write-stream") && i + 1 < argc)
             dump = argv[++i];  /* for fuzz seeds and the unit test's data */
         else if (!strcmp(argv[i], "--bits") && i + 1 < argc)
@@ -494,7 +496,8 @@ int main(int argc, char **argv)
         printf("RESULT: 0 passed, 1 failed\n");
         return 1;
     }
-    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits", gen ? gen : file, so.batch_vertices, so.quant_bits);
+    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s", gen ? gen : file, so.batch_vertices,
+             so.quant_bits, so.position_coding ? "parent residuals" : "absolute");
     lumo_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;

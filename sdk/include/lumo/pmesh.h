@@ -38,6 +38,14 @@
 #define LUMO_PMESH_BATCH_HEAD  36u   /* bytes of a batch record's header */
 #define LUMO_PMESH_VERSION     1u
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
+/* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
+ * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
+ * Draco tools show the points); PREDICTED: a GENERIC int32 x3 attribute
+ * of grid residuals from a prediction (for a split vertex the mean of its
+ * neighbours right after the split, in the base mesh the previous vertex),
+ * about half the bytes. */
+#define LUMO_PMESH_POS_ABSOLUTE 0u
+#define LUMO_PMESH_POS_PREDICTED 1u
 /* "LPM1" and "LPMB", first character in the lowest byte. */
 #define LUMO_PMESH_MAGIC       0x314d504cu
 #define LUMO_PMESH_BATCH_MAGIC 0x424d504cu
@@ -54,6 +62,7 @@ typedef struct lumo_pmesh_header {
     uint32_t max_batch_moves;   /* largest corner-move count of one batch */
     uint32_t max_batch_bytes;   /* largest batch record, header included */
     uint32_t quant_bits;        /* position quantization (1..LUMO_PMESH_MAX_QBITS) */
+    uint32_t position_coding;   /* LUMO_PMESH_POS_ABSOLUTE or _PARENT */
     uint32_t origin_bits[3];    /* grid origin, IEEE-754 binary32 bits, metres */
     uint32_t range_bits;        /* grid edge length, binary32 bits, metres */
 } lumo_pmesh_header;
@@ -86,6 +95,7 @@ typedef struct lumo_pmesh {
     uint32_t    *mark;                /* vertices: last batch that touched it */
     uint32_t    *journal;             /* undo log of one batch */
     uint32_t    *dirty;               /* vertices whose normal to refresh */
+    uint32_t    *batch_parent;        /* parent of each vertex of the batch */
     uint32_t    *split_log;           /* journal length before each split of
                                          the last batch (batch_vertices + 1) */
     uint32_t     log_n;               /* journal entries of the last batch */

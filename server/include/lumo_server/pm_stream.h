@@ -15,6 +15,7 @@ typedef struct lumo_pm_stream_options {
     uint32_t            batch_vertices;  /* vertices per batch (paper: 250) */
     int                 quant_bits;      /* position grid bits (12) */
     lumo_draco_settings draco;           /* the payload encoder choice */
+    int                 position_coding; /* LUMO_PMESH_POS_PREDICTED (default) or _ABSOLUTE */
 } lumo_pm_stream_options;
 
 void lumo_pm_stream_default_options(lumo_pm_stream_options *o);
