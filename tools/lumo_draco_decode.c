@@ -103,10 +103,14 @@ static void write_info(const lumo_draco_mesh *m, size_t in_size)
     for (i = 0; i < m->num_attributes; ++i) {
         const lumo_draco_attribute *a = &m->attributes[i];
         const lumo_draco_attr_modes *md = &a->modes;
-        printf("attribute %u: %s, %u components (%u portable), decoder %u, %s, %s traversal\n",
-               i, type_name(a->type), a->num_components, a->num_portable, md->decoder_id,
-               md->vertex_attribute ? "per vertex" : "per corner",
-               md->traversal ? "prediction-degree" : "depth-first");
+        if (m->geometry == LUMO_DRACO_MESH && m->method == LUMO_DRACO_METHOD_EDGEBREAKER)
+            printf("attribute %u: %s, %u components (%u portable), decoder %u, %s, %s traversal\n",
+                   i, type_name(a->type), a->num_components, a->num_portable, md->decoder_id,
+                   md->vertex_attribute ? "per vertex" : "per corner",
+                   md->traversal ? "prediction-degree" : "depth-first");
+        else
+            printf("attribute %u: %s, %u components (%u portable), decoder %u, point order\n",
+                   i, type_name(a->type), a->num_components, a->num_portable, md->decoder_id);
         printf("  sequential decoder: %s; prediction: %s; transform: %s\n",
                md->seq_type < 4 ? seq[md->seq_type] : "?",
                md->prediction >= 0 && md->prediction < 7 ? pred[md->prediction] : "none",

@@ -54,7 +54,7 @@ static lumo_status ld_varint(ld_buf *b, unsigned max_bytes, uint64_t *v)
     return LUMO_ERR_CORRUPT;
 }
 
-lumo_status ld_varint32(ld_buf *b, uint32_t *v)
+lumo_status ld_varint32_slow(ld_buf *b, uint32_t *v)
 {
     uint64_t r;
     lumo_status st = ld_varint(b, 5, &r);

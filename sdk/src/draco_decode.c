@@ -136,26 +136,25 @@ static lumo_status ld_seq_compressed_indices(ld_dec *d)
     return LUMO_OK;
 }
 
-/* Plain indices (method 1), sized by the point count. */
+/* Plain indices (method 1): bytes, 16-bit words or varints by the point
+ * count (libdraco MeshSequentialDecoder). */
 static lumo_status ld_seq_raw_indices(ld_dec *d)
 {
-    uint32_t n = d->num_faces * 3u, i, np = d->num_points;
+    const uint32_t n = d->num_faces * 3u, np = d->num_points;
+    uint32_t i;
     lumo_status st = LUMO_OK;
-    for (i = 0; i < n && !st; ++i) {
-        if (np < 256u) {
-            uint8_t v;
-            st = ld_u8(&d->buf, &v);
-            d->faces[i] = v;
-        } else if (np < 65536u) {
-            uint16_t v;
-            st = ld_u16(&d->buf, &v);
-            d->faces[i] = v;
-        } else if (np < (1u << 21)) {
-            st = ld_varint32(&d->buf, &d->faces[i]);
-        } else {
-            st = ld_u32(&d->buf, &d->faces[i]);
-        }
+    if (np < 65536u) {
+        const size_t w = np < 256u ? 1u : 2u;
+        const uint8_t *p = ld_head(&d->buf);
+        if ((uint64_t)n * w > ld_remaining(&d->buf))
+            return LUMO_ERR_TRUNCATED;
+        for (i = 0; i < n; ++i)
+            d->faces[i] = w == 1u ? p[i] : (uint32_t)(p[2 * i] | (p[2 * i + 1] << 8));
+        d->buf.pos += (size_t)n * w;
+        return LUMO_OK;
     }
+    for (i = 0; i < n && !st; ++i)
+        st = np < (1u << 21) ? ld_varint32(&d->buf, &d->faces[i]) : ld_u32(&d->buf, &d->faces[i]);
     return st;
 }
 
@@ -180,6 +179,7 @@ static lumo_status ld_seq_connectivity(ld_dec *d)
         return LUMO_ERR_LIMIT;
     if ((st = ld_u8(&d->buf, &method)))
         return st;
+    d->connectivity = method ? 1u : 0u;
     d->faces = ld_out(&d->mem, (size_t)d->num_faces * 3u, sizeof(uint32_t));
     if (!d->faces)
         return LUMO_ERR_NOMEM;

@@ -42,7 +42,30 @@ static inline const uint8_t *ld_head(const ld_buf *b) { return b->data + b->pos;
 lumo_status ld_u8(ld_buf *b, uint8_t *v);
 lumo_status ld_u16(ld_buf *b, uint16_t *v);
 lumo_status ld_u32(ld_buf *b, uint32_t *v);
-lumo_status ld_varint32(ld_buf *b, uint32_t *v);
+lumo_status ld_varint32_slow(ld_buf *b, uint32_t *v);
+/* LEB128 into 32 bits (at most 5 bytes, high bits dropped as libdraco
+ * does); inline fast path when 5 bytes are available. */
+static inline lumo_status ld_varint32(ld_buf *b, uint32_t *v)
+{
+    const uint8_t *p = b->data + b->pos;
+    uint32_t r;
+    if (b->size - b->pos < 5)
+        return ld_varint32_slow(b, v);
+    r = p[0] & 0x7Fu;
+    if (!(p[0] & 0x80u)) { b->pos += 1; *v = r; return LUMO_OK; }
+    r |= (uint32_t)(p[1] & 0x7Fu) << 7;
+    if (!(p[1] & 0x80u)) { b->pos += 2; *v = r; return LUMO_OK; }
+    r |= (uint32_t)(p[2] & 0x7Fu) << 14;
+    if (!(p[2] & 0x80u)) { b->pos += 3; *v = r; return LUMO_OK; }
+    r |= (uint32_t)(p[3] & 0x7Fu) << 21;
+    if (!(p[3] & 0x80u)) { b->pos += 4; *v = r; return LUMO_OK; }
+    if (p[4] & 0x80u)
+        return LUMO_ERR_CORRUPT;
+    r |= (uint32_t)(p[4] & 0x7Fu) << 28;
+    b->pos += 5;
+    *v = r;
+    return LUMO_OK;
+}
 lumo_status ld_varint64(ld_buf *b, uint64_t *v);
 lumo_status ld_skip(ld_buf *b, uint64_t n);
 /* A sub-reader of the next n bytes; the parent skips past them. */
