@@ -33,7 +33,7 @@ TEST_STEPS += test-pm
 .PHONY: test-pm
 test-pm: $(PM_CHECK)
 	@for g in "tiny --batch 1" "sphere --batch 1" "grid --batch 1" "cornell --batch 7" \
-	          "scan --batch 3" "sphere --batch 250 --bits 16"; do \
+	          "scan --batch 3" "sphere --batch 250 --bits 16" "cornell --batch 5 --absolute"; do \
 	    $(PM_CHECK) --gen $$g || true; done
 	@for m in "dragon_11k.ply --batch 1" "dragon_11k.ply --batch 250" "dragon_48k.ply --batch 250"; do \
 	    set -- $$m; f=$(PM_MODELS)/$$1; shift; \
