@@ -28,11 +28,11 @@ step "2/5 path-traced reference ($SIZE, $REF_SPP spp)"
 "$bin/lumo-bake" --default --reference "$SIZE" --spp "$REF_SPP" -o "$out/reference.png"
 
 step "3/5 client pictures (soft rasterizer, fixed point)"
-"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" -o "$out/client.png"
-"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --no-indirect -o "$out/client-direct.png"
+"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --per-pixel -o "$out/client.png"
+"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --per-pixel --no-indirect -o "$out/client-direct.png"
 
 step "4/5 orbit: $FRAMES frames"
-"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --frames "$FRAMES" --orbit -o "$out/orbit.png"
+"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --per-pixel --frames "$FRAMES" --orbit -o "$out/orbit.png"
 
 step "5/5 side by side: client (direct + IVG) | client (direct only) | reference"
 "$bin/lumo-compare" "$out/client.png" "$out/client-direct.png" "$out/reference.png" -o "$out/side-by-side.png"
