@@ -56,6 +56,12 @@ static size_t entries_bytes(uint32_t count)
                                           sizeof(lumo_ivg_entry)));
 }
 
+/* Smoothing keeps three x-y planes of sums of the largest coarse level. */
+static size_t smooth_sums(const ivg_plan *p)
+{
+    return (size_t)3u * p->dims[1][0] * p->dims[1][1];
+}
+
 static size_t plan_bytes(const ivg_plan *p)
 {
     size_t total = lumo_arena_round(sizeof(lumo_ivg));
@@ -68,7 +74,7 @@ static size_t plan_bytes(const ivg_plan *p)
         total = lumo_size_add(total, lumo_arena_round(p->count[l]));
     }
     if (p->levels > 1)
-        total = lumo_size_add(total, entries_bytes(p->count[1]));
+        total = lumo_size_add(total, lumo_arena_round(lumo_size_mul(smooth_sums(p), sizeof(ivg_sum))));
     return total;
 }
 
@@ -130,7 +136,7 @@ lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_de
         g->level[l].e = alloc_entries(arena, p.count[l]);
         g->level[l].valid = l == 0 ? NULL : lumo_arena_alloc(arena, p.count[l]);
     }
-    g->scratch = p.levels > 1 ? alloc_entries(arena, p.count[1]) : NULL;
+    g->scratch = p.levels > 1 ? lumo_arena_alloc_array(arena, smooth_sums(&p), sizeof(ivg_sum)) : NULL;
     /* plan_bytes() was checked against the room left, so these cannot fail;
      * the check stays in case the two ever drift apart. */
     if (g->received_bits == NULL || g->solid_bits == NULL || g->seen_bits == NULL

@@ -11,6 +11,14 @@
  * 9 -> 5 -> 3 -> 2 -> 1 is the longest chain (10 levels). */
 #define IVG_MAX_LEVELS 12
 
+/* Weighted sums of one entry's values and of the weights (push-pull
+ * smoothing works one hemisphere at a time on these). */
+typedef struct ivg_sum {
+    uint64_t c[3];
+    int32_t  d[3];
+    uint32_t w;
+} ivg_sum;
+
 /* One pyramid level. Level 0 is the grid (validity = received bitmap);
  * coarser levels keep one validity byte per vertex. */
 typedef struct ivg_level {
@@ -34,7 +42,7 @@ struct lumo_ivg {
     uint32_t        extent[3];        /* bmax - bmin, Q16.16 raw units */
     unsigned        levels;           /* used entries of level[] */
     ivg_level       level[IVG_MAX_LEVELS];
-    lumo_ivg_entry *scratch;          /* smoothing output, level 1 sized */
+    ivg_sum        *scratch;          /* smoothing: 3 x-y planes of level 1 */
 };
 
 static inline int ivg_bit(const uint8_t *bits, uint32_t i)

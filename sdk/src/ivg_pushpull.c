@@ -9,7 +9,8 @@
  *         average of the valid fine vertices around it; valid when any was.
  *  smooth (LUMO_IVG_SMOOTH) right after each push: the valid vertices of
  *         the new level are replaced by the (1,2,1)^3 weighted average of
- *         their valid neighbours (the paper's pyramidal filter).
+ *         their valid neighbours (the paper's pyramidal filter), computed
+ *         by separable passes over one hemisphere at a time.
  *  pull   level l+1 -> l, top down: every invalid vertex of level l is the
  *         trilinear interpolation of level l+1 (weights 1/2 or 1 per axis).
  *
@@ -88,17 +89,6 @@ static void pull_taps(uint32_t f, uint32_t fine, uint32_t coarse, ivg_taps *t)
     }
 }
 
-/* Neighbours of i on its own level (smoothing): (1,2,1), clipped. */
-static void smooth_taps(uint32_t i, uint32_t dim, ivg_taps *t)
-{
-    t->n = 0;
-    if (i > 0u)
-        taps_add(t, i - 1u, 1);
-    taps_add(t, i, 2);
-    if (i + 1u < dim)
-        taps_add(t, i + 1u, 1);
-}
-
 static int vertex_valid(const lumo_ivg *g, unsigned l, uint32_t v)
 {
     return l == 0 ? ivg_bit(g->received_bits, v) : g->level[l].valid[v];
@@ -149,42 +139,36 @@ static int pow2_shift(uint32_t w)
     return s;
 }
 
-/* The same rounding as div_round_u48 / div_round_i32 by a shift: pull
- * weights always sum to 8 and interior push and smoothing weights to 64,
- * so most vertices take this path. Results are identical either way. */
-static void acc_store_shift(const ivg_acc *acc, lumo_ivg_entry *e, int s)
+/* round(sum / w) for one entry's three colours and three direction
+ * components: a shift by s = log2(w) when w is a power of two (pull weights
+ * always sum to 8, interior push and smoothing weights to 64), two 32-bit
+ * divisions otherwise (s < 0); both give the same result. A weighted average of values in
+ * range is in range. */
+static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s, lumo_ivg_entry *e)
 {
-    uint64_t half = ((uint64_t)1 << s) >> 1;
-    int a, k;
+    int k;
 
-    for (a = 0; a < LUMO_IVG_AXES; a++) {
-        for (k = 0; k < 3; k++) {
-            int32_t d = acc->d[a][k];
-            uint32_t mag = d < 0 ? (uint32_t)-d : (uint32_t)d;
-            e[a].c[k] = (uint32_t)((acc->c[a][k] + half) >> s);
+    for (k = 0; k < 3; k++) {
+        if (s >= 0) {
+            uint64_t half = ((uint64_t)1 << s) >> 1;
+            uint32_t mag = d[k] < 0 ? (uint32_t)-d[k] : (uint32_t)d[k];
             mag = (uint32_t)((mag + half) >> s);
-            e[a].d[k] = (lumo_q1_14)(d < 0 ? -(int32_t)mag : (int32_t)mag);
+            e->c[k] = (uint32_t)((c[k] + half) >> s);
+            e->d[k] = (lumo_q1_14)(d[k] < 0 ? -(int32_t)mag : (int32_t)mag);
+        } else {
+            e->c[k] = div_round_u48(c[k], w);
+            e->d[k] = (lumo_q1_14)div_round_i32(d[k], w);
         }
-        e[a].reserved = 0;
     }
+    e->reserved = 0;
 }
 
-/* The weighted average; a weighted average of values in range is in range. */
 static void acc_store(const ivg_acc *acc, lumo_ivg_entry *e)
 {
-    int a, k, s = pow2_shift(acc->w);
+    int a, s = pow2_shift(acc->w);
 
-    if (s >= 0) {
-        acc_store_shift(acc, e, s);
-        return;
-    }
-    for (a = 0; a < LUMO_IVG_AXES; a++) {
-        for (k = 0; k < 3; k++) {
-            e[a].c[k] = div_round_u48(acc->c[a][k], acc->w);
-            e[a].d[k] = (lumo_q1_14)div_round_i32(acc->d[a][k], acc->w);
-        }
-        e[a].reserved = 0;
-    }
+    for (a = 0; a < LUMO_IVG_AXES; a++)
+        sum_store(acc->c[a], acc->d[a], acc->w, s, &e[a]);
 }
 
 /* Sum the vertices of level l at the product of the three tap lists,
@@ -240,31 +224,89 @@ static void push(lumo_ivg *g, unsigned l)
     }
 }
 
-/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l. */
+/* dst = left + 2 mid + right (left, right may be NULL; dst may be mid). */
+static void sum_mix(ivg_sum *dst, const ivg_sum *left, const ivg_sum *mid, const ivg_sum *right)
+{
+    int k;
+
+    for (k = 0; k < 3; k++) {
+        dst->c[k] = 2u * mid->c[k] + (left ? left->c[k] : 0u) + (right ? right->c[k] : 0u);
+        dst->d[k] = 2 * mid->d[k] + (left ? left->d[k] : 0) + (right ? right->d[k] : 0);
+    }
+    dst->w = 2u * mid->w + (left ? left->w : 0u) + (right ? right->w : 0u);
+}
+
+/* (1,2,1) along one line of `len` sums `stride` apart, in place: the
+ * unfiltered previous element is kept aside. */
+static void sum_pass(ivg_sum *line, uint32_t len, uint32_t stride)
+{
+    ivg_sum keep[2];                        /* unfiltered i-1 and i */
+    uint32_t i;
+
+    for (i = 0; i < len; i++) {
+        ivg_sum *cur = &line[i * stride];
+        keep[i & 1u] = *cur;
+        sum_mix(cur, i > 0u ? &keep[(i - 1u) & 1u] : NULL, &keep[i & 1u],
+                i + 1u < len ? cur + stride : NULL);
+    }
+}
+
+/* Plane z of level lv, hemisphere a, filtered along x and y into s:
+ * weight x value and weight over the valid vertices only. */
+static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
+{
+    uint32_t nx = lv->dims[0], ny = lv->dims[1], i;
+    int k;
+
+    for (i = 0; i < nx * ny; i++) {
+        uint32_t v = z * nx * ny + i;
+        const lumo_ivg_entry *e = &lv->e[(size_t)v * LUMO_IVG_AXES + a];
+        int on = lv->valid[v] != 0;
+        for (k = 0; k < 3; k++) {
+            s[i].c[k] = on ? e->c[k] : 0u;
+            s[i].d[k] = on ? e->d[k] : 0;
+        }
+        s[i].w = (uint32_t)on;
+    }
+    for (i = 0; i < ny; i++)
+        sum_pass(&s[i * nx], nx, 1);
+    for (i = 0; i < nx; i++)
+        sum_pass(&s[i], ny, nx);
+}
+
+/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l:
+ * every valid vertex becomes the weighted average of the valid vertices
+ * around it. The weights are a product, so the sums of weight x value and
+ * of weight over valid neighbours are separable: x and y passes per plane
+ * into a ring of three planes, then the z pass writes plane z-1 while
+ * planes z-2..z are in the ring (plane z-1's own values are no longer
+ * needed by then). The integer sums are the ones of the 27-tap filter, so
+ * are the results. An axis of one vertex doubles every sum and weight,
+ * which changes no quotient. */
 static void smooth(lumo_ivg *g, unsigned l)
 {
     ivg_level *lv = &g->level[l];
-    uint32_t i, j, k, v = 0;
-    ivg_taps t[3];
-    ivg_acc acc;
+    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], z, i;
+    ivg_sum *ring = g->scratch, out;
+    int a;
 
-    for (k = 0; k < lv->dims[2]; k++) {
-        smooth_taps(k, lv->dims[2], &t[2]);
-        for (j = 0; j < lv->dims[1]; j++) {
-            smooth_taps(j, lv->dims[1], &t[1]);
-            for (i = 0; i < lv->dims[0]; i++, v++) {
-                lumo_ivg_entry *out = &g->scratch[(size_t)v * LUMO_IVG_AXES];
-                if (!lv->valid[v]) {
-                    memset(out, 0, LUMO_IVG_AXES * sizeof *out);
+    for (a = 0; a < LUMO_IVG_AXES; a++) {
+        for (z = 0; z <= nz; z++) {
+            uint32_t zo = z - 1u;
+            if (z < nz)
+                smooth_plane(lv, a, z, &ring[(z % 3u) * plane]);
+            if (z == 0u)
+                continue;
+            for (i = 0; i < plane; i++) {
+                uint32_t v = zo * plane + i;
+                if (!lv->valid[v])
                     continue;
-                }
-                smooth_taps(i, lv->dims[0], &t[0]);
-                gather(g, l, t, 1, &acc);
-                acc_store(&acc, out);
+                sum_mix(&out, zo > 0u ? &ring[((zo - 1u) % 3u) * plane + i] : NULL,
+                        &ring[(zo % 3u) * plane + i], zo + 1u < nz ? &ring[((zo + 1u) % 3u) * plane + i] : NULL);
+                sum_store(out.c, out.d, out.w, pow2_shift(out.w), &lv->e[(size_t)v * LUMO_IVG_AXES + a]);
             }
         }
     }
-    memcpy(lv->e, g->scratch, (size_t)lv->count * LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
 }
 
 /* Level l+1 -> l: trilinear fill of the invalid vertices of level l. */
