@@ -3,12 +3,15 @@
  *
  *   lumo-pm build IN.ply -o OUT.lumo [--batch N] [--bits B] [--raw]
  *   lumo-pm clean IN.ply -o OUT.ply      the welded, cleaned input mesh
+ *   lumo-pm apply STREAM [N]             apply the first N records with the
+ *                                        client (for callgrind in the bench)
  *   lumo-pm bench ...                    see pm_bench.c
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_server/package_write.h"
+#include "lumo_server/pm_client.h"
 #include "lumo_server/pm_load.h"
 #include "lumo_server/pm_stream.h"
 
@@ -25,6 +28,7 @@ static int usage(void)
 {
     fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--raw]\n"
                     "       lumo-pm clean IN -o OUT.ply\n"
+                    "       lumo-pm apply STREAM [RECORDS]\n"
                     "       lumo-pm bench --out SECTION.md MODEL...\n");
     return 2;
 }
@@ -113,9 +117,32 @@ done:
     return rc;
 }
 
+static int cmd_apply(int argc, char **argv)
+{
+    FILE *f = argc > 2 ? fopen(argv[2], "rb") : NULL;
+    long n = -1;
+    if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET))
+        return usage();
+    uint8_t *d = malloc((size_t)n + 1);
+    size_t len = d ? fread(d, 1, (size_t)n, f) : 0;
+    fclose(f);
+    lumo_pm_client c;
+    unsigned long records = argc > 3 ? strtoul(argv[3], NULL, 10) : (unsigned long)-1, done = 0;
+    lumo_status st = lumo_pm_client_open(&c, d, len);
+    while (!st && done < records && !lumo_pmesh_complete(&c.pm))
+        st = lumo_pm_client_step(&c), done++;
+    printf("%lu records, %u vertices, %u faces: %s\n", done, c.pm.vertex_count, c.pm.face_count,
+           lumo_strerror(st));
+    lumo_pm_client_close(&c);
+    free(d);
+    return st ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
     args a;
+    if (argc >= 2 && !strcmp(argv[1], "apply"))
+        return cmd_apply(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "bench"))
         return lumo_pm_bench_main(argc - 1, argv + 1);
     if (argc < 2 || parse(argc, argv, &a))
