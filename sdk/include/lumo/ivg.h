@@ -133,7 +133,7 @@ lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, u
  * Only received values are inputs, so a re-run after more bundles arrived
  * recomputes every filled vertex; with nothing received all stay zero.
  * Work is bounded by a constant times the vertex count; stack use about
- * 550 bytes on the Cortex-M3.
+ * 620 bytes on the Cortex-M3.
  * LUMO_ERR_ARG for a NULL grid or unknown flags. */
 lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags);
 
