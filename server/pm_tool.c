@@ -75,6 +75,8 @@ static int write_output(const args *a, const uint8_t *s, size_t n)
     char err[256];
     lumo_pkgw_init(&w);
     int rc = lumo_pkgw_add(&w, LUMO_PM_CHUNK, s, n) || lumo_pkgw_write_file(&w, a->out, err, sizeof err);
+    if (rc)
+        fprintf(stderr, "lumo-pm: error: %s\n", err);
     lumo_pkgw_free(&w);
     return rc ? -1 : 0;
 }

@@ -1,0 +1,26 @@
+/* pm_pack.c — one mesh into a package as a progressive stream (PMSH chunk):
+ * the call lumo-bake makes instead of writing the raw MESH chunk. */
+#include <stdio.h>
+#include <stdlib.h>
+#include "lumo_server/package_write.h"
+#include "lumo_server/pm_stream.h"
+
+int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, uint32_t nv, const uint32_t *tris,
+                 uint32_t nf, const lumo_pm_stream_options *o, char *err, size_t errlen)
+{
+    lumo_pm pm;
+    uint8_t *s = NULL;
+    size_t len = 0;
+    if (lumo_pm_build(xyz, nv, tris, nf, NULL, &pm)) {
+        snprintf(err, errlen, "progressive mesh: cannot simplify (bad index or out of memory)");
+        return -1;
+    }
+    int rc = lumo_pm_stream_build(&pm, o, &s, &len, NULL, NULL);
+    if (rc)
+        snprintf(err, errlen, "progressive mesh: cannot encode the stream");
+    else if ((rc = lumo_pkgw_add(w, LUMO_PM_CHUNK, s, len)))
+        snprintf(err, errlen, "progressive mesh: out of memory");
+    free(s);
+    lumo_pm_free(&pm);
+    return rc;
+}
