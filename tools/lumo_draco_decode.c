@@ -84,7 +84,7 @@ static const char *type_name(unsigned t)
     return t < 5 ? names[t] : "?";
 }
 
-static void write_info(const lumo_draco_mesh *m, size_t in_size)
+static void write_info(const lumo_draco_mesh *m, size_t in_size, uint16_t flags)
 {
     static const char *pred[] = {"delta", "parallelogram", "multi-parallelogram",
                                  "tex-coords(deprecated)", "constrained-multi-parallelogram",
@@ -98,7 +98,8 @@ static void write_info(const lumo_draco_mesh *m, size_t in_size)
         printf("connectivity: edgebreaker %s\n", m->connectivity == 2 ? "valence" : "standard");
     else
         printf("encoding: %s\n", m->method ? "kd-tree" : "sequential");
-    printf("points: %u  faces: %u  input: %zu bytes\n", m->num_points, m->num_faces, in_size);
+    printf("points: %u  faces: %u  input: %zu bytes%s\n", m->num_points, m->num_faces, in_size,
+           (flags & 0x8000u) ? "  (metadata present, skipped)" : "");
     printf("arena: %zu output bytes + %zu peak work bytes\n", m->arena_bytes, m->work_bytes);
     for (i = 0; i < m->num_attributes; ++i) {
         const lumo_draco_attribute *a = &m->attributes[i];
@@ -241,7 +242,8 @@ int main(int argc, char **argv)
         }
     }
     if (!strcmp(mode, "info")) {
-        write_info(&m, size);
+        lumo_draco_info info;
+        write_info(&m, size, lumo_draco_peek(data, size, &info) ? 0 : info.flags);
     } else if (!strcmp(mode, "dump")) {
         FILE *f = fopen(out, "w");
         if (!f)

@@ -53,6 +53,9 @@ for cl in 0 1 2 3 4 5 6 7 8 9 10; do
     add cloud "$work/gen/torus_color.ply" "-point_cloud -cl $cl -qp 14 -qn 9"
 done
 for cl in 0 2 4 6 10; do add cloud "$models/dragon_11k.ply" "-point_cloud -cl $cl -qp 12"; done
+# metadata (skipped) and a material attribute
+for cl in 0 1 5 7 10; do add mesh "$work/gen/materials.obj" "-cl $cl -metadata"; done
+add cloud "$work/gen/materials.obj" "-point_cloud -cl 7 -metadata"
 # dequantized PLY output of lumo-draco-decode against draco_decoder's
 add ply "$work/gen/sphere_uv.obj" "-cl 7"
 add ply "$work/gen/torus_color.ply" "-cl 10 -qp 16 -qn 12"

@@ -9,6 +9,9 @@
  *   nonmanifold.ply   fan of triangles around one edge + bowtie vertices
  *   small.obj         < 1000 faces with uvs and normals
  *   cloud.ply         points only (for point-cloud encoding)
+ *   materials.obj     a sphere in three materials (+ materials.mtl): with
+ *                     -metadata the encoder writes metadata and a material
+ *                     attribute
  *
  *   gen-meshes OUTDIR
  */
@@ -232,6 +235,35 @@ static void cloud_ply(const char *dir, int n)
     fclose(f);
 }
 
+/* The UV sphere again, its faces split over three materials. */
+static void materials_obj(const char *dir)
+{
+    FILE *m = open_out(dir, "materials.mtl"), *f, *src;
+    char path[1024], line[256];
+    int face = 0;
+    fprintf(m, "newmtl red\nKd 1 0 0\nnewmtl green\nKd 0 1 0\nnewmtl blue\nKd 0 0 1\n");
+    fclose(m);
+    sphere_obj(dir, "materials_src.obj", 16, 24, 1.0);
+    snprintf(path, sizeof path, "%s/materials_src.obj", dir);
+    src = fopen(path, "r");
+    f = open_out(dir, "materials.obj");
+    if (!src)
+        exit(1);
+    fprintf(f, "mtllib materials.mtl\n");
+    while (fgets(line, sizeof line, src)) {
+        if (line[0] == 'f') {
+            static const char *names[3] = {"red", "green", "blue"};
+            if (face % 200 == 0)
+                fprintf(f, "usemtl %s\n", names[(face / 200) % 3]);
+            ++face;
+        }
+        fputs(line, f);
+    }
+    fclose(src);
+    fclose(f);
+    remove(path);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -245,5 +277,6 @@ int main(int argc, char **argv)
     cornell_obj(argv[1]);
     nonmanifold_ply(argv[1]);
     cloud_ply(argv[1], 3000);
+    materials_obj(argv[1]);
     return 0;
 }

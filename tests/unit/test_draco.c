@@ -257,6 +257,42 @@ static void test_bad_headers(void **state)
     assert_int_equal(a.used, 0);
 }
 
+/* A metadata block (attribute and geometry metadata, an entry, a nested
+ * sub-metadata) spliced after the header is skipped; the decode is the
+ * same. A truncated or inconsistent block is an error. */
+static void test_metadata_skipped(void **state)
+{
+    static const uint8_t meta[] = {
+        1,                        /* one attribute metadata */
+        0,                        /* attribute unique id */
+        1, 2, 'a', 'b', 3, 7, 8, 9,  /* one entry "ab" = 3 bytes */
+        1, 1, 's', 0, 0,          /* one sub-metadata "s", empty */
+        1, 1, 'g', 1, 0x2A, 0,    /* geometry metadata: entry "g" = 1 byte, no subs */
+    };
+    static uint8_t buf[8192];
+    size_t n;
+    const stream *s = streams(&n);
+    lumo_arena a;
+    lumo_draco_mesh m;
+    size_t len = 11 + sizeof meta + (s[0].size - 11), cut;
+    (void)state;
+    assert_true(len <= sizeof buf);
+    memcpy(buf, s[0].data, 11);
+    buf[10] |= 0x80;              /* flags bit 15: metadata present */
+    memcpy(buf + 11, meta, sizeof meta);
+    memcpy(buf + 11 + sizeof meta, s[0].data + 11, s[0].size - 11);
+    arena_fresh(&a, ARENA_BYTES);
+    assert_int_equal(lumo_draco_decode(buf, len, &a, &m), LUMO_OK);
+    assert_true(dump_hash(&m) == s[0].fnv);
+    for (cut = 11; cut < 11 + sizeof meta; ++cut) {
+        arena_fresh(&a, ARENA_BYTES);
+        assert_int_not_equal(lumo_draco_decode(buf, cut, &a, &m), LUMO_OK);
+    }
+    buf[11 + 6] = 0;              /* an entry of size zero is invalid */
+    arena_fresh(&a, ARENA_BYTES);
+    assert_int_equal(lumo_draco_decode(buf, len, &a, &m), LUMO_ERR_CORRUPT);
+}
+
 /* Dequantization in fixed point against the float formula. */
 static void test_dequantize(void **state)
 {
@@ -296,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_truncated),
         cmocka_unit_test(test_bit_flips),
         cmocka_unit_test(test_bad_headers),
+        cmocka_unit_test(test_metadata_skipped),
         cmocka_unit_test(test_dequantize),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
