@@ -240,7 +240,8 @@ static void section_scaling(FILE *o, model *ms, int n, const char *self)
                "the Draco decoder's scratch. Flat columns are the goal.\n\n"
                "Instructions: callgrind over `lumo_pmesh_apply` for split batches 1 … 40 (the base "
                "mesh excluded), which does not depend on caches: the host times grow with the mesh "
-               "mostly because a bigger mesh's arrays miss the caches.\n\n"
+               "mostly because a bigger mesh's arrays miss the caches. p95/max include scheduling noise "
+               "of a shared 2-core machine (single batches of a few ms that move between runs).\n\n"
                "| model | triangles | batches | median µs/batch | p95 µs | max µs | µs per split vertex "
                "| instructions per batch (1 … 40) | arena bytes | per-batch working bytes |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n");
