@@ -333,17 +333,22 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
             (st = ld_u8(&b, &r.connectivity)))
             return st;
     } else {
-        uint32_t verts, faces;
-        uint8_t type;
+        uint32_t verts, faces, symbols, splits;
+        uint8_t type, nad;
         if ((st = ld_u8(&b, &type)) || (st = ld_varint32(&b, &verts)) ||
-            (st = ld_varint32(&b, &faces)))
+            (st = ld_varint32(&b, &faces)) || (st = ld_u8(&b, &nad)) ||
+            (st = ld_varint32(&b, &symbols)) || (st = ld_varint32(&b, &splits)))
             return st;
         if (faces > LD_MAX_FACES)
             return LUMO_ERR_LIMIT;
         r.connectivity = type;
         r.num_faces = faces;
-        r.num_points_max = faces * 3u;  /* attribute seams can split vertices */
-        (void)verts;
+        /* without attribute seams every point is a decoded vertex;
+         * seams can split vertices up to one point per corner */
+        if (nad == 0 && (uint64_t)verts + splits < (uint64_t)faces * 3u)
+            r.num_points_max = verts + splits;
+        else
+            r.num_points_max = faces * 3u;
     }
     if (r.num_faces > LD_MAX_FACES || r.num_points_max > LD_MAX_POINTS)
         return LUMO_ERR_LIMIT;
