@@ -274,38 +274,46 @@ static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
         sum_pass(&s[i], ny, nx);
 }
 
+/* The z pass writing plane z of hemisphere a: the x-y sums of planes z-1,
+ * z and z+1 are in the ring (slot = plane % 3). */
+static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
+{
+    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], i;
+    const ivg_sum *lo = z > 0u ? &ring[((z - 1u) % 3u) * plane] : NULL;
+    const ivg_sum *mid = &ring[(z % 3u) * plane];
+    const ivg_sum *hi = z + 1u < nz ? &ring[((z + 1u) % 3u) * plane] : NULL;
+    ivg_sum out;
+
+    for (i = 0; i < plane; i++) {
+        uint32_t v = z * plane + i;
+        if (!lv->valid[v])
+            continue;
+        sum_mix(&out, lo != NULL ? lo + i : NULL, mid + i, hi != NULL ? hi + i : NULL);
+        sum_store(out.c, out.d, out.w, pow2_shift(out.w), &lv->e[(size_t)v * LUMO_IVG_AXES + a]);
+    }
+}
+
 /* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l:
  * every valid vertex becomes the weighted average of the valid vertices
  * around it. The weights are a product, so the sums of weight x value and
  * of weight over valid neighbours are separable: x and y passes per plane
- * into a ring of three planes, then the z pass writes plane z-1 while
- * planes z-2..z are in the ring (plane z-1's own values are no longer
- * needed by then). The integer sums are the ones of the 27-tap filter, so
- * are the results. An axis of one vertex doubles every sum and weight,
- * which changes no quotient. */
+ * into a ring of three planes, and plane z-1 is written once plane z is in
+ * the ring (its own values are no longer needed by then). The integer sums
+ * are those of the 27-tap filter, and so are the results. An axis of one
+ * vertex doubles every sum and weight, which changes no quotient. */
 static void smooth(lumo_ivg *g, unsigned l)
 {
     ivg_level *lv = &g->level[l];
-    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], z, i;
-    ivg_sum *ring = g->scratch, out;
+    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], z;
     int a;
 
     for (a = 0; a < LUMO_IVG_AXES; a++) {
-        for (z = 0; z <= nz; z++) {
-            uint32_t zo = z - 1u;
-            if (z < nz)
-                smooth_plane(lv, a, z, &ring[(z % 3u) * plane]);
-            if (z == 0u)
-                continue;
-            for (i = 0; i < plane; i++) {
-                uint32_t v = zo * plane + i;
-                if (!lv->valid[v])
-                    continue;
-                sum_mix(&out, zo > 0u ? &ring[((zo - 1u) % 3u) * plane + i] : NULL,
-                        &ring[(zo % 3u) * plane + i], zo + 1u < nz ? &ring[((zo + 1u) % 3u) * plane + i] : NULL);
-                sum_store(out.c, out.d, out.w, pow2_shift(out.w), &lv->e[(size_t)v * LUMO_IVG_AXES + a]);
-            }
+        for (z = 0; z < nz; z++) {
+            smooth_plane(lv, a, z, &g->scratch[(z % 3u) * plane]);
+            if (z > 0u)
+                smooth_write(lv, a, z - 1u, g->scratch);
         }
+        smooth_write(lv, a, nz - 1u, g->scratch);
     }
 }
 

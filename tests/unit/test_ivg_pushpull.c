@@ -156,7 +156,8 @@ static unsigned level_count(const unsigned dims[3])
  * (<= 1/2 ulp) and weighted averages do not amplify earlier errors, so the
  * error is at most 3/2 ulp per level; it averages out in practice and the
  * test holds it to 1 + levels/2 ulp (Q16.16 for c, Q1.14 for d; observed
- * worst 2.36 ulp, on 256x2x2 with 10 levels). Returns the largest error seen, in ulps. */
+ * worst 2.36 ulp, on 256x2x2 with 10 levels). Returns the largest error
+ * seen, in ulps. */
 static double compare_with_reference(lumo_ivg *g, unsigned flags)
 {
     const lumo_ivg_desc *d = lumo_ivg_get_desc(g);
