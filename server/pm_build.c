@@ -35,6 +35,19 @@ static void renumber(const pm_clean_mesh *m, const pm_collapses *c, uint32_t *ne
             newv[v] = b++;
 }
 
+/* Each face that reappears with vertex k = level - 1 starts at the corner
+ * showing k (same winding): the stream then need not say where k sits. */
+static void rotate_faces(lumo_pm *pm)
+{
+    for (uint32_t f = pm->base_faces; f < pm->faces; f++) {
+        uint32_t *t = pm->tris + 3 * (size_t)f, k = pm->level[f] - 1;
+        for (int turn = 0; turn < 2 && lumo_pm_resolve(pm, t[0], k + 1) != k; turn++) {
+            uint32_t x = t[0];
+            t[0] = t[1], t[1] = t[2], t[2] = x;
+        }
+    }
+}
+
 static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
 {
     uint32_t n = m->nv, nf = m->nf;
@@ -67,6 +80,7 @@ static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
         for (int k = 0; k < 3; k++)
             pm->tris[3 * (size_t)i + k] = newv[m->tris[3 * (size_t)order[i] + k]];
     }
+    rotate_faces(pm);
     rc = 0;
 done:
     free(newv);

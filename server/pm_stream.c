@@ -177,8 +177,8 @@ static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint3
     for (uint32_t i = 0; i < 3; i++)
         if (t[i] == k)
             rot = i;
-    if (rot == 3)
-        return -1;
+    if (rot != 0)
+        return -1;  /* pm_build.c rotates k to corner 0 */
     if (t[(rot + 1) % 3] == p)
         x = t[(rot + 2) % 3];
     else if (t[(rot + 2) % 3] == p)
@@ -186,7 +186,7 @@ static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint3
     else
         return -1;  /* a reappearing face always holds edge (k, p) */
     uint32_t j = find_candidate(r, p, k, m, x);
-    put_bits(w, rot * 2 + flip, 3);
+    put_bits(w, flip, 1);
     put_bits(w, j, bits_for(2 * m + 1));
     if (j == 2 * m)
         put_bits(w, x, bits_for(k));

@@ -321,14 +321,14 @@ static lumo_status read_face_count(split_ctx *s, uint32_t *n)
     return read_bits(&s->br, 4, n) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
-/* One reappearing face: it holds k and p; `cfg` says where k sits and the
- * winding; the third vertex x is a candidate index or an escape. */
+/* One reappearing face: (k, p, x) or, flipped, (k, x, p); the third
+ * vertex x is a candidate index or an escape. */
 static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t m)
 {
-    uint32_t cfg, j, x, t[3];
-    if (read_bits(&s->br, 3, &cfg) || read_bits(&s->br, bits_for(2 * m + 1), &j))
+    uint32_t flip, j, x;
+    if (read_bits(&s->br, 1, &flip) || read_bits(&s->br, bits_for(2 * m + 1), &j))
         return LUMO_ERR_TRUNCATED;
-    if (cfg > 5 || j > 2 * m)
+    if (j > 2 * m)
         return LUMO_ERR_CORRUPT;
     if (j < 2 * m)
         x = candidate(s->pm, p, k, j);
@@ -336,11 +336,7 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
         return LUMO_ERR_TRUNCATED;
     if (x >= k || x == p)
         return LUMO_ERR_CORRUPT;
-    uint32_t r = cfg >> 1, flip = cfg & 1;
-    t[r] = k;
-    t[(r + 1) % 3] = flip ? x : p;
-    t[(r + 2) % 3] = flip ? p : x;
-    return add_face(s, t[0], t[1], t[2]);
+    return flip ? add_face(s, k, x, p) : add_face(s, k, p, x);
 }
 
 /* k appears among its neighbours: predict it by their mean (rounded), the
