@@ -687,7 +687,7 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 
 /* ---- entry points ----------------------------------------------------------------- */
 
-static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e, uint32_t num_split_symbols)
+static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
     e->num_corners = 3u * e->num_faces;
@@ -710,7 +710,6 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e, uint32_t num_split_sy
     e->ct.num_corners = e->num_corners;
     e->pos_decoder = -1;
     e->budget = (uint64_t)64u * e->num_corners + 4096u;
-    (void)num_split_symbols;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
         a->decoder_id = -1;
@@ -774,7 +773,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->num_faces = faces;
     e->num_attr_data = nad;
     e->max_vertices = verts + splits;
-    if ((st = ld_eb_alloc(d, e, splits)))
+    if ((st = ld_eb_alloc(d, e)))
         return st;
     mark = ld_tmp_mark(&d->mem);  /* symbol-phase work memory from here */
     if ((st = ld_eb_splits(d, e)))

@@ -10,8 +10,10 @@
  *                       attribute decoder dispatch, public entry points
  *   draco_attribute.c   sequential integer / quantization / normal decoding
  *   draco_predict.c     prediction schemes and their transforms
- *   draco_edgebreaker.c EdgeBreaker connectivity (standard and valence)
- *   draco_traverse.c    attribute seams, point assignment, traversal orders
+ *   draco_edgebreaker.c EdgeBreaker connectivity (standard and valence),
+ *                       attribute seams, point assignment
+ *   draco_traverse.c    attribute traversal orders (depth-first, degree)
+ *   draco_kdtree.c      KD-tree point clouds
  *
  * The libdraco 1.5.5 source is the authority for every behaviour here; the
  * comments name the places where it differs from the written spec.
@@ -131,11 +133,6 @@ int ld_rabs_bit(ld_rabs *d);
 struct ld_eb;
 struct ld_ct;
 
-typedef struct ld_attr {
-    lumo_draco_attribute *out;
-    uint8_t decoder;          /* attributes decoder index */
-    uint8_t pred_parent_done; /* portable values available */
-} ld_attr;
 
 typedef struct ld_dec {
     ld_buf buf;
