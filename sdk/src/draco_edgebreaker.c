@@ -189,13 +189,14 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
 
 /* Valence contexts: the valence of the next vertex selects the context of
  * the next symbol (libdraco MeshEdgebreakerTraversalValenceDecoder). */
+/* `corner` is always the first corner of the face just decoded (every
+ * symbol makes its new face the active one), so its next and previous
+ * corners are corner + 1 and corner + 2. */
 static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
 {
     uint32_t *val = e->valences, next, prev, v;
-    if (!e->valence)
-        return;
-    next = e->c2v[ld_next_v(corner)];
-    prev = e->c2v[ld_prev_v(corner)];
+    next = e->c2v[corner + 1u];
+    prev = e->c2v[corner + 2u];
     switch (e->last_symbol) {
     case LD_TOPO_C:
     case LD_TOPO_S:
@@ -533,7 +534,8 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
         }
         if (st)
             break;
-        ld_eb_new_active_corner(e, s.stack[s.top - 1]);
+        if (e->valence)
+            ld_eb_new_active_corner(e, 3u * face);
         if (split)
             st = ld_eb_check_split(e, &s, num_symbols, id);
     }
