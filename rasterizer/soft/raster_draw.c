@@ -46,6 +46,9 @@ static int32_t sat32(int64_t v)
     return lumo_sat_i32(v);
 }
 
+static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v);
+static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
+
 void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_scene *s,
                                   const lumo_raster_mesh *m, uint32_t index,
                                   lumo_raster_vertex *out)
@@ -80,6 +83,16 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
         lumo_raster_radiance(e, rho, l);
         for (i = 0; i < 3; i++)
             out->var[i] = l[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)l[i];
+    }
+    out->outcode = outcode(v, out);
+    out->screen[0] = out->screen[1] = 0;
+    out->q = 0;
+    if (out->outcode == 0) {
+        screen_vertex sv;
+        project(v, out, &sv);
+        out->screen[0] = sv.x;
+        out->screen[1] = sv.y;
+        out->q = sv.q;
     }
 }
 
@@ -136,13 +149,13 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
 /* Signed distance of a clip-space vertex to plane k (inside when >= 0):
  * the near plane w >= znear, then |x| and |y| within the guard band,
  * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0. */
-static int64_t plane_dist(const draw_ctx *c, int k, const lumo_raster_vertex *v)
+static int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
 {
     int64_t g = (int64_t)2 * GUARD_PX * v->clip[2];
-    int64_t h = c->view->height;
+    int64_t h = view->height;
 
     switch (k) {
-    case 0:  return (int64_t)v->clip[2] - c->view->znear;
+    case 0:  return (int64_t)v->clip[2] - view->znear;
     case 1:  return g - (int64_t)v->clip[0] * h;
     case 2:  return g + (int64_t)v->clip[0] * h;
     case 3:  return g - (int64_t)v->clip[1] * h;
@@ -150,13 +163,13 @@ static int64_t plane_dist(const draw_ctx *c, int k, const lumo_raster_vertex *v)
     }
 }
 
-static unsigned outcode(const draw_ctx *c, const lumo_raster_vertex *v)
+static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v)
 {
     unsigned code = 0;
     int k;
 
     for (k = 0; k < CLIP_PLANES; k++)
-        if (plane_dist(c, k, v) < 0)
+        if (plane_dist(view, k, v) < 0)
             code |= 1u << k;
     return code;
 }
@@ -190,7 +203,7 @@ static int clip_plane(const draw_ctx *c, int k, const lumo_raster_vertex *in, in
 
     for (i = 0; i < n; i++) {
         const lumo_raster_vertex *a = &in[i], *b = &in[(i + 1) % n];
-        int64_t da = plane_dist(c, k, a), db = plane_dist(c, k, b);
+        int64_t da = plane_dist(c->view, k, a), db = plane_dist(c->view, k, b);
         if (da >= 0)
             out[m++] = *a;
         if (da >= 0 && db < 0)
@@ -219,13 +232,13 @@ static int64_t div_round(int64_t n, int64_t d)   /* d > 0 */
     return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
 }
 
-static void project(const draw_ctx *c, const lumo_raster_vertex *v, screen_vertex *s)
+static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s)
 {
-    int64_t w = v->clip[2] < c->view->znear ? c->view->znear : v->clip[2];
-    int64_t h8 = (int64_t)c->view->height * 8;
-    int64_t q = (((int64_t)c->view->znear << 30) + w / 2) / w;
+    int64_t w = v->clip[2] < view->znear ? view->znear : v->clip[2];
+    int64_t h8 = (int64_t)view->height * 8;
+    int64_t q = (((int64_t)view->znear << 30) + w / 2) / w;
 
-    s->x = clamp_sub((int64_t)c->view->width * 8 + div_round((int64_t)v->clip[0] * h8, w));
+    s->x = clamp_sub((int64_t)view->width * 8 + div_round((int64_t)v->clip[0] * h8, w));
     s->y = clamp_sub(h8 - div_round((int64_t)v->clip[1] * h8, w));
     s->q = (uint32_t)(q > ((int64_t)1 << 30) ? ((int64_t)1 << 30) : q);
     s->var = v->var;
@@ -415,14 +428,11 @@ static void raster_triangle(const draw_ctx *c, const screen_vertex *v, int64_t a
     }
 }
 
-/* Project a clipped convex polygon and draw it as a fan. */
-static void draw_polygon(const draw_ctx *c, const lumo_raster_vertex *poly, int n)
+/* Draw a convex screen polygon as a fan. */
+static void draw_fan(const draw_ctx *c, const screen_vertex *s, int n)
 {
-    screen_vertex s[MAX_POLY];
     int i;
 
-    for (i = 0; i < n; i++)
-        project(c, &poly[i], &s[i]);
     for (i = 1; i + 1 < n; i++) {
         screen_vertex tri[3];
         int64_t area;
@@ -449,19 +459,55 @@ static void draw_polygon(const draw_ctx *c, const lumo_raster_vertex *poly, int 
     }
 }
 
+static void screen_of(const lumo_raster_vertex *v, screen_vertex *s)
+{
+    s->x = v->screen[0];
+    s->y = v->screen[1];
+    s->q = v->q;
+    s->var = v->var;
+}
+
+/* A triangle whose vertices need no clipping: already projected, and
+ * dropped at once when its rows miss the band (the common case of band
+ * rendering: each band costs little more than this test per triangle). */
+static void draw_unclipped(const draw_ctx *c, const lumo_raster_vertex *a,
+                           const lumo_raster_vertex *b, const lumo_raster_vertex *d)
+{
+    const lumo_raster_target *t = c->target;
+    int32_t lo = a->screen[1], hi = a->screen[1];
+    screen_vertex s[3];
+
+    if (b->screen[1] < lo) lo = b->screen[1];
+    if (d->screen[1] < lo) lo = d->screen[1];
+    if (b->screen[1] > hi) hi = b->screen[1];
+    if (d->screen[1] > hi) hi = d->screen[1];
+    /* rows whose centres 16 y + 8 lie in [lo, hi] */
+    if (hi < 16 * (int32_t)t->band_y + 8 || lo > 16 * ((int32_t)t->band_y + t->band_rows - 1) + 8)
+        return;
+    screen_of(a, &s[0]);
+    screen_of(b, &s[1]);
+    screen_of(d, &s[2]);
+    draw_fan(c, s, 3);
+}
+
 static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
                           const lumo_raster_vertex *b, const lumo_raster_vertex *d)
 {
     lumo_raster_vertex buf[2][MAX_POLY];
-    unsigned oa = outcode(c, a), ob = outcode(c, b), od = outcode(c, d);
+    screen_vertex s[MAX_POLY];
+    unsigned oa = a->outcode, ob = b->outcode, od = d->outcode;
     int n = 3, cur = 0, k;
 
     if (oa & ob & od)
         return;                              /* all outside one plane */
+    if ((oa | ob | od) == 0) {
+        draw_unclipped(c, a, b, d);
+        return;
+    }
     buf[0][0] = *a;
     buf[0][1] = *b;
     buf[0][2] = *d;
-    if (oa | ob | od) {
+    {
         if (c->stats)
             c->stats->tris_clipped++;
         for (k = 0; k < CLIP_PLANES && n >= 3; k++) {
@@ -473,7 +519,9 @@ static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
         if (n < 3)
             return;
     }
-    draw_polygon(c, buf[cur], n);
+    for (k = 0; k < n; k++)
+        project(c->view, &buf[cur][k], &s[k]);
+    draw_fan(c, s, n);
 }
 
 lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,

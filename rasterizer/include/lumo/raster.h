@@ -172,11 +172,16 @@ uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure);
 /* ---- transformed-vertex cache ------------------------------------------- */
 
 /* Clip-space position and the varyings of one vertex (per-vertex mode: the
- * lit radiance; per-pixel mode: position, normal, albedo). */
+ * lit radiance; per-pixel mode: position, normal, albedo), and, for a vertex
+ * inside every clip plane, its screen position: triangles of such vertices
+ * skip projection, and each band rejects them from their rows alone. */
 #define LUMO_RASTER_MAX_VARYINGS 9
 typedef struct lumo_raster_vertex {
-    int32_t clip[3];           /* x, y, w in scene units, Q16.16 */
-    int32_t var[LUMO_RASTER_MAX_VARYINGS];
+    int32_t  clip[3];          /* x, y, w in scene units, Q16.16 */
+    int32_t  var[LUMO_RASTER_MAX_VARYINGS];
+    uint32_t outcode;          /* clip planes the vertex is outside of */
+    int32_t  screen[2];        /* when outcode == 0: x, y in 1/16 pixel */
+    uint32_t q;                /* when outcode == 0: znear / w, Q0.30 */
 } lumo_raster_vertex;
 
 /* Bytes a cache for n vertices needs (SIZE_MAX on overflow). */
