@@ -306,6 +306,53 @@ static int ld_parallelogram(const ld_pred *p, int32_t entry, uint32_t ci, const 
     return 1;
 }
 
+/* The common case, three components with the wrap transform, on locals. */
+static lumo_status ld_parallelogram_wrap3(ld_pred *p, int32_t *v, uint32_t n)
+{
+    const ld_ct *ct = p->seq->ct;
+    const uint32_t *c2v = ct->c2v, *opp = ct->opp, *v2c = p->seq->value_to_corner;
+    const uint8_t *seam = ct->seam;
+    const int32_t *v2v = p->seq->vertex_to_value;
+    const int32_t lo = p->min_value, hi = p->max_value;
+    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
+    uint32_t i, c;
+    for (i = 0; i < n; ++i) {
+        int32_t *dst = v + 3u * (size_t)i;
+        int32_t pred[3] = {0, 0, 0};
+        const uint32_t ci = i ? v2c[i] : LD_INV;
+        const uint32_t oci = (ci == LD_INV || (seam && seam[ci])) ? LD_INV : opp[ci];
+        int have = 0;
+        if (oci != LD_INV) {
+            const uint32_t r = oci % 3u;
+            const uint32_t eo = (uint32_t)v2v[c2v[oci]];
+            const uint32_t en = (uint32_t)v2v[c2v[r == 2u ? oci - 2u : oci + 1u]];
+            const uint32_t ep = (uint32_t)v2v[c2v[r == 0u ? oci + 2u : oci - 1u]];
+            if (eo < i && en < i && ep < i) {
+                const int32_t *po = v + 3u * (size_t)eo, *pn = v + 3u * (size_t)en,
+                              *pp = v + 3u * (size_t)ep;
+                for (c = 0; c < 3; ++c)
+                    pred[c] = (int32_t)((uint32_t)pn[c] + (uint32_t)pp[c] - (uint32_t)po[c]);
+                have = 1;
+            }
+        }
+        if (!have && i) {
+            pred[0] = dst[-3];
+            pred[1] = dst[-2];
+            pred[2] = dst[-1];
+        }
+        for (c = 0; c < 3; ++c) {  /* wrap transform */
+            int32_t x = pred[c] > hi ? hi : (pred[c] < lo ? lo : pred[c]);
+            x = ld_wrap_add(x, dst[c]);
+            if (x > hi)
+                x = (int32_t)((uint32_t)x - dif);
+            else if (x < lo)
+                x = (int32_t)((uint32_t)x + dif);
+            dst[c] = x;
+        }
+    }
+    return LUMO_OK;
+}
+
 static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
 {
     static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
@@ -686,6 +733,8 @@ lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries)
     case LD_PRED_DIFFERENCE:
         return ld_delta(p, values, num_entries);
     case LD_PRED_PARALLELOGRAM:
+        if (p->comps == 3 && p->transform == LD_XFORM_WRAP)
+            return ld_parallelogram_wrap3(p, values, num_entries);
         return ld_parallelogram_all(p, values, num_entries);
     case LD_PRED_CONSTRAINED_MULTI:
         return ld_multi_parallelogram(p, values, num_entries);
