@@ -3,7 +3,8 @@
  * vertex positions and normals (including huge, degenerate, behind the eye),
  * any indices, lights and flags. Properties checked on every input, beyond
  * the sanitizers: a draw either succeeds or leaves the target untouched, and
- * drawing in bands of K rows gives the bytes of the whole frame.
+ * drawing in bands of K rows with the vertex cache gives the bytes of the
+ * whole frame drawn without it.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -38,8 +39,8 @@ static int32_t coord(reader *r)
 }
 
 static void draw_frame(const lumo_raster_view *v, const lumo_raster_scene *s,
-                       const lumo_raster_mesh *m, lumo_pixel_format f, uint8_t bits, int K,
-                       uint8_t *out, lumo_status *st)
+                       const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
+                       lumo_pixel_format f, uint8_t bits, int K, uint8_t *out, lumo_status *st)
 {
     static uint32_t color[W * H], depth[W * H];
     size_t px = f == LUMO_PIXEL_RGB565 ? 2 : 4;
@@ -54,7 +55,7 @@ static void draw_frame(const lumo_raster_view *v, const lumo_raster_scene *s,
         t.format = f; t.color = color; t.color_stride = (uint32_t)(W * px);
         t.depth = depth; t.depth_bits = bits;
         lumo_raster_clear(&t, 0x123456);
-        *st = lumo_raster_draw(v, s, m, NULL, &t);
+        *st = lumo_raster_draw(v, s, m, cache, &t);
         if (*st != LUMO_OK) {
             /* on error the band is as cleared */
             lumo_raster_target c = t;
@@ -73,6 +74,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static uint8_t full[W * H * 4], band[W * H * 4];
+    static lumo_raster_vertex cache[NV];
     reader r = {data, size};
     lumo_raster_camera cam;
     lumo_raster_view view;
@@ -132,8 +134,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     bits = (take(&r, 1) & 1) ? 16 : 32;
     K = 1 + (int)(take(&r, 1) % H);
 
-    draw_frame(&view, &s, &m, f, bits, H, full, &st1);
-    draw_frame(&view, &s, &m, f, bits, K, band, &st2);
+    /* whole frame without the vertex cache, bands with it */
+    draw_frame(&view, &s, &m, NULL, f, bits, H, full, &st1);
+    if (lumo_raster_prepare(&view, &s, &m, cache) != LUMO_OK)
+        abort();
+    draw_frame(&view, &s, &m, cache, f, bits, K, band, &st2);
     if (st1 != st2)
         abort();
     if (st1 == LUMO_OK && memcmp(full, band, (size_t)W * H * (f == LUMO_PIXEL_RGB565 ? 2 : 4)))
