@@ -18,7 +18,7 @@ typedef struct {
     const float *xyz;
     uint32_t     nv, nf;
     uint32_t    *tri;        /* current corners */
-    uint8_t     *face_alive, *vert_alive, *locked;
+    uint8_t     *face_alive, *vert_alive;
     flist       *vf;         /* alive faces around each vertex */
     double      *q;          /* 10 per vertex: symmetric 4x4 quadric */
     uint32_t    *stamp;
@@ -99,13 +99,15 @@ static double quadric_eval(const double *q, const double *r, const float *p)
 }
 
 /* Faces alive around both u and v. */
-static uint32_t edge_faces(const simp *s, uint32_t u, uint32_t v, uint32_t out[3])
+#define MAX_EDGE_FACES 8  /* faces on one (non-manifold) edge a collapse may remove */
+
+static uint32_t edge_faces(const simp *s, uint32_t u, uint32_t v, uint32_t out[MAX_EDGE_FACES])
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->vf[u].n; i++) {
         uint32_t f = s->vf[u].f[i];
         if (has_vertex(s, f, v)) {
-            if (n < 3)
+            if (n < MAX_EDGE_FACES)
                 out[n] = f;
             n++;
         }
@@ -130,7 +132,7 @@ static void init_quadrics(simp *s)
         for (int c = 0; c < 3; c++)
             quadric_add(s->q + 10 * (size_t)t[c], un, p[0], 0.5 * len);
         for (int c = 0; c < 3; c++) {
-            uint32_t a = t[c], b = t[(c + 1) % 3], ef[3];
+            uint32_t a = t[c], b = t[(c + 1) % 3], ef[MAX_EDGE_FACES];
             if (edge_faces(s, a, b, ef) != 1)
                 continue;
             double e[3], bn[3];
@@ -183,32 +185,21 @@ static uint32_t neighbours(const simp *s, uint32_t v, uint32_t *out)
     return n;
 }
 
-/* Vertices on a non-manifold edge, or with a boundary that is not one
- * simple fan (not 0 or 2 boundary edges), never move. */
-static void init_locks(simp *s)
-{
-    for (uint32_t v = 0; v < s->nv; v++) {
-        if (grow_nb(s, 2 * s->vf[v].n + 2))
-            return;
-        uint32_t n = neighbours(s, v, s->nb_u), border = 0, ef[3];
-        for (uint32_t i = 0; i < n; i++) {
-            uint32_t k = edge_faces(s, v, s->nb_u[i], ef);
-            border += k == 1;
-            if (k > 2)
-                s->locked[v] = 1;
-        }
-        if (border != 0 && border != 2)
-            s->locked[v] = 1;
-    }
-}
+/* u's edges: how many have one face (border) and how many more than two
+ * (non-manifold), and the last non-manifold neighbour. */
+typedef struct { uint32_t border, nonmanifold, nm_neighbour; } edge_stats;
 
-static int is_border_vertex(const simp *s, uint32_t v, uint32_t *nb)
+static edge_stats vertex_edges(const simp *s, uint32_t u, uint32_t *nb)
 {
-    uint32_t n = neighbours(s, v, nb), ef[3];
-    for (uint32_t i = 0; i < n; i++)
-        if (edge_faces(s, v, nb[i], ef) == 1)
-            return 1;
-    return 0;
+    edge_stats e = {0, 0, UINT32_MAX};
+    uint32_t n = neighbours(s, u, nb), ef[MAX_EDGE_FACES];
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t k = edge_faces(s, u, nb[i], ef);
+        e.border += k == 1;
+        if (k > 2)
+            e.nonmanifold++, e.nm_neighbour = nb[i];
+    }
+    return e;
 }
 
 /* ---- the guards ----------------------------------------------------------- */
@@ -278,18 +269,34 @@ static int faces_ok(const simp *s, uint32_t u, uint32_t v)
     return 1;
 }
 
+/* Where u may go: a vertex on one non-manifold edge only along that edge
+ * (all its faces vanish, which is how scans with fins and folds simplify);
+ * a border vertex only along its border; a vertex with a tangled
+ * neighbourhood (several non-manifold edges, or borders that are not one
+ * simple fan) nowhere. */
+static int direction_ok(simp *s, uint32_t u, uint32_t v, uint32_t ne)
+{
+    edge_stats e = vertex_edges(s, u, s->nb_u);
+    if (e.nonmanifold > 1)
+        return 0;
+    if (e.nonmanifold == 1)
+        return e.nm_neighbour == v && ne > 2;
+    if (e.border != 0 && e.border != 2)
+        return 0;
+    return e.border == 0 || ne == 1;
+}
+
 static int collapse_ok(simp *s, uint32_t u, uint32_t v)
 {
-    uint32_t ef[3];
-    if (!s->vert_alive[u] || !s->vert_alive[v] || s->locked[u])
+    uint32_t ef[MAX_EDGE_FACES];
+    if (!s->vert_alive[u] || !s->vert_alive[v])
         return 0;
     uint32_t ne = edge_faces(s, u, v, ef);
-    if (ne < 1 || ne > 2)
+    if (ne < 1 || ne > MAX_EDGE_FACES)
         return 0;
     if (grow_nb(s, 2 * (s->vf[u].n + s->vf[v].n) + 4))
         return 0;
-    /* A border vertex only slides along its border. */
-    if (ne == 2 && is_border_vertex(s, u, s->nb_u))
+    if (!direction_ok(s, u, v, ne))
         return 0;
     if (s->vf[u].n + s->vf[v].n <= 2 * ne)
         return 0;  /* v would be left without faces */
@@ -432,7 +439,6 @@ static void simp_free(simp *s)
     free(s->tri);
     free(s->face_alive);
     free(s->vert_alive);
-    free(s->locked);
     free(s->q);
     free(s->stamp);
     free(s->heap);
@@ -450,7 +456,6 @@ int pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses
     s.tri = malloc(sizeof *s.tri * 3 * nf);
     s.face_alive = malloc(nf);
     s.vert_alive = malloc(nv);
-    s.locked = calloc(nv, 1);
     s.vf = calloc(nv, sizeof *s.vf);
     s.q = calloc(10 * nv, sizeof *s.q);
     s.stamp = calloc(nv, sizeof *s.stamp);
@@ -458,7 +463,7 @@ int pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
     int rc = -1;
-    if (!s.tri || !s.face_alive || !s.vert_alive || !s.locked || !s.vf || !s.q || !s.stamp ||
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp ||
         !out->removed || !out->target || !out->face_die)
         goto done;
     memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
@@ -470,7 +475,6 @@ int pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses
             if (flist_push(&s.vf[s.tri[3 * (size_t)f + c]], f))
                 goto done;
     init_quadrics(&s);
-    init_locks(&s);
     rc = run(&s, out);
 done:
     simp_free(&s);
