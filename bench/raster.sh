@@ -34,6 +34,8 @@ echo "(\`lumo-bake --default --dragon dragon_N.ply --spp 16\`), direct spot ligh
 echo "light, an orbit of the camera around the target. ms/frame is the mean over the orbit, after"
 echo "one untimed frame (GL shader compilation). Ratio = Mesa time / soft time (> 1: soft is faster)."
 echo "All three read the same package and draw the same shading model (tests/render/cross_backend.sh)."
+echo "Load average at the start: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores; on a shared machine the"
+echo "ms columns are noisy, the callgrind counts below are not."
 echo
 echo "| mesh | size | lighting | soft ms | llvmpipe ms | softpipe ms | llvmpipe/soft | softpipe/soft |"
 echo "|---|---|---|---|---|---|---|---|"
