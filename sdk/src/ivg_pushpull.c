@@ -148,19 +148,21 @@ static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s
 {
     int k;
 
-    for (k = 0; k < 3; k++) {
-        if (s >= 0) {
-            uint64_t half = ((uint64_t)1 << s) >> 1;
-            uint32_t mag = d[k] < 0 ? (uint32_t)-d[k] : (uint32_t)d[k];
-            mag = (uint32_t)((mag + half) >> s);
-            e->c[k] = (uint32_t)((c[k] + half) >> s);
-            e->d[k] = (lumo_q1_14)(d[k] < 0 ? -(int32_t)mag : (int32_t)mag);
-        } else {
+    e->reserved = 0;
+    if (s < 0) {
+        for (k = 0; k < 3; k++) {
             e->c[k] = div_round_u48(c[k], w);
             e->d[k] = (lumo_q1_14)div_round_i32(d[k], w);
         }
+        return;
     }
-    e->reserved = 0;
+    for (k = 0; k < 3; k++) {
+        uint32_t half = (1u << s) >> 1;
+        uint32_t mag = d[k] < 0 ? (uint32_t)-d[k] : (uint32_t)d[k];
+        mag = (mag + half) >> s;
+        e->c[k] = (uint32_t)((c[k] + half) >> s);
+        e->d[k] = (lumo_q1_14)(d[k] < 0 ? -(int32_t)mag : (int32_t)mag);
+    }
 }
 
 static void acc_store(const ivg_acc *acc, lumo_ivg_entry *e)
