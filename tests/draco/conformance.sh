@@ -53,6 +53,11 @@ for cl in 0 1 2 3 4 5 6 7 8 9 10; do
     add cloud "$work/gen/torus_color.ply" "-point_cloud -cl $cl -qp 14 -qn 9"
 done
 for cl in 0 2 4 6 10; do add cloud "$models/dragon_11k.ply" "-point_cloud -cl $cl -qp 12"; done
+# degenerate sizes: one triangle, one point
+for cl in 0 1 7 10; do
+    add mesh "$work/gen/triangle.obj" "-cl $cl"
+    add cloud "$work/gen/single.ply" "-point_cloud -cl $cl"
+done
 # metadata (skipped) and a material attribute
 for cl in 0 1 5 7 10; do add mesh "$work/gen/materials.obj" "-cl $cl -metadata"; done
 add cloud "$work/gen/materials.obj" "-point_cloud -cl 7 -metadata"

@@ -9,6 +9,7 @@
  *   nonmanifold.ply   fan of triangles around one edge + bowtie vertices
  *   small.obj         < 1000 faces with uvs and normals
  *   cloud.ply         points only (for point-cloud encoding)
+ *   triangle.obj      one triangle; single.ply: one point (degenerate sizes)
  *   materials.obj     a sphere in three materials (+ materials.mtl): with
  *                     -metadata the encoder writes metadata and a material
  *                     attribute
@@ -264,6 +265,17 @@ static void materials_obj(const char *dir)
     remove(path);
 }
 
+static void degenerate(const char *dir)
+{
+    FILE *f = open_out(dir, "triangle.obj");
+    fprintf(f, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+    fclose(f);
+    f = open_out(dir, "single.ply");
+    fprintf(f, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+               "property float z\nend_header\n0.5 0.25 -1\n");
+    fclose(f);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -278,5 +290,6 @@ int main(int argc, char **argv)
     nonmanifold_ply(argv[1]);
     cloud_ply(argv[1], 3000);
     materials_obj(argv[1]);
+    degenerate(argv[1]);
     return 0;
 }
