@@ -3,7 +3,8 @@
  * Mesa's software drivers) and no window system. Tries, in order: Mesa's
  * surfaceless platform, then the default display; desktop OpenGL 3.3 core,
  * then OpenGL ES 3.0; no surface (EGL_KHR_surfaceless_context), then a
- * pbuffer. The renderer draws into its own FBO either way.
+ * pbuffer. The renderer draws into its own FBO either way. LUMO_EGL_API=gles
+ * in the environment starts at GLES 3 (tests the path of GLES-only devices).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -109,7 +110,9 @@ lumo_egl *lumo_egl_open(int width, int height, char *err, size_t errlen)
         free(e);
         return NULL;
     }
-    for (gles = 0; gles < 2; gles++)
+    /* LUMO_EGL_API=gles skips desktop GL: the path of GLES-only devices. */
+    gles = getenv("LUMO_EGL_API") && !strcmp(getenv("LUMO_EGL_API"), "gles");
+    for (; gles < 2; gles++)
         if (make_context(e, gles, width, height, &surface) == 0)
             break;
     if (gles == 2) {

@@ -1,5 +1,6 @@
 #!/bin/sh
-# tests/render/cross_backend.sh BUILD — soft, osmesa and egl draw the same
+# tests/render/cross_backend.sh BUILD — soft, osmesa and egl (desktop GL 3.3
+# core, and GLES 3.0 forced with LUMO_EGL_API=gles) draw the same
 # scenes with one shading model (docs/rasterizer.md): every soft image must
 # match each GL image within mean CIE Lab Delta E <= 2 and PSNR >= 38 dB (measured: 41-50 dB).
 # Scenes: the baked default package (direct + IVG), the generated Cornell
@@ -19,13 +20,16 @@ fi
 
 check() {  # check NAME ARGS... : render with the three backends and compare
     name=$1; shift
-    for b in soft osmesa egl; do
-        if ! "$bin/lumo-render" "$@" --backend $b -o "$out/$name-$b.png" >"$out/$name-$b.log" 2>&1; then
+    for b in soft osmesa egl egl-gles; do
+        api=gl; be=$b
+        [ "$b" = egl-gles ] && { api=gles; be=egl; }
+        if ! LUMO_EGL_API=$api "$bin/lumo-render" "$@" --backend $be -o "$out/$name-$b.png" \
+                >"$out/$name-$b.log" 2>&1; then
             echo "FAIL $name: $b did not render"; cat "$out/$name-$b.log"
             fail=$((fail + 1)); return
         fi
     done
-    for b in osmesa egl; do
+    for b in osmesa egl egl-gles; do
         if "$bin/lumo-compare" "$out/$name-soft.png" "$out/$name-$b.png" --labels "soft,$b" \
                --max-mean-de $MAX_DE --min-psnr $MIN_PSNR; then
             pass=$((pass + 1))
