@@ -30,12 +30,6 @@ static void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
     o->num_values++;
 }
 
-static int ld_on_boundary(const ld_ct *ct, uint32_t v)
-{
-    uint32_t c = ct->lmc[v];
-    return c == LD_INV || ld_swing_left(ct, c) == LD_INV;
-}
-
 static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 {
     uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
@@ -48,52 +42,75 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
     return LUMO_OK;
 }
 
+/* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
+ * (the stores into the order arrays would otherwise force reloads). */
 static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
 {
-    uint32_t top = 0;
+    const ld_ct *ct = w->ct;
+    const uint32_t *c2v = ct->c2v, *opp = ct->opp, *lmc = ct->lmc, nv = ct->num_vertices;
+    const uint8_t *seam = ct->seam;
+    uint8_t *fseen = w->face_seen, *vseen = w->vert_seen;
+    uint32_t *v2c = w->o->value_to_corner;
+    int32_t *vmap = w->o->vertex_to_value;
+    uint32_t n = w->o->num_values, top = 0;
+    lumo_status st;
+#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : opp[c])
+#define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
+#define LD_VISIT(v, c) (vseen[v] = 1, v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
     if (w->cap < 2)
         return LUMO_ERR_NOMEM;
-    lumo_status st;
-    if (ld_face_seen(w, corner))
-        return LUMO_OK;
-    stack[top++] = corner;
     if ((st = ld_visit_edge(w, corner)))
         return st;
+    n = w->o->num_values;
+    stack[top++] = corner;
     while (top) {
         uint32_t c = stack[top - 1];
-        if (ld_face_seen(w, c)) {
+        if (fseen[c / 3u]) {
             --top;
             continue;
         }
         for (;;) {
-            uint32_t v, r, l;
-            w->face_seen[c / 3u] = 1;
-            v = ld_vert(w->ct, c);
-            if (v >= w->ct->num_vertices)
+            uint32_t v, r, l, m3;
+            fseen[c / 3u] = 1;
+            v = c2v[c];
+            if (v >= nv) {
+                w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
-            if (!w->vert_seen[v]) {
-                int boundary = ld_on_boundary(w->ct, v);
-                ld_visit(w, v, c);
+            }
+            m3 = c % 3u;
+            if (!vseen[v]) {
+                /* on the boundary: no left-most corner, or no swing left */
+                const uint32_t lc = lmc[v];
+                int boundary = lc == LD_INV;
                 if (!boundary) {
-                    c = ld_opp(w->ct, ld_next_v(c));
-                    if (c == LD_INV || w->face_seen[c / 3u])
+                    const uint32_t ln = lc % 3u == 2u ? lc - 2u : lc + 1u;
+                    boundary = LD_OPP(ln) == LD_INV;
+                }
+                LD_VISIT(v, c);
+                if (!boundary) {
+                    c = LD_OPP(m3 == 2u ? c - 2u : c + 1u);
+                    if (LD_SEEN(c)) {
+                        w->o->num_values = n;
                         return LUMO_ERR_CORRUPT;  /* libdraco reads out of bounds */
+                    }
                     continue;
                 }
             }
-            r = ld_opp(w->ct, ld_next_v(c));
-            l = ld_opp(w->ct, ld_prev_v(c));
-            if (ld_face_seen(w, r)) {
-                if (ld_face_seen(w, l)) {
+            r = LD_OPP(m3 == 2u ? c - 2u : c + 1u);
+            l = LD_OPP(m3 == 0u ? c + 2u : c - 1u);
+            if (LD_SEEN(r)) {
+                if (LD_SEEN(l)) {
                     --top;
                     break;
                 }
                 c = l;
-            } else if (ld_face_seen(w, l)) {
+            } else if (LD_SEEN(l)) {
                 c = r;
             } else {
-                if (top >= w->cap)
+                if (top >= w->cap) {
+                    w->o->num_values = n;
                     return LUMO_ERR_NOMEM;
+                }
                 stack[top - 1] = l;
                 stack[top++] = r;
                 if (top > w->max_depth)
@@ -102,6 +119,10 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
             }
         }
     }
+#undef LD_OPP
+#undef LD_SEEN
+#undef LD_VISIT
+    w->o->num_values = n;
     return LUMO_OK;
 }
 
@@ -260,7 +281,8 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
         w.max_depth = 2;  /* ld_dfs needs room for two entries */
     }
     for (f = 0; f < w.num_faces && !st; ++f)
-        st = prediction_degree ? ld_max_degree(&w, 3u * f, &q) : ld_dfs(&w, 3u * f, stack);
+        if (!w.face_seen[f])  /* both traversers skip seen start faces */
+            st = prediction_degree ? ld_max_degree(&w, 3u * f, &q) : ld_dfs(&w, 3u * f, stack);
     ld_free_used(m, prediction_degree ? (size_t)q.used * 8u : (size_t)w.max_depth * 4u);
     return st;
 }
