@@ -1,0 +1,45 @@
+#!/bin/sh
+# tests/render/cli.sh BUILD — lumo-render and lumo-compare as users meet
+# them: outputs exist with the right size, orbit frames are numbered, bad
+# arguments and bad files fail with status 1 or 2 and one message, never a
+# crash; band/format options change no pixel of XRGB8888 output.
+set -u
+build=$1
+bin=$build/bin
+out=$build/render/cli
+mkdir -p "$out"
+pass=0; fail=0
+ok()   { pass=$((pass + 1)); }
+bad()  { echo "FAIL $*"; fail=$((fail + 1)); }
+expect_status() {  # expect_status WANT CMD...
+    want=$1; shift
+    "$@" >"$out/last.log" 2>&1
+    got=$?
+    if [ "$got" -eq "$want" ]; then ok; else bad "'$*' exited $got, want $want"; cat "$out/last.log"; fi
+}
+pkg=$build/render/default.lumo
+[ -f "$pkg" ] || "$bin/lumo-bake" --default -o "$pkg" --spp 64 --no-progress >/dev/null || exit 1
+
+expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/a.png" --size 64x48
+if file "$out/a.png" 2>/dev/null | grep -q "64 x 48"; then ok; else bad "a.png is not 64x48"; fi
+expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/orbit.png" --size 32x24 --frames 3 --orbit
+if [ -f "$out/orbit_000.png" ] && [ -f "$out/orbit_002.png" ]; then ok; else bad "orbit frames missing"; fi
+# bands, 16-bit depth and the vertex cache do not change the XRGB8888 bytes
+expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/full.png" --size 96x72 --per-pixel
+expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/band.png" --size 96x72 --per-pixel --bands 5 --no-cache
+if "$bin/lumo-compare" "$out/full.png" "$out/band.png" | grep -q "PSNR 99.00"; then ok; else bad "bands changed pixels"; fi
+# errors
+expect_status 2 "$bin/lumo-render" "$pkg"
+expect_status 2 "$bin/lumo-render" "$pkg" -o "$out/x.png" --size 0x10
+expect_status 2 "$bin/lumo-render" "$pkg" -o "$out/x.png" --bands 0
+expect_status 1 "$bin/lumo-render" "$pkg" -o "$out/x.png" --camera 0,0,0:0,0,0:0,1,0:40
+expect_status 1 "$bin/lumo-render" "$pkg" -o "$out/x.png" --camera 1,2,3
+expect_status 1 "$bin/lumo-render" "$pkg" -o "$out/x.png" --backend vulkan
+expect_status 1 "$bin/lumo-render" "$out/missing.lumo" -o "$out/x.png"
+head -c 1000 "$pkg" > "$out/truncated.lumo"
+expect_status 1 "$bin/lumo-render" "$out/truncated.lumo" -o "$out/x.png"
+expect_status 2 "$bin/lumo-compare" "$out/a.png"
+expect_status 1 "$bin/lumo-compare" "$out/a.png" "$out/full.png"
+expect_status 0 "$bin/lumo-compare" "$out/full.png" "$out/band.png" --max-mean-de 0 -o "$out/side.png"
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
