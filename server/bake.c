@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "lumo_server/bake.h"
 #include "lumo_server/parallel.h"
 #include "lumo_server/progress.h"
@@ -103,13 +104,29 @@ static void bake_vertex(void *ctx, size_t v, int worker)
         }
 }
 
+/* Refuse up front what would only be killed later: calloc of a huge grid
+ * succeeds lazily under overcommit and the bake dies half-way. */
+static int fits_in_memory(size_t nverts, char *err, size_t errlen)
+{
+    double need = (double)nverts * (6 * 9 + 6 * 3 + 1) * 4.0;
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0 && need > 0.75 * (double)pages * (double)page) {
+        snprintf(err, errlen, "a %zu-vertex grid needs %.1f GiB, more than this machine has; use a smaller --grid",
+                 nverts, need / (1024.0 * 1024.0 * 1024.0));
+        return 0;
+    }
+    return 1;
+}
+
 int lumo_bake(const lumo_tracer *t, const lumo_grid *g, const lumo_bake_opts *o,
               lumo_bake_result *res, char *err, size_t errlen)
 {
-    bake_job *j = calloc(1, sizeof *j);
     memset(res, 0, sizeof *res);
     res->grid = *g;
     res->nverts = (size_t)g->dims[0] * (size_t)g->dims[1] * (size_t)g->dims[2];
+    if (!fits_in_memory(res->nverts, err, errlen))
+        return -1;
+    bake_job *j = calloc(1, sizeof *j);
     res->I = calloc(res->nverts * 6 * 9, sizeof *res->I);
     res->se = calloc(res->nverts * 6 * 3, sizeof *res->se);
     res->valid = calloc(res->nverts, 1);
