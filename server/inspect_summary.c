@@ -60,6 +60,14 @@ static int print_scene(const lumo_package *pkg)
     return 0;
 }
 
+static void print_meshes(const lumo_package *pkg)
+{
+    lumo_pkg_mesh_info mi;
+    for (uint32_t i = 0; lumo_package_mesh_info(pkg, i, &mi) == LUMO_OK; i++)
+        printf("mesh %-4u %u vertices, %u triangles%s\n", i, mi.nverts, mi.ntris,
+               mi.flags & LUMO_PKG_MESH_EMITTER ? " (area-light emitter)" : "");
+}
+
 static void print_ivg(const lumo_package *pkg)
 {
     lumo_ivg_desc d;
@@ -92,8 +100,10 @@ int lumo_inspect_summary(int argc, char **argv)
         return 1;
     print_chunks(&pkg);
     int rc = print_scene(&pkg);
-    if (!rc)
+    if (!rc) {
+        print_meshes(&pkg);
         print_ivg(&pkg);
+    }
     free(data);
     return rc ? 1 : 0;
 }
