@@ -41,11 +41,6 @@ typedef struct draw_ctx {
 
 /* ---- vertices ------------------------------------------------------------ */
 
-static int32_t sat32(int64_t v)
-{
-    return lumo_sat_i32(v);
-}
-
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v);
 static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
 
@@ -64,9 +59,9 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
     for (i = 0; i < 3; i++)
         c[i] = lumo_round_shift(d[0] * v->rot[i][0] + d[1] * v->rot[i][1] + d[2] * v->rot[i][2],
                                 LUMO_Q14_SHIFT);
-    out->clip[0] = sat32(lumo_round_shift(c[0] * v->cot_half, 16));
-    out->clip[1] = sat32(lumo_round_shift(c[1] * v->cot_half, 16));
-    out->clip[2] = sat32(c[2]);
+    out->clip[0] = lumo_sat_i32(lumo_round_shift(c[0] * v->cot_half, 16));
+    out->clip[1] = lumo_sat_i32(lumo_round_shift(c[1] * v->cot_half, 16));
+    out->clip[2] = lumo_sat_i32(c[2]);
     for (i = 0; i < LUMO_RASTER_MAX_VARYINGS; i++)
         out->var[i] = 0;
     if (s->flags & LUMO_RASTER_PER_PIXEL) {
@@ -190,9 +185,9 @@ static void intersect(const lumo_raster_vertex *a, int64_t da, const lumo_raster
     }
     t = (int64_t)((num << 30) / den);      /* Q0.30 in [0, 1] */
     for (i = 0; i < 3; i++)
-        out->clip[i] = sat32(a->clip[i] + lumo_round_shift(((int64_t)b->clip[i] - a->clip[i]) * t, 30));
+        out->clip[i] = lumo_sat_i32(a->clip[i] + lumo_round_shift(((int64_t)b->clip[i] - a->clip[i]) * t, 30));
     for (i = 0; i < nvar; i++)
-        out->var[i] = sat32(a->var[i] + lumo_round_shift(((int64_t)b->var[i] - a->var[i]) * t, 30));
+        out->var[i] = lumo_sat_i32(a->var[i] + lumo_round_shift(((int64_t)b->var[i] - a->var[i]) * t, 30));
 }
 
 /* Sutherland-Hodgman against one plane; returns the new vertex count. */
@@ -304,7 +299,7 @@ static void shade_pixel(const draw_ctx *c, const screen_vertex *v, const int32_t
 
     for (i = 0; i < c->nvar; i++) {
         int64_t d1 = (int64_t)v[1].var[i] - v[0].var[i], d2 = (int64_t)v[2].var[i] - v[0].var[i];
-        var[i] = sat32(v[0].var[i] + lumo_round_shift(d1 * b[1] + d2 * b[2], BARY_BITS));
+        var[i] = lumo_sat_i32(v[0].var[i] + lumo_round_shift(d1 * b[1] + d2 * b[2], BARY_BITS));
     }
     if (c->scene->flags & LUMO_RASTER_PER_PIXEL) {
         lumo_q1_14 n[3], rho[3];
