@@ -8,11 +8,16 @@
 #include "lumo_server/bake.h"
 #include "lumo_server/import.h"
 #include "lumo_server/package_write.h"
+#include "lumo_server/pm_stream.h"
 #include "lumo_server/progress.h"
 #include "lumo_server/reference.h"
 #include "lumo_server/shapes.h"
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
+
+/* How meshes go into the package: raw MESH chunks (what every reader takes
+ * today), progressive PMSH streams (docs/progressive-mesh.md), or both. */
+enum { MESH_RAW = 1, MESH_PM = 2, MESH_BOTH = 3 };
 /* A bake vertex is cheap (one per grid point): 256 paths keep the IVG's
  * noise low; a reference pixel needs far fewer for a preview. */
 #define DEFAULT_BAKE_SPP 256
@@ -25,6 +30,7 @@ typedef struct {
     uint64_t seed;
     vec3  albedo;
     int   has_albedo, has_camera;
+    int   mesh_mode;          /* MESH_RAW, MESH_PM or MESH_BOTH */
     lumo_camera camera;
     const char *lights[64];
     int   nlights;
@@ -46,6 +52,7 @@ static const char usage[] =
     "                         spot:X,Y,Z:DX,DY,DZ:HALF_DEG:R,G,B |\n"
     "                         directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
     "  --albedo R,G,B         override every material's albedo\n"
+    "  --mesh raw|pm|both     mesh chunks: raw MESH (default), progressive PMSH, or both\n"
     "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ")\n"
     "  --reference WxH        render a reference image instead of baking\n"
     "  --camera E:T:U:FOVY    camera (default: the scene's)\n"
@@ -85,7 +92,7 @@ static int parse_grid(const char *t, int dims[3])
 }
 
 enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
-       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS };
+       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH };
 
 static const struct option k_long[] = {
     {"default", no_argument, 0, O_DEFAULT}, {"output", required_argument, 0, 'o'},
@@ -95,7 +102,7 @@ static const struct option k_long[] = {
     {"albedo", required_argument, 0, O_ALBEDO}, {"dragon", required_argument, 0, O_DRAGON},
     {"reference", required_argument, 0, O_REF}, {"camera", required_argument, 0, O_CAMERA},
     {"indirect-only", no_argument, 0, O_INDIRECT}, {"exposure", required_argument, 0, O_EXPOSURE},
-    {"no-progress", no_argument, 0, O_NOPROGRESS}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+    {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
 /* One option; returns 0, 1 for --help, or -1 with a message in err. */
 static int take_option(options *o, int c, const char *arg, char *err, size_t errlen)
@@ -135,6 +142,10 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
     case O_INDIRECT: o->indirect_only = 1; return 0;
     case O_EXPOSURE: if (!lumo_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
     case O_NOPROGRESS: o->progress = 0; return 0;
+    case O_MESH:
+        o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM : !strcmp(arg, "both") ? MESH_BOTH : 0;
+        if (o->mesh_mode) return 0;
+        break;
     case 'h': return 1;
     default: snprintf(err, errlen, "unknown option (try --help)"); return -1;
     }
@@ -151,6 +162,7 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     o->seed = 1;
     o->exposure = 1.0f;
     o->progress = 1;
+    o->mesh_mode = MESH_RAW;
     o->threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
     o->threads = o->threads < 1 ? 1 : o->threads > 256 ? 256 : o->threads;
     opterr = 0;
@@ -248,6 +260,24 @@ static void cell_dims(const lumo_scene *s, float cell, int dims[3])
     }
 }
 
+/* INFO, then the meshes as --mesh asks: raw chunks and/or one progressive
+ * stream per mesh (lumo_pm_pack, server/pm_pack.c), in mesh order. */
+_Static_assert(sizeof(vec3) == 3 * sizeof(float), "positions are passed as a float xyz array");
+
+static int pack_meshes(const options *o, lumo_pkg_writer *w, const lumo_scene *s, char *err, size_t errlen)
+{
+    if (lumo_pack_scene(w, s, o->mesh_mode & MESH_RAW)) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    for (size_t i = 0; (o->mesh_mode & MESH_PM) && i < s->nmeshes; i++) {
+        const lumo_mesh *m = &s->meshes[i];
+        if (lumo_pm_pack(w, &m->pos[0].x, m->nverts, m->tris, m->ntris, NULL, err, errlen))
+            return -1;
+    }
+    return 0;
+}
+
 static int run_bake(options *o, const lumo_scene *s, const lumo_tracer *t)
 {
     char err[512];
@@ -260,8 +290,9 @@ static int run_bake(options *o, const lumo_scene *s, const lumo_tracer *t)
     if (lumo_bake(t, &g, &bo, &res, err, sizeof err))
         return fail(err);
     lumo_pkgw_init(&w);
-    int rc = lumo_pack_scene(&w, s) ? (snprintf(err, sizeof err, "out of memory"), -1)
-                                     : lumo_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
+    int rc = pack_meshes(o, &w, s, err, sizeof err);
+    if (!rc)
+        rc = lumo_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
     if (!rc)
         rc = lumo_pkgw_write_file(&w, o->out, err, sizeof err);
     lumo_pkgw_free(&w);

@@ -83,11 +83,11 @@ static int pack_mesh(lumo_pkg_writer *w, const lumo_mesh *m)
     return rc;
 }
 
-int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s)
+int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s, int raw_meshes)
 {
     if (pack_info(w, s))
         return -1;
-    for (size_t i = 0; i < s->nmeshes; i++)
+    for (size_t i = 0; raw_meshes && i < s->nmeshes; i++)
         if (pack_mesh(w, &s->meshes[i]))
             return -1;
     return 0;

@@ -73,6 +73,13 @@ cmp -s "$dir/a.lumo" "$dir/c.lumo" && bad "another seed gives the same package" 
 "$bake" --default --cell 0.5 --spp 2 -o "$dir/cell.lumo" 2>/dev/null && "$inspect" "$dir/cell.lumo" | grep -q "ivg       5x5x5" \
     && ok "--cell 0.5 gives a 5x5x5 grid" || bad "--cell"
 
+# --mesh: raw MESH chunks, progressive PMSH streams, or both.
+"$bake" --default --grid 3 --spp 2 --mesh pm -o "$dir/pm.lumo" 2>/dev/null && "$inspect" "$dir/pm.lumo" >"$dir/pm.txt" \
+    && grep -q PMSH "$dir/pm.txt" && ! grep -q "MESH  offset" "$dir/pm.txt" && ok "--mesh pm: PMSH chunks only" || bad "--mesh pm"
+"$bake" --default --grid 3 --spp 2 --mesh both -o "$dir/both.lumo" 2>/dev/null && "$inspect" "$dir/both.lumo" >"$dir/both.txt" \
+    && grep -q PMSH "$dir/both.txt" && grep -q "MESH  offset" "$dir/both.txt" && ok "--mesh both" || bad "--mesh both"
+expect_error "bad --mesh"           "$bake" --default --mesh draco -o "$dir/x.lumo"
+
 # The summary and the per-vertex dump.
 "$inspect" "$dir/a.lumo" >"$dir/sum.txt" 2>&1 && grep -q "ivg       6x6x6" "$dir/sum.txt" \
     && ok "inspect summary" || bad "inspect summary"

@@ -134,7 +134,7 @@ static uint8_t *bake_package(bake_fixture *f, size_t *len)
     uint8_t *data = NULL;
     char err[256];
     lumo_pkgw_init(&w);
-    assert_int_equal(lumo_pack_scene(&w, &f->scene), 0);
+    assert_int_equal(lumo_pack_scene(&w, &f->scene, 1), 0);
     assert_int_equal(lumo_pack_ivg(&w, &f->res, 32, 9, err, sizeof err), 0);
     assert_int_equal(lumo_pkgw_serialize(&w, &data, len), 0);
     lumo_pkgw_free(&w);

@@ -38,9 +38,10 @@ int lumo_pkgw_add(lumo_pkg_writer *w, uint32_t type, const void *data, size_t le
 int lumo_pkgw_serialize(const lumo_pkg_writer *w, uint8_t **out, size_t *len);
 int lumo_pkgw_write_file(const lumo_pkg_writer *w, const char *path, char *err, size_t errlen);
 
-/* Scene chunks: INFO and one MESH per mesh (raw; the progressive-mesh
- * stream will replace MESH). 0 or -1. */
-int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s);
+/* Scene chunks: INFO, and one raw MESH per mesh when raw_meshes (the
+ * progressive-mesh stream, PMSH, is written by lumo_pm_pack instead or
+ * beside). 0 or -1. */
+int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s, int raw_meshes);
 /* IVG chunks: IVGD, then the bundle in both wire forms (IVGQ, IVGF) made by
  * the IVG encoder (server/ivg_encode.c). 0 or -1 with err. */
 int lumo_pack_ivg(lumo_pkg_writer *w, const lumo_bake_result *r, uint32_t spp, uint64_t seed,
