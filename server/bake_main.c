@@ -102,7 +102,8 @@ static const struct option k_long[] = {
     {"albedo", required_argument, 0, O_ALBEDO}, {"dragon", required_argument, 0, O_DRAGON},
     {"reference", required_argument, 0, O_REF}, {"camera", required_argument, 0, O_CAMERA},
     {"indirect-only", no_argument, 0, O_INDIRECT}, {"exposure", required_argument, 0, O_EXPOSURE},
-    {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+    {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH},
+    {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
 /* One option; returns 0, 1 for --help, or -1 with a message in err. */
 static int take_option(options *o, int c, const char *arg, char *err, size_t errlen)
@@ -143,7 +144,8 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
     case O_EXPOSURE: if (!lumo_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
     case O_NOPROGRESS: o->progress = 0; return 0;
     case O_MESH:
-        o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM : !strcmp(arg, "both") ? MESH_BOTH : 0;
+        o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM
+                     : !strcmp(arg, "both") ? MESH_BOTH : 0;
         if (o->mesh_mode) return 0;
         break;
     case 'h': return 1;
@@ -272,7 +274,17 @@ static int pack_meshes(const options *o, lumo_pkg_writer *w, const lumo_scene *s
     }
     for (size_t i = 0; (o->mesh_mode & MESH_PM) && i < s->nmeshes; i++) {
         const lumo_mesh *m = &s->meshes[i];
-        if (lumo_pm_pack(w, &m->pos[0].x, m->nverts, m->tris, m->ntris, NULL, err, errlen))
+        uint8_t *albedo = malloc(3u * (m->nverts ? m->nverts : 1));
+        if (!albedo) {
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
+        for (uint32_t v = 0; v < m->nverts; v++)   /* the stream's albedo is 8-bit linear */
+            for (int c = 0; c < 3; c++)
+                albedo[3 * v + (uint32_t)c] = (uint8_t)lrintf(255.0f * v3_get(m->albedo[v], c));
+        int rc = lumo_pm_pack(w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, NULL, err, errlen);
+        free(albedo);
+        if (rc)
             return -1;
     }
     return 0;

@@ -74,4 +74,7 @@ static int run_ivg(int argc, char **argv)
     return st ? 1 : 0;
 }
 
-LUMO_INSPECT_COMMAND(ivg_cmd, "--ivg", "--ivg [--quantized] FILE.lumo  one line per vertex and hemisphere: i j k axis valid dx dy dz r g b", run_ivg)
+LUMO_INSPECT_COMMAND(ivg_cmd, "--ivg",
+                     "--ivg [--quantized] FILE.lumo  one line per vertex and hemisphere: "
+                     "i j k axis valid dx dy dz r g b",
+                     run_ivg)

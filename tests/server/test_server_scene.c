@@ -365,7 +365,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cornell_sense),      cmocka_unit_test(test_solid_vertices),
-        cmocka_unit_test(test_dragon_solid_only_inside), cmocka_unit_test(test_same_seed_same_bytes), cmocka_unit_test(test_quantized_vs_float),
+        cmocka_unit_test(test_dragon_solid_only_inside), cmocka_unit_test(test_same_seed_same_bytes),
+        cmocka_unit_test(test_quantized_vs_float),
         cmocka_unit_test(test_package_round_trip), cmocka_unit_test(test_validate_errors),
         cmocka_unit_test(test_parsers),            cmocka_unit_test(test_import_models),
         cmocka_unit_test(test_scene_file),
