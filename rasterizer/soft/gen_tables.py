@@ -41,4 +41,12 @@ for i in range(1024):
 for i in range(0, 1024, 16):
     print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
 print("};")
+print()
+print("/* ceil(16 sqrt(i + 1)) for i = 0..255: an over-estimate of the square root")
+print(" * of any number whose top 8 bits are i, the start of lumo_raster_isqrt. */")
+print("const uint16_t lumo_raster_sqrt_seed[256] = {")
+seed = [math.ceil(16 * math.sqrt(i + 1)) for i in range(256)]
+for i in range(0, 256, 16):
+    print("    " + ", ".join("%d" % c for c in seed[i:i + 16]) + ",")
+print("};")
 

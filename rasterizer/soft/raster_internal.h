@@ -10,6 +10,10 @@
 extern const uint32_t lumo_raster_sin_deg[91];
 extern const uint32_t lumo_raster_srgb_threshold[256];
 extern const uint8_t lumo_raster_srgb_segment[1024];
+extern const uint16_t lumo_raster_sqrt_seed[256];
+
+/* floor(sqrt(v)) for every v: same result as lumo_isqrt64, faster. */
+uint32_t lumo_raster_isqrt(uint64_t v);
 
 /* Sub-pixel precision of screen coordinates: 4 bits (1/16 pixel). */
 #define LUMO_RASTER_SUBPIXEL_BITS 4

@@ -8,6 +8,7 @@
 #include "test_common.h"
 #include "lumo/raster.h"
 #include "../../boards/host/mesh_build.h"
+#include "../../rasterizer/soft/raster_internal.h"
 
 #define W 64
 #define H 48
@@ -593,6 +594,34 @@ static void test_cot_half(void **state)
     assert_int_equal(lumo_raster_cot_half_deg(0), 0);
 }
 
+/* The rasterizer's Newton square root equals lumo_isqrt64 everywhere we
+ * can reach: random values of every magnitude, squares and their
+ * neighbours, powers of two, the extremes. */
+static void test_isqrt(void **state)
+{
+    test_rng rng = {4242};
+    uint64_t r;
+    int i, sh;
+    (void)state;
+    for (r = 0; r < 70000; r++)
+        assert_int_equal(lumo_raster_isqrt(r), lumo_isqrt64(r));
+    for (i = 0; i < 200000; i++) {
+        uint64_t v = test_rng_next(&rng) >> (test_rng_next(&rng) % 64);
+        uint64_t q = (uint64_t)lumo_isqrt64(v);
+        assert_int_equal(lumo_raster_isqrt(v), q);
+        assert_int_equal(lumo_raster_isqrt(q * q), q);
+        if (q) assert_int_equal(lumo_raster_isqrt(q * q - 1), q - 1);
+    }
+    for (sh = 0; sh < 64; sh++) {
+        uint64_t p2 = (uint64_t)1 << sh;
+        assert_int_equal(lumo_raster_isqrt(p2), lumo_isqrt64(p2));
+        assert_int_equal(lumo_raster_isqrt(p2 - 1), lumo_isqrt64(p2 - 1));
+        assert_int_equal(lumo_raster_isqrt(p2 + 1), lumo_isqrt64(p2 + 1));
+    }
+    assert_int_equal(lumo_raster_isqrt(UINT64_MAX), 0xFFFFFFFFu);
+    assert_int_equal(lumo_raster_isqrt((uint64_t)0xFFFFFFFFu * 0xFFFFFFFFu), 0xFFFFFFFFu);
+}
+
 static double srgb(double v)
 {
     v = v < 0 ? 0 : v > 1 ? 1 : v;
@@ -700,6 +729,7 @@ int main(void)
         cmocka_unit_test(test_golden_hashes),
         cmocka_unit_test(test_errors_leave_target),
         cmocka_unit_test(test_cot_half),
+        cmocka_unit_test(test_isqrt),
         cmocka_unit_test(test_tonemap),
         cmocka_unit_test(test_irradiance),
     };
