@@ -95,7 +95,7 @@ void ld_bits_start(ld_bits *r, const ld_buf *b)
     r->bit = 0;
 }
 
-uint32_t ld_bits_get(ld_bits *r, unsigned nbits)
+uint32_t ld_bits_get_slow(ld_bits *r, unsigned nbits)
 {
     uint32_t v = 0;
     unsigned i;

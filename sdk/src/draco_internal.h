@@ -82,7 +82,22 @@ typedef struct ld_bits {
 } ld_bits;
 
 void ld_bits_start(ld_bits *r, const ld_buf *b);
-uint32_t ld_bits_get(ld_bits *r, unsigned nbits);  /* nbits <= 32 */
+uint32_t ld_bits_get_slow(ld_bits *r, unsigned nbits);
+/* nbits <= 32 bits, least significant first; a 40-bit window when five
+ * bytes remain, bit by bit near the end. */
+static inline uint32_t ld_bits_get(ld_bits *r, unsigned nbits)
+{
+    const size_t byte = r->bit >> 3;
+    if (nbits && byte + 5u <= r->size) {
+        const uint8_t *p = r->data + byte;
+        const uint64_t w = (uint64_t)p[0] | ((uint64_t)p[1] << 8) | ((uint64_t)p[2] << 16) |
+                           ((uint64_t)p[3] << 24) | ((uint64_t)p[4] << 32);
+        const uint64_t mask = ((uint64_t)1 << nbits) - 1u;
+        r->bit += nbits;
+        return (uint32_t)((w >> (r->bit - nbits - (byte << 3))) & mask);
+    }
+    return ld_bits_get_slow(r, nbits);
+}
 /* Advance `b` past the whole bytes the reader touched. */
 void ld_bits_end(ld_bits *r, ld_buf *b);
 
