@@ -15,7 +15,8 @@
  *                         LUMO_Q14_ONE = 1.0, range [-2, 2), step 2^-14.
  *   lumo_uq16_16 uint32  UQ16.16 unsigned HDR value: irradiance (W/m^2),
  *                         radiance, colour. range [0, 65536), step 2^-16;
- *                         holds every RGB9E5 value >= 2^-16 exactly.
+ *                         holds every RGB9E5 value with exponent >= 8
+ *                         exactly; smaller ones round (error <= 1/2 ulp).
  *
  * Rounding: every narrowing operation rounds to nearest, ties away from zero
  * (LUMO_ROUND_SHIFT), and saturates to the destination range.
