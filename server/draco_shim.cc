@@ -33,6 +33,22 @@ int add_positions(draco::PointCloud *pc, const float *xyz, size_t n)
     return 0;
 }
 
+// Optional COLOR uint8 x3 attribute (albedo), one value per point.
+int add_color(draco::PointCloud *pc, const uint8_t *rgb, size_t n)
+{
+    if (!rgb)
+        return 0;
+    draco::GeometryAttribute ga;
+    ga.Init(draco::GeometryAttribute::COLOR, nullptr, 3, draco::DT_UINT8, true, 3, 0);
+    const int id = pc->AddAttribute(ga, true, static_cast<uint32_t>(n));
+    if (id < 0)
+        return -1;
+    for (size_t i = 0; i < n; ++i)
+        pc->attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
+                                             rgb + 3 * i);
+    return 0;
+}
+
 int copy_out(const draco::EncoderBuffer &buf, uint8_t **out, size_t *out_len)
 {
     *out_len = buf.size();
@@ -96,11 +112,12 @@ extern "C" lumo_draco_settings lumo_draco_default_settings(void)
     return s;
 }
 
-extern "C" int lumo_draco_encode_points(const float *xyz, size_t n, const lumo_draco_quant *q,
-                                        lumo_draco_settings s, uint8_t **out, size_t *out_len)
+extern "C" int lumo_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
+                                        const lumo_draco_quant *q, lumo_draco_settings s,
+                                        uint8_t **out, size_t *out_len)
 {
     draco::PointCloud pc;
-    if (add_positions(&pc, xyz, n))
+    if (add_positions(&pc, xyz, n) || add_color(&pc, rgb, n))
         return -1;
     draco::Encoder enc;
     set_quant(&enc, q);
@@ -112,7 +129,7 @@ extern "C" int lumo_draco_encode_points(const float *xyz, size_t n, const lumo_d
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int lumo_draco_encode_ints(const int32_t *values, size_t n, int comps,
+extern "C" int lumo_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
                                       lumo_draco_settings s, uint8_t **out, size_t *out_len)
 {
     draco::PointCloud pc;
@@ -126,6 +143,8 @@ extern "C" int lumo_draco_encode_ints(const int32_t *values, size_t n, int comps
     for (size_t i = 0; i < n; ++i)
         pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
                                             values + comps * i);
+    if (add_color(&pc, rgb, n))
+        return -1;
     draco::Encoder enc;
     enc.SetSpeedOptions(s.speed, s.speed);
     enc.SetEncodingMethod(s.method);

@@ -50,7 +50,7 @@ static int load_model(const char *path, model *m)
     char err[256];
     memset(m, 0, sizeof *m);
     m->path = path, m->name = base_name(path);
-    if (lumo_pm_load(path, &m->xyz, &m->nv, &m->tris, &m->nf, err, sizeof err)) {
+    if (lumo_pm_load(path, &m->xyz, NULL, &m->nv, &m->tris, &m->nf, err, sizeof err)) {
         fprintf(stderr, "lumo-pm bench: %s\n", err);
         return -1;
     }

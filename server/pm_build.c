@@ -62,6 +62,8 @@ static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
     pm->base_vertices = n - c->count;
     for (uint32_t v = 0; v < n; v++) {
         memcpy(pm->xyz + 3 * (size_t)newv[v], m->xyz + 3 * (size_t)v, 3 * sizeof(float));
+        if (m->rgb)
+            memcpy(pm->albedo + 3 * (size_t)newv[v], m->rgb + 3 * (size_t)v, 3);
         pm->source[newv[v]] = m->source[v];
         pm->parent[newv[v]] = newv[v];
     }
@@ -92,6 +94,12 @@ done:
 int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
                   const lumo_pm_options *opt, lumo_pm *out)
 {
+    return lumo_pm_build_albedo(xyz, NULL, nv, tris, nf, opt, out);
+}
+
+int lumo_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
+                         uint32_t nf, const lumo_pm_options *opt, lumo_pm *out)
+{
     lumo_pm_options def;
     pm_clean_mesh m;
     pm_collapses c;
@@ -101,7 +109,7 @@ int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t 
         lumo_pm_default_options(&def);
         opt = &def;
     }
-    if (pm_clean(xyz, nv, tris, nf, &m))
+    if (pm_clean(xyz, albedo, nv, tris, nf, &m))
         return -1;
     int rc = -1;
     if (pm_simplify(&m, opt, &c))
@@ -112,7 +120,8 @@ int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t 
     out->source = malloc(sizeof *out->source * n);
     out->tris = malloc(sizeof *out->tris * 3 * f);
     out->level = malloc(sizeof *out->level * f);
-    if (!out->xyz || !out->parent || !out->source || !out->tris || !out->level)
+    out->albedo = albedo ? malloc(3 * n) : NULL;
+    if (!out->xyz || !out->parent || !out->source || !out->tris || !out->level || (albedo && !out->albedo))
         goto done;
     if (assemble(&m, &c, out))
         goto done;
@@ -134,6 +143,7 @@ void lumo_pm_free(lumo_pm *pm)
     free(pm->tris);
     free(pm->level);
     free(pm->source);
+    free(pm->albedo);
     memset(pm, 0, sizeof *pm);
 }
 

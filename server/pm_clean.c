@@ -5,19 +5,29 @@
 #include <string.h>
 #include "lumo_server/pm_internal.h"
 
-static const float *g_sort_xyz; /* qsort has no context argument in C11 */
+static const float *g_sort_xyz;  /* qsort has no context argument in C11 */
+static const uint8_t *g_sort_rgb;
+
+/* Weld key: exact position, then albedo (a colour seam is not welded). */
+static int same_key(uint32_t i, uint32_t j)
+{
+    int c = memcmp(g_sort_xyz + 3 * (size_t)i, g_sort_xyz + 3 * (size_t)j, 3 * sizeof(float));
+    if (!c && g_sort_rgb)
+        c = memcmp(g_sort_rgb + 3 * (size_t)i, g_sort_rgb + 3 * (size_t)j, 3);
+    return c;
+}
 
 static int cmp_pos(const void *a, const void *b)
 {
     uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
-    int c = memcmp(g_sort_xyz + 3 * (size_t)i, g_sort_xyz + 3 * (size_t)j, 3 * sizeof(float));
+    int c = same_key(i, j);
     if (c)
         return c;
     return (i > j) - (i < j);
 }
 
-/* weld[v] = smallest input vertex with v's exact position. */
-static uint32_t *weld_map(const float *xyz, uint32_t nv, uint32_t *welded)
+/* weld[v] = smallest input vertex with v's exact position (and albedo). */
+static uint32_t *weld_map(const float *xyz, const uint8_t *rgb, uint32_t nv, uint32_t *welded)
 {
     uint32_t *order = malloc(sizeof *order * (nv ? nv : 1));
     uint32_t *weld = malloc(sizeof *weld * (nv ? nv : 1));
@@ -28,12 +38,11 @@ static uint32_t *weld_map(const float *xyz, uint32_t nv, uint32_t *welded)
     }
     for (uint32_t v = 0; v < nv; v++)
         order[v] = v;
-    g_sort_xyz = xyz;
+    g_sort_xyz = xyz, g_sort_rgb = rgb;
     qsort(order, nv, sizeof *order, cmp_pos);
     *welded = 0;
     for (uint32_t i = 0; i < nv; i++) {
-        int same = i > 0 && !memcmp(xyz + 3 * (size_t)order[i], xyz + 3 * (size_t)order[i - 1],
-                                    3 * sizeof(float));
+        int same = i > 0 && !same_key(order[i], order[i - 1]);
         weld[order[i]] = same ? weld[order[i - 1]] : order[i];
         *welded += (uint32_t)same;
     }
@@ -89,13 +98,14 @@ static int face_keep(const uint32_t *tris, uint32_t nf, uint8_t *keep)
     return 0;
 }
 
-int pm_clean(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf, pm_clean_mesh *out)
+int pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris, uint32_t nf,
+             pm_clean_mesh *out)
 {
     memset(out, 0, sizeof *out);
     for (size_t i = 0; i < 3 * (size_t)nf; i++)
         if (tris[i] >= nv)
             return -1;
-    uint32_t *weld = weld_map(xyz, nv, &out->welded);
+    uint32_t *weld = weld_map(xyz, rgb, nv, &out->welded);
     uint32_t *wt = malloc(sizeof *wt * 3 * (size_t)(nf ? nf : 1));
     uint8_t *keep = malloc(nf ? nf : 1);
     uint32_t *newv = malloc(sizeof *newv * (nv ? nv : 1));
@@ -117,12 +127,15 @@ int pm_clean(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf, p
     out->xyz = malloc(sizeof *out->xyz * 3 * (size_t)(out->nv ? out->nv : 1));
     out->source = malloc(sizeof *out->source * (out->nv ? out->nv : 1));
     out->tris = malloc(sizeof *out->tris * 3 * (size_t)(nf ? nf : 1));
-    if (!out->xyz || !out->source || !out->tris)
+    out->rgb = rgb ? malloc(3 * (size_t)(out->nv ? out->nv : 1)) : NULL;
+    if (!out->xyz || !out->source || !out->tris || (rgb && !out->rgb))
         goto done;
     for (uint32_t v = 0; v < nv; v++)
         if (newv[v] != UINT32_MAX) {
             memcpy(out->xyz + 3 * (size_t)newv[v], xyz + 3 * (size_t)v, 3 * sizeof(float));
             out->source[newv[v]] = v;
+            if (rgb)
+                memcpy(out->rgb + 3 * (size_t)newv[v], rgb + 3 * (size_t)v, 3);
         }
     for (uint32_t f = 0; f < nf; f++) {
         if (!keep[f]) {
@@ -147,6 +160,7 @@ done:
 void pm_clean_free(pm_clean_mesh *m)
 {
     free(m->xyz);
+    free(m->rgb);
     free(m->tris);
     free(m->source);
     memset(m, 0, sizeof *m);

@@ -6,13 +6,22 @@
 #include "lumo_server/import.h"
 #include "lumo_server/pm_load.h"
 
-static int merge(const lumo_scene *s, float **xyz, uint32_t *nv, uint32_t **tris, uint32_t *nf)
+static uint8_t to_byte(float a)
+{
+    float v = a * 255.0f + 0.5f;
+    return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+}
+
+static int merge(const lumo_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
+                 uint32_t *nf)
 {
     size_t v = 0, f = 0;
     for (size_t m = 0; m < s->nmeshes; m++)
         v += s->meshes[m].nverts, f += s->meshes[m].ntris;
     *xyz = malloc(sizeof **xyz * 3 * (v ? v : 1));
     *tris = malloc(sizeof **tris * 3 * (f ? f : 1));
+    if (rgb && !(*rgb = malloc(3 * (v ? v : 1))))
+        return -1;
     if (!*xyz || !*tris || v > UINT32_MAX / 4 || f > UINT32_MAX / 4)
         return -1;
     *nv = 0, *nf = 0;
@@ -21,6 +30,10 @@ static int merge(const lumo_scene *s, float **xyz, uint32_t *nv, uint32_t **tris
         for (uint32_t i = 0; i < me->nverts; i++) {
             float *p = *xyz + 3 * (size_t)(*nv + i);
             p[0] = me->pos[i].x, p[1] = me->pos[i].y, p[2] = me->pos[i].z;
+            if (rgb) {
+                uint8_t *c = *rgb + 3 * (size_t)(*nv + i);
+                c[0] = to_byte(me->albedo[i].x), c[1] = to_byte(me->albedo[i].y), c[2] = to_byte(me->albedo[i].z);
+            }
         }
         for (size_t i = 0; i < 3 * (size_t)me->ntris; i++)
             (*tris)[3 * (size_t)*nf + i] = me->tris[i] + *nv;
@@ -29,15 +42,17 @@ static int merge(const lumo_scene *s, float **xyz, uint32_t *nv, uint32_t **tris
     return 0;
 }
 
-int lumo_pm_load(const char *path, float **xyz, uint32_t *nv, uint32_t **tris, uint32_t *nf,
-                 char *err, size_t errlen)
+int lumo_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
+                 uint32_t *nf, char *err, size_t errlen)
 {
     lumo_scene s;
     lumo_xform x = lumo_xform_identity();
     lumo_scene_init(&s);
     *xyz = NULL, *tris = NULL;
+    if (rgb)
+        *rgb = NULL;
     int rc = lumo_import_file(&s, path, &x, NULL, err, errlen);
-    if (!rc && merge(&s, xyz, nv, tris, nf)) {
+    if (!rc && merge(&s, xyz, rgb, nv, tris, nf)) {
         snprintf(err, errlen, "%s: out of memory", path);
         rc = -1;
     }
@@ -45,6 +60,10 @@ int lumo_pm_load(const char *path, float **xyz, uint32_t *nv, uint32_t **tris, u
     if (rc) {
         free(*xyz), free(*tris);
         *xyz = NULL, *tris = NULL;
+        if (rgb)
+            free(*rgb), *rgb = NULL;
+    if (rgb)
+        *rgb = NULL;
     }
     return rc;
 }

@@ -5,13 +5,14 @@
 #include "lumo_server/package_write.h"
 #include "lumo_server/pm_stream.h"
 
-int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, uint32_t nv, const uint32_t *tris,
-                 uint32_t nf, const lumo_pm_stream_options *o, char *err, size_t errlen)
+int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
+                 const uint32_t *tris, uint32_t nf, const lumo_pm_stream_options *o, char *err,
+                 size_t errlen)
 {
     lumo_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;
-    if (lumo_pm_build(xyz, nv, tris, nf, NULL, &pm)) {
+    if (lumo_pm_build_albedo(xyz, albedo, nv, tris, nf, NULL, &pm)) {
         snprintf(err, errlen, "progressive mesh: cannot simplify (bad index or out of memory)");
         return -1;
     }

@@ -256,9 +256,10 @@ static void quantize(const lumo_pm *pm, const lumo_draco_quant *q, int32_t *out)
 static int encode_payload(const replay *r, uint32_t first, uint32_t count, const lumo_pm_stream_options *o,
                           const lumo_draco_quant *q, uint8_t **drc, size_t *len)
 {
+    const uint8_t *rgb = r->pm->albedo ? r->pm->albedo + 3 * (size_t)first : NULL;
     if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
-        return lumo_draco_encode_points(r->pm->xyz + 3 * (size_t)first, count, q, o->draco, drc, len);
-    return lumo_draco_encode_ints(r->res + 3 * (size_t)first, count, 3, o->draco, drc, len);
+        return lumo_draco_encode_points(r->pm->xyz + 3 * (size_t)first, rgb, count, q, o->draco, drc, len);
+    return lumo_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
 }
 
 static int write_record(bytes *out, uint32_t index, uint32_t first, uint32_t count,
@@ -304,7 +305,8 @@ static void write_header(uint8_t *d, const lumo_pm *pm, const lumo_pm_stream_opt
     uint32_t f[16] = {LUMO_PMESH_MAGIC, LUMO_PMESH_VERSION | LUMO_PMESH_HEADER_SIZE << 16,
                       pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
                       o->batch_vertices, nb, maxf, maxm, maxb,
-                      (uint32_t)q->bits | (uint32_t)o->position_coding << 8,
+                      (uint32_t)q->bits | (uint32_t)o->position_coding << 8 |
+                          (uint32_t)(pm->albedo != NULL) << 16,
                       f32bits(q->origin[0]), f32bits(q->origin[1]), f32bits(q->origin[2]),
                       f32bits(q->range)};
     for (int i = 0; i < 16; i++)

@@ -21,12 +21,12 @@ typedef struct {
     const char *in, *out;
     lumo_pm_stream_options so;
     lumo_pm_options po;
-    int raw;
+    int raw, albedo;
 } args;
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--raw]\n"
+    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--albedo] [--raw]\n"
                     "       lumo-pm clean IN -o OUT.ply\n"
                     "       lumo-pm apply STREAM [RECORDS]\n"
                     "       lumo-pm bench --out SECTION.md MODEL...\n");
@@ -50,6 +50,8 @@ static int parse(int argc, char **argv, args *a)
             a->po.min_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
         else if (!strcmp(argv[i], "--raw"))
             a->raw = 1;
+        else if (!strcmp(argv[i], "--albedo"))
+            a->albedo = 1;  /* stream the per-vertex albedo too */
         else if (argv[i][0] != '-' && !a->in)
             a->in = argv[i];
         else
@@ -84,17 +86,18 @@ static int write_output(const args *a, const uint8_t *s, size_t n)
 static int cmd_build(const args *a, int clean_only)
 {
     float *xyz;
+    uint8_t *rgb = NULL;
     uint32_t *tris, nv, nf, nb;
     char err[256];
     lumo_pm pm;
     uint8_t *s = NULL;
     size_t n = 0;
-    if (lumo_pm_load(a->in, &xyz, &nv, &tris, &nf, err, sizeof err)) {
+    if (lumo_pm_load(a->in, &xyz, a->albedo ? &rgb : NULL, &nv, &tris, &nf, err, sizeof err)) {
         fprintf(stderr, "lumo-pm: error: %s\n", err);
         return 1;
     }
     int rc = 1;
-    if (lumo_pm_build(xyz, nv, tris, nf, &a->po, &pm)) {
+    if (lumo_pm_build_albedo(xyz, rgb, nv, tris, nf, &a->po, &pm)) {
         fprintf(stderr, "lumo-pm: error: %s: cannot simplify (bad indices or out of memory)\n", a->in);
         goto done;
     }
@@ -115,6 +118,7 @@ done:
     free(s);
     lumo_pm_free(&pm);
     free(xyz);
+    free(rgb);
     free(tris);
     return rc;
 }

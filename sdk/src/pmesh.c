@@ -34,7 +34,7 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
     if (h->batch_count != expected_batches(h))
         return LUMO_ERR_CORRUPT;
     if (h->quant_bits < 1 || h->quant_bits > LUMO_PMESH_MAX_QBITS ||
-        h->position_coding > LUMO_PMESH_POS_PREDICTED)
+        h->position_coding > LUMO_PMESH_POS_PREDICTED || (h->flags & ~LUMO_PMESH_HAS_ALBEDO))
         return LUMO_ERR_UNSUPPORTED;
     return LUMO_OK;
 }
@@ -60,8 +60,8 @@ lumo_status lumo_pmesh_read_header(const uint8_t *d, size_t size, lumo_pmesh_hea
     h.batch_vertices = rd32(d + 24), h.batch_count = rd32(d + 28);
     h.max_batch_faces = rd32(d + 32), h.max_batch_moves = rd32(d + 36);
     h.max_batch_bytes = rd32(d + 40);
-    h.quant_bits = d[44], h.position_coding = d[45];
-    if (d[46] || d[47])
+    h.quant_bits = d[44], h.position_coding = d[45], h.flags = d[46];
+    if (d[47])
         return LUMO_ERR_CORRUPT;
     for (int i = 0; i < 3; i++)
         h.origin_bits[i] = rd32(d + 48 + 4 * i);
@@ -105,16 +105,18 @@ static size_t log_words(const lumo_pmesh_header *h, size_t per)
     return lumo_size_mul(per, lumo_size_add(h->max_batch_moves, h->max_batch_faces));
 }
 
-#define NARRAYS 12
+#define NARRAYS 13
 
 /* The arrays init carves, in order: {count, element size}. */
 static void layout(const lumo_pmesh_header *h, size_t n[NARRAYS], size_t sz[NARRAYS])
 {
     size_t v = h->vertices, c = lumo_size_mul(3u, h->faces), vv = lumo_size_mul(3u, v);
     size_t splits = lumo_size_add(max_u32(h->base_vertices, h->batch_vertices), 1u);
+    size_t rgb = h->flags & LUMO_PMESH_HAS_ALBEDO ? vv : 0;
     size_t cnt[NARRAYS] = {vv, vv, vv, c, c, v, v, log_words(h, 3u), log_words(h, 4u), splits, splits,
-                           scratch_bytes(h)};
-    size_t el[NARRAYS] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 4, 4, 1};
+                           scratch_bytes(h), rgb};
+    size_t el[NARRAYS] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 4, 4, 1,
+                          sizeof(lumo_q1_14)};
     memcpy(n, cnt, sizeof cnt);
     memcpy(sz, el, sizeof el);
 }
@@ -151,6 +153,7 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
     pm->pos = p[0], pm->qpos = p[1], pm->nrm = p[2], pm->tris = p[3], pm->next = p[4];
     pm->head = p[5], pm->mark = p[6], pm->journal = p[7], pm->dirty = p[8];
     pm->split_log = p[9], pm->batch_parent = p[10], pm->scratch = p[11], pm->scratch_bytes = n[11];
+    pm->albedo = n[12] ? p[12] : NULL;
     for (size_t i = 0; i < 3; i++)
         (void)lumo_f32bits_to_fixed(h->origin_bits[i], LUMO_Q16_SHIFT, &pm->origin[i]);
     (void)lumo_f32bits_to_fixed(h->range_bits, LUMO_Q16_SHIFT, &pm->range);
@@ -180,6 +183,7 @@ void lumo_pmesh_get_view(const lumo_pmesh *pm, lumo_pmesh_view *out)
     out->positions = pm->pos;
     out->normals = pm->nrm;
     out->triangles = pm->tris;
+    out->albedo = pm->albedo;
 }
 
 int lumo_pmesh_complete(const lumo_pmesh *pm)

@@ -99,6 +99,27 @@ static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t s
 }
 
 /* ---- positions: the Draco point cloud ------------------------------------- */
+/* The albedo attribute of an HAS_ALBEDO stream: COLOR, uint8 x3. */
+static lumo_status find_albedo(const lumo_pmesh *pm, const batch *b, const lumo_draco_mesh *m,
+                               const lumo_draco_attribute **rgb)
+{
+    const lumo_draco_attribute *a = NULL;
+    *rgb = NULL;
+    if (!(pm->h.flags & LUMO_PMESH_HAS_ALBEDO))
+        return LUMO_OK;
+    for (uint32_t i = 0; i < m->num_attributes && !a; i++)
+        if (m->attributes[i].type == LUMO_DRACO_COLOR)
+            a = &m->attributes[i];
+    if (!a || a->num_portable != 3 || a->xform != LUMO_DRACO_XFORM_NONE || a->data_type != LUMO_DRACO_DT_UINT8)
+        return LUMO_ERR_CORRUPT;
+    for (uint32_t p = 0; p < b->count; p++)
+        for (unsigned c = 0; c < 3; c++)
+            if ((uint32_t)lumo_draco_value(a, p, c) > 255u)
+                return LUMO_ERR_RANGE;
+    *rgb = a;
+    return LUMO_OK;
+}
+
 /* The payload must be b->count points with the attribute the stream's
  * position coding names, on the stream's grid. */
 static lumo_status check_positions(const lumo_pmesh *pm, const batch *b,
@@ -129,7 +150,7 @@ static lumo_status check_positions(const lumo_pmesh *pm, const batch *b,
 }
 
 static lumo_status decode_positions(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute **pos,
-                                    lumo_draco_mesh *m)
+                                    const lumo_draco_attribute **rgb, lumo_draco_mesh *m)
 {
     lumo_arena a;
     lumo_draco_info info;
@@ -142,7 +163,19 @@ static lumo_status decode_positions(lumo_pmesh *pm, const batch *b, const lumo_d
     st = lumo_draco_decode(b->draco, b->draco_bytes, &a, m);
     if (st == LUMO_ERR_NOMEM)
         return LUMO_ERR_LIMIT;  /* bigger than the header promised */
-    return st ? st : check_positions(pm, b, m, pos);
+    if (st || (st = check_positions(pm, b, m, pos)))
+        return st;
+    return find_albedo(pm, b, m, rgb);
+}
+
+/* 0..255 -> Q1.14 [0, 1], rounded. */
+static void store_albedo(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute *a)
+{
+    for (uint32_t i = 0; a && i < b->count; i++)
+        for (unsigned c = 0; c < 3; c++) {
+            int32_t v = lumo_draco_value(a, i, c);
+            pm->albedo[3 * (size_t)(b->first + i) + c] = (lumo_q1_14)((v * LUMO_Q14_ONE + 127) / 255);
+        }
 }
 
 /* Grid integers of the batch's vertices into qpos (invisible until the
@@ -466,13 +499,13 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
 {
     batch b;
     lumo_draco_mesh m;
-    const lumo_draco_attribute *pos = NULL;
+    const lumo_draco_attribute *pos = NULL, *rgb = NULL;
     lumo_status st;
     if (!pm || !record)
         return LUMO_ERR_ARG;
     if (pm->rewound)
         return LUMO_ERR_STATE;
-    if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &m)))
+    if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
     split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0};
@@ -481,6 +514,7 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
         return st;
     }
     store_positions(pm, &b);
+    store_albedo(pm, &b, rgb);
     pm->split_log[b.first ? b.count : 0] = s.log_n;
     pm->log_n = s.log_n, pm->last_first = b.first;
     pm->vertex_count += b.count;

@@ -280,6 +280,15 @@ static int client_matches(const lumo_pm *pm, const lumo_pmesh *pm_client, uint32
             snprintf(why, n, "level %u: vertex %u off by more than a step", k, i / 3);
             return 0;
         }
+    if (!pm->albedo != !v->albedo) {
+        snprintf(why, n, "albedo %s on the client", v->albedo ? "unexpected" : "missing");
+        return 0;
+    }
+    for (uint32_t i = 0; pm->albedo && i < 3 * k; i++)
+        if (v->albedo[i] != (pm->albedo[i] * 16384 + 127) / 255) {
+            snprintf(why, n, "level %u: vertex %u albedo differs", k, i / 3);
+            return 0;
+        }
     if (!normals_exact(pm_client)) {
         snprintf(why, n, "level %u: incremental normals differ from a full recomputation", k);
         return 0;
@@ -473,6 +482,7 @@ static void check_rewind(const lumo_pm *pm, const uint8_t *s, size_t len, double
 int main(int argc, char **argv)
 {
     const char *gen = NULL, *file = NULL, *dump = NULL;
+    int want_rgb = 0;
     lumo_pm_stream_options so;
     lumo_pm_stream_default_options(&so);
     for (int i = 1; i < argc; i++) {
@@ -480,6 +490,8 @@ int main(int argc, char **argv)
             gen = argv[++i];
         else if (!strcmp(argv[i], "--batch") && i + 1 < argc)
             so.batch_vertices = (uint32_t)atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--albedo"))
+            want_rgb = 1;
         else if (!strcmp(argv[i], "--absolute"))
             so.position_coding = LUMO_PMESH_POS_ABSOLUTE;
         else if (!strcmp(argv[i], "--write-stream") && i + 1 < argc)
@@ -491,7 +503,7 @@ int main(int argc, char **argv)
     }
     pm_test_mesh in = {0};
     char err[256];
-    if (gen ? pm_test_mesh_make(gen, &in) : !file || lumo_pm_load(file, &in.xyz, &in.nv, &in.tris, &in.nf, err, sizeof err)) {
+    if (gen ? pm_test_mesh_make(gen, &in) : !file || lumo_pm_load(file, &in.xyz, want_rgb ? &in.rgb : NULL, &in.nv, &in.tris, &in.nf, err, sizeof err)) {
         fprintf(stderr, "pm_check: cannot load %s\n", gen ? gen : file ? file : "(nothing)");
         printf("RESULT: 0 passed, 1 failed\n");
         return 1;
@@ -501,7 +513,7 @@ int main(int argc, char **argv)
     lumo_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;
-    int built = !lumo_pm_build(in.xyz, in.nv, in.tris, in.nf, NULL, &pm);
+    int built = !lumo_pm_build_albedo(in.xyz, in.rgb, in.nv, in.tris, in.nf, NULL, &pm);
     snprintf(err, sizeof err, "%u -> %u vertices (%u welded), %u faces (%u dropped), base %u/%u",
              in.nv, built ? pm.vertices : 0, built ? pm.welded : 0, built ? pm.faces : 0,
              built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0);

@@ -16,9 +16,15 @@ static void grow(pm_test_mesh *m, uint32_t nv, uint32_t nf)
         abort();
 }
 
+static uint8_t g_rgb[3] = {200, 200, 200};  /* albedo of new vertices */
+
 static uint32_t vert(pm_test_mesh *m, double x, double y, double z)
 {
     grow(m, 1, 0);
+    if (m->rgb) {
+        m->rgb = realloc(m->rgb, 3 * (size_t)(m->nv + 1));
+        memcpy(m->rgb + 3 * (size_t)m->nv, g_rgb, 3);
+    }
     m->xyz[3 * m->nv] = (float)x, m->xyz[3 * m->nv + 1] = (float)y, m->xyz[3 * m->nv + 2] = (float)z;
     return m->nv++;
 }
@@ -81,15 +87,25 @@ static void quad(pm_test_mesh *m, const double o[3], const double u[3], const do
         }
 }
 
+static void colour(uint8_t r, uint8_t g, uint8_t b)
+{
+    g_rgb[0] = r, g_rgb[1] = g, g_rgb[2] = b;
+}
+
 static void cornell(pm_test_mesh *m)
 {
+    m->rgb = malloc(3);
     const double O[3] = {0, 0, 0}, X[3] = {1, 0, 0}, Y[3] = {0, 1, 0}, Z[3] = {0, 0, 1};
     const double top[3] = {0, 1, 0}, back[3] = {0, 0, 1}, right[3] = {1, 0, 0};
+    colour(190, 190, 190);
     quad(m, O, Z, X, 8, 0);         /* floor */
     quad(m, top, X, Z, 8, 0);       /* ceiling */
     quad(m, back, X, Y, 8, 0.01);   /* back wall */
-    quad(m, O, Y, Z, 8, 0);         /* left wall */
-    quad(m, right, Z, Y, 8, 0);     /* right wall */
+    colour(160, 20, 20);
+    quad(m, O, Y, Z, 8, 0);         /* left wall, red */
+    colour(20, 150, 30);
+    quad(m, right, Z, Y, 8, 0);     /* right wall, green */
+    colour(230, 230, 230);
     /* A closed cube: six quads welded through shared positions. */
     const double c0[3] = {0.2, 0, 0.2}, c1[3] = {0.5, 0.3, 0.5};
     const double a[3] = {0.3, 0, 0}, b[3] = {0, 0.3, 0}, c[3] = {0, 0, 0.3};
@@ -127,6 +143,28 @@ static void scan(pm_test_mesh *m)
     free(s.tris);
 }
 
+/* Southern faces use copies of their vertices in another colour: the
+ * equator becomes a colour seam the simplifier must keep. */
+static void seam(pm_test_mesh *m)
+{
+    pm_test_mesh s = {0};
+    sphere(&s, 24, 12, 1.0, 0);
+    m->rgb = malloc(3);
+    uint32_t *north = malloc(sizeof *north * s.nv), *south = malloc(sizeof *south * s.nv);
+    for (uint32_t v = 0; v < s.nv; v++) {
+        const float *p = s.xyz + 3 * v;
+        colour(220, 180, 40), north[v] = vert(m, p[0], p[1], p[2]);
+        colour(40, 90, 220), south[v] = vert(m, p[0], p[1], p[2]);
+    }
+    for (uint32_t f = 0; f < s.nf; f++) {
+        const uint32_t *t = s.tris + 3 * f;
+        double z = s.xyz[3 * t[0] + 2] + s.xyz[3 * t[1] + 2] + s.xyz[3 * t[2] + 2];
+        const uint32_t *map = z < 0 ? south : north;
+        tri(m, map[t[0]], map[t[1]], map[t[2]]);
+    }
+    free(north), free(south), free(s.xyz), free(s.tris);
+}
+
 int pm_test_mesh_make(const char *name, pm_test_mesh *m)
 {
     memset(m, 0, sizeof *m);
@@ -137,6 +175,8 @@ int pm_test_mesh_make(const char *name, pm_test_mesh *m)
         quad(m, o, u, v, 24, 0.03);
     } else if (!strcmp(name, "cornell"))
         cornell(m);
+    else if (!strcmp(name, "seam"))
+        seam(m);
     else if (!strcmp(name, "scan"))
         scan(m);
     else if (!strcmp(name, "tiny")) {
@@ -149,6 +189,7 @@ int pm_test_mesh_make(const char *name, pm_test_mesh *m)
 void pm_test_mesh_free(pm_test_mesh *m)
 {
     free(m->xyz);
+    free(m->rgb);
     free(m->tris);
     memset(m, 0, sizeof *m);
 }

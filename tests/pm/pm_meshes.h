@@ -5,11 +5,14 @@
 
 typedef struct {
     float    *xyz;
+    uint8_t  *rgb;    /* 3 per vertex, or NULL: albedo */
     uint32_t *tris;
     uint32_t  nv, nf;
 } pm_test_mesh;
 
-/* "sphere", "grid", "cornell", "scan", "tiny". 0, or -1 for an unknown name. */
+/* "sphere", "grid", "cornell" (coloured walls), "seam" (a sphere whose two
+ * hemispheres differ in albedo: a colour seam), "scan", "tiny".
+ * 0, or -1 for an unknown name. */
 int  pm_test_mesh_make(const char *name, pm_test_mesh *m);
 void pm_test_mesh_free(pm_test_mesh *m);
 

@@ -46,6 +46,9 @@
  * about half the bytes. */
 #define LUMO_PMESH_POS_ABSOLUTE 0u
 #define LUMO_PMESH_POS_PREDICTED 1u
+/* Header flag: every payload also carries a COLOR uint8 x3 attribute, the
+ * per-vertex albedo (0..255 -> 0..1). */
+#define LUMO_PMESH_HAS_ALBEDO 1u
 /* "LPM1" and "LPMB", first character in the lowest byte. */
 #define LUMO_PMESH_MAGIC       0x314d504cu
 #define LUMO_PMESH_BATCH_MAGIC 0x424d504cu
@@ -62,7 +65,8 @@ typedef struct lumo_pmesh_header {
     uint32_t max_batch_moves;   /* largest corner-move count of one batch */
     uint32_t max_batch_bytes;   /* largest batch record, header included */
     uint32_t quant_bits;        /* position quantization (1..LUMO_PMESH_MAX_QBITS) */
-    uint32_t position_coding;   /* LUMO_PMESH_POS_ABSOLUTE or _PARENT */
+    uint32_t position_coding;   /* LUMO_PMESH_POS_ABSOLUTE or _PREDICTED */
+    uint32_t flags;             /* LUMO_PMESH_HAS_ALBEDO */
     uint32_t origin_bits[3];    /* grid origin, IEEE-754 binary32 bits, metres */
     uint32_t range_bits;        /* grid edge length, binary32 bits, metres */
 } lumo_pmesh_header;
@@ -79,6 +83,8 @@ typedef struct lumo_pmesh_view {
     const uint32_t    *triangles;  /* 3 per face, counter-clockwise front,
                                       every index < vertex_count, never
                                       two equal indices in one triangle */
+    const lumo_q1_14  *albedo;     /* 3 per vertex in [0, 1], or NULL when the
+                                      stream carries none (use the mesh's) */
 } lumo_pmesh_view;
 
 /* The object. Fields are private; read the level through lumo_pmesh_view. */
@@ -89,6 +95,7 @@ typedef struct lumo_pmesh {
     lumo_q16_16 *pos;                 /* 3 * vertices */
     int32_t     *qpos;                /* 3 * vertices: quantized grid integers */
     lumo_q1_14  *nrm;                 /* 3 * vertices */
+    lumo_q1_14  *albedo;              /* 3 * vertices, or NULL */
     uint32_t    *tris;                /* 3 * faces: the index buffer */
     uint32_t    *next;                /* 3 * faces: corner lists per vertex */
     uint32_t    *head;                /* vertices: first corner showing it */

@@ -45,15 +45,18 @@ typedef struct lumo_draco_settings {
 lumo_draco_settings lumo_draco_default_settings(void);
 
 /* Encode n points (xyz, metres) as a Draco point cloud with one quantized
- * POSITION attribute on grid q. Point order is preserved. */
-int lumo_draco_encode_points(const float *xyz, size_t n, const lumo_draco_quant *q,
-                             lumo_draco_settings s, uint8_t **out, size_t *out_len);
+ * POSITION attribute on grid q, plus a COLOR uint8 x3 attribute when rgb is
+ * not NULL (3 bytes per point). Point order is preserved. */
+int lumo_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
+                             const lumo_draco_quant *q, lumo_draco_settings s, uint8_t **out,
+                             size_t *out_len);
 
 /* Encode n points carrying one GENERIC int32 attribute of `comps`
  * components (values: n * comps), no prediction (the caller predicts),
- * entropy coded by libdraco. Point order is preserved. */
-int lumo_draco_encode_ints(const int32_t *values, size_t n, int comps, lumo_draco_settings s,
-                           uint8_t **out, size_t *out_len);
+ * entropy coded by libdraco, plus COLOR as above when rgb is not NULL.
+ * Point order is preserved. */
+int lumo_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
+                           lumo_draco_settings s, uint8_t **out, size_t *out_len);
 
 /* Encode a triangle mesh single-shot (for size comparisons): positions
  * quantized on grid q, Draco compression level cl (0..10, as draco_encoder

@@ -33,6 +33,7 @@ typedef struct lumo_pm {
     uint32_t  base_vertices;   /* vertices of the coarsest level */
     uint32_t  base_faces;      /* faces of the coarsest level */
     float    *xyz;             /* 3 * vertices, progressive order */
+    uint8_t  *albedo;          /* 3 * vertices (sRGB-agnostic 0..255), or NULL */
     uint32_t *parent;          /* vertices: parent[v] < v (base: parent[v] = v) */
     uint32_t *tris;            /* 3 * faces: full-resolution corners, faces in
                                   appearance order, input winding kept */
@@ -48,6 +49,13 @@ void lumo_pm_default_options(lumo_pm_options *o);
  * failure or an index out of range. */
 int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
                   const lumo_pm_options *opt, lumo_pm *out);
+
+/* The same with a per-vertex albedo (3 bytes per vertex, linear 0..255,
+ * may be NULL). Vertices weld only when position and albedo agree, so a
+ * colour seam stays a seam: the simplifier sees it as a boundary, which it
+ * penalises and only slides along. */
+int lumo_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
+                         uint32_t nf, const lumo_pm_options *opt, lumo_pm *out);
 void lumo_pm_free(lumo_pm *pm);
 
 /* Vertex v resolved at level k (k > 0): follows parent[] while v >= k. */

@@ -14,12 +14,14 @@
 typedef struct pm_clean_mesh {
     uint32_t  nv, nf;
     float    *xyz;
+    uint8_t  *rgb;            /* 3 per vertex, or NULL: albedo, part of the weld key */
     uint32_t *tris;
     uint32_t *source;
     uint32_t  welded, dropped_faces;
 } pm_clean_mesh;
 
-int  pm_clean(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf, pm_clean_mesh *out);
+int  pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris, uint32_t nf,
+              pm_clean_mesh *out);
 void pm_clean_free(pm_clean_mesh *m);
 
 /* The collapse sequence of pm_simplify(): at step t vertex removed[t]

@@ -39,8 +39,10 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
 
 /* For lumo-bake (server/pm_pack.c): simplify one mesh, build its stream and
  * append it to a package as a PMSH chunk (one chunk per mesh, in mesh
- * order, replacing the raw MESH chunk). o may be NULL for the defaults.
+ * order, replacing the raw MESH chunk). albedo: 3 bytes per vertex (0..255)
+ * or NULL. o may be NULL for the defaults.
  * 0, or -1 with a one-line reason in err. */
 struct lumo_pkg_writer;
-int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, uint32_t nv, const uint32_t *tris,
-                 uint32_t nf, const lumo_pm_stream_options *o, char *err, size_t errlen);
+int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
+                 const uint32_t *tris, uint32_t nf, const lumo_pm_stream_options *o, char *err,
+                 size_t errlen);
