@@ -94,13 +94,18 @@ static int write_ply(const char *path, const lumo_pmesh_view *v)
         return -1;
     fprintf(f, "ply\nformat ascii 1.0\ncomment lumo progressive mesh level\nelement vertex %u\n"
                "property float x\nproperty float y\nproperty float z\n"
-               "property float nx\nproperty float ny\nproperty float nz\nelement face %u\n"
-               "property list uchar int vertex_indices\nend_header\n", v->vertex_count, v->face_count);
+               "property float nx\nproperty float ny\nproperty float nz\n%s"
+               "element face %u\nproperty list uchar int vertex_indices\nend_header\n", v->vertex_count,
+            v->albedo ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "", v->face_count);
     for (uint32_t i = 0; i < v->vertex_count; i++) {
         const lumo_q16_16 *p = v->positions + 3 * i;
         const lumo_q1_14 *n = v->normals + 3 * i;
-        fprintf(f, "%.7g %.7g %.7g %.5f %.5f %.5f\n", p[0] / 65536.0, p[1] / 65536.0, p[2] / 65536.0,
+        fprintf(f, "%.7g %.7g %.7g %.5f %.5f %.5f", p[0] / 65536.0, p[1] / 65536.0, p[2] / 65536.0,
                 n[0] / 16384.0, n[1] / 16384.0, n[2] / 16384.0);
+        if (v->albedo)
+            fprintf(f, " %d %d %d", (v->albedo[3 * i] * 255 + 8192) / 16384,
+                    (v->albedo[3 * i + 1] * 255 + 8192) / 16384, (v->albedo[3 * i + 2] * 255 + 8192) / 16384);
+        fputc('\n', f);
     }
     for (uint32_t i = 0; i < v->face_count; i++)
         fprintf(f, "3 %u %u %u\n", v->triangles[3 * i], v->triangles[3 * i + 1], v->triangles[3 * i + 2]);
