@@ -141,20 +141,25 @@ static lumo_status ld_seq_compressed_indices(ld_dec *d)
 static lumo_status ld_seq_raw_indices(ld_dec *d)
 {
     const uint32_t n = d->num_faces * 3u, np = d->num_points;
+    const uint8_t *p = ld_head(&d->buf);
     uint32_t i;
     lumo_status st = LUMO_OK;
-    if (np < 65536u) {
-        const size_t w = np < 256u ? 1u : 2u;
-        const uint8_t *p = ld_head(&d->buf);
-        if ((uint64_t)n * w > ld_remaining(&d->buf))
+    if (np < 256u) {
+        if (n > ld_remaining(&d->buf))
             return LUMO_ERR_TRUNCATED;
         for (i = 0; i < n; ++i)
-            d->faces[i] = w == 1u ? p[i] : (uint32_t)(p[2 * i] | (p[2 * i + 1] << 8));
-        d->buf.pos += (size_t)n * w;
-        return LUMO_OK;
+            d->faces[i] = p[i];
+        d->buf.pos += n;
+    } else if (np < 65536u) {
+        if ((uint64_t)n * 2u > ld_remaining(&d->buf))
+            return LUMO_ERR_TRUNCATED;
+        for (i = 0; i < n; ++i)
+            d->faces[i] = (uint32_t)p[2 * i] | ((uint32_t)p[2 * i + 1] << 8);
+        d->buf.pos += (size_t)n * 2u;
+    } else {
+        for (i = 0; i < n && !st; ++i)
+            st = np < (1u << 21) ? ld_varint32(&d->buf, &d->faces[i]) : ld_u32(&d->buf, &d->faces[i]);
     }
-    for (i = 0; i < n && !st; ++i)
-        st = np < (1u << 21) ? ld_varint32(&d->buf, &d->faces[i]) : ld_u32(&d->buf, &d->faces[i]);
     return st;
 }
 
@@ -162,11 +167,10 @@ static lumo_status ld_seq_raw_indices(ld_dec *d)
  * every index is a valid point. */
 static lumo_status ld_check_indices(const ld_dec *d)
 {
-    uint32_t i, n = d->num_faces * 3u;
+    uint32_t i, n = d->num_faces * 3u, max = 0;
     for (i = 0; i < n; ++i)
-        if (d->faces[i] >= d->num_points)
-            return LUMO_ERR_CORRUPT;
-    return LUMO_OK;
+        max = d->faces[i] > max ? d->faces[i] : max;
+    return n && max >= d->num_points ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
 static lumo_status ld_seq_connectivity(ld_dec *d)

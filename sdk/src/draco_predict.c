@@ -262,6 +262,26 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m)
 
 /* ---- schemes ------------------------------------------------------------------ */
 
+/* Delta coding with the wrap transform, any component count, on locals. */
+static lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
+{
+    const int32_t lo = p->min_value, hi = p->max_value;
+    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u, k = p->comps;
+    const size_t total = (size_t)n * k;
+    size_t i;
+    for (i = 0; i < total; ++i) {
+        const int32_t pred = i < k ? 0 : v[i - k];
+        int32_t x = pred > hi ? hi : (pred < lo ? lo : pred);
+        x = ld_wrap_add(x, v[i]);
+        if (x > hi)
+            x = (int32_t)((uint32_t)x - dif);
+        else if (x < lo)
+            x = (int32_t)((uint32_t)x + dif);
+        v[i] = x;
+    }
+    return LUMO_OK;
+}
+
 static lumo_status ld_delta(ld_pred *p, int32_t *v, uint32_t n)
 {
     static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
@@ -731,6 +751,8 @@ lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries)
 {
     switch (ld_effective_method(p)) {
     case LD_PRED_DIFFERENCE:
+        if (p->transform == LD_XFORM_WRAP)
+            return ld_delta_wrap(p, values, num_entries);
         return ld_delta(p, values, num_entries);
     case LD_PRED_PARALLELOGRAM:
         if (p->comps == 3 && p->transform == LD_XFORM_WRAP)
