@@ -153,23 +153,38 @@ static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
     return lenp;
 }
 
-/* Index of x among the candidates (p's corners then k's, two neighbours
- * each), or 2m for the escape. Mirrors candidate() in pmesh_batch.c. */
-static uint32_t find_candidate(const replay *r, uint32_t p, uint32_t k, uint32_t m, uint32_t x)
+/* Index of x among the neighbours of v's list (corner j/2, next vertex
+ * for even j, previous for odd), or 2 * len for the escape. */
+static uint32_t find_neighbour(const replay *r, uint32_t v, uint32_t len, uint32_t x)
 {
-    uint32_t j = 0, lists[2] = {p, k};
-    for (int l = 0; l < 2; l++)
-        for (uint32_t c = r->head[lists[l]]; c != NIL && j < 2 * m; c = r->next[c], j += 2) {
-            uint32_t f = c / 3, q = c % 3;
-            if (r->disp[3 * f + (q + 1) % 3] == x)
-                return j;
-            if (r->disp[3 * f + (q + 2) % 3] == x)
-                return j + 1;
-        }
-    return 2 * m;
+    uint32_t j = 0;
+    for (uint32_t c = r->head[v]; c != NIL && j < 2 * len; c = r->next[c], j += 2) {
+        uint32_t f = c / 3, q = c % 3;
+        if (r->disp[3 * f + (q + 1) % 3] == x)
+            return j;
+        if (r->disp[3 * f + (q + 2) % 3] == x)
+            return j + 1;
+    }
+    return 2 * len;
 }
 
-static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint32_t k, uint32_t m)
+/* Mirrors read_third() in pmesh_batch.c: among k's neighbours, else p's,
+ * else explicit. */
+static void write_third(const replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t lp,
+                        uint32_t lk, uint32_t x)
+{
+    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp};
+    for (int l = 0; l < 2; l++) {
+        uint32_t j = find_neighbour(r, lists[l], lens[l], x);
+        put_bits(w, j, bits_for(2 * lens[l] + 1));
+        if (j < 2 * lens[l])
+            return;
+    }
+    put_bits(w, x, bits_for(k));
+}
+
+static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint32_t k, uint32_t lp,
+                          uint32_t lk)
 {
     uint32_t t[3], rot = 3, flip = 0, x = 0;
     for (int i = 0; i < 3; i++)
@@ -185,11 +200,8 @@ static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint3
         flip = 1, x = t[(rot + 1) % 3];
     else
         return -1;  /* a reappearing face always holds edge (k, p) */
-    uint32_t j = find_candidate(r, p, k, m, x);
     put_bits(w, flip, 1);
-    put_bits(w, j, bits_for(2 * m + 1));
-    if (j == 2 * m)
-        put_bits(w, x, bits_for(k));
+    write_third(r, w, p, k, lp, lk, x);
     add_face(r, t);
     return 0;
 }
@@ -212,7 +224,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     else
         return -1;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
-        if (write_new_face(r, w, f0 + i, p, k, lenp + lenk))
+        if (write_new_face(r, w, f0 + i, p, k, lenp, lenk))
             return -1;
     predict(r, k);
     return 0;

@@ -324,20 +324,37 @@ static lumo_status move_corners(split_ctx *s, uint32_t p, uint32_t k, uint32_t *
     return LUMO_OK;
 }
 
-/* Candidate j: corner j/2 of p's list followed by k's list; its face's
- * next (j even) or previous (j odd) vertex. */
-static uint32_t candidate(const lumo_pmesh *pm, uint32_t p, uint32_t k, uint32_t j)
+/* Neighbour j of v's list: corner j/2, then its face's next (j even) or
+ * previous (j odd) vertex. */
+static uint32_t list_neighbour(const lumo_pmesh *pm, uint32_t v, uint32_t j)
 {
-    uint32_t c = pm->head[p], i = j >> 1;
-    for (; c != NIL && i > 0; i--)
+    uint32_t c = pm->head[v];
+    for (uint32_t i = j >> 1; c != NIL && i > 0; i--)
         c = pm->next[c];
-    if (c == NIL)  /* past p's list: continue in k's (the lengths are exact) */
-        for (c = pm->head[k]; c != NIL && i > 0; i--)
-            c = pm->next[c];
     if (c == NIL)
         return NIL;  /* unreachable with exact lengths; rejected by the caller */
     uint32_t f = c / 3, r = c % 3;
     return pm->tris[3 * f + (r + 1 + (j & 1)) % 3];
+}
+
+/* The third vertex of a reappearing face: a neighbour of k (the wings of a
+ * split border k's fan), else of p, else explicit. Each stage is an index
+ * with one escape value. */
+static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t lk,
+                              uint32_t *x)
+{
+    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp}, j;
+    for (int l = 0; l < 2; l++) {
+        if (read_bits(&s->br, bits_for(2 * lens[l] + 1), &j))
+            return LUMO_ERR_TRUNCATED;
+        if (j > 2 * lens[l])
+            return LUMO_ERR_CORRUPT;
+        if (j < 2 * lens[l]) {
+            *x = list_neighbour(s->pm, lists[l], j);
+            return LUMO_OK;
+        }
+    }
+    return read_bits(&s->br, bits_for(k), x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
 static lumo_status read_face_count(split_ctx *s, uint32_t *n)
@@ -354,19 +371,15 @@ static lumo_status read_face_count(split_ctx *s, uint32_t *n)
     return read_bits(&s->br, 4, n) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
-/* One reappearing face: (k, p, x) or, flipped, (k, x, p); the third
- * vertex x is a candidate index or an escape. */
-static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t m)
+/* One reappearing face: (k, p, x) or, flipped, (k, x, p). */
+static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t lk)
 {
-    uint32_t flip, j, x;
-    if (read_bits(&s->br, 1, &flip) || read_bits(&s->br, bits_for(2 * m + 1), &j))
+    uint32_t flip, x;
+    lumo_status st;
+    if (read_bits(&s->br, 1, &flip))
         return LUMO_ERR_TRUNCATED;
-    if (j > 2 * m)
-        return LUMO_ERR_CORRUPT;
-    if (j < 2 * m)
-        x = candidate(s->pm, p, k, j);
-    else if (read_bits(&s->br, bits_for(k), &x))
-        return LUMO_ERR_TRUNCATED;
+    if ((st = read_third(s, p, k, lp, lk, &x)))
+        return st;
     if (x >= k || x == p)
         return LUMO_ERR_CORRUPT;
     return flip ? add_face(s, k, x, p) : add_face(s, k, p, x);
@@ -407,7 +420,7 @@ static lumo_status split(split_ctx *s, uint32_t k)
         return st;
     uint32_t lenk = s->moves - moves_before;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
-        if ((st = read_new_face(s, p, k, lenp + lenk)))
+        if ((st = read_new_face(s, p, k, lenp, lenk)))
             return st;
     return s->res ? predict_split(s, k) : LUMO_OK;
 }
