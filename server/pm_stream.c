@@ -183,8 +183,20 @@ static void write_third(const replay *r, bitwriter *w, uint32_t p, uint32_t k, u
     put_bits(w, x, bits_for(k));
 }
 
+/* Face f at level k + 1 is (k, p, x) (flip 0) or (k, x, p) (flip 1):
+ * its flip, or -1 when it is neither. */
+static int face_flip(const replay *r, uint32_t f, uint32_t p, uint32_t k)
+{
+    uint32_t t[3];
+    for (int i = 0; i < 3; i++)
+        t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+    if (t[0] != k)
+        return -1;  /* pm_build.c rotates k to corner 0 */
+    return t[1] == p ? 0 : t[2] == p ? 1 : -1;
+}
+
 static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint32_t k, uint32_t lp,
-                          uint32_t lk)
+                          uint32_t lk, int flip_implied)
 {
     uint32_t t[3], rot = 3, flip = 0, x = 0;
     for (int i = 0; i < 3; i++)
@@ -200,7 +212,8 @@ static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint3
         flip = 1, x = t[(rot + 1) % 3];
     else
         return -1;  /* a reappearing face always holds edge (k, p) */
-    put_bits(w, flip, 1);
+    if (!flip_implied)
+        put_bits(w, flip, 1);
     write_third(r, w, p, k, lp, lk, x);
     add_face(r, t);
     return 0;
@@ -215,7 +228,9 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
         n++;
-    if (n == 2)
+    /* the face-count code of read_face_count() in pmesh_batch.c */
+    int paired = n == 2 && face_flip(r, f0, p, k) >= 0 && face_flip(r, f0, p, k) + face_flip(r, f0 + 1, p, k) == 1;
+    if (paired)
         put_bits(w, 1, 1);
     else if (n == 1)
         put_bits(w, 2, 2);
@@ -224,7 +239,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     else
         return -1;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
-        if (write_new_face(r, w, f0 + i, p, k, lenp, lenk))
+        if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired && i == 1))
             return -1;
     predict(r, k);
     return 0;

@@ -357,13 +357,17 @@ static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp,
     return read_bits(&s->br, bits_for(k), x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
-static lumo_status read_face_count(split_ctx *s, uint32_t *n)
+/* '1': two faces of opposite winding around (k, p), the usual interior
+ * split, so the second flip is implied; '01': one face; '00' + 4 bits: n
+ * faces, every flip explicit. */
+static lumo_status read_face_count(split_ctx *s, uint32_t *n, int *paired)
 {
     uint32_t bit;
+    *paired = 0;
     if (read_bits(&s->br, 1, &bit))
         return LUMO_ERR_TRUNCATED;
     if (bit)
-        return *n = 2, LUMO_OK;
+        return *n = 2, *paired = 1, LUMO_OK;
     if (read_bits(&s->br, 1, &bit))
         return LUMO_ERR_TRUNCATED;
     if (bit)
@@ -371,13 +375,16 @@ static lumo_status read_face_count(split_ctx *s, uint32_t *n)
     return read_bits(&s->br, 4, n) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
-/* One reappearing face: (k, p, x) or, flipped, (k, x, p). */
-static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t lk)
+/* One reappearing face: (k, p, x) or, flipped, (k, x, p). *flip is read
+ * unless `given` (0 or 1) says it. */
+static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t lk,
+                                 int given, uint32_t *flip_out)
 {
-    uint32_t flip, x;
+    uint32_t flip = (uint32_t)given, x;
     lumo_status st;
-    if (read_bits(&s->br, 1, &flip))
+    if (given < 0 && read_bits(&s->br, 1, &flip))
         return LUMO_ERR_TRUNCATED;
+    *flip_out = flip;
     if ((st = read_third(s, p, k, lp, lk, &x)))
         return st;
     if (x >= k || x == p)
@@ -407,7 +414,8 @@ static lumo_status predict_split(split_ctx *s, uint32_t k)
 
 static lumo_status split(split_ctx *s, uint32_t k)
 {
-    uint32_t p, lenp, n;
+    uint32_t p, lenp, n, flip = 0;
+    int paired;
     lumo_status st;
     if (read_bits(&s->br, bits_for(k), &p))
         return LUMO_ERR_TRUNCATED;
@@ -416,11 +424,11 @@ static lumo_status split(split_ctx *s, uint32_t k)
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
     uint32_t moves_before = s->moves;
-    if ((st = move_corners(s, p, k, &lenp)) || (st = read_face_count(s, &n)))
+    if ((st = move_corners(s, p, k, &lenp)) || (st = read_face_count(s, &n, &paired)))
         return st;
     uint32_t lenk = s->moves - moves_before;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
-        if ((st = read_new_face(s, p, k, lenp, lenk)))
+        if ((st = read_new_face(s, p, k, lenp, lenk, paired && i ? (int)!flip : -1, &flip)))
             return st;
     return s->res ? predict_split(s, k) : LUMO_OK;
 }
