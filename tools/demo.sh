@@ -12,11 +12,11 @@ build=${1:-build}
 bin="$build/bin"
 out="$build/demo"
 GRID=${GRID:-16}
-SPP=${SPP:-128}
+SPP=${SPP:-256}
 REF_SPP=${REF_SPP:-256}
 SIZE=${SIZE:-320x240}
-FRAMES=${FRAMES:-8}
-mkdir -p "$out"
+FRAMES=${FRAMES:-12}
+mkdir -p "$out/orbit"
 
 step() { printf '\n== %s\n' "$*"; }
 
@@ -32,9 +32,10 @@ step "3/5 client pictures (soft rasterizer, fixed point)"
 "$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --per-pixel --no-indirect -o "$out/client-direct.png"
 
 step "4/5 orbit: $FRAMES frames"
-"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --per-pixel --frames "$FRAMES" --orbit -o "$out/orbit.png"
+"$bin/lumo-render" "$out/scene.lumo" --size "$SIZE" --per-pixel --frames "$FRAMES" --orbit -o "$out/orbit/frame.png"
 
 step "5/5 side by side: client (direct + IVG) | client (direct only) | reference"
-"$bin/lumo-compare" "$out/client.png" "$out/client-direct.png" "$out/reference.png" -o "$out/side-by-side.png"
+"$bin/lumo-compare" "$out/client.png" "$out/client-direct.png" "$out/reference.png" \
+    --labels "client: direct + IVG,client: direct only,server: path traced" -o "$out/side-by-side.png"
 
 printf '\ndemo: pictures in %s/ (side-by-side.png first)\n' "$out"

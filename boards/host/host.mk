@@ -36,15 +36,3 @@ $(BIN)/lumo-raster-ram: $(BUILD)/host/boards/host/raster_ram.o $(BUILD)/rel/libl
 DEMO_DIR  := $(BUILD)/demo
 DEMO_SIZE ?= 640x480
 DEMO_SPP  ?= 128
-.PHONY: raster-demo
-demo: raster-demo
-raster-demo: $(BIN)/lumo-bake $(BIN)/lumo-render $(BIN)/lumo-compare
-	@mkdir -p $(DEMO_DIR)/orbit
-	$(BIN)/lumo-bake --default -o $(DEMO_DIR)/default.lumo --spp 256 --no-progress
-	$(BIN)/lumo-bake --default --reference $(DEMO_SIZE) --spp $(DEMO_SPP) -o $(DEMO_DIR)/reference.png --no-progress
-	$(BIN)/lumo-render $(DEMO_DIR)/default.lumo --per-pixel --size $(DEMO_SIZE) -o $(DEMO_DIR)/client.png
-	$(BIN)/lumo-render $(DEMO_DIR)/default.lumo --per-pixel --no-indirect --size $(DEMO_SIZE) -o $(DEMO_DIR)/client-direct.png
-	$(BIN)/lumo-render $(DEMO_DIR)/default.lumo --per-pixel --size $(DEMO_SIZE) --frames 12 --orbit -o $(DEMO_DIR)/orbit/frame.png
-	$(BIN)/lumo-compare $(DEMO_DIR)/client.png $(DEMO_DIR)/client-direct.png $(DEMO_DIR)/reference.png \
-	    --labels "client: direct + IVG,client: direct only,server: path traced" -o $(DEMO_DIR)/side-by-side.png
-	@echo "demo: $(DEMO_DIR)/side-by-side.png, frames in $(DEMO_DIR)/orbit/"
