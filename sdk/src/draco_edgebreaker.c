@@ -526,8 +526,8 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
         int split = 0;
         switch (sym) {
         case LD_TOPO_C: st = ld_eb_sym_c(e, &s, face); break;
-        case LD_TOPO_R: st = ld_eb_sym_rl(e, &s, face, 1); split = 1; break;
-        case LD_TOPO_L: st = ld_eb_sym_rl(e, &s, face, 0); split = 1; break;
+        case LD_TOPO_R:
+        case LD_TOPO_L: st = ld_eb_sym_rl(e, &s, face, sym == LD_TOPO_R); split = 1; break;
         case LD_TOPO_S: st = ld_eb_sym_s(e, &s, face, id); break;
         case LD_TOPO_E: st = ld_eb_sym_e(e, &s, face); split = 1; break;
         default: st = LUMO_ERR_CORRUPT; break;
