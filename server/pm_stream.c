@@ -198,23 +198,15 @@ static int face_flip(const replay *r, uint32_t f, uint32_t p, uint32_t k)
 static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint32_t k, uint32_t lp,
                           uint32_t lk, int flip_implied)
 {
-    uint32_t t[3], rot = 3, flip = 0, x = 0;
+    int flip = face_flip(r, f, p, k);
+    if (flip < 0)
+        return -1;  /* a reappearing face always holds edge (k, p), k first */
+    uint32_t t[3];
     for (int i = 0; i < 3; i++)
         t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
-    for (uint32_t i = 0; i < 3; i++)
-        if (t[i] == k)
-            rot = i;
-    if (rot != 0)
-        return -1;  /* pm_build.c rotates k to corner 0 */
-    if (t[(rot + 1) % 3] == p)
-        x = t[(rot + 2) % 3];
-    else if (t[(rot + 2) % 3] == p)
-        flip = 1, x = t[(rot + 1) % 3];
-    else
-        return -1;  /* a reappearing face always holds edge (k, p) */
     if (!flip_implied)
-        put_bits(w, flip, 1);
-    write_third(r, w, p, k, lp, lk, x);
+        put_bits(w, (uint32_t)flip, 1);
+    write_third(r, w, p, k, lp, lk, flip ? t[1] : t[2]);
     add_face(r, t);
     return 0;
 }
