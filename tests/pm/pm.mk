@@ -22,3 +22,9 @@ test-pm: $(PM_CHECK)
 	    set -- $$m; f=$(PM_MODELS)/$$1; shift; \
 	    if [ -f $$f ]; then $(PM_CHECK) $$f "$$@" || st=1; \
 	    else echo "RESULT: 0 passed, 1 failed ($$f missing: run tools/setup.sh)"; st=1; fi; done; exit $$st
+
+# The tools: lumo-pm build, lumo-inspect --stream / --lod N --ply.
+TEST_STEPS += test-pm-tools
+.PHONY: test-pm-tools
+test-pm-tools: $(BIN)/lumo-pm $(BIN)/lumo-inspect
+	@sh tests/pm/pm_tools.sh $(BIN) $(PM_MODELS)/dragon_11k.ply $(BUILD)/tests/pm-tools

@@ -1,0 +1,36 @@
+#!/bin/sh
+# tests/pm/pm_tools.sh BIN MODEL TMPDIR — the progressive-mesh tools end to
+# end: lumo-pm build (package with a PMSH chunk), lumo-inspect --stream and
+# --lod N --ply at the base, a middle and the full level, bad arguments.
+bin=$1; model=$2; tmp=$3
+pass=0; fail=0
+ok() { pass=$((pass + 1)); echo "ok   $1"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+mkdir -p "$tmp"
+if [ ! -f "$model" ]; then echo "RESULT: 0 passed, 1 failed ($model missing)"; exit 1; fi
+if "$bin/lumo-pm" build "$model" -o "$tmp/m.lumo" --batch 100 >"$tmp/build.txt"; then ok "lumo-pm build"; else bad "lumo-pm build"; fi
+if "$bin/lumo-inspect" --stream "$tmp/m.lumo" >"$tmp/stream.txt"; then ok "lumo-inspect --stream"; else bad "lumo-inspect --stream"; fi
+n=$(sed -n 's/^progressive mesh: \([0-9]*\) vertices, \([0-9]*\) faces; base \([0-9]*\) vertices.*/\1 \2 \3/p' "$tmp/stream.txt")
+set -- $n; nv=$1; nf=$2; base=$3
+rows=$(awk 'NR > 2' "$tmp/stream.txt" | wc -l)
+want=$(( 1 + (nv - base + 99) / 100 ))
+[ "$rows" -eq "$want" ] && ok "--stream lists $rows batches" || bad "--stream lists $rows batches, want $want"
+for lod in "$base" $(( (base + nv) / 2 )) all; do
+    if "$bin/lumo-inspect" --lod "$lod" --ply "$tmp/l.ply" "$tmp/m.lumo" >/dev/null; then
+        v=$(sed -n 's/^element vertex //p' "$tmp/l.ply"); f=$(sed -n 's/^element face //p' "$tmp/l.ply")
+        body=$(awk '/^end_header/ {h = 1; next} h' "$tmp/l.ply" | wc -l)
+        expect=$lod; [ "$lod" = all ] && expect=$nv
+        if [ "$v" -eq "$expect" ] && [ "$body" -eq $((v + f)) ] && { [ "$lod" != all ] || [ "$f" -eq "$nf" ]; }; then
+            ok "--lod $lod: $v vertices, $f faces"
+        else bad "--lod $lod: $v vertices, $f faces, $body lines"; fi
+    else bad "--lod $lod"; fi
+done
+for args in "--lod $((base - 1)) --ply $tmp/x.ply" "--lod $((nv + 1)) --ply $tmp/x.ply" "--lod 12x --ply $tmp/x.ply"; do
+    if "$bin/lumo-inspect" $args "$tmp/m.lumo" 2>"$tmp/err.txt" >/dev/null; then bad "lumo-inspect $args accepted"
+    elif grep -q "lumo-inspect: error:" "$tmp/err.txt"; then ok "lumo-inspect $args: one-line error"
+    else bad "lumo-inspect $args: no error line"; fi
+done
+head -c 1000 "$tmp/m.lumo" >"$tmp/cut.lumo"
+if "$bin/lumo-inspect" --stream "$tmp/cut.lumo" >/dev/null 2>&1; then bad "truncated package accepted"; else ok "truncated package rejected"; fi
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
