@@ -130,10 +130,10 @@ all: $(SETUP_STAMP) $(BUILD)/rel/liblumo.a $(ALL_TARGETS) $(HOST_TOOLS)
 
 test: $(SETUP_STAMP)
 	@$(MAKE) --no-print-directory all $(UNIT_TESTS) $(BUILD)/m3/liblumo.a
-	@sh tests/run.sh $(BUILD) "$(UNIT_TESTS)" "$(TEST_STEPS)"
+	+@sh tests/run.sh $(BUILD) "$(UNIT_TESTS)" "$(TEST_STEPS)"
 
 bench: $(SETUP_STAMP) all
-	@sh bench/run.sh $(BUILD) "$(BENCH_STEPS)"
+	+@sh bench/run.sh $(BUILD) "$(BENCH_STEPS)"
 
 fuzz: $(SETUP_STAMP) $(FUZZ_STEPS)
 
