@@ -107,7 +107,7 @@ board-tests: board-elfs $(BOARD_DRACO)/list.txt
 
 # Cortex-M3 instruction counts of the IVG core (tests/board/bench_ivg.c),
 # a section of docs/benchmarks.md.
-BOARD_BENCH_MD := $(BUILD)/bench/sections/60-board-ivg.md
+BOARD_BENCH_MD := $(BUILD)/bench/sections/25-board-ivg.md
 bench-board: $(MPS2_OUT)/bench_ivg.elf
 	@mkdir -p $(dir $(BOARD_BENCH_MD))
 	@$(MPS2_QEMU) $< </dev/null >$(MPS2_OUT)/bench_ivg.log 2>&1 || { cat $(MPS2_OUT)/bench_ivg.log; exit 1; }
