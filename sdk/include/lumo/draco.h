@@ -126,13 +126,17 @@ typedef struct lumo_draco_mesh {
                                  size this decode needs (peak use) */
 } lumo_draco_mesh;
 
-/* Parse the header and geometry counts only. */
+/* Parse the header, skip metadata, read the geometry counts; nothing is
+ * decoded. On error *info is unchanged. */
 lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *info);
 
-/* Upper bound of the arena bytes a decode needs, for a geometry whose
+/* Upper bound of the free arena bytes (lumo_arena_remaining) a decode
+ * needs, from the counts of lumo_draco_peek, for a geometry whose
  * attributes hold at most `max_components` portable components per point
  * in total (e.g. 3 position + 2 normal + 2 uv + 4 colour = 11). Includes
- * LUMO_ARENA_SLACK. SIZE_MAX on overflow. */
+ * LUMO_ARENA_SLACK. SIZE_MAX on overflow. Loose for EdgeBreaker meshes
+ * with attribute seams (points may reach 3 per face); the exact need of a
+ * decode is reported in lumo_draco_mesh. Formula: docs/draco-decoder.md. */
 size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_components);
 
 /* Decode a whole stream. On success *out describes arrays in `arena`.
