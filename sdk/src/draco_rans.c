@@ -81,9 +81,16 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
     return LUMO_OK;
 }
 
-static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m)
+/* The lookup table has at most 2^LD_LUT_BITS buckets and, for short
+ * streams, about two per value: a 200-value batch on a small board gets a
+ * 2 KB table, not 64 KB. */
+static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
 {
-    unsigned bits = r->prec_bits < LD_LUT_BITS ? r->prec_bits : LD_LUT_BITS;
+    unsigned bits = 8;
+    while (bits < LD_LUT_BITS && (1u << bits) < 2u * num_values)
+        ++bits;
+    if (bits > r->prec_bits)
+        bits = r->prec_bits;
     uint32_t buckets = 1u << bits, bkt, s = 0;
     r->lut_shift = r->prec_bits - bits;
     r->lut = ld_tmp(m, buckets, sizeof(uint32_t));
@@ -146,7 +153,8 @@ static inline uint32_t ld_rans_read(ld_rans *r)
     return s;
 }
 
-static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit_length)
+static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit_length,
+                                  uint32_t num_values)
 {
     lumo_status st;
     r->prec_bits = ld_rans_precision(bit_length);
@@ -154,7 +162,7 @@ static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit
         return st;
     if (r->num_symbols == 0)
         return LUMO_ERR_CORRUPT;  /* values announced but no alphabet */
-    return ld_rans_build_lut(r, m);
+    return ld_rans_build_lut(r, m, num_values);
 }
 
 static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
@@ -164,7 +172,7 @@ static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
     ld_bits bits;
     uint32_t i = 0;
     unsigned j;
-    lumo_status st = ld_rans_create(&tags, b, m, 5);
+    lumo_status st = ld_rans_create(&tags, b, m, 5, num_values / comps + 1u);
     if (st || (st = ld_rans_start(&tags, b)))
         return st;
     ld_bits_start(&bits, b);
@@ -189,7 +197,7 @@ static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint
         return st;
     if (max_bits < 1 || max_bits > 18)
         return LUMO_ERR_CORRUPT;
-    if ((st = ld_rans_create(&r, b, m, max_bits)) || (st = ld_rans_start(&r, b)))
+    if ((st = ld_rans_create(&r, b, m, max_bits, num_values)) || (st = ld_rans_start(&r, b)))
         return st;
     for (i = 0; i < num_values; ++i)
         out[i] = ld_rans_read(&r);
