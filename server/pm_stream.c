@@ -168,19 +168,26 @@ static uint32_t find_neighbour(const replay *r, uint32_t v, uint32_t len, uint32
     return 2 * len;
 }
 
-/* Mirrors read_third() in pmesh_batch.c: among k's neighbours, else p's,
- * else explicit. */
-static void write_third(const replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t lp,
-                        uint32_t lk, uint32_t x)
+/* Mirrors read_vertex() in pmesh_batch.c: a neighbour of each list in
+ * turn (index or escape), else explicit. */
+static void write_vertex(const replay *r, bitwriter *w, const uint32_t *lists, const uint32_t *lens,
+                         int nlists, uint32_t k, uint32_t x)
 {
-    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp};
-    for (int l = 0; l < 2; l++) {
+    for (int l = 0; l < nlists; l++) {
         uint32_t j = find_neighbour(r, lists[l], lens[l], x);
         put_bits(w, j, bits_for(2 * lens[l] + 1));
         if (j < 2 * lens[l])
             return;
     }
     put_bits(w, x, bits_for(k));
+}
+
+/* Mirrors read_third(): among k's neighbours, else p's, else explicit. */
+static void write_third(const replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t lp,
+                        uint32_t lk, uint32_t x)
+{
+    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp};
+    write_vertex(r, w, lists, lens, 2, k, x);
 }
 
 /* Face f at level k + 1 is (k, p, x) (flip 0) or (k, x, p) (flip 1):
@@ -211,17 +218,105 @@ static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint3
     return 0;
 }
 
+#define FAN_MAX_CORNERS 255u  /* as in pmesh_batch.c */
+
+static void put_gamma(bitwriter *w, uint32_t v)
+{
+    unsigned z = 0;
+    while (v >> (z + 1))
+        z++;
+    put_bits(w, 0, z);
+    put_bits(w, 1, 1);
+    put_bits(w, v & (((uint32_t)1 << z) - 1), z);
+}
+
+static int moves_to_k(const replay *r, uint32_t c, uint32_t k)
+{
+    return lumo_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
+}
+
+/* The corner fan_step() in pmesh_batch.c takes: the first of p's list,
+ * not yet taken, whose face continues p with a. */
+static uint32_t fan_corner(const replay *r, uint32_t p, uint32_t a, const uint32_t *taken, uint32_t nt)
+{
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c]) {
+        int used = 0;
+        for (uint32_t i = 0; i < nt && !used; i++)
+            used = taken[i] == c;
+        if (!used && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] == a)
+            return c;
+    }
+    return NIL;
+}
+
+/* Can the client derive the moves by walking p's fan from xa (the third
+ * vertex of the flip-0 face) to xb (of the flip-1 face)? Then *m is the
+ * number of moves. */
+static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32_t xb, uint32_t *m)
+{
+    uint32_t lp = 0, want = 0, taken[FAN_MAX_CORNERS + 1], a = xa;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c], lp++)
+        want += (uint32_t)moves_to_k(r, c, k);
+    if (lp > FAN_MAX_CORNERS)
+        return 0;
+    for (*m = 0; *m < want; (*m)++) {
+        uint32_t c = fan_corner(r, p, a, taken, *m);
+        if (c == NIL || !moves_to_k(r, c, k))
+            return 0;
+        taken[*m] = c;
+        a = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
+    }
+    return a == xb;
+}
+
+/* Mirrors fan_split() in pmesh_batch.c. */
+static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t f0, int flip0,
+                      uint32_t xa, uint32_t m)
+{
+    uint32_t lp = 0, a = xa;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
+        lp++;
+    put_bits(w, (uint32_t)flip0, 1);
+    write_vertex(r, w, &p, &lp, 1, k, xa);
+    put_gamma(w, m + 1);
+    for (uint32_t i = 0; i < m; i++) {
+        uint32_t prev = NIL, c = r->head[p];
+        while (r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != a)
+            prev = c, c = r->next[c];
+        a = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
+        if (prev == NIL)
+            r->head[p] = r->next[c];
+        else
+            r->next[prev] = r->next[c];
+        list_push(r, k, c);
+        r->disp[c] = k;
+        r->moves++;
+    }
+    for (uint32_t f = f0; f < f0 + 2; f++) {
+        uint32_t t[3];
+        for (int i = 0; i < 3; i++)
+            t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+        add_face(r, t);
+    }
+}
+
+/* The third vertex of face f at level k + 1. */
+static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
+{
+    return lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + (flip ? 1 : 2)], k + 1);
+}
+
 static int write_split(replay *r, bitwriter *w, uint32_t k)
 {
     const lumo_pm *pm = r->pm;
     uint32_t p = pm->parent[k], moves0 = r->moves;
     put_bits(w, p, bits_for(k));
-    uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
         n++;
     /* the face-count code of read_face_count() in pmesh_batch.c */
-    int paired = n == 2 && face_flip(r, f0, p, k) >= 0 && face_flip(r, f0, p, k) + face_flip(r, f0 + 1, p, k) == 1;
+    int flip0 = n == 2 ? face_flip(r, f0, p, k) : -1;
+    int paired = flip0 >= 0 && flip0 + face_flip(r, f0 + 1, p, k) == 1;
     if (paired)
         put_bits(w, 1, 1);
     else if (n == 1)
@@ -230,6 +325,17 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
         put_bits(w, 0, 2), put_bits(w, n, 4);
     else
         return -1;
+    if (paired) {
+        uint32_t m, xa = third(r, f0 + (uint32_t)flip0, k, 0), xb = third(r, f0 + 1 - (uint32_t)flip0, k, 1);
+        int fan = fan_plan(r, p, k, xa, xb, &m);
+        put_bits(w, (uint32_t)fan, 1);
+        if (fan) {
+            write_fan(r, w, p, k, f0, flip0, xa, m);
+            predict(r, k);
+            return 0;
+        }
+    }
+    uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired && i == 1))
             return -1;

@@ -337,14 +337,13 @@ static uint32_t list_neighbour(const lumo_pmesh *pm, uint32_t v, uint32_t j)
     return pm->tris[3 * f + (r + 1 + (j & 1)) % 3];
 }
 
-/* The third vertex of a reappearing face: a neighbour of k (the wings of a
- * split border k's fan), else of p, else explicit. Each stage is an index
- * with one escape value. */
-static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t lk,
-                              uint32_t *x)
+/* A vertex named as a neighbour of the given lists in turn (each stage an
+ * index with one escape value), else explicitly in w(k) bits. */
+static lumo_status read_vertex(split_ctx *s, const uint32_t *lists, const uint32_t *lens, int nlists,
+                               uint32_t k, uint32_t *x)
 {
-    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp}, j;
-    for (int l = 0; l < 2; l++) {
+    uint32_t j;
+    for (int l = 0; l < nlists; l++) {
         if (read_bits(&s->br, bits_for(2 * lens[l] + 1), &j))
             return LUMO_ERR_TRUNCATED;
         if (j > 2 * lens[l])
@@ -355,6 +354,15 @@ static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp,
         }
     }
     return read_bits(&s->br, bits_for(k), x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+}
+
+/* The third vertex of a reappearing face: a neighbour of k (the wings of a
+ * split border k's fan), else of p, else explicit. */
+static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t lk,
+                              uint32_t *x)
+{
+    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp};
+    return read_vertex(s, lists, lens, 2, k, x);
 }
 
 /* '1': two faces of opposite winding around (k, p), the usual interior
@@ -412,9 +420,96 @@ static lumo_status predict_split(split_ctx *s, uint32_t k)
     return grid_value(pm, k, pred, s->res, k - s->b->first);
 }
 
+/* Explicit split: the mask over p's corners, then the faces. */
+static lumo_status mask_split(split_ctx *s, uint32_t p, uint32_t k, uint32_t n, int paired)
+{
+    uint32_t lenp, flip = 0, moves_before = s->moves;
+    lumo_status st = move_corners(s, p, k, &lenp);
+    uint32_t lenk = s->moves - moves_before;
+    for (uint32_t i = 0; i < n && !st; i++, lenp++, lenk++)
+        st = read_new_face(s, p, k, lenp, lenk, paired && i ? (int)!flip : -1, &flip);
+    return st;
+}
+
+/* Fan splits walk p's list at most this long (bounded work per split). */
+#define FAN_MAX_CORNERS 255u
+
+static uint32_t list_length(const lumo_pmesh *pm, uint32_t v, uint32_t cap)
+{
+    uint32_t n = 0;
+    for (uint32_t c = pm->head[v]; c != NIL && n <= cap; c = pm->next[c])
+        n++;
+    return n;
+}
+
+/* Elias gamma code of a value >= 1: z zero bits, a one, z low bits. */
+static lumo_status read_gamma(split_ctx *s, uint32_t *v)
+{
+    uint32_t z = 0, bit = 0, low;
+    while (!bit) {
+        if (read_bits(&s->br, 1, &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (!bit && ++z > 31)
+            return LUMO_ERR_CORRUPT;
+    }
+    if (read_bits(&s->br, z, &low))
+        return LUMO_ERR_TRUNCATED;
+    *v = (uint32_t)1 << z | low;
+    return LUMO_OK;
+}
+
+/* Move the corner of p's list whose face continues p with `a` (the first
+ * one in list order) to k; *a becomes the face's vertex before p. */
+static lumo_status fan_step(split_ctx *s, uint32_t p, uint32_t k, uint32_t *a)
+{
+    lumo_pmesh *pm = s->pm;
+    uint32_t prev = NIL, c = pm->head[p];
+    while (c != NIL && pm->tris[3 * (c / 3) + (c % 3 + 1) % 3] != *a)
+        prev = c, c = pm->next[c];
+    if (c == NIL || s->moves >= s->b->moves)
+        return LUMO_ERR_CORRUPT;
+    *a = pm->tris[3 * (c / 3) + (c % 3 + 2) % 3];
+    if (prev == NIL)
+        pm->head[p] = pm->next[c];
+    else
+        pm->next[prev] = pm->next[c];
+    list_push(pm, k, c);
+    pm->tris[c] = k;
+    log_entry(s, c, prev, p);
+    s->moves++;
+    return LUMO_OK;
+}
+
+/* Fan split, the inverse of an interior half-edge collapse: the faces
+ * (k, p, xa) and (k, xb, p) reappear and the m faces of p's fan from xa
+ * to xb (next vertex after p = xa, then each face's previous vertex)
+ * move to k; only xa and m are coded. */
+static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
+{
+    uint32_t flip, xa, m, lp = list_length(s->pm, p, FAN_MAX_CORNERS);
+    lumo_status st;
+    if (lp > FAN_MAX_CORNERS)
+        return LUMO_ERR_LIMIT;
+    if (read_bits(&s->br, 1, &flip))
+        return LUMO_ERR_TRUNCATED;
+    if ((st = read_vertex(s, &p, &lp, 1, k, &xa)) || (st = read_gamma(s, &m)))
+        return st;
+    if (xa >= k || xa == p || --m > lp)
+        return LUMO_ERR_CORRUPT;
+    uint32_t xb = xa;
+    for (uint32_t i = 0; i < m; i++)
+        if ((st = fan_step(s, p, k, &xb)))
+            return st;
+    if (xb >= k || xb == p)
+        return LUMO_ERR_CORRUPT;
+    if (flip)
+        return (st = add_face(s, k, xb, p)) ? st : add_face(s, k, p, xa);
+    return (st = add_face(s, k, p, xa)) ? st : add_face(s, k, xb, p);
+}
+
 static lumo_status split(split_ctx *s, uint32_t k)
 {
-    uint32_t p, lenp, n, flip = 0;
+    uint32_t p, n, fan = 0;
     int paired;
     lumo_status st;
     if (read_bits(&s->br, bits_for(k), &p))
@@ -423,13 +518,12 @@ static lumo_status split(split_ctx *s, uint32_t k)
         return LUMO_ERR_RANGE;
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
-    uint32_t moves_before = s->moves;
-    if ((st = move_corners(s, p, k, &lenp)) || (st = read_face_count(s, &n, &paired)))
+    if ((st = read_face_count(s, &n, &paired)))
         return st;
-    uint32_t lenk = s->moves - moves_before;
-    for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
-        if ((st = read_new_face(s, p, k, lenp, lenk, paired && i ? (int)!flip : -1, &flip)))
-            return st;
+    if (paired && read_bits(&s->br, 1, &fan))
+        return LUMO_ERR_TRUNCATED;
+    if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
+        return st;
     return s->res ? predict_split(s, k) : LUMO_OK;
 }
 
