@@ -230,6 +230,17 @@ static void put_gamma(bitwriter *w, uint32_t v)
     put_bits(w, v & (((uint32_t)1 << z) - 1), z);
 }
 
+/* Mirrors read_fan_length() in pmesh_batch.c. */
+static void put_fan_length(bitwriter *w, uint32_t m)
+{
+    if (m >= 2 && m <= 4)
+        put_bits(w, m == 3 ? 0 : m == 4 ? 1 : 2, 2);  /* first bit in bit 0 */
+    else if (m == 1 || m == 5)
+        put_bits(w, 3, 2), put_bits(w, 0, 1), put_bits(w, m == 5, 1);
+    else
+        put_bits(w, 7, 3), put_gamma(w, m + 1);
+}
+
 static int moves_to_k(const replay *r, uint32_t c, uint32_t k)
 {
     return lumo_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
@@ -278,7 +289,7 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
         lp++;
     put_bits(w, (uint32_t)flip0, 1);
     write_vertex(r, w, &p, &lp, 1, k, xa);
-    put_gamma(w, m + 1);
+    put_fan_length(w, m);
     for (uint32_t i = 0; i < m; i++) {
         uint32_t prev = NIL, c = r->head[p];
         while (r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != a)

@@ -95,7 +95,9 @@ static size_t scratch_bytes(const lumo_pmesh_header *h)
     info.geometry = LUMO_DRACO_POINT_CLOUD;
     info.method = LUMO_DRACO_METHOD_SEQUENTIAL;
     info.num_points_max = max_u32(h->base_vertices, h->batch_vertices);
-    return lumo_draco_arena_bound(&info, 3);
+    info.input_bytes = h->max_batch_bytes;  /* no payload is longer than its record */
+    /* position (3 components) and, with albedo, the colour (3 more) */
+    return lumo_draco_arena_bound(&info, h->flags & LUMO_PMESH_HAS_ALBEDO ? 6u : 3u);
 }
 
 /* Undo-log words: three per corner move or face. Dirty vertices: up to

@@ -76,6 +76,8 @@ static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t s
         return LUMO_ERR_TRUNCATED;
     if (size > need)
         return LUMO_ERR_CORRUPT;
+    if (need > pm->h.max_batch_bytes)
+        return LUMO_ERR_LIMIT;  /* the Draco scratch is sized for the largest record */
     uint32_t crc = lumo_package_crc32(0, r, 32);
     crc = lumo_package_crc32(crc, r + LUMO_PMESH_BATCH_HEAD, need - LUMO_PMESH_BATCH_HEAD);
     if (crc != rd32(r + 32))
@@ -458,6 +460,26 @@ static lumo_status read_gamma(split_ctx *s, uint32_t *v)
     return LUMO_OK;
 }
 
+/* Fan length m (moved corners): a fixed prefix code for the common 1 … 5
+ * (an interior vertex of valence 6 moves 3). Bits in reading order:
+ * 0 0 → 3, 1 0 → 4, 0 1 → 2, 1 1 0 b → 1 (b = 0) or 5 (b = 1),
+ * 1 1 1 then gamma(m + 1) for any other m. */
+static lumo_status read_fan_length(split_ctx *s, uint32_t *m)
+{
+    static const uint8_t two[4] = {3, 4, 2, 0};  /* index: first bit + 2 * second */
+    uint32_t a, b;
+    if (read_bits(&s->br, 1, &a) || read_bits(&s->br, 1, &b))
+        return LUMO_ERR_TRUNCATED;
+    if (!(a && b))
+        return *m = two[a | b << 1], LUMO_OK;
+    if (read_bits(&s->br, 1, &a))
+        return LUMO_ERR_TRUNCATED;
+    if (!a)
+        return read_bits(&s->br, 1, &b) ? LUMO_ERR_TRUNCATED : (*m = b ? 5 : 1, LUMO_OK);
+    lumo_status st = read_gamma(s, m);
+    return st ? st : (*m -= 1, LUMO_OK);
+}
+
 /* Move the corner of p's list whose face continues p with `a` (the first
  * one in list order) to k; *a becomes the face's vertex before p. */
 static lumo_status fan_step(split_ctx *s, uint32_t p, uint32_t k, uint32_t *a)
@@ -492,9 +514,9 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
         return LUMO_ERR_LIMIT;
     if (read_bits(&s->br, 1, &flip))
         return LUMO_ERR_TRUNCATED;
-    if ((st = read_vertex(s, &p, &lp, 1, k, &xa)) || (st = read_gamma(s, &m)))
+    if ((st = read_vertex(s, &p, &lp, 1, k, &xa)) || (st = read_fan_length(s, &m)))
         return st;
-    if (xa >= k || xa == p || --m > lp)
+    if (xa >= k || xa == p || m > lp)
         return LUMO_ERR_CORRUPT;
     uint32_t xb = xa;
     for (uint32_t i = 0; i < m; i++)
