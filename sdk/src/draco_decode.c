@@ -356,29 +356,48 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
     }
     if (r.num_faces > LD_MAX_FACES || r.num_points_max > LD_MAX_POINTS)
         return LUMO_ERR_LIMIT;
+    r.input_bytes = size;
     *info = r;
     return LUMO_OK;
 }
 
+/* Work memory of one rANS symbol stream: the table of non-zero symbols
+ * (at most one per input byte, at most 2^18) and the lookup table (at most
+ * 2^14 buckets, about two per value). */
+static size_t ld_rans_work(size_t input, size_t values)
+{
+    size_t syms = input < ((size_t)1 << 18) ? input : ((size_t)1 << 18), lut = 256;
+    while (lut < ((size_t)1 << 14) && lut < 2u * values)
+        lut <<= 1;
+    return lumo_size_add(2u * lumo_arena_round(4u * (syms + 2u)), lumo_arena_round(4u * lut));
+}
+
 size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_components)
 {
-    size_t f, p, mc, out, work;
+    size_t f, p, c, out, work, values;
     if (!info)
         return SIZE_MAX;
     f = info->num_faces;
     p = info->num_points_max;
-    mc = max_components ? max_components : 1u;
-    /* outputs: attribute table, faces, per attribute its values, its
-     * quantization parameters and (one per attributes decoder at most)
-     * a point map */
-    out = sizeof(lumo_draco_attribute) * LUMO_DRACO_MAX_ATTRIBUTES + 64u * mc;
+    c = max_components ? max_components : 1u;
+    values = lumo_size_mul(p, c);
+    if (values < 3u * f)
+        values = 3u * f;
+    /* outputs: attribute table, faces, values and quantization parameters */
+    out = sizeof(lumo_draco_attribute) * LUMO_DRACO_MAX_ATTRIBUTES + 64u * c;
     out = lumo_size_add(out, lumo_size_mul(f, 12u));
-    out = lumo_size_add(out, lumo_size_mul(p, 8u * mc));
-    /* work (docs/draco-decoder.md): corner table and traversal ~128 B per
-     * face, 32 B per face per attribute seam table, 24 B per point for the
-     * attribute traversal, and the largest rANS table (2^18 symbols). */
-    work = lumo_size_mul(f, lumo_size_add(128u, 32u * mc));
-    work = lumo_size_add(work, lumo_size_mul(p, 24u));
-    work = lumo_size_add(work, ((size_t)1 << 20) + 65536u);
-    return lumo_size_add(lumo_size_add(out, work), LUMO_ARENA_SLACK);
+    out = lumo_size_add(out, lumo_size_mul(p, 4u * c));
+    work = ld_rans_work(info->input_bytes, values);
+    if (info->geometry == LUMO_DRACO_MESH && info->method == LUMO_DRACO_METHOD_EDGEBREAKER) {
+        /* + a point map per attributes decoder; corner table, symbol
+         * phase and traversal ~128 B per face plus 24 for valence
+         * contexts, 32 B per face per seam table, 24 B per point */
+        out = lumo_size_add(out, lumo_size_mul(p, 4u * c));
+        work = lumo_size_add(work, lumo_size_mul(f, 152u + 32u * c));
+        work = lumo_size_add(work, lumo_size_mul(p, 24u));
+    } else if (info->geometry == LUMO_DRACO_POINT_CLOUD && info->method == LUMO_DRACO_METHOD_KD_TREE) {
+        /* KD-tree: base and level stacks, status stack (dimension <= c) */
+        work = lumo_size_add(work, lumo_size_mul(32u * c + 2u, 8u * c + 32u));
+    }
+    return lumo_size_add(lumo_size_add(out, work), 256u + LUMO_ARENA_SLACK);
 }

@@ -21,8 +21,12 @@ typedef struct ld_rans {
     uint32_t state;
     uint32_t prec_bits;
     uint32_t num_symbols;
-    uint32_t *cum;     /* num_symbols + 1 cumulative probabilities */
-    uint32_t *lut;     /* 2^min(prec, LD_LUT_BITS) first symbols */
+    /* Only symbols of non-zero probability are kept (each costs at least
+     * one input byte, so the tables are bounded by the input size). */
+    uint32_t num_nz;
+    uint32_t *sym;     /* num_nz symbol values */
+    uint32_t *cum;     /* num_nz + 1 cumulative probabilities */
+    uint32_t *lut;     /* bucket -> first table entry of the bucket */
     unsigned lut_shift;
 } ld_rans;
 
@@ -35,7 +39,8 @@ static uint32_t ld_rans_precision(unsigned bit_length)
 
 static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
 {
-    uint32_t n, i, total;
+    uint32_t n, i, total = 0, k = 0;
+    size_t cap;
     lumo_status st = ld_varint32(b, &n);
     if (st)
         return st;
@@ -44,39 +49,42 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
     if (n > (1u << 18))
         return LUMO_ERR_LIMIT;  /* 18-bit symbols at most (raw coding) */
     r->num_symbols = n;
-    r->cum = ld_tmp(m, (size_t)n + 1u, sizeof(uint32_t));
-    if (!r->cum)
+    cap = n < ld_remaining(b) ? n : ld_remaining(b);
+    r->cum = ld_tmp(m, cap + 1u, sizeof(uint32_t));
+    r->sym = ld_tmp(m, cap + 1u, sizeof(uint32_t));
+    if (!r->cum || !r->sym)
         return LUMO_ERR_NOMEM;
     r->cum[0] = 0;
     for (i = 0; i < n; ++i) {
         uint8_t byte;
         uint32_t prob;
-        int extra, k;
+        int extra, j;
         if ((st = ld_u8(b, &byte)))
             return st;
         if ((byte & 3u) == 3u) {  /* run of zero-probability symbols */
-            uint32_t run = byte >> 2, j;
-            if (i + run >= n)
+            if (i + (byte >> 2) >= n)
                 return LUMO_ERR_CORRUPT;
-            for (j = 0; j <= run; ++j)
-                r->cum[i + j + 1] = r->cum[i];
-            i += run;
+            i += byte >> 2;
             continue;
         }
         extra = byte & 3;
         prob = byte >> 2;
-        for (k = 0; k < extra; ++k) {
+        for (j = 0; j < extra; ++j) {
             uint8_t eb;
             if ((st = ld_u8(b, &eb)))
                 return st;
-            prob |= (uint32_t)eb << (8 * (k + 1) - 2);
+            prob |= (uint32_t)eb << (8 * (j + 1) - 2);
         }
-        total = r->cum[i] + prob;
-        if (total > (1u << r->prec_bits) || total < r->cum[i])
+        if (prob == 0)
+            continue;
+        if (prob > (1u << r->prec_bits) - total || k >= cap)
             return LUMO_ERR_CORRUPT;
-        r->cum[i + 1] = total;
+        total += prob;
+        r->sym[k] = i;
+        r->cum[++k] = total;
     }
-    if (n && r->cum[n] != (1u << r->prec_bits))
+    r->num_nz = k;
+    if (n && total != (1u << r->prec_bits))
         return LUMO_ERR_CORRUPT;
     return LUMO_OK;
 }
@@ -89,9 +97,10 @@ static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
     unsigned bits = 8;
     while (bits < LD_LUT_BITS && (1u << bits) < 2u * num_values)
         ++bits;
+    uint32_t buckets, bkt, s = 0;
     if (bits > r->prec_bits)
         bits = r->prec_bits;
-    uint32_t buckets = 1u << bits, bkt, s = 0;
+    buckets = 1u << bits;
     r->lut_shift = r->prec_bits - bits;
     r->lut = ld_tmp(m, buckets, sizeof(uint32_t));
     if (!r->lut)
@@ -99,7 +108,7 @@ static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
     for (bkt = 0; bkt < buckets; ++bkt) {
         uint32_t start = bkt << r->lut_shift;
         while (r->cum[s + 1] <= start)
-            ++s;  /* terminates: cum[n] == 2^prec > start */
+            ++s;  /* terminates: cum[num_nz] == 2^prec > start */
         r->lut[bkt] = s;
     }
     return LUMO_OK;
@@ -150,7 +159,7 @@ static inline uint32_t ld_rans_read(ld_rans *r)
         while (r->cum[s + 1] <= rem)
             ++s;
     r->state = quo * (r->cum[s + 1] - r->cum[s]) + rem - r->cum[s];
-    return s;
+    return r->sym[s];
 }
 
 static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit_length,

@@ -112,6 +112,7 @@ typedef struct lumo_draco_info {
                                  EdgeBreaker 0 standard / 2 valence */
     uint32_t num_faces;       /* exact */
     uint32_t num_points_max;  /* upper bound on decoded points */
+    size_t   input_bytes;     /* size of the stream peeked at */
 } lumo_draco_info;
 
 typedef struct lumo_draco_mesh {
