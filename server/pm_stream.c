@@ -288,7 +288,12 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
     for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
         lp++;
     put_bits(w, (uint32_t)flip0, 1);
-    write_vertex(r, w, &p, &lp, 1, k, xa);
+    uint32_t wing = 0;  /* read_wing(): the first corner whose next vertex is xa */
+    for (uint32_t c = r->head[p]; c != NIL && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != xa; c = r->next[c])
+        wing++;
+    put_bits(w, wing, bits_for(lp + 1));
+    if (wing == lp)
+        put_bits(w, xa, bits_for(k));
     put_fan_length(w, m);
     for (uint32_t i = 0; i < m; i++) {
         uint32_t prev = NIL, c = r->head[p];

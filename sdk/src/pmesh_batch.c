@@ -502,6 +502,23 @@ static lumo_status fan_step(split_ctx *s, uint32_t p, uint32_t k, uint32_t *a)
     return LUMO_OK;
 }
 
+/* The first wing xa: the vertex right after p in corner i of p's list
+ * (w(lp + 1) bits), or explicit when i = lp. */
+static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t *xa)
+{
+    uint32_t i, c = s->pm->head[p];
+    if (read_bits(&s->br, bits_for(lp + 1), &i))
+        return LUMO_ERR_TRUNCATED;
+    if (i > lp)
+        return LUMO_ERR_CORRUPT;
+    if (i == lp)
+        return read_bits(&s->br, bits_for(k), xa) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+    while (i--)
+        c = s->pm->next[c];
+    *xa = s->pm->tris[3 * (c / 3) + (c % 3 + 1) % 3];
+    return LUMO_OK;
+}
+
 /* Fan split, the inverse of an interior half-edge collapse: the faces
  * (k, p, xa) and (k, xb, p) reappear and the m faces of p's fan from xa
  * to xb (next vertex after p = xa, then each face's previous vertex)
@@ -514,7 +531,7 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
         return LUMO_ERR_LIMIT;
     if (read_bits(&s->br, 1, &flip))
         return LUMO_ERR_TRUNCATED;
-    if ((st = read_vertex(s, &p, &lp, 1, k, &xa)) || (st = read_fan_length(s, &m)))
+    if ((st = read_wing(s, p, k, lp, &xa)) || (st = read_fan_length(s, &m)))
         return st;
     if (xa >= k || xa == p || m > lp)
         return LUMO_ERR_CORRUPT;
