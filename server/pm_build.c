@@ -48,6 +48,24 @@ static void rotate_faces(lumo_pm *pm)
     }
 }
 
+/* Within a level, the face (k, p, x) comes before (k, x, p): the stream
+ * then need not say which of an opposite pair is which. */
+static void order_pairs(lumo_pm *pm)
+{
+    for (uint32_t f = pm->base_faces; f + 1 < pm->faces; f++) {
+        uint32_t L = pm->level[f];
+        if (pm->level[f + 1] != L || (f + 2 < pm->faces && pm->level[f + 2] == L) ||
+            (f > pm->base_faces && pm->level[f - 1] == L))
+            continue;  /* only levels with exactly two faces */
+        uint32_t *a = pm->tris + 3 * (size_t)f, *b = a + 3, p = pm->parent[L - 1];
+        if (lumo_pm_resolve(pm, b[1], L) == p && lumo_pm_resolve(pm, a[1], L) != p)
+            for (int i = 0; i < 3; i++) {
+                uint32_t x = a[i];
+                a[i] = b[i], b[i] = x;
+            }
+    }
+}
+
 static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
 {
     uint32_t n = m->nv, nf = m->nf;
@@ -83,6 +101,7 @@ static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
             pm->tris[3 * (size_t)i + k] = newv[m->tris[3 * (size_t)order[i] + k]];
     }
     rotate_faces(pm);
+    order_pairs(pm);
     rc = 0;
 done:
     free(newv);

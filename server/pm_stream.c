@@ -281,13 +281,12 @@ static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32
 }
 
 /* Mirrors fan_split() in pmesh_batch.c. */
-static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t f0, int flip0,
+static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t f0,
                       uint32_t xa, uint32_t m)
 {
     uint32_t lp = 0, a = xa;
     for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
         lp++;
-    put_bits(w, (uint32_t)flip0, 1);
     uint32_t wing = 0;  /* read_wing(): the first corner whose next vertex is xa */
     for (uint32_t c = r->head[p]; c != NIL && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != xa; c = r->next[c])
         wing++;
@@ -332,7 +331,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
         n++;
     /* the face-count code of read_face_count() in pmesh_batch.c */
     int flip0 = n == 2 ? face_flip(r, f0, p, k) : -1;
-    int paired = flip0 >= 0 && flip0 + face_flip(r, f0 + 1, p, k) == 1;
+    int paired = flip0 == 0 && face_flip(r, f0 + 1, p, k) == 1;  /* pm_build.c order_pairs() */
     if (paired)
         put_bits(w, 1, 1);
     else if (n == 1)
@@ -342,18 +341,18 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     else
         return -1;
     if (paired) {
-        uint32_t m, xa = third(r, f0 + (uint32_t)flip0, k, 0), xb = third(r, f0 + 1 - (uint32_t)flip0, k, 1);
+        uint32_t m, xa = third(r, f0, k, 0), xb = third(r, f0 + 1, k, 1);
         int fan = fan_plan(r, p, k, xa, xb, &m);
         put_bits(w, (uint32_t)fan, 1);
         if (fan) {
-            write_fan(r, w, p, k, f0, flip0, xa, m);
+            write_fan(r, w, p, k, f0, xa, m);
             predict(r, k);
             return 0;
         }
     }
     uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
-        if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired && i == 1))
+        if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
             return -1;
     predict(r, k);
     return 0;

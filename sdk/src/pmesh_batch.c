@@ -368,8 +368,8 @@ static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp,
 }
 
 /* '1': two faces of opposite winding around (k, p), the usual interior
- * split, so the second flip is implied; '01': one face; '00' + 4 bits: n
- * faces, every flip explicit. */
+ * split, (k, p, x) first, so no flip is coded; '01': one face; '00' + 4
+ * bits: n faces, every flip explicit. */
 static lumo_status read_face_count(split_ctx *s, uint32_t *n, int *paired)
 {
     uint32_t bit;
@@ -429,7 +429,7 @@ static lumo_status mask_split(split_ctx *s, uint32_t p, uint32_t k, uint32_t n, 
     lumo_status st = move_corners(s, p, k, &lenp);
     uint32_t lenk = s->moves - moves_before;
     for (uint32_t i = 0; i < n && !st; i++, lenp++, lenk++)
-        st = read_new_face(s, p, k, lenp, lenk, paired && i ? (int)!flip : -1, &flip);
+        st = read_new_face(s, p, k, lenp, lenk, paired ? (int)i : -1, &flip);
     return st;
 }
 
@@ -520,17 +520,15 @@ static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, 
 }
 
 /* Fan split, the inverse of an interior half-edge collapse: the faces
- * (k, p, xa) and (k, xb, p) reappear and the m faces of p's fan from xa
+ * (k, p, xa) and (k, xb, p) reappear, in that order, and the m faces of p's fan from xa
  * to xb (next vertex after p = xa, then each face's previous vertex)
  * move to k; only xa and m are coded. */
 static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
 {
-    uint32_t flip, xa, m, lp = list_length(s->pm, p, FAN_MAX_CORNERS);
+    uint32_t xa, m, lp = list_length(s->pm, p, FAN_MAX_CORNERS);
     lumo_status st;
     if (lp > FAN_MAX_CORNERS)
         return LUMO_ERR_LIMIT;
-    if (read_bits(&s->br, 1, &flip))
-        return LUMO_ERR_TRUNCATED;
     if ((st = read_wing(s, p, k, lp, &xa)) || (st = read_fan_length(s, &m)))
         return st;
     if (xa >= k || xa == p || m > lp)
@@ -541,8 +539,6 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
             return st;
     if (xb >= k || xb == p)
         return LUMO_ERR_CORRUPT;
-    if (flip)
-        return (st = add_face(s, k, xb, p)) ? st : add_face(s, k, p, xa);
     return (st = add_face(s, k, p, xa)) ? st : add_face(s, k, xb, p);
 }
 
