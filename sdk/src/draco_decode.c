@@ -199,6 +199,47 @@ typedef struct ld_decoder_slot {
     uint8_t traversal, vertex_attr;
 } ld_decoder_slot;
 
+/* Decoder headers (EdgeBreaker: data id, element type, traversal), then
+ * each decoder's attribute descriptors. */
+static lumo_status ld_attribute_headers(ld_dec *d, ld_decoder_slot *slots, uint8_t n, int kd)
+{
+    uint8_t i;
+    uint32_t k;
+    lumo_status st;
+    for (i = 0; i < n; ++i)
+        if (d->eb && (st = ld_eb_create_attributes_decoder(d, i, &slots[i].seq,
+                                                           &slots[i].traversal,
+                                                           &slots[i].vertex_attr)))
+            return st;
+    for (i = 0; i < n; ++i) {
+        if ((st = ld_read_attribute_descriptors(d, i, &slots[i].first, &slots[i].count, !kd)))
+            return st;
+        for (k = 0; k < slots[i].count; ++k) {
+            d->attrs[slots[i].first + k].modes.traversal = slots[i].traversal;
+            d->attrs[slots[i].first + k].modes.vertex_attribute = slots[i].vertex_attr;
+        }
+    }
+    return LUMO_OK;
+}
+
+/* One attributes decoder: its point order, then its values. */
+static lumo_status ld_attribute_values(ld_dec *d, unsigned i, ld_decoder_slot *slot, int kd)
+{
+    uint8_t *mark = ld_tmp_mark(&d->mem);
+    lumo_status st;
+    if (kd)
+        return ld_kd_decode_attributes(d, slot->first, slot->count);
+    if (d->eb) {
+        if ((st = ld_eb_sequence(d, i, &slot->seq)))
+            return st;
+    } else {
+        slot->seq.num_entries = d->num_points;  /* linear sequencer */
+    }
+    st = ld_decode_attributes(d, slot->first, slot->count, &slot->seq);
+    ld_tmp_release(&d->mem, mark);
+    return st;
+}
+
 static lumo_status ld_all_attributes(ld_dec *d)
 {
     ld_decoder_slot slots[LD_MAX_DECODERS];
@@ -211,40 +252,11 @@ static lumo_status ld_all_attributes(ld_dec *d)
         return LUMO_ERR_LIMIT;
     d->num_decoders = n;
     memset(slots, 0, sizeof slots);
-    for (i = 0; i < n; ++i) {
-        if (d->eb && (st = ld_eb_create_attributes_decoder(d, i, &slots[i].seq,
-                                                           &slots[i].traversal,
-                                                           &slots[i].vertex_attr)))
+    if ((st = ld_attribute_headers(d, slots, n, kd)))
+        return st;
+    for (i = 0; i < n; ++i)
+        if ((st = ld_attribute_values(d, i, &slots[i], kd)))
             return st;
-    }
-    for (i = 0; i < n; ++i) {
-        uint32_t k;
-        if ((st = ld_read_attribute_descriptors(d, i, &slots[i].first, &slots[i].count, !kd)))
-            return st;
-        for (k = 0; k < slots[i].count; ++k) {
-            d->attrs[slots[i].first + k].modes.traversal = slots[i].traversal;
-            d->attrs[slots[i].first + k].modes.vertex_attribute = slots[i].vertex_attr;
-        }
-    }
-    for (i = 0; i < n; ++i) {
-        uint8_t *mark = ld_tmp_mark(&d->mem);
-        ld_seq *seq = &slots[i].seq;
-        if (kd) {
-            if ((st = ld_kd_decode_attributes(d, slots[i].first, slots[i].count)))
-                return st;
-            continue;
-        }
-        if (d->eb) {
-            if ((st = ld_eb_sequence(d, i, seq)))
-                return st;
-        } else {
-            seq->num_entries = d->num_points;  /* linear sequencer */
-        }
-        st = ld_decode_attributes(d, slots[i].first, slots[i].count, seq);
-        ld_tmp_release(&d->mem, mark);
-        if (st)
-            return st;
-    }
     return LUMO_OK;
 }
 
