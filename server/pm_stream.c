@@ -329,27 +329,24 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
         n++;
-    /* the face-count code of read_face_count() in pmesh_batch.c */
-    int flip0 = n == 2 ? face_flip(r, f0, p, k) : -1;
-    int paired = flip0 == 0 && face_flip(r, f0 + 1, p, k) == 1;  /* pm_build.c order_pairs() */
-    if (paired)
+    /* the kind code of read_split_kind() in pmesh_batch.c */
+    int paired = n == 2 && face_flip(r, f0, p, k) == 0 && face_flip(r, f0 + 1, p, k) == 1;
+    uint32_t m = 0, xa = paired ? third(r, f0, k, 0) : 0;
+    int fan = paired && fan_plan(r, p, k, xa, third(r, f0 + 1, k, 1), &m);
+    if (fan) {
         put_bits(w, 1, 1);
-    else if (n == 1)
+        write_fan(r, w, p, k, f0, xa, m);
+        predict(r, k);
+        return 0;
+    }
+    if (paired)
         put_bits(w, 2, 2);
+    else if (n == 1)
+        put_bits(w, 4, 3);
     else if (n < 16)
-        put_bits(w, 0, 2), put_bits(w, n, 4);
+        put_bits(w, 0, 3), put_bits(w, n, 4);
     else
         return -1;
-    if (paired) {
-        uint32_t m, xa = third(r, f0, k, 0), xb = third(r, f0 + 1, k, 1);
-        int fan = fan_plan(r, p, k, xa, xb, &m);
-        put_bits(w, (uint32_t)fan, 1);
-        if (fan) {
-            write_fan(r, w, p, k, f0, xa, m);
-            predict(r, k);
-            return 0;
-        }
-    }
     uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))

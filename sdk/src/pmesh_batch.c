@@ -367,21 +367,24 @@ static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp,
     return read_vertex(s, lists, lens, 2, k, x);
 }
 
-/* '1': two faces of opposite winding around (k, p), the usual interior
- * split, (k, p, x) first, so no flip is coded; '01': one face; '00' + 4
- * bits: n faces, every flip explicit. */
-static lumo_status read_face_count(split_ctx *s, uint32_t *n, int *paired)
+/* The split's kind. A pair is two faces of opposite winding around
+ * (k, p), (k, p, x) first, so no flip is coded. Bits in reading order:
+ * 1 → pair, fan split (the usual interior split); 0 1 → pair, mask split;
+ * 0 0 1 → one face; 0 0 0 + 4 bits → n faces, every flip explicit. */
+static lumo_status read_split_kind(split_ctx *s, uint32_t *n, int *paired, int *fan)
 {
     uint32_t bit;
-    *paired = 0;
-    if (read_bits(&s->br, 1, &bit))
-        return LUMO_ERR_TRUNCATED;
-    if (bit)
-        return *n = 2, *paired = 1, LUMO_OK;
-    if (read_bits(&s->br, 1, &bit))
-        return LUMO_ERR_TRUNCATED;
-    if (bit)
-        return *n = 1, LUMO_OK;
+    *paired = *fan = 0;
+    *n = 2;
+    for (int i = 0; i < 3; i++) {
+        if (read_bits(&s->br, 1, &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (bit) {
+            *paired = i < 2, *fan = i == 0;
+            *n = i < 2 ? 2 : 1;
+            return LUMO_OK;
+        }
+    }
     return read_bits(&s->br, 4, n) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
@@ -544,8 +547,8 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
 
 static lumo_status split(split_ctx *s, uint32_t k)
 {
-    uint32_t p, n, fan = 0;
-    int paired;
+    uint32_t p, n;
+    int paired, fan;
     lumo_status st;
     if (read_bits(&s->br, bits_for(k), &p))
         return LUMO_ERR_TRUNCATED;
@@ -553,10 +556,8 @@ static lumo_status split(split_ctx *s, uint32_t k)
         return LUMO_ERR_RANGE;
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
-    if ((st = read_face_count(s, &n, &paired)))
+    if ((st = read_split_kind(s, &n, &paired, &fan)))
         return st;
-    if (paired && read_bits(&s->br, 1, &fan))
-        return LUMO_ERR_TRUNCATED;
     if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
         return st;
     return s->res ? predict_split(s, k) : LUMO_OK;
