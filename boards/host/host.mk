@@ -1,6 +1,8 @@
 # boards/host/host.mk — the Linux host tools of the rasterizer: lumo-render
 # (soft, osmesa and egl backends; packages or generated scenes) and
-# lumo-compare (side-by-side PNG with Delta E and PSNR).
+# lumo-compare (side-by-side PNG with Delta E and PSNR). PNG files, image
+# metrics and file reads come from the desktop library build/host/libhost.a
+# (tools/lib/hostlib.mk, included after this file: named literally here).
 #
 # The GL backends (rasterizer/gl, osmesa, egl) are desktop objects built
 # here; they reach GL through get-proc-address, so no libGL is linked.
@@ -8,20 +10,18 @@ RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o \
                   $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
                   $(BUILD)/host/rasterizer/egl/raster_egl.o
 RASTER_GL_LIBS := -lOSMesa -lEGL
-HOST_RENDER_OBJS := $(patsubst %,$(BUILD)/host/boards/host/%.o,mesh_build png_rw package_load \
-                    render_backend image_metrics)
+HOST_RENDER_OBJS := $(patsubst %,$(BUILD)/host/boards/host/%.o,mesh_build package_load render_backend)
 
 $(BUILD)/host/rasterizer/gl/raster_gl.o: HOST_CFLAGS += -Irasterizer/gl
 
 HOST_TOOLS += $(BIN)/lumo-render $(BIN)/lumo-compare
 
 $(BIN)/lumo-render: $(BUILD)/host/boards/host/lumo_render.o $(HOST_RENDER_OBJS) $(RASTER_GL_OBJS) \
-                    $(BUILD)/rel/liblumo.a
+                    $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ $(RASTER_GL_LIBS) -lpng -lm
 
-$(BIN)/lumo-compare: $(BUILD)/host/boards/host/lumo_compare.o $(BUILD)/host/boards/host/png_rw.o \
-                     $(BUILD)/host/boards/host/image_metrics.o
+$(BIN)/lumo-compare: $(BUILD)/host/boards/host/lumo_compare.o $(BUILD)/host/libhost.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lpng -lm
 

@@ -15,9 +15,9 @@
 #include <string.h>
 #include <time.h>
 #include "lumo/raster.h"
+#include "lumo_host/png_io.h"
 #include "mesh_build.h"
 #include "package_load.h"
-#include "png_rw.h"
 #include "render_backend.h"
 
 static const char usage[] =
@@ -254,7 +254,7 @@ int main(int argc, char **argv)
         total += dt;
         if (dt < best) best = dt;
         frame_name(o.output, i, o.frames, name, sizeof name);
-        if (png_write_rgb(name, rgb, o.ro.width, o.ro.height)) {
+        if (lumo_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, NULL, 0)) {
             fprintf(stderr, "lumo-render: error: cannot write %s\n", name);
             rc = 1;
             break;

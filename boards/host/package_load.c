@@ -6,27 +6,8 @@
 #include <string.h>
 #include "lumo/arena.h"
 #include "lumo/package.h"
+#include "lumo_host/file_io.h"
 #include "package_load.h"
-
-static uint8_t *read_file(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    uint8_t *buf = NULL;
-    long n;
-
-    if (!f)
-        return NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0) {
-        buf = malloc((size_t)n);
-        if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-            free(buf);
-            buf = NULL;
-        }
-        *size = (size_t)n;
-    }
-    fclose(f);
-    return buf;
-}
 
 /* Package lights to rasterizer lights. An area light becomes a spot with a
  * 90-degree half angle at its centre facing its normal, with the power of a
@@ -135,7 +116,7 @@ static int load_ivg(const lumo_package *pkg, host_ivg *ivg)
 int host_package_load(const char *path, host_scene *s, host_ivg *ivg, char *err, size_t errlen)
 {
     size_t size = 0;
-    uint8_t *data = read_file(path, &size);
+    uint8_t *data = lumo_read_file(path, &size);
     lumo_package pkg;
     lumo_pkg_info info;
     lumo_status st;
@@ -144,7 +125,8 @@ int host_package_load(const char *path, host_scene *s, host_ivg *ivg, char *err,
 
     memset(s, 0, sizeof *s);
     memset(ivg, 0, sizeof *ivg);
-    if (!data) {
+    if (!data || size == 0) {   /* an empty file is as unreadable as a missing one */
+        free(data);
         snprintf(err, errlen, "%s: cannot read", path);
         return -1;
     }
