@@ -1,10 +1,13 @@
 # bench/server.mk — IVG bake and reference renderer benchmarks (issue 3).
-# Included before server/server.mk: name the server library literally here.
+# Included before server/server.mk and tools/lib/hostlib.mk: name the server
+# library and the desktop library (PNG, tone mapping, Delta E) literally here.
 BENCH_STEPS += bench-bake
 .PHONY: bench-bake
-$(BUILD)/host/bench/lumo-bench-bake: $(BUILD)/host/server/bench_bake.o $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo.a
+$(BUILD)/host/bench/lumo-bench-bake: $(BUILD)/host/server/bench_bake.o $(BUILD)/host/libserver.a \
+                                     $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $< $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo.a $(SERVER_LIBS)
+	$(CC) -pthread -o $@ $< $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a \
+	    $(SERVER_LIBS)
 bench-bake: $(BUILD)/host/bench/lumo-bench-bake
 	@mkdir -p $(BUILD)/bench/sections
 	$(BUILD)/host/bench/lumo-bench-bake > $(BUILD)/bench/sections/30-bake.md.tmp

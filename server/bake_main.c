@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "lumo_host/png_io.h"
 #include "lumo_server/bake.h"
 #include "lumo_server/import.h"
 #include "lumo_server/package_write.h"
@@ -240,7 +241,7 @@ static int run_reference(const options *o, const lumo_scene *s, const lumo_trace
     if (lumo_render_reference(t, &s->camera, o->ref_w, o->ref_h, &ro, &img, &rays))
         return fail("cannot render (out of memory or threads)");
     double dt = lumo_now() - t0;
-    if (lumo_png_write(o->out, &img, o->exposure, err, sizeof err)) {
+    if (lumo_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err)) {
         lumo_image_free(&img);
         return fail(err);
     }

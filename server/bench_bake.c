@@ -6,8 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo_host/image_diff.h"
+#include "lumo_host/tonemap.h"
 #include "lumo_server/bake.h"
-#include "lumo_server/color_diff.h"
 #include "lumo_server/import.h"
 #include "lumo_server/progress.h"
 #include "lumo_server/reference.h"
@@ -106,10 +107,7 @@ static uint8_t *render8(bench_scene *b, int w, int h, int spp, int indirect, dou
     if (lumo_render_reference(&b->t, &b->s.camera, w, h, &o, &img, NULL))
         return NULL;
     *secs = lumo_now() - t0;
-    size_t n = (size_t)w * (size_t)h * 3;
-    uint8_t *px = malloc(n);
-    for (size_t i = 0; px && i < n; i++)
-        px[i] = lumo_tonemap(img.rgb[i], 1.0f);
+    uint8_t *px = lumo_tonemap_rgb8(img.rgb, (size_t)w * (size_t)h * 3, 1.0f);
     lumo_image_free(&img);
     return px;
 }
@@ -124,10 +122,11 @@ static void reference_rows(bench_scene *b, int indirect)
         return;
     for (int i = 0; i < 4; i++) {
         uint8_t *img = render8(b, W, H, spps[i], indirect, &secs);
+        lumo_image_diff d;
         if (!img)
             continue;
-        printf("| %s | %d | %.2f | %.3f |\n", indirect ? "indirect only" : "full", spps[i], secs,
-               lumo_mean_delta_e(img, truth, (size_t)W * H));
+        lumo_image_diff_rgb8(img, truth, (size_t)W * H, &d);
+        printf("| %s | %d | %.2f | %.3f |\n", indirect ? "indirect only" : "full", spps[i], secs, d.mean_de);
         free(img);
     }
     free(truth);

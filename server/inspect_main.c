@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo_host/file_io.h"
 #include "lumo_server/inspect.h"
 
 #define MAX_COMMANDS 16
@@ -18,20 +19,12 @@ void lumo_inspect_register(const lumo_inspect_cmd *cmd)
 
 int lumo_inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pkg)
 {
-    FILE *f = fopen(path, "rb");
-    long n;
-    *data = NULL;
-    if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET)) {
+    *data = lumo_read_file(path, len);
+    if (!*data) {
         fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path);
-        if (f)
-            fclose(f);
         return -1;
     }
-    *data = malloc(n ? (size_t)n : 1);
-    *len = (size_t)n;
-    int ok = *data && fread(*data, 1, *len, f) == *len;
-    fclose(f);
-    lumo_status st = ok ? lumo_package_open(pkg, *data, *len) : LUMO_ERR_IO;
+    lumo_status st = lumo_package_open(pkg, *data, *len);
     if (st) {
         fprintf(stderr, "lumo-inspect: error: %s: not a valid package: %s\n", path, lumo_strerror(st));
         free(*data);

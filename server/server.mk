@@ -6,9 +6,12 @@
 #   LUMO_SERVER_EXTRA_LIBS  libraries for them (e.g. -ldraco -lstdc++)
 # lumo-inspect subcommands: any server/inspect_*.c is linked into lumo-inspect;
 # it registers itself with LUMO_INSPECT_COMMAND (server/include/lumo_server/inspect.h).
+# PNG files, tone mapping, Delta E and whole-file reads come from the desktop
+# library build/host/libhost.a (tools/lib/hostlib.mk, included after this
+# file, so named literally; it needs -lpng -lm from SERVER_LIBS).
 
 SERVER_CORE := camera scene shapes import scene_file default_scene rt pathtrace parallel \
-               progress bake reference png_io color_diff package_write pack ivg_encode
+               progress bake reference package_write pack ivg_encode
 SERVER_OBJS := $(patsubst %,$(BUILD)/host/server/%.o,$(SERVER_CORE))
 SERVER_LIB  := $(BUILD)/host/libserver.a
 SERVER_LIBS := -lembree3 -lassimp -lpng -lm -pthread
@@ -20,15 +23,17 @@ HOST_TOOLS += $(BIN)/lumo-bake $(BIN)/lumo-inspect
 $(SERVER_LIB): $(SERVER_OBJS)
 	rm -f $@ && ar rcs $@ $^
 
-$(BIN)/lumo-bake: $(BUILD)/host/server/bake_main.o $(SERVER_LIB) $(BUILD)/rel/liblumo.a $(LUMO_SERVER_EXTRA_OBJS)
+$(BIN)/lumo-bake: $(BUILD)/host/server/bake_main.o $(SERVER_LIB) $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a \
+                  $(LUMO_SERVER_EXTRA_OBJS)
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $(BUILD)/host/server/bake_main.o $(LUMO_SERVER_EXTRA_OBJS) $(SERVER_LIB) \
-	    $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)
+	    $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)
 
 # Inspect objects are linked directly (not from an archive), so their
 # registration constructors are kept. Extra objects come before the server
 # library because they may call into it.
-$(BIN)/lumo-inspect: $(INSPECT_OBJS) $(SERVER_LIB) $(BUILD)/rel/liblumo.a $(LUMO_SERVER_EXTRA_OBJS)
+$(BIN)/lumo-inspect: $(INSPECT_OBJS) $(SERVER_LIB) $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a \
+                     $(LUMO_SERVER_EXTRA_OBJS)
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $(INSPECT_OBJS) $(LUMO_SERVER_EXTRA_OBJS) $(SERVER_LIB) \
-	    $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)
+	    $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)

@@ -4,13 +4,12 @@
 # neither depends on the other. Headers: tools/lib/include/lumo_host/
 # (on HOST_CFLAGS and TEST_CFLAGS via -Itools/lib/include).
 #
-# This fragment is included after server/, boards/ and bench/ fragments, so
-# they name the archive literally: $(BUILD)/host/libhost.a, and link it with
-# $(HOST_LIB_LIBS)'s libraries (-lpng -lm), after their own objects.
+# This fragment is included after the server/, boards/ and bench/ fragments,
+# so they name the archive literally, $(BUILD)/host/libhost.a, and link it
+# after their own objects and libraries, followed by -lpng -lm.
 HOST_LIB_MODULES := file_io png_io tonemap image_diff
 HOST_LIB_OBJS    := $(patsubst %,$(BUILD)/host/tools/lib/%.o,$(HOST_LIB_MODULES))
 HOST_LIB         := $(BUILD)/host/libhost.a
-HOST_LIB_LIBS    := -lpng -lm
 
 ALL_TARGETS += $(HOST_LIB)
 

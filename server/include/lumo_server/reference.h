@@ -1,8 +1,9 @@
 /*
  * reference.h — the reference renderer: full path tracing (direct +
  * indirect, emitters visible) or the indirect part only, the ground truth
- * the client's images are measured against. Tone mapping and PNG output
- * follow docs/scene-format.md.
+ * the client's images are measured against. Its images go to 8-bit
+ * pixels and PNG files through the desktop library (tools/lib:
+ * lumo_host/tonemap.h, lumo_host/png_io.h; docs/scene-format.md).
  */
 #ifndef LUMO_SERVER_REFERENCE_H
 #define LUMO_SERVER_REFERENCE_H
@@ -29,13 +30,5 @@ typedef struct lumo_render_opts {
 int lumo_render_reference(const lumo_tracer *t, const lumo_camera *cam, int w, int h,
                           const lumo_render_opts *o, lumo_image *img, uint64_t *rays);
 void lumo_image_free(lumo_image *img);
-
-/* Tone map (x exposure, clamp, sRGB, 8 bits) one linear value. */
-uint8_t lumo_tonemap(float v, float exposure);
-
-/* Write an 8-bit sRGB PNG. 0, or -1 with err. */
-int lumo_png_write(const char *path, const lumo_image *img, float exposure, char *err, size_t errlen);
-/* Read an 8-bit RGB(A) PNG (for comparisons): rgb8 malloc'ed, w*h*3. */
-int lumo_png_read(const char *path, uint8_t **rgb8, int *w, int *h);
 
 #endif
