@@ -2,10 +2,12 @@
  *
  * The writer replays exactly what the client (sdk/src/pmesh_batch.c) will
  * do: the same per-vertex corner lists, updated in the same order, so each
- * vertex split can be told as "which of p's corners move to k" (one bit
- * each) and "which neighbour closes each reappearing face" (a short index
- * into the corners around p and k). Seed 000 §4.2 sends vertices, faces and
- * lookup tables; here the lookup-table entry of k is its parent p. */
+ * vertex split can be told cheaply: for an interior split, where p's fan
+ * starts (the first wing) and how many corners it moves to k; otherwise
+ * which of p's corners move (one bit each) and which neighbour closes each
+ * reappearing face (a short index into the corners around k and p). Seed
+ * 000 §4.2 sends vertices, faces and lookup tables; here the lookup-table
+ * entry of k is its parent p. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>

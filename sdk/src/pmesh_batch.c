@@ -4,8 +4,11 @@
  * Each vertex k of a batch is a vertex split, the inverse of the server's
  * half-edge collapse of k onto its lookup-table parent p. The client keeps,
  * for every vertex, the list of index-buffer corners that currently show
- * it; a split walks only p's list, moving the corners the mask selects to
- * k, then appends the faces that reappear. The work is that of the batch:
+ * it; a split walks only p's list, moving to k the corners of p's fan
+ * between the two wings (an interior split: only the first wing and the
+ * fan length are coded) or those a bit mask selects (boundary and
+ * non-manifold splits), then appends the faces that reappear. The work is
+ * that of the batch:
  * its vertices, their parents' valences and the new faces, never the mesh.
  *
  * A batch is checked whole before it is kept: the record's CRC and counts,
