@@ -3,17 +3,19 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include "lumo_host/file_io.h"
 
-/* Length of an open file, or -1. ftell after seeking to the end is the
- * portable C way; a directory or pipe fails here or at the read below. */
+/* Length of an open regular file, or -1. fstat rather than ftell at the
+ * end: on a directory ftell "succeeds" with LONG_MAX, and pipes have no
+ * length to allocate for. */
 static long file_length(FILE *f)
 {
-    long n;
+    struct stat st;
 
-    if (fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET))
+    if (fstat(fileno(f), &st) || !S_ISREG(st.st_mode) || st.st_size < 0)
         return -1;
-    return n;
+    return (long)st.st_size;
 }
 
 uint8_t *lumo_read_file(const char *path, size_t *size)
@@ -25,9 +27,8 @@ uint8_t *lumo_read_file(const char *path, size_t *size)
     if (!f)
         return NULL;
     n = file_length(f);
-    /* +1 for the terminating zero; a bogus huge length fails in malloc. */
-    if (n >= 0 && (unsigned long)n < (size_t)-1)
-        buf = malloc((size_t)n + 1);
+    if (n >= 0)
+        buf = malloc((size_t)n + 1);   /* +1 for the terminating zero */
     if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
         free(buf);
         buf = NULL;

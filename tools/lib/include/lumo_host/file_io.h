@@ -13,7 +13,8 @@
  * its length in *size. One extra zero byte follows the data, so text
  * formats (PLY headers, scene files) can be scanned as a C string; an
  * empty file gives a valid buffer with *size 0. NULL when the file cannot
- * be opened, sized or read, or memory runs out (*size is then untouched). */
+ * be opened or read, is not a regular file (directory, pipe), or memory
+ * runs out; *size is then untouched. */
 uint8_t *lumo_read_file(const char *path, size_t *size);
 
 #endif
