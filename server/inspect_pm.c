@@ -3,6 +3,7 @@
  *
  *   lumo-inspect --stream FILE           the header and every batch record
  *   lumo-inspect --lod N --ply OUT FILE  the level with N vertices (N = all)
+ *   --mesh I                             the I-th mesh's stream (default 0)
  *
  * FILE is a .lumo package with a PMSH chunk or a raw stream (lumo-pm --raw). */
 #include <stdio.h>
@@ -34,17 +35,27 @@ static int load(const char *path, uint8_t **data, size_t *len)
     return 0;
 }
 
-static int open_stream(const char *path, uint8_t **file, lumo_pm_client *c)
+/* --mesh I: which PMSH chunk (one per mesh of the scene). */
+static uint32_t mesh_arg(int argc, char **argv)
+{
+    for (int i = 1; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--mesh"))
+            return (uint32_t)strtoul(argv[i + 1], NULL, 10);
+    return 0;
+}
+
+static int open_stream(const char *path, uint32_t mesh, uint8_t **file, lumo_pm_client *c)
 {
     size_t len, slen;
     const uint8_t *s;
     if (load(path, file, &len))
         return -1;
-    lumo_status st = lumo_pm_find_stream(*file, len, &s, &slen);
+    lumo_status st = lumo_pm_find_stream(*file, len, mesh, &s, &slen);
     if (!st)
         st = lumo_pm_client_open(c, s, slen);
     if (st) {
-        fprintf(stderr, "lumo-inspect: error: %s: no progressive mesh stream: %s\n", path, lumo_strerror(st));
+        fprintf(stderr, "lumo-inspect: error: %s: no progressive mesh stream %u: %s\n", path, mesh,
+                lumo_strerror(st));
         free(*file);
         return -1;
     }
@@ -55,7 +66,7 @@ static int run_stream(int argc, char **argv)
 {
     uint8_t *file;
     lumo_pm_client c;
-    if (open_stream(lumo_inspect_file_arg(argc, argv), &file, &c))
+    if (open_stream(lumo_inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
         return 1;
     const lumo_pmesh_header *h = &c.h;
     printf("progressive mesh: %u vertices, %u faces; base %u vertices, %u faces; %u batches of %u "
@@ -127,7 +138,7 @@ static int run_lod(int argc, char **argv)
     }
     uint8_t *file;
     lumo_pm_client c;
-    if (open_stream(lumo_inspect_file_arg(argc, argv), &file, &c))
+    if (open_stream(lumo_inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
         return 1;
     char *end;
     unsigned long n = strcmp(lod, "all") ? strtoul(lod, &end, 10) : c.h.vertices;
@@ -158,5 +169,8 @@ done:
     return rc;
 }
 
-LUMO_INSPECT_COMMAND(pm_stream_cmd, "--stream", "--stream FILE.lumo      list the progressive-mesh batches", run_stream)
-LUMO_INSPECT_COMMAND(pm_lod_cmd, "--lod", "--lod N|all --ply OUT.ply FILE.lumo  write the level with N vertices", run_lod)
+LUMO_INSPECT_COMMAND(pm_stream_cmd, "--stream",
+                     "--stream [--mesh I] FILE.lumo      list the progressive-mesh batches", run_stream)
+LUMO_INSPECT_COMMAND(pm_lod_cmd, "--lod",
+                     "--lod N|all --ply OUT.ply [--mesh I] FILE.lumo  write the level with N vertices",
+                     run_lod)

@@ -59,19 +59,21 @@ void lumo_pm_client_close(lumo_pm_client *c)
     memset(c, 0, sizeof *c);
 }
 
-lumo_status lumo_pm_find_stream(const uint8_t *file, size_t len, const uint8_t **stream,
-                                size_t *stream_len)
+lumo_status lumo_pm_find_stream(const uint8_t *file, size_t len, uint32_t nth,
+                                const uint8_t **stream, size_t *stream_len)
 {
     lumo_package pkg;
     uint32_t n;
     if (len >= 4 && !memcmp(file, "LPM1", 4)) {
+        if (nth)
+            return LUMO_ERR_RANGE;
         *stream = file, *stream_len = len;
         return LUMO_OK;
     }
     lumo_status st = lumo_package_open(&pkg, file, len);
     if (st)
         return st;
-    if ((st = lumo_package_find(&pkg, LUMO_PM_CHUNK, 0, stream, &n)))
+    if ((st = lumo_package_find(&pkg, LUMO_PM_CHUNK, nth, stream, &n)))
         return st;
     *stream_len = n;
     return LUMO_OK;

@@ -26,5 +26,5 @@ test-pm: $(PM_CHECK)
 # The tools: lumo-pm build, lumo-inspect --stream / --lod N --ply.
 TEST_STEPS += test-pm-tools
 .PHONY: test-pm-tools
-test-pm-tools: $(BIN)/lumo-pm $(BIN)/lumo-inspect
+test-pm-tools: $(BIN)/lumo-pm $(BIN)/lumo-inspect $(BIN)/lumo-bake
 	@sh tests/pm/pm_tools.sh $(BIN) $(PM_MODELS)/dragon_11k.ply $(BUILD)/tests/pm-tools

@@ -30,6 +30,13 @@ for args in "--lod $((base - 1)) --ply $tmp/x.ply" "--lod $((nv + 1)) --ply $tmp
     elif grep -q "lumo-inspect: error:" "$tmp/err.txt"; then ok "lumo-inspect $args: one-line error"
     else bad "lumo-inspect $args: no error line"; fi
 done
+# lumo-bake --mesh pm: one PMSH stream per scene mesh, each decodable.
+if [ -x "$bin/lumo-bake" ] && "$bin/lumo-bake" --default --grid 4 --spp 2 --mesh pm -o "$tmp/scene.lumo" >/dev/null 2>&1; then
+    i=0; while "$bin/lumo-inspect" --stream --mesh $i "$tmp/scene.lumo" >/dev/null 2>&1; do i=$((i + 1)); done
+    if [ "$i" -ge 1 ] && "$bin/lumo-inspect" --lod all --ply "$tmp/s.ply" --mesh $((i - 1)) "$tmp/scene.lumo" >/dev/null; then
+        ok "lumo-bake --mesh pm: $i streams decode, --mesh $i is refused"
+    else bad "lumo-bake --mesh pm package: $i streams"; fi
+else bad "lumo-bake --default --mesh pm"; fi
 head -c 1000 "$tmp/m.lumo" >"$tmp/cut.lumo"
 if "$bin/lumo-inspect" --stream "$tmp/cut.lumo" >/dev/null 2>&1; then bad "truncated package accepted"; else ok "truncated package rejected"; fi
 echo "RESULT: $pass passed, $fail failed"

@@ -30,8 +30,9 @@ lumo_status lumo_pm_client_step(lumo_pm_client *c);
 lumo_status lumo_pm_client_until(lumo_pm_client *c, uint32_t vertices);
 void lumo_pm_client_close(lumo_pm_client *c);
 
-/* Find a stream: a .lumo package's PMSH chunk, or a raw stream file. */
-lumo_status lumo_pm_find_stream(const uint8_t *file, size_t len, const uint8_t **stream,
-                                size_t *stream_len);
+/* Find a stream: the nth PMSH chunk of a .lumo package (one per mesh), or
+ * a raw stream file (nth 0). */
+lumo_status lumo_pm_find_stream(const uint8_t *file, size_t len, uint32_t nth,
+                                const uint8_t **stream, size_t *stream_len);
 
 #endif
