@@ -22,7 +22,21 @@ static inline int32_t ld_wrap_add(int32_t a, int32_t b)
     return (int32_t)((uint32_t)a + (uint32_t)b);
 }
 
-static inline int64_t ld_abs64(int64_t v) { return v < 0 ? -v : v; }
+/* libdraco's int64 geometry arithmetic can overflow on crafted positions;
+ * lumo wraps (two's complement, what libdraco does in practice on x86) so
+ * the result stays defined and identical for every valid stream. */
+static inline int64_t ld_abs64(int64_t v) { return (int64_t)(v < 0 ? 0u - (uint64_t)v : (uint64_t)v); }
+static inline int64_t ld_mul64(int64_t a, int64_t b) { return (int64_t)((uint64_t)a * (uint64_t)b); }
+static inline int64_t ld_add64(int64_t a, int64_t b) { return (int64_t)((uint64_t)a + (uint64_t)b); }
+static inline int64_t ld_sub64(int64_t a, int64_t b) { return (int64_t)((uint64_t)a - (uint64_t)b); }
+static inline int64_t ld_div64(int64_t a, int64_t b)
+{
+    if (b == 0)
+        return 0;
+    if (b == -1)
+        return (int64_t)(0u - (uint64_t)a);  /* INT64_MIN / -1 wraps */
+    return a / b;
+}
 
 /* ---- transforms ------------------------------------------------------------- */
 
@@ -131,13 +145,15 @@ static int32_t ld_mod_max(const ld_pred *p, int32_t x)
     return x;
 }
 
+static inline int32_t ld_neg(int32_t v) { return (int32_t)(0u - (uint32_t)v); }
+
 static void ld_rotate(int32_t *x, int32_t *y, int count)
 {
     int32_t a = *x, b = *y;
     switch (count) {
-    case 1: *x = b; *y = -a; break;
-    case 2: *x = -a; *y = -b; break;
-    case 3: *x = -b; *y = a; break;
+    case 1: *x = b; *y = ld_neg(a); break;
+    case 2: *x = ld_neg(a); *y = ld_neg(b); break;
+    case 3: *x = ld_neg(b); *y = a; break;
     default: break;
     }
 }
@@ -156,8 +172,9 @@ static void ld_octa_original(const ld_pred *p, const int32_t *pred, const int32_
                              int32_t *out)
 {
     const int32_t c = p->oct_center;
-    int32_t s = pred[0] - c, t = pred[1] - c, os, ot;
-    int in_diamond = (uint32_t)(s < 0 ? -s : s) + (uint32_t)(t < 0 ? -t : t) <= (uint32_t)c;
+    int32_t s = ld_wrap_add(pred[0], ld_neg(c)), t = ld_wrap_add(pred[1], ld_neg(c)), os, ot;
+    int in_diamond = (s < 0 ? 0u - (uint32_t)s : (uint32_t)s) +
+                     (t < 0 ? 0u - (uint32_t)t : (uint32_t)t) <= (uint32_t)c;
     int bottom_left, rot;
     if (!in_diamond)
         ld_invert_diamond(c, &s, &t);
@@ -171,8 +188,8 @@ static void ld_octa_original(const ld_pred *p, const int32_t *pred, const int32_
         ld_rotate(&os, &ot, (4 - rot) % 4);
     if (!in_diamond)
         ld_invert_diamond(c, &os, &ot);
-    out[0] = os + c;
-    out[1] = ot + c;
+    out[0] = ld_wrap_add(os, c);
+    out[1] = ld_wrap_add(ot, c);
 }
 
 static inline void ld_original(const ld_pred *p, const int32_t *pred, const int32_t *corr, int32_t *out)
@@ -547,40 +564,43 @@ static lumo_status ld_tex_predict(ld_pred *p, uint32_t corner, const int32_t *da
             (st = ld_position(p, pid, pr)))
             return st;
         for (c = 0; c < 3; ++c)
-            pn[c] = pr[c] - nx[c];
-        pn2 = (uint64_t)(pn[0] * pn[0] + pn[1] * pn[1] + pn[2] * pn[2]);
+            pn[c] = pr[c] - nx[c];  /* int32 differences: no overflow */
+        pn2 = (uint64_t)ld_add64(ld_add64(ld_mul64(pn[0], pn[0]), ld_mul64(pn[1], pn[1])),
+                                 ld_mul64(pn[2], pn[2]));
         if (pn2 != 0) {
             for (c = 0; c < 3; ++c)
                 cn[c] = tip[c] - nx[c];
-            dot = pn[0] * cn[0] + pn[1] * cn[1] + pn[2] * cn[2];
+            dot = ld_add64(ld_add64(ld_mul64(pn[0], cn[0]), ld_mul64(pn[1], cn[1])),
+                           ld_mul64(pn[2], cn[2]));
             pnu = pu - nu;
             pnv = pv - nv;
             absmax = ld_abs64(nu) > ld_abs64(nv) ? ld_abs64(nu) : ld_abs64(nv);
             if ((uint64_t)absmax > (uint64_t)INT64_MAX / pn2)
                 return LUMO_ERR_CORRUPT;
-            xu = (int64_t)((uint64_t)nu * pn2 + (uint64_t)(dot * pnu));
-            xv = (int64_t)((uint64_t)nv * pn2 + (uint64_t)(dot * pnv));
+            xu = (int64_t)((uint64_t)nu * pn2 + (uint64_t)ld_mul64(dot, pnu));
+            xv = (int64_t)((uint64_t)nv * pn2 + (uint64_t)ld_mul64(dot, pnv));
             pn_absmax = ld_abs64(pn[0]);
             if (ld_abs64(pn[1]) > pn_absmax) pn_absmax = ld_abs64(pn[1]);
             if (ld_abs64(pn[2]) > pn_absmax) pn_absmax = ld_abs64(pn[2]);
-            if (dot > INT64_MAX / pn_absmax)
+            if (pn_absmax <= 0 || dot > INT64_MAX / pn_absmax)
                 return LUMO_ERR_CORRUPT;
             for (c = 0; c < 3; ++c) {
-                xpos[c] = nx[c] + (dot * pn[c]) / (int64_t)pn2;
-                cx[c] = tip[c] - xpos[c];
+                xpos[c] = ld_add64(nx[c], ld_div64(ld_mul64(dot, pn[c]), (int64_t)pn2));
+                cx[c] = ld_sub64(tip[c], xpos[c]);
             }
-            cx2 = (uint64_t)(cx[0] * cx[0] + cx[1] * cx[1] + cx[2] * cx[2]);
+            cx2 = (uint64_t)ld_add64(ld_add64(ld_mul64(cx[0], cx[0]), ld_mul64(cx[1], cx[1])),
+                                     ld_mul64(cx[2], cx[2]));
             norm = ld_int_sqrt(cx2 * pn2);
             cxu = (int64_t)((uint64_t)pnv * norm);
             cxv = (int64_t)((0u - (uint64_t)pnu) * norm);
             if (p->num_orient == 0)
                 return LUMO_ERR_CORRUPT;
             if (p->orient[--p->num_orient]) {
-                out[0] = (int32_t)((int64_t)((uint64_t)xu + (uint64_t)cxu) / (int64_t)pn2);
-                out[1] = (int32_t)((int64_t)((uint64_t)xv + (uint64_t)cxv) / (int64_t)pn2);
+                out[0] = (int32_t)ld_div64((int64_t)((uint64_t)xu + (uint64_t)cxu), (int64_t)pn2);
+                out[1] = (int32_t)ld_div64((int64_t)((uint64_t)xv + (uint64_t)cxv), (int64_t)pn2);
             } else {
-                out[0] = (int32_t)((int64_t)((uint64_t)xu - (uint64_t)cxu) / (int64_t)pn2);
-                out[1] = (int32_t)((int64_t)((uint64_t)xv - (uint64_t)cxv) / (int64_t)pn2);
+                out[0] = (int32_t)ld_div64((int64_t)((uint64_t)xu - (uint64_t)cxu), (int64_t)pn2);
+                out[1] = (int32_t)ld_div64((int64_t)((uint64_t)xv - (uint64_t)cxv), (int64_t)pn2);
             }
             return LUMO_OK;
         }
@@ -645,9 +665,9 @@ static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[
             a[k] = pn[k] - cent[k];
             b[k] = pp[k] - cent[k];
         }
-        nrm[0] += (uint64_t)(a[1] * b[2] - a[2] * b[1]);
-        nrm[1] += (uint64_t)(a[2] * b[0] - a[0] * b[2]);
-        nrm[2] += (uint64_t)(a[0] * b[1] - a[1] * b[0]);
+        nrm[0] += (uint64_t)ld_sub64(ld_mul64(a[1], b[2]), ld_mul64(a[2], b[1]));
+        nrm[1] += (uint64_t)ld_sub64(ld_mul64(a[2], b[0]), ld_mul64(a[0], b[2]));
+        nrm[2] += (uint64_t)ld_sub64(ld_mul64(a[0], b[1]), ld_mul64(a[1], b[0]));
         if (left) {  /* VertexCornersIterator */
             c = ld_swing_left(ct, c);
             if (c == LD_INV) {
@@ -663,12 +683,12 @@ static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[
     n[0] = (int64_t)nrm[0];
     n[1] = (int64_t)nrm[1];
     n[2] = (int64_t)nrm[2];
-    sum = ld_abs64(n[0]) + ld_abs64(n[1]) + ld_abs64(n[2]);
+    sum = ld_add64(ld_add64(ld_abs64(n[0]), ld_abs64(n[1])), ld_abs64(n[2]));
     if (sum > ((int64_t)1 << 29)) {
         int64_t q = sum / ((int64_t)1 << 29);
-        n[0] /= q;
-        n[1] /= q;
-        n[2] /= q;
+        n[0] = ld_div64(n[0], q);
+        n[1] = ld_div64(n[1], q);
+        n[2] = ld_div64(n[2], q);
     }
     out[0] = (int32_t)n[0];
     out[1] = (int32_t)n[1];
@@ -676,7 +696,7 @@ static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[
     return LUMO_OK;
 }
 
-static int32_t ld_abs32(int32_t v) { return v < 0 ? -v : v; }
+static int32_t ld_abs32(int32_t v) { return (int32_t)(v < 0 ? 0u - (uint32_t)v : (uint32_t)v); }
 
 /* OctahedronToolBox::CanonicalizeIntegerVector: scale onto the L1 sphere
  * of radius center. */
@@ -691,8 +711,8 @@ static void ld_canonicalize(const ld_pred *p, int32_t v[3])
     }
     v[0] = (int32_t)(((int64_t)v[0] * center) / sum);
     v[1] = (int32_t)(((int64_t)v[1] * center) / sum);
-    r = center - ld_abs32(v[0]) - ld_abs32(v[1]);
-    v[2] = v[2] >= 0 ? r : -r;
+    r = (int32_t)((uint32_t)center - (uint32_t)ld_abs32(v[0]) - (uint32_t)ld_abs32(v[1]));
+    v[2] = v[2] >= 0 ? r : (int32_t)(0u - (uint32_t)r);
 }
 
 /* IntegerVectorToQuantizedOctahedralCoords + CanonicalizeOctahedralCoords */
@@ -701,11 +721,11 @@ static void ld_int_to_octa(const ld_pred *p, const int32_t v[3], int32_t out[2])
     const int32_t center = p->oct_center, maxv = p->oct_max_q - 1;
     int32_t s, t;
     if (v[0] >= 0) {
-        s = v[1] + center;
-        t = v[2] + center;
+        s = ld_wrap_add(v[1], center);
+        t = ld_wrap_add(v[2], center);
     } else {
-        s = v[1] < 0 ? ld_abs32(v[2]) : maxv - ld_abs32(v[2]);
-        t = v[2] < 0 ? ld_abs32(v[1]) : maxv - ld_abs32(v[1]);
+        s = v[1] < 0 ? ld_abs32(v[2]) : ld_wrap_add(maxv, (int32_t)(0u - (uint32_t)ld_abs32(v[2])));
+        t = v[2] < 0 ? ld_abs32(v[1]) : ld_wrap_add(maxv, (int32_t)(0u - (uint32_t)ld_abs32(v[1])));
     }
     if ((s == 0 && t == 0) || (s == 0 && t == maxv) || (s == maxv && t == 0)) {
         s = maxv;
