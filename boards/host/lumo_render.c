@@ -6,7 +6,10 @@
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
  *       [--no-indirect] [--frames N --orbit] [--exposure E]
  *       [--model PATH] [--light SPEC] [--bands K] [--rgb565] [--depth16]
- *       [--no-cache] [--cull]
+ *       [--no-cache] [--cull] [--lod N|P%|all]
+ *
+ * Packages with progressive meshes (PMSH) are decoded through the SDK's
+ * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
  */
 #include <getopt.h>
 #include <math.h>
@@ -36,12 +39,17 @@ static const char usage[] =
     "  --rgb565 | --depth16        soft: RGB565 output with dither; 16-bit depth\n"
     "  --no-cache                  soft: no transformed-vertex cache\n"
     "  --cull                      drop back faces\n"
-    "  --warmup K                  draw K untimed frames first (GL shader compilation)\n";
+    "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
+    "  --lod N|P%|all              level of detail of progressive meshes: at most N vertices\n"
+    "                              per mesh, or the base mesh plus P% of the vertices\n"
+    "                              streamed after it (0% = base mesh), or all (default)\n";
 
 typedef struct options {
     const char *input, *output, *backend, *camera, *model;
     const char *lights[LUMO_RASTER_MAX_LIGHTS];
-    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup;
+    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set;
+    const char *lod_arg;
+    host_lod lod;
     double exposure;
     render_opts ro;
 } options;
@@ -61,7 +69,7 @@ static int parse_size(const char *s, uint16_t *w, uint16_t *h)
 static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_HELP };
+           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_HELP };
     static const struct option longs[] = {
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
         {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
@@ -69,7 +77,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"default", 0, 0, O_DEFAULT}, {"model", 1, 0, O_MODEL}, {"light", 1, 0, O_LIGHT},
         {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
         {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
-        {"help", 0, 0, O_HELP},
+        {"lod", 1, 0, O_LOD}, {"help", 0, 0, O_HELP},
         {"output", 1, 0, 'o'}, {0, 0, 0, 0}
     };
     int c;
@@ -83,6 +91,8 @@ static int parse_args(int argc, char **argv, options *o)
     o->ro.height = 240;
     o->ro.format = LUMO_PIXEL_XRGB8888;
     o->ro.depth_bits = 32;
+    o->lod_arg = "all";
+    host_lod_parse(o->lod_arg, &o->lod);
     while ((c = getopt_long(argc, argv, "o:h", longs, NULL)) != -1) {
         switch (c) {
         case 'o': o->output = optarg; break;
@@ -117,6 +127,11 @@ static int parse_args(int argc, char **argv, options *o)
         case O_WARMUP:
             o->warmup = (int)strtol(optarg, &end, 10);
             if (*end || o->warmup < 0 || o->warmup > 1000) return -1;
+            break;
+        case O_LOD:
+            if (host_lod_parse(optarg, &o->lod)) return -1;
+            o->lod_arg = optarg;
+            o->lod_set = strcmp(optarg, "all") != 0;
             break;
         case 'h': case O_HELP: fputs(usage, stdout); exit(0);
         default: return -1;
@@ -179,6 +194,31 @@ static void frame_name(const char *out, int i, int n, char *buf, size_t len)
     snprintf(buf, len, "%.*s_%03d%s", (int)(dot - out), out, i, dot);
 }
 
+/* The package, its meshes at the level --lod asks; one line saying which. */
+static int load_package(const options *o, host_scene *scene, host_ivg *ivg)
+{
+    host_load_stats st;
+    char err[512];
+
+    if (host_package_load(o->input, &o->lod, scene, ivg, &st, err, sizeof err)) {
+        fprintf(stderr, "lumo-render: error: %s\n", err);
+        return -1;
+    }
+    if (!st.progressive && o->lod_set) {
+        fprintf(stderr, "lumo-render: error: %s: --lod needs progressive meshes (the package has raw "
+                        "MESH chunks only; bake with --mesh pm)\n", o->input);
+        host_scene_free(scene);
+        host_ivg_free(ivg);
+        return -1;
+    }
+    if (st.progressive)
+        printf("lumo-render: %u progressive meshes at --lod %s: %u of %u vertices, %u triangles\n",
+               st.progressive, o->lod_arg, st.vertices, st.full_vertices, scene->mesh.tri_count);
+    else
+        printf("lumo-render: raw meshes: %u vertices, %u triangles\n", st.vertices, scene->mesh.tri_count);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     options o;
@@ -197,6 +237,10 @@ int main(int argc, char **argv)
         return 2;
     }
     memset(&ivg, 0, sizeof ivg);
+    if (o.use_default && o.lod_set) {
+        fprintf(stderr, "lumo-render: error: --lod needs a package with progressive meshes\n");
+        return 1;
+    }
     if (o.use_default) {
         const char *model = o.model ? o.model : getenv("LUMO_DRAGON");
         if (!model) model = "build/data/models/dragon_48k.ply";
@@ -204,10 +248,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "lumo-render: error: cannot build the default scene\n");
             return 1;
         }
-    } else if (host_package_load(o.input, &scene, &ivg, err, sizeof err)) {
-        fprintf(stderr, "lumo-render: error: %s\n", err);
+    } else if (load_package(&o, &scene, &ivg))
         return 1;
-    }
     if (o.camera && host_camera_parse(o.camera, &scene.camera)) {
         fprintf(stderr, "lumo-render: error: bad camera '%s'\n", o.camera);
         return 1;
