@@ -16,8 +16,9 @@
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
 
-/* How meshes go into the package: raw MESH chunks (what every reader takes
- * today), progressive PMSH streams (docs/progressive-mesh.md), or both. */
+/* How meshes go into the package: progressive PMSH streams (the default:
+ * "the progressive stream replaces the raw mesh", seed 000 §4.2,
+ * docs/progressive-mesh.md), raw MESH chunks, or both. */
 enum { MESH_RAW = 1, MESH_PM = 2, MESH_BOTH = 3 };
 /* A bake vertex is cheap (one per grid point): 256 paths keep the IVG's
  * noise low; a reference pixel needs far fewer for a preview. */
@@ -53,7 +54,7 @@ static const char usage[] =
     "                         spot:X,Y,Z:DX,DY,DZ:HALF_DEG:R,G,B |\n"
     "                         directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
     "  --albedo R,G,B         override every material's albedo\n"
-    "  --mesh raw|pm|both     mesh chunks: raw MESH (default), progressive PMSH, or both\n"
+    "  --mesh pm|raw|both     mesh chunks: progressive PMSH (default), raw MESH, or both\n"
     "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ")\n"
     "  --reference WxH        render a reference image instead of baking\n"
     "  --camera E:T:U:FOVY    camera (default: the scene's)\n"
@@ -165,7 +166,7 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     o->seed = 1;
     o->exposure = 1.0f;
     o->progress = 1;
-    o->mesh_mode = MESH_RAW;
+    o->mesh_mode = MESH_PM;
     o->threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
     o->threads = o->threads < 1 ? 1 : o->threads > 256 ? 256 : o->threads;
     opterr = 0;

@@ -73,9 +73,13 @@ cmp -s "$dir/a.lumo" "$dir/c.lumo" && bad "another seed gives the same package" 
 "$bake" --default --cell 0.5 --spp 2 -o "$dir/cell.lumo" 2>/dev/null && "$inspect" "$dir/cell.lumo" | grep -q "ivg       5x5x5" \
     && ok "--cell 0.5 gives a 5x5x5 grid" || bad "--cell"
 
-# --mesh: raw MESH chunks, progressive PMSH streams, or both.
+# --mesh: progressive PMSH streams (the default), raw MESH chunks, or both.
 "$bake" --default --grid 3 --spp 2 --mesh pm -o "$dir/pm.lumo" 2>/dev/null && "$inspect" "$dir/pm.lumo" >"$dir/pm.txt" \
     && grep -q PMSH "$dir/pm.txt" && ! grep -q "MESH  offset" "$dir/pm.txt" && ok "--mesh pm: PMSH chunks only" || bad "--mesh pm"
+"$bake" --default --grid 3 --spp 2 -o "$dir/dflt.lumo" 2>/dev/null && cmp -s "$dir/pm.lumo" "$dir/dflt.lumo" \
+    && ok "no --mesh: the same bytes as --mesh pm" || bad "default --mesh is not pm"
+"$bake" --default --grid 3 --spp 2 --mesh raw -o "$dir/raw.lumo" 2>/dev/null && "$inspect" "$dir/raw.lumo" >"$dir/raw.txt" \
+    && grep -q "MESH  offset" "$dir/raw.txt" && ! grep -q PMSH "$dir/raw.txt" && ok "--mesh raw: MESH chunks only" || bad "--mesh raw"
 "$bake" --default --grid 3 --spp 2 --mesh both -o "$dir/both.lumo" 2>/dev/null && "$inspect" "$dir/both.lumo" >"$dir/both.txt" \
     && grep -q PMSH "$dir/both.txt" && grep -q "MESH  offset" "$dir/both.txt" && ok "--mesh both" || bad "--mesh both"
 expect_error "bad --mesh"           "$bake" --default --mesh draco -o "$dir/x.lumo"
