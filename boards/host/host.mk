@@ -25,6 +25,13 @@ $(BIN)/lumo-compare: $(BUILD)/host/boards/host/lumo_compare.o $(BUILD)/host/libh
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lpng -lm
 
+# Progressive meshes in lumo-render (issue 5): pm vs raw package (mean
+# Delta E <= 1), --lod levels, a damaged stream (tests/render/lod.sh).
+.PHONY: raster-lod
+TEST_STEPS += raster-lod
+raster-lod: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake $(BIN)/lumo-inspect
+	sh tests/render/lod.sh $(BUILD)
+
 HOST_TOOLS += $(BIN)/lumo-raster-ram
 $(BIN)/lumo-raster-ram: $(BUILD)/host/boards/host/raster_ram.o $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
