@@ -18,9 +18,16 @@ expect_status() {  # expect_status WANT CMD...
     if [ "$got" -eq "$want" ]; then ok; else bad "'$*' exited $got, want $want"; cat "$out/last.log"; fi
 }
 pkg=$build/render/default.lumo
-[ -f "$pkg" ] || "$bin/lumo-bake" --default -o "$pkg" --spp 64 --no-progress >/dev/null || exit 1
+# rebaked when older than lumo-bake (same rule as cross_backend.sh); the
+# default package carries progressive meshes, decoded by lumo-render
+[ "$pkg" -nt "$bin/lumo-bake" ] || "$bin/lumo-bake" --default -o "$pkg" --spp 64 --no-progress >/dev/null || exit 1
 
 expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/a.png" --size 64x48
+if grep -q "progressive meshes at --lod all" "$out/last.log"; then ok; else bad "default package: no progressive meshes"; fi
+expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/lod.png" --size 64x48 --lod 10%
+if "$bin/lumo-render" --help | grep -q -- "--lod N|P%|all"; then ok; else bad "--help lacks --lod"; fi
+expect_status 2 "$bin/lumo-render" "$pkg" -o "$out/x.png" --lod 10q
+expect_status 1 "$bin/lumo-render" --default -o "$out/x.png" --lod 10%
 if file "$out/a.png" 2>/dev/null | grep -q "64 x 48"; then ok; else bad "a.png is not 64x48"; fi
 expect_status 0 "$bin/lumo-render" "$pkg" -o "$out/orbit.png" --size 32x24 --frames 3 --orbit
 if [ -f "$out/orbit_000.png" ] && [ -f "$out/orbit_002.png" ]; then ok; else bad "orbit frames missing"; fi
