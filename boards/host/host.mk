@@ -39,7 +39,8 @@ $(BIN)/lumo-raster-ram: $(BUILD)/host/boards/host/raster_ram.o $(BUILD)/rel/libl
 
 # make demo (issue 6): bake the default scene, render it on the client with
 # and without the IVG, path-trace the server's reference, and place the
-# three side by side with the error printed; plus an orbit of PNG frames.
+# three side by side with the error printed; the progressive meshes at three
+# levels of detail side by side (lod.png); plus an orbit of PNG frames.
 DEMO_DIR  := $(BUILD)/demo
 DEMO_SIZE ?= 640x480
 DEMO_SPP  ?= 128

@@ -112,7 +112,8 @@ static uint32_t lod_target(const host_lod *lod, const lumo_pmesh_header *h)
     if (lod && lod->vertices)
         t = lod->vertices < h->vertices ? lod->vertices : h->vertices;
     else if (lod && lod->fraction < 1)
-        t = h->base_vertices + (uint32_t)ceil(lod->fraction * (h->vertices - h->base_vertices));
+        /* less a hair so that 7% of 100 is 7, not the 8 of 7.000000000000001 */
+        t = h->base_vertices + (uint32_t)ceil(lod->fraction * (h->vertices - h->base_vertices) - 1e-9);
     return t < h->base_vertices ? h->base_vertices : t;
 }
 
