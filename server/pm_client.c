@@ -73,7 +73,7 @@ lumo_status lumo_pm_find_stream(const uint8_t *file, size_t len, uint32_t nth,
     lumo_status st = lumo_package_open(&pkg, file, len);
     if (st)
         return st;
-    if ((st = lumo_package_find(&pkg, LUMO_PM_CHUNK, nth, stream, &n)))
+    if ((st = lumo_package_find(&pkg, LUMO_PKG_PMSH, nth, stream, &n)))
         return st;
     *stream_len = n;
     return LUMO_OK;

@@ -2,6 +2,7 @@
  * the call lumo-bake makes instead of writing the raw MESH chunk. */
 #include <stdio.h>
 #include <stdlib.h>
+#include "lumo/package.h"
 #include "lumo_server/package_write.h"
 #include "lumo_server/pm_stream.h"
 
@@ -19,7 +20,7 @@ int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, const uint8_t *alb
     int rc = lumo_pm_stream_build(&pm, o, &s, &len, NULL, NULL);
     if (rc)
         snprintf(err, errlen, "progressive mesh: cannot encode the stream");
-    else if ((rc = lumo_pkgw_add(w, LUMO_PM_CHUNK, s, len)))
+    else if ((rc = lumo_pkgw_add(w, LUMO_PKG_PMSH, s, len)))
         snprintf(err, errlen, "progressive mesh: out of memory");
     free(s);
     lumo_pm_free(&pm);

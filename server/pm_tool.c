@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo/package.h"
 #include "lumo_server/package_write.h"
 #include "lumo_server/pm_client.h"
 #include "lumo_server/pm_load.h"
@@ -76,7 +77,7 @@ static int write_output(const args *a, const uint8_t *s, size_t n)
     lumo_pkg_writer w;
     char err[256];
     lumo_pkgw_init(&w);
-    int rc = lumo_pkgw_add(&w, LUMO_PM_CHUNK, s, n) || lumo_pkgw_write_file(&w, a->out, err, sizeof err);
+    int rc = lumo_pkgw_add(&w, LUMO_PKG_PMSH, s, n) || lumo_pkgw_write_file(&w, a->out, err, sizeof err);
     if (rc)
         fprintf(stderr, "lumo-pm: error: %s\n", err);
     lumo_pkgw_free(&w);

@@ -13,7 +13,6 @@
 #include "package_load.h"
 
 /* The chunk type of a progressive stream (docs/package-format.md). */
-#define HOST_PKG_PMSH LUMO_PKG_FOURCC('P', 'M', 'S', 'H')
 /* Albedo of a stream that carries none: 0.75 (Q1.14). */
 #define HOST_DEFAULT_ALBEDO ((lumo_q1_14)(3 * LUMO_Q14_ONE / 4))
 
@@ -191,7 +190,7 @@ static int load_meshes(const lumo_package *pkg, const lumo_pkg_info *info, const
     const uint8_t *stream;
     uint32_t i, len, streams = 0;
 
-    while (lumo_package_find(pkg, HOST_PKG_PMSH, streams, &stream, &len) == LUMO_OK)
+    while (lumo_package_find(pkg, LUMO_PKG_PMSH, streams, &stream, &len) == LUMO_OK)
         streams++;
     if (streams == 0) {
         if (load_raw_meshes(pkg, info, m, stats) == 0)
@@ -204,7 +203,7 @@ static int load_meshes(const lumo_package *pkg, const lumo_pkg_info *info, const
         return -1;
     }
     for (i = 0; i < streams; i++) {
-        lumo_package_find(pkg, HOST_PKG_PMSH, i, &stream, &len);
+        lumo_package_find(pkg, LUMO_PKG_PMSH, i, &stream, &len);
         if (load_stream(stream, len, i, lod, m, stats, err, errlen))
             return -1;
     }

@@ -32,6 +32,7 @@
     ((uint32_t)(a) | ((uint32_t)(b) << 8) | ((uint32_t)(c) << 16) | ((uint32_t)(d) << 24))
 #define LUMO_PKG_INFO LUMO_PKG_FOURCC('I', 'N', 'F', 'O')  /* scene info, exactly one */
 #define LUMO_PKG_MESH LUMO_PKG_FOURCC('M', 'E', 'S', 'H')  /* raw mesh, one per mesh */
+#define LUMO_PKG_PMSH LUMO_PKG_FOURCC('P', 'M', 'S', 'H')  /* progressive mesh stream, one per mesh */
 #define LUMO_PKG_IVGD LUMO_PKG_FOURCC('I', 'V', 'G', 'D')  /* IVG grid descriptor */
 #define LUMO_PKG_IVGQ LUMO_PKG_FOURCC('I', 'V', 'G', 'Q')  /* IVG bundle, quantized form */
 #define LUMO_PKG_IVGF LUMO_PKG_FOURCC('I', 'V', 'G', 'F')  /* IVG bundle, float form */

@@ -32,8 +32,6 @@ typedef struct lumo_pm_batch_info {
 int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uint8_t **out,
                          size_t *len, lumo_pm_batch_info **batches, uint32_t *nbatches);
 
-/* The package chunk type that carries a stream ("PMSH"). */
-#define LUMO_PM_CHUNK 0x48534d50u
 
 #endif
 
