@@ -9,27 +9,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo_host/file_io.h"
 #include "lumo_server/inspect.h"
 #include "lumo_server/pm_client.h"
 
 static int load(const char *path, uint8_t **data, size_t *len)
 {
-    FILE *f = path ? fopen(path, "rb") : NULL;
-    long n;
-    *data = NULL;
-    if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET)) {
+    *data = path ? lumo_read_file(path, len) : NULL;
+    if (*data == NULL) {
         fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path ? path : "(no file)");
-        if (f)
-            fclose(f);
-        return -1;
-    }
-    *data = malloc(n ? (size_t)n : 1);
-    *len = (size_t)n;
-    int ok = *data && fread(*data, 1, *len, f) == *len;
-    fclose(f);
-    if (!ok) {
-        fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path);
-        free(*data);
         return -1;
     }
     return 0;

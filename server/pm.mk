@@ -13,7 +13,7 @@ LUMO_SERVER_EXTRA_LIBS += $(PM_LIBS)
 HOST_TOOLS += $(BIN)/lumo-pm
 PM_TOOL_OBJS := $(BUILD)/host/server/pm_tool.o $(BUILD)/host/server/pm_bench.o
 
-$(BIN)/lumo-pm: $(PM_TOOL_OBJS) $(PM_OBJS) $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo.a
+$(BIN)/lumo-pm: $(PM_TOOL_OBJS) $(PM_OBJS) $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo.a $(BUILD)/host/libhost.a
 	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $(PM_TOOL_OBJS) $(PM_OBJS) $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo.a \
+	$(CC) -pthread -o $@ $(PM_TOOL_OBJS) $(PM_OBJS) $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo.a $(BUILD)/host/libhost.a \
 	    -lembree3 -lassimp -lpng $(PM_LIBS)

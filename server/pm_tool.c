@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
+#include "lumo_host/file_io.h"
 #include "lumo_server/package_write.h"
 #include "lumo_server/pm_client.h"
 #include "lumo_server/pm_load.h"
@@ -126,13 +127,10 @@ done:
 
 static int cmd_apply(int argc, char **argv)
 {
-    FILE *f = argc > 2 ? fopen(argv[2], "rb") : NULL;
-    long n = -1;
-    if (!f || fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET))
+    size_t len = 0;
+    uint8_t *d = argc > 2 ? lumo_read_file(argv[2], &len) : NULL;
+    if (d == NULL)
         return usage();
-    uint8_t *d = malloc((size_t)n + 1);
-    size_t len = d ? fread(d, 1, (size_t)n, f) : 0;
-    fclose(f);
     lumo_pm_client c;
     unsigned long records = argc > 3 ? strtoul(argv[3], NULL, 10) : (unsigned long)-1, done = 0;
     lumo_status st = lumo_pm_client_open(&c, d, len);
