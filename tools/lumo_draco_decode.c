@@ -14,25 +14,7 @@
 #include <math.h>
 
 #include "lumo/draco.h"
-
-static uint8_t *read_file(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    uint8_t *p = NULL;
-    long n;
-    if (!f)
-        return NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) >= 0 && fseek(f, 0, SEEK_SET) == 0) {
-        p = malloc((size_t)n + 1);
-        if (p && fread(p, 1, (size_t)n, f) != (size_t)n) {
-            free(p);
-            p = NULL;
-        }
-        *size = (size_t)n;
-    }
-    fclose(f);
-    return p;
-}
+#include "lumo_host/file_io.h"
 
 /* Decode into an arena of exactly lumo_draco_arena_bound(info, 16) bytes:
  * the bound is part of the API, so a decode that does not fit in it (with
@@ -224,7 +206,7 @@ int main(int argc, char **argv)
                         "--dump IN.drc OUT.txt | --bench N IN.drc\n");
         return 2;
     }
-    data = read_file(in, &size);
+    data = lumo_read_file(in, &size);
     if (!data) {
         fprintf(stderr, "lumo-draco-decode: cannot read %s\n", in);
         return 1;
