@@ -15,46 +15,20 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo_server/package_write.h"
 #include "lumo_server/pm_stream.h"
 
 #define NIL 0xffffffffu
 
-/* ---- growable bytes and bits ------------------------------------------------ */
-typedef struct { uint8_t *p; size_t len, cap; int failed; } bytes;
-
-static void put(bytes *b, const void *d, size_t n)
-{
-    if (b->failed)
-        return;
-    if (b->len + n > b->cap) {
-        size_t cap = b->cap ? b->cap : 256;
-        while (cap < b->len + n)
-            cap *= 2;
-        uint8_t *p = realloc(b->p, cap);
-        if (!p) {
-            b->failed = 1;
-            return;
-        }
-        b->p = p, b->cap = cap;
-    }
-    memcpy(b->p + b->len, d, n);
-    b->len += n;
-}
-
-static void put32(bytes *b, uint32_t v)
-{
-    uint8_t d[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
-    put(b, d, 4);
-}
-
-typedef struct { bytes b; size_t nbits; } bitwriter;
+/* ---- bytes (lumo_buf, package_write.h) and bits ----------------------------- */
+typedef struct { lumo_buf b; size_t nbits; } bitwriter;
 
 static void put_bits(bitwriter *w, uint32_t v, unsigned n)
 {
     for (unsigned i = 0; i < n; i++, w->nbits++) {
         if ((w->nbits & 7) == 0) {
             uint8_t z = 0;
-            put(&w->b, &z, 1);
+            lumo_buf_put(&w->b, &z, 1);
         }
         if (!w->b.failed)
             w->b.p[w->nbits >> 3] |= (uint8_t)((v >> i & 1u) << (w->nbits & 7));
@@ -401,7 +375,7 @@ static int encode_payload(const replay *r, uint32_t first, uint32_t count, const
     return lumo_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
 }
 
-static int write_record(bytes *out, uint32_t index, uint32_t first, uint32_t count,
+static int write_record(lumo_buf *out, uint32_t index, uint32_t first, uint32_t count,
                         const replay *r, const bitwriter *w, const lumo_pm_stream_options *o,
                         const lumo_draco_quant *q, lumo_pm_batch_info *info)
 {
@@ -409,13 +383,13 @@ static int write_record(bytes *out, uint32_t index, uint32_t first, uint32_t cou
     size_t drc_len = 0;
     if (encode_payload(r, first, count, o, q, &drc, &drc_len))
         return -1;
-    bytes rec = {0};
-    put32(&rec, LUMO_PMESH_BATCH_MAGIC);
-    put32(&rec, index), put32(&rec, first), put32(&rec, count);
-    put32(&rec, r->faces), put32(&rec, r->moves);
-    put32(&rec, (uint32_t)w->b.len), put32(&rec, (uint32_t)drc_len);
-    put(&rec, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
-    put(&rec, drc, drc_len);
+    lumo_buf rec = {0};
+    lumo_buf_u32(&rec, LUMO_PMESH_BATCH_MAGIC);
+    lumo_buf_u32(&rec, index), lumo_buf_u32(&rec, first), lumo_buf_u32(&rec, count);
+    lumo_buf_u32(&rec, r->faces), lumo_buf_u32(&rec, r->moves);
+    lumo_buf_u32(&rec, (uint32_t)w->b.len), lumo_buf_u32(&rec, (uint32_t)drc_len);
+    lumo_buf_put(&rec, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    lumo_buf_put(&rec, drc, drc_len);
     free(drc);
     if (rec.failed)
         return free(rec.p), -1;
@@ -425,9 +399,9 @@ static int write_record(bytes *out, uint32_t index, uint32_t first, uint32_t cou
     memcpy(head, rec.p, 32);
     *info = (lumo_pm_batch_info){first, count, r->faces, r->moves, out->len,
                                  rec.len + 4, w->b.len, drc_len};
-    put(out, head, 32);
-    put32(out, crc);
-    put(out, rec.p + 32, rec.len - 32);
+    lumo_buf_put(out, head, 32);
+    lumo_buf_u32(out, crc);
+    lumo_buf_put(out, rec.p + 32, rec.len - 32);
     free(rec.p);
     return out->failed ? -1 : 0;
 }
@@ -465,7 +439,7 @@ void lumo_pm_stream_default_options(lumo_pm_stream_options *o)
 }
 
 static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_draco_quant *q,
-                         bytes *out, lumo_pm_batch_info *bi, uint32_t nb)
+                         lumo_buf *out, lumo_pm_batch_info *bi, uint32_t nb)
 {
     const lumo_pm *pm = r->pm;
     for (uint32_t i = 0; i < nb; i++) {
@@ -510,9 +484,9 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
                 malloc(12 * (size_t)pm->faces + 4),
                 malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0};
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
-    bytes s = {0};
+    lumo_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
-    put(&s, header, sizeof header);
+    lumo_buf_put(&s, header, sizeof header);
     int rc = -1;
     if (!r.q || !r.res || !r.disp || !r.next || !r.head || !bi)
         goto done;
