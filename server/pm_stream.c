@@ -35,14 +35,6 @@ static void put_bits(bitwriter *w, uint32_t v, unsigned n)
     }
 }
 
-static unsigned bits_for(uint32_t count)
-{
-    unsigned n = 0;
-    while (n < 32 && ((uint64_t)1 << n) < count)
-        n++;
-    return n;
-}
-
 /* ---- the client's state, replayed --------------------------------------------- */
 typedef struct {
     const lumo_pm *pm;
@@ -72,7 +64,7 @@ static void add_face(replay *r, const uint32_t t[3])
 static void write_base(replay *r, bitwriter *w)
 {
     const lumo_pm *pm = r->pm;
-    unsigned width = bits_for(pm->base_vertices);
+    unsigned width = lumo_pmesh_field_bits(pm->base_vertices);
     for (uint32_t f = 0; f < pm->base_faces; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++) {
@@ -151,11 +143,11 @@ static void write_vertex(const replay *r, bitwriter *w, const uint32_t *lists, c
 {
     for (int l = 0; l < nlists; l++) {
         uint32_t j = find_neighbour(r, lists[l], lens[l], x);
-        put_bits(w, j, bits_for(2 * lens[l] + 1));
+        put_bits(w, j, lumo_pmesh_field_bits(2 * lens[l] + 1));
         if (j < 2 * lens[l])
             return;
     }
-    put_bits(w, x, bits_for(k));
+    put_bits(w, x, lumo_pmesh_field_bits(k));
 }
 
 /* Mirrors read_third(): among k's neighbours, else p's, else explicit. */
@@ -266,9 +258,9 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
     uint32_t wing = 0;  /* read_wing(): the first corner whose next vertex is xa */
     for (uint32_t c = r->head[p]; c != NIL && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != xa; c = r->next[c])
         wing++;
-    put_bits(w, wing, bits_for(lp + 1));
+    put_bits(w, wing, lumo_pmesh_field_bits(lp + 1));
     if (wing == lp)
-        put_bits(w, xa, bits_for(k));
+        put_bits(w, xa, lumo_pmesh_field_bits(k));
     put_fan_length(w, m);
     for (uint32_t i = 0; i < m; i++) {
         uint32_t prev = NIL, c = r->head[p];
@@ -301,7 +293,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
 {
     const lumo_pm *pm = r->pm;
     uint32_t p = pm->parent[k], moves0 = r->moves;
-    put_bits(w, p, bits_for(k));
+    put_bits(w, p, lumo_pmesh_field_bits(k));
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
         n++;

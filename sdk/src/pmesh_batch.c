@@ -44,15 +44,6 @@ static int read_bits(bitreader *b, unsigned n, uint32_t *out)
     return 0;
 }
 
-/* Bits of a value in [0, count): 0 for count <= 1. */
-static unsigned bits_for(uint32_t count)
-{
-    unsigned n = 0;
-    while (n < 32 && ((uint64_t)1 << n) < count)
-        n++;
-    return n;
-}
-
 /* ---- one batch in flight --------------------------------------------------- */
 typedef struct {
     uint32_t index, first, count, faces, moves;
@@ -282,7 +273,7 @@ static void rollback_to(split_ctx *s, uint32_t keep)
 /* ---- base mesh and vertex splits ------------------------------------------- */
 static lumo_status read_base(split_ctx *s)
 {
-    unsigned w = bits_for(s->b->count);
+    unsigned w = lumo_pmesh_field_bits(s->b->count);
     for (uint32_t f = 0; f < s->b->faces; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++)
@@ -349,7 +340,7 @@ static lumo_status read_vertex(split_ctx *s, const uint32_t *lists, const uint32
 {
     uint32_t j;
     for (int l = 0; l < nlists; l++) {
-        if (read_bits(&s->br, bits_for(2 * lens[l] + 1), &j))
+        if (read_bits(&s->br, lumo_pmesh_field_bits(2 * lens[l] + 1), &j))
             return LUMO_ERR_TRUNCATED;
         if (j > 2 * lens[l])
             return LUMO_ERR_CORRUPT;
@@ -358,7 +349,7 @@ static lumo_status read_vertex(split_ctx *s, const uint32_t *lists, const uint32
             return LUMO_OK;
         }
     }
-    return read_bits(&s->br, bits_for(k), x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+    return read_bits(&s->br, lumo_pmesh_field_bits(k), x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
 /* The third vertex of a reappearing face: a neighbour of k (the wings of a
@@ -513,12 +504,12 @@ static lumo_status fan_step(split_ctx *s, uint32_t p, uint32_t k, uint32_t *a)
 static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t *xa)
 {
     uint32_t i, c = s->pm->head[p];
-    if (read_bits(&s->br, bits_for(lp + 1), &i))
+    if (read_bits(&s->br, lumo_pmesh_field_bits(lp + 1), &i))
         return LUMO_ERR_TRUNCATED;
     if (i > lp)
         return LUMO_ERR_CORRUPT;
     if (i == lp)
-        return read_bits(&s->br, bits_for(k), xa) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+        return read_bits(&s->br, lumo_pmesh_field_bits(k), xa) ? LUMO_ERR_TRUNCATED : LUMO_OK;
     while (i--)
         c = s->pm->next[c];
     *xa = s->pm->tris[3 * (c / 3) + (c % 3 + 1) % 3];
@@ -553,7 +544,7 @@ static lumo_status split(split_ctx *s, uint32_t k)
     uint32_t p, n;
     int paired, fan;
     lumo_status st;
-    if (read_bits(&s->br, bits_for(k), &p))
+    if (read_bits(&s->br, lumo_pmesh_field_bits(k), &p))
         return LUMO_ERR_TRUNCATED;
     if (p >= k)
         return LUMO_ERR_RANGE;

@@ -35,7 +35,7 @@
 #define LUMO_PKG_PMSH LUMO_PKG_FOURCC('P', 'M', 'S', 'H')  /* progressive mesh stream, one per mesh */
 #define LUMO_PKG_IVGD LUMO_PKG_FOURCC('I', 'V', 'G', 'D')  /* IVG grid descriptor */
 #define LUMO_PKG_IVGQ LUMO_PKG_FOURCC('I', 'V', 'G', 'Q')  /* IVG bundle, quantized form */
-#define LUMO_PKG_IVGF LUMO_PKG_FOURCC('I', 'V', 'G', 'F')  /* IVG bundle, float form */
+#define LUMO_PKG_IVGF LUMO_PKG_FOURCC('I', 'V', 'G', 'F')  /* IVG bundle, binary32 form */
 
 typedef struct lumo_pkg_chunk {
     uint32_t type, offset, length, crc;

@@ -151,4 +151,15 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices);
 /* 1 when every vertex of the stream has arrived. */
 int lumo_pmesh_complete(const lumo_pmesh *pm);
 
+/* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
+ * the smallest n with 2^n >= count (0 for count <= 1). The stream writer
+ * and the batch decoder size every packed field with it. */
+static inline unsigned lumo_pmesh_field_bits(uint32_t count)
+{
+    unsigned n = 0;
+    while (n < 32 && ((uint64_t)1 << n) < count)
+        n++;
+    return n;
+}
+
 #endif /* LUMO_PMESH_H */
