@@ -83,22 +83,28 @@ static lumo_status ld_transform_read(ld_pred *p, ld_buf *b)
     return LUMO_ERR_UNSUPPORTED;
 }
 
-/* Wrap: clamp the prediction into [min, max], add, fold back. */
-static inline void ld_wrap_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
-                             int32_t *out)
+/* Wrap transform of one value: clamp the prediction into [lo, hi], add the
+ * correction, fold back by dif = hi - lo + 1, all in wrapping 32-bit
+ * arithmetic as libdraco does. The one copy every wrap path calls. */
+static inline int32_t ld_wrap_value(int32_t pred, int32_t corr, int32_t lo, int32_t hi,
+                                    uint32_t dif)
 {
-    const int32_t max_dif = (int32_t)(1 + p->max_value - p->min_value);
+    int32_t v = pred > hi ? hi : (pred < lo ? lo : pred);
+    v = ld_wrap_add(v, corr);
+    if (v > hi)
+        return (int32_t)((uint32_t)v - dif);
+    if (v < lo)
+        return (int32_t)((uint32_t)v + dif);
+    return v;
+}
+
+static inline void ld_wrap_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
+                                    int32_t *out)
+{
+    const uint32_t dif = (uint32_t)p->max_value - (uint32_t)p->min_value + 1u;
     unsigned c;
-    for (c = 0; c < p->comps; ++c) {
-        int32_t v = pred[c] > p->max_value ? p->max_value
-                  : (pred[c] < p->min_value ? p->min_value : pred[c]);
-        v = ld_wrap_add(v, corr[c]);
-        if (v > p->max_value)
-            v = ld_wrap_add(v, -max_dif);
-        else if (v < p->min_value)
-            v = ld_wrap_add(v, max_dif);
-        out[c] = v;
-    }
+    for (c = 0; c < p->comps; ++c)
+        out[c] = ld_wrap_value(pred[c], corr[c], p->min_value, p->max_value, dif);
 }
 
 /* Octahedron diamond folding (OctahedronToolBox::InvertDiamond), in the
@@ -288,13 +294,7 @@ static lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
     size_t i;
     for (i = 0; i < total; ++i) {
         const int32_t pred = i < k ? 0 : v[i - k];
-        int32_t x = pred > hi ? hi : (pred < lo ? lo : pred);
-        x = ld_wrap_add(x, v[i]);
-        if (x > hi)
-            x = (int32_t)((uint32_t)x - dif);
-        else if (x < lo)
-            x = (int32_t)((uint32_t)x + dif);
-        v[i] = x;
+        v[i] = ld_wrap_value(pred, v[i], lo, hi, dif);
     }
     return LUMO_OK;
 }
@@ -377,15 +377,8 @@ static lumo_status ld_parallelogram_wrap3(ld_pred *p, int32_t *v, uint32_t n)
             pred[1] = dst[-2];
             pred[2] = dst[-1];
         }
-        for (c = 0; c < 3; ++c) {  /* wrap transform */
-            int32_t x = pred[c] > hi ? hi : (pred[c] < lo ? lo : pred[c]);
-            x = ld_wrap_add(x, dst[c]);
-            if (x > hi)
-                x = (int32_t)((uint32_t)x - dif);
-            else if (x < lo)
-                x = (int32_t)((uint32_t)x + dif);
-            dst[c] = x;
-        }
+        for (c = 0; c < 3; ++c)
+            dst[c] = ld_wrap_value(pred[c], dst[c], lo, hi, dif);
     }
     return LUMO_OK;
 }
