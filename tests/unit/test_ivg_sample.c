@@ -59,14 +59,7 @@ static void random_normal(test_rng *r, lumo_q1_14 n[3])
 {
     double v[3], len;
     int k;
-    do {
-        len = 0;
-        for (k = 0; k < 3; k++) {
-            v[k] = test_rng_uniform(r, -1, 1);
-            len += v[k] * v[k];
-        }
-    } while (len < 0.01 || len > 1);
-    len = sqrt(len);
+    random_unit3(r, v);
     /* sometimes exactly on an axis or in a coordinate plane */
     if (test_rng_next(r) % 8 == 0)
         v[test_rng_next(r) % 3] = 0;

@@ -44,10 +44,10 @@ static inline void tgrid_free(tgrid *t)
     t->mem = NULL;
 }
 
-/* A random entry: unit d, colour in [0, cmax) per channel. */
-static inline void random_fentry(test_rng *r, lumo_ivg_fentry *e, double cmax)
+/* A random unit vector, uniform over the sphere (rejection sampling). */
+static inline void random_unit3(test_rng *r, double v[3])
 {
-    double v[3], len;
+    double len;
     int k;
     do {
         len = 0;
@@ -57,8 +57,18 @@ static inline void random_fentry(test_rng *r, lumo_ivg_fentry *e, double cmax)
         }
     } while (len < 0.01 || len > 1);
     len = sqrt(len);
+    for (k = 0; k < 3; k++)
+        v[k] /= len;
+}
+
+/* A random entry: unit d, colour in [0, cmax) per channel. */
+static inline void random_fentry(test_rng *r, lumo_ivg_fentry *e, double cmax)
+{
+    double v[3];
+    int k;
+    random_unit3(r, v);
     for (k = 0; k < 3; k++) {
-        e->d[k] = (float)(v[k] / len);
+        e->d[k] = (float)v[k];
         e->c[k] = (float)test_rng_uniform(r, 0, cmax);
     }
 }
