@@ -122,18 +122,11 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
         return -1;
     if (r->cache && lumo_raster_prepare(&v, s, r->mesh, r->cache))
         return -1;
-    memset(&t, 0, sizeof t);
-    t.width = r->o.width;
-    t.height = r->o.height;
-    t.format = r->o.format;
-    t.color = r->color;
-    t.color_stride = (uint32_t)r->o.width * (r->o.format == LUMO_PIXEL_RGB565 ? 2u : 4u);
-    t.depth = r->depth;
-    t.depth_bits = r->o.depth_bits;
     for (y0 = 0; y0 < r->o.height; y0 += r->o.band_rows) {
-        t.band_y = (uint16_t)y0;
-        t.band_rows = (uint16_t)(r->o.height - y0 < r->o.band_rows ? r->o.height - y0 : r->o.band_rows);
-        if (lumo_raster_clear(&t, 0) || lumo_raster_draw(&v, s, r->mesh, r->cache, &t))
+        uint16_t rows = (uint16_t)(r->o.height - y0 < r->o.band_rows ? r->o.height - y0 : r->o.band_rows);
+        if (lumo_raster_target_init(&t, (uint16_t)r->o.width, (uint16_t)r->o.height, (uint16_t)y0,
+                                    rows, r->o.format, r->color, r->depth, r->o.depth_bits)
+            || lumo_raster_clear(&t, 0) || lumo_raster_draw(&v, s, r->mesh, r->cache, &t))
             return -1;
         band_to_rgb(r, &t, rgb);
     }

@@ -118,6 +118,16 @@ static int load_api(gl_api *gl, lumo_gl_getproc_fn getproc, char *err, size_t er
     return 0;
 }
 
+/* Report a failed compile or link with the driver's log, delete the
+ * object, return 0 (no object). */
+static GLuint gl_fail(char *err, size_t errlen, const char *what, const char *log,
+                      void (*del)(GLuint), GLuint obj)
+{
+    snprintf(err, errlen, "%s failed: %s", what, log);
+    del(obj);
+    return 0;
+}
+
 static GLuint compile(lumo_gl *g, GLenum stage, int per_pixel, const char *body, char *err, size_t errlen)
 {
     const char *head = g->gles ? "#version 300 es\nprecision highp float;\nprecision highp int;\n"
@@ -132,9 +142,7 @@ static GLuint compile(lumo_gl *g, GLenum stage, int per_pixel, const char *body,
     if (!ok) {
         char log[1024] = "";
         g->gl.GetShaderInfoLog(s, sizeof log, NULL, log);
-        snprintf(err, errlen, "shader compile failed: %s", log);
-        g->gl.DeleteShader(s);
-        return 0;
+        return gl_fail(err, errlen, "shader compile", log, g->gl.DeleteShader, s);
     }
     return s;
 }
@@ -164,9 +172,7 @@ static GLuint build_program(lumo_gl *g, int per_pixel, char *err, size_t errlen)
     if (!ok) {
         char log[1024] = "";
         g->gl.GetProgramInfoLog(p, sizeof log, NULL, log);
-        snprintf(err, errlen, "program link failed: %s", log);
-        g->gl.DeleteProgram(p);
-        return 0;
+        return gl_fail(err, errlen, "program link", log, g->gl.DeleteProgram, p);
     }
     g->gl.UseProgram(p);
     for (i = 0; i < IVG_TEXTURES; i++)

@@ -22,6 +22,26 @@ size_t lumo_raster_band_bytes(uint16_t width, uint16_t rows, lumo_pixel_format f
     return (size_t)width * rows * (pixel_bytes(format) + depth_bits / 8u);
 }
 
+lumo_status lumo_raster_target_init(lumo_raster_target *t, uint16_t width, uint16_t height,
+                                    uint16_t band_y, uint16_t band_rows,
+                                    lumo_pixel_format format, void *color, void *depth,
+                                    uint8_t depth_bits)
+{
+    if (!t)
+        return LUMO_ERR_ARG;
+    memset(t, 0, sizeof *t);
+    t->width = width;
+    t->height = height;
+    t->band_y = band_y;
+    t->band_rows = band_rows;
+    t->format = format;
+    t->color = color;
+    t->color_stride = (uint32_t)width * (uint32_t)pixel_bytes(format);
+    t->depth = depth;
+    t->depth_bits = depth_bits;
+    return lumo_raster_target_check(t);
+}
+
 lumo_status lumo_raster_target_check(const lumo_raster_target *t)
 {
     if (!t || !t->color || !t->depth)

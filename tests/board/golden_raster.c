@@ -129,16 +129,7 @@ static const lumo_ivg *build_ivg(void)
 static void init_target(lumo_raster_target *t, lumo_pixel_format f, void *color, uint16_t y,
                         uint16_t rows, uint8_t depth_bits)
 {
-    memset(t, 0, sizeof *t);
-    t->width = W;
-    t->height = H;
-    t->band_y = y;
-    t->band_rows = rows;
-    t->format = f;
-    t->color = color;
-    t->color_stride = W * (f == LUMO_PIXEL_XRGB8888 ? 4u : 2u);
-    t->depth = g_depth;
-    t->depth_bits = depth_bits;
+    lumo_raster_target_init(t, W, H, y, rows, f, color, g_depth, depth_bits);
 }
 
 /* Draw one frame (or band); returns 0 on success. */

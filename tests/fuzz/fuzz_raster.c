@@ -50,10 +50,7 @@ static void draw_frame(const lumo_raster_view *v, const lumo_raster_scene *s,
     for (y0 = 0; y0 < H; y0 += K) {
         lumo_raster_target t;
         int rows = H - y0 < K ? H - y0 : K;
-        memset(&t, 0, sizeof t);
-        t.width = W; t.height = H; t.band_y = (uint16_t)y0; t.band_rows = (uint16_t)rows;
-        t.format = f; t.color = color; t.color_stride = (uint32_t)(W * px);
-        t.depth = depth; t.depth_bits = bits;
+        lumo_raster_target_init(&t, W, H, (uint16_t)y0, (uint16_t)rows, f, color, depth, bits);
         lumo_raster_clear(&t, 0x123456);
         *st = lumo_raster_draw(v, s, m, cache, &t);
         if (*st != LUMO_OK) {

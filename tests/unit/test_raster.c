@@ -22,15 +22,8 @@ typedef struct frame {
 static void frame_init(frame *f, lumo_pixel_format fmt, uint8_t depth_bits)
 {
     memset(f, 0, sizeof *f);
-    f->t.width = W;
-    f->t.height = H;
-    f->t.band_y = 0;
-    f->t.band_rows = H;
-    f->t.format = fmt;
-    f->t.color = f->color;
-    f->t.color_stride = fmt == LUMO_PIXEL_RGB565 ? W * 2 : W * 4;
-    f->t.depth = f->depth;
-    f->t.depth_bits = depth_bits;
+    assert_int_equal(lumo_raster_target_init(&f->t, W, H, 0, H, fmt, f->color, f->depth, depth_bits),
+                     LUMO_OK);
     assert_int_equal(lumo_raster_clear(&f->t, 0x000000), LUMO_OK);
 }
 
@@ -430,10 +423,8 @@ static void render_bands(const lumo_raster_view *v, const lumo_raster_scene *s,
     for (y0 = 0; y0 < H; y0 += K) {
         lumo_raster_target t;
         int rows = H - y0 < K ? H - y0 : K;
-        memset(&t, 0, sizeof t);
-        t.width = W; t.height = H; t.band_y = (uint16_t)y0; t.band_rows = (uint16_t)rows;
-        t.format = fmt; t.color = color; t.color_stride = (uint32_t)(W * px);
-        t.depth = depth; t.depth_bits = bits;
+        assert_int_equal(lumo_raster_target_init(&t, W, H, (uint16_t)y0, (uint16_t)rows, fmt,
+                                                 color, depth, bits), LUMO_OK);
         assert_int_equal(lumo_raster_clear(&t, 0x102030), LUMO_OK);
         assert_int_equal(lumo_raster_draw(v, s, m, cache, &t), LUMO_OK);
         memcpy(out + (size_t)y0 * W * px, color, (size_t)rows * W * px);

@@ -129,6 +129,15 @@ typedef struct lumo_raster_target {
 size_t lumo_raster_band_bytes(uint16_t width, uint16_t rows, lumo_pixel_format format,
                               uint8_t depth_bits);
 
+/* Fill *t for rows [band_y, band_y + band_rows) of a width x height frame
+ * with tight rows (color_stride = width * pixel size). `color` and `depth`
+ * stay the caller's; they must hold band_rows rows each. Returns
+ * lumo_raster_target_check(t). */
+lumo_status lumo_raster_target_init(lumo_raster_target *t, uint16_t width, uint16_t height,
+                                    uint16_t band_y, uint16_t band_rows,
+                                    lumo_pixel_format format, void *color, void *depth,
+                                    uint8_t depth_bits);
+
 /* Validate a target (dimensions, band, stride, buffers, depth_bits). */
 lumo_status lumo_raster_target_check(const lumo_raster_target *t);
 
