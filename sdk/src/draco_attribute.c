@@ -97,14 +97,11 @@ static lumo_status ld_raw_values(ld_buf *b, uint32_t n, int32_t *out)
     return LUMO_OK;
 }
 
-/* Draco's zig-zag: even symbols are >= 0, odd ones negative. */
 static void ld_symbols_to_signed(int32_t *v, uint32_t n)
 {
     uint32_t i;
-    for (i = 0; i < n; ++i) {
-        const uint32_t s = (uint32_t)v[i];
-        v[i] = (int32_t)((s >> 1) ^ (0u - (s & 1u)));  /* odd: -(s >> 1) - 1 */
-    }
+    for (i = 0; i < n; ++i)
+        v[i] = ld_zigzag((uint32_t)v[i]);
 }
 
 static const lumo_draco_attribute *ld_find_position(const ld_dec *d)
@@ -167,7 +164,8 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const 
     if (st)
         return st;
     /* Octahedral corrections are stored as non-negative values. */
-    if (num_values && !(method != LD_PRED_NONE && transform >= 2))
+    pred.zigzag = (uint8_t)(method != LD_PRED_NONE && ld_pred_fuses_zigzag(&pred));
+    if (num_values && !(method != LD_PRED_NONE && transform >= 2) && !pred.zigzag)
         ld_symbols_to_signed(a->values, (uint32_t)num_values);
     if (method == LD_PRED_NONE)
         return LUMO_OK;

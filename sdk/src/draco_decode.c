@@ -128,7 +128,7 @@ static lumo_status ld_seq_compressed_indices(ld_dec *d)
         uint32_t s = d->faces[i];
         int32_t diff = (int32_t)(s >> 1);
         int64_t v = (int64_t)last + ((s & 1u) ? -(int64_t)diff : diff);
-        if (v < 0 || v > INT32_MAX)
+        if (v < 0 || v >= (int64_t)d->num_points)
             return LUMO_ERR_CORRUPT;
         last = (int32_t)v;
         d->faces[i] = (uint32_t)v;
@@ -136,41 +136,60 @@ static lumo_status ld_seq_compressed_indices(ld_dec *d)
     return LUMO_OK;
 }
 
+/* Plain 16-bit indices, checked against the point count as they are
+ * copied: one pass, four at a time (the hot loop of -cl 0 meshes). */
+static lumo_status ld_seq_u16_indices(uint32_t *f, const uint8_t *p, uint32_t n, uint32_t np)
+{
+    uint32_t i = 0, bad = 0;
+    for (; i + 4u <= n; i += 4u, p += 8) {
+        const uint32_t a = (uint32_t)p[0] | ((uint32_t)p[1] << 8);
+        const uint32_t b = (uint32_t)p[2] | ((uint32_t)p[3] << 8);
+        const uint32_t c = (uint32_t)p[4] | ((uint32_t)p[5] << 8);
+        const uint32_t e = (uint32_t)p[6] | ((uint32_t)p[7] << 8);
+        f[i] = a;
+        f[i + 1u] = b;
+        f[i + 2u] = c;
+        f[i + 3u] = e;
+        bad |= (a >= np) | (b >= np) | (c >= np) | (e >= np);
+    }
+    for (; i < n; ++i, p += 2) {
+        f[i] = (uint32_t)p[0] | ((uint32_t)p[1] << 8);
+        bad |= f[i] >= np;
+    }
+    return bad ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
 /* Plain indices (method 1): bytes, 16-bit words or varints by the point
- * count (libdraco MeshSequentialDecoder). */
+ * count (libdraco MeshSequentialDecoder). libdraco does not check indices
+ * against the point count; lumo promises every index is a valid point. */
 static lumo_status ld_seq_raw_indices(ld_dec *d)
 {
     const uint32_t n = d->num_faces * 3u, np = d->num_points;
     const uint8_t *p = ld_head(&d->buf);
-    uint32_t i;
+    uint32_t i, bad = 0;
     lumo_status st = LUMO_OK;
     if (np < 256u) {
         if (n > ld_remaining(&d->buf))
             return LUMO_ERR_TRUNCATED;
-        for (i = 0; i < n; ++i)
+        for (i = 0; i < n; ++i) {
             d->faces[i] = p[i];
+            bad |= p[i] >= np;
+        }
         d->buf.pos += n;
-    } else if (np < 65536u) {
+        return bad ? LUMO_ERR_CORRUPT : LUMO_OK;
+    }
+    if (np < 65536u) {
         if ((uint64_t)n * 2u > ld_remaining(&d->buf))
             return LUMO_ERR_TRUNCATED;
-        for (i = 0; i < n; ++i)
-            d->faces[i] = (uint32_t)p[2 * i] | ((uint32_t)p[2 * i + 1] << 8);
         d->buf.pos += (size_t)n * 2u;
-    } else {
-        for (i = 0; i < n && !st; ++i)
-            st = np < (1u << 21) ? ld_varint32(&d->buf, &d->faces[i]) : ld_u32(&d->buf, &d->faces[i]);
+        return ld_seq_u16_indices(d->faces, p, n, np);
+    }
+    for (i = 0; i < n && !st; ++i) {
+        st = np < (1u << 21) ? ld_varint32(&d->buf, &d->faces[i]) : ld_u32(&d->buf, &d->faces[i]);
+        if (!st && d->faces[i] >= np)
+            st = LUMO_ERR_CORRUPT;
     }
     return st;
-}
-
-/* libdraco does not check indices against the point count; lumo promises
- * every index is a valid point. */
-static lumo_status ld_check_indices(const ld_dec *d)
-{
-    uint32_t i, n = d->num_faces * 3u, max = 0;
-    for (i = 0; i < n; ++i)
-        max = d->faces[i] > max ? d->faces[i] : max;
-    return n && max >= d->num_points ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
 static lumo_status ld_seq_connectivity(ld_dec *d)
@@ -187,8 +206,7 @@ static lumo_status ld_seq_connectivity(ld_dec *d)
     d->faces = ld_out(&d->mem, (size_t)d->num_faces * 3u, sizeof(uint32_t));
     if (!d->faces)
         return LUMO_ERR_NOMEM;
-    st = method == 0 ? ld_seq_compressed_indices(d) : ld_seq_raw_indices(d);
-    return st ? st : ld_check_indices(d);
+    return method == 0 ? ld_seq_compressed_indices(d) : ld_seq_raw_indices(d);
 }
 
 /* ---- attributes ---------------------------------------------------------------- */

@@ -144,6 +144,13 @@ typedef struct ld_rabs {
 lumo_status ld_rabs_start(ld_rabs *d, ld_buf *b);
 int ld_rabs_bit(ld_rabs *d);
 
+/* Draco's zig-zag: even symbols are >= 0, odd ones negative
+ * (odd s: -(s >> 1) - 1). */
+static inline int32_t ld_zigzag(uint32_t s)
+{
+    return (int32_t)((s >> 1) ^ (0u - (s & 1u)));
+}
+
 /* ---- decoder state (draco_decode.c) ------------------------------------- */
 struct ld_eb;
 struct ld_ct;
@@ -204,10 +211,16 @@ typedef struct ld_pred {
     uint8_t *orient;
     uint32_t num_orient;
     ld_rabs flip;
+    /* corrections still zig-zag coded: ld_pred_compute converts them in
+     * its own pass (see ld_pred_fuses_zigzag) */
+    uint8_t zigzag;
 } ld_pred;
 
 lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m);
 lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
+/* 1 when ld_pred_compute can take zig-zag coded corrections (method and
+ * transform known, data not yet read): one pass over the values, not two. */
+int ld_pred_fuses_zigzag(const ld_pred *p);
 
 /* ---- corner tables (draco_traverse.c) ------------------------------------ */
 #define LD_INV 0xFFFFFFFFu

@@ -285,17 +285,26 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m)
 
 /* ---- schemes ------------------------------------------------------------------ */
 
-/* Delta coding with the wrap transform, any component count, on locals. */
-static lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
+/* Delta coding with the wrap transform, any component count, on locals;
+ * `zz`: the corrections are still zig-zag symbols. */
+static inline void ld_delta_wrap_run(const ld_pred *p, int32_t *v, uint32_t n, int zz)
 {
     const int32_t lo = p->min_value, hi = p->max_value;
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u, k = p->comps;
     const size_t total = (size_t)n * k;
     size_t i;
-    for (i = 0; i < total; ++i) {
-        const int32_t pred = i < k ? 0 : v[i - k];
-        v[i] = ld_wrap_value(pred, v[i], lo, hi, dif);
-    }
+    for (i = 0; i < k && i < total; ++i)
+        v[i] = ld_wrap_value(0, zz ? ld_zigzag((uint32_t)v[i]) : v[i], lo, hi, dif);
+    for (; i < total; ++i)
+        v[i] = ld_wrap_value(v[i - k], zz ? ld_zigzag((uint32_t)v[i]) : v[i], lo, hi, dif);
+}
+
+static lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
+{
+    if (p->zigzag)
+        ld_delta_wrap_run(p, v, n, 1);
+    else
+        ld_delta_wrap_run(p, v, n, 0);
     return LUMO_OK;
 }
 
@@ -352,6 +361,7 @@ static lumo_status ld_parallelogram_wrap3(ld_pred *p, int32_t *v, uint32_t n)
     const int32_t *v2v = p->seq->vertex_to_value;
     const int32_t lo = p->min_value, hi = p->max_value;
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
+    const int zz = p->zigzag;
     uint32_t i, c;
     for (i = 0; i < n; ++i) {
         int32_t *dst = v + 3u * (size_t)i;
@@ -378,7 +388,7 @@ static lumo_status ld_parallelogram_wrap3(ld_pred *p, int32_t *v, uint32_t n)
             pred[2] = dst[-1];
         }
         for (c = 0; c < 3; ++c)
-            dst[c] = ld_wrap_value(pred[c], dst[c], lo, hi, dif);
+            dst[c] = ld_wrap_value(pred[c], zz ? ld_zigzag((uint32_t)dst[c]) : dst[c], lo, hi, dif);
     }
     return LUMO_OK;
 }
@@ -758,6 +768,13 @@ static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
         ld_original(p, oct, v + 2 * (size_t)i, v + 2 * (size_t)i);
     }
     return LUMO_OK;
+}
+
+int ld_pred_fuses_zigzag(const ld_pred *p)
+{
+    const int m = ld_effective_method(p);
+    return p->transform == LD_XFORM_WRAP &&
+           (m == LD_PRED_DIFFERENCE || (m == LD_PRED_PARALLELOGRAM && p->comps == 3));
 }
 
 lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries)

@@ -146,19 +146,29 @@ static lumo_status ld_rans_start(ld_rans *r, ld_buf *b)
     return LUMO_OK;
 }
 
+/* One symbol. The caller keeps the coder in a local copy: stores to the
+ * output array may alias an ld_rans reached through a pointer, which would
+ * make the compiler reload every field per symbol. The state stays below
+ * 2^(prec+10) and above 4 after a step, so three bytes always renormalise
+ * it (the fast path); near the start of the buffer libdraco stops reading. */
 static inline uint32_t ld_rans_read(ld_rans *r)
 {
     const uint32_t l_base = 4u << r->prec_bits, mask = (1u << r->prec_bits) - 1u;
-    uint32_t quo, rem, s;
-    while (r->state < l_base && r->offset > 0)
-        r->state = r->state * 256u + r->buf[--r->offset];
-    quo = r->state >> r->prec_bits;
-    rem = r->state & mask;
+    uint32_t x = r->state, quo, rem, s, lo, hi;
+    if (r->offset >= 3u) {
+        while (x < l_base)
+            x = (x << 8) | r->buf[--r->offset];
+    } else {
+        while (x < l_base && r->offset > 0)
+            x = (x << 8) | r->buf[--r->offset];
+    }
+    quo = x >> r->prec_bits;
+    rem = x & mask;
     s = r->lut[rem >> r->lut_shift];
-    if (r->lut_shift)  /* coarse bucket: find the exact symbol */
-        while (r->cum[s + 1] <= rem)
-            ++s;
-    r->state = quo * (r->cum[s + 1] - r->cum[s]) + rem - r->cum[s];
+    while ((hi = r->cum[s + 1]) <= rem)
+        ++s;  /* coarse bucket: find the exact symbol */
+    lo = r->cum[s];
+    r->state = quo * (hi - lo) + rem - lo;
     return r->sym[s];
 }
 
@@ -177,13 +187,14 @@ static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit
 static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
                                     unsigned comps, uint32_t *out)
 {
-    ld_rans tags;
+    ld_rans r, tags;
     ld_bits bits;
     uint32_t i = 0;
     unsigned j;
-    lumo_status st = ld_rans_create(&tags, b, m, 5, num_values / comps + 1u);
-    if (st || (st = ld_rans_start(&tags, b)))
+    lumo_status st = ld_rans_create(&r, b, m, 5, num_values / comps + 1u);
+    if (st || (st = ld_rans_start(&r, b)))
         return st;
+    tags = r;  /* a local the output stores cannot alias */
     ld_bits_start(&bits, b);
     while (i < num_values) {
         uint32_t len = ld_rans_read(&tags);
@@ -198,7 +209,7 @@ static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
 
 static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out)
 {
-    ld_rans r;
+    ld_rans r, c;
     uint8_t max_bits;
     uint32_t i;
     lumo_status st = ld_u8(b, &max_bits);
@@ -208,8 +219,9 @@ static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint
         return LUMO_ERR_CORRUPT;
     if ((st = ld_rans_create(&r, b, m, max_bits, num_values)) || (st = ld_rans_start(&r, b)))
         return st;
+    c = r;  /* a local the output stores cannot alias */
     for (i = 0; i < num_values; ++i)
-        out[i] = ld_rans_read(&r);
+        out[i] = ld_rans_read(&c);
     return LUMO_OK;
 }
 
