@@ -140,7 +140,7 @@ static lumo_status ld_seq_compressed_indices(ld_dec *d)
  * copied: one pass, four at a time (the hot loop of -cl 0 meshes). */
 static lumo_status ld_seq_u16_indices(uint32_t *f, const uint8_t *p, uint32_t n, uint32_t np)
 {
-    uint32_t i = 0, bad = 0;
+    uint32_t i = 0, max = 0;
     for (; i + 4u <= n; i += 4u, p += 8) {
         const uint32_t a = (uint32_t)p[0] | ((uint32_t)p[1] << 8);
         const uint32_t b = (uint32_t)p[2] | ((uint32_t)p[3] << 8);
@@ -150,13 +150,16 @@ static lumo_status ld_seq_u16_indices(uint32_t *f, const uint8_t *p, uint32_t n,
         f[i + 1u] = b;
         f[i + 2u] = c;
         f[i + 3u] = e;
-        bad |= (a >= np) | (b >= np) | (c >= np) | (e >= np);
+        max = a > max ? a : max;
+        max = b > max ? b : max;
+        max = c > max ? c : max;
+        max = e > max ? e : max;
     }
     for (; i < n; ++i, p += 2) {
         f[i] = (uint32_t)p[0] | ((uint32_t)p[1] << 8);
-        bad |= f[i] >= np;
+        max = f[i] > max ? f[i] : max;
     }
-    return bad ? LUMO_ERR_CORRUPT : LUMO_OK;
+    return n && max >= np ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
 /* Plain indices (method 1): bytes, 16-bit words or varints by the point

@@ -26,6 +26,14 @@
 #include <string.h>
 #include "lumo/draco.h"
 
+/* For a hot loop written once and instantiated with constant flags: the
+ * compiler must inline it at each call for the flags to fold away. */
+#if defined(__GNUC__)
+#define LD_FORCE_INLINE __attribute__((always_inline)) inline
+#else
+#define LD_FORCE_INLINE inline
+#endif
+
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)
 #define LD_MAX_POINTS  (1u << 27)

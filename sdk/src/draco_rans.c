@@ -146,31 +146,72 @@ static lumo_status ld_rans_start(ld_rans *r, ld_buf *b)
     return LUMO_OK;
 }
 
-/* One symbol. The caller keeps the coder in a local copy: stores to the
- * output array may alias an ld_rans reached through a pointer, which would
- * make the compiler reload every field per symbol. The state stays below
- * 2^(prec+10) and above 4 after a step, so three bytes always renormalise
- * it (the fast path); near the start of the buffer libdraco stops reading. */
-static inline uint32_t ld_rans_read(ld_rans *r)
+/* One decoding step on a renormalised state. `exact`: the lookup table has
+ * one bucket per probability unit (lut_shift 0), so no scan. The caller
+ * keeps the coder in a local copy: stores to the output may alias an
+ * ld_rans reached through a pointer and force a reload of every field. */
+static inline uint32_t ld_rans_step(const ld_rans *r, uint32_t *state, int exact)
 {
-    const uint32_t l_base = 4u << r->prec_bits, mask = (1u << r->prec_bits) - 1u;
-    uint32_t x = r->state, quo, rem, s, lo, hi;
-    if (r->offset >= 3u) {
-        while (x < l_base)
-            x = (x << 8) | r->buf[--r->offset];
+    const uint32_t x = *state, quo = x >> r->prec_bits, rem = x & ((1u << r->prec_bits) - 1u);
+    uint32_t s, lo, hi;
+    if (exact) {
+        const uint32_t *cp;
+        s = r->lut[rem];
+        cp = r->cum + s;
+        lo = cp[0];
+        hi = cp[1];
     } else {
-        while (x < l_base && r->offset > 0)
-            x = (x << 8) | r->buf[--r->offset];
+        s = r->lut[rem >> r->lut_shift];
+        while ((hi = r->cum[s + 1]) <= rem)
+            ++s;  /* coarse bucket: find the exact symbol */
+        lo = r->cum[s];
     }
-    quo = x >> r->prec_bits;
-    rem = x & mask;
-    s = r->lut[rem >> r->lut_shift];
-    while ((hi = r->cum[s + 1]) <= rem)
-        ++s;  /* coarse bucket: find the exact symbol */
-    lo = r->cum[s];
-    r->state = quo * (hi - lo) + rem - lo;
+    *state = quo * (hi - lo) + rem - lo;
     return r->sym[s];
 }
+
+/* Renormalise and step, checking the start of the buffer: libdraco stops
+ * reading there and goes on with a short state. */
+static inline uint32_t ld_rans_read(ld_rans *r)
+{
+    const uint32_t l_base = 4u << r->prec_bits;
+    while (r->state < l_base && r->offset > 0)
+        r->state = (r->state << 8) | r->buf[--r->offset];
+    return ld_rans_step(r, &r->state, 0);
+}
+
+/* n symbols into out. A step leaves a state of at least 4 (quo >= 4,
+ * frequency >= 1), so three bytes always renormalise it (l_base <= 2^22):
+ * offset / 3 steps need no check of the buffer start. */
+static LD_FORCE_INLINE void ld_rans_run(ld_rans *r, uint32_t *out, uint32_t n, int exact)
+{
+    const ld_rans c = *r;
+    const uint32_t l_base = 4u << c.prec_bits;
+    const uint8_t *p = c.buf + c.offset;
+    uint32_t x = c.state, i = 0;
+    while (i < n) {
+        const uint32_t safe = (uint32_t)(p - c.buf) / 3u;
+        uint32_t *end = out + (n - i < safe ? n : i + safe), *o = out + i;
+        if (safe == 0) {
+            while (x < l_base && p > c.buf)
+                x = (x << 8) | *--p;
+            out[i++] = ld_rans_step(&c, &x, exact);
+            continue;
+        }
+        for (; o < end; ++o) {
+            while (x < l_base)
+                x = (x << 8) | *--p;
+            *o = ld_rans_step(&c, &x, exact);
+        }
+        i = (uint32_t)(o - out);
+    }
+    r->state = x;
+    r->offset = (uint32_t)(p - c.buf);
+}
+
+/* The two instances (the flag must be a constant in the loop). */
+static void ld_rans_run_exact(ld_rans *r, uint32_t *out, uint32_t n) { ld_rans_run(r, out, n, 1); }
+static void ld_rans_run_coarse(ld_rans *r, uint32_t *out, uint32_t n) { ld_rans_run(r, out, n, 0); }
 
 static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit_length,
                                   uint32_t num_values)
@@ -187,14 +228,13 @@ static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit
 static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
                                     unsigned comps, uint32_t *out)
 {
-    ld_rans r, tags;
+    ld_rans tags;
     ld_bits bits;
     uint32_t i = 0;
     unsigned j;
-    lumo_status st = ld_rans_create(&r, b, m, 5, num_values / comps + 1u);
-    if (st || (st = ld_rans_start(&r, b)))
+    lumo_status st = ld_rans_create(&tags, b, m, 5, num_values / comps + 1u);
+    if (st || (st = ld_rans_start(&tags, b)))
         return st;
-    tags = r;  /* a local the output stores cannot alias */
     ld_bits_start(&bits, b);
     while (i < num_values) {
         uint32_t len = ld_rans_read(&tags);
@@ -209,9 +249,8 @@ static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
 
 static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out)
 {
-    ld_rans r, c;
+    ld_rans r;
     uint8_t max_bits;
-    uint32_t i;
     lumo_status st = ld_u8(b, &max_bits);
     if (st)
         return st;
@@ -219,9 +258,10 @@ static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint
         return LUMO_ERR_CORRUPT;
     if ((st = ld_rans_create(&r, b, m, max_bits, num_values)) || (st = ld_rans_start(&r, b)))
         return st;
-    c = r;  /* a local the output stores cannot alias */
-    for (i = 0; i < num_values; ++i)
-        out[i] = ld_rans_read(&c);
+    if (r.lut_shift == 0)
+        ld_rans_run_exact(&r, out, num_values);
+    else
+        ld_rans_run_coarse(&r, out, num_values);
     return LUMO_OK;
 }
 
