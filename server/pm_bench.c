@@ -7,7 +7,10 @@
  *    same 12-bit quantization, on the same cleaned mesh;
  * 2. seed 000 §5.2 Fig. 5: receive + apply time against batch size, and
  *    the overhead against one raw transfer, on a stated link model;
- * 3. client time and memory per batch against mesh size. */
+ * 3. client time and memory per batch against mesh size;
+ * 4. the quality cost of independent-set rounds against one collapse at a
+ *    time (RMS plane distance of intermediate levels). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -270,6 +273,113 @@ static void section_scaling(FILE *o, model *ms, int n, const char *self)
     fprintf(o, "\n");
 }
 
+/* RMS distance of level k from the full mesh, in the quadric sense: every
+ * full-resolution face's plane, area weighted, against the level's
+ * positions of its three corners (each resolved at level k). */
+static double level_rms(const lumo_pm *pm, uint32_t k)
+{
+    double err = 0, area = 0;
+    for (uint32_t f = 0; f < pm->faces; f++) {
+        const uint32_t *t = pm->tris + 3 * (size_t)f;
+        const float *a = pm->xyz + 3 * (size_t)t[0], *b = pm->xyz + 3 * (size_t)t[1],
+                    *c = pm->xyz + 3 * (size_t)t[2];
+        double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (len <= 0)
+            continue;
+        for (int i = 0; i < 3; i++) {
+            const float *p = pm->xyz + 3 * (size_t)lumo_pm_resolve(pm, t[i], k);
+            double d = ((p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2]) / len;
+            err += 0.5 * len * d * d;
+        }
+        area += 1.5 * len;
+    }
+    return area > 0 ? sqrt(err / area) : 0;
+}
+
+static double bbox_diagonal(const lumo_pm *pm)
+{
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
+        lo[i % 3] = pm->xyz[i] < lo[i % 3] ? pm->xyz[i] : lo[i % 3];
+        hi[i % 3] = pm->xyz[i] > hi[i % 3] ? pm->xyz[i] : hi[i % 3];
+    }
+    double d[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+static void section_rounds(FILE *o, model *ms, int n)
+{
+    static const double at[] = {0.01, 0.05, 0.25};
+    fprintf(o, "### Quality cost of independent-set rounds\n\n"
+               "Same cleaned mesh simplified one collapse at a time (`round_fraction` 0, the QEM "
+               "order) and in independent-set rounds (the default 0.5: each round takes the valid, "
+               "mutually independent collapses among the cheapest half of the candidates). Error of a "
+               "level = RMS distance of the level's corner positions from the planes of the full "
+               "mesh's faces (area weighted, the quadric error), in units of 10⁻⁴ of the bounding-box "
+               "diagonal; and the stream's lookup-table parent bits per split vertex.\n\n"
+               "| model | order | base vertices | 1%% level | 5%% level | 25%% level | parent bits/vertex "
+               "| stream bytes |\n|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < n; i++) {
+        for (int single = 1; single >= 0; single--) {
+            lumo_pm_options po;
+            lumo_pm pm;
+            lumo_pm_default_options(&po);
+            if (single)
+                po.round_fraction = 0;
+            if (lumo_pm_build(ms[i].xyz, ms[i].nv, ms[i].tris, ms[i].nf, &po, &pm))
+                continue;
+            double diag = bbox_diagonal(&pm), e[3];
+            for (int j = 0; j < 3; j++) {
+                uint32_t k = (uint32_t)(at[j] * pm.vertices);
+                e[j] = 1e4 * level_rms(&pm, k > pm.base_vertices ? k : pm.base_vertices) / diag;
+            }
+            lumo_pm_stream_stats st;
+            lumo_pm_stream_options so;
+            lumo_pm_stream_default_options(&so);
+            so.stats = &st;
+            uint8_t *s = NULL;
+            size_t len = 0;
+            if (!lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL))
+                fprintf(o, "| %s | %s | %u | %.2f | %.2f | %.2f | %.2f | %zu |\n", ms[i].name,
+                        single ? "one at a time" : "rounds (0.5)", pm.base_vertices, e[0], e[1], e[2],
+                        st.splits ? (double)st.parent_bits / st.splits : 0, len);
+            free(s);
+            lumo_pm_free(&pm);
+        }
+    }
+    fprintf(o, "\n");
+}
+
+/* Where the bits of the default stream go, per split vertex. */
+static void section_bits(FILE *o, model *ms, int n)
+{
+    fprintf(o, "### Where the bits go (default stream, per split vertex)\n\n"
+               "| model | parent | kind | fan (wing + length) | mask splits | Rice + padding "
+               "| Draco payload | record heads | total bits/vertex |\n|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 0; i < n; i++) {
+        lumo_pm_stream_stats st;
+        lumo_pm_stream_options so;
+        lumo_pm_stream_default_options(&so);
+        so.stats = &st;
+        uint8_t *s = NULL;
+        size_t len = 0;
+        if (lumo_pm_stream_build(&ms[i].pm, &so, &s, &len, NULL, NULL) || !st.splits)
+            continue;
+        double sv = (double)st.splits, fields[7] = {st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv,
+                                                     st.mask_bits / sv, st.other_bits / sv,
+                                                     8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv};
+        fprintf(o, "| %s |", ms[i].name);
+        double total = 0;
+        for (int j = 0; j < 7; j++)
+            fprintf(o, " %.2f |", fields[j]), total += fields[j];
+        fprintf(o, " %.2f |\n", total);
+        free(s);
+    }
+    fprintf(o, "\n");
+}
+
 int lumo_pm_bench_main(int argc, char **argv)
 {
     char self[4096];
@@ -295,6 +405,8 @@ int lumo_pm_bench_main(int argc, char **argv)
         return 1;
     fprintf(o, "## Progressive meshes\n\nMade by `%s`.\n\n", cmd);
     section_sizes(o, ms, n);
+    section_bits(o, ms, n);
+    section_rounds(o, ms, n);
     for (int i = 0; fig5 && i < n; i++)
         if (!strcmp(ms[i].path, fig5))
             section_fig5(o, &ms[i]);

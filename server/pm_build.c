@@ -10,6 +10,7 @@ void lumo_pm_default_options(lumo_pm_options *o)
     o->min_vertices = 3;
     o->boundary_weight = 100.0;
     o->flip_cos = 0.2;
+    o->round_fraction = 0.5;
 }
 
 static const uint32_t *g_level; /* qsort context */
@@ -22,17 +23,48 @@ static int cmp_level(const void *a, const void *b)
     return (i > j) - (i < j);
 }
 
-/* newv[v]: base vertices keep their relative order at 0..b-1; the vertex
- * removed at step t becomes n-1-t, so the last collapsed streams first. */
-static void renumber(const pm_clean_mesh *m, const pm_collapses *c, uint32_t *newv)
+static const uint32_t *g_key; /* qsort context: sort steps by g_key[step] */
+
+static int cmp_key(const void *a, const void *b)
+{
+    uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
+    return (g_key[i] > g_key[j]) - (g_key[i] < g_key[j]);
+}
+
+/* newv[v]: base vertices keep their relative order at 0..b-1; then the
+ * rounds, last round first (the last collapsed streams first); inside a
+ * round, whose collapses commute, by the new index of the parent, so the
+ * stream's lookup-table entries increase (docs/progressive-mesh.md §2.3).
+ * A parent outlives its round, so it is numbered before its children.
+ * Without rounds (one collapse each) the step removed at t gets n-1-t. */
+static int renumber(const pm_clean_mesh *m, const pm_collapses *c, uint32_t *newv)
 {
     uint32_t n = m->nv, b = 0;
+    uint32_t *steps = malloc(sizeof *steps * (c->count ? c->count : 1));
+    uint32_t *key = malloc(sizeof *key * (c->count ? c->count : 1));
+    if (!steps || !key)
+        return free(steps), free(key), -1;
     memset(newv, 0xff, sizeof *newv * n);
     for (uint32_t t = 0; t < c->count; t++)
-        newv[c->removed[t]] = n - 1 - t;
+        newv[c->removed[t]] = 0;
     for (uint32_t v = 0; v < n; v++)
-        if (newv[v] == UINT32_MAX)
-            newv[v] = b++;
+        newv[v] = newv[v] == 0 ? UINT32_MAX - 1 : b++;
+    uint32_t next = b;
+    for (uint32_t end = c->count; end > 0;) {
+        uint32_t start = end - 1;
+        while (start > 0 && c->round[start - 1] == c->round[end - 1])
+            start--;
+        for (uint32_t t = start; t < end; t++)
+            steps[t - start] = t, key[t] = newv[c->target[t]];
+        g_key = key;
+        qsort(steps, end - start, sizeof *steps, cmp_key);
+        for (uint32_t i = 0; i < end - start; i++)
+            newv[c->removed[steps[i]]] = next++;
+        end = start;
+    }
+    free(steps);
+    free(key);
+    return 0;
 }
 
 /* Each face that reappears with vertex k = level - 1 starts at the corner
@@ -75,7 +107,8 @@ static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
     int rc = -1;
     if (!newv || !lvl || !order)
         goto done;
-    renumber(m, c, newv);
+    if (renumber(m, c, newv))
+        goto done;
     pm->vertices = n, pm->faces = nf;
     pm->base_vertices = n - c->count;
     for (uint32_t v = 0; v < n; v++) {
@@ -87,9 +120,9 @@ static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
     }
     for (uint32_t t = 0; t < c->count; t++)
         pm->parent[newv[c->removed[t]]] = newv[c->target[t]];
-    /* A face removed at step t comes back with vertex n-1-t. */
+    /* A face removed at step t comes back with the vertex removed then. */
     for (uint32_t f = 0; f < nf; f++) {
-        lvl[f] = c->face_die[f] == UINT32_MAX ? pm->base_vertices : n - c->face_die[f];
+        lvl[f] = c->face_die[f] == UINT32_MAX ? pm->base_vertices : newv[c->removed[c->face_die[f]]] + 1;
         pm->base_faces += c->face_die[f] == UINT32_MAX;
         order[f] = f;
     }

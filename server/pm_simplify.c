@@ -4,7 +4,13 @@
  * on edge (u, v); u's other faces take v. Guards keep every level a valid
  * manifold-where-it-was mesh: the link condition, no face flip, no
  * duplicate face, no orphaned vertex; boundary vertices only slide along
- * the boundary, vertices on non-manifold edges never move. */
+ * the boundary, vertices on non-manifold edges never move.
+ *
+ * Collapses run in independent-set rounds (Pajarola & Rossignac's CPM,
+ * Hoppe's independent splits): each round takes the cheapest valid
+ * candidates whose neighbourhoods do not interact, so the splits of one
+ * round commute and the stream may send them sorted by parent, which makes
+ * the lookup-table entries an increasing, cheaply coded sequence. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +28,7 @@ typedef struct {
     flist       *vf;         /* alive faces around each vertex */
     double      *q;          /* 10 per vertex: symmetric 4x4 quadric */
     uint32_t    *stamp;
+    uint32_t    *core, *ring; /* round locks: u or v of a collapse, their neighbours */
     cand        *heap;
     size_t       hn, hcap;
     uint32_t    *nb_u, *nb_v; /* neighbour scratch */
@@ -313,7 +320,13 @@ static int cand_less(const cand *a, const cand *b)
     return a->v < b->v;
 }
 
-static int heap_push(simp *s, uint32_t u, uint32_t v)
+static int cand_cmp(const void *a, const void *b)
+{
+    return cand_less(a, b) ? -1 : cand_less(b, a);
+}
+
+/* Room for one more candidate; the candidate u -> v at today's cost. */
+static int heap_room(simp *s)
 {
     if (s->hn == s->hcap) {
         size_t cap = s->hcap ? 2 * s->hcap : 1024;
@@ -322,8 +335,30 @@ static int heap_push(simp *s, uint32_t u, uint32_t v)
             return -1;
         s->heap = h, s->hcap = cap;
     }
+    return 0;
+}
+
+static cand cand_make(const simp *s, uint32_t u, uint32_t v)
+{
     cand c = {quadric_eval(s->q + 10 * (size_t)u, s->q + 10 * (size_t)v, s->xyz + 3 * (size_t)v),
               u, v, s->stamp[u], s->stamp[v]};
+    return c;
+}
+
+/* A round's list: appended unordered, sorted once (collect_round). */
+static int list_append(simp *s, uint32_t u, uint32_t v)
+{
+    if (heap_room(s))
+        return -1;
+    s->heap[s->hn++] = cand_make(s, u, v);
+    return 0;
+}
+
+static int heap_push(simp *s, uint32_t u, uint32_t v)
+{
+    if (heap_room(s))
+        return -1;
+    cand c = cand_make(s, u, v);
     size_t i = s->hn++;
     while (i > 0 && cand_less(&c, &s->heap[(i - 1) / 2])) {
         s->heap[i] = s->heap[(i - 1) / 2];
@@ -365,6 +400,18 @@ static int push_vertex_edges(simp *s, uint32_t v)
     return 0;
 }
 
+/* Every directed edge u -> w of the current mesh once (from u's side). */
+static int append_vertex_edges(simp *s, uint32_t u)
+{
+    if (grow_nb(s, 2 * s->vf[u].n + 2))
+        return -1;
+    uint32_t n = neighbours(s, u, s->nb_u);
+    for (uint32_t i = 0; i < n; i++)
+        if (list_append(s, u, s->nb_u[i]))
+            return -1;
+    return 0;
+}
+
 /* ---- the collapse --------------------------------------------------------- */
 static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, pm_collapses *out)
 {
@@ -392,7 +439,7 @@ static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, pm_col
     s->stamp[v]++;
     out->removed[step] = u;
     out->target[step] = v;
-    return push_vertex_edges(s, v);
+    return 0;
 }
 
 static int push_all(simp *s)
@@ -403,10 +450,11 @@ static int push_all(simp *s)
     return 0;
 }
 
-/* Pop candidates until none is valid; a rejected candidate can become valid
- * after its neighbourhood changes, so the heap is refilled from every edge
- * once it runs dry, until a whole pass makes no progress. */
-static int run(simp *s, pm_collapses *out)
+/* One collapse at a time (round_fraction 0): pop candidates until none is
+ * valid; a rejected candidate can become valid after its neighbourhood
+ * changes, so the heap is refilled from every edge once it runs dry, until
+ * a whole pass makes no progress. Every collapse is a round of its own. */
+static int run_single(simp *s, pm_collapses *out)
 {
     uint32_t alive = s->nv, target = s->opt->min_vertices;
     for (int pass = 0; pass < 16 && alive > target; pass++) {
@@ -419,8 +467,9 @@ static int run(simp *s, pm_collapses *out)
             if (!s->vert_alive[c.u] || !s->vert_alive[c.v] || s->stamp[c.u] != c.su ||
                 s->stamp[c.v] != c.sv || !collapse_ok(s, c.u, c.v))
                 continue;
-            if (apply_collapse(s, c.u, c.v, out->count, out))
+            if (apply_collapse(s, c.u, c.v, out->count, out) || push_vertex_edges(s, c.v))
                 return -1;
+            out->round[out->count] = out->count;
             out->count++;
             alive--;
         }
@@ -428,6 +477,81 @@ static int run(simp *s, pm_collapses *out)
             break;
     }
     return 0;
+}
+
+/* May u -> v join round r? Neither end is a collapse end or a neighbour of
+ * one already in the round, and no neighbour of u or v is a collapse end.
+ * The round's collapses then touch disjoint faces, every guard of one reads
+ * nothing another changes (a shared neighbour's faces only shrink, and
+ * collapse_ok saw that in this order), so they commute: any order of any
+ * subset is valid and gives the same faces. */
+static int round_free(simp *s, uint32_t u, uint32_t v, uint32_t r)
+{
+    if (s->core[u] == r || s->core[v] == r || s->ring[u] == r || s->ring[v] == r)
+        return 0;
+    if (grow_nb(s, 2 * (s->vf[u].n + s->vf[v].n) + 4))
+        return 0;
+    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v);
+    for (uint32_t i = 0; i < nu; i++)
+        if (s->core[s->nb_u[i]] == r)
+            return 0;
+    for (uint32_t i = 0; i < nv; i++)
+        if (s->core[s->nb_v[i]] == r)
+            return 0;
+    return 1;
+}
+
+static void round_lock(simp *s, uint32_t u, uint32_t v, uint32_t r)
+{
+    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v);
+    for (uint32_t i = 0; i < nu; i++)
+        s->ring[s->nb_u[i]] = r;
+    for (uint32_t i = 0; i < nv; i++)
+        s->ring[s->nb_v[i]] = r;
+    s->core[u] = s->core[v] = r;
+}
+
+/* The candidates of a round: every directed edge, cheapest first. */
+static int collect_round(simp *s)
+{
+    s->hn = 0;
+    for (uint32_t v = 0; v < s->nv; v++)
+        if (s->vert_alive[v] && append_vertex_edges(s, v))
+            return -1;
+    qsort(s->heap, s->hn, sizeof *s->heap, cand_cmp);
+    return 0;
+}
+
+/* Independent-set rounds: each round walks the cheapest round_fraction of
+ * the candidates (further only until one collapse is taken) and keeps
+ * those that are valid and free of the round's locks. Ends when a whole
+ * candidate list gives nothing. */
+static int run_rounds(simp *s, pm_collapses *out)
+{
+    uint32_t alive = s->nv, target = s->opt->min_vertices;
+    for (uint32_t r = 1; alive > target; r++) {
+        if (collect_round(s))
+            return -1;
+        size_t limit = (size_t)(s->opt->round_fraction * (double)s->hn), taken = 0;
+        for (size_t i = 0; i < s->hn && alive > target && (i < limit || !taken); i++) {
+            uint32_t u = s->heap[i].u, v = s->heap[i].v;
+            if (!round_free(s, u, v, r) || !collapse_ok(s, u, v))
+                continue;
+            round_lock(s, u, v, r);
+            if (apply_collapse(s, u, v, out->count, out))
+                return -1;
+            out->round[out->count++] = r;
+            alive--, taken++;
+        }
+        if (!taken)
+            break;
+    }
+    return 0;
+}
+
+static int run(simp *s, pm_collapses *out)
+{
+    return s->opt->round_fraction > 0 ? run_rounds(s, out) : run_single(s, out);
 }
 
 static void simp_free(simp *s)
@@ -441,6 +565,8 @@ static void simp_free(simp *s)
     free(s->vert_alive);
     free(s->q);
     free(s->stamp);
+    free(s->core);
+    free(s->ring);
     free(s->heap);
     free(s->nb_u);
     free(s->nb_v);
@@ -459,12 +585,15 @@ int pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses
     s.vf = calloc(nv, sizeof *s.vf);
     s.q = calloc(10 * nv, sizeof *s.q);
     s.stamp = calloc(nv, sizeof *s.stamp);
+    s.core = calloc(nv, sizeof *s.core);
+    s.ring = calloc(nv, sizeof *s.ring);
+    out->round = malloc(sizeof *out->round * nv);
     out->removed = malloc(sizeof *out->removed * nv);
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
     int rc = -1;
-    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp ||
-        !out->removed || !out->target || !out->face_die)
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring ||
+        !out->round || !out->removed || !out->target || !out->face_die)
         goto done;
     memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
     memset(s.face_alive, 1, nf);
@@ -487,6 +616,7 @@ void pm_collapses_free(pm_collapses *c)
 {
     free(c->removed);
     free(c->target);
+    free(c->round);
     free(c->face_die);
     memset(c, 0, sizeof *c);
 }

@@ -43,7 +43,16 @@ typedef struct {
     uint32_t *disp, *next, *head;
     uint32_t  face_count;
     uint32_t  faces, moves;   /* of the batch being written */
+    lumo_pm_stream_stats *st; /* or NULL */
 } replay;
+
+/* Bits written since *mark into *field (stats only). */
+static void count_bits(replay *r, const bitwriter *w, size_t *mark, uint64_t *field)
+{
+    if (r->st)
+        *field += w->nbits - *mark;
+    *mark = w->nbits;
+}
 
 static void list_push(replay *r, uint32_t v, uint32_t c)
 {
@@ -289,11 +298,59 @@ static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
     return lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + (flip ? 1 : 2)], k + 1);
 }
 
-static int write_split(replay *r, bitwriter *w, uint32_t k)
+/* ---- parents: increasing runs, Rice-coded gaps (mirrors read_parent) ---- */
+/* Bits of parent p after prev (NIL at the start of a batch): the gap
+ * d = p - prev - 1 as q = d >> rice zero bits, a one, the rice low bits of
+ * d; or, when p does not follow prev or q would reach the escape, the
+ * escape (LUMO_PMESH_PARENT_ESCAPE zero bits) and p in w(k) bits. */
+static int parent_follows(uint32_t p, uint32_t prev, unsigned rice)
+{
+    return prev != NIL && p > prev && (p - prev - 1) >> rice < LUMO_PMESH_PARENT_ESCAPE;
+}
+
+static unsigned parent_bits(uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
+{
+    if (parent_follows(p, prev, rice))
+        return ((p - prev - 1) >> rice) + 1 + rice;
+    return LUMO_PMESH_PARENT_ESCAPE + lumo_pmesh_field_bits(k);
+}
+
+static void put_parent(bitwriter *w, uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
+{
+    if (!parent_follows(p, prev, rice)) {
+        put_bits(w, 0, LUMO_PMESH_PARENT_ESCAPE);
+        put_bits(w, p, lumo_pmesh_field_bits(k));
+        return;
+    }
+    uint32_t d = p - prev - 1;
+    put_bits(w, 0, d >> rice);
+    put_bits(w, 1, 1);
+    put_bits(w, d & (((uint32_t)1 << rice) - 1), rice);
+}
+
+/* The batch's Rice parameter: the one that codes its parents shortest. */
+static unsigned choose_rice(const lumo_pm *pm, uint32_t first, uint32_t count)
+{
+    unsigned best = 0;
+    uint64_t best_bits = UINT64_MAX;
+    for (unsigned rice = 0; rice <= LUMO_PMESH_MAX_RICE; rice++) {
+        uint64_t bits = 0;
+        for (uint32_t k = first, prev = NIL; k < first + count; prev = pm->parent[k++])
+            bits += parent_bits(pm->parent[k], prev, k, rice);
+        if (bits < best_bits)
+            best_bits = bits, best = rice;
+    }
+    return best;
+}
+
+static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsigned rice)
 {
     const lumo_pm *pm = r->pm;
     uint32_t p = pm->parent[k], moves0 = r->moves;
-    put_bits(w, p, lumo_pmesh_field_bits(k));
+    size_t mark = w->nbits;
+    lumo_pm_stream_stats dummy, *st = r->st ? r->st : &dummy;
+    put_parent(w, p, prev, k, rice);
+    count_bits(r, w, &mark, &st->parent_bits);
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
         n++;
@@ -303,7 +360,9 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
     int fan = paired && fan_plan(r, p, k, xa, third(r, f0 + 1, k, 1), &m);
     if (fan) {
         put_bits(w, 1, 1);
+        count_bits(r, w, &mark, &st->kind_bits);
         write_fan(r, w, p, k, f0, xa, m);
+        count_bits(r, w, &mark, &st->fan_bits);
         predict(r, k);
         return 0;
     }
@@ -315,10 +374,12 @@ static int write_split(replay *r, bitwriter *w, uint32_t k)
         put_bits(w, 0, 3), put_bits(w, n, 4);
     else
         return -1;
+    count_bits(r, w, &mark, &st->kind_bits);
     uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
             return -1;
+    count_bits(r, w, &mark, &st->mask_bits);
     predict(r, k);
     return 0;
 }
@@ -428,6 +489,23 @@ void lumo_pm_stream_default_options(lumo_pm_stream_options *o)
     o->quant_bits = 12;
     o->draco = lumo_draco_default_settings();
     o->position_coding = LUMO_PMESH_POS_PREDICTED;
+    o->stats = NULL;
+}
+
+static uint64_t field_bits(const lumo_pm_stream_stats *st)
+{
+    return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits;
+}
+
+/* A written split record's share of the stats: fields_before is
+ * field_bits() before its splits. */
+static void tally_record(lumo_pm_stream_stats *st, uint64_t fields_before, uint32_t count,
+                         const lumo_pm_batch_info *bi)
+{
+    st->splits += count;
+    st->other_bits += 8 * (uint64_t)bi->side_bytes - (field_bits(st) - fields_before);
+    st->draco_bytes += bi->draco_bytes;
+    st->frame_bytes += LUMO_PMESH_BATCH_HEAD;
 }
 
 static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_draco_quant *q,
@@ -441,13 +519,20 @@ static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_
             count = o->batch_vertices;
         bitwriter w = {{0}, 0};
         r->faces = r->moves = 0;
+        uint64_t fields_before = r->st ? field_bits(r->st) : 0;
         int rc = 0;
         if (!i)
             write_base(r, &w);
-        for (uint32_t k = first; i && k < first + count && !rc; k++)
-            rc = write_split(r, &w, k);
+        unsigned rice = i ? choose_rice(pm, first, count) : 0;
+        if (i)
+            put_bits(&w, rice, LUMO_PMESH_RICE_BITS);
+        for (uint32_t k = first, prev = NIL; i && k < first + count && !rc; prev = pm->parent[k++])
+            rc = write_split(r, &w, k, prev, rice);
+
         if (!rc && !w.b.failed)
             rc = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
+        if (!rc && i && r->st)
+            tally_record(r->st, fields_before, count, &bi[i]);
         free(w.b.p);
         if (rc || w.b.failed) {
             fprintf(stderr, "lumo pm stream: cannot write batch %u\n", i);
@@ -474,7 +559,9 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     grid_of(pm, o->quant_bits, &q);
     replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
                 malloc(12 * (size_t)pm->faces + 4),
-                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0};
+                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, o->stats};
+    if (o->stats)
+        memset(o->stats, 0, sizeof *o->stats);
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
     lumo_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};

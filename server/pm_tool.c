@@ -28,7 +28,7 @@ typedef struct {
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--albedo] [--raw]\n"
+    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--albedo] [--raw]\n"
                     "       lumo-pm clean IN -o OUT.ply\n"
                     "       lumo-pm apply STREAM [RECORDS]\n"
                     "       lumo-pm bench --out SECTION.md MODEL...\n");
@@ -50,6 +50,8 @@ static int parse(int argc, char **argv, args *a)
             a->so.quant_bits = atoi(v), i++;
         else if (!strcmp(argv[i], "--min-vertices") && v)
             a->po.min_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
+        else if (!strcmp(argv[i], "--rounds") && v)
+            a->po.round_fraction = strtod(v, NULL), i++;
         else if (!strcmp(argv[i], "--raw"))
             a->raw = 1;
         else if (!strcmp(argv[i], "--albedo"))
@@ -107,7 +109,10 @@ static int cmd_build(const args *a, int clean_only)
         rc = lumo_pm_write_ply(a->out, pm.xyz, pm.vertices, pm.tris, pm.faces) ? 1 : 0;
         goto done;
     }
-    if (lumo_pm_stream_build(&pm, &a->so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
+    lumo_pm_stream_stats st;
+    lumo_pm_stream_options so = a->so;
+    so.stats = &st;
+    if (lumo_pm_stream_build(&pm, &so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
         fprintf(stderr, "lumo-pm: error: %s: cannot write the stream\n", a->out);
         goto done;
     }
@@ -115,6 +120,11 @@ static int cmd_build(const args *a, int clean_only)
            "%u batches of %u, %zu bytes, %.2f bits/triangle\n",
            a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
            pm.base_faces, nb, a->so.batch_vertices, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
+    double sv = st.splits ? (double)st.splits : 1.0;
+    printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, other %.2f, "
+           "draco payload %.2f, record heads %.2f\n",
+           st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv, st.mask_bits / sv,
+           st.other_bits / sv, 8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv);
     rc = 0;
 done:
     free(s);

@@ -58,6 +58,8 @@ typedef struct {
     const lumo_draco_attribute *res;  /* PREDICTED coding: the residuals */
     uint32_t    log_n;       /* journal entries (3 words each) */
     uint32_t    faces, moves;
+    uint32_t    prev_parent; /* the last split's parent, NIL at a record's start */
+    uint32_t    rice;        /* the record's Rice parameter for parent gaps */
 } split_ctx;
 
 static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t size, batch *b)
@@ -539,15 +541,40 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
     return (st = add_face(s, k, p, xa)) ? st : add_face(s, k, xb, p);
 }
 
+/* The lookup-table parent of k. The server streams the splits of one
+ * independent-set round sorted by parent, so parents mostly increase: the
+ * gap d = p - prev - 1 is Rice coded (q = d >> rice zero bits, a one, the
+ * rice low bits); LUMO_PMESH_PARENT_ESCAPE zero bits instead announce p in
+ * w(k) bits (a new round, a record's first split). Work: bounded by the
+ * escape and the record's bits. */
+static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
+{
+    uint32_t q = 0, bit = 0, low;
+    while (!bit) {
+        if (read_bits(&s->br, 1, &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (!bit && ++q == LUMO_PMESH_PARENT_ESCAPE)
+            return read_bits(&s->br, lumo_pmesh_field_bits(k), p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+    }
+    if (s->prev_parent == NIL)
+        return LUMO_ERR_CORRUPT;  /* a gap needs a previous parent */
+    if (read_bits(&s->br, s->rice, &low))
+        return LUMO_ERR_TRUNCATED;
+    uint64_t v = (uint64_t)s->prev_parent + 1u + ((uint64_t)q << s->rice | low);
+    *p = v < k ? (uint32_t)v : k;  /* k: out of range below */
+    return LUMO_OK;
+}
+
 static lumo_status split(split_ctx *s, uint32_t k)
 {
     uint32_t p, n;
     int paired, fan;
     lumo_status st;
-    if (read_bits(&s->br, lumo_pmesh_field_bits(k), &p))
-        return LUMO_ERR_TRUNCATED;
+    if ((st = read_parent(s, k, &p)))
+        return st;
     if (p >= k)
         return LUMO_ERR_RANGE;
+    s->prev_parent = p;
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
     if ((st = read_split_kind(s, &n, &paired, &fan)))
@@ -562,6 +589,10 @@ static lumo_status run_splits(split_ctx *s)
     lumo_status st = LUMO_OK;
     if (s->b->first == 0)
         st = read_base(s);
+    else if (read_bits(&s->br, LUMO_PMESH_RICE_BITS, &s->rice))
+        st = LUMO_ERR_TRUNCATED;
+    else if (s->rice > LUMO_PMESH_MAX_RICE)
+        st = LUMO_ERR_CORRUPT;
     else
         for (uint32_t i = 0; i < s->b->count && !st; i++) {
             s->pm->split_log[i] = s->log_n;
@@ -653,7 +684,7 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
-    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0};
+    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0, NIL, 0};
     if ((st = run_splits(&s)) || (st = grid_positions(pm, &b, pos))) {
         rollback_to(&s, 0);
         return st;
@@ -678,7 +709,7 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices)
     pm->rewound = 1;
     if (vertices == pm->vertex_count)
         return LUMO_OK;
-    split_ctx s = {pm, {NULL, 0, 0}, NULL, NULL, pm->log_n, 0, 0};
+    split_ctx s = {pm, {NULL, 0, 0}, NULL, NULL, pm->log_n, 0, 0, NIL, 0};
     uint32_t keep = pm->split_log[vertices - pm->last_first];
     /* Vertices of the faces about to change get fresh normals afterwards. */
     uint32_t nd = mark_log(&s, keep, pm->batches_applied + 1);

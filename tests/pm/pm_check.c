@@ -484,7 +484,11 @@ int main(int argc, char **argv)
     const char *gen = NULL, *file = NULL, *dump = NULL;
     int want_rgb = 0;
     lumo_pm_stream_options so;
+    lumo_pm_stream_stats st;
+    lumo_pm_options po;
     lumo_pm_stream_default_options(&so);
+    lumo_pm_default_options(&po);
+    so.stats = &st;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--gen") && i + 1 < argc)
             gen = argv[++i];
@@ -498,6 +502,8 @@ int main(int argc, char **argv)
             dump = argv[++i];  /* for fuzz seeds and the unit test's data */
         else if (!strcmp(argv[i], "--bits") && i + 1 < argc)
             so.quant_bits = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
+            po.round_fraction = atof(argv[++i]);  /* 0: one collapse at a time */
         else
             file = argv[i];
     }
@@ -508,12 +514,12 @@ int main(int argc, char **argv)
         printf("RESULT: 0 passed, 1 failed\n");
         return 1;
     }
-    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s", gen ? gen : file, so.batch_vertices,
-             so.quant_bits, so.position_coding ? "parent residuals" : "absolute");
+    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s/rounds %g", gen ? gen : file, so.batch_vertices,
+             so.quant_bits, so.position_coding ? "parent residuals" : "absolute", po.round_fraction);
     lumo_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;
-    int built = !lumo_pm_build_albedo(in.xyz, in.rgb, in.nv, in.tris, in.nf, NULL, &pm);
+    int built = !lumo_pm_build_albedo(in.xyz, in.rgb, in.nv, in.tris, in.nf, &po, &pm);
     snprintf(err, sizeof err, "%u -> %u vertices (%u welded), %u faces (%u dropped), base %u/%u",
              in.nv, built ? pm.vertices : 0, built ? pm.welded : 0, built ? pm.faces : 0,
              built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0);
@@ -523,6 +529,14 @@ int main(int argc, char **argv)
         int streamed = !lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);
         snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
         check(streamed, "stream written", err);
+        if (streamed && po.round_fraction > 0 && pm.vertices > 1000 && so.batch_vertices >= 100) {
+            /* Rounds sort each round's splits by parent: the Rice-coded
+             * gaps must stay far below w(n) (~13-19 bits on the dragons). */
+            double pb = st.splits ? (double)st.parent_bits / st.splits : 99;
+            snprintf(err, sizeof err, "%.2f bits per split vertex (w(n) = %u)", pb,
+                     lumo_pmesh_field_bits(pm.vertices));
+            check(pb < 6.0, "lookup-table parents coded as increasing runs", err);
+        }
         if (streamed && dump) {
             FILE *f = fopen(dump, "wb");
             check(f && fwrite(s, 1, len, f) == len && !fclose(f), "stream saved", dump);

@@ -36,8 +36,15 @@
 
 #define LUMO_PMESH_HEADER_SIZE 68u   /* bytes of the stream header */
 #define LUMO_PMESH_BATCH_HEAD  36u   /* bytes of a batch record's header */
-#define LUMO_PMESH_VERSION     1u
+#define LUMO_PMESH_VERSION     2u
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
+/* Lookup-table parents of a split record (docs/progressive-mesh.md §2.3):
+ * Rice-coded gaps of an increasing run with a parameter of RICE_BITS bits
+ * (at most MAX_RICE) per record; PARENT_ESCAPE zero bits announce an
+ * explicit parent. */
+#define LUMO_PMESH_RICE_BITS      5u
+#define LUMO_PMESH_MAX_RICE       24u
+#define LUMO_PMESH_PARENT_ESCAPE  16u
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
  * Draco tools show the points); PREDICTED: a GENERIC int32 x3 attribute

@@ -25,6 +25,9 @@ typedef struct lumo_pm_options {
     double   boundary_weight;  /* penalty quadric weight of boundary edges (100) */
     double   flip_cos;         /* reject a collapse turning a face normal by
                                   more than acos(flip_cos) (0.2) */
+    double   round_fraction;   /* independent-set rounds: each round considers
+                                  the cheapest fraction of the candidates
+                                  (0.5); 0 = one collapse at a time */
 } lumo_pm_options;
 
 typedef struct lumo_pm {

@@ -25,11 +25,12 @@ int  pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t 
 void pm_clean_free(pm_clean_mesh *m);
 
 /* The collapse sequence of pm_simplify(): at step t vertex removed[t]
- * collapses onto target[t]; face_die[f] is the step that removed face f, or
- * UINT32_MAX for faces of the base mesh. */
+ * collapses onto target[t] in round round[t] (non-decreasing; the
+ * collapses of one round commute); face_die[f] is the step that removed
+ * face f, or UINT32_MAX for faces of the base mesh. */
 typedef struct pm_collapses {
     uint32_t  count;
-    uint32_t *removed, *target;
+    uint32_t *removed, *target, *round;
     uint32_t *face_die;
 } pm_collapses;
 

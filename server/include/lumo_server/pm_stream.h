@@ -11,11 +11,24 @@
 #include "lumo_server/draco_shim.h"
 #include "lumo_server/pm.h"
 
+/* Where the bits go (split records only), filled when options->stats is
+ * set: bits of each split-block field summed over the split vertices, and
+ * the bytes of their Draco payloads and record framing. */
+typedef struct lumo_pm_stream_stats {
+    uint64_t splits;                    /* split vertices */
+    uint64_t parent_bits, kind_bits;    /* lookup-table parents, kind codes */
+    uint64_t fan_bits;                  /* fan splits: first wing + fan length */
+    uint64_t mask_bits;                 /* mask splits: masks, flips, third vertices */
+    uint64_t other_bits;                /* Rice parameters and padding */
+    uint64_t draco_bytes, frame_bytes;  /* payloads; 36-byte record heads */
+} lumo_pm_stream_stats;
+
 typedef struct lumo_pm_stream_options {
     uint32_t            batch_vertices;  /* vertices per batch (paper: 250) */
     int                 quant_bits;      /* position grid bits (12) */
     lumo_draco_settings draco;           /* the payload encoder choice */
     int                 position_coding; /* LUMO_PMESH_POS_PREDICTED (default) or _ABSOLUTE */
+    lumo_pm_stream_stats *stats;         /* NULL (default), or filled by the build */
 } lumo_pm_stream_options;
 
 void lumo_pm_stream_default_options(lumo_pm_stream_options *o);
