@@ -162,6 +162,43 @@ static lumo_status ld_seq_u16_indices(uint32_t *f, const uint8_t *p, uint32_t n,
     return n && max >= np ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
+/* Varint indices (fewer than 2^21 points, so one to three bytes each in
+ * the encoder's output): a four-byte window decodes them without a loop;
+ * longer forms and the last bytes go through ld_varint32. */
+static lumo_status ld_seq_varint_indices(uint32_t *f, ld_buf *b, uint32_t n, uint32_t np)
+{
+    const uint8_t *p = ld_head(b);
+    const uint8_t *last = ld_remaining(b) >= 4u ? p + ld_remaining(b) - 4u : p - 1;
+    uint32_t i = 0, max = 0;
+    for (; i < n && p <= last; ++i) {
+        const uint32_t w = (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
+                           ((uint32_t)p[3] << 24);
+        uint32_t v;
+        if ((w & 0x808080u) == 0x8080u) {  /* the common length first */
+            v = (w & 0x7Fu) | ((w >> 1) & 0x3F80u) | ((w >> 2) & 0x1FC000u);
+            p += 3;
+        } else if (!(w & 0x80u)) {
+            v = w & 0x7Fu;
+            p += 1;
+        } else if (!(w & 0x8000u)) {
+            v = (w & 0x7Fu) | ((w >> 1) & 0x3F80u);
+            p += 2;
+        } else {
+            break;
+        }
+        f[i] = v;
+        max = v > max ? v : max;
+    }
+    b->pos = (size_t)(p - b->data);
+    for (; i < n; ++i) {
+        const lumo_status st = ld_varint32(b, &f[i]);
+        if (st)
+            return st;
+        max = f[i] > max ? f[i] : max;
+    }
+    return n && max >= np ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
 /* Plain indices (method 1): bytes, 16-bit words or varints by the point
  * count (libdraco MeshSequentialDecoder). libdraco does not check indices
  * against the point count; lumo promises every index is a valid point. */
@@ -187,8 +224,10 @@ static lumo_status ld_seq_raw_indices(ld_dec *d)
         d->buf.pos += (size_t)n * 2u;
         return ld_seq_u16_indices(d->faces, p, n, np);
     }
+    if (np < (1u << 21))
+        return ld_seq_varint_indices(d->faces, &d->buf, n, np);
     for (i = 0; i < n && !st; ++i) {
-        st = np < (1u << 21) ? ld_varint32(&d->buf, &d->faces[i]) : ld_u32(&d->buf, &d->faces[i]);
+        st = ld_u32(&d->buf, &d->faces[i]);
         if (!st && d->faces[i] >= np)
             st = LUMO_ERR_CORRUPT;
     }
