@@ -244,17 +244,16 @@ typedef struct ld_ct {
     uint32_t num_corners;
 } ld_ct;
 
-static inline uint32_t ld_next(uint32_t c)
-{
-    return c == LD_INV ? c : (c % 3u == 2u ? c - 2u : c + 1u);
-}
-static inline uint32_t ld_prev(uint32_t c)
-{
-    return c == LD_INV ? c : (c % 3u == 0u ? c + 2u : c - 1u);
-}
-/* The same for corners known to be valid (no LD_INV check). */
-static inline uint32_t ld_next_v(uint32_t c) { return c % 3u == 2u ? c - 2u : c + 1u; }
-static inline uint32_t ld_prev_v(uint32_t c) { return c % 3u == 0u ? c + 2u : c - 1u; }
+/* x is a multiple of 3 exactly when x * 3^-1 (mod 2^32) <= (2^32 - 1) / 3:
+ * one multiply and a compare instead of a division (corners < 2^32 - 1). */
+static inline int ld_mul3(uint32_t x) { return x * 0xAAAAAAABu <= 0x55555555u; }
+/* Corner stepping within a face (corners 3f, 3f+1, 3f+2) for corners
+ * known to be valid (no LD_INV check) ... */
+static inline uint32_t ld_next_v(uint32_t c) { return ld_mul3(c + 1u) ? c - 2u : c + 1u; }
+static inline uint32_t ld_prev_v(uint32_t c) { return ld_mul3(c) ? c + 2u : c - 1u; }
+/* ... and for any corner, LD_INV staying LD_INV. */
+static inline uint32_t ld_next(uint32_t c) { return c == LD_INV ? c : ld_next_v(c); }
+static inline uint32_t ld_prev(uint32_t c) { return c == LD_INV ? c : ld_prev_v(c); }
 static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
 {
     if (c == LD_INV || (t->seam && t->seam[c]))

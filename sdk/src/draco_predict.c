@@ -447,70 +447,101 @@ static inline int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t
     return 1;
 }
 
-static lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
+/* The parallelograms around entry i's vertex, at most four: swing left
+ * from its corner, then right from it when the left walk met a border. */
+static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t start,
+                                               const int32_t *v, unsigned k, uint32_t limit,
+                                               int32_t preds[][LUMO_DRACO_MAX_COMPONENTS],
+                                               int *count)
 {
-    static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
+    uint32_t corner = start, guard = 0, o;
+    int first_pass = 1;
+    *count = 0;
+    while (corner != LD_INV) {
+        if (++guard > limit)
+            return LUMO_ERR_LIMIT;
+        if (ld_fan_parallelogram(f, i, corner, v, k, preds[*count]) &&
+            ++*count == LD_MAX_PARALLELOGRAMS)
+            break;
+        if (first_pass) {  /* swing left: next(opp(next(c))) */
+            o = ld_fan_opp(f, ld_next_v(corner));
+            corner = o == LD_INV ? LD_INV : ld_next_v(o);
+        } else {           /* swing right: prev(opp(prev(c))) */
+            o = ld_fan_opp(f, ld_prev_v(corner));
+            corner = o == LD_INV ? LD_INV : ld_prev_v(o);
+        }
+        if (corner == start)
+            break;
+        if (corner == LD_INV && first_pass) {
+            first_pass = 0;
+            o = ld_fan_opp(f, ld_prev_v(start));
+            corner = o == LD_INV ? LD_INV : ld_prev_v(o);
+        }
+    }
+    return LUMO_OK;
+}
+
+/* `fast`: three components, the wrap transform and no seams, constants
+ * after inlining (positions at -cl 9/10); otherwise any attribute. */
+static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t n, int fast)
+{
     int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
     int32_t multi[LUMO_DRACO_MAX_COMPONENTS];
     uint32_t pos[LD_MAX_PARALLELOGRAMS] = {0, 0, 0, 0};
     const ld_ct *ct = p->seq->ct;
     const uint32_t *v2c = p->seq->value_to_corner, limit = ct->num_corners + 1u;
-    const unsigned k = p->comps;
+    const unsigned k = fast ? 3u : p->comps;
+    const int32_t lo = p->min_value, hi = p->max_value;
+    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
     ld_fan f;
-    uint32_t i;
+    uint32_t i, c;
     f.c2v = ct->c2v;
     f.opp = ct->opp;
-    f.seam = ct->seam;
+    f.seam = fast ? NULL : ct->seam;
     f.v2v = p->seq->vertex_to_value;
-    ld_original(p, zero, v, v);
-    for (i = 1; i < n; ++i) {
-        const uint32_t start = v2c[i];
-        uint32_t corner = start, guard = 0, c;
-        int count = 0, used = 0, first_pass = 1, j;
+    for (i = 0; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k;
-        while (corner != LD_INV) {
-            uint32_t o;
-            if (++guard > limit)
-                return LUMO_ERR_LIMIT;
-            if (ld_fan_parallelogram(&f, i, corner, v, k, preds[count]) &&
-                ++count == LD_MAX_PARALLELOGRAMS)
-                break;
-            if (first_pass) {  /* swing left: next(opp(next(c))) */
-                o = ld_fan_opp(&f, ld_next_v(corner));
-                corner = o == LD_INV ? LD_INV : ld_next_v(o);
-            } else {           /* swing right: prev(opp(prev(c))) */
-                o = ld_fan_opp(&f, ld_prev_v(corner));
-                corner = o == LD_INV ? LD_INV : ld_prev_v(o);
-            }
-            if (corner == start)
-                break;
-            if (corner == LD_INV && first_pass) {
-                first_pass = 0;
-                o = ld_fan_opp(&f, ld_prev_v(start));
-                corner = o == LD_INV ? LD_INV : ld_prev_v(o);
-            }
-        }
+        const int32_t *pred = multi;
+        int count = 0, used = 0, j;
+        lumo_status st;
+        if (p->zigzag)  /* entry i is read only from here on */
+            for (c = 0; c < k; ++c)
+                dst[c] = ld_zigzag((uint32_t)dst[c]);
         for (c = 0; c < k; ++c)
             multi[c] = 0;
-        for (j = 0; j < count; ++j) {
-            const int ctx = count - 1;
-            if (pos[ctx] >= p->num_crease[ctx])
-                return LUMO_ERR_CORRUPT;
-            if (p->crease[ctx][pos[ctx]++])
-                continue;
-            ++used;
-            for (c = 0; c < k; ++c)
-                multi[c] = ld_wrap_add(multi[c], preds[j][c]);
+        if (i > 0) {
+            if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count)))
+                return st;
+            for (j = 0; j < count; ++j) {
+                const int ctx = count - 1;
+                if (pos[ctx] >= p->num_crease[ctx])
+                    return LUMO_ERR_CORRUPT;
+                if (p->crease[ctx][pos[ctx]++])
+                    continue;
+                ++used;
+                for (c = 0; c < k; ++c)
+                    multi[c] = ld_wrap_add(multi[c], preds[j][c]);
+            }
+            if (used == 0)
+                pred = dst - k;
+            else
+                for (c = 0; c < k; ++c)
+                    multi[c] /= used;
         }
-        if (used == 0) {
-            ld_original(p, dst - k, dst, dst);
-            continue;
-        }
-        for (c = 0; c < k; ++c)
-            multi[c] /= used;
-        ld_original(p, multi, dst, dst);
+        if (fast)
+            for (c = 0; c < 3u; ++c)
+                dst[c] = ld_wrap_value(pred[c], dst[c], lo, hi, dif);
+        else
+            ld_original(p, pred, dst, dst);
     }
     return LUMO_OK;
+}
+
+static lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
+{
+    if (p->comps == 3 && p->transform == LD_XFORM_WRAP && !p->seq->ct->seam)
+        return ld_multi_run(p, v, n, 1);
+    return ld_multi_run(p, v, n, 0);
 }
 
 static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
@@ -774,7 +805,8 @@ int ld_pred_fuses_zigzag(const ld_pred *p)
 {
     const int m = ld_effective_method(p);
     return p->transform == LD_XFORM_WRAP &&
-           (m == LD_PRED_DIFFERENCE || (m == LD_PRED_PARALLELOGRAM && p->comps == 3));
+           (m == LD_PRED_DIFFERENCE || m == LD_PRED_CONSTRAINED_MULTI ||
+            (m == LD_PRED_PARALLELOGRAM && p->comps == 3));
 }
 
 lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries)
