@@ -428,7 +428,7 @@ static inline uint32_t ld_fan_opp(const ld_fan *f, uint32_t c)
 
 /* Parallelogram across the edge opposite `ci` (valid corner); 1 if all
  * three vertices are decoded before `entry`. */
-static inline int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t ci,
+static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t ci,
                                        const int32_t *data, unsigned k, int32_t *out)
 {
     const uint32_t oci = ld_fan_opp(f, ci);
@@ -441,6 +441,14 @@ static inline int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t
     ep = (uint32_t)f->v2v[f->c2v[r == 0u ? oci + 2u : oci - 1u]];
     if (eo >= entry || en >= entry || ep >= entry)
         return 0;
+    if (k == 3u) {  /* a constant in the fast instance: no loop */
+        const int32_t *po = data + 3u * (size_t)eo, *pn = data + 3u * (size_t)en,
+                      *pp = data + 3u * (size_t)ep;
+        out[0] = (int32_t)((uint32_t)pn[0] + (uint32_t)pp[0] - (uint32_t)po[0]);
+        out[1] = (int32_t)((uint32_t)pn[1] + (uint32_t)pp[1] - (uint32_t)po[1]);
+        out[2] = (int32_t)((uint32_t)pn[2] + (uint32_t)pp[2] - (uint32_t)po[2]);
+        return 1;
+    }
     for (c = 0; c < k; ++c)
         out[c] = (int32_t)((uint32_t)data[(size_t)en * k + c] + (uint32_t)data[(size_t)ep * k + c] -
                            (uint32_t)data[(size_t)eo * k + c]);
@@ -504,11 +512,20 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
         const int32_t *pred = multi;
         int count = 0, used = 0, j;
         lumo_status st;
-        if (p->zigzag)  /* entry i is read only from here on */
-            for (c = 0; c < k; ++c)
-                dst[c] = ld_zigzag((uint32_t)dst[c]);
-        for (c = 0; c < k; ++c)
-            multi[c] = 0;
+        if (fast) {  /* entry i is read only from here on */
+            int32_t *q = dst;
+            if (p->zigzag) {
+                q[0] = ld_zigzag((uint32_t)q[0]);
+                q[1] = ld_zigzag((uint32_t)q[1]);
+                q[2] = ld_zigzag((uint32_t)q[2]);
+            }
+            multi[0] = multi[1] = multi[2] = 0;
+        } else {
+            for (c = 0; c < k; ++c) {
+                dst[c] = p->zigzag ? ld_zigzag((uint32_t)dst[c]) : dst[c];
+                multi[c] = 0;
+            }
+        }
         if (i > 0) {
             if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count)))
                 return st;
@@ -528,10 +545,11 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
                 for (c = 0; c < k; ++c)
                     multi[c] /= used;
         }
-        if (fast)
-            for (c = 0; c < 3u; ++c)
-                dst[c] = ld_wrap_value(pred[c], dst[c], lo, hi, dif);
-        else
+        if (fast) {
+            dst[0] = ld_wrap_value(pred[0], dst[0], lo, hi, dif);
+            dst[1] = ld_wrap_value(pred[1], dst[1], lo, hi, dif);
+            dst[2] = ld_wrap_value(pred[2], dst[2], lo, hi, dif);
+        } else
             ld_original(p, pred, dst, dst);
     }
     return LUMO_OK;
