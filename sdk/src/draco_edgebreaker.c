@@ -524,6 +524,7 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
     for (id = 0; id < num_symbols && !st; ++id) {
         uint32_t face = s.faces++, sym = ld_eb_symbol(e);
         int split = 0;
+        e->opp[3u * face] = e->opp[3u * face + 1u] = e->opp[3u * face + 2u] = LD_INV;
         switch (sym) {
         case LD_TOPO_C: st = ld_eb_sym_c(e, &s, face); break;
         case LD_TOPO_R:
@@ -702,8 +703,9 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     e->hole = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1);
     if (!e->c2v || !e->opp || !e->lmc || !e->hole || !d->faces)
         return LUMO_ERR_NOMEM;
-    memset(e->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
-    memset(e->opp, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
+    /* No fill of c2v and opp: every symbol writes the three vertices of
+     * its face and clears its three opposites before anything reads them
+     * (corners reach the decoder only from faces already decoded). */
     memset(e->hole, 1, (size_t)e->max_vertices + 3u);
     e->ct.c2v = e->c2v;
     e->ct.opp = e->opp;

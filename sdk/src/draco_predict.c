@@ -352,65 +352,6 @@ static int ld_parallelogram(const ld_pred *p, int32_t entry, uint32_t ci, const 
     return 1;
 }
 
-/* The common case, three components with the wrap transform, on locals. */
-static lumo_status ld_parallelogram_wrap3(ld_pred *p, int32_t *v, uint32_t n)
-{
-    const ld_ct *ct = p->seq->ct;
-    const uint32_t *c2v = ct->c2v, *opp = ct->opp, *v2c = p->seq->value_to_corner;
-    const uint8_t *seam = ct->seam;
-    const int32_t *v2v = p->seq->vertex_to_value;
-    const int32_t lo = p->min_value, hi = p->max_value;
-    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
-    const int zz = p->zigzag;
-    uint32_t i, c;
-    for (i = 0; i < n; ++i) {
-        int32_t *dst = v + 3u * (size_t)i;
-        int32_t pred[3] = {0, 0, 0};
-        const uint32_t ci = i ? v2c[i] : LD_INV;
-        const uint32_t oci = (ci == LD_INV || (seam && seam[ci])) ? LD_INV : opp[ci];
-        int have = 0;
-        if (oci != LD_INV) {
-            const uint32_t r = oci % 3u;
-            const uint32_t eo = (uint32_t)v2v[c2v[oci]];
-            const uint32_t en = (uint32_t)v2v[c2v[r == 2u ? oci - 2u : oci + 1u]];
-            const uint32_t ep = (uint32_t)v2v[c2v[r == 0u ? oci + 2u : oci - 1u]];
-            if (eo < i && en < i && ep < i) {
-                const int32_t *po = v + 3u * (size_t)eo, *pn = v + 3u * (size_t)en,
-                              *pp = v + 3u * (size_t)ep;
-                for (c = 0; c < 3; ++c)
-                    pred[c] = (int32_t)((uint32_t)pn[c] + (uint32_t)pp[c] - (uint32_t)po[c]);
-                have = 1;
-            }
-        }
-        if (!have && i) {
-            pred[0] = dst[-3];
-            pred[1] = dst[-2];
-            pred[2] = dst[-1];
-        }
-        for (c = 0; c < 3; ++c)
-            dst[c] = ld_wrap_value(pred[c], zz ? ld_zigzag((uint32_t)dst[c]) : dst[c], lo, hi, dif);
-    }
-    return LUMO_OK;
-}
-
-static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
-{
-    static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
-    int32_t pred[LUMO_DRACO_MAX_COMPONENTS];
-    const unsigned k = p->comps;
-    const uint32_t *v2c = p->seq->value_to_corner;
-    uint32_t i;
-    ld_original(p, zero, v, v);
-    for (i = 1; i < n; ++i) {
-        int32_t *dst = v + (size_t)i * k;
-        if (ld_parallelogram(p, (int32_t)i, v2c[i], v, pred))
-            ld_original(p, pred, dst, dst);
-        else
-            ld_original(p, dst - k, dst, dst);
-    }
-    return LUMO_OK;
-}
-
 /* Constrained multi-parallelogram: average the parallelograms around the
  * vertex that the encoder did not flag as crossing a crease. The fan walk
  * (swing left, then right from the start) is inlined on local copies of
@@ -453,6 +394,66 @@ static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry,
         out[c] = (int32_t)((uint32_t)data[(size_t)en * k + c] + (uint32_t)data[(size_t)ep * k + c] -
                            (uint32_t)data[(size_t)eo * k + c]);
     return 1;
+}
+
+/* The common case, three components with the wrap transform; `fast`:
+ * zig-zag coded corrections and no seams, constants after inlining. */
+static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, uint32_t n,
+                                                  int fast)
+{
+    const ld_ct *ct = p->seq->ct;
+    const uint32_t *v2c = p->seq->value_to_corner;
+    const int32_t lo = p->min_value, hi = p->max_value;
+    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
+    const int zz = fast ? 1 : p->zigzag;
+    ld_fan f;
+    uint32_t i;
+    f.c2v = ct->c2v;
+    f.opp = ct->opp;
+    f.seam = fast ? NULL : ct->seam;
+    f.v2v = p->seq->vertex_to_value;
+    for (i = 0; i < n; ++i) {
+        int32_t *dst = v + 3u * (size_t)i;
+        int32_t pred[3] = {0, 0, 0};
+        const int32_t *pr = pred;
+        if (zz) {  /* entry i is read only from here on */
+            dst[0] = ld_zigzag((uint32_t)dst[0]);
+            dst[1] = ld_zigzag((uint32_t)dst[1]);
+            dst[2] = ld_zigzag((uint32_t)dst[2]);
+        }
+        if (i && !ld_fan_parallelogram(&f, i, v2c[i], v, 3u, pred))
+            pr = dst - 3;
+        dst[0] = ld_wrap_value(pr[0], dst[0], lo, hi, dif);
+        dst[1] = ld_wrap_value(pr[1], dst[1], lo, hi, dif);
+        dst[2] = ld_wrap_value(pr[2], dst[2], lo, hi, dif);
+    }
+}
+
+static lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
+{
+    if (p->zigzag && !p->seq->ct->seam)
+        ld_parallelogram3_run(p, v, n, 1);
+    else
+        ld_parallelogram3_run(p, v, n, 0);
+    return LUMO_OK;
+}
+
+static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
+{
+    static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
+    int32_t pred[LUMO_DRACO_MAX_COMPONENTS];
+    const unsigned k = p->comps;
+    const uint32_t *v2c = p->seq->value_to_corner;
+    uint32_t i;
+    ld_original(p, zero, v, v);
+    for (i = 1; i < n; ++i) {
+        int32_t *dst = v + (size_t)i * k;
+        if (ld_parallelogram(p, (int32_t)i, v2c[i], v, pred))
+            ld_original(p, pred, dst, dst);
+        else
+            ld_original(p, dst - k, dst, dst);
+    }
+    return LUMO_OK;
 }
 
 /* The parallelograms around entry i's vertex, at most four: swing left
