@@ -367,19 +367,23 @@ static inline uint32_t ld_fan_opp(const ld_fan *f, uint32_t c)
     return (f->seam && f->seam[c]) ? LD_INV : f->opp[c];
 }
 
-/* Parallelogram across the edge opposite `ci` (valid corner); 1 if all
- * three vertices are decoded before `entry`. */
+/* Parallelogram across the edge opposite `ci` (valid corner, nci and pci
+ * its next and previous corners); 1 if all three vertices are decoded
+ * before `entry`. libdraco takes the edge's vertices from the opposite
+ * face (next and prev of the opposite corner): across an edge that is not
+ * a seam they are the same two vertices, and their sum is all the
+ * prediction uses, so the walker's own corners serve without a % 3. */
 static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t ci,
-                                       const int32_t *data, unsigned k, int32_t *out)
+                                                uint32_t nci, uint32_t pci, const int32_t *data,
+                                                unsigned k, int32_t *out)
 {
     const uint32_t oci = ld_fan_opp(f, ci);
-    uint32_t r, eo, en, ep, c;
+    uint32_t eo, en, ep, c;
     if (oci == LD_INV)
         return 0;
-    r = oci % 3u;
     eo = (uint32_t)f->v2v[f->c2v[oci]];
-    en = (uint32_t)f->v2v[f->c2v[r == 2u ? oci - 2u : oci + 1u]];
-    ep = (uint32_t)f->v2v[f->c2v[r == 0u ? oci + 2u : oci - 1u]];
+    en = (uint32_t)f->v2v[f->c2v[nci]];
+    ep = (uint32_t)f->v2v[f->c2v[pci]];
     if (eo >= entry || en >= entry || ep >= entry)
         return 0;
     if (k == 3u) {  /* a constant in the fast instance: no loop */
@@ -421,8 +425,11 @@ static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, 
             dst[1] = ld_zigzag((uint32_t)dst[1]);
             dst[2] = ld_zigzag((uint32_t)dst[2]);
         }
-        if (i && !ld_fan_parallelogram(&f, i, v2c[i], v, 3u, pred))
-            pr = dst - 3;
+        if (i) {
+            const uint32_t ci = v2c[i];
+            if (!ld_fan_parallelogram(&f, i, ci, ld_next_v(ci), ld_prev_v(ci), v, 3u, pred))
+                pr = dst - 3;
+        }
         dst[0] = ld_wrap_value(pr[0], dst[0], lo, hi, dif);
         dst[1] = ld_wrap_value(pr[1], dst[1], lo, hi, dif);
         dst[2] = ld_wrap_value(pr[2], dst[2], lo, hi, dif);
@@ -467,16 +474,17 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
     int first_pass = 1;
     *count = 0;
     while (corner != LD_INV) {
+        const uint32_t nc = ld_next_v(corner), pc = ld_prev_v(corner);
         if (++guard > limit)
             return LUMO_ERR_LIMIT;
-        if (ld_fan_parallelogram(f, i, corner, v, k, preds[*count]) &&
+        if (ld_fan_parallelogram(f, i, corner, nc, pc, v, k, preds[*count]) &&
             ++*count == LD_MAX_PARALLELOGRAMS)
             break;
         if (first_pass) {  /* swing left: next(opp(next(c))) */
-            o = ld_fan_opp(f, ld_next_v(corner));
+            o = ld_fan_opp(f, nc);
             corner = o == LD_INV ? LD_INV : ld_next_v(o);
         } else {           /* swing right: prev(opp(prev(c))) */
-            o = ld_fan_opp(f, ld_prev_v(corner));
+            o = ld_fan_opp(f, pc);
             corner = o == LD_INV ? LD_INV : ld_prev_v(o);
         }
         if (corner == start)
