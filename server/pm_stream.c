@@ -35,6 +35,36 @@ static void put_bits(bitwriter *w, uint32_t v, unsigned n)
     }
 }
 
+/* tb(c) (docs/progressive-mesh.md §2.3): v in [0, c) in truncated binary.
+ * With n = w(c) and u = 2^n - c, the first u values take n - 1 bits, the
+ * others (v + u) >> 1 in n - 1 bits then (v + u) & 1. Mirrors read_trunc. */
+static unsigned trunc_bits(uint32_t v, uint32_t c)
+{
+    unsigned n = lumo_pmesh_field_bits(c);
+    return n == 0 ? 0 : v < (uint32_t)(((uint64_t)1 << n) - c) ? n - 1 : n;
+}
+
+static void put_trunc(bitwriter *w, uint32_t v, uint32_t c)
+{
+    unsigned n = lumo_pmesh_field_bits(c);
+    uint32_t u = n ? (uint32_t)(((uint64_t)1 << n) - c) : 0;
+    if (n == 0)
+        return;
+    if (v < u) {
+        put_bits(w, v, n - 1);
+        return;
+    }
+    put_bits(w, (v + u) >> 1, n - 1);
+    put_bits(w, (v + u) & 1u, 1);
+}
+
+/* Append the first `nbits` bits of src (the kind section joins the block). */
+static void put_writer(bitwriter *w, const bitwriter *src)
+{
+    for (size_t i = 0; i < src->nbits; i++)
+        put_bits(w, src->b.p[i >> 3] >> (i & 7) & 1u, 1);
+}
+
 /* ---- the client's state, replayed --------------------------------------------- */
 typedef struct {
     const lumo_pm *pm;
@@ -44,7 +74,13 @@ typedef struct {
     uint32_t  face_count;
     uint32_t  faces, moves;   /* of the batch being written */
     lumo_pm_stream_stats *st; /* or NULL */
+    uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
 } replay;
+
+/* Split kinds as the writer records them: a fan split, a pair (mask
+ * split), or 1 ... 15 faces (mask split, flips coded). */
+#define KIND_FAN  0u
+#define KIND_PAIR 16u
 
 /* Bits written since *mark into *field (stats only). */
 static void count_bits(replay *r, const bitwriter *w, size_t *mark, uint64_t *field)
@@ -73,12 +109,11 @@ static void add_face(replay *r, const uint32_t t[3])
 static void write_base(replay *r, bitwriter *w)
 {
     const lumo_pm *pm = r->pm;
-    unsigned width = lumo_pmesh_field_bits(pm->base_vertices);
     for (uint32_t f = 0; f < pm->base_faces; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++) {
             t[i] = lumo_pm_resolve(pm, pm->tris[3 * (size_t)f + i], pm->base_vertices);
-            put_bits(w, t[i], width);
+            put_trunc(w, t[i], pm->base_vertices);
         }
         add_face(r, t);
     }
@@ -88,9 +123,11 @@ static void write_base(replay *r, bitwriter *w)
 }
 
 /* Mirrors predict_split() in pmesh_batch.c: the rounded mean of the corners
- * of k's faces right after its split. */
+ * of k's faces right after its split, the parent counted
+ * LUMO_PMESH_PARENT_WEIGHT more times. */
 static void predict(replay *r, uint32_t k)
 {
+    const int32_t *qp = r->q + 3 * (size_t)r->pm->parent[k];
     int64_t sum[3] = {0, 0, 0};
     uint32_t n = 0;
     for (uint32_t c = r->head[k]; c != NIL; c = r->next[c], n += 2) {
@@ -100,10 +137,11 @@ static void predict(replay *r, uint32_t k)
                 for (int d = 0; d < 3; d++)
                     sum[d] += r->q[3 * (size_t)t[i] + d];
     }
-    for (int d = 0; d < 3; d++) {
-        int32_t pred = n ? (int32_t)((sum[d] + n / 2) / n) : r->q[3 * (size_t)r->pm->parent[k] + d];
-        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - pred;
-    }
+    for (int d = 0; d < 3; d++)
+        sum[d] += (int64_t)LUMO_PMESH_PARENT_WEIGHT * qp[d];
+    n += LUMO_PMESH_PARENT_WEIGHT;
+    for (int d = 0; d < 3; d++)
+        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - (int32_t)((sum[d] + n / 2) / n);
 }
 
 /* Mask: corners of p whose full-resolution vertex now resolves to k. */
@@ -152,11 +190,11 @@ static void write_vertex(const replay *r, bitwriter *w, const uint32_t *lists, c
 {
     for (int l = 0; l < nlists; l++) {
         uint32_t j = find_neighbour(r, lists[l], lens[l], x);
-        put_bits(w, j, lumo_pmesh_field_bits(2 * lens[l] + 1));
+        put_trunc(w, j, 2 * lens[l] + 1);
         if (j < 2 * lens[l])
             return;
     }
-    put_bits(w, x, lumo_pmesh_field_bits(k));
+    put_trunc(w, x, k);
 }
 
 /* Mirrors read_third(): among k's neighbours, else p's, else explicit. */
@@ -267,9 +305,9 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
     uint32_t wing = 0;  /* read_wing(): the first corner whose next vertex is xa */
     for (uint32_t c = r->head[p]; c != NIL && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != xa; c = r->next[c])
         wing++;
-    put_bits(w, wing, lumo_pmesh_field_bits(lp + 1));
+    put_trunc(w, wing, lp + 1);
     if (wing == lp)
-        put_bits(w, xa, lumo_pmesh_field_bits(k));
+        put_trunc(w, xa, k);
     put_fan_length(w, m);
     for (uint32_t i = 0; i < m; i++) {
         uint32_t prev = NIL, c = r->head[p];
@@ -312,14 +350,14 @@ static unsigned parent_bits(uint32_t p, uint32_t prev, uint32_t k, unsigned rice
 {
     if (parent_follows(p, prev, rice))
         return ((p - prev - 1) >> rice) + 1 + rice;
-    return LUMO_PMESH_PARENT_ESCAPE + lumo_pmesh_field_bits(k);
+    return LUMO_PMESH_PARENT_ESCAPE + trunc_bits(p, k);
 }
 
 static void put_parent(bitwriter *w, uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
 {
     if (!parent_follows(p, prev, rice)) {
         put_bits(w, 0, LUMO_PMESH_PARENT_ESCAPE);
-        put_bits(w, p, lumo_pmesh_field_bits(k));
+        put_trunc(w, p, k);
         return;
     }
     uint32_t d = p - prev - 1;
@@ -359,22 +397,15 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     uint32_t m = 0, xa = paired ? third(r, f0, k, 0) : 0;
     int fan = paired && fan_plan(r, p, k, xa, third(r, f0 + 1, k, 1), &m);
     if (fan) {
-        put_bits(w, 1, 1);
-        count_bits(r, w, &mark, &st->kind_bits);
+        r->kinds[r->nkinds++] = KIND_FAN;
         write_fan(r, w, p, k, f0, xa, m);
         count_bits(r, w, &mark, &st->fan_bits);
         predict(r, k);
         return 0;
     }
-    if (paired)
-        put_bits(w, 2, 2);
-    else if (n == 1)
-        put_bits(w, 4, 3);
-    else if (n < 16)
-        put_bits(w, 0, 3), put_bits(w, n, 4);
-    else
+    if (!paired && (n < 1 || n > 15))
         return -1;
-    count_bits(r, w, &mark, &st->kind_bits);
+    r->kinds[r->nkinds++] = paired ? KIND_PAIR : n;
     uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
@@ -508,6 +539,45 @@ static void tally_record(lumo_pm_stream_stats *st, uint64_t fields_before, uint3
     st->frame_bytes += LUMO_PMESH_BATCH_HEAD;
 }
 
+/* The record's kind section (mirrors read_split_kind): runs of fan
+ * splits, each gamma(run + 1), each run but one reaching the record's end
+ * followed by the code of the non-fan split that ends it. */
+static void write_kinds(const replay *r, bitwriter *w)
+{
+    for (uint32_t i = 0; i < r->nkinds;) {
+        uint32_t run = 0;
+        while (i + run < r->nkinds && r->kinds[i + run] == KIND_FAN)
+            run++;
+        put_gamma(w, run + 1);
+        i += run;
+        if (i == r->nkinds)
+            break;
+        uint32_t kind = r->kinds[i++];
+        if (kind == KIND_PAIR)
+            put_bits(w, 1, 1);
+        else if (kind == 1)
+            put_bits(w, 2, 2);
+        else
+            put_bits(w, 0, 2), put_bits(w, kind, 4);
+    }
+}
+
+/* A split record's block: Rice parameter, kind section length and
+ * section, then the per-vertex fields (docs/progressive-mesh.md §2.3). */
+static void join_split_block(replay *r, bitwriter *w, const bitwriter *fields, unsigned rice)
+{
+    bitwriter kinds = {{0}, 0};
+    write_kinds(r, &kinds);
+    put_bits(w, rice, LUMO_PMESH_RICE_BITS);
+    put_gamma(w, (uint32_t)kinds.nbits + 1);
+    put_writer(w, &kinds);
+    if (r->st)
+        r->st->kind_bits += w->nbits - LUMO_PMESH_RICE_BITS;
+    put_writer(w, fields);
+    w->b.failed |= kinds.b.failed | fields->b.failed;
+    free(kinds.b.p);
+}
+
 static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_draco_quant *q,
                          lumo_buf *out, lumo_pm_batch_info *bi, uint32_t nb)
 {
@@ -517,18 +587,18 @@ static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_
         uint32_t count = i ? pm->vertices - first : pm->base_vertices;
         if (i && count > o->batch_vertices)
             count = o->batch_vertices;
-        bitwriter w = {{0}, 0};
-        r->faces = r->moves = 0;
+        bitwriter w = {{0}, 0}, fields = {{0}, 0};
+        r->faces = r->moves = r->nkinds = 0;
         uint64_t fields_before = r->st ? field_bits(r->st) : 0;
         int rc = 0;
         if (!i)
             write_base(r, &w);
         unsigned rice = i ? choose_rice(pm, first, count) : 0;
-        if (i)
-            put_bits(&w, rice, LUMO_PMESH_RICE_BITS);
         for (uint32_t k = first, prev = NIL; i && k < first + count && !rc; prev = pm->parent[k++])
-            rc = write_split(r, &w, k, prev, rice);
-
+            rc = write_split(r, &fields, k, prev, rice);
+        if (i && !rc)
+            join_split_block(r, &w, &fields, rice);
+        free(fields.b.p);
         if (!rc && !w.b.failed)
             rc = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
         if (!rc && i && r->st)
@@ -559,7 +629,8 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     grid_of(pm, o->quant_bits, &q);
     replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
                 malloc(12 * (size_t)pm->faces + 4),
-                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, o->stats};
+                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, o->stats,
+                malloc(4 * (size_t)o->batch_vertices), 0};
     if (o->stats)
         memset(o->stats, 0, sizeof *o->stats);
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
@@ -567,7 +638,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
     lumo_buf_put(&s, header, sizeof header);
     int rc = -1;
-    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !bi)
+    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
         goto done;
     quantize(pm, &q, r.q);
     memset(r.head, 0xff, 4 * (size_t)pm->vertices);
@@ -586,6 +657,7 @@ done:
     free(r.disp);
     free(r.next);
     free(r.head);
+    free(r.kinds);
     free(bi);
     free(s.p);
     return rc;

@@ -44,6 +44,42 @@ static int read_bits(bitreader *b, unsigned n, uint32_t *out)
     return 0;
 }
 
+/* tb(c) of docs/progressive-mesh.md §2.3: a value in [0, c) in truncated
+ * binary. With n = w(c) and u = 2^n - c, the first n - 1 bits x give x
+ * when x < u, else one more bit b gives 2x + b - u. Always < c. */
+static int read_trunc(bitreader *b, uint32_t c, uint32_t *out)
+{
+    unsigned n = lumo_pmesh_field_bits(c);
+    uint32_t x, bit, u;
+    if (n == 0)
+        return *out = 0, 0;
+    u = (uint32_t)(((uint64_t)1 << n) - c);
+    if (read_bits(b, n - 1, &x))
+        return -1;
+    if (x < u)
+        return *out = x, 0;
+    if (read_bits(b, 1, &bit))
+        return -1;
+    *out = 2 * x + bit - u;
+    return 0;
+}
+
+/* Elias gamma code of a value >= 1: z zero bits, a one, z low bits. */
+static lumo_status read_gamma(bitreader *b, uint32_t *v)
+{
+    uint32_t z = 0, bit = 0, low;
+    while (!bit) {
+        if (read_bits(b, 1, &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (!bit && ++z > 31)
+            return LUMO_ERR_CORRUPT;
+    }
+    if (read_bits(b, z, &low))
+        return LUMO_ERR_TRUNCATED;
+    *v = (uint32_t)1 << z | low;
+    return LUMO_OK;
+}
+
 /* ---- one batch in flight --------------------------------------------------- */
 typedef struct {
     uint32_t index, first, count, faces, moves;
@@ -60,6 +96,9 @@ typedef struct {
     uint32_t    faces, moves;
     uint32_t    prev_parent; /* the last split's parent, NIL at a record's start */
     uint32_t    rice;        /* the record's Rice parameter for parent gaps */
+    bitreader   kr;          /* the record's kind section */
+    uint32_t    fans_left;   /* fan splits left in the current run */
+    int         need_run;    /* the next split starts a run */
 } split_ctx;
 
 static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t size, batch *b)
@@ -275,11 +314,10 @@ static void rollback_to(split_ctx *s, uint32_t keep)
 /* ---- base mesh and vertex splits ------------------------------------------- */
 static lumo_status read_base(split_ctx *s)
 {
-    unsigned w = lumo_pmesh_field_bits(s->b->count);
     for (uint32_t f = 0; f < s->b->faces; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++)
-            if (read_bits(&s->br, w, &t[i]))
+            if (read_trunc(&s->br, s->b->count, &t[i]))
                 return LUMO_ERR_TRUNCATED;
         if (t[0] >= s->b->count || t[1] >= s->b->count || t[2] >= s->b->count)
             return LUMO_ERR_RANGE;
@@ -342,7 +380,7 @@ static lumo_status read_vertex(split_ctx *s, const uint32_t *lists, const uint32
 {
     uint32_t j;
     for (int l = 0; l < nlists; l++) {
-        if (read_bits(&s->br, lumo_pmesh_field_bits(2 * lens[l] + 1), &j))
+        if (read_trunc(&s->br, 2 * lens[l] + 1, &j))
             return LUMO_ERR_TRUNCATED;
         if (j > 2 * lens[l])
             return LUMO_ERR_CORRUPT;
@@ -351,7 +389,7 @@ static lumo_status read_vertex(split_ctx *s, const uint32_t *lists, const uint32
             return LUMO_OK;
         }
     }
-    return read_bits(&s->br, lumo_pmesh_field_bits(k), x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+    return read_trunc(&s->br, k, x) ? LUMO_ERR_TRUNCATED : LUMO_OK;
 }
 
 /* The third vertex of a reappearing face: a neighbour of k (the wings of a
@@ -363,25 +401,38 @@ static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp,
     return read_vertex(s, lists, lens, 2, k, x);
 }
 
-/* The split's kind. A pair is two faces of opposite winding around
- * (k, p), (k, p, x) first, so no flip is coded. Bits in reading order:
- * 1 → pair, fan split (the usual interior split); 0 1 → pair, mask split;
- * 0 0 1 → one face; 0 0 0 + 4 bits → n faces, every flip explicit. */
-static lumo_status read_split_kind(split_ctx *s, uint32_t *n, int *paired, int *fan)
+/* The split's kind, from the record's kind section: runs of fan splits
+ * (the usual interior split), each gamma(run + 1) and, unless it reaches
+ * the record's end, followed by the code of the split that ends it (bits
+ * in reading order): 1 → a pair, mask split; 0 1 → one face; 0 0 + 4 bits
+ * → n faces, every flip explicit. A pair is two faces of opposite winding
+ * around (k, p), (k, p, x) first, so no flip is coded. `left`: splits of
+ * the record from this one on. */
+static lumo_status read_split_kind(split_ctx *s, uint32_t left, uint32_t *n, int *paired, int *fan)
 {
-    uint32_t bit;
-    *paired = *fan = 0;
+    uint32_t bit, run;
+    *paired = *fan = 1;
     *n = 2;
-    for (int i = 0; i < 3; i++) {
-        if (read_bits(&s->br, 1, &bit))
+    if (s->need_run) {
+        if (read_gamma(&s->kr, &run))
             return LUMO_ERR_TRUNCATED;
-        if (bit) {
-            *paired = i < 2, *fan = i == 0;
-            *n = i < 2 ? 2 : 1;
-            return LUMO_OK;
-        }
+        if (run - 1 > left)
+            return LUMO_ERR_CORRUPT;  /* a run past the record's end */
+        s->fans_left = run - 1, s->need_run = 0;
     }
-    return read_bits(&s->br, 4, n) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+    if (s->fans_left) {
+        s->fans_left--;
+        return LUMO_OK;
+    }
+    s->need_run = 1, *fan = 0;
+    if (read_bits(&s->kr, 1, &bit))
+        return LUMO_ERR_TRUNCATED;
+    if (bit)
+        return LUMO_OK;
+    *paired = 0, *n = 1;
+    if (read_bits(&s->kr, 1, &bit))
+        return LUMO_ERR_TRUNCATED;
+    return bit || !read_bits(&s->kr, 4, n) ? LUMO_OK : LUMO_ERR_TRUNCATED;
 }
 
 /* One reappearing face: (k, p, x) or, flipped, (k, x, p). *flip is read
@@ -401,13 +452,15 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
     return flip ? add_face(s, k, x, p) : add_face(s, k, p, x);
 }
 
-/* k appears among its neighbours: predict it by their mean (rounded), the
- * corners of k's faces right after its split. Work: k's valence. */
+/* k appears among its neighbours: predict it by the rounded mean of the
+ * corners of k's faces right after its split, its parent p counted
+ * LUMO_PMESH_PARENT_WEIGHT more times. Work: k's valence. */
 static lumo_status predict_split(split_ctx *s, uint32_t k)
 {
     lumo_pmesh *pm = s->pm;
+    const int32_t *qp = pm->qpos + 3 * (size_t)pm->batch_parent[k - s->b->first];
     int64_t sum[3] = {0, 0, 0};
-    uint32_t n = 0;
+    uint32_t n = LUMO_PMESH_PARENT_WEIGHT;
     for (uint32_t c = pm->head[k]; c != NIL; c = pm->next[c], n += 2) {
         const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
         for (unsigned i = 0; i < 3; i++)
@@ -417,7 +470,7 @@ static lumo_status predict_split(split_ctx *s, uint32_t k)
     }
     int32_t pred[3];
     for (unsigned d = 0; d < 3; d++)
-        pred[d] = n ? (int32_t)((sum[d] + n / 2) / n) : pm->qpos[3 * (size_t)pm->batch_parent[k - s->b->first] + d];
+        pred[d] = (int32_t)((sum[d] + (int64_t)LUMO_PMESH_PARENT_WEIGHT * qp[d] + n / 2) / n);
     return grid_value(pm, k, pred, s->res, k - s->b->first);
 }
 
@@ -443,22 +496,6 @@ static uint32_t list_length(const lumo_pmesh *pm, uint32_t v, uint32_t cap)
     return n;
 }
 
-/* Elias gamma code of a value >= 1: z zero bits, a one, z low bits. */
-static lumo_status read_gamma(split_ctx *s, uint32_t *v)
-{
-    uint32_t z = 0, bit = 0, low;
-    while (!bit) {
-        if (read_bits(&s->br, 1, &bit))
-            return LUMO_ERR_TRUNCATED;
-        if (!bit && ++z > 31)
-            return LUMO_ERR_CORRUPT;
-    }
-    if (read_bits(&s->br, z, &low))
-        return LUMO_ERR_TRUNCATED;
-    *v = (uint32_t)1 << z | low;
-    return LUMO_OK;
-}
-
 /* Fan length m (moved corners): a fixed prefix code for the common 1 … 5
  * (an interior vertex of valence 6 moves 3). Bits in reading order:
  * 0 0 → 3, 1 0 → 4, 0 1 → 2, 1 1 0 b → 1 (b = 0) or 5 (b = 1),
@@ -475,7 +512,7 @@ static lumo_status read_fan_length(split_ctx *s, uint32_t *m)
         return LUMO_ERR_TRUNCATED;
     if (!a)
         return read_bits(&s->br, 1, &b) ? LUMO_ERR_TRUNCATED : (*m = b ? 5 : 1, LUMO_OK);
-    lumo_status st = read_gamma(s, m);
+    lumo_status st = read_gamma(&s->br, m);
     return st ? st : (*m -= 1, LUMO_OK);
 }
 
@@ -506,12 +543,10 @@ static lumo_status fan_step(split_ctx *s, uint32_t p, uint32_t k, uint32_t *a)
 static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, uint32_t *xa)
 {
     uint32_t i, c = s->pm->head[p];
-    if (read_bits(&s->br, lumo_pmesh_field_bits(lp + 1), &i))
+    if (read_trunc(&s->br, lp + 1, &i))
         return LUMO_ERR_TRUNCATED;
-    if (i > lp)
-        return LUMO_ERR_CORRUPT;
     if (i == lp)
-        return read_bits(&s->br, lumo_pmesh_field_bits(k), xa) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+        return read_trunc(&s->br, k, xa) ? LUMO_ERR_TRUNCATED : LUMO_OK;
     while (i--)
         c = s->pm->next[c];
     *xa = s->pm->tris[3 * (c / 3) + (c % 3 + 1) % 3];
@@ -554,7 +589,7 @@ static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
         if (read_bits(&s->br, 1, &bit))
             return LUMO_ERR_TRUNCATED;
         if (!bit && ++q == LUMO_PMESH_PARENT_ESCAPE)
-            return read_bits(&s->br, lumo_pmesh_field_bits(k), p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+            return read_trunc(&s->br, k, p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
     }
     if (s->prev_parent == NIL)
         return LUMO_ERR_CORRUPT;  /* a gap needs a previous parent */
@@ -565,7 +600,7 @@ static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
     return LUMO_OK;
 }
 
-static lumo_status split(split_ctx *s, uint32_t k)
+static lumo_status split(split_ctx *s, uint32_t k, uint32_t left)
 {
     uint32_t p, n;
     int paired, fan;
@@ -577,11 +612,30 @@ static lumo_status split(split_ctx *s, uint32_t k)
     s->prev_parent = p;
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
-    if ((st = read_split_kind(s, &n, &paired, &fan)))
+    if ((st = read_split_kind(s, left, &n, &paired, &fan)))
         return st;
     if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
         return st;
     return s->res ? predict_split(s, k) : LUMO_OK;
+}
+
+/* A split record's block starts with the Rice parameter and the kind
+ * section (gamma(length + 1), then its bits); the per-vertex fields
+ * follow it. */
+static lumo_status open_split_block(split_ctx *s)
+{
+    uint32_t len;
+    if (read_bits(&s->br, LUMO_PMESH_RICE_BITS, &s->rice) || read_gamma(&s->br, &len))
+        return LUMO_ERR_TRUNCATED;
+    if (s->rice > LUMO_PMESH_MAX_RICE)
+        return LUMO_ERR_CORRUPT;
+    if (len - 1 > s->br.nbits - s->br.pos)
+        return LUMO_ERR_TRUNCATED;
+    s->kr = s->br;
+    s->kr.nbits = s->br.pos + (len - 1);
+    s->br.pos = s->kr.nbits;
+    s->need_run = 1;
+    return LUMO_OK;
 }
 
 static lumo_status run_splits(split_ctx *s)
@@ -589,19 +643,17 @@ static lumo_status run_splits(split_ctx *s)
     lumo_status st = LUMO_OK;
     if (s->b->first == 0)
         st = read_base(s);
-    else if (read_bits(&s->br, LUMO_PMESH_RICE_BITS, &s->rice))
-        st = LUMO_ERR_TRUNCATED;
-    else if (s->rice > LUMO_PMESH_MAX_RICE)
-        st = LUMO_ERR_CORRUPT;
-    else
+    else if (!(st = open_split_block(s)))
         for (uint32_t i = 0; i < s->b->count && !st; i++) {
             s->pm->split_log[i] = s->log_n;
-            st = split(s, s->b->first + i);
+            st = split(s, s->b->first + i, s->b->count - i);
         }
     if (st)
         return st;
     if (s->faces != s->b->faces || s->moves != s->b->moves)
         return LUMO_ERR_CORRUPT;
+    if (s->b->first && s->kr.pos != s->kr.nbits)
+        return LUMO_ERR_CORRUPT;  /* kind bits left over */
     if ((s->br.pos + 7) / 8 != s->b->side_bytes)
         return LUMO_ERR_CORRUPT;  /* trailing bytes */
     uint32_t pad;
@@ -684,7 +736,7 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
-    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0, NIL, 0};
+    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0, NIL, 0, {NULL, 0, 0}, 0, 0};
     if ((st = run_splits(&s)) || (st = grid_positions(pm, &b, pos))) {
         rollback_to(&s, 0);
         return st;
@@ -709,7 +761,7 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices)
     pm->rewound = 1;
     if (vertices == pm->vertex_count)
         return LUMO_OK;
-    split_ctx s = {pm, {NULL, 0, 0}, NULL, NULL, pm->log_n, 0, 0, NIL, 0};
+    split_ctx s = {pm, {NULL, 0, 0}, NULL, NULL, pm->log_n, 0, 0, NIL, 0, {NULL, 0, 0}, 0, 0};
     uint32_t keep = pm->split_log[vertices - pm->last_first];
     /* Vertices of the faces about to change get fresh normals afterwards. */
     uint32_t nd = mark_log(&s, keep, pm->batches_applied + 1);

@@ -45,6 +45,9 @@
 #define LUMO_PMESH_RICE_BITS      5u
 #define LUMO_PMESH_MAX_RICE       24u
 #define LUMO_PMESH_PARENT_ESCAPE  16u
+/* Predicted positions: a split vertex is predicted by the rounded mean of
+ * the corners of its faces, its parent counted this many extra times. */
+#define LUMO_PMESH_PARENT_WEIGHT  1u
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
  * Draco tools show the points); PREDICTED: a GENERIC int32 x3 attribute
