@@ -150,7 +150,24 @@ typedef struct ld_rabs {
 } ld_rabs;
 
 lumo_status ld_rabs_start(ld_rabs *d, ld_buf *b);
-int ld_rabs_bit(ld_rabs *d);
+/* One bit (inline: seams, crease flags and KD-tree numbers call it per
+ * bit). */
+static inline int ld_rabs_bit(ld_rabs *d)
+{
+    const uint32_t p = (256u - d->p0) & 0xFFu;  /* libdraco keeps p in 8 bits */
+    uint32_t quot, rem, xn;
+    if (d->state < 4096u && d->offset > 0)
+        d->state = d->state * 256u + d->buf[--d->offset];
+    quot = d->state >> 8;
+    rem = d->state & 0xFFu;
+    xn = quot * p;
+    if (rem < p) {
+        d->state = xn + rem;
+        return 1;
+    }
+    d->state = d->state - xn - p;
+    return 0;
+}
 
 /* Draco's zig-zag: even symbols are >= 0, odd ones negative
  * (odd s: -(s >> 1) - 1). */

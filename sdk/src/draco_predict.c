@@ -210,16 +210,19 @@ static inline void ld_original(const ld_pred *p, const int32_t *pred, const int3
 
 static lumo_status ld_read_bits(ld_buf *b, ld_mem *m, uint32_t n, uint8_t **out)
 {
-    ld_rabs r;
+    ld_rabs start, r;
+    uint8_t *bits;
     uint32_t i;
-    lumo_status st = ld_rabs_start(&r, b);
+    lumo_status st = ld_rabs_start(&start, b);
     if (st)
         return st;
-    *out = ld_tmp(m, n, 1);
-    if (!*out)
+    bits = ld_tmp(m, n, 1);
+    if (!bits)
         return LUMO_ERR_NOMEM;
+    r = start;  /* a local copy: byte stores may alias anything reachable */
     for (i = 0; i < n; ++i)
-        (*out)[i] = (uint8_t)ld_rabs_bit(&r);
+        bits[i] = (uint8_t)ld_rabs_bit(&r);
+    *out = bits;
     return LUMO_OK;
 }
 

@@ -318,20 +318,3 @@ lumo_status ld_rabs_start(ld_rabs *d, ld_buf *b)
     b->pos += size;
     return LUMO_OK;
 }
-
-int ld_rabs_bit(ld_rabs *d)
-{
-    const uint32_t p = (256u - d->p0) & 0xFFu;  /* libdraco keeps p in 8 bits */
-    uint32_t quot, rem, xn;
-    if (d->state < 4096u && d->offset > 0)
-        d->state = d->state * 256u + d->buf[--d->offset];
-    quot = d->state >> 8;
-    rem = d->state & 0xFFu;
-    xn = quot * p;
-    if (rem < p) {
-        d->state = xn + rem;
-        return 1;
-    }
-    d->state = d->state - xn - p;
-    return 0;
-}
