@@ -15,13 +15,13 @@ typedef struct ld_walk {
     ld_order *o;
 } ld_walk;
 
-static int ld_face_seen(const ld_walk *w, uint32_t corner)
+static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
 {
     return corner == LD_INV || w->face_seen[corner / 3u];
 }
 
 /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
-static void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
+static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
 {
     ld_order *o = w->o;
     w->vert_seen[v] = 1;
@@ -135,7 +135,7 @@ typedef struct ld_pq {
     uint32_t *degree;
 } ld_pq;
 
-static lumo_status ld_pq_push(ld_pq *q, uint32_t corner, int pri)
+static LD_FORCE_INLINE lumo_status ld_pq_push(ld_pq *q, uint32_t corner, int pri)
 {
     uint32_t n;
     if (q->free != LD_INV) {
@@ -154,7 +154,7 @@ static lumo_status ld_pq_push(ld_pq *q, uint32_t corner, int pri)
     return LUMO_OK;
 }
 
-static uint32_t ld_pq_pop(ld_pq *q)
+static LD_FORCE_INLINE uint32_t ld_pq_pop(ld_pq *q)
 {
     int i;
     for (i = q->best; i < 3; ++i) {
@@ -170,7 +170,7 @@ static uint32_t ld_pq_pop(ld_pq *q)
     return LD_INV;
 }
 
-static int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner)
+static LD_FORCE_INLINE int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner)
 {
     uint32_t tip = ld_vert(w->ct, corner);
     if (tip >= w->ct->num_vertices || w->vert_seen[tip])
@@ -178,7 +178,7 @@ static int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner)
     return ++q->degree[tip] > 1 ? 1 : 2;
 }
 
-static lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q)
+static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q)
 {
     uint32_t tip;
     lumo_status st;
@@ -234,6 +234,24 @@ static lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q)
     return LUMO_OK;
 }
 
+/* All start faces, on local copies of the walk and the queues: stores into
+ * the uint32 arrays could otherwise alias their fields and force reloads. */
+static lumo_status ld_max_degree_all(ld_walk *wp, ld_pq *qp)
+{
+    ld_walk w = *wp;
+    ld_pq q = *qp;
+    ld_order o = *wp->o;
+    uint32_t f;
+    lumo_status st = LUMO_OK;
+    w.o = &o;
+    for (f = 0; f < w.num_faces && !st; ++f)
+        if (!w.face_seen[f])  /* seen start faces are skipped */
+            st = ld_max_degree(&w, 3u * f, &q);
+    *wp->o = o;
+    qp->used = q.used;
+    return st;
+}
+
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
                         const uint32_t *faces, ld_order *o)
 {
@@ -280,9 +298,11 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
         w.cap = cap > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)cap;
         w.max_depth = 2;  /* ld_dfs needs room for two entries */
     }
-    for (f = 0; f < w.num_faces && !st; ++f)
+    if (prediction_degree)
+        st = ld_max_degree_all(&w, &q);
+    for (f = 0; f < w.num_faces && !st && !prediction_degree; ++f)
         if (!w.face_seen[f])  /* both traversers skip seen start faces */
-            st = prediction_degree ? ld_max_degree(&w, 3u * f, &q) : ld_dfs(&w, 3u * f, stack);
+            st = ld_dfs(&w, 3u * f, stack);
     ld_free_used(m, prediction_degree ? (size_t)q.used * 8u : (size_t)w.max_depth * 4u);
     return st;
 }
