@@ -34,6 +34,7 @@ struct ld_eb {
     uint32_t num_faces, num_corners, max_vertices, num_vertices, num_conn_vertices;
     uint32_t *c2v, *opp, *lmc;
     uint8_t *hole;
+    uint8_t *lmc_mark;
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -630,6 +631,22 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
     return LUMO_OK;
 }
 
+/* Without attribute seams the left-most corners serve only the traversal's
+ * border test: keep that as one byte per vertex (in the hole flags, done
+ * with) and release the 4-byte table before the attributes. */
+static void ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
+{
+    uint32_t v;
+    for (v = 0; v < e->num_vertices; ++v) {
+        const uint32_t lc = e->lmc[v];
+        e->hole[v] = (uint8_t)(lc == LD_INV || e->opp[ld_next_v(lc)] == LD_INV);
+    }
+    e->ct.border = e->hole;
+    e->ct.lmc = NULL;
+    e->lmc = NULL;
+    ld_tmp_release(&d->mem, e->lmc_mark);
+}
+
 /* AssignPointsToCorners: one point per distinct combination of attribute
  * vertices around each mesh vertex, numbered in vertex order. */
 static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
@@ -638,6 +655,7 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
     uint32_t *pts = d->faces;
     if (e->num_attr_data == 0) {  /* pts == e->c2v */
         d->num_points = e->num_conn_vertices;
+        ld_eb_drop_lmc(d, e);
         return LUMO_OK;
     }
     memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
@@ -699,8 +717,9 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
      * vertex map is the output face array itself. */
     e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
     e->opp = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-    e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
     e->hole = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1);
+    e->lmc_mark = ld_tmp_mark(&d->mem);  /* lmc on top: ld_eb_drop_lmc */
+    e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
     if (!e->c2v || !e->opp || !e->lmc || !e->hole || !d->faces)
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and opp: every symbol writes the three vertices of

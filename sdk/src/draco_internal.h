@@ -257,6 +257,8 @@ typedef struct ld_ct {
     const uint32_t *opp;      /* corner -> opposite corner of the mesh */
     const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
     const uint32_t *lmc;      /* vertex -> left-most corner */
+    const uint8_t  *border;   /* vertex -> on a border (left-most corner
+                                 has no swing left); NULL: ask lmc */
     uint32_t num_vertices;
     uint32_t num_corners;
 } ld_ct;

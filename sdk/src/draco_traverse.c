@@ -48,7 +48,7 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *opp = ct->opp, *lmc = ct->lmc, nv = ct->num_vertices;
-    const uint8_t *seam = ct->seam;
+    const uint8_t *seam = ct->seam, *border = ct->border;
     uint8_t *fseen = w->face_seen, *vseen = w->vert_seen;
     uint32_t *v2c = w->o->value_to_corner;
     int32_t *vmap = w->o->vertex_to_value;
@@ -80,11 +80,12 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
             m3 = c % 3u;
             if (!vseen[v]) {
                 /* on the boundary: no left-most corner, or no swing left */
-                const uint32_t lc = lmc[v];
-                int boundary = lc == LD_INV;
-                if (!boundary) {
-                    const uint32_t ln = lc % 3u == 2u ? lc - 2u : lc + 1u;
-                    boundary = LD_OPP(ln) == LD_INV;
+                int boundary;
+                if (border) {
+                    boundary = border[v];
+                } else {
+                    const uint32_t lc = lmc[v];
+                    boundary = lc == LD_INV || LD_OPP(ld_next_v(lc)) == LD_INV;
                 }
                 LD_VISIT(v, c);
                 if (!boundary) {
@@ -260,12 +261,14 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     uint32_t *stack = NULL, f, nv = ct->num_vertices, i;
     lumo_status st = LUMO_OK;
     int32_t *vmap = o->vertex_to_value;  /* caller may provide the array */
+    uint8_t *mark;
     memset(o, 0, sizeof *o);
     memset(&w, 0, sizeof w);
     memset(&q, 0, sizeof q);
     o->ct = ct;
     o->vertex_to_value = vmap ? vmap : ld_tmp(m, vmap_size, sizeof(int32_t));
     o->value_to_corner = ld_tmp(m, nv, sizeof(uint32_t));
+    mark = ld_tmp_mark(m);  /* the rest is released on return */
     w.ct = ct;
     w.faces = faces;
     w.o = o;
@@ -304,5 +307,6 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
         if (!w.face_seen[f])  /* both traversers skip seen start faces */
             st = ld_dfs(&w, 3u * f, stack);
     ld_free_used(m, prediction_degree ? (size_t)q.used * 8u : (size_t)w.max_depth * 4u);
+    ld_tmp_release(m, mark);
     return st;
 }
