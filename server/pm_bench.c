@@ -314,27 +314,34 @@ static void section_rounds(FILE *o, model *ms, int n)
     static const double at[] = {0.01, 0.05, 0.25};
     fprintf(o, "### Quality cost of independent-set rounds\n\n"
                "Same cleaned mesh simplified one collapse at a time (`round_fraction` 0, the QEM "
-               "order) and in independent-set rounds (the default 0.5: each round takes the valid, "
-               "mutually independent collapses among the cheapest half of the candidates). Error of a "
+               "order) and in independent-set rounds (the default `round_fraction` 0.25: each round takes "
+               "the valid, mutually independent collapses among the cheapest quarter of the candidates; "
+               "1 = all of them). Error of a "
                "level = RMS distance of the level's corner positions from the planes of the full "
                "mesh's faces (area weighted, the quadric error), in units of 10⁻⁴ of the bounding-box "
                "diagonal; and the stream's lookup-table parent bits per split vertex.\n\n"
                "| model | order | base vertices | 1%% level | 5%% level | 25%% level | parent bits/vertex "
                "| stream bytes |\n|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
-        for (int single = 1; single >= 0; single--) {
+        static const double fraction[] = {0, -1, 1};  /* -1: the default */
+        for (int j = 0; j < 3; j++) {
             lumo_pm_options po;
             lumo_pm pm;
             lumo_pm_default_options(&po);
-            if (single)
-                po.round_fraction = 0;
+            if (fraction[j] >= 0)
+                po.round_fraction = fraction[j];
             if (lumo_pm_build(ms[i].xyz, ms[i].nv, ms[i].tris, ms[i].nf, &po, &pm))
                 continue;
             double diag = bbox_diagonal(&pm), e[3];
-            for (int j = 0; j < 3; j++) {
-                uint32_t k = (uint32_t)(at[j] * pm.vertices);
-                e[j] = 1e4 * level_rms(&pm, k > pm.base_vertices ? k : pm.base_vertices) / diag;
+            for (int l = 0; l < 3; l++) {
+                uint32_t k = (uint32_t)(at[l] * pm.vertices);
+                e[l] = 1e4 * level_rms(&pm, k > pm.base_vertices ? k : pm.base_vertices) / diag;
             }
+            char order[32];
+            if (po.round_fraction > 0)
+                snprintf(order, sizeof order, "rounds %g", po.round_fraction);
+            else
+                snprintf(order, sizeof order, "one at a time");
             lumo_pm_stream_stats st;
             lumo_pm_stream_options so;
             lumo_pm_stream_default_options(&so);
@@ -343,7 +350,7 @@ static void section_rounds(FILE *o, model *ms, int n)
             size_t len = 0;
             if (!lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL))
                 fprintf(o, "| %s | %s | %u | %.2f | %.2f | %.2f | %.2f | %zu |\n", ms[i].name,
-                        single ? "one at a time" : "rounds (0.5)", pm.base_vertices, e[0], e[1], e[2],
+                        order, pm.base_vertices, e[0], e[1], e[2],
                         st.splits ? (double)st.parent_bits / st.splits : 0, len);
             free(s);
             lumo_pm_free(&pm);

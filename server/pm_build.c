@@ -10,7 +10,7 @@ void lumo_pm_default_options(lumo_pm_options *o)
     o->min_vertices = 3;
     o->boundary_weight = 100.0;
     o->flip_cos = 0.2;
-    o->round_fraction = 0.5;
+    o->round_fraction = 0.25;
 }
 
 static const uint32_t *g_level; /* qsort context */

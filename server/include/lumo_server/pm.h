@@ -27,7 +27,7 @@ typedef struct lumo_pm_options {
                                   more than acos(flip_cos) (0.2) */
     double   round_fraction;   /* independent-set rounds: each round considers
                                   the cheapest fraction of the candidates
-                                  (0.5); 0 = one collapse at a time */
+                                  (0.25); 0 = one collapse at a time */
 } lumo_pm_options;
 
 typedef struct lumo_pm {
