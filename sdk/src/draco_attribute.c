@@ -113,7 +113,7 @@ static const lumo_draco_attribute *ld_find_position(const ld_dec *d)
     return NULL;
 }
 
-static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const ld_seq *seq)
+static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, ld_seq *seq)
 {
     const uint32_t n = seq->num_entries;
     const unsigned comps = a->num_portable;
@@ -127,9 +127,6 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const 
         return LUMO_ERR_LIMIT;
     a->num_values = n;
     a->point_to_value = seq->point_to_value;
-    a->values = ld_out(&d->mem, num_values, sizeof(int32_t));
-    if (!a->values)
-        return LUMO_ERR_NOMEM;
     if ((st = ld_u8(&d->buf, (uint8_t *)&method)))
         return st;
     if (method != LD_PRED_NONE) {
@@ -153,6 +150,13 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, const 
         if (normals ? (transform != 2 && transform != 3) : transform != 1)
             return LUMO_ERR_UNSUPPORTED;
     }
+    /* A last parallelogram-predicted attribute needs only each entry's
+     * opposite corner: the corner table goes before the values come. */
+    if (seq->last && method != LD_PRED_NONE && ld_pred_needs_opposites_only(&pred))
+        ld_eb_keep_opposites(d, seq);
+    a->values = ld_out(&d->mem, num_values, sizeof(int32_t));
+    if (!a->values)
+        return LUMO_ERR_NOMEM;
     if ((st = ld_u8(&d->buf, &compressed)))
         return st;
     a->modes.compressed = compressed ? 1 : 0;
@@ -240,8 +244,7 @@ static lumo_status ld_decode_transform_params(ld_dec *d, lumo_draco_attribute *a
     return LUMO_OK;
 }
 
-lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count,
-                                 const ld_seq *seq)
+lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count, ld_seq *seq)
 {
     uint32_t i;
     lumo_status st;

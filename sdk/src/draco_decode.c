@@ -292,6 +292,7 @@ static lumo_status ld_attribute_values(ld_dec *d, unsigned i, ld_decoder_slot *s
     if (d->eb) {
         if ((st = ld_eb_sequence(d, i, &slot->seq)))
             return st;
+        slot->seq.last = (uint8_t)(i + 1u == d->num_decoders && slot->count == 1u);
     } else {
         slot->seq.num_entries = d->num_points;  /* linear sequencer */
     }

@@ -35,6 +35,7 @@ struct ld_eb {
     uint32_t *c2v, *opp, *lmc;
     uint8_t *hole;
     uint8_t *lmc_mark;
+    uint8_t *opp_end;          /* one past the opposite table's block */
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -716,6 +717,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     /* Without attribute seams every vertex is a point: the corner table's
      * vertex map is the output face array itself. */
     e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
+    e->opp_end = ld_tmp_mark(&d->mem);
     e->opp = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     e->hole = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1);
     e->lmc_mark = ld_tmp_mark(&d->mem);  /* lmc on top: ld_eb_drop_lmc */
@@ -910,4 +912,30 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         seq->point_to_value[p] = (uint32_t)entry;
     }
     return LUMO_OK;
+}
+
+/* The last attributes decoder's only attribute, predicted by
+ * parallelograms, reads of the corner table only the opposite of each
+ * entry's corner: store those in place of the corners, move them to the top
+ * of the opposite table's block and release the rest (opposites, border
+ * flags), so the 12 B/face table is not live next to the values. Only for
+ * the mesh's own table (no seams): the point map then is the vertex map. */
+void ld_eb_keep_opposites(ld_dec *d, ld_seq *seq)
+{
+    struct ld_eb *e = d->eb;
+    uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
+    const uint32_t n = seq->num_entries;
+    uint8_t *dst;
+    if (!e || e->num_attr_data || seq->ct != &e->ct || seq->opposites || !e->opp)
+        return;
+    for (i = 0; i < n; ++i)
+        v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp[v2c[i]];
+    dst = e->opp_end - (((size_t)n * sizeof(uint32_t) + 7u) & ~(size_t)7u);
+    memmove(dst, v2c, (size_t)n * sizeof(uint32_t));
+    seq->value_to_corner = (const uint32_t *)(const void *)dst;
+    seq->opposites = 1;
+    e->opp = NULL;
+    e->ct.opp = NULL;
+    e->ct.border = NULL;
+    ld_tmp_release(&d->mem, dst);
 }

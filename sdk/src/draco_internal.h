@@ -122,7 +122,13 @@ void ld_mem_init(ld_mem *m, lumo_arena *a);
 void *ld_out(ld_mem *m, size_t n, size_t size);     /* NULL when full */
 void *ld_tmp(ld_mem *m, size_t n, size_t size);     /* NULL when full */
 static inline uint8_t *ld_tmp_mark(const ld_mem *m) { return m->hi; }
-static inline void ld_tmp_release(ld_mem *m, uint8_t *mark) { m->hi = mark; }
+/* Release work memory down to a mark; a mark below work memory already
+ * released further (ld_eb_keep_opposites) is a no-op. */
+static inline void ld_tmp_release(ld_mem *m, uint8_t *mark)
+{
+    if (mark > m->hi)
+        m->hi = mark;
+}
 /* A stack of uint32 in all the free space, for traversals whose depth the
  * stream decides; ld_free_used() books the depth reached into the peak.
  * Nothing else may be allocated while it is in use. */
@@ -206,6 +212,12 @@ typedef struct ld_seq {
     const struct ld_ct *ct;
     const int32_t *vertex_to_value;
     const uint32_t *value_to_corner;
+    /* value_to_corner holds each entry's opposite corner instead: the
+     * corner table's opposites were released (ld_eb_keep_opposites) */
+    uint8_t opposites;
+    /* the decoder's only attribute and the stream's last decoder: its
+     * prediction may consume the corner table */
+    uint8_t last;
 } ld_seq;
 
 /* draco_attribute.c */
@@ -215,8 +227,7 @@ lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
 lumo_status ld_set_quantization(lumo_draco_attribute *a, unsigned bits);
 /* draco_kdtree.c: one KD-tree attributes decoder, values and parameters */
 lumo_status ld_kd_decode_attributes(ld_dec *d, uint32_t first, uint32_t count);
-lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count,
-                                 const ld_seq *seq);
+lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count, ld_seq *seq);
 
 /* draco_predict.c */
 typedef struct ld_pred {
@@ -246,6 +257,9 @@ lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
 /* 1 when ld_pred_compute can take zig-zag coded corrections (method and
  * transform known, data not yet read): one pass over the values, not two. */
 int ld_pred_fuses_zigzag(const ld_pred *p);
+/* 1 when the prediction reads the corner table only as the opposite of
+ * each entry's corner (parallelogram). */
+int ld_pred_needs_opposites_only(const ld_pred *p);
 
 /* ---- corner tables (draco_traverse.c) ------------------------------------ */
 #define LD_INV 0xFFFFFFFFu
@@ -311,5 +325,6 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d);
 lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
                                             uint8_t *traversal, uint8_t *vertex_attr);
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq);
+void ld_eb_keep_opposites(ld_dec *d, ld_seq *seq);
 
 #endif /* LUMO_DRACO_INTERNAL_H */

@@ -327,34 +327,6 @@ static int32_t ld_value_of_vertex(const ld_pred *p, uint32_t v)
     return v == LD_INV ? -1 : p->seq->vertex_to_value[v];
 }
 
-/* ComputeParallelogramPrediction: the vertex opposite `ci` across its
- * edge, reflected: next + prev - opposite, when all three are decoded.
- * (libdraco sums in int64 and truncates; uint32 arithmetic is the same.) */
-static int ld_parallelogram(const ld_pred *p, int32_t entry, uint32_t ci, const int32_t *data,
-                            int32_t *out)
-{
-    const ld_ct *ct = p->seq->ct;
-    const int32_t *v2v = p->seq->vertex_to_value;
-    const uint32_t k = p->comps;
-    uint32_t oci = ld_opp(ct, ci), c, r, eo, en, ep;
-    const int32_t *po, *pn, *pp;
-    if (oci == LD_INV)
-        return 0;
-    r = oci % 3u;  /* next and prev of oci within its face */
-    eo = (uint32_t)v2v[ct->c2v[oci]];
-    en = (uint32_t)v2v[ct->c2v[r == 2u ? oci - 2u : oci + 1u]];
-    ep = (uint32_t)v2v[ct->c2v[r == 0u ? oci + 2u : oci - 1u]];
-    /* unvisited (-1) entries become huge and fail the test */
-    if (eo >= (uint32_t)entry || en >= (uint32_t)entry || ep >= (uint32_t)entry)
-        return 0;
-    po = data + (size_t)eo * k;
-    pn = data + (size_t)en * k;
-    pp = data + (size_t)ep * k;
-    for (c = 0; c < k; ++c)
-        out[c] = (int32_t)((uint32_t)pn[c] + (uint32_t)pp[c] - (uint32_t)po[c]);
-    return 1;
-}
-
 /* Constrained multi-parallelogram: average the parallelograms around the
  * vertex that the encoder did not flag as crossing a crease. The fan walk
  * (swing left, then right from the start) is inlined on local copies of
@@ -370,26 +342,24 @@ static inline uint32_t ld_fan_opp(const ld_fan *f, uint32_t c)
     return (f->seam && f->seam[c]) ? LD_INV : f->opp[c];
 }
 
-/* Parallelogram across the edge opposite `ci` (valid corner, nci and pci
- * its next and previous corners); 1 if all three vertices are decoded
- * before `entry`. libdraco takes the edge's vertices from the opposite
- * face (next and prev of the opposite corner): across an edge that is not
- * a seam they are the same two vertices, and their sum is all the
- * prediction uses, so the walker's own corners serve without a % 3. */
-static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t ci,
-                                                uint32_t nci, uint32_t pci, const int32_t *data,
-                                                unsigned k, int32_t *out)
+/* ComputeParallelogramPrediction: the vertex at `oci` (valid corner)
+ * reflected across the edge of corners na, nb: na + nb - oci, when all
+ * three vertices are decoded before `entry` (unvisited, -1, entries become
+ * huge and fail the test). libdraco sums in int64 and truncates; uint32
+ * arithmetic is the same. libdraco takes the edge's corners in the
+ * opposite face (next and prev of oci); across an edge that is not a seam
+ * the corners of the other side hold the same two vertices, and the sum
+ * is all the prediction uses, so a fan walker passes its own corners and
+ * needs no % 3. */
+static LD_FORCE_INLINE int ld_para(const ld_fan *f, uint32_t entry, uint32_t oci, uint32_t na,
+                                   uint32_t nb, const int32_t *data, unsigned k, int32_t *out)
 {
-    const uint32_t oci = ld_fan_opp(f, ci);
-    uint32_t eo, en, ep, c;
-    if (oci == LD_INV)
-        return 0;
-    eo = (uint32_t)f->v2v[f->c2v[oci]];
-    en = (uint32_t)f->v2v[f->c2v[nci]];
-    ep = (uint32_t)f->v2v[f->c2v[pci]];
+    const uint32_t eo = (uint32_t)f->v2v[f->c2v[oci]];
+    const uint32_t en = (uint32_t)f->v2v[f->c2v[na]], ep = (uint32_t)f->v2v[f->c2v[nb]];
+    uint32_t c;
     if (eo >= entry || en >= entry || ep >= entry)
         return 0;
-    if (k == 3u) {  /* a constant in the fast instance: no loop */
+    if (k == 3u) {  /* a constant in the fast instances: no loop */
         const int32_t *po = data + 3u * (size_t)eo, *pn = data + 3u * (size_t)en,
                       *pp = data + 3u * (size_t)ep;
         out[0] = (int32_t)((uint32_t)pn[0] + (uint32_t)pp[0] - (uint32_t)po[0]);
@@ -403,22 +373,46 @@ static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry,
     return 1;
 }
 
+/* Across the edge opposite corner ci (nci, pci: its next and previous). */
+static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t ci,
+                                                uint32_t nci, uint32_t pci, const int32_t *data,
+                                                unsigned k, int32_t *out)
+{
+    const uint32_t oci = ld_fan_opp(f, ci);
+    return oci != LD_INV && ld_para(f, entry, oci, nci, pci, data, k, out);
+}
+
+/* Entry i's parallelogram: across from its traversal corner, or, after
+ * ld_eb_keep_opposites, from the opposite corner kept in its place. */
+static LD_FORCE_INLINE int ld_entry_parallelogram(const ld_pred *p, const ld_fan *f, uint32_t i,
+                                                  const int32_t *data, unsigned k, int32_t *out)
+{
+    const uint32_t c = p->seq->value_to_corner[i];
+    if (p->seq->opposites)
+        return c != LD_INV && ld_para(f, i, c, ld_next_v(c), ld_prev_v(c), data, k, out);
+    return ld_fan_parallelogram(f, i, c, ld_next_v(c), ld_prev_v(c), data, k, out);
+}
+
+static void ld_fan_init(ld_fan *f, const ld_pred *p, int seams)
+{
+    const ld_ct *ct = p->seq->ct;
+    f->c2v = ct->c2v;
+    f->opp = ct->opp;
+    f->seam = seams ? ct->seam : NULL;
+    f->v2v = p->seq->vertex_to_value;
+}
+
 /* The common case, three components with the wrap transform; `fast`:
  * zig-zag coded corrections and no seams, constants after inlining. */
 static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, uint32_t n,
                                                   int fast)
 {
-    const ld_ct *ct = p->seq->ct;
-    const uint32_t *v2c = p->seq->value_to_corner;
     const int32_t lo = p->min_value, hi = p->max_value;
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
     const int zz = fast ? 1 : p->zigzag;
     ld_fan f;
     uint32_t i;
-    f.c2v = ct->c2v;
-    f.opp = ct->opp;
-    f.seam = fast ? NULL : ct->seam;
-    f.v2v = p->seq->vertex_to_value;
+    ld_fan_init(&f, p, !fast);
     for (i = 0; i < n; ++i) {
         int32_t *dst = v + 3u * (size_t)i;
         int32_t pred[3] = {0, 0, 0};
@@ -428,11 +422,8 @@ static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, 
             dst[1] = ld_zigzag((uint32_t)dst[1]);
             dst[2] = ld_zigzag((uint32_t)dst[2]);
         }
-        if (i) {
-            const uint32_t ci = v2c[i];
-            if (!ld_fan_parallelogram(&f, i, ci, ld_next_v(ci), ld_prev_v(ci), v, 3u, pred))
-                pr = dst - 3;
-        }
+        if (i && !ld_entry_parallelogram(p, &f, i, v, 3u, pred))
+            pr = dst - 3;
         dst[0] = ld_wrap_value(pr[0], dst[0], lo, hi, dif);
         dst[1] = ld_wrap_value(pr[1], dst[1], lo, hi, dif);
         dst[2] = ld_wrap_value(pr[2], dst[2], lo, hi, dif);
@@ -453,12 +444,13 @@ static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
     static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
     int32_t pred[LUMO_DRACO_MAX_COMPONENTS];
     const unsigned k = p->comps;
-    const uint32_t *v2c = p->seq->value_to_corner;
+    ld_fan f;
     uint32_t i;
+    ld_fan_init(&f, p, 1);
     ld_original(p, zero, v, v);
     for (i = 1; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k;
-        if (ld_parallelogram(p, (int32_t)i, v2c[i], v, pred))
+        if (ld_entry_parallelogram(p, &f, i, v, k, pred))
             ld_original(p, pred, dst, dst);
         else
             ld_original(p, dst - k, dst, dst);
@@ -515,10 +507,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
     ld_fan f;
     uint32_t i, c;
-    f.c2v = ct->c2v;
-    f.opp = ct->opp;
-    f.seam = fast ? NULL : ct->seam;
-    f.v2v = p->seq->vertex_to_value;
+    ld_fan_init(&f, p, !fast);
     for (i = 0; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k;
         const int32_t *pred = multi;
@@ -829,6 +818,11 @@ static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
         ld_original(p, oct, v + 2 * (size_t)i, v + 2 * (size_t)i);
     }
     return LUMO_OK;
+}
+
+int ld_pred_needs_opposites_only(const ld_pred *p)
+{
+    return ld_effective_method(p) == LD_PRED_PARALLELOGRAM;
 }
 
 int ld_pred_fuses_zigzag(const ld_pred *p)
