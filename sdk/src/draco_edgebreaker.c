@@ -47,8 +47,8 @@ struct ld_eb {
     ld_bits sym_bits;
     ld_rabs start_faces;
     /* valence coding */
-    uint32_t *valences;
-    uint32_t *ctx_symbols[LD_VALENCE_CONTEXTS];
+    uint8_t *valences;         /* saturating at 255: only min(v, 7) matters */
+    uint8_t *ctx_symbols[LD_VALENCE_CONTEXTS];  /* 0..4, 5 = invalid */
     uint32_t ctx_count[LD_VALENCE_CONTEXTS];
     int active_ctx;
     uint32_t last_symbol;
@@ -135,14 +135,39 @@ static lumo_status ld_eb_start_common(ld_dec *d, struct ld_eb *e)
     return st;
 }
 
+/* One context's symbols, kept as bytes: decoded as 32-bit words into a
+ * block of 4n + 8 bytes, packed from the last word down into its top
+ * n bytes (byte j lands at or above word j's first byte, so no unread word
+ * is overwritten), and the block's lower part released. */
+static lumo_status ld_ctx_symbols(ld_dec *d, uint32_t n, uint8_t **out)
+{
+    const size_t skip = ((size_t)n * 3u + 7u) & ~(size_t)7u;
+    uint32_t *words = ld_tmp(&d->mem, (size_t)n + 2u, sizeof(uint32_t));
+    uint8_t *bytes;
+    uint32_t j;
+    lumo_status st;
+    if (!words)
+        return LUMO_ERR_NOMEM;
+    if ((st = ld_decode_symbols(&d->buf, &d->mem, n, 1, words, NULL)))
+        return st;
+    bytes = (uint8_t *)words + skip;
+    for (j = n; j-- > 0;) {
+        const uint32_t w = words[j];
+        bytes[j] = (uint8_t)(w > 4u ? 5u : w);
+    }
+    ld_tmp_release(&d->mem, bytes);
+    *out = bytes;
+    return LUMO_OK;
+}
+
 static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 {
     unsigned i;
     lumo_status st;
-    e->valences = ld_tmp(&d->mem, e->max_vertices + 3u, sizeof(uint32_t));
+    e->valences = ld_tmp(&d->mem, e->max_vertices + 3u, 1);
     if (!e->valences)
         return LUMO_ERR_NOMEM;
-    memset(e->valences, 0, ((size_t)e->max_vertices + 3u) * sizeof(uint32_t));
+    memset(e->valences, 0, (size_t)e->max_vertices + 3u);
     e->active_ctx = -1;
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         uint32_t n;
@@ -153,12 +178,9 @@ static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
         e->ctx_count[i] = n;
         if (n == 0)
             continue;
-        e->ctx_symbols[i] = ld_tmp(&d->mem, n, sizeof(uint32_t));
-        if (!e->ctx_symbols[i])
-            return LUMO_ERR_NOMEM;
         /* libdraco ignores a failure here (the symbols stay zero); a
          * stream that fails to decode is rejected by lumo instead. */
-        if ((st = ld_decode_symbols(&d->buf, &d->mem, n, 1, e->ctx_symbols[i], NULL)))
+        if ((st = ld_ctx_symbols(d, n, &e->ctx_symbols[i])))
             return st;
     }
     return LUMO_OK;
@@ -189,6 +211,13 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
     return e->last_symbol;
 }
 
+/* Valences saturate at 255: the context uses min(valence, 7) only. */
+static inline void ld_val_add(uint8_t *val, uint32_t v, uint32_t k)
+{
+    const uint32_t t = val[v] + k;
+    val[v] = (uint8_t)(t > 255u ? 255u : t);
+}
+
 /* Valence contexts: the valence of the next vertex selects the context of
  * the next symbol (libdraco MeshEdgebreakerTraversalValenceDecoder). */
 /* `corner` is always the first corner of the face just decoded (every
@@ -196,22 +225,23 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
  * corners are corner + 1 and corner + 2. */
 static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
 {
-    uint32_t *val = e->valences, next, prev, v;
+    uint8_t *val = e->valences;
+    uint32_t next, prev, v;
     next = e->c2v[corner + 1u];
     prev = e->c2v[corner + 2u];
     switch (e->last_symbol) {
     case LD_TOPO_C:
     case LD_TOPO_S:
-        val[next] += 1; val[prev] += 1;
+        ld_val_add(val, next, 1); ld_val_add(val, prev, 1);
         break;
     case LD_TOPO_R:
-        val[e->c2v[corner]] += 1; val[next] += 1; val[prev] += 2;
+        ld_val_add(val, e->c2v[corner], 1); ld_val_add(val, next, 1); ld_val_add(val, prev, 2);
         break;
     case LD_TOPO_L:
-        val[e->c2v[corner]] += 1; val[next] += 2; val[prev] += 1;
+        ld_val_add(val, e->c2v[corner], 1); ld_val_add(val, next, 2); ld_val_add(val, prev, 1);
         break;
     case LD_TOPO_E:
-        val[e->c2v[corner]] += 2; val[next] += 2; val[prev] += 2;
+        ld_val_add(val, e->c2v[corner], 2); ld_val_add(val, next, 2); ld_val_add(val, prev, 2);
         break;
     default:
         break;
@@ -345,7 +375,7 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
     e->c2v[corner + 2u] = vbp;
     e->lmc[vbp] = corner + 2u;
     if (e->valence)
-        e->valences[vp] += e->valences[vn];
+        ld_val_add(e->valences, vp, e->valences[vn]);
     e->lmc[vp] = e->lmc[vn];
     first = cn;
     while (cn != LD_INV) {
