@@ -7,7 +7,10 @@
  * which of p's corners move (one bit each) and which neighbour closes each
  * reappearing face (a short index into the corners around k and p). Seed
  * 000 §4.2 sends vertices, faces and lookup tables; here the lookup-table
- * entry of k is its parent p. */
+ * entry of k is its parent p, Rice coded as the gap from the previous
+ * split's parent (the splits of one collapse round are numbered by
+ * increasing parent, pm_build.c), and the split kinds ride in a per-record
+ * section of fan-split runs. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
