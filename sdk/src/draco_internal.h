@@ -242,7 +242,8 @@ typedef struct ld_pred {
     int32_t oct_max_q, oct_center;
     unsigned oct_bits;
     /* scheme data */
-    uint8_t *crease[4];
+    ld_rabs crease[4];        /* crease flags per parallelogram count,
+                                 decoded as the prediction consumes them */
     uint32_t num_crease[4];
     uint8_t *orient;
     uint32_t num_orient;

@@ -257,7 +257,7 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m)
             if (n > p->seq->ct->num_corners)
                 return LUMO_ERR_CORRUPT;
             p->num_crease[i] = n;
-            if (n && (st = ld_read_bits(b, m, n, &p->crease[i])))
+            if (n && (st = ld_rabs_start(&p->crease[i], b)))
                 return st;
         }
         return ld_transform_read(p, b);
@@ -500,6 +500,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
     int32_t multi[LUMO_DRACO_MAX_COMPONENTS];
     uint32_t pos[LD_MAX_PARALLELOGRAMS] = {0, 0, 0, 0};
+    ld_rabs crease[LD_MAX_PARALLELOGRAMS];  /* local: the value stores cannot alias */
     const ld_ct *ct = p->seq->ct;
     const uint32_t *v2c = p->seq->value_to_corner, limit = ct->num_corners + 1u;
     const unsigned k = fast ? 3u : p->comps;
@@ -508,6 +509,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     ld_fan f;
     uint32_t i, c;
     ld_fan_init(&f, p, !fast);
+    memcpy(crease, p->crease, sizeof crease);
     for (i = 0; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k;
         const int32_t *pred = multi;
@@ -532,9 +534,9 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
                 return st;
             for (j = 0; j < count; ++j) {
                 const int ctx = count - 1;
-                if (pos[ctx] >= p->num_crease[ctx])
+                if (pos[ctx]++ >= p->num_crease[ctx])
                     return LUMO_ERR_CORRUPT;
-                if (p->crease[ctx][pos[ctx]++])
+                if (ld_rabs_bit(&crease[ctx]))
                     continue;
                 ++used;
                 for (c = 0; c < k; ++c)
