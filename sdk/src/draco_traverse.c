@@ -9,7 +9,7 @@
 typedef struct ld_walk {
     const ld_ct *ct;
     const uint32_t *faces;     /* corner -> point */
-    uint8_t *face_seen, *vert_seen;
+    uint8_t *face_seen;        /* a vertex is seen once it has a value */
     uint32_t num_faces;
     uint32_t cap, max_depth;   /* DFS stack in free space */
     ld_order *o;
@@ -24,7 +24,6 @@ static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
 static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
 {
     ld_order *o = w->o;
-    w->vert_seen[v] = 1;
     o->value_to_corner[o->num_values] = corner;
     o->vertex_to_value[v] = (int32_t)o->num_values;
     o->num_values++;
@@ -35,9 +34,9 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
     uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
     if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
         return LUMO_ERR_CORRUPT;
-    if (!w->vert_seen[n])
+    if (w->o->vertex_to_value[n] < 0)
         ld_visit(w, n, ld_next_v(corner));
-    if (!w->vert_seen[p])
+    if (w->o->vertex_to_value[p] < 0)
         ld_visit(w, p, ld_prev_v(corner));
     return LUMO_OK;
 }
@@ -49,14 +48,14 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *opp = ct->opp, *lmc = ct->lmc, nv = ct->num_vertices;
     const uint8_t *seam = ct->seam, *border = ct->border;
-    uint8_t *fseen = w->face_seen, *vseen = w->vert_seen;
+    uint8_t *fseen = w->face_seen;
     uint32_t *v2c = w->o->value_to_corner;
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
 #define LD_OPP(c) ((seam && seam[c]) ? LD_INV : opp[c])
 #define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
-#define LD_VISIT(v, c) (vseen[v] = 1, v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
+#define LD_VISIT(v, c) (v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
     if (w->cap < 2)
         return LUMO_ERR_NOMEM;
     if ((st = ld_visit_edge(w, corner)))
@@ -78,7 +77,7 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
                 return LUMO_ERR_CORRUPT;
             }
             m3 = c % 3u;
-            if (!vseen[v]) {
+            if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
                 if (border) {
@@ -174,7 +173,7 @@ static LD_FORCE_INLINE uint32_t ld_pq_pop(ld_pq *q)
 static LD_FORCE_INLINE int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner)
 {
     uint32_t tip = ld_vert(w->ct, corner);
-    if (tip >= w->ct->num_vertices || w->vert_seen[tip])
+    if (tip >= w->ct->num_vertices || w->o->vertex_to_value[tip] >= 0)
         return 0;
     return ++q->degree[tip] > 1 ? 1 : 2;
 }
@@ -193,7 +192,7 @@ static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld
     tip = ld_vert(w->ct, corner);
     if (tip >= w->ct->num_vertices)
         return LUMO_ERR_CORRUPT;
-    if (!w->vert_seen[tip])
+    if (w->o->vertex_to_value[tip] < 0)
         ld_visit(w, tip, corner);
     while ((corner = ld_pq_pop(q)) != LD_INV) {
         if (w->face_seen[corner / 3u])
@@ -205,7 +204,7 @@ static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld
             v = ld_vert(w->ct, corner);
             if (v >= w->ct->num_vertices)
                 return LUMO_ERR_CORRUPT;
-            if (!w->vert_seen[v])
+            if (w->o->vertex_to_value[v] < 0)
                 ld_visit(w, v, corner);
             r = ld_opp(w->ct, ld_next_v(corner));
             l = ld_opp(w->ct, ld_prev_v(corner));
@@ -274,14 +273,11 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     w.o = o;
     w.num_faces = ct->num_corners / 3u;
     w.face_seen = ld_tmp(m, w.num_faces, 1);
-    w.vert_seen = ld_tmp(m, nv, 1);
-    if (!o->vertex_to_value || !o->value_to_corner || !w.face_seen ||
-        !w.vert_seen)
+    if (!o->vertex_to_value || !o->value_to_corner || !w.face_seen)
         return LUMO_ERR_NOMEM;
     for (i = 0; i < vmap_size; ++i)
         o->vertex_to_value[i] = -1;
     memset(w.face_seen, 0, w.num_faces);
-    memset(w.vert_seen, 0, nv);
     if (prediction_degree) {
         size_t cap;
         q.degree = ld_tmp(m, nv, sizeof(uint32_t));
