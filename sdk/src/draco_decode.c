@@ -440,7 +440,7 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
 static size_t ld_rans_work(size_t input, size_t values)
 {
     size_t syms = input < ((size_t)1 << 18) ? input : ((size_t)1 << 18), lut = 256;
-    while (lut < ((size_t)1 << 14) && lut < 2u * values)
+    while (lut < ((size_t)1 << 16) && lut < 2u * values)  /* draco_rans.c LD_LUT_*_BITS */
         lut <<= 1;
     return lumo_size_add(2u * lumo_arena_round(4u * (syms + 2u)), lumo_arena_round(4u * lut));
 }

@@ -47,7 +47,7 @@ struct ld_eb {
     ld_bits sym_bits;
     ld_rabs start_faces;
     /* valence coding */
-    uint8_t *valences;         /* saturating at 255: only min(v, 7) matters */
+    uint32_t *valences;
     uint8_t *ctx_symbols[LD_VALENCE_CONTEXTS];  /* 0..4, 5 = invalid */
     uint32_t ctx_count[LD_VALENCE_CONTEXTS];
     int active_ctx;
@@ -151,10 +151,15 @@ static lumo_status ld_ctx_symbols(ld_dec *d, uint32_t n, uint8_t **out)
     if ((st = ld_decode_symbols(&d->buf, &d->mem, n, 1, words, NULL)))
         return st;
     bytes = (uint8_t *)words + skip;
-    for (j = n; j-- > 0;) {
-        const uint32_t w = words[j];
-        bytes[j] = (uint8_t)(w > 4u ? 5u : w);
+    for (j = n; j >= 4u; j -= 4u) {  /* four at a time: the words are read first */
+        const uint32_t a = words[j - 1u], b = words[j - 2u], c = words[j - 3u], w = words[j - 4u];
+        bytes[j - 1u] = (uint8_t)(a > 4u ? 5u : a);
+        bytes[j - 2u] = (uint8_t)(b > 4u ? 5u : b);
+        bytes[j - 3u] = (uint8_t)(c > 4u ? 5u : c);
+        bytes[j - 4u] = (uint8_t)(w > 4u ? 5u : w);
     }
+    while (j-- > 0u)
+        bytes[j] = (uint8_t)(words[j] > 4u ? 5u : words[j]);
     ld_tmp_release(&d->mem, bytes);
     *out = bytes;
     return LUMO_OK;
@@ -164,10 +169,10 @@ static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 {
     unsigned i;
     lumo_status st;
-    e->valences = ld_tmp(&d->mem, e->max_vertices + 3u, 1);
+    e->valences = ld_tmp(&d->mem, e->max_vertices + 3u, sizeof(uint32_t));
     if (!e->valences)
         return LUMO_ERR_NOMEM;
-    memset(e->valences, 0, (size_t)e->max_vertices + 3u);
+    memset(e->valences, 0, ((size_t)e->max_vertices + 3u) * sizeof(uint32_t));
     e->active_ctx = -1;
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         uint32_t n;
@@ -211,13 +216,6 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
     return e->last_symbol;
 }
 
-/* Valences saturate at 255: the context uses min(valence, 7) only. */
-static inline void ld_val_add(uint8_t *val, uint32_t v, uint32_t k)
-{
-    const uint32_t t = val[v] + k;
-    val[v] = (uint8_t)(t > 255u ? 255u : t);
-}
-
 /* Valence contexts: the valence of the next vertex selects the context of
  * the next symbol (libdraco MeshEdgebreakerTraversalValenceDecoder). */
 /* `corner` is always the first corner of the face just decoded (every
@@ -225,23 +223,22 @@ static inline void ld_val_add(uint8_t *val, uint32_t v, uint32_t k)
  * corners are corner + 1 and corner + 2. */
 static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
 {
-    uint8_t *val = e->valences;
-    uint32_t next, prev, v;
+    uint32_t *val = e->valences, next, prev, v;
     next = e->c2v[corner + 1u];
     prev = e->c2v[corner + 2u];
     switch (e->last_symbol) {
     case LD_TOPO_C:
     case LD_TOPO_S:
-        ld_val_add(val, next, 1); ld_val_add(val, prev, 1);
+        val[next] += 1; val[prev] += 1;
         break;
     case LD_TOPO_R:
-        ld_val_add(val, e->c2v[corner], 1); ld_val_add(val, next, 1); ld_val_add(val, prev, 2);
+        val[e->c2v[corner]] += 1; val[next] += 1; val[prev] += 2;
         break;
     case LD_TOPO_L:
-        ld_val_add(val, e->c2v[corner], 1); ld_val_add(val, next, 2); ld_val_add(val, prev, 1);
+        val[e->c2v[corner]] += 1; val[next] += 2; val[prev] += 1;
         break;
     case LD_TOPO_E:
-        ld_val_add(val, e->c2v[corner], 2); ld_val_add(val, next, 2); ld_val_add(val, prev, 2);
+        val[e->c2v[corner]] += 2; val[next] += 2; val[prev] += 2;
         break;
     default:
         break;
@@ -375,7 +372,7 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
     e->c2v[corner + 2u] = vbp;
     e->lmc[vbp] = corner + 2u;
     if (e->valence)
-        ld_val_add(e->valences, vp, e->valences[vn]);
+        e->valences[vp] += e->valences[vn];
     e->lmc[vp] = e->lmc[vn];
     first = cn;
     while (cn != LD_INV) {
@@ -556,7 +553,8 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
     for (id = 0; id < num_symbols && !st; ++id) {
         uint32_t face = s.faces++, sym = ld_eb_symbol(e);
         int split = 0;
-        e->opp[3u * face] = e->opp[3u * face + 1u] = e->opp[3u * face + 2u] = LD_INV;
+        uint32_t *fo = e->opp + 3u * face;
+        fo[0] = fo[1] = fo[2] = LD_INV;
         switch (sym) {
         case LD_TOPO_C: st = ld_eb_sym_c(e, &s, face); break;
         case LD_TOPO_R:

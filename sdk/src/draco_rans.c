@@ -14,6 +14,7 @@
  * symbol of each bucket, a short forward scan the exact one. This keeps the
  * table small (libdraco keeps one entry per probability unit, up to 2^20). */
 #define LD_LUT_BITS 14u
+#define LD_LUT_EXACT_BITS 16u
 
 typedef struct ld_rans {
     const uint8_t *buf;
@@ -95,9 +96,14 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
 static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
 {
     unsigned bits = 8;
+    uint32_t buckets, bkt, s = 0;
     while (bits < LD_LUT_BITS && (1u << bits) < 2u * num_values)
         ++bits;
-    uint32_t buckets, bkt, s = 0;
+    /* A long stream at up to 16-bit precision gets the exact table (one
+     * bucket per probability unit, no scan): at most 256 KB, and only
+     * with more than 2^15 values to decode. */
+    if (r->prec_bits <= LD_LUT_EXACT_BITS && (1u << r->prec_bits) <= 2u * num_values)
+        bits = r->prec_bits;
     if (bits > r->prec_bits)
         bits = r->prec_bits;
     buckets = 1u << bits;
