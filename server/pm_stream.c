@@ -76,7 +76,7 @@ typedef struct {
     uint32_t *disp, *next, *head;
     uint32_t  face_count;
     uint32_t  faces, moves;   /* of the batch being written */
-    lumo_pm_stream_stats *st; /* or NULL */
+    lumo_pm_stream_stats st;  /* where the bits go (options->stats gets a copy) */
     uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
 } replay;
 
@@ -85,11 +85,10 @@ typedef struct {
 #define KIND_FAN  0u
 #define KIND_PAIR 16u
 
-/* Bits written since *mark into *field (stats only). */
-static void count_bits(replay *r, const bitwriter *w, size_t *mark, uint64_t *field)
+/* Bits written since *mark go to *field of the stats. */
+static void count_bits(const bitwriter *w, size_t *mark, uint64_t *field)
 {
-    if (r->st)
-        *field += w->nbits - *mark;
+    *field += w->nbits - *mark;
     *mark = w->nbits;
 }
 
@@ -343,7 +342,7 @@ static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
 /* Bits of parent p after prev (NIL at the start of a batch): the gap
  * d = p - prev - 1 as q = d >> rice zero bits, a one, the rice low bits of
  * d; or, when p does not follow prev or q would reach the escape, the
- * escape (LUMO_PMESH_PARENT_ESCAPE zero bits) and p in w(k) bits. */
+ * escape (LUMO_PMESH_PARENT_ESCAPE zero bits) and p as tb(k). */
 static int parent_follows(uint32_t p, uint32_t prev, unsigned rice)
 {
     return prev != NIL && p > prev && (p - prev - 1) >> rice < LUMO_PMESH_PARENT_ESCAPE;
@@ -389,9 +388,8 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     const lumo_pm *pm = r->pm;
     uint32_t p = pm->parent[k], moves0 = r->moves;
     size_t mark = w->nbits;
-    lumo_pm_stream_stats dummy, *st = r->st ? r->st : &dummy;
     put_parent(w, p, prev, k, rice);
-    count_bits(r, w, &mark, &st->parent_bits);
+    count_bits(w, &mark, &r->st.parent_bits);
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
         n++;
@@ -402,7 +400,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     if (fan) {
         r->kinds[r->nkinds++] = KIND_FAN;
         write_fan(r, w, p, k, f0, xa, m);
-        count_bits(r, w, &mark, &st->fan_bits);
+        count_bits(w, &mark, &r->st.fan_bits);
         predict(r, k);
         return 0;
     }
@@ -413,7 +411,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
             return -1;
-    count_bits(r, w, &mark, &st->mask_bits);
+    count_bits(w, &mark, &r->st.mask_bits);
     predict(r, k);
     return 0;
 }
@@ -574,8 +572,7 @@ static void join_split_block(replay *r, bitwriter *w, const bitwriter *fields, u
     put_bits(w, rice, LUMO_PMESH_RICE_BITS);
     put_gamma(w, (uint32_t)kinds.nbits + 1);
     put_writer(w, &kinds);
-    if (r->st)
-        r->st->kind_bits += w->nbits - LUMO_PMESH_RICE_BITS;
+    r->st.kind_bits += w->nbits - LUMO_PMESH_RICE_BITS;
     put_writer(w, fields);
     w->b.failed |= kinds.b.failed | fields->b.failed;
     free(kinds.b.p);
@@ -592,7 +589,7 @@ static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_
             count = o->batch_vertices;
         bitwriter w = {{0}, 0}, fields = {{0}, 0};
         r->faces = r->moves = r->nkinds = 0;
-        uint64_t fields_before = r->st ? field_bits(r->st) : 0;
+        uint64_t fields_before = field_bits(&r->st);
         int rc = 0;
         if (!i)
             write_base(r, &w);
@@ -604,8 +601,8 @@ static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_
         free(fields.b.p);
         if (!rc && !w.b.failed)
             rc = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
-        if (!rc && i && r->st)
-            tally_record(r->st, fields_before, count, &bi[i]);
+        if (!rc && i)
+            tally_record(&r->st, fields_before, count, &bi[i]);
         free(w.b.p);
         if (rc || w.b.failed) {
             fprintf(stderr, "lumo pm stream: cannot write batch %u\n", i);
@@ -632,10 +629,8 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     grid_of(pm, o->quant_bits, &q);
     replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
                 malloc(12 * (size_t)pm->faces + 4),
-                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, o->stats,
+                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, {0},
                 malloc(4 * (size_t)o->batch_vertices), 0};
-    if (o->stats)
-        memset(o->stats, 0, sizeof *o->stats);
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
     lumo_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
@@ -648,6 +643,8 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     if (write_batches(&r, o, &q, &s, bi, nb) || s.failed)
         goto done;
     write_header(s.p, pm, o, &q, nb, bi);
+    if (o->stats)
+        *o->stats = r.st;
     *out = s.p, *len = s.len, s.p = NULL;
     if (batches)
         *batches = bi, bi = NULL;
