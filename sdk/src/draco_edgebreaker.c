@@ -135,32 +135,22 @@ static lumo_status ld_eb_start_common(ld_dec *d, struct ld_eb *e)
     return st;
 }
 
-/* One context's symbols, kept as bytes: decoded as 32-bit words into a
- * block of 4n + 8 bytes, packed from the last word down into its top
- * n bytes (byte j lands at or above word j's first byte, so no unread word
- * is overwritten), and the block's lower part released. */
+/* One context's symbols, kept as bytes. They are decoded as 32-bit words
+ * into the output face array, which is not written before the symbol loop
+ * and holds 3F words (a context holds at most F symbols): no transient
+ * work memory. */
 static lumo_status ld_ctx_symbols(ld_dec *d, uint32_t n, uint8_t **out)
 {
-    const size_t skip = ((size_t)n * 3u + 7u) & ~(size_t)7u;
-    uint32_t *words = ld_tmp(&d->mem, (size_t)n + 2u, sizeof(uint32_t));
+    uint32_t *words = d->faces, j;
     uint8_t *bytes;
-    uint32_t j;
     lumo_status st;
-    if (!words)
-        return LUMO_ERR_NOMEM;
     if ((st = ld_decode_symbols(&d->buf, &d->mem, n, 1, words, NULL)))
         return st;
-    bytes = (uint8_t *)words + skip;
-    for (j = n; j >= 4u; j -= 4u) {  /* four at a time: the words are read first */
-        const uint32_t a = words[j - 1u], b = words[j - 2u], c = words[j - 3u], w = words[j - 4u];
-        bytes[j - 1u] = (uint8_t)(a > 4u ? 5u : a);
-        bytes[j - 2u] = (uint8_t)(b > 4u ? 5u : b);
-        bytes[j - 3u] = (uint8_t)(c > 4u ? 5u : c);
-        bytes[j - 4u] = (uint8_t)(w > 4u ? 5u : w);
-    }
-    while (j-- > 0u)
+    bytes = ld_tmp(&d->mem, n, 1);
+    if (!bytes)
+        return LUMO_ERR_NOMEM;
+    for (j = 0; j < n; ++j)
         bytes[j] = (uint8_t)(words[j] > 4u ? 5u : words[j]);
-    ld_tmp_release(&d->mem, bytes);
     *out = bytes;
     return LUMO_OK;
 }
