@@ -96,7 +96,7 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
 static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
 {
     unsigned bits = 8;
-    uint32_t buckets, bkt, s = 0;
+    uint32_t buckets, bkt, s, *lut;
     while (bits < LD_LUT_BITS && (1u << bits) < 2u * num_values)
         ++bits;
     /* A long stream at up to 16-bit precision gets the exact table (one
@@ -111,11 +111,14 @@ static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
     r->lut = ld_tmp(m, buckets, sizeof(uint32_t));
     if (!r->lut)
         return LUMO_ERR_NOMEM;
-    for (bkt = 0; bkt < buckets; ++bkt) {
-        uint32_t start = bkt << r->lut_shift;
-        while (r->cum[s + 1] <= start)
-            ++s;  /* terminates: cum[num_nz] == 2^prec > start */
-        r->lut[bkt] = s;
+    /* Bucket b starts at b << shift; its first symbol is the one whose
+     * range [cum[s], cum[s+1]) holds that start: fill symbol by symbol the
+     * buckets whose start falls in its range (cum[num_nz] == 2^prec). */
+    lut = r->lut;
+    for (s = 0, bkt = 0; s < r->num_nz; ++s) {
+        const uint32_t end = (r->cum[s + 1] + (1u << r->lut_shift) - 1u) >> r->lut_shift;
+        for (; bkt < end; ++bkt)
+            lut[bkt] = s;
     }
     return LUMO_OK;
 }
