@@ -185,7 +185,8 @@ static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 
 static uint32_t ld_eb_symbol(struct ld_eb *e)
 {
-    static const uint8_t to_topology[5] = {LD_TOPO_C, LD_TOPO_S, LD_TOPO_L, LD_TOPO_R, LD_TOPO_E};
+    static const uint8_t to_topology[6] = {LD_TOPO_C, LD_TOPO_S, LD_TOPO_L, LD_TOPO_R, LD_TOPO_E,
+                                           LD_TOPO_INVALID};
     uint32_t s;
     if (!e->valence) {
         s = ld_bits_get(&e->sym_bits, 1);
@@ -197,13 +198,14 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
         e->last_symbol = LD_TOPO_E;
         return LD_TOPO_E;
     }
-    if (e->ctx_count[e->active_ctx] == 0)
-        return LD_TOPO_INVALID;
-    s = e->ctx_symbols[e->active_ctx][--e->ctx_count[e->active_ctx]];
-    if (s > 4)
-        return LD_TOPO_INVALID;
-    e->last_symbol = to_topology[s];
-    return e->last_symbol;
+    {
+        uint32_t *count = &e->ctx_count[e->active_ctx];
+        if (*count == 0)
+            return LD_TOPO_INVALID;
+        s = to_topology[e->ctx_symbols[e->active_ctx][--*count]];  /* bytes 0..5 */
+    }
+    e->last_symbol = s;
+    return s;
 }
 
 /* Valence contexts: the valence of the next vertex selects the context of
@@ -213,6 +215,7 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
  * corners are corner + 1 and corner + 2. */
 static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
 {
+    static const uint8_t ctx_of_valence[8] = {0, 0, 0, 1, 2, 3, 4, 5};  /* clamp to 2..7, - 2 */
     uint32_t *val = e->valences, next, prev, v;
     next = e->c2v[corner + 1u];
     prev = e->c2v[corner + 2u];
@@ -234,8 +237,7 @@ static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
         break;
     }
     v = val[next];
-    v = v < 2u ? 2u : (v > 7u ? 7u : v);
-    e->active_ctx = (int)(v - 2u);
+    e->active_ctx = ctx_of_valence[v > 7u ? 7u : v];
 }
 
 static uint32_t ld_eb_new_vertex(struct ld_eb *e)
