@@ -36,3 +36,9 @@ draco-conformance-quick: $(DRACO_CONF_DEPS)
 	@sh tests/draco/conformance.sh $(BUILD) quick
 
 TEST_STEPS += draco-conformance
+
+# arena / output of the 48k dragon at -cl 0, 7, 10 under fixed limits
+.PHONY: draco-arena
+draco-arena: $(BIN)/lumo-draco-decode
+	@sh tests/draco/arena_check.sh $(BUILD)
+TEST_STEPS += draco-arena

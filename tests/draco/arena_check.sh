@@ -1,0 +1,31 @@
+#!/bin/sh
+# tests/draco/arena_check.sh BUILD — the decoder's exact arena need against
+# its decoded output on the 48k-triangle dragon (issue 4, goal "arena <=
+# 1.25x the output"; docs/draco-decoder.md, Memory, has the accounting and
+# why EdgeBreaker streams stay above it). The limits sit just above today's
+# ratios, so a change that makes work memory grow fails here.
+# Prints "RESULT: N passed, M failed".
+build=${1:-build}
+bin="$build/bin"
+work="$build/draco-arena"
+ply="$build/data/models/dragon_48k.ply"
+mkdir -p "$work"
+pass=0; fail=0
+# level : largest arena / output (x1000)
+for spec in 0:1080 7:1480 10:1800; do
+    cl=${spec%%:*}; limit=${spec#*:}
+    drc="$work/dragon_48k_cl$cl.drc"
+    if ! draco_encoder -i "$ply" -o "$drc" -cl "$cl" > /dev/null 2>&1 ||
+       ! info=$("$bin/lumo-draco-decode" --info "$drc"); then
+        echo "FAIL decode: dragon_48k -cl $cl"; fail=$((fail + 1)); continue
+    fi
+    ratio=$(echo "$info" | sed -n 's/^arena: \([0-9]*\) output bytes + \([0-9]*\) peak work bytes/\1 \2/p' |
+            awk '{ printf "%d", ($1 + $2) * 1000 / $1 }')
+    if [ -n "$ratio" ] && [ "$ratio" -le "$limit" ]; then
+        echo "PASS dragon_48k -cl $cl: arena/output $ratio/1000 <= $limit/1000"; pass=$((pass + 1))
+    else
+        echo "FAIL dragon_48k -cl $cl: arena/output ${ratio:-?}/1000 > $limit/1000"; fail=$((fail + 1))
+    fi
+done
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
