@@ -150,10 +150,10 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, ld_seq
         if (normals ? (transform != 2 && transform != 3) : transform != 1)
             return LUMO_ERR_UNSUPPORTED;
     }
-    /* A last parallelogram-predicted attribute needs only each entry's
-     * opposite corner: the corner table goes before the values come. */
-    if (seq->last && method != LD_PRED_NONE && ld_pred_needs_opposites_only(&pred))
-        ld_eb_keep_opposites(d, seq);
+    /* What the last attribute's prediction does not need of the corner
+     * table goes before the values come. */
+    if (seq->last && method != LD_PRED_NONE)
+        ld_eb_release_table(d, seq, ld_pred_needs_opposites_only(&pred));
     a->values = ld_out(&d->mem, num_values, sizeof(int32_t));
     if (!a->values)
         return LUMO_ERR_NOMEM;

@@ -934,28 +934,34 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     return LUMO_OK;
 }
 
-/* The last attributes decoder's only attribute, predicted by
- * parallelograms, reads of the corner table only the opposite of each
- * entry's corner: store those in place of the corners, move them to the top
- * of the opposite table's block and release the rest (opposites, border
- * flags), so the 12 B/face table is not live next to the values. Only for
- * the mesh's own table (no seams): the point map then is the vertex map. */
-void ld_eb_keep_opposites(ld_dec *d, ld_seq *seq)
+/* The last attributes decoder's only attribute: after its traversal the
+ * border flags are dead, and a parallelogram prediction reads of the
+ * corner table only the opposite of each entry's corner. Move the entry
+ * corners (or, for `opposites`, their opposite corners) up over the dead
+ * blocks and release those, so neither the flags nor the 12 B/face
+ * opposite table is live next to the values. Only for the mesh's own
+ * table (no seams: the point map is the vertex map). */
+void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
 {
     struct ld_eb *e = d->eb;
     uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
     const uint32_t n = seq->num_entries;
+    const size_t bytes = ((size_t)n * sizeof(uint32_t) + 7u) & ~(size_t)7u;
     uint8_t *dst;
-    if (!e || e->num_attr_data || seq->ct != &e->ct || seq->opposites || !e->opp)
+    if (!e || e->num_attr_data || seq->ct != &e->ct || !e->opp || !e->ct.border)
         return;
-    for (i = 0; i < n; ++i)
-        v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp[v2c[i]];
-    dst = e->opp_end - (((size_t)n * sizeof(uint32_t) + 7u) & ~(size_t)7u);
+    if (opposites)
+        for (i = 0; i < n; ++i)
+            v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp[v2c[i]];
+    /* the opposite table's block, and just below it the border flags */
+    dst = (opposites ? e->opp_end : (uint8_t *)e->opp) - bytes;
     memmove(dst, v2c, (size_t)n * sizeof(uint32_t));
     seq->value_to_corner = (const uint32_t *)(const void *)dst;
-    seq->opposites = 1;
-    e->opp = NULL;
-    e->ct.opp = NULL;
+    seq->opposites = (uint8_t)(opposites != 0);
     e->ct.border = NULL;
+    if (opposites) {
+        e->opp = NULL;
+        e->ct.opp = NULL;
+    }
     ld_tmp_release(&d->mem, dst);
 }

@@ -123,7 +123,7 @@ void *ld_out(ld_mem *m, size_t n, size_t size);     /* NULL when full */
 void *ld_tmp(ld_mem *m, size_t n, size_t size);     /* NULL when full */
 static inline uint8_t *ld_tmp_mark(const ld_mem *m) { return m->hi; }
 /* Release work memory down to a mark; a mark below work memory already
- * released further (ld_eb_keep_opposites) is a no-op. */
+ * released further (ld_eb_release_table) is a no-op. */
 static inline void ld_tmp_release(ld_mem *m, uint8_t *mark)
 {
     if (mark > m->hi)
@@ -213,7 +213,7 @@ typedef struct ld_seq {
     const int32_t *vertex_to_value;
     const uint32_t *value_to_corner;
     /* value_to_corner holds each entry's opposite corner instead: the
-     * corner table's opposites were released (ld_eb_keep_opposites) */
+     * corner table's opposites were released (ld_eb_release_table) */
     uint8_t opposites;
     /* the decoder's only attribute and the stream's last decoder: its
      * prediction may consume the corner table */
@@ -326,6 +326,6 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d);
 lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
                                             uint8_t *traversal, uint8_t *vertex_attr);
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq);
-void ld_eb_keep_opposites(ld_dec *d, ld_seq *seq);
+void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites);
 
 #endif /* LUMO_DRACO_INTERNAL_H */

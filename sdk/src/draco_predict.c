@@ -383,7 +383,7 @@ static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry,
 }
 
 /* Entry i's parallelogram: across from its traversal corner, or, after
- * ld_eb_keep_opposites, from the opposite corner kept in its place. */
+ * ld_eb_release_table, from the opposite corner kept in its place. */
 static LD_FORCE_INLINE int ld_entry_parallelogram(const ld_pred *p, const ld_fan *f, uint32_t i,
                                                   const int32_t *data, unsigned k, int32_t *out)
 {
