@@ -657,10 +657,12 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
  * with) and release the 4-byte table before the attributes. */
 static void ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
 {
+    const uint32_t *lmc = e->lmc, *opp = e->opp, n = e->num_vertices;
+    uint8_t *border = e->hole;  /* locals: byte stores may alias e's fields */
     uint32_t v;
-    for (v = 0; v < e->num_vertices; ++v) {
-        const uint32_t lc = e->lmc[v];
-        e->hole[v] = (uint8_t)(lc == LD_INV || e->opp[ld_next_v(lc)] == LD_INV);
+    for (v = 0; v < n; ++v) {
+        const uint32_t lc = lmc[v];
+        border[v] = (uint8_t)(lc == LD_INV || opp[ld_next_v(lc)] == LD_INV);
     }
     e->ct.border = e->hole;
     e->ct.lmc = NULL;
@@ -911,8 +913,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
     if (e->num_attr_data == 0) {
-        for (c = 0; c < d->num_points; ++c)
-            if (o.vertex_to_value[c] < 0 || (uint32_t)o.vertex_to_value[c] >= o.num_values)
+        for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
+            if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
                 return LUMO_ERR_CORRUPT;
         seq->point_to_value = (uint32_t *)o.vertex_to_value;
         return LUMO_OK;
