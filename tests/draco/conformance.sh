@@ -47,6 +47,10 @@ else
     for cl in 0 7 10; do add mesh "$models/dragon_11k.ply" "-cl $cl -qp 14"; done
     for cl in 0 5 7 10; do add mesh "$models/dragon_48k.ply" "-cl $cl"; done
 fi
+# more than 2^16 points: sequential connectivity with varint indices, and
+# the exact rANS table of long streams (draco_rans.c LD_LUT_EXACT_BITS)
+add mesh "$models/dragon_203k.ply" "-cl 0"
+add mesh "$models/dragon_203k.ply" "-cl 7"
 # point clouds: sequential (cl 0) and KD-tree (cl 1-10)
 for cl in 0 1 2 3 4 5 6 7 8 9 10; do
     add cloud "$work/gen/cloud.ply" "-point_cloud -cl $cl"
