@@ -297,20 +297,121 @@ static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32
     return a == xb;
 }
 
-/* Mirrors fan_split() in pmesh_batch.c. */
-static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t f0,
-                      uint32_t xa, uint32_t m)
+/* ---- fans ranked by geometry (mirrors read_arc() in pmesh_batch.c) ----
+ * The vertices k brought into p's ring lie about two edges from p, the
+ * others one: candidates (i, m) — corner i of L(p), the first whose next
+ * vertex is nx[i], and m moved corners — are scored by the sum over their
+ * m - 1 inner ring vertices pv[j] of n |pv[j] - p|^2 - sum |nx - p|^2 and
+ * ranked (higher score, then smaller i, then smaller m first). */
+#define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
+#define ARC_NONE UINT32_MAX
+
+typedef struct {
+    uint32_t n, nx[ARC_N], succ[ARC_N], first[ARC_N];
+    int64_t  w[ARC_N];
+} arc_fan;
+
+static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
 {
-    uint32_t lp = 0, a = xa;
-    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
-        lp++;
-    uint32_t wing = 0;  /* read_wing(): the first corner whose next vertex is xa */
+    int64_t s = 0;
+    for (int d = 0; d < 3; d++) {
+        int64_t e = (int64_t)q[3 * (size_t)a + d] - q[3 * (size_t)p + d];
+        s += e * e;
+    }
+    return s;
+}
+
+static void arc_gather(const replay *r, uint32_t p, uint32_t n, arc_fan *g)
+{
+    uint32_t pv[ARC_N], i = 0;
+    int64_t ring = 0;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c], i++) {
+        g->nx[i] = r->disp[3 * (c / 3) + (c % 3 + 1) % 3];
+        pv[i] = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
+        ring += dist2(r->q, g->nx[i], p);
+    }
+    g->n = n;
+    for (i = 0; i < n; i++) {
+        g->succ[i] = g->first[i] = ARC_NONE;
+        for (uint32_t j = 0; j < n; j++) {
+            if (g->succ[i] == ARC_NONE && g->nx[j] == pv[i])
+                g->succ[i] = j;
+            if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
+                g->first[i] = j;
+        }
+        g->w[i] = (int64_t)n * dist2(r->q, pv[i], p) - ring;
+    }
+}
+
+/* Rank of the fan (xa, m) among the candidates, or their count when it
+ * is not one of them (the escape). */
+static uint32_t arc_rank(const arc_fan *g, uint32_t xa, uint32_t m)
+{
+    uint32_t it = 0, count = 0, better = 0, found = 0;
+    int64_t want = 0;
+    while (it < g->n && g->nx[it] != xa)
+        it++;
+    for (int pass = 0; pass < 2; pass++)
+        for (uint32_t i = 0; i < g->n; i++) {
+            if (g->first[i] != i)
+                continue;
+            int64_t score = 0;
+            for (uint32_t mm = 1, j = i; mm <= g->n; mm++) {
+                if (pass == 0 && i == it && mm == m)
+                    want = score, found = 1;
+                if (pass == 1) {
+                    count++;
+                    better += score > want || (score == want && (i < it || (i == it && mm < m)));
+                }
+                if (g->succ[j] == ARC_NONE)
+                    break;
+                score += g->w[j];
+                j = g->succ[j];
+            }
+        }
+    return found ? better : count;
+}
+
+static void put_eg1(bitwriter *w, uint32_t v)
+{
+    put_gamma(w, (v >> 1) + 1);
+    put_bits(w, v & 1u, 1);
+}
+
+/* The explicit fan (read_wing, read_fan_length): the first corner of
+ * L(p) whose next vertex is xa (or the escape, then xa), then m. */
+static void write_wing_length(const replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t lp,
+                              uint32_t xa, uint32_t m)
+{
+    uint32_t wing = 0;
     for (uint32_t c = r->head[p]; c != NIL && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != xa; c = r->next[c])
         wing++;
     put_trunc(w, wing, lp + 1);
     if (wing == lp)
         put_trunc(w, xa, k);
     put_fan_length(w, m);
+}
+
+/* Mirrors fan_split() in pmesh_batch.c: the fan's rank, or the escape
+ * then the explicit first wing and length. */
+static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t f0,
+                      uint32_t xa, uint32_t m)
+{
+    uint32_t lp = 0, a = xa;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
+        lp++;
+    uint32_t rank = 1, count = 0;
+    if (lp >= 1 && lp <= ARC_N) {
+        arc_fan g;
+        arc_gather(r, p, lp, &g);
+        rank = arc_rank(&g, xa, m);
+        count = arc_rank(&g, NIL, 0);
+        put_eg1(w, rank);
+    }
+    if (rank < count)
+        r->st.arc_ranked++;
+    else
+        write_wing_length(r, w, p, k, lp, xa, m);
     for (uint32_t i = 0; i < m; i++) {
         uint32_t prev = NIL, c = r->head[p];
         while (r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != a)
@@ -369,13 +470,13 @@ static void put_parent(bitwriter *w, uint32_t p, uint32_t prev, uint32_t k, unsi
 }
 
 /* The batch's Rice parameter: the one that codes its parents shortest. */
-static unsigned choose_rice(const lumo_pm *pm, uint32_t first, uint32_t count)
+static unsigned choose_rice(const lumo_pm *pm, uint32_t first, uint32_t count, uint32_t prev0)
 {
     unsigned best = 0;
     uint64_t best_bits = UINT64_MAX;
     for (unsigned rice = 0; rice <= LUMO_PMESH_MAX_RICE; rice++) {
         uint64_t bits = 0;
-        for (uint32_t k = first, prev = NIL; k < first + count; prev = pm->parent[k++])
+        for (uint32_t k = first, prev = prev0; k < first + count; prev = pm->parent[k++])
             bits += parent_bits(pm->parent[k], prev, k, rice);
         if (bits < best_bits)
             best_bits = bits, best = rice;
@@ -399,6 +500,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     int fan = paired && fan_plan(r, p, k, xa, third(r, f0 + 1, k, 1), &m);
     if (fan) {
         r->kinds[r->nkinds++] = KIND_FAN;
+        r->st.fans++;
         write_fan(r, w, p, k, f0, xa, m);
         count_bits(w, &mark, &r->st.fan_bits);
         predict(r, k);
@@ -460,34 +562,40 @@ static int encode_payload(const replay *r, uint32_t first, uint32_t count, const
     return lumo_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
 }
 
+/* LEB128, minimal (mirrors read_varint() in pmesh.c): 7 bits per byte,
+ * low group first, high bit = more follows. */
+static size_t put_varint(uint8_t *d, uint32_t v)
+{
+    size_t n = 0;
+    for (; v >= 0x80u; v >>= 7)
+        d[n++] = (uint8_t)(v | 0x80u);
+    d[n++] = (uint8_t)v;
+    return n;
+}
+
+/* The record: index, side bytes and Draco bytes as varints, the CRC-32 of
+ * those varints followed by the block and the payload, then the two. */
 static int write_record(lumo_buf *out, uint32_t index, uint32_t first, uint32_t count,
                         const replay *r, const bitwriter *w, const lumo_pm_stream_options *o,
                         const lumo_draco_quant *q, lumo_pm_batch_info *info)
 {
-    uint8_t *drc = NULL;
+    uint8_t *drc = NULL, head[LUMO_PMESH_BATCH_HEAD_MAX];
     size_t drc_len = 0;
     if (encode_payload(r, first, count, o, q, &drc, &drc_len))
         return -1;
-    lumo_buf rec = {0};
-    lumo_buf_u32(&rec, LUMO_PMESH_BATCH_MAGIC);
-    lumo_buf_u32(&rec, index), lumo_buf_u32(&rec, first), lumo_buf_u32(&rec, count);
-    lumo_buf_u32(&rec, r->faces), lumo_buf_u32(&rec, r->moves);
-    lumo_buf_u32(&rec, (uint32_t)w->b.len), lumo_buf_u32(&rec, (uint32_t)drc_len);
-    lumo_buf_put(&rec, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
-    lumo_buf_put(&rec, drc, drc_len);
-    free(drc);
-    if (rec.failed)
-        return free(rec.p), -1;
-    uint32_t crc = lumo_package_crc32(0, rec.p, 32);
-    crc = lumo_package_crc32(crc, rec.p + 32, rec.len - 32);
-    uint8_t head[32];
-    memcpy(head, rec.p, 32);
+    size_t hn = put_varint(head, index);
+    hn += put_varint(head + hn, (uint32_t)w->b.len);
+    hn += put_varint(head + hn, (uint32_t)drc_len);
+    uint32_t crc = lumo_package_crc32(0, head, hn);
+    crc = lumo_package_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    crc = lumo_package_crc32(crc, drc, drc_len);
     *info = (lumo_pm_batch_info){first, count, r->faces, r->moves, out->len,
-                                 rec.len + 4, w->b.len, drc_len};
-    lumo_buf_put(out, head, 32);
+                                 hn + 4 + w->b.len + drc_len, w->b.len, drc_len};
+    lumo_buf_put(out, head, hn);
     lumo_buf_u32(out, crc);
-    lumo_buf_put(out, rec.p + 32, rec.len - 32);
-    free(rec.p);
+    lumo_buf_put(out, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    lumo_buf_put(out, drc, drc_len);
+    free(drc);
     return out->failed ? -1 : 0;
 }
 
@@ -537,7 +645,7 @@ static void tally_record(lumo_pm_stream_stats *st, uint64_t fields_before, uint3
     st->splits += count;
     st->other_bits += 8 * (uint64_t)bi->side_bytes - (field_bits(st) - fields_before);
     st->draco_bytes += bi->draco_bytes;
-    st->frame_bytes += LUMO_PMESH_BATCH_HEAD;
+    st->frame_bytes += bi->bytes - bi->side_bytes - bi->draco_bytes;
 }
 
 /* The record's kind section (mirrors read_split_kind): runs of fan
@@ -593,8 +701,10 @@ static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_
         int rc = 0;
         if (!i)
             write_base(r, &w);
-        unsigned rice = i ? choose_rice(pm, first, count) : 0;
-        for (uint32_t k = first, prev = NIL; i && k < first + count && !rc; prev = pm->parent[k++])
+        /* parents run on across records: a round rarely ends at a record's end */
+        uint32_t prev0 = i > 1 ? pm->parent[first - 1] : NIL;
+        unsigned rice = i ? choose_rice(pm, first, count, prev0) : 0;
+        for (uint32_t k = first, prev = prev0; i && k < first + count && !rc; prev = pm->parent[k++])
             rc = write_split(r, &fields, k, prev, rice);
         if (i && !rc)
             join_split_block(r, &w, &fields, rice);

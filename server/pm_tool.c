@@ -125,6 +125,9 @@ static int cmd_build(const args *a, int clean_only)
            "draco payload %.2f, record heads %.2f\n",
            st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv, st.mask_bits / sv,
            st.other_bits / sv, 8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv);
+    printf("fan splits: %llu (%.1f%% of splits), %.1f%% of them coded by rank\n",
+           (unsigned long long)st.fans, 100.0 * st.fans / sv,
+           st.fans ? 100.0 * st.arc_ranked / st.fans : 0.0);
     rc = 0;
 done:
     free(s);

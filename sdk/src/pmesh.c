@@ -29,7 +29,7 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
     if (h->base_vertices < 1 || h->base_vertices > h->vertices || h->base_faces > h->faces ||
         h->batch_vertices < 1 || h->max_batch_faces > h->faces ||
         h->max_batch_faces < h->base_faces || h->max_batch_moves > 3u * h->faces ||
-        h->max_batch_bytes < LUMO_PMESH_BATCH_HEAD)
+        h->max_batch_bytes < LUMO_PMESH_BATCH_HEAD_MIN)
         return LUMO_ERR_CORRUPT;
     if (h->batch_count != expected_batches(h))
         return LUMO_ERR_CORRUPT;
@@ -160,21 +160,57 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
         (void)lumo_f32bits_to_fixed(h->origin_bits[i], LUMO_Q16_SHIFT, &pm->origin[i]);
     (void)lumo_f32bits_to_fixed(h->range_bits, LUMO_Q16_SHIFT, &pm->range);
     memset(pm->head, 0xff, n[5] * sizeof(uint32_t));
+    pm->last_parent = 0xffffffffu;
+    return LUMO_OK;
+}
+
+/* LEB128: 7 bits per byte, low group first, high bit = more. At most 5
+ * bytes; the value must be < 2^28 (MAX_COUNT) and minimally coded (no
+ * trailing zero group), so every value has one encoding. */
+static lumo_status read_varint(const uint8_t *d, size_t size, size_t *at, uint32_t *v)
+{
+    uint32_t x = 0;
+    for (unsigned i = 0; i < 5; i++) {
+        if (*at >= size)
+            return LUMO_ERR_TRUNCATED;
+        uint8_t b = d[(*at)++];
+        x |= (uint32_t)(b & 0x7fu) << (7 * i);
+        if (!(b & 0x80u)) {
+            if ((i && !b) || x > MAX_COUNT)
+                return LUMO_ERR_CORRUPT;
+            return *v = x, LUMO_OK;
+        }
+    }
+    return LUMO_ERR_CORRUPT;
+}
+
+lumo_status lumo_pmesh_read_record_head(const uint8_t *d, size_t size, lumo_pmesh_record_head *out)
+{
+    lumo_pmesh_record_head h;
+    size_t at = 0;
+    lumo_status st;
+    if (!d || !out)
+        return LUMO_ERR_ARG;
+    if ((st = read_varint(d, size, &at, &h.index)) || (st = read_varint(d, size, &at, &h.side_bytes)) ||
+        (st = read_varint(d, size, &at, &h.draco_bytes)))
+        return st;
+    if (size - at < 4)
+        return LUMO_ERR_TRUNCATED;
+    h.crc = rd32(d + at);
+    h.head_bytes = (uint32_t)at + 4u;
+    *out = h;
     return LUMO_OK;
 }
 
 lumo_status lumo_pmesh_record_size(const uint8_t *d, size_t size, size_t *record_bytes)
 {
-    if (!d || !record_bytes)
+    lumo_pmesh_record_head h;
+    if (!record_bytes)
         return LUMO_ERR_ARG;
-    if (size < LUMO_PMESH_BATCH_HEAD)
-        return LUMO_ERR_TRUNCATED;
-    if (rd32(d) != LUMO_PMESH_BATCH_MAGIC)
-        return LUMO_ERR_CORRUPT;
-    uint32_t side = rd32(d + 24), draco = rd32(d + 28);
-    if (side > MAX_COUNT || draco > MAX_COUNT)
-        return LUMO_ERR_CORRUPT;
-    *record_bytes = (size_t)LUMO_PMESH_BATCH_HEAD + side + draco;
+    lumo_status st = lumo_pmesh_read_record_head(d, size, &h);
+    if (st)
+        return st;
+    *record_bytes = (size_t)h.head_bytes + h.side_bytes + h.draco_bytes;
     return LUMO_OK;
 }
 

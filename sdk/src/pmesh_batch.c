@@ -22,11 +22,6 @@
 
 #define NIL 0xffffffffu
 
-static uint32_t rd32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 /* ---- bits: LSB-first within each byte ------------------------------------ */
 typedef struct {
     const uint8_t *p;
@@ -82,7 +77,7 @@ static lumo_status read_gamma(bitreader *b, uint32_t *v)
 
 /* ---- one batch in flight --------------------------------------------------- */
 typedef struct {
-    uint32_t index, first, count, faces, moves;
+    uint32_t index, first, count;
     const uint8_t *side, *draco;
     uint32_t side_bytes, draco_bytes;
 } batch;
@@ -94,44 +89,43 @@ typedef struct {
     const lumo_draco_attribute *res;  /* PREDICTED coding: the residuals */
     uint32_t    log_n;       /* journal entries (3 words each) */
     uint32_t    faces, moves;
-    uint32_t    prev_parent; /* the last split's parent, NIL at a record's start */
+    uint32_t    prev_parent; /* the last split's parent (also of the previous
+                                record), NIL before the first split */
     uint32_t    rice;        /* the record's Rice parameter for parent gaps */
     bitreader   kr;          /* the record's kind section */
     uint32_t    fans_left;   /* fan splits left in the current run */
     int         need_run;    /* the next split starts a run */
 } split_ctx;
 
+/* The record's head (docs/progressive-mesh.md §2.2): what the decoder
+ * cannot derive. The first vertex and the vertex count follow from the
+ * records applied; the CRC covers everything but itself. */
 static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t size, batch *b)
 {
-    size_t need;
-    lumo_status st = lumo_pmesh_record_size(r, size, &need);
+    lumo_pmesh_record_head rh;
+    lumo_status st = lumo_pmesh_read_record_head(r, size, &rh);
     if (st)
         return st;
+    size_t need = (size_t)rh.head_bytes + rh.side_bytes + rh.draco_bytes;
     if (size < need)
         return LUMO_ERR_TRUNCATED;
     if (size > need)
         return LUMO_ERR_CORRUPT;
     if (need > pm->h.max_batch_bytes)
         return LUMO_ERR_LIMIT;  /* the Draco scratch is sized for the largest record */
-    uint32_t crc = lumo_package_crc32(0, r, 32);
-    crc = lumo_package_crc32(crc, r + LUMO_PMESH_BATCH_HEAD, need - LUMO_PMESH_BATCH_HEAD);
-    if (crc != rd32(r + 32))
+    uint32_t crc = lumo_package_crc32(0, r, rh.head_bytes - 4u);
+    crc = lumo_package_crc32(crc, r + rh.head_bytes, need - rh.head_bytes);
+    if (crc != rh.crc)
         return LUMO_ERR_CHECKSUM;
-    b->index = rd32(r + 4), b->first = rd32(r + 8), b->count = rd32(r + 12);
-    b->faces = rd32(r + 16), b->moves = rd32(r + 20);
-    b->side_bytes = rd32(r + 24), b->draco_bytes = rd32(r + 28);
-    b->side = r + LUMO_PMESH_BATCH_HEAD, b->draco = b->side + b->side_bytes;
-    if (b->index != pm->batches_applied || b->first != pm->vertex_count)
+    if (rh.index != pm->batches_applied || pm->vertex_count == pm->h.vertices)
         return LUMO_ERR_STATE;  /* not the next batch: out of order or repeated */
     const lumo_pmesh_header *h = &pm->h;
-    if (b->count < 1 || b->count > h->vertices - b->first)
-        return LUMO_ERR_CORRUPT;
-    if (b->first == 0 ? b->count != h->base_vertices || b->faces != h->base_faces
-                      : b->count > h->batch_vertices)
-        return LUMO_ERR_CORRUPT;
-    if (b->faces > h->max_batch_faces || b->moves > h->max_batch_moves ||
-        b->faces > h->faces - pm->face_count)
-        return LUMO_ERR_LIMIT;
+    b->index = rh.index, b->first = pm->vertex_count;
+    b->count = b->first ? h->vertices - b->first : h->base_vertices;
+    if (b->first && b->count > h->batch_vertices)
+        b->count = h->batch_vertices;
+    b->side_bytes = rh.side_bytes, b->draco_bytes = rh.draco_bytes;
+    b->side = r + rh.head_bytes, b->draco = b->side + b->side_bytes;
     return LUMO_OK;
 }
 
@@ -274,8 +268,8 @@ static void log_entry(split_ctx *s, uint32_t a, uint32_t b, uint32_t c)
 static lumo_status add_face(split_ctx *s, uint32_t a, uint32_t b, uint32_t c)
 {
     lumo_pmesh *pm = s->pm;
-    if (s->faces >= s->b->faces)
-        return LUMO_ERR_CORRUPT;  /* more faces than the record declared */
+    if (s->faces >= s->pm->h.max_batch_faces || pm->face_count >= pm->h.faces)
+        return LUMO_ERR_CORRUPT;  /* more faces than the header allows */
     uint32_t f = pm->face_count++, t[3] = {a, b, c};
     for (uint32_t i = 0; i < 3; i++) {
         pm->tris[3 * (size_t)f + i] = t[i];
@@ -314,7 +308,7 @@ static void rollback_to(split_ctx *s, uint32_t keep)
 /* ---- base mesh and vertex splits ------------------------------------------- */
 static lumo_status read_base(split_ctx *s)
 {
-    for (uint32_t f = 0; f < s->b->faces; f++) {
+    for (uint32_t f = 0; f < s->pm->h.base_faces; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++)
             if (read_trunc(&s->br, s->b->count, &t[i]))
@@ -345,7 +339,7 @@ static lumo_status move_corners(split_ctx *s, uint32_t p, uint32_t k, uint32_t *
             prev = c, c = nextc, (*lenp)++;
             continue;
         }
-        if (s->moves >= s->b->moves)
+        if (s->moves >= s->pm->h.max_batch_moves)
             return LUMO_ERR_CORRUPT;
         if (prev == NIL)
             pm->head[p] = nextc;
@@ -524,7 +518,7 @@ static lumo_status fan_step(split_ctx *s, uint32_t p, uint32_t k, uint32_t *a)
     uint32_t prev = NIL, c = pm->head[p];
     while (c != NIL && pm->tris[3 * (c / 3) + (c % 3 + 1) % 3] != *a)
         prev = c, c = pm->next[c];
-    if (c == NIL || s->moves >= s->b->moves)
+    if (c == NIL || s->moves >= pm->h.max_batch_moves)
         return LUMO_ERR_CORRUPT;
     *a = pm->tris[3 * (c / 3) + (c % 3 + 2) % 3];
     if (prev == NIL)
@@ -553,17 +547,144 @@ static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, 
     return LUMO_OK;
 }
 
+/* ---- fans ranked by geometry (docs/progressive-mesh.md §2.3 step 3) ----
+ * After the collapse of k onto p, the vertices k brought into p's ring
+ * lie about two edges from p, the others one: the moved fan is most
+ * likely the one whose inner ring vertices are farthest from p. The
+ * candidates (i, m): corner i of L(p) (the first one whose next vertex
+ * is nx[i]) and m moved corners, walking on through succ. Its score is
+ * the sum over the m - 1 inner vertices pv[j] of
+ * n |pv[j] - p|^2 - sum_i |nx[i] - p|^2 (int64, exact: coordinates
+ * < 2^20, n <= 16). Order: higher score first, then smaller i, then
+ * smaller m. */
+#define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
+#define ARC_NONE 0xffu
+
+typedef struct {
+    uint32_t n, nx[ARC_N];
+    uint8_t  succ[ARC_N], first[ARC_N];
+    int64_t  w[ARC_N];
+} arc_fan;
+
+typedef struct { int64_t score; uint32_t i, m; } arc_key;
+
+static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
+{
+    int64_t s = 0;
+    for (unsigned d = 0; d < 3; d++) {
+        int64_t e = (int64_t)q[3 * (size_t)a + d] - q[3 * (size_t)p + d];
+        s += e * e;
+    }
+    return s;
+}
+
+static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, arc_fan *g)
+{
+    uint32_t pv[ARC_N], i = 0;
+    int64_t ring = 0;
+    for (uint32_t c = pm->head[p]; c != NIL; c = pm->next[c], i++) {
+        const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
+        g->nx[i] = t[(c % 3 + 1) % 3];
+        pv[i] = t[(c % 3 + 2) % 3];
+        ring += dist2(pm->qpos, g->nx[i], p);
+    }
+    g->n = n;
+    for (i = 0; i < n; i++) {
+        g->succ[i] = g->first[i] = ARC_NONE;
+        for (uint32_t j = 0; j < n; j++) {
+            if (g->succ[i] == ARC_NONE && g->nx[j] == pv[i])
+                g->succ[i] = (uint8_t)j;
+            if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
+                g->first[i] = (uint8_t)j;
+        }
+        g->w[i] = (int64_t)n * dist2(pm->qpos, pv[i], p) - ring;
+    }
+}
+
+static int arc_before(const arc_key *a, const arc_key *b)
+{
+    if (a->score != b->score)
+        return a->score > b->score;
+    return a->i != b->i ? a->i < b->i : a->m < b->m;
+}
+
+/* The best candidate strictly after `after` (NULL: the best of all) into
+ * *best; 0 when there is none. *count gets the number of candidates. */
+static int arc_next(const arc_fan *g, const arc_key *after, arc_key *best, uint32_t *count)
+{
+    int found = 0;
+    *count = 0;
+    for (uint32_t i = 0; i < g->n; i++) {
+        if (g->first[i] != i)
+            continue;
+        int64_t score = 0;
+        for (uint32_t m = 1, j = i; m <= g->n; m++) {
+            arc_key key = {score, i, m};
+            (*count)++;
+            if ((!after || arc_before(after, &key)) && (!found || arc_before(&key, best)))
+                *best = key, found = 1;
+            if (g->succ[j] == ARC_NONE)
+                break;
+            score += g->w[j];
+            j = g->succ[j];
+        }
+    }
+    return found;
+}
+
+/* Exp-Golomb of order 1: gamma((v >> 1) + 1), then the low bit of v. */
+static lumo_status read_eg1(bitreader *b, uint32_t limit, uint32_t *v)
+{
+    uint32_t u, low;
+    lumo_status st = read_gamma(b, &u);
+    if (st)
+        return st;
+    if (u - 1u > limit / 2u)
+        return LUMO_ERR_CORRUPT;
+    if (read_bits(b, 1, &low))
+        return LUMO_ERR_TRUNCATED;
+    *v = 2u * (u - 1u) + low;
+    return *v > limit ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
+/* The fan as a rank: *xa and *m, or *m = 0 for the escape (rank equal to
+ * the candidate count) to the explicit wing and length. Work: (rank + 1)
+ * passes over at most ARC_N^2 candidates. */
+static lumo_status read_arc(split_ctx *s, uint32_t p, uint32_t n, uint32_t *xa, uint32_t *m)
+{
+    arc_fan g;
+    arc_key key;
+    uint32_t count, rank;
+    lumo_status st;
+    arc_gather(s->pm, p, n, &g);
+    (void)arc_next(&g, NULL, &key, &count);
+    if ((st = read_eg1(&s->br, count, &rank)))
+        return st;
+    *m = 0;
+    if (rank == count)
+        return LUMO_OK;
+    for (uint32_t r = 0; r < rank; r++) {
+        arc_key after = key;
+        (void)arc_next(&g, &after, &key, &count);
+    }
+    *xa = g.nx[key.i], *m = key.m;
+    return LUMO_OK;
+}
+
 /* Fan split, the inverse of an interior half-edge collapse: the faces
  * (k, p, xa) and (k, xb, p) reappear, in that order, and the m faces of p's fan from xa
  * to xb (next vertex after p = xa, then each face's previous vertex)
- * move to k; only xa and m are coded. */
+ * move to k; only xa and m are coded, as a rank (read_arc) or
+ * explicitly. */
 static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
 {
-    uint32_t xa, m, lp = list_length(s->pm, p, FAN_MAX_CORNERS);
+    uint32_t xa = 0, m = 0, lp = list_length(s->pm, p, FAN_MAX_CORNERS);
     lumo_status st;
     if (lp > FAN_MAX_CORNERS)
         return LUMO_ERR_LIMIT;
-    if ((st = read_wing(s, p, k, lp, &xa)) || (st = read_fan_length(s, &m)))
+    if (lp >= 1 && lp <= ARC_N && (st = read_arc(s, p, lp, &xa, &m)))
+        return st;
+    if (!m && ((st = read_wing(s, p, k, lp, &xa)) || (st = read_fan_length(s, &m))))
         return st;
     if (xa >= k || xa == p || m > lp)
         return LUMO_ERR_CORRUPT;
@@ -650,8 +771,8 @@ static lumo_status run_splits(split_ctx *s)
         }
     if (st)
         return st;
-    if (s->faces != s->b->faces || s->moves != s->b->moves)
-        return LUMO_ERR_CORRUPT;
+    if (s->b->first + s->b->count == s->pm->h.vertices && s->pm->face_count != s->pm->h.faces)
+        return LUMO_ERR_CORRUPT;  /* the last record completes the mesh */
     if (s->b->first && s->kr.pos != s->kr.nbits)
         return LUMO_ERR_CORRUPT;  /* kind bits left over */
     if ((s->br.pos + 7) / 8 != s->b->side_bytes)
@@ -736,11 +857,15 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
-    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0, NIL, 0, {NULL, 0, 0}, 0, 0};
-    if ((st = run_splits(&s)) || (st = grid_positions(pm, &b, pos))) {
+    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0,
+                   pm->last_parent, 0, {NULL, 0, 0}, 0, 0};
+    /* absolute positions first: the fan ranks read the batch's earlier
+     * vertices (qpos beyond vertex_count is invisible until kept) */
+    if ((st = grid_positions(pm, &b, pos)) || (st = run_splits(&s))) {
         rollback_to(&s, 0);
         return st;
     }
+    pm->last_parent = s.prev_parent;
     store_positions(pm, &b);
     store_albedo(pm, &b, rgb);
     pm->split_log[b.first ? b.count : 0] = s.log_n;

@@ -24,9 +24,11 @@ static void fix_crcs(uint8_t *s, size_t size)
 {
     size_t at = LUMO_PMESH_HEADER_SIZE, n;
     put32(s + 64, lumo_package_crc32(0, s, 64));
-    while (!lumo_pmesh_record_size(s + at, size - at, &n) && n <= size - at) {
-        uint32_t crc = lumo_package_crc32(0, s + at, 32);
-        put32(s + at + 32, lumo_package_crc32(crc, s + at + 36, n - 36));
+    lumo_pmesh_record_head rh;
+    while (!lumo_pmesh_read_record_head(s + at, size - at, &rh) &&
+           (n = (size_t)rh.head_bytes + rh.side_bytes + rh.draco_bytes) <= size - at) {
+        uint32_t crc = lumo_package_crc32(0, s + at, rh.head_bytes - 4u);
+        put32(s + at + rh.head_bytes - 4u, lumo_package_crc32(crc, s + at + rh.head_bytes, n - rh.head_bytes));
         at += n;
     }
 }

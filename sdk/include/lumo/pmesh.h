@@ -35,8 +35,11 @@
 #include "lumo/status.h"
 
 #define LUMO_PMESH_HEADER_SIZE 68u   /* bytes of the stream header */
-#define LUMO_PMESH_BATCH_HEAD  36u   /* bytes of a batch record's header */
-#define LUMO_PMESH_VERSION     2u
+/* A batch record's head (docs/progressive-mesh.md §2.2): three LEB128
+ * varints (index, side bytes, Draco bytes) and a CRC-32: 7 to 19 bytes. */
+#define LUMO_PMESH_BATCH_HEAD_MIN 7u
+#define LUMO_PMESH_BATCH_HEAD_MAX 19u
+#define LUMO_PMESH_VERSION     3u
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
 /* Lookup-table parents of a split record (docs/progressive-mesh.md §2.3):
  * Rice-coded gaps of an increasing run with a parameter of RICE_BITS bits
@@ -45,6 +48,10 @@
 #define LUMO_PMESH_RICE_BITS      5u
 #define LUMO_PMESH_MAX_RICE       24u
 #define LUMO_PMESH_PARENT_ESCAPE  16u
+/* Fan splits whose parent has at most ARC_MAX_CORNERS corners name their
+ * fan (first wing and length) by its rank among p's fans ordered by a
+ * geometric score, an order-1 Exp-Golomb code (§2.3 step 3). */
+#define LUMO_PMESH_ARC_MAX_CORNERS 16u
 /* Predicted positions: a split vertex is predicted by the rounded mean of
  * the corners of its faces, its parent counted this many extra times. */
 #define LUMO_PMESH_PARENT_WEIGHT  1u
@@ -59,9 +66,8 @@
 /* Header flag: every payload also carries a COLOR uint8 x3 attribute, the
  * per-vertex albedo (0..255 -> 0..1). */
 #define LUMO_PMESH_HAS_ALBEDO 1u
-/* "LPM1" and "LPMB", first character in the lowest byte. */
+/* "LPM1", first character in the lowest byte. */
 #define LUMO_PMESH_MAGIC       0x314d504cu
-#define LUMO_PMESH_BATCH_MAGIC 0x424d504cu
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {
@@ -116,6 +122,8 @@ typedef struct lumo_pmesh {
     uint32_t    *split_log;           /* journal length before each split of
                                          the last batch (batch_vertices + 1) */
     uint32_t     log_n;               /* journal entries of the last batch */
+    uint32_t     last_parent;         /* parent of the last split applied, or
+                                         0xffffffff before the first */
     uint32_t     last_first;          /* first vertex of the last batch */
     int          rewound;             /* lumo_pmesh_rewind was used */
     uint8_t     *scratch;             /* Draco decoder work memory */
@@ -135,10 +143,21 @@ size_t lumo_pmesh_arena_bytes(const lumo_pmesh_header *h);
  * NOMEM when the arena is too small (arena and *pm then unchanged). */
 lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_arena *arena);
 
-/* Size of the batch record starting at data (header + payloads), for
- * splitting a stream: TRUNCATED when fewer than LUMO_PMESH_BATCH_HEAD bytes,
- * CORRUPT for a bad magic or an impossible size. The record itself may
- * still be shorter than the size returned. */
+/* The head of the batch record starting at data (docs/progressive-mesh.md
+ * §2.2): TRUNCATED when the head is cut, CORRUPT for an over-long varint
+ * or an impossible size. The record itself may still be shorter than
+ * head_bytes + side_bytes + draco_bytes. */
+typedef struct lumo_pmesh_record_head {
+    uint32_t index;        /* 0 = base mesh, then 1, 2, ... */
+    uint32_t side_bytes;   /* the split block */
+    uint32_t draco_bytes;  /* the Draco point cloud */
+    uint32_t crc;          /* CRC-32 of the record without these 4 bytes */
+    uint32_t head_bytes;   /* LUMO_PMESH_BATCH_HEAD_MIN ... _MAX */
+} lumo_pmesh_record_head;
+lumo_status lumo_pmesh_read_record_head(const uint8_t *data, size_t size, lumo_pmesh_record_head *out);
+
+/* Size of the batch record starting at data (head + payloads), for
+ * splitting a stream; errors as lumo_pmesh_read_record_head. */
 lumo_status lumo_pmesh_record_size(const uint8_t *data, size_t size, size_t *record_bytes);
 
 /* Apply one batch record (exactly one record: `size` is its length).

@@ -17,10 +17,11 @@
 typedef struct lumo_pm_stream_stats {
     uint64_t splits;                    /* split vertices */
     uint64_t parent_bits, kind_bits;    /* lookup-table parents, kind codes */
-    uint64_t fan_bits;                  /* fan splits: first wing + fan length */
+    uint64_t fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
+    uint64_t arc_ranked, fans;          /* fan splits coded by rank; all fan splits */
     uint64_t mask_bits;                 /* mask splits: masks, flips, third vertices */
     uint64_t other_bits;                /* Rice parameters and padding */
-    uint64_t draco_bytes, frame_bytes;  /* payloads; 36-byte record heads */
+    uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
 } lumo_pm_stream_stats;
 
 typedef struct lumo_pm_stream_options {
