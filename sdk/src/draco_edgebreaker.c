@@ -305,7 +305,8 @@ static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
     e->c2v[corner + 1u] = bn;
     e->c2v[corner + 2u] = ap;
     e->lmc[ap] = corner + 2u;
-    e->hole[x] = 0;
+    if (e->hole)
+        e->hole[x] = 0;
     s->stack[s->top - 1] = corner;
     return LUMO_OK;
 }
@@ -459,7 +460,7 @@ static lumo_status ld_eb_start_faces(struct ld_eb *e, ld_eb_state *s)
         e->c2v[nc] = vx;
         e->c2v[nc + 1u] = vp;
         e->c2v[nc + 2u] = vn;
-        for (k = 0; k < 3; ++k)
+        for (k = 0; k < 3 && e->hole; ++k)
             if (e->c2v[nc + k] < e->num_vertices)
                 e->hole[e->c2v[nc + k]] = 0;
     }
@@ -505,8 +506,6 @@ static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_
         }
         e->lmc[iv] = e->lmc[src];
         e->lmc[src] = LD_INV;
-        e->hole[iv] = e->hole[src];
-        e->hole[src] = 0;
         nv--;
     }
     *num_out = nv;
@@ -653,21 +652,27 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
 }
 
 /* Without attribute seams the left-most corners serve only the traversal's
- * border test: keep that as one byte per vertex (in the hole flags, done
- * with) and release the 4-byte table before the attributes. */
-static void ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
+ * border test: keep that as one byte per vertex and release the 4-byte
+ * table before the attributes. The byte array takes the top of the table's
+ * block; filled from the last vertex down, each byte lands above every
+ * entry still to be read (byte v at >= 3n + v > 4v). */
+static lumo_status ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
 {
     const uint32_t *lmc = e->lmc, *opp = e->opp, n = e->num_vertices;
-    uint8_t *border = e->hole;  /* locals: byte stores may alias e's fields */
+    uint8_t *border;
     uint32_t v;
-    for (v = 0; v < n; ++v) {
+    ld_tmp_release(&d->mem, e->lmc_mark);
+    border = ld_tmp(&d->mem, n, 1);  /* fits: the block held 4(n + 3) */
+    if (!border)
+        return LUMO_ERR_NOMEM;
+    for (v = n; v-- > 0;) {
         const uint32_t lc = lmc[v];
         border[v] = (uint8_t)(lc == LD_INV || opp[ld_next_v(lc)] == LD_INV);
     }
-    e->ct.border = e->hole;
+    e->ct.border = border;
     e->ct.lmc = NULL;
     e->lmc = NULL;
-    ld_tmp_release(&d->mem, e->lmc_mark);
+    return LUMO_OK;
 }
 
 /* AssignPointsToCorners: one point per distinct combination of attribute
@@ -678,8 +683,7 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
     uint32_t *pts = d->faces;
     if (e->num_attr_data == 0) {  /* pts == e->c2v */
         d->num_points = e->num_conn_vertices;
-        ld_eb_drop_lmc(d, e);
-        return LUMO_OK;
+        return ld_eb_drop_lmc(d, e);
     }
     memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
     for (v = 0; v < e->num_vertices; ++v) {
@@ -741,15 +745,17 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
     e->opp_end = ld_tmp_mark(&d->mem);
     e->opp = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-    e->hole = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1);
+    /* hole flags are read only to assign points along seams */
+    e->hole = e->num_attr_data ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_mark = ld_tmp_mark(&d->mem);  /* lmc on top: ld_eb_drop_lmc */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
-    if (!e->c2v || !e->opp || !e->lmc || !e->hole || !d->faces)
+    if (!e->c2v || !e->opp || !e->lmc || (!e->hole && e->num_attr_data) || !d->faces)
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and opp: every symbol writes the three vertices of
      * its face and clears its three opposites before anything reads them
      * (corners reach the decoder only from faces already decoded). */
-    memset(e->hole, 1, (size_t)e->max_vertices + 3u);
+    if (e->hole)
+        memset(e->hole, 1, (size_t)e->max_vertices + 3u);
     e->ct.c2v = e->c2v;
     e->ct.opp = e->opp;
     e->ct.seam = NULL;

@@ -12,7 +12,7 @@ ply="$build/data/models/dragon_48k.ply"
 mkdir -p "$work"
 pass=0; fail=0
 # level : largest arena / output (x1000)
-for spec in 0:1080 7:1480 10:1750; do
+for spec in 0:1080 7:1450 10:1750; do
     cl=${spec%%:*}; limit=${spec#*:}
     drc="$work/dragon_48k_cl$cl.drc"
     if ! draco_encoder -i "$ply" -o "$drc" -cl "$cl" > /dev/null 2>&1 ||
