@@ -294,6 +294,69 @@ static void test_metadata_skipped(void **state)
     assert_int_equal(lumo_draco_decode(buf, len, &a, &m), LUMO_ERR_CORRUPT);
 }
 
+/* A sequential mesh with more than 2^16 points stores its indices as
+ * varints: the four-byte window decoder (1..3-byte forms), a non-canonical
+ * 4-byte form near the end (the bytewise fallback), range checks and
+ * truncations. No attributes: the stream ends with a zero decoder count. */
+static size_t put_varint(uint8_t *p, uint32_t v)
+{
+    size_t n = 0;
+    while (v >= 0x80u) {
+        p[n++] = (uint8_t)(v | 0x80u);
+        v >>= 7;
+    }
+    p[n++] = (uint8_t)v;
+    return n;
+}
+
+static void test_varint_indices(void **state)
+{
+    enum { F = 21846, P = 3 * F };  /* lumo and libdraco allow P <= 3F */
+    static uint8_t buf[16 + 4 * 3 * F];
+    static const uint8_t head[11] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0};
+    lumo_arena a;
+    lumo_draco_mesh m;
+    size_t len = 0, last = 0, cut;
+    uint32_t i;
+    (void)state;
+    memcpy(buf, head, sizeof head);
+    len = sizeof head;
+    len += put_varint(buf + len, F);
+    len += put_varint(buf + len, P);
+    buf[len++] = 1;  /* raw indices */
+    for (i = 0; i < 3u * F; ++i) {
+        const uint32_t v = (i * 7919u) % P;
+        if (i == 3u * F - 5u) {  /* non-canonical: four bytes for a small value */
+            buf[len++] = (uint8_t)(0x80u | (v & 0x7Fu));
+            buf[len++] = (uint8_t)(0x80u | ((v >> 7) & 0x7Fu));
+            buf[len++] = (uint8_t)(0x80u | ((v >> 14) & 0x7Fu));
+            buf[len++] = (uint8_t)(v >> 21);
+            continue;
+        }
+        last = len;
+        len += put_varint(buf + len, v);
+    }
+    buf[len++] = 0;  /* no attributes decoders */
+    arena_fresh(&a, ARENA_BYTES);
+    assert_int_equal(lumo_draco_decode(buf, len, &a, &m), LUMO_OK);
+    assert_int_equal(m.num_faces, F);
+    assert_int_equal(m.num_points, P);
+    for (i = 0; i < 3u * F; ++i)
+        if (m.faces[i] != (i * 7919u) % P)
+            fail_msg("index %u: %u", i, m.faces[i]);
+    /* the last index out of range, in its 3-byte form */
+    assert_int_equal(len - 1u - last, 3);
+    assert_int_equal(put_varint(buf + last, P), 3);
+    arena_fresh(&a, ARENA_BYTES);
+    assert_int_equal(lumo_draco_decode(buf, len, &a, &m), LUMO_ERR_CORRUPT);
+    assert_int_equal(a.used, 0);
+    for (cut = 20; cut < len; cut += len / 61) {
+        arena_fresh(&a, ARENA_BYTES);
+        assert_int_not_equal(lumo_draco_decode(buf, cut, &a, &m), LUMO_OK);
+        assert_int_equal(a.used, 0);
+    }
+}
+
 /* Inputs the fuzzer found: they must end in a status, under UBSan. */
 static void test_fuzz_regressions(void **state)
 {
@@ -349,6 +412,7 @@ int main(void)
         cmocka_unit_test(test_bit_flips),
         cmocka_unit_test(test_bad_headers),
         cmocka_unit_test(test_metadata_skipped),
+        cmocka_unit_test(test_varint_indices),
         cmocka_unit_test(test_fuzz_regressions),
         cmocka_unit_test(test_dequantize),
     };
