@@ -299,16 +299,18 @@ static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32
 
 /* ---- fans ranked by geometry (mirrors read_arc() in pmesh_batch.c) ----
  * The vertices k brought into p's ring lie about two edges from p, the
- * others one: candidates (i, m) — corner i of L(p), the first whose next
- * vertex is nx[i], and m moved corners — are scored by the sum over their
- * m - 1 inner ring vertices pv[j] of n |pv[j] - p|^2 - sum |nx - p|^2 and
- * ranked (higher score, then smaller i, then smaller m first). */
+ * others one, and k usually takes about half of p's fan: candidates
+ * (i, m) — corner i of L(p), the first whose next vertex is nx[i], and m
+ * moved corners — are scored 16 * (the sum over their m - 1 inner ring
+ * vertices pv[j] of n |pv[j] - p|^2 - ring) - 3 ring (m - (n - 1) / 2)^2,
+ * ring = sum |nx - p|^2, and ranked (higher score, then smaller i, then
+ * smaller m first). The weights are measured (docs/progressive-mesh.md §4). */
 #define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
 #define ARC_NONE UINT32_MAX
 
 typedef struct {
     uint32_t n, nx[ARC_N], succ[ARC_N], first[ARC_N];
-    int64_t  w[ARC_N];
+    int64_t  w[ARC_N], ring;
 } arc_fan;
 
 static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
@@ -330,7 +332,7 @@ static void arc_gather(const replay *r, uint32_t p, uint32_t n, arc_fan *g)
         pv[i] = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
         ring += dist2(r->q, g->nx[i], p);
     }
-    g->n = n;
+    g->n = n, g->ring = ring;
     for (i = 0; i < n; i++) {
         g->succ[i] = g->first[i] = ARC_NONE;
         for (uint32_t j = 0; j < n; j++) {
@@ -339,8 +341,15 @@ static void arc_gather(const replay *r, uint32_t p, uint32_t n, arc_fan *g)
             if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
                 g->first[i] = j;
         }
-        g->w[i] = (int64_t)n * dist2(r->q, pv[i], p) - ring;
+        g->w[i] = 16 * ((int64_t)n * dist2(r->q, pv[i], p) - ring);
     }
+}
+
+/* The length term of a candidate's score. */
+static int64_t arc_length_cost(const arc_fan *g, uint32_t m)
+{
+    int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
+    return 3 * g->ring * d * d;
 }
 
 /* Rank of the fan (xa, m) among the candidates, or their count when it
@@ -355,8 +364,9 @@ static uint32_t arc_rank(const arc_fan *g, uint32_t xa, uint32_t m)
         for (uint32_t i = 0; i < g->n; i++) {
             if (g->first[i] != i)
                 continue;
-            int64_t score = 0;
+            int64_t inner = 0;
             for (uint32_t mm = 1, j = i; mm <= g->n; mm++) {
+                int64_t score = inner - arc_length_cost(g, mm);
                 if (pass == 0 && i == it && mm == m)
                     want = score, found = 1;
                 if (pass == 1) {
@@ -365,7 +375,7 @@ static uint32_t arc_rank(const arc_fan *g, uint32_t xa, uint32_t m)
                 }
                 if (g->succ[j] == ARC_NONE)
                     break;
-                score += g->w[j];
+                inner += g->w[j];
                 j = g->succ[j];
             }
         }

@@ -549,21 +549,22 @@ static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, 
 
 /* ---- fans ranked by geometry (docs/progressive-mesh.md §2.3 step 3) ----
  * After the collapse of k onto p, the vertices k brought into p's ring
- * lie about two edges from p, the others one: the moved fan is most
- * likely the one whose inner ring vertices are farthest from p. The
- * candidates (i, m): corner i of L(p) (the first one whose next vertex
- * is nx[i]) and m moved corners, walking on through succ. Its score is
- * the sum over the m - 1 inner vertices pv[j] of
- * n |pv[j] - p|^2 - sum_i |nx[i] - p|^2 (int64, exact: coordinates
- * < 2^20, n <= 16). Order: higher score first, then smaller i, then
- * smaller m. */
+ * lie about two edges from p, the others one, and k usually takes about
+ * half of p's fan: the moved fan is most likely a half-fan whose inner
+ * ring vertices are farthest from p. The candidates (i, m): corner i of
+ * L(p) (the first one whose next vertex is nx[i]) and m moved corners,
+ * walking on through succ. With ring = sum_i |nx[i] - p|^2 the score is
+ * 16 * (the sum over the m - 1 inner vertices pv[j] of
+ * n |pv[j] - p|^2 - ring) - 3 ring (m - (n - 1) / 2)^2 (int64, exact:
+ * coordinates < 2^20, n <= 16, so |score| < 2^58). Order: higher score
+ * first, then smaller i, then smaller m. */
 #define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
 #define ARC_NONE 0xffu
 
 typedef struct {
     uint32_t n, nx[ARC_N];
     uint8_t  succ[ARC_N], first[ARC_N];
-    int64_t  w[ARC_N];
+    int64_t  w[ARC_N], ring;
 } arc_fan;
 
 typedef struct { int64_t score; uint32_t i, m; } arc_key;
@@ -588,7 +589,7 @@ static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, arc_fan *g)
         pv[i] = t[(c % 3 + 2) % 3];
         ring += dist2(pm->qpos, g->nx[i], p);
     }
-    g->n = n;
+    g->n = n, g->ring = ring;
     for (i = 0; i < n; i++) {
         g->succ[i] = g->first[i] = ARC_NONE;
         for (uint32_t j = 0; j < n; j++) {
@@ -597,8 +598,14 @@ static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, arc_fan *g)
             if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
                 g->first[i] = (uint8_t)j;
         }
-        g->w[i] = (int64_t)n * dist2(pm->qpos, pv[i], p) - ring;
+        g->w[i] = 16 * ((int64_t)n * dist2(pm->qpos, pv[i], p) - ring);
     }
+}
+
+static int64_t arc_length_cost(const arc_fan *g, uint32_t m)
+{
+    int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
+    return 3 * g->ring * d * d;
 }
 
 static int arc_before(const arc_key *a, const arc_key *b)
@@ -617,15 +624,15 @@ static int arc_next(const arc_fan *g, const arc_key *after, arc_key *best, uint3
     for (uint32_t i = 0; i < g->n; i++) {
         if (g->first[i] != i)
             continue;
-        int64_t score = 0;
+        int64_t inner = 0;
         for (uint32_t m = 1, j = i; m <= g->n; m++) {
-            arc_key key = {score, i, m};
+            arc_key key = {inner - arc_length_cost(g, m), i, m};
             (*count)++;
             if ((!after || arc_before(after, &key)) && (!found || arc_before(&key, best)))
                 *best = key, found = 1;
             if (g->succ[j] == ARC_NONE)
                 break;
-            score += g->w[j];
+            inner += g->w[j];
             j = g->succ[j];
         }
     }
