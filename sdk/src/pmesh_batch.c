@@ -567,8 +567,6 @@ typedef struct {
     int64_t  w[ARC_N], ring;
 } arc_fan;
 
-typedef struct { int64_t score; uint32_t i, m; } arc_key;
-
 static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
 {
     int64_t s = 0;
@@ -608,35 +606,49 @@ static int64_t arc_length_cost(const arc_fan *g, uint32_t m)
     return 3 * g->ring * d * d;
 }
 
-static int arc_before(const arc_key *a, const arc_key *b)
+/* Every candidate's score and id (i << 8 | m) into the pmesh's arc
+ * arrays, in enumeration order; returns their count (at most n^2). */
+static uint32_t arc_list(const arc_fan *g, int64_t *score, uint16_t *id)
 {
-    if (a->score != b->score)
-        return a->score > b->score;
-    return a->i != b->i ? a->i < b->i : a->m < b->m;
-}
-
-/* The best candidate strictly after `after` (NULL: the best of all) into
- * *best; 0 when there is none. *count gets the number of candidates. */
-static int arc_next(const arc_fan *g, const arc_key *after, arc_key *best, uint32_t *count)
-{
-    int found = 0;
-    *count = 0;
+    uint32_t count = 0;
     for (uint32_t i = 0; i < g->n; i++) {
         if (g->first[i] != i)
             continue;
         int64_t inner = 0;
         for (uint32_t m = 1, j = i; m <= g->n; m++) {
-            arc_key key = {inner - arc_length_cost(g, m), i, m};
-            (*count)++;
-            if ((!after || arc_before(after, &key)) && (!found || arc_before(&key, best)))
-                *best = key, found = 1;
+            score[count] = inner - arc_length_cost(g, m);
+            id[count++] = (uint16_t)(i << 8 | m);
             if (g->succ[j] == ARC_NONE)
                 break;
             inner += g->w[j];
             j = g->succ[j];
         }
     }
-    return found;
+    return count;
+}
+
+/* a before b: higher score, then smaller i, then smaller m (the id). */
+static int arc_before(int64_t sa, uint16_t ia, int64_t sb, uint16_t ib)
+{
+    return sa != sb ? sa > sb : ia < ib;
+}
+
+/* Put the first r + 1 candidates in order at the front (an insertion sort
+ * that keeps only r + 1: one comparison per candidate that does not get
+ * in). Work: count + inserts * r. */
+static void arc_select(int64_t *score, uint16_t *id, uint32_t count, uint32_t r)
+{
+    for (uint32_t k = 1; k < count; k++) {
+        uint32_t top = k < r + 1 ? k : r + 1;  /* sorted prefix length */
+        int64_t s = score[k];
+        uint16_t d = id[k];
+        if (top == r + 1 && !arc_before(s, d, score[r], id[r]))
+            continue;
+        uint32_t at = top == r + 1 ? r : top;  /* the slot given up */
+        for (; at > 0 && arc_before(s, d, score[at - 1], id[at - 1]); at--)
+            score[at] = score[at - 1], id[at] = id[at - 1];
+        score[at] = s, id[at] = d;
+    }
 }
 
 /* Exp-Golomb of order 1: gamma((v >> 1) + 1), then the low bit of v. */
@@ -655,26 +667,23 @@ static lumo_status read_eg1(bitreader *b, uint32_t limit, uint32_t *v)
 }
 
 /* The fan as a rank: *xa and *m, or *m = 0 for the escape (rank equal to
- * the candidate count) to the explicit wing and length. Work: (rank + 1)
- * passes over at most ARC_N^2 candidates. */
+ * the candidate count) to the explicit wing and length. Work: the
+ * candidates (at most ARC_N^2) once, plus the insertions of arc_select. */
 static lumo_status read_arc(split_ctx *s, uint32_t p, uint32_t n, uint32_t *xa, uint32_t *m)
 {
+    lumo_pmesh *pm = s->pm;
     arc_fan g;
-    arc_key key;
-    uint32_t count, rank;
+    uint32_t rank;
     lumo_status st;
-    arc_gather(s->pm, p, n, &g);
-    (void)arc_next(&g, NULL, &key, &count);
+    arc_gather(pm, p, n, &g);
+    uint32_t count = arc_list(&g, pm->arc_score, pm->arc_id);
     if ((st = read_eg1(&s->br, count, &rank)))
         return st;
     *m = 0;
     if (rank == count)
         return LUMO_OK;
-    for (uint32_t r = 0; r < rank; r++) {
-        arc_key after = key;
-        (void)arc_next(&g, &after, &key, &count);
-    }
-    *xa = g.nx[key.i], *m = key.m;
+    arc_select(pm->arc_score, pm->arc_id, count, rank);
+    *xa = g.nx[pm->arc_id[rank] >> 8], *m = pm->arc_id[rank] & 0xffu;
     return LUMO_OK;
 }
 

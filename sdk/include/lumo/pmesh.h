@@ -126,6 +126,8 @@ typedef struct lumo_pmesh {
                                          0xffffffff before the first */
     uint32_t     last_first;          /* first vertex of the last batch */
     int          rewound;             /* lumo_pmesh_rewind was used */
+    int64_t     *arc_score;           /* fan-rank candidates of one split: */
+    uint16_t    *arc_id;              /* score and i << 8 | m (ARC_MAX_CORNERS^2) */
     uint8_t     *scratch;             /* Draco decoder work memory */
     size_t       scratch_bytes;
 } lumo_pmesh;
