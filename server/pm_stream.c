@@ -78,6 +78,7 @@ typedef struct {
     uint32_t  faces, moves;   /* of the batch being written */
     lumo_pm_stream_stats st;  /* where the bits go (options->stats gets a copy) */
     uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
+    unsigned  arc_shift;      /* quant_bits - LUMO_PMESH_ARC_BITS, or 0 */
 } replay;
 
 /* Split kinds as the writer records them: a fan split, a pair (mask
@@ -301,10 +302,11 @@ static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32
  * The vertices k brought into p's ring lie about two edges from p, the
  * others one, and k usually takes about half of p's fan: candidates
  * (i, m) — corner i of L(p), the first whose next vertex is nx[i], and m
- * moved corners — are scored 16 * (the sum over their m - 1 inner ring
- * vertices pv[j] of n |pv[j] - p|^2 - ring) - 3 ring (m - (n - 1) / 2)^2,
- * ring = sum |nx - p|^2, and ranked (higher score, then smaller i, then
- * smaller m first). The weights are measured (docs/progressive-mesh.md §4). */
+ * moved corners — are scored on grid integers of at most ARC_BITS bits by
+ * 16 * (the sum over their m - 1 inner ring vertices pv[j] of
+ * n |pv[j] - p|^2 - ring) - 3 ring (m - (n - 1) / 2)^2, ring = sum
+ * |nx - p|^2, and ranked by the key score * 4096 + 4095 - (i << 8 | m),
+ * highest first. The weights are measured (docs/progressive-mesh.md §4). */
 #define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
 #define ARC_NONE UINT32_MAX
 
@@ -313,11 +315,11 @@ typedef struct {
     int64_t  w[ARC_N], ring;
 } arc_fan;
 
-static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
+static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p, unsigned shift)
 {
     int64_t s = 0;
     for (int d = 0; d < 3; d++) {
-        int64_t e = (int64_t)q[3 * (size_t)a + d] - q[3 * (size_t)p + d];
+        int64_t e = (int64_t)(q[3 * (size_t)a + d] >> shift) - (q[3 * (size_t)p + d] >> shift);
         s += e * e;
     }
     return s;
@@ -330,7 +332,7 @@ static void arc_gather(const replay *r, uint32_t p, uint32_t n, arc_fan *g)
     for (uint32_t c = r->head[p]; c != NIL; c = r->next[c], i++) {
         g->nx[i] = r->disp[3 * (c / 3) + (c % 3 + 1) % 3];
         pv[i] = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
-        ring += dist2(r->q, g->nx[i], p);
+        ring += dist2(r->q, g->nx[i], p, r->arc_shift);
     }
     g->n = n, g->ring = ring;
     for (i = 0; i < n; i++) {
@@ -341,45 +343,41 @@ static void arc_gather(const replay *r, uint32_t p, uint32_t n, arc_fan *g)
             if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
                 g->first[i] = j;
         }
-        g->w[i] = 16 * ((int64_t)n * dist2(r->q, pv[i], p) - ring);
+        g->w[i] = 16 * ((int64_t)n * dist2(r->q, pv[i], p, r->arc_shift) - ring);
     }
 }
 
-/* The length term of a candidate's score. */
-static int64_t arc_length_cost(const arc_fan *g, uint32_t m)
+static int64_t arc_key(const arc_fan *g, int64_t inner, uint32_t i, uint32_t m)
 {
     int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
-    return 3 * g->ring * d * d;
+    return (inner - 3 * g->ring * d * d) * 4096 + (int64_t)(4095u - (i << 8 | m));
 }
 
-/* Rank of the fan (xa, m) among the candidates, or their count when it
- * is not one of them (the escape). */
+/* Rank of the fan (xa, m) among the candidates (the keys above its own),
+ * or their count when it is not one of them (the escape). */
 static uint32_t arc_rank(const arc_fan *g, uint32_t xa, uint32_t m)
 {
-    uint32_t it = 0, count = 0, better = 0, found = 0;
-    int64_t want = 0;
+    uint32_t it = 0, count = 0, above = 0, found = 0;
+    int64_t keys[ARC_N * ARC_N], want = 0;
     while (it < g->n && g->nx[it] != xa)
         it++;
-    for (int pass = 0; pass < 2; pass++)
-        for (uint32_t i = 0; i < g->n; i++) {
-            if (g->first[i] != i)
-                continue;
-            int64_t inner = 0;
-            for (uint32_t mm = 1, j = i; mm <= g->n; mm++) {
-                int64_t score = inner - arc_length_cost(g, mm);
-                if (pass == 0 && i == it && mm == m)
-                    want = score, found = 1;
-                if (pass == 1) {
-                    count++;
-                    better += score > want || (score == want && (i < it || (i == it && mm < m)));
-                }
-                if (g->succ[j] == ARC_NONE)
-                    break;
-                inner += g->w[j];
-                j = g->succ[j];
-            }
+    for (uint32_t i = 0; i < g->n; i++) {
+        if (g->first[i] != i)
+            continue;
+        int64_t inner = 0;
+        for (uint32_t mm = 1, j = i; mm <= g->n; mm++) {
+            keys[count++] = arc_key(g, inner, i, mm);
+            if (i == it && mm == m)
+                want = keys[count - 1], found = 1;
+            if (g->succ[j] == ARC_NONE)
+                break;
+            inner += g->w[j];
+            j = g->succ[j];
         }
-    return found ? better : count;
+    }
+    for (uint32_t c = 0; c < count; c++)
+        above += keys[c] > want;
+    return found ? above : count;
 }
 
 static void put_eg1(bitwriter *w, uint32_t v)
@@ -750,7 +748,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
                 malloc(12 * (size_t)pm->faces + 4),
                 malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, {0},
-                malloc(4 * (size_t)o->batch_vertices), 0};
+                malloc(4 * (size_t)o->batch_vertices), 0, 0};
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
     lumo_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
@@ -759,6 +757,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
         goto done;
     quantize(pm, &q, r.q);
+    r.arc_shift = q.bits > (int)LUMO_PMESH_ARC_BITS ? (unsigned)q.bits - LUMO_PMESH_ARC_BITS : 0;
     memset(r.head, 0xff, 4 * (size_t)pm->vertices);
     if (write_batches(&r, o, &q, &s, bi, nb) || s.failed)
         goto done;

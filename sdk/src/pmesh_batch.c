@@ -553,11 +553,12 @@ static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, 
  * half of p's fan: the moved fan is most likely a half-fan whose inner
  * ring vertices are farthest from p. The candidates (i, m): corner i of
  * L(p) (the first one whose next vertex is nx[i]) and m moved corners,
- * walking on through succ. With ring = sum_i |nx[i] - p|^2 the score is
- * 16 * (the sum over the m - 1 inner vertices pv[j] of
- * n |pv[j] - p|^2 - ring) - 3 ring (m - (n - 1) / 2)^2 (int64, exact:
- * coordinates < 2^20, n <= 16, so |score| < 2^58). Order: higher score
- * first, then smaller i, then smaller m. */
+ * walking on through succ. On grid integers of at most ARC_BITS bits,
+ * with ring = sum_i |nx[i] - p|^2, the score is 16 * (the sum over the
+ * m - 1 inner vertices pv[j] of n |pv[j] - p|^2 - ring)
+ * - 3 ring (m - (n - 1) / 2)^2, |score| < 2^44; the key
+ * score * 4096 + 4095 - (i << 8 | m) orders the candidates (higher score
+ * first, then smaller i, then smaller m) in one int64 comparison. */
 #define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
 #define ARC_NONE 0xffu
 
@@ -567,11 +568,11 @@ typedef struct {
     int64_t  w[ARC_N], ring;
 } arc_fan;
 
-static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
+static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p, unsigned shift)
 {
     int64_t s = 0;
     for (unsigned d = 0; d < 3; d++) {
-        int64_t e = (int64_t)q[3 * (size_t)a + d] - q[3 * (size_t)p + d];
+        int64_t e = (int64_t)(q[3 * (size_t)a + d] >> shift) - (q[3 * (size_t)p + d] >> shift);
         s += e * e;
     }
     return s;
@@ -579,24 +580,25 @@ static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p)
 
 static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, arc_fan *g)
 {
+    unsigned shift = pm->h.quant_bits > LUMO_PMESH_ARC_BITS ? pm->h.quant_bits - LUMO_PMESH_ARC_BITS : 0;
     uint32_t pv[ARC_N], i = 0;
     int64_t ring = 0;
     for (uint32_t c = pm->head[p]; c != NIL; c = pm->next[c], i++) {
         const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
         g->nx[i] = t[(c % 3 + 1) % 3];
         pv[i] = t[(c % 3 + 2) % 3];
-        ring += dist2(pm->qpos, g->nx[i], p);
+        ring += dist2(pm->qpos, g->nx[i], p, shift);
     }
     g->n = n, g->ring = ring;
     for (i = 0; i < n; i++) {
-        g->succ[i] = g->first[i] = ARC_NONE;
-        for (uint32_t j = 0; j < n; j++) {
-            if (g->succ[i] == ARC_NONE && g->nx[j] == pv[i])
-                g->succ[i] = (uint8_t)j;
-            if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
-                g->first[i] = (uint8_t)j;
-        }
-        g->w[i] = 16 * ((int64_t)n * dist2(pm->qpos, pv[i], p) - ring);
+        uint32_t j = 0;
+        while (j < i && g->nx[j] != g->nx[i])
+            j++;
+        g->first[i] = (uint8_t)j;
+        for (j = 0; j < n && g->nx[j] != pv[i]; j++)
+            ;
+        g->succ[i] = j < n ? (uint8_t)j : ARC_NONE;
+        g->w[i] = 16 * ((int64_t)n * dist2(pm->qpos, pv[i], p, shift) - ring);
     }
 }
 
@@ -606,9 +608,9 @@ static int64_t arc_length_cost(const arc_fan *g, uint32_t m)
     return 3 * g->ring * d * d;
 }
 
-/* Every candidate's score and id (i << 8 | m) into the pmesh's arc
- * arrays, in enumeration order; returns their count (at most n^2). */
-static uint32_t arc_list(const arc_fan *g, int64_t *score, uint16_t *id)
+/* Every candidate's key into key[], in enumeration order; returns their
+ * count (at most n^2). */
+static uint32_t arc_list(const arc_fan *g, int64_t *key)
 {
     uint32_t count = 0;
     for (uint32_t i = 0; i < g->n; i++) {
@@ -616,8 +618,7 @@ static uint32_t arc_list(const arc_fan *g, int64_t *score, uint16_t *id)
             continue;
         int64_t inner = 0;
         for (uint32_t m = 1, j = i; m <= g->n; m++) {
-            score[count] = inner - arc_length_cost(g, m);
-            id[count++] = (uint16_t)(i << 8 | m);
+            key[count++] = (inner - arc_length_cost(g, m)) * 4096 + (int64_t)(4095u - (i << 8 | m));
             if (g->succ[j] == ARC_NONE)
                 break;
             inner += g->w[j];
@@ -627,27 +628,27 @@ static uint32_t arc_list(const arc_fan *g, int64_t *score, uint16_t *id)
     return count;
 }
 
-/* a before b: higher score, then smaller i, then smaller m (the id). */
-static int arc_before(int64_t sa, uint16_t ia, int64_t sb, uint16_t ib)
+/* Quickselect (Lomuto partition around the middle key): afterwards key[r]
+ * is the one with r keys above it. Keys are distinct, so the result does
+ * not depend on the method. Work: about 2 * count steps expected, count^2
+ * at worst. */
+static void arc_select(int64_t *key, uint32_t count, uint32_t r)
 {
-    return sa != sb ? sa > sb : ia < ib;
-}
-
-/* Put the first r + 1 candidates in order at the front (an insertion sort
- * that keeps only r + 1: one comparison per candidate that does not get
- * in). Work: count + inserts * r. */
-static void arc_select(int64_t *score, uint16_t *id, uint32_t count, uint32_t r)
-{
-    for (uint32_t k = 1; k < count; k++) {
-        uint32_t top = k < r + 1 ? k : r + 1;  /* sorted prefix length */
-        int64_t s = score[k];
-        uint16_t d = id[k];
-        if (top == r + 1 && !arc_before(s, d, score[r], id[r]))
-            continue;
-        uint32_t at = top == r + 1 ? r : top;  /* the slot given up */
-        for (; at > 0 && arc_before(s, d, score[at - 1], id[at - 1]); at--)
-            score[at] = score[at - 1], id[at] = id[at - 1];
-        score[at] = s, id[at] = d;
+    uint32_t lo = 0, hi = count - 1;
+    while (lo < hi) {
+        int64_t pivot = key[lo + (hi - lo) / 2], t;
+        key[lo + (hi - lo) / 2] = key[hi], key[hi] = pivot;
+        uint32_t at = lo;
+        for (uint32_t k = lo; k < hi; k++)
+            if (key[k] > pivot)
+                t = key[k], key[k] = key[at], key[at++] = t;
+        key[hi] = key[at], key[at] = pivot;
+        if (at == r)
+            return;
+        if (r < at)
+            hi = at - 1;
+        else
+            lo = at + 1;
     }
 }
 
@@ -668,7 +669,7 @@ static lumo_status read_eg1(bitreader *b, uint32_t limit, uint32_t *v)
 
 /* The fan as a rank: *xa and *m, or *m = 0 for the escape (rank equal to
  * the candidate count) to the explicit wing and length. Work: the
- * candidates (at most ARC_N^2) once, plus the insertions of arc_select. */
+ * candidates (at most ARC_N^2) once, then arc_select. */
 static lumo_status read_arc(split_ctx *s, uint32_t p, uint32_t n, uint32_t *xa, uint32_t *m)
 {
     lumo_pmesh *pm = s->pm;
@@ -676,14 +677,15 @@ static lumo_status read_arc(split_ctx *s, uint32_t p, uint32_t n, uint32_t *xa, 
     uint32_t rank;
     lumo_status st;
     arc_gather(pm, p, n, &g);
-    uint32_t count = arc_list(&g, pm->arc_score, pm->arc_id);
+    uint32_t count = arc_list(&g, pm->arc_key);
     if ((st = read_eg1(&s->br, count, &rank)))
         return st;
     *m = 0;
     if (rank == count)
         return LUMO_OK;
-    arc_select(pm->arc_score, pm->arc_id, count, rank);
-    *xa = g.nx[pm->arc_id[rank] >> 8], *m = pm->arc_id[rank] & 0xffu;
+    arc_select(pm->arc_key, count, rank);
+    uint32_t id = 4095u - (uint32_t)((uint64_t)pm->arc_key[rank] & 4095u);
+    *xa = g.nx[id >> 8], *m = id & 0xffu;
     return LUMO_OK;
 }
 

@@ -52,6 +52,10 @@
  * fan (first wing and length) by its rank among p's fans ordered by a
  * geometric score, an order-1 Exp-Golomb code (§2.3 step 3). */
 #define LUMO_PMESH_ARC_MAX_CORNERS 16u
+/* The fan score sees grid integers of at most ARC_BITS bits (q >> (bits -
+ * ARC_BITS) on finer grids), so a score and the candidate's id fit one
+ * int64 key. */
+#define LUMO_PMESH_ARC_BITS 14u
 /* Predicted positions: a split vertex is predicted by the rounded mean of
  * the corners of its faces, its parent counted this many extra times. */
 #define LUMO_PMESH_PARENT_WEIGHT  1u
@@ -126,8 +130,8 @@ typedef struct lumo_pmesh {
                                          0xffffffff before the first */
     uint32_t     last_first;          /* first vertex of the last batch */
     int          rewound;             /* lumo_pmesh_rewind was used */
-    int64_t     *arc_score;           /* fan-rank candidates of one split: */
-    uint16_t    *arc_id;              /* score and i << 8 | m (ARC_MAX_CORNERS^2) */
+    int64_t     *arc_key;             /* fan-rank candidates of one split
+                                         (ARC_MAX_CORNERS^2 keys) */
     uint8_t     *scratch;             /* Draco decoder work memory */
     size_t       scratch_bytes;
 } lumo_pmesh;
