@@ -363,8 +363,12 @@ static void section_rounds(FILE *o, model *ms, int n)
 static void section_bits(FILE *o, model *ms, int n)
 {
     fprintf(o, "### Where the bits go (default stream, per split vertex)\n\n"
-               "| model | parent | kind | fan (wing + length) | mask splits | Rice + padding "
-               "| Draco payload | record heads | total bits/vertex |\n|---|---|---|---|---|---|---|---|---|\n");
+               "Fan = the fan's geometric rank (or the escape and the explicit first wing and length); "
+               "record heads = index, block and payload sizes as varints plus a CRC-32 "
+               "(docs/progressive-mesh.md §2).\n\n"
+               "| model | parent | kind | fan | mask splits | Rice + padding "
+               "| Draco payload | record heads | total bits/vertex | fan splits by rank |\n"
+               "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         lumo_pm_stream_stats st;
         lumo_pm_stream_options so;
@@ -381,7 +385,7 @@ static void section_bits(FILE *o, model *ms, int n)
         double total = 0;
         for (int j = 0; j < 7; j++)
             fprintf(o, " %.2f |", fields[j]), total += fields[j];
-        fprintf(o, " %.2f |\n", total);
+        fprintf(o, " %.2f | %.1f%% |\n", total, st.fans ? 100.0 * st.arc_ranked / st.fans : 0.0);
         free(s);
     }
     fprintf(o, "\n");
