@@ -635,6 +635,11 @@ static uint32_t arc_list(const arc_fan *g, int64_t *key)
 static void arc_select(int64_t *key, uint32_t count, uint32_t r)
 {
     uint32_t lo = 0, hi = count - 1;
+    if (r == 0) {  /* the usual rank: one scan for the highest key */
+        for (uint32_t k = 1; k < count; k++)
+            key[0] = key[k] > key[0] ? key[k] : key[0];
+        return;
+    }
     while (lo < hi) {
         int64_t pivot = key[lo + (hi - lo) / 2], t;
         key[lo + (hi - lo) / 2] = key[hi], key[hi] = pivot;
