@@ -16,26 +16,43 @@
 #include "lumo/draco.h"
 #include "lumo_host/file_io.h"
 
-/* Decode into an arena of exactly lumo_draco_arena_bound(info, 16) bytes:
- * the bound is part of the API, so a decode that does not fit in it (with
- * at most 16 portable components per point) is reported as a failure. */
-static lumo_status decode(const uint8_t *data, size_t size, lumo_draco_mesh *m, void **mem)
+/* Decode into an arena of exactly lumo_draco_arena_need() bytes, computed
+ * before decoding: the figure is part of the API, so a decode that does
+ * not fit in it, or (when the figure is exact) needs fewer bytes or still
+ * fits one byte below, is reported as a failure. `check`: also decode in
+ * one byte less (not in --bench, whose instruction counts are per decode). */
+static lumo_status decode(const uint8_t *data, size_t size, lumo_draco_mesh *m, void **mem,
+                          lumo_draco_need *need, int check)
 {
-    lumo_draco_info info;
     lumo_arena a;
-    lumo_status st = lumo_draco_peek(data, size, &info);
-    size_t bytes;
+    lumo_status st = lumo_draco_arena_need(data, size, need);
+    size_t used;
     if (st)
         return st;
-    bytes = lumo_draco_arena_bound(&info, 16);
-    if (bytes == SIZE_MAX || !(*mem = malloc(bytes)))
+    if (!(*mem = malloc(need->bytes ? need->bytes : 1)))
         return LUMO_ERR_NOMEM;
-    lumo_arena_init(&a, *mem, bytes);
+    if (check && need->exact && need->bytes) {  /* first: it overwrites the buffer */
+        lumo_arena_init(&a, *mem, need->bytes - 1u);
+        if (lumo_draco_decode(data, size, &a, m) != LUMO_ERR_NOMEM) {
+            fprintf(stderr, "lumo-draco-decode: decode fits in %zu bytes, 1 below the exact need\n",
+                    need->bytes - 1u);
+            return LUMO_ERR_STATE;
+        }
+    }
+    lumo_arena_init(&a, *mem, need->bytes);  /* malloc'd: aligned, no slack */
     st = lumo_draco_decode(data, size, &a, m);
     if (st == LUMO_ERR_NOMEM)
-        fprintf(stderr, "lumo-draco-decode: decode needs more than lumo_draco_arena_bound() = %zu bytes\n",
-                bytes);
-    return st;
+        fprintf(stderr, "lumo-draco-decode: decode needs more than lumo_draco_arena_need() = %zu bytes\n",
+                need->bytes);
+    if (st || !check)
+        return st;
+    used = m->arena_bytes + m->work_bytes;
+    if (used > need->bytes || used < need->bytes_min || (need->exact && used != need->bytes)) {
+        fprintf(stderr, "lumo-draco-decode: need %zu..%zu bytes (exact %u), decode used %zu\n",
+                need->bytes_min, need->bytes, need->exact, used);
+        return LUMO_ERR_STATE;
+    }
+    return LUMO_OK;
 }
 
 static void write_dump(FILE *f, const lumo_draco_mesh *m)
@@ -66,7 +83,8 @@ static const char *type_name(unsigned t)
     return t < 5 ? names[t] : "?";
 }
 
-static void write_info(const lumo_draco_mesh *m, size_t in_size, uint16_t flags)
+static void write_info(const lumo_draco_mesh *m, const lumo_draco_need *need, size_t in_size,
+                       uint16_t flags)
 {
     static const char *pred[] = {"delta", "parallelogram", "multi-parallelogram",
                                  "tex-coords(deprecated)", "constrained-multi-parallelogram",
@@ -83,6 +101,8 @@ static void write_info(const lumo_draco_mesh *m, size_t in_size, uint16_t flags)
     printf("points: %u  faces: %u  input: %zu bytes%s\n", m->num_points, m->num_faces, in_size,
            (flags & 0x8000u) ? "  (metadata present, skipped)" : "");
     printf("arena: %zu output bytes + %zu peak work bytes\n", m->arena_bytes, m->work_bytes);
+    printf("arena need before decoding: %zu bytes (%s%zu)\n", need->bytes,
+           need->exact ? "exact, " : "bound, at least ", need->exact ? need->bytes : need->bytes_min);
     for (i = 0; i < m->num_attributes; ++i) {
         const lumo_draco_attribute *a = &m->attributes[i];
         const lumo_draco_attr_modes *md = &a->modes;
@@ -190,6 +210,7 @@ int main(int argc, char **argv)
     uint8_t *data;
     size_t size = 0;
     lumo_draco_mesh m;
+    lumo_draco_need need;
     void *mem = NULL;
     lumo_status st;
     int i, rc = 0;
@@ -215,7 +236,7 @@ int main(int argc, char **argv)
         if (mem)
             free(mem);
         mem = NULL;
-        st = decode(data, size, &m, &mem);
+        st = decode(data, size, &m, &mem, &need, strcmp(mode, "bench") != 0);
         if (st) {
             fprintf(stderr, "lumo-draco-decode: %s: %s\n", in, lumo_strerror(st));
             free(mem);
@@ -225,7 +246,7 @@ int main(int argc, char **argv)
     }
     if (!strcmp(mode, "info")) {
         lumo_draco_info info;
-        write_info(&m, size, lumo_draco_peek(data, size, &info) ? 0 : info.flags);
+        write_info(&m, &need, size, lumo_draco_peek(data, size, &info) ? 0 : info.flags);
     } else if (!strcmp(mode, "dump")) {
         FILE *f = fopen(out, "w");
         if (!f)

@@ -17,6 +17,51 @@
 #define LD_SEQ_QUANTIZATION 2u
 #define LD_SEQ_NORMALS 3u
 
+lumo_status ld_read_descriptor(ld_buf *b, unsigned decoder, lumo_draco_attribute *a)
+{
+    uint8_t f[4];
+    unsigned k;
+    lumo_status st;
+    for (k = 0; k < 4; ++k)
+        if ((st = ld_u8(b, &f[k])))
+            return st;
+    if (f[0] > LUMO_DRACO_GENERIC || f[1] == 0 || f[1] > 11 || f[2] == 0)
+        return LUMO_ERR_CORRUPT;
+    if (f[2] > LUMO_DRACO_MAX_COMPONENTS)
+        return LUMO_ERR_UNSUPPORTED;
+    memset(a, 0, sizeof *a);
+    a->type = f[0];
+    a->data_type = f[1];
+    a->num_components = f[2];
+    a->num_portable = f[2];
+    a->normalized = f[3] ? 1 : 0;
+    a->modes.decoder_id = (uint8_t)decoder;
+    a->modes.prediction = LD_PRED_NONE;
+    a->modes.transform = -1;
+    return ld_varint32(b, &a->unique_id);
+}
+
+lumo_status ld_read_seq_type(ld_buf *b, lumo_draco_attribute *a)
+{
+    uint8_t type;
+    lumo_status st = ld_u8(b, &type);
+    if (st)
+        return st;
+    if (type == LD_SEQ_GENERIC || type > LD_SEQ_NORMALS)
+        return type == LD_SEQ_GENERIC ? LUMO_ERR_UNSUPPORTED : LUMO_ERR_CORRUPT;
+    if ((type == LD_SEQ_QUANTIZATION || type == LD_SEQ_NORMALS) &&
+        a->data_type != LUMO_DRACO_DT_FLOAT32)
+        return LUMO_ERR_CORRUPT;
+    if (type == LD_SEQ_NORMALS && a->num_components != 3)
+        return LUMO_ERR_CORRUPT;
+    if (type == LD_SEQ_INTEGER && (a->data_type > LUMO_DRACO_DT_UINT32))
+        return LUMO_ERR_UNSUPPORTED;
+    a->modes.seq_type = type;
+    if (type == LD_SEQ_NORMALS)
+        a->num_portable = 2;  /* octahedral coordinates */
+    return LUMO_OK;
+}
+
 lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
                                           uint32_t *first, uint32_t *count, int with_types)
 {
@@ -28,48 +73,13 @@ lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
         return n ? LUMO_ERR_LIMIT : LUMO_ERR_CORRUPT;
     *first = d->num_attrs;
     *count = n;
-    for (i = 0; i < n; ++i) {
-        lumo_draco_attribute *a = &d->attrs[d->num_attrs + i];
-        uint8_t f[4];
-        unsigned k;
-        for (k = 0; k < 4; ++k)
-            if ((st = ld_u8(&d->buf, &f[k])))
-                return st;
-        if (f[0] > LUMO_DRACO_GENERIC || f[1] == 0 || f[1] > 11 || f[2] == 0)
-            return LUMO_ERR_CORRUPT;
-        if (f[2] > LUMO_DRACO_MAX_COMPONENTS)
-            return LUMO_ERR_UNSUPPORTED;
-        memset(a, 0, sizeof *a);
-        a->type = f[0];
-        a->data_type = f[1];
-        a->num_components = f[2];
-        a->num_portable = f[2];
-        a->normalized = f[3] ? 1 : 0;
-        a->modes.decoder_id = (uint8_t)decoder;
-        a->modes.prediction = LD_PRED_NONE;
-        a->modes.transform = -1;
-        if ((st = ld_varint32(&d->buf, &a->unique_id)))
+    for (i = 0; i < n; ++i)
+        if ((st = ld_read_descriptor(&d->buf, decoder, &d->attrs[d->num_attrs + i])))
             return st;
-    }
     d->num_attrs += n;
-    for (i = 0; i < n && with_types; ++i) {
-        lumo_draco_attribute *a = &d->attrs[*first + i];
-        uint8_t type;
-        if ((st = ld_u8(&d->buf, &type)))
+    for (i = 0; i < n && with_types; ++i)
+        if ((st = ld_read_seq_type(&d->buf, &d->attrs[*first + i])))
             return st;
-        if (type == LD_SEQ_GENERIC || type > LD_SEQ_NORMALS)
-            return type == LD_SEQ_GENERIC ? LUMO_ERR_UNSUPPORTED : LUMO_ERR_CORRUPT;
-        if ((type == LD_SEQ_QUANTIZATION || type == LD_SEQ_NORMALS) &&
-            a->data_type != LUMO_DRACO_DT_FLOAT32)
-            return LUMO_ERR_CORRUPT;
-        if (type == LD_SEQ_NORMALS && a->num_components != 3)
-            return LUMO_ERR_CORRUPT;
-        if (type == LD_SEQ_INTEGER && (a->data_type > LUMO_DRACO_DT_UINT32))
-            return LUMO_ERR_UNSUPPORTED;
-        a->modes.seq_type = type;
-        if (type == LD_SEQ_NORMALS)
-            a->num_portable = 2;  /* octahedral coordinates */
-    }
     return LUMO_OK;
 }
 
@@ -174,7 +184,7 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, ld_seq
     if (method == LD_PRED_NONE)
         return LUMO_OK;
     mark = ld_tmp_mark(&d->mem);
-    st = ld_pred_decode_data(&pred, &d->buf, &d->mem);
+    st = ld_pred_decode_data(&pred, &d->buf, &d->mem, NULL);
     if (!st && num_values)
         st = ld_pred_compute(&pred, a->values, n);
     ld_tmp_release(&d->mem, mark);
@@ -267,4 +277,109 @@ int32_t lumo_draco_dequantize(const lumo_draco_attribute *attr, unsigned comp, i
     /* round half away from zero */
     v = num >= 0 ? (num + max_q / 2) / max_q : -((-num + max_q / 2) / max_q);
     return lumo_sat_i32(v + attr->min_fixed[comp]);
+}
+
+/* ---- the need of an attributes decoder's values (lumo_draco_arena_need) ---- */
+
+static lumo_status ld_need_raw_values(ld_buf *b, uint32_t n)
+{
+    uint8_t nb;
+    lumo_status st = ld_u8(b, &nb);
+    if (st)
+        return st;
+    if (nb == 0 || nb > 4)
+        return LUMO_ERR_CORRUPT;
+    if ((uint64_t)nb * n > ld_remaining(b))
+        return LUMO_ERR_TRUNCATED;
+    return ld_skip(b, (uint64_t)nb * n);
+}
+
+/* ld_decode_portable on byte counts: the values output, the symbol
+ * stream's tables, the prediction data; `s` says what the decoder's
+ * sequence and corner table look like. */
+static lumo_status ld_need_portable(ld_buf *b, ld_need *k, const ld_need_attr *a,
+                                    ld_need_seq *s)
+{
+    const unsigned comps = a->portable;
+    const uint64_t num_values = (uint64_t)s->entries * comps;
+    uint32_t found = 0xFFFFFFFFu;
+    size_t mark;
+    int8_t method, transform = -1;
+    uint8_t compressed;
+    ld_pred pred;
+    ld_seq seq;
+    ld_ct ct;
+    lumo_status st;
+    if (num_values > 0xFFFFFFFFu)
+        return LUMO_ERR_LIMIT;
+    if ((st = ld_u8(b, (uint8_t *)&method)))
+        return st;
+    if (method != LD_PRED_NONE) {
+        if ((st = ld_u8(b, (uint8_t *)&transform)))
+            return st;
+        if (transform < -1 || transform > 3)
+            return LUMO_ERR_CORRUPT;
+        if (a->seq_type == LD_SEQ_NORMALS ? (transform != 2 && transform != 3) : transform != 1)
+            return LUMO_ERR_UNSUPPORTED;
+    }
+    memset(&pred, 0, sizeof pred);
+    memset(&seq, 0, sizeof seq);
+    memset(&ct, 0, sizeof ct);
+    ct.num_corners = s->num_corners;
+    seq.num_entries = s->entries;
+    seq.ct = s->mesh ? &ct : NULL;
+    pred.method = method;
+    pred.transform = transform;
+    pred.comps = comps;
+    pred.seq = &seq;
+    if (s->last && method != LD_PRED_NONE && s->eb)
+        ld_eb_need_release(s->eb, k, s->entries, ld_pred_needs_opposites_only(&pred));
+    ld_need_out(k, (size_t)num_values, sizeof(int32_t));
+    if ((st = ld_u8(b, &compressed)))
+        return st;
+    if (!compressed && s->uncertain)
+        return LUMO_ERR_LIMIT;  /* where they end depends on their count */
+    st = compressed ? ld_need_symbols(b, k, (uint32_t)num_values, comps, s->uncertain ? &found : NULL)
+                    : ld_need_raw_values(b, (uint32_t)num_values);
+    if (st)
+        return st;
+    if (s->uncertain && found != 0xFFFFFFFFu) {  /* learnt from the tags */
+        s->entries = found;
+        s->uncertain = 0;
+    }
+    if (method == LD_PRED_NONE)
+        return LUMO_OK;
+    mark = k->work;
+    st = ld_pred_decode_data(&pred, b, NULL, k);
+    ld_need_release(k, mark);
+    return st;
+}
+
+static lumo_status ld_need_transform_params(ld_buf *b, ld_need *k, const ld_need_attr *a)
+{
+    uint8_t bits;
+    lumo_status st;
+    if (a->seq_type == LD_SEQ_NORMALS)
+        return ld_u8(b, &bits);
+    if (a->seq_type != LD_SEQ_QUANTIZATION)
+        return LUMO_OK;
+    ld_need_out(k, a->components, sizeof(uint32_t));
+    ld_need_out(k, a->components, sizeof(int32_t));
+    if ((st = ld_skip(b, 4u * (uint64_t)a->components + 4u)) || (st = ld_u8(b, &bits)))
+        return st;
+    return bits < 1 || bits > 30 ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
+lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
+                               ld_need_seq *seq)
+{
+    uint32_t i;
+    lumo_status st;
+    for (i = 0; i < count; ++i)
+        if ((st = ld_need_portable(b, k, &attrs[i], seq)))
+            return st;
+    for (i = 0; i < count; ++i)
+        if ((st = ld_need_transform_params(b, k, &attrs[i])))
+            return st;
+    return LUMO_OK;
 }

@@ -474,3 +474,184 @@ size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_componen
     }
     return lumo_size_add(lumo_size_add(out, work), 256u + LUMO_ARENA_SLACK);
 }
+
+/* ---- the arena need before decoding ---------------------------------------------- *
+ * lumo_draco_decode replayed on byte counts (ld_need, draco_internal.h):
+ * the same headers are read in the same order and every allocation and
+ * release the decode makes is booked; payloads are skipped by their coded
+ * sizes (tagged symbol streams: by their tags). */
+
+typedef struct ld_scan {
+    ld_buf buf;
+    ld_need k;
+    ld_header h;
+    uint32_t num_points, num_faces, num_attrs;
+    ld_need_attr attrs[LUMO_DRACO_MAX_ATTRIBUTES];
+    uint32_t first[LD_MAX_DECODERS], count[LD_MAX_DECODERS];
+    ld_eb_need eb;
+    uint8_t is_eb;
+} ld_scan;
+
+/* Raw indices (ld_seq_raw_indices): bytes, 16-bit words, varints or words. */
+static lumo_status ld_scan_raw_indices(ld_buf *b, uint32_t n, uint32_t np)
+{
+    uint32_t i, v;
+    lumo_status st = LUMO_OK;
+    if (np < 256u)
+        return ld_skip(b, n);
+    if (np < 65536u)
+        return ld_skip(b, (uint64_t)n * 2u);
+    if (np >= (1u << 21))
+        return ld_skip(b, (uint64_t)n * 4u);
+    for (i = 0; i < n && !st; ++i)
+        st = ld_varint32(b, &v);
+    return st;
+}
+
+static lumo_status ld_scan_geometry(ld_scan *s)
+{
+    uint8_t method;
+    lumo_status st;
+    ld_need_out(&s->k, LUMO_DRACO_MAX_ATTRIBUTES, sizeof(lumo_draco_attribute));
+    if (s->h.geometry == LUMO_DRACO_POINT_CLOUD) {
+        if ((st = ld_u32(&s->buf, &s->num_points)))
+            return st;
+        return s->num_points > LD_MAX_POINTS ? LUMO_ERR_LIMIT : LUMO_OK;
+    }
+    if (s->h.method == LUMO_DRACO_METHOD_EDGEBREAKER) {
+        s->is_eb = 1;
+        if ((st = ld_eb_need_connectivity(&s->buf, &s->k, &s->eb)))
+            return st;
+        s->num_faces = s->eb.faces;
+        return LUMO_OK;
+    }
+    if ((st = ld_seq_counts(&s->buf, &s->num_faces, &s->num_points)))
+        return st;
+    if (s->num_faces > LD_MAX_FACES || s->num_points > LD_MAX_POINTS)
+        return LUMO_ERR_LIMIT;
+    if ((st = ld_u8(&s->buf, &method)))
+        return st;
+    ld_need_out(&s->k, (size_t)s->num_faces * 3u, sizeof(uint32_t));
+    if (method == 0)
+        return ld_need_symbols(&s->buf, &s->k, s->num_faces * 3u, 1, NULL);
+    return ld_scan_raw_indices(&s->buf, s->num_faces * 3u, s->num_points);
+}
+
+/* Decoder headers and attribute descriptors (ld_attribute_headers). */
+static lumo_status ld_scan_headers(ld_scan *s, uint8_t n, int kd)
+{
+    lumo_draco_attribute a;
+    uint32_t i, j, count;
+    lumo_status st;
+    for (i = 0; i < n; ++i)
+        if (s->is_eb && (st = ld_eb_need_decoder(&s->buf, &s->eb, i)))
+            return st;
+    for (i = 0; i < n; ++i) {
+        if ((st = ld_varint32(&s->buf, &count)))
+            return st;
+        if (count == 0 || count > LUMO_DRACO_MAX_ATTRIBUTES - s->num_attrs)
+            return count ? LUMO_ERR_LIMIT : LUMO_ERR_CORRUPT;
+        s->first[i] = s->num_attrs;
+        s->count[i] = count;
+        for (j = 0; j < count; ++j) {
+            ld_need_attr *q = &s->attrs[s->num_attrs + j];
+            if ((st = ld_read_descriptor(&s->buf, i, &a)))
+                return st;
+            q->components = a.num_components;
+            q->data_type = a.data_type;
+        }
+        for (j = 0; j < count && !kd; ++j) {
+            ld_need_attr *q = &s->attrs[s->num_attrs + j];
+            a.num_components = q->components;
+            a.num_portable = q->components;
+            a.data_type = q->data_type;
+            if ((st = ld_read_seq_type(&s->buf, &a)))
+                return st;
+            q->portable = a.num_portable;
+            q->seq_type = a.modes.seq_type;
+        }
+        s->num_attrs += count;
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_scan_attributes(ld_scan *s)
+{
+    const int kd = s->h.geometry == LUMO_DRACO_POINT_CLOUD &&
+                   s->h.method == LUMO_DRACO_METHOD_KD_TREE;
+    uint8_t n, i;
+    lumo_status st = ld_u8(&s->buf, &n);
+    if (st)
+        return st;
+    if (n > LD_MAX_DECODERS)
+        return LUMO_ERR_LIMIT;
+    if ((st = ld_scan_headers(s, n, kd)))
+        return st;
+    if (s->is_eb)
+        s->num_points = (uint32_t)ld_eb_need_points(&s->k, &s->eb);
+    for (i = 0; i < n; ++i) {
+        const size_t mark = s->k.work;
+        ld_need_seq seq;
+        memset(&seq, 0, sizeof seq);
+        if (kd) {
+            st = ld_kd_need(&s->buf, &s->k, s->attrs + s->first[i], s->count[i], s->num_points);
+        } else {
+            if (s->is_eb) {
+                ld_eb_need_sequence(&s->k, &s->eb, i, &seq);
+                seq.last = (uint8_t)(i + 1u == n && s->count[i] == 1u);
+            } else {
+                seq.entries = s->num_points;
+            }
+            st = ld_need_attributes(&s->buf, &s->k, s->attrs + s->first[i], s->count[i], &seq);
+        }
+        if (st)
+            return st;
+        ld_need_release(&s->k, mark);
+    }
+    return LUMO_OK;
+}
+
+/* One replay: the peak with every unknown at its lower (hi = 0) or upper
+ * (hi = 1) bound; *comps: portable components per point once known. */
+static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, size_t *peak, int *seams,
+                               unsigned *comps)
+{
+    ld_scan s;
+    uint32_t i;
+    lumo_status st;
+    memset(&s, 0, sizeof s);
+    s.k.hi = hi;
+    if ((st = ld_start(&s.buf, data, size, &s.h)) || (st = ld_scan_geometry(&s)))
+        return st;
+    st = ld_scan_attributes(&s);
+    for (*comps = 0, i = 0; i < s.num_attrs; ++i)
+        *comps += s.attrs[i].portable;
+    *peak = s.k.peak;
+    *seams = s.is_eb && s.eb.nad > 0;
+    return st;
+}
+
+lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_need *need)
+{
+    size_t lo = 0, hi;
+    int seams;
+    unsigned comps = 0;
+    lumo_draco_info info;
+    lumo_status st;
+    if (!need)
+        return LUMO_ERR_ARG;
+    st = ld_scan_run(data, size, 1, &hi, &seams, &comps);
+    if (st == LUMO_ERR_LIMIT && comps && !lumo_draco_peek(data, size, &info)) {
+        /* a stream the scan cannot skip: the header bound */
+        hi = lumo_draco_arena_bound(&info, comps) - LUMO_ARENA_SLACK;
+        seams = 1;
+    } else if (st) {
+        return st;
+    }
+    if (!seams && (st = ld_scan_run(data, size, 0, &lo, &seams, &comps)))
+        return st;
+    need->bytes = hi;
+    need->bytes_min = lo;
+    need->exact = (uint8_t)(lo == hi);
+    return LUMO_OK;
+}

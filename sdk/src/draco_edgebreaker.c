@@ -647,6 +647,8 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
             act = ld_swing_right(&e->ct, act);
         }
     }
+    if (n > e->num_corners)
+        return LUMO_ERR_CORRUPT;  /* at most one per corner (arena need) */
     a->ct.num_vertices = n;
     return LUMO_OK;
 }
@@ -729,6 +731,8 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
             c = ld_swing_right(&e->ct, c);
         }
     }
+    if (np > e->num_corners)
+        return LUMO_ERR_CORRUPT;  /* at most one per corner (arena need) */
     d->num_points = np;
     return LUMO_OK;
 }
@@ -839,6 +843,11 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
         return st;
     if ((st = ld_eb_traverse(d, e, symbols, splits)))
         return st;
+    /* every announced vertex is created and, without seams (where merged
+     * vertices are counted), S of them merge: the counts the arena need
+     * (lumo_draco_arena_need) takes from the header */
+    if (e->num_vertices != e->max_vertices || (!nad && e->num_conn_vertices != verts))
+        return LUMO_ERR_CORRUPT;
     ld_tmp_release(&d->mem, mark);
     e->valences = NULL;
     e->ct.num_vertices = e->num_vertices;
@@ -972,4 +981,236 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
         e->ct.opp = NULL;
     }
     ld_tmp_release(&d->mem, dst);
+}
+
+/* ---- the need before decoding (lumo_draco_arena_need) ----------------------- *
+ * The replay of ld_eb_decode_connectivity and ld_eb_sequence on byte
+ * counts. Exact from the header: faces F, vertices V + S (the decode
+ * checks every created vertex is announced and, without seams, that S
+ * vertices merge), the split table, the valence context symbols. Known
+ * only after decoding: the active-corner stack (at most one corner per E
+ * symbol, which creates 3 vertices), the traversal's stack or queue (a
+ * face pushes at most one corner on the depth-first stack, two on the
+ * degree queues), and with seams the points and attribute vertices (at
+ * most one per corner). */
+
+static uint32_t ld_eb_need_vertices(const ld_eb_need *e) { return e->verts + e->splits; }
+
+static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e, uint32_t *num)
+{
+    uint32_t n, i, last = 0;
+    ld_bits bits;
+    lumo_status st = ld_varint32(b, &n);
+    if (st)
+        return st;
+    *num = n;
+    if (n == 0)
+        return LUMO_OK;
+    if (n > e->faces)
+        return LUMO_ERR_CORRUPT;
+    ld_need_tmp(k, n, sizeof(uint32_t));
+    ld_need_tmp(k, n, sizeof(uint32_t));
+    ld_need_tmp(k, n, 1);
+    for (i = 0; i < n; ++i) {
+        uint32_t delta, src;
+        if ((st = ld_varint32(b, &delta)))
+            return st;
+        src = delta + last;
+        if ((st = ld_varint32(b, &delta)))
+            return st;
+        if (delta > src)
+            return LUMO_ERR_CORRUPT;
+        last = src;
+    }
+    ld_bits_start(&bits, b);
+    for (i = 0; i < n; ++i)
+        (void)ld_bits_get(&bits, 1);
+    ld_bits_end(&bits, b);
+    return LUMO_OK;
+}
+
+static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, const ld_eb_need *e)
+{
+    ld_rabs r;
+    uint32_t i, n;
+    uint64_t size;
+    lumo_status st;
+    if (!e->valence && ((st = ld_varint64(b, &size)) || (st = ld_skip(b, size))))
+        return st;
+    for (i = 0; i <= e->nad; ++i)  /* start faces, then one seam stream each */
+        if ((st = ld_rabs_start(&r, b)))
+            return st;
+    if (!e->valence)
+        return LUMO_OK;
+    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
+    for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
+        if ((st = ld_varint32(b, &n)))
+            return st;
+        if (n > e->faces)
+            return LUMO_ERR_CORRUPT;
+        if (n == 0)
+            continue;
+        if ((st = ld_need_symbols(b, k, n, 1, NULL)))
+            return st;
+        ld_need_tmp(k, n, 1);
+    }
+    return LUMO_OK;
+}
+
+/* The symbol loop's tables and its active-corner stack. */
+static void ld_eb_need_traverse(ld_need *k, const ld_eb_need *e, uint32_t num_splits)
+{
+    const uint64_t max_e = ld_eb_need_vertices(e) / 3u;
+    if (num_splits) {
+        uint32_t slots = 2u;
+        while (slots < 2u * num_splits)
+            slots <<= 1;
+        ld_need_tmp(k, slots, sizeof(uint32_t));
+        ld_need_tmp(k, slots, sizeof(uint32_t));
+    }
+    if (e->nad == 0)
+        ld_need_tmp(k, (size_t)e->splits + 1u, sizeof(uint32_t));
+    ld_need_free(k, (size_t)ld_need_pick(k, e->symbols ? 1u : 0u,
+                                         max_e < e->symbols ? max_e : e->symbols) * 4u);
+}
+
+lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e)
+{
+    uint32_t verts, faces, symbols, splits, num_splits, i;
+    size_t mark, lmc_mark;
+    uint8_t type, nad;
+    lumo_status st;
+    if ((st = ld_u8(b, &type)))
+        return st;
+    if (type != 0 && type != 2)
+        return LUMO_ERR_UNSUPPORTED;
+    if ((st = ld_varint32(b, &verts)) || (st = ld_varint32(b, &faces)))
+        return st;
+    if (faces > LD_MAX_FACES)
+        return LUMO_ERR_LIMIT;
+    if ((uint64_t)verts > (uint64_t)faces * 3u)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_u8(b, &nad)) || (st = ld_varint32(b, &symbols)))
+        return st;
+    if (faces < symbols || faces > symbols + symbols / 3u)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_varint32(b, &splits)))
+        return st;
+    if (splits > symbols)
+        return LUMO_ERR_CORRUPT;
+    if (nad > LD_MAX_ATTR_DATA)
+        return LUMO_ERR_UNSUPPORTED;
+    memset(e, 0, sizeof *e);
+    e->valence = type == 2;
+    e->faces = faces;
+    e->verts = verts;
+    e->splits = splits;
+    e->symbols = symbols;
+    e->nad = nad;
+    /* ld_eb_decode_connectivity, ld_eb_alloc */
+    ld_need_tmp(k, 1, sizeof(struct ld_eb));
+    ld_need_out(k, 3u * (size_t)faces, sizeof(uint32_t));
+    if (nad)
+        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
+    e->w_opp_end = k->work;
+    ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
+    if (nad)
+        ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
+    lmc_mark = k->work;
+    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
+    mark = k->work;
+    if ((st = ld_eb_need_splits(b, k, e, &num_splits)) || (st = ld_eb_need_symbols(b, k, e)))
+        return st;
+    ld_eb_need_traverse(k, e, num_splits);
+    ld_need_release(k, mark);
+    for (i = 0; i < nad; ++i) {  /* ld_eb_alloc_attr_data */
+        ld_need_tmp(k, 3u * (size_t)faces, 1);
+        ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
+        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
+        ld_need_tmp(k, 3u * (size_t)faces + 1u, sizeof(uint32_t));
+    }
+    if (nad == 0) {  /* ld_eb_drop_lmc */
+        ld_need_release(k, lmc_mark);
+        ld_need_tmp(k, ld_eb_need_vertices(e), 1);
+        e->table_live = 1;
+    }
+    return LUMO_OK;
+}
+
+/* ld_eb_create_attributes_decoder's reading and checks. */
+lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder)
+{
+    int8_t att_data;
+    uint8_t type, trav;
+    lumo_status st;
+    if ((st = ld_u8(b, (uint8_t *)&att_data)) || (st = ld_u8(b, &type)) || (st = ld_u8(b, &trav)))
+        return st;
+    if (trav > 1)
+        return LUMO_ERR_CORRUPT;
+    if (att_data >= 0) {
+        if ((uint32_t)att_data >= e->nad || e->ad_used[att_data])
+            return LUMO_ERR_CORRUPT;
+        e->ad_used[att_data] = 1;
+    } else {
+        if (e->pos_used)
+            return LUMO_ERR_CORRUPT;
+        e->pos_used = 1;
+    }
+    if (type != 0 && (trav != 0 || att_data < 0))
+        return LUMO_ERR_CORRUPT;
+    e->dec_att_data[decoder] = att_data;
+    e->dec_type[decoder] = type;
+    e->dec_traversal[decoder] = trav;
+    return LUMO_OK;
+}
+
+uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e)
+{
+    if (e->nad == 0)
+        return e->verts;
+    return ld_need_pick(k, 1u, 3u * (uint64_t)e->faces);
+}
+
+void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s)
+{
+    const int8_t ad = e->dec_att_data[decoder];
+    const int own = ad < 0 || e->dec_type[decoder] == 0;  /* the mesh's corner table */
+    const uint64_t corners = 3u * (uint64_t)e->faces;
+    /* vertices of the table traversed, and the vertex map's size */
+    const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_need_pick(k, 1u, corners);
+    uint64_t vmap = ld_eb_need_vertices(e), points = ld_eb_need_points(k, e);
+    size_t mark;
+    if (ad >= 0 && ld_need_pick(k, 1u, corners) > vmap)
+        vmap = ld_need_pick(k, 1u, corners);
+    if (e->nad == 0)
+        ld_need_out(k, (size_t)vmap, sizeof(int32_t));
+    else
+        ld_need_tmp(k, (size_t)vmap, sizeof(int32_t));
+    ld_need_tmp(k, (size_t)nv, sizeof(uint32_t));  /* value -> corner */
+    mark = k->work;
+    ld_need_tmp(k, e->faces, 1);
+    if (e->dec_traversal[decoder]) {
+        ld_need_tmp(k, (size_t)nv, sizeof(uint32_t));
+        ld_need_free(k, (size_t)ld_need_pick(k, 1u, 2u * (uint64_t)e->faces + 1u) * 8u);
+    } else {
+        ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
+    }
+    ld_need_release(k, mark);
+    if (e->nad)
+        ld_need_out(k, (size_t)points, sizeof(uint32_t));
+    /* values: every point's value (no seams), else at most one per vertex */
+    s->entries = (uint32_t)(e->nad == 0 ? points : nv);
+    s->uncertain = e->nad != 0;
+    s->num_corners = (uint32_t)corners;
+    s->mesh = 1;
+    s->eb = e;
+}
+
+void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites)
+{
+    const size_t base = e->w_opp_end + (opposites ? 0u : ld_need_bytes(3u * (size_t)e->faces, 4u));
+    if (!e->table_live)
+        return;
+    ld_need_release(k, base + ld_need_bytes(entries, sizeof(uint32_t)));
+    e->table_live = 0;
 }

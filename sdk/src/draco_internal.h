@@ -141,11 +141,75 @@ void ld_free_used(ld_mem *m, size_t bytes);
 /* Commit the outputs to the arena. */
 void ld_mem_commit(ld_mem *m, lumo_arena *a);
 
+/* ---- the arena need before decoding (lumo_draco_arena_need) -------------- *
+ * A replay of ld_mem's bookkeeping on byte counts only: the scanner reads
+ * the headers a decode reads and books every ld_out / ld_tmp / release /
+ * free-space use the decode will make, in the same order. Quantities known
+ * only after the connectivity is decoded (traversal stack depths, points
+ * split along seams) are booked twice: at their smallest value (`lo`) and
+ * at the largest the headers allow (`hi`); the need is exact when both
+ * replays reach the same peak. */
+typedef struct ld_need {
+    size_t out;       /* output bytes (ld_out) */
+    size_t work;      /* work bytes in use (ld_tmp, top of the arena) */
+    size_t peak;
+    int hi;           /* 1: book the upper bounds, 0: the lower bounds */
+} ld_need;
+
+static inline size_t ld_need_bytes(size_t n, size_t size)
+{
+    if (size && n > (SIZE_MAX / 2u) / size)
+        return SIZE_MAX / 2u;  /* saturates; no decode fits it */
+    return (n * size + 7u) & ~(size_t)7u;
+}
+static inline void ld_need_track(ld_need *k, size_t extra)
+{
+    const size_t in_use = k->out + k->work + extra;
+    if (in_use > k->peak)
+        k->peak = in_use;
+}
+static inline void ld_need_out(ld_need *k, size_t n, size_t size)
+{
+    k->out += ld_need_bytes(n, size);
+    ld_need_track(k, 0);
+}
+static inline void ld_need_tmp(ld_need *k, size_t n, size_t size)
+{
+    k->work += ld_need_bytes(n, size);
+    ld_need_track(k, 0);
+}
+/* ld_tmp_release: a mark is the work in use when it was taken. */
+static inline void ld_need_release(ld_need *k, size_t mark)
+{
+    if (mark < k->work)
+        k->work = mark;
+}
+/* ld_free_used: a stack in the free space, `bytes` deep at most. */
+static inline void ld_need_free(ld_need *k, size_t bytes)
+{
+    ld_need_track(k, ld_need_bytes(bytes, 1));
+}
+/* Which of two bounds the replay books. */
+static inline uint64_t ld_need_pick(const ld_need *k, uint64_t lo, uint64_t hi)
+{
+    return k->hi ? hi : lo;
+}
+
 /* ---- entropy coding (draco_rans.c) --------------------------------------- */
 /* Symbols of a DecodeSymbols() stream (tagged or raw rANS). */
 lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
                               unsigned num_components, uint32_t *out,
                               uint8_t *scheme_out);
+
+/* The same stream skipped: its work memory booked into `k`, the values not
+ * decoded (tagged streams: the tags only, to find the end of their bits).
+ * `found` non-NULL: num_values is only an upper bound of a multiple of
+ * num_components; a tagged stream tells the true count / num_components
+ * in *found, a raw one leaves it 0xFFFFFFFF (its end is coded).
+ * LUMO_ERR_LIMIT: a stream this scan cannot skip (tagged alphabets no
+ * encoder writes, or an unknown count under a one-symbol alphabet). */
+lumo_status ld_need_symbols(ld_buf *b, ld_need *k, uint32_t num_values, unsigned num_components,
+                            uint32_t *found);
 
 /* libdraco's RAnsBitDecoder (rABS with one 8-bit zero probability). */
 typedef struct ld_rabs {
@@ -221,6 +285,25 @@ typedef struct ld_seq {
 } ld_seq;
 
 /* draco_attribute.c */
+lumo_status ld_read_descriptor(ld_buf *b, unsigned decoder, lumo_draco_attribute *a);
+lumo_status ld_read_seq_type(ld_buf *b, lumo_draco_attribute *a);
+
+/* What the need scanner keeps of an attribute and of an attributes
+ * decoder's sequence. */
+typedef struct ld_need_attr {
+    uint8_t components, portable, seq_type, data_type;
+} ld_need_attr;
+typedef struct ld_need_seq {
+    uint32_t entries;         /* values of each attribute */
+    uint32_t num_corners;
+    uint8_t mesh;             /* a corner table exists (EdgeBreaker) */
+    uint8_t last;             /* as ld_seq.last */
+    uint8_t uncertain;        /* entries is only an upper bound */
+    struct ld_eb_need *eb;    /* EdgeBreaker state, NULL otherwise */
+} ld_need_seq;
+lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
+                               ld_need_seq *seq);
+
 lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
                                           uint32_t *first, uint32_t *count, int with_types);
 /* Quantization parameters in min_bits/range_bits -> fixed point. */
@@ -228,6 +311,8 @@ lumo_status ld_set_quantization(lumo_draco_attribute *a, unsigned bits);
 /* draco_kdtree.c: one KD-tree attributes decoder, values and parameters */
 lumo_status ld_kd_decode_attributes(ld_dec *d, uint32_t first, uint32_t count);
 lumo_status ld_decode_attributes(ld_dec *d, uint32_t first, uint32_t count, ld_seq *seq);
+lumo_status ld_kd_need(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
+                       uint32_t num_points);
 
 /* draco_predict.c */
 typedef struct ld_pred {
@@ -253,7 +338,8 @@ typedef struct ld_pred {
     uint8_t zigzag;
 } ld_pred;
 
-lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m);
+/* m == NULL: only read the data and book its work memory into k. */
+lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, ld_need *k);
 lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
 /* 1 when ld_pred_compute can take zig-zag coded corrections (method and
  * transform known, data not yet read): one pass over the values, not two. */
@@ -322,6 +408,26 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
                         const uint32_t *faces, ld_order *o);
 
 /* ---- EdgeBreaker (draco_edgebreaker.c) ----------------------------------- */
+/* What the need scanner knows of an EdgeBreaker mesh (lumo_draco_arena_need). */
+#define LD_NEED_MAX_ATTR_DATA 16u
+typedef struct ld_eb_need {
+    uint32_t faces, verts, splits, symbols, nad;
+    uint8_t valence;
+    size_t w_opp_end;          /* work below the opposite table's block */
+    uint8_t table_live;        /* opposites and border flags not released */
+    int8_t dec_att_data[LD_MAX_DECODERS];
+    uint8_t dec_type[LD_MAX_DECODERS], dec_traversal[LD_MAX_DECODERS];
+    uint8_t ad_used[LD_NEED_MAX_ATTR_DATA];
+    uint8_t pos_used;
+} ld_eb_need;
+lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e);
+lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder);
+/* One attributes decoder's sequence: sets s->entries and s->mesh. */
+void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s);
+void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites);
+/* Points of the mesh: exact without attribute seams, else a bound. */
+uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e);
+
 lumo_status ld_eb_decode_connectivity(ld_dec *d);
 lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
                                             uint8_t *traversal, uint8_t *vertex_attr);

@@ -309,3 +309,56 @@ lumo_status ld_kd_decode_attributes(ld_dec *d, uint32_t first, uint32_t count)
     ld_tmp_release(&d->mem, mark);
     return ld_kd_params(d, first, count);
 }
+
+/* ---- the need before decoding (lumo_draco_arena_need) ----------------------- *
+ * ld_kd_decode_attributes on byte counts: everything it takes follows from
+ * the header (the tree's stacks from the dimension), so this is exact. */
+lumo_status ld_kd_need(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
+                       uint32_t num_points)
+{
+    const size_t mark = k->work;
+    ld_kd kd;
+    uint32_t i, dim = 0, bit_length, n;
+    uint8_t level, bits;
+    lumo_status st;
+    memset(&kd, 0, sizeof kd);
+    if ((st = ld_u8(b, &level)))
+        return st;
+    if (level > 6)
+        return LUMO_ERR_CORRUPT;
+    kd.level = level;
+    for (i = 0; i < count; ++i) {
+        const unsigned dt = attrs[i].data_type;
+        if (dt != LUMO_DRACO_DT_UINT8 && dt != LUMO_DRACO_DT_UINT16 &&
+            dt != LUMO_DRACO_DT_UINT32 && dt != LUMO_DRACO_DT_FLOAT32)
+            return LUMO_ERR_UNSUPPORTED;
+        ld_need_out(k, (size_t)num_points * attrs[i].components, sizeof(int32_t));
+        dim += attrs[i].components;
+    }
+    if ((st = ld_u32(b, &bit_length)) || (st = ld_u32(b, &n)))
+        return st;
+    if (bit_length > 32 || n != num_points)
+        return LUMO_ERR_CORRUPT;
+    if (n) {  /* ld_kd_tree's stacks */
+        const uint32_t depth = 32u * dim + 1u;
+        if ((st = ld_kd_start(&kd, b)))
+            return st;
+        ld_need_tmp(k, (size_t)depth * dim, sizeof(uint32_t));
+        ld_need_tmp(k, (size_t)depth * dim, sizeof(uint32_t));
+        ld_need_tmp(k, dim, sizeof(uint32_t));
+        ld_need_tmp(k, dim, sizeof(uint32_t));
+        ld_need_tmp(k, 2u * (size_t)depth + 2u, sizeof(ld_kd_status));
+    }
+    ld_need_release(k, mark);
+    for (i = 0; i < count; ++i) {  /* ld_kd_params */
+        if (attrs[i].data_type != LUMO_DRACO_DT_FLOAT32)
+            continue;
+        ld_need_out(k, attrs[i].components, sizeof(uint32_t));
+        ld_need_out(k, attrs[i].components, sizeof(int32_t));
+        if ((st = ld_skip(b, 4u * (uint64_t)attrs[i].components + 4u)) || (st = ld_u8(b, &bits)))
+            return st;
+        if (bits > 31 || bits < 1 || bits > 30)
+            return bits > 31 ? LUMO_ERR_CORRUPT : LUMO_ERR_UNSUPPORTED;
+    }
+    return LUMO_OK;
+}

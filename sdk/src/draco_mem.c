@@ -68,7 +68,9 @@ void ld_mem_commit(ld_mem *m, lumo_arena *a)
 
 void ld_free_used(ld_mem *m, size_t bytes)
 {
-    size_t in_use = (size_t)(m->lo - m->start) + (size_t)(m->top - m->hi) + bytes;
+    size_t in_use;
+    bytes = ld_round8(bytes);  /* an arena of the reported need holds it */
+    in_use = (size_t)(m->lo - m->start) + (size_t)(m->top - m->hi) + bytes;
     if (in_use > m->peak)
         m->peak = in_use;
 }

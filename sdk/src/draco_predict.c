@@ -208,7 +208,7 @@ static inline void ld_original(const ld_pred *p, const int32_t *pred, const int3
 
 /* ---- scheme data ---------------------------------------------------------------- */
 
-static lumo_status ld_read_bits(ld_buf *b, ld_mem *m, uint32_t n, uint8_t **out)
+static lumo_status ld_read_bits(ld_buf *b, ld_mem *m, ld_need *k, uint32_t n, uint8_t **out)
 {
     ld_rabs start, r;
     uint8_t *bits;
@@ -216,6 +216,11 @@ static lumo_status ld_read_bits(ld_buf *b, ld_mem *m, uint32_t n, uint8_t **out)
     lumo_status st = ld_rabs_start(&start, b);
     if (st)
         return st;
+    if (!m) {
+        ld_need_tmp(k, n, 1);
+        *out = NULL;
+        return LUMO_OK;
+    }
     bits = ld_tmp(m, n, 1);
     if (!bits)
         return LUMO_ERR_NOMEM;
@@ -239,7 +244,7 @@ static int ld_effective_method(const ld_pred *p)
     return LD_PRED_DIFFERENCE;
 }
 
-lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m)
+lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, ld_need *k)
 {
     lumo_status st;
     uint32_t i, n;
@@ -267,10 +272,10 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m)
         if ((int32_t)n < 0 || n > p->seq->num_entries)
             return LUMO_ERR_CORRUPT;
         p->num_orient = n;
-        if ((st = ld_read_bits(b, m, n, &p->orient)))
+        if ((st = ld_read_bits(b, m, k, n, &p->orient)))
             return st;
         /* bit 0 flips the running orientation, starting from "true" */
-        for (i = 0; i < n; ++i) {
+        for (i = 0; i < n && p->orient; ++i) {
             uint8_t last = i ? p->orient[i - 1] : 1u;
             p->orient[i] = p->orient[i] ? last : (uint8_t)!last;
         }

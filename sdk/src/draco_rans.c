@@ -38,9 +38,11 @@ static uint32_t ld_rans_precision(unsigned bit_length)
     return p < 12u ? 12u : (p > 20u ? 20u : p);
 }
 
-static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
+/* Read the probability table into tables from `m`, or, with m == NULL,
+ * only check it and book the tables the decode takes into `k`. */
+static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k)
 {
-    uint32_t n, i, total = 0, k = 0;
+    uint32_t n, i, total = 0, nz = 0;
     size_t cap;
     lumo_status st = ld_varint32(b, &n);
     if (st)
@@ -51,11 +53,17 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
         return LUMO_ERR_LIMIT;  /* 18-bit symbols at most (raw coding) */
     r->num_symbols = n;
     cap = n < ld_remaining(b) ? n : ld_remaining(b);
-    r->cum = ld_tmp(m, cap + 1u, sizeof(uint32_t));
-    r->sym = ld_tmp(m, cap + 1u, sizeof(uint32_t));
-    if (!r->cum || !r->sym)
-        return LUMO_ERR_NOMEM;
-    r->cum[0] = 0;
+    if (!m) {
+        ld_need_tmp(k, cap + 1u, sizeof(uint32_t));
+        ld_need_tmp(k, cap + 1u, sizeof(uint32_t));
+        r->cum = r->sym = NULL;
+    } else {
+        r->cum = ld_tmp(m, cap + 1u, sizeof(uint32_t));
+        r->sym = ld_tmp(m, cap + 1u, sizeof(uint32_t));
+        if (!r->cum || !r->sym)
+            return LUMO_ERR_NOMEM;
+        r->cum[0] = 0;
+    }
     for (i = 0; i < n; ++i) {
         uint8_t byte;
         uint32_t prob;
@@ -78,13 +86,16 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
         }
         if (prob == 0)
             continue;
-        if (prob > (1u << r->prec_bits) - total || k >= cap)
+        if (prob > (1u << r->prec_bits) - total || nz >= cap)
             return LUMO_ERR_CORRUPT;
         total += prob;
-        r->sym[k] = i;
-        r->cum[++k] = total;
+        if (m) {
+            r->sym[nz] = i;
+            r->cum[nz + 1u] = total;
+        }
+        ++nz;
     }
-    r->num_nz = k;
+    r->num_nz = nz;
     if (n && total != (1u << r->prec_bits))
         return LUMO_ERR_CORRUPT;
     return LUMO_OK;
@@ -93,10 +104,9 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m)
 /* The lookup table has at most 2^LD_LUT_BITS buckets and, for short
  * streams, about two per value: a 200-value batch on a small board gets a
  * 2 KB table, not 64 KB. */
-static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
+static unsigned ld_rans_lut_bits(const ld_rans *r, uint32_t num_values)
 {
     unsigned bits = 8;
-    uint32_t buckets, bkt, s, *lut;
     while (bits < LD_LUT_BITS && (1u << bits) < 2u * num_values)
         ++bits;
     /* A long stream at up to 16-bit precision gets the exact table (one
@@ -106,6 +116,13 @@ static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
         bits = r->prec_bits;
     if (bits > r->prec_bits)
         bits = r->prec_bits;
+    return bits;
+}
+
+static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
+{
+    const unsigned bits = ld_rans_lut_bits(r, num_values);
+    uint32_t buckets, bkt, s, *lut;
     buckets = 1u << bits;
     r->lut_shift = r->prec_bits - bits;
     r->lut = ld_tmp(m, buckets, sizeof(uint32_t));
@@ -227,7 +244,7 @@ static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit
 {
     lumo_status st;
     r->prec_bits = ld_rans_precision(bit_length);
-    if ((st = ld_rans_read_table(r, b, m)))
+    if ((st = ld_rans_read_table(r, b, m, NULL)))
         return st;
     if (r->num_symbols == 0)
         return LUMO_ERR_CORRUPT;  /* values announced but no alphabet */
@@ -326,4 +343,117 @@ lumo_status ld_rabs_start(ld_rabs *d, ld_buf *b)
     d->buf = p;
     b->pos += size;
     return LUMO_OK;
+}
+
+/* ---- the need of a symbol stream, without decoding its values ------------- */
+
+static void ld_need_lut(ld_need *k, const ld_rans *r, uint32_t num_values)
+{
+    ld_need_tmp(k, (size_t)1 << ld_rans_lut_bits(r, num_values), sizeof(uint32_t));
+}
+
+/* Tagged values are followed by their raw bits, whose length only the tags
+ * tell: the tags are decoded with their table on the stack (a tag is a bit
+ * length, so the alphabet of a real stream has at most 33 symbols) and a
+ * linear search, and the bits are skipped. */
+#define LD_NEED_TAGS 64u
+
+static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, unsigned comps,
+                                  uint32_t *found)
+{
+    uint64_t space[2u * (LD_NEED_TAGS + 2u)];
+    const uint32_t zero = 0;
+    ld_buf table = *b;
+    ld_rans tags;
+    lumo_arena a;
+    ld_mem m;
+    ld_bits bits;
+    uint32_t i = 0;
+    unsigned j;
+    lumo_status st;
+    tags.prec_bits = ld_rans_precision(5);
+    if ((st = ld_rans_read_table(&tags, b, NULL, k)))
+        return st;
+    if (tags.num_symbols == 0)
+        return LUMO_ERR_CORRUPT;
+    ld_need_lut(k, &tags, num_values / comps + 1u);
+    if (tags.num_symbols > LD_NEED_TAGS)
+        return LUMO_ERR_LIMIT;  /* not a stream the encoder writes */
+    lumo_arena_init(&a, space, sizeof space);
+    ld_mem_init(&m, &a);
+    if ((st = ld_rans_read_table(&tags, &table, &m, NULL)) || (st = ld_rans_start(&tags, b)))
+        return st;
+    tags.lut = (uint32_t *)(uintptr_t)&zero;  /* one bucket: search from 0 */
+    tags.lut_shift = tags.prec_bits;
+    ld_bits_start(&bits, b);
+    if (found) {
+        /* The count is unknown (values per corner): rANS decoding returns
+         * to its initial state with every byte read exactly after the last
+         * symbol, and not before unless one tag has all the probability. */
+        const uint32_t l_base = 4u << tags.prec_bits;
+        if (tags.num_nz < 2u)
+            return LUMO_ERR_LIMIT;
+        for (*found = 0; tags.offset || tags.state != l_base; ++*found) {
+            uint32_t len;
+            if (*found >= num_values / comps)
+                return LUMO_ERR_CORRUPT;
+            if ((len = ld_rans_read(&tags)) > 32u)
+                return LUMO_ERR_CORRUPT;
+            for (j = 0; j < comps; ++j)
+                (void)ld_bits_get(&bits, len);
+        }
+        ld_bits_end(&bits, b);
+        return LUMO_OK;
+    }
+    while (i < num_values) {
+        const uint32_t len = ld_rans_read(&tags);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        for (j = 0; j < comps && i < num_values; ++j, ++i)
+            (void)ld_bits_get(&bits, len);
+    }
+    ld_bits_end(&bits, b);
+    return LUMO_OK;
+}
+
+static lumo_status ld_need_raw(ld_buf *b, ld_need *k, uint32_t num_values)
+{
+    ld_rans r;
+    uint8_t max_bits;
+    lumo_status st = ld_u8(b, &max_bits);
+    if (st)
+        return st;
+    if (max_bits < 1 || max_bits > 18)
+        return LUMO_ERR_CORRUPT;
+    r.prec_bits = ld_rans_precision(max_bits);
+    if ((st = ld_rans_read_table(&r, b, NULL, k)))
+        return st;
+    if (r.num_symbols == 0)
+        return LUMO_ERR_CORRUPT;
+    ld_need_lut(k, &r, num_values);
+    return ld_rans_start(&r, b);  /* skips the coded bytes */
+}
+
+lumo_status ld_need_symbols(ld_buf *b, ld_need *k, uint32_t num_values, unsigned num_components,
+                            uint32_t *found)
+{
+    const size_t mark = k->work;
+    uint8_t scheme;
+    lumo_status st;
+    if (num_values == 0)
+        return LUMO_OK;
+    if (num_components == 0)
+        return LUMO_ERR_CORRUPT;
+    if ((st = ld_u8(b, &scheme)))
+        return st;
+    if (found)
+        *found = 0xFFFFFFFFu;
+    if (scheme == 0)
+        st = ld_need_tagged(b, k, num_values, num_components, found);
+    else if (scheme == 1)
+        st = ld_need_raw(b, k, num_values);
+    else
+        st = LUMO_ERR_CORRUPT;
+    ld_need_release(k, mark);
+    return st;
 }

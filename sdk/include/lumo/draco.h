@@ -140,6 +140,28 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
  * decode is reported in lumo_draco_mesh. Formula: docs/draco-decoder.md. */
 size_t lumo_draco_arena_bound(const lumo_draco_info *info, unsigned max_components);
 
+/* The arena a decode of one stream needs, from lumo_draco_arena_need. */
+typedef struct lumo_draco_need {
+    size_t  bytes;      /* free arena bytes (lumo_arena_remaining) that every
+                           successful decode of the stream fits in: an arena
+                           of exactly this many free bytes decodes it */
+    size_t  bytes_min;  /* no successful decode needs fewer */
+    uint8_t exact;      /* 1: bytes == bytes_min, the exact need
+                           (mesh.arena_bytes + mesh.work_bytes) */
+} lumo_draco_need;
+
+/* Scan a stream and compute the arena its decode needs, before decoding:
+ * every header that decides memory is read (connectivity, attribute
+ * decoders, prediction schemes, symbol-stream tables) and payloads are
+ * skipped by their coded sizes; no memory beyond a fixed stack frame
+ * (about 1.5 KB), work linear in the input. Exact for sequential meshes,
+ * point clouds and EdgeBreaker meshes whose peak does not depend on the
+ * connectivity; otherwise a bound (`exact` = 0). Multiples of 8; add
+ * LUMO_ARENA_SLACK when the arena's buffer may be unaligned. On error
+ * *need is unchanged (the error a decode would also return, in most
+ * cases). Formula: docs/draco-decoder.md, "Memory before decoding". */
+lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_need *need);
+
 /* Decode a whole stream. On success *out describes arrays in `arena`.
  * On error the arena and *out are unchanged. */
 lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *arena,
