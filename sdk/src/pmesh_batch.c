@@ -602,23 +602,23 @@ static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, arc_fan *g)
     }
 }
 
-static int64_t arc_length_cost(const arc_fan *g, uint32_t m)
-{
-    int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
-    return 3 * g->ring * d * d;
-}
-
 /* Every candidate's key into key[], in enumeration order; returns their
- * count (at most n^2). */
+ * count (at most n^2). The length term 3 ring (m - (n - 1) / 2)^2 is
+ * worked out once per m. */
 static uint32_t arc_list(const arc_fan *g, int64_t *key)
 {
+    int64_t length_cost[ARC_N + 1];
     uint32_t count = 0;
+    for (uint32_t m = 1; m <= g->n; m++) {
+        int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
+        length_cost[m] = 3 * g->ring * d * d;
+    }
     for (uint32_t i = 0; i < g->n; i++) {
         if (g->first[i] != i)
             continue;
         int64_t inner = 0;
         for (uint32_t m = 1, j = i; m <= g->n; m++) {
-            key[count++] = (inner - arc_length_cost(g, m)) * 4096 + (int64_t)(4095u - (i << 8 | m));
+            key[count++] = (inner - length_cost[m]) * 4096 + (int64_t)(4095u - (i << 8 | m));
             if (g->succ[j] == ARC_NONE)
                 break;
             inner += g->w[j];
