@@ -1,6 +1,8 @@
 /* fuzz_draco.c — hostile bytes into lumo's Draco decoder: it must return an
  * error (arena unchanged) or a decode whose every index is in range, never
- * read or write out of bounds, and finish in bounded time. Seeds:
+ * read or write out of bounds, and finish in bounded time. The arena need
+ * computed before decoding (lumo_draco_arena_need) must cover every decode
+ * that succeeds, and equal its use when it says it is exact. Seeds:
  * tests/fuzz/seeds/fuzz_draco/ (draco_encoder output over all levels). */
 #include <stdint.h>
 #include <stddef.h>
@@ -33,11 +35,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lumo_arena arena;
     lumo_draco_mesh m;
     lumo_draco_info info;
+    lumo_draco_need need;
+    const lumo_status need_st = lumo_draco_arena_need(data, size, &need);
     (void)lumo_draco_peek(data, size, &info);
     lumo_arena_init(&arena, g_mem, sizeof g_mem);
-    if (lumo_draco_decode(data, size, &arena, &m) == LUMO_OK)
+    if (lumo_draco_decode(data, size, &arena, &m) == LUMO_OK) {
+        const size_t used = m.arena_bytes + m.work_bytes;
         check(&m);
-    else if (arena.used != 0)
+        if (need_st != LUMO_OK || used > need.bytes || used < need.bytes_min ||
+            (need.exact && used != need.bytes))
+            abort();
+    } else if (arena.used != 0) {
         abort();
+    }
     return 0;
 }

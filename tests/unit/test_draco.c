@@ -172,6 +172,97 @@ static void test_arena_exact_and_short(void **state)
     }
 }
 
+/* The need before decoding: exact (decodes in that many bytes, not one
+ * less) where the stream's headers decide it, else a bound within 1.7x;
+ * an unaligned buffer of need + LUMO_ARENA_SLACK bytes suffices. */
+static void test_arena_need(void **state)
+{
+    static const uint8_t exact[] = {1, 0, 0, 0, 1, 1};  /* as streams() */
+    size_t n, i;
+    const stream *s = streams(&n);
+    (void)state;
+    assert_int_equal(n, sizeof exact);
+    for (i = 0; i < n; ++i) {
+        lumo_arena a;
+        lumo_draco_mesh m;
+        lumo_draco_need need;
+        size_t used;
+        memset(&need, 0, sizeof need);
+        assert_int_equal(lumo_draco_arena_need(s[i].data, s[i].size, &need), LUMO_OK);
+        arena_fresh(&a, ARENA_BYTES);
+        assert_int_equal(lumo_draco_decode(s[i].data, s[i].size, &a, &m), LUMO_OK);
+        used = m.arena_bytes + m.work_bytes;
+        if (need.exact != exact[i])
+            fail_msg("%s: exact %u", s[i].name, need.exact);
+        assert_true(need.bytes_min <= used && used <= need.bytes);
+        assert_true(need.bytes % 8u == 0);
+        if (need.exact)
+            assert_int_equal(need.bytes, used);
+        else if (need.bytes * 10u > used * 17u)
+            fail_msg("%s: need %zu for %zu used (> 1.7x)", s[i].name, need.bytes, used);
+        arena_fresh(&a, need.bytes);
+        assert_int_equal(lumo_draco_decode(s[i].data, s[i].size, &a, &m), LUMO_OK);
+        assert_canary(need.bytes);
+        assert_int_equal(dump_hash(&m), s[i].fnv);
+        if (need.exact) {
+            arena_fresh(&a, need.bytes - 1u);
+            assert_int_equal(lumo_draco_decode(s[i].data, s[i].size, &a, &m), LUMO_ERR_NOMEM);
+            assert_int_equal(a.used, 0);
+        }
+        memset(g_buf, 0xA5, sizeof g_buf);  /* an odd start: the slack covers it */
+        lumo_arena_init(&a, g_buf + 3, need.bytes + LUMO_ARENA_SLACK);
+        assert_int_equal(lumo_draco_decode(s[i].data, s[i].size, &a, &m), LUMO_OK);
+    }
+    assert_int_equal(lumo_draco_arena_need(s[0].data, s[0].size, NULL), LUMO_ERR_ARG);
+    assert_int_not_equal(lumo_draco_arena_need(s[0].data, 10, &(lumo_draco_need){0, 0, 0}), LUMO_OK);
+}
+
+/* Hostile input: the scan ends in a status on every prefix and mutation,
+ * and whenever a decode succeeds the figure covers what it used. */
+static void test_arena_need_hostile(void **state)
+{
+    static uint8_t copy[65536];
+    test_rng rng = {0x5eed5eed12344321ull};
+    size_t n, i;
+    const stream *s = streams(&n);
+    unsigned decoded = 0;
+    (void)state;
+    for (i = 0; i < n; ++i) {
+        size_t len, step = s[i].size > 3000 ? 13 : 3;
+        unsigned t;
+        for (len = 0; len < s[i].size; len += step) {
+            lumo_draco_need need;
+            (void)lumo_draco_arena_need(s[i].data, len, &need);
+        }
+        for (t = 0; t < 300; ++t) {
+            lumo_arena a;
+            lumo_draco_mesh m;
+            lumo_draco_need need;
+            unsigned k, flips = 1 + (unsigned)(test_rng_next(&rng) % 4);
+            memcpy(copy, s[i].data, s[i].size);
+            for (k = 0; k < flips; ++k) {
+                size_t at = (size_t)(test_rng_next(&rng) % s[i].size);
+                if (t & 1)
+                    copy[at] ^= (uint8_t)(1u << (test_rng_next(&rng) % 8));
+                else
+                    copy[at] = (uint8_t)test_rng_next(&rng);
+            }
+            arena_fresh(&a, ARENA_BYTES);
+            if (lumo_draco_decode(copy, s[i].size, &a, &m) != LUMO_OK) {
+                (void)lumo_draco_arena_need(copy, s[i].size, &need);
+                continue;
+            }
+            ++decoded;
+            assert_int_equal(lumo_draco_arena_need(copy, s[i].size, &need), LUMO_OK);
+            if (m.arena_bytes + m.work_bytes > need.bytes ||
+                (need.exact && m.arena_bytes + m.work_bytes != need.bytes))
+                fail_msg("%s mutation %u: used %zu, need %zu (exact %u)", s[i].name, t,
+                         m.arena_bytes + m.work_bytes, need.bytes, need.exact);
+        }
+    }
+    print_message("need under mutations: %u decoded and covered\n", decoded);
+}
+
 /* Every proper prefix is an error, never a crash, and the arena stays
  * unchanged. */
 static void test_truncated(void **state)
@@ -339,6 +430,12 @@ static void test_varint_indices(void **state)
     buf[len++] = 0;  /* no attributes decoders */
     arena_fresh(&a, ARENA_BYTES);
     assert_int_equal(lumo_draco_decode(buf, len, &a, &m), LUMO_OK);
+    {   /* the need before decoding skips the varints: exact */
+        lumo_draco_need need;
+        assert_int_equal(lumo_draco_arena_need(buf, len, &need), LUMO_OK);
+        assert_int_equal(need.exact, 1);
+        assert_int_equal(need.bytes, m.arena_bytes + m.work_bytes);
+    }
     assert_int_equal(m.num_faces, F);
     assert_int_equal(m.num_points, P);
     for (i = 0; i < 3u * F; ++i)
@@ -408,6 +505,8 @@ int main(void)
         cmocka_unit_test(test_reference_streams),
         cmocka_unit_test(test_peek_and_bound),
         cmocka_unit_test(test_arena_exact_and_short),
+        cmocka_unit_test(test_arena_need),
+        cmocka_unit_test(test_arena_need_hostile),
         cmocka_unit_test(test_truncated),
         cmocka_unit_test(test_bit_flips),
         cmocka_unit_test(test_bad_headers),
