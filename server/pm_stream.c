@@ -79,6 +79,7 @@ typedef struct {
     lumo_pm_stream_stats st;  /* where the bits go (options->stats gets a copy) */
     uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
     unsigned  arc_shift;      /* quant_bits - LUMO_PMESH_ARC_BITS, or 0 */
+    int       rank_escape;    /* options->fan_rank_escape */
 } replay;
 
 /* Split kinds as the writer records them: a fan split, a pair (mask
@@ -412,8 +413,8 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
     if (lp >= 1 && lp <= ARC_N) {
         arc_fan g;
         arc_gather(r, p, lp, &g);
-        rank = arc_rank(&g, xa, m);
         count = arc_rank(&g, NIL, 0);
+        rank = r->rank_escape ? count : arc_rank(&g, xa, m);
         put_eg1(w, rank);
     }
     if (rank < count)
@@ -638,6 +639,7 @@ void lumo_pm_stream_default_options(lumo_pm_stream_options *o)
     o->draco = lumo_draco_default_settings();
     o->position_coding = LUMO_PMESH_POS_PREDICTED;
     o->stats = NULL;
+    o->fan_rank_escape = 0;
 }
 
 static uint64_t field_bits(const lumo_pm_stream_stats *st)
@@ -748,7 +750,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
                 malloc(12 * (size_t)pm->faces + 4),
                 malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, {0},
-                malloc(4 * (size_t)o->batch_vertices), 0, 0};
+                malloc(4 * (size_t)o->batch_vertices), 0, 0, o->fan_rank_escape};
     lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
     lumo_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};

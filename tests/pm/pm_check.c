@@ -498,6 +498,8 @@ int main(int argc, char **argv)
             want_rgb = 1;
         else if (!strcmp(argv[i], "--absolute"))
             so.position_coding = LUMO_PMESH_POS_ABSOLUTE;
+        else if (!strcmp(argv[i], "--rank-escape"))
+            so.fan_rank_escape = 1;  /* every ranked fan coded explicitly after the escape */
         else if (!strcmp(argv[i], "--write-stream") && i + 1 < argc)
             dump = argv[++i];  /* for fuzz seeds and the unit test's data */
         else if (!strcmp(argv[i], "--bits") && i + 1 < argc)
@@ -514,8 +516,9 @@ int main(int argc, char **argv)
         printf("RESULT: 0 passed, 1 failed\n");
         return 1;
     }
-    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s/rounds %g", gen ? gen : file, so.batch_vertices,
-             so.quant_bits, so.position_coding ? "parent residuals" : "absolute", po.round_fraction);
+    snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s/rounds %g%s", gen ? gen : file, so.batch_vertices,
+             so.quant_bits, so.position_coding ? "parent residuals" : "absolute", po.round_fraction,
+             so.fan_rank_escape ? "/fans explicit" : "");
     lumo_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;

@@ -30,6 +30,9 @@ typedef struct lumo_pm_stream_options {
     lumo_draco_settings draco;           /* the payload encoder choice */
     int                 position_coding; /* LUMO_PMESH_POS_PREDICTED (default) or _ABSOLUTE */
     lumo_pm_stream_stats *stats;         /* NULL (default), or filled by the build */
+    int                 fan_rank_escape; /* 1: every fan takes the rank's escape and is
+                                            coded explicitly (tests the decoder's escape
+                                            path; larger streams), 0 (default) */
 } lumo_pm_stream_options;
 
 void lumo_pm_stream_default_options(lumo_pm_stream_options *o);
