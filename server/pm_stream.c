@@ -2,8 +2,9 @@
  *
  * The writer replays exactly what the client (sdk/src/pmesh_batch.c) will
  * do: the same per-vertex corner lists, updated in the same order, so each
- * vertex split can be told cheaply: for an interior split, where p's fan
- * starts (the first wing) and how many corners it moves to k; otherwise
+ * vertex split can be told cheaply: for an interior split, which of p's
+ * fans moves to k (its rank among the fans the geometry of p's ring
+ * makes likely, or its first wing and length); otherwise
  * which of p's corners move (one bit each) and which neighbour closes each
  * reappearing face (a short index into the corners around k and p). Seed
  * 000 §4.2 sends vertices, faces and lookup tables; here the lookup-table

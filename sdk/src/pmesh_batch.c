@@ -5,8 +5,9 @@
  * half-edge collapse of k onto its lookup-table parent p. The client keeps,
  * for every vertex, the list of index-buffer corners that currently show
  * it; a split walks only p's list, moving to k the corners of p's fan
- * between the two wings (an interior split: only the first wing and the
- * fan length are coded) or those a bit mask selects (boundary and
+ * between the two wings (an interior split: only the fan's rank among
+ * the fans p's ring geometry makes likely, or its first wing and length,
+ * is coded) or those a bit mask selects (boundary and
  * non-manifold splits), then appends the faces that reappear. The work is
  * that of the batch:
  * its vertices, their parents' valences and the new faces, never the mesh.
