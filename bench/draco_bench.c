@@ -4,8 +4,10 @@
  *   draco-bench FILE.drc REPS
  *
  * Prints one line: "lumo ns=<best ns per decode> out=<output bytes>
- * arena=<exact arena bytes> faces=<n> points=<n>". The arena is sized
- * from lumo_draco_arena_bound(); the reported arena is the exact peak.
+ * arena=<exact arena bytes> need=<figure before decoding> exact=<0|1>
+ * faces=<n> points=<n>". The arena is sized from lumo_draco_arena_need()
+ * (computed before decoding, not timed); the reported arena is the
+ * decode's exact peak.
  * Under callgrind run with REPS=1 and --toggle-collect=lumo_draco_decode.
  */
 #define _POSIX_C_SOURCE 199309L
@@ -28,7 +30,7 @@ int main(int argc, char **argv)
     long size;
     int reps, i;
     uint64_t best = UINT64_MAX;
-    lumo_draco_info info;
+    lumo_draco_need need;
     lumo_draco_mesh m;
     size_t bytes;
     if (argc != 3 || !(f = fopen(argv[1], "rb")))
@@ -41,9 +43,9 @@ int main(int argc, char **argv)
     if (!data || fread(data, 1, (size_t)size, f) != (size_t)size)
         return 1;
     fclose(f);
-    if (lumo_draco_peek(data, (size_t)size, &info))
+    if (lumo_draco_arena_need(data, (size_t)size, &need))
         return 1;
-    bytes = lumo_draco_arena_bound(&info, 16);
+    bytes = need.bytes;
     mem = malloc(bytes);
     if (!mem)
         return 1;
@@ -62,8 +64,9 @@ int main(int argc, char **argv)
         if (t0 < best)
             best = t0;
     }
-    printf("lumo ns=%llu out=%zu arena=%zu faces=%u points=%u\n", (unsigned long long)best,
-           m.arena_bytes, m.arena_bytes + m.work_bytes, m.num_faces, m.num_points);
+    printf("lumo ns=%llu out=%zu arena=%zu need=%zu exact=%u faces=%u points=%u\n",
+           (unsigned long long)best, m.arena_bytes, m.arena_bytes + m.work_bytes, need.bytes,
+           need.exact, m.num_faces, m.num_points);
     free(mem);
     free(data);
     return 0;

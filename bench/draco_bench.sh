@@ -34,13 +34,14 @@ for size in 11k 48k 203k 871k; do
              sed -n 's/.*Collected : \([0-9]*\).*/\1/p' | tail -1)
         lns=$(field "$l" ns); dns=$(field "$d" ns)
         faces=$(field "$l" faces); o=$(field "$l" out); ar=$(field "$l" arena)
+        nd=$(field "$l" need); ex=$(field "$l" exact)
         heap=$(field "$d" heap_peak)
         awk -v s="$size" -v cl="$cl" -v f="$faces" -v lns="$lns" -v dns="$dns" -v li="$li" -v di="$di" -v fi="$fi" \
             'BEGIN { printf "| %s | %d | %d | %.2f | %.2f | %.2fx | %.1f | %.1f | %.2fx | %.1f | %.2fx |\n",
                      s, cl, f, lns / 1e6, dns / 1e6, dns / lns, li / 1e6, di / 1e6, di / li, fi / 1e6, fi / li }' >> "$rows"
-        awk -v s="$size" -v cl="$cl" -v f="$faces" -v o="$o" -v ar="$ar" -v h="$heap" \
-            'BEGIN { printf "| %s | %d | %.2f | %.2f | %.2fx | %.1f | %.2f | %.1f |\n",
-                     s, cl, o / 1e6, ar / 1e6, ar / o, ar / f, h / 1e6, h / f }' >> "$mrows"
+        awk -v s="$size" -v cl="$cl" -v f="$faces" -v o="$o" -v ar="$ar" -v h="$heap" -v nd="$nd" -v ex="$ex" \
+            'BEGIN { printf "| %s | %d | %.2f | %.2f | %.2fx | %.1f | %.2f (%s) | %.3fx | %.2f | %.1f |\n",
+                     s, cl, o / 1e6, ar / 1e6, ar / o, ar / f, nd / 1e6, ex ? "exact" : "bound", nd / ar, h / 1e6, h / f }' >> "$mrows"
     done
 done
 
@@ -62,10 +63,12 @@ done
     echo
     echo "Memory: lumo's decoded output (faces + portable values + point maps) and the exact arena"
     echo "a decode needs (outputs + peak work memory, \`arena_bytes + work_bytes\`), against"
-    echo "libdraco's peak heap (global operator new, same decode)."
+    echo "libdraco's peak heap (global operator new, same decode). \"need before decoding\" is"
+    echo "\`lumo_draco_arena_need()\`, computed from the stream before decoding (the arena every"
+    echo "decode here was given), and its ratio to the exact arena."
     echo
-    echo "| dragon | cl | output MB | lumo arena MB | arena/output | arena B/face | libdraco heap MB | heap B/face |"
-    echo "|---|---|---|---|---|---|---|---|"
+    echo "| dragon | cl | output MB | lumo arena MB | arena/output | arena B/face | need before decoding MB | need/arena | libdraco heap MB | heap B/face |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
     cat "$mrows"
     echo
     echo "Cortex-M3 code size of the decoder (\`arm-none-eabi-size build/m3/sdk/src/draco_*.o\`, -Os):"

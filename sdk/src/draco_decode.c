@@ -490,6 +490,7 @@ typedef struct ld_scan {
     uint32_t first[LD_MAX_DECODERS], count[LD_MAX_DECODERS];
     ld_eb_need eb;
     uint8_t is_eb;
+    uint32_t learnt[LD_MAX_DECODERS];  /* value counts known after the scan */
 } ld_scan;
 
 /* Raw indices (ld_seq_raw_indices): bytes, 16-bit words, varints or words. */
@@ -587,8 +588,11 @@ static lumo_status ld_scan_attributes(ld_scan *s)
         return LUMO_ERR_LIMIT;
     if ((st = ld_scan_headers(s, n, kd)))
         return st;
-    if (s->is_eb)
+    if (s->is_eb) {
+        s->eb.num_decoders = n;
+        memcpy(s->eb.known, s->learnt, sizeof s->learnt);
         s->num_points = (uint32_t)ld_eb_need_points(&s->k, &s->eb);
+    }
     for (i = 0; i < n; ++i) {
         const size_t mark = s->k.work;
         ld_need_seq seq;
@@ -603,6 +607,8 @@ static lumo_status ld_scan_attributes(ld_scan *s)
                 seq.entries = s->num_points;
             }
             st = ld_need_attributes(&s->buf, &s->k, s->attrs + s->first[i], s->count[i], &seq);
+            if (!seq.uncertain)
+                s->learnt[i] = seq.entries;
         }
         if (st)
             return st;
@@ -612,43 +618,53 @@ static lumo_status ld_scan_attributes(ld_scan *s)
 }
 
 /* One replay: the peak with every unknown at its lower (hi = 0) or upper
- * (hi = 1) bound; *comps: portable components per point once known. */
-static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, size_t *peak, int *seams,
-                               unsigned *comps)
+ * (hi = 1) bound, value counts in `learnt` (in: known from an earlier
+ * replay; out: known after this one). *comps: portable components per
+ * point once known; *unknown: some value count stayed unknown. */
+static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, uint32_t *learnt,
+                               size_t *peak, int *unknown, unsigned *comps)
 {
     ld_scan s;
     uint32_t i;
     lumo_status st;
     memset(&s, 0, sizeof s);
     s.k.hi = hi;
+    memcpy(s.learnt, learnt, sizeof s.learnt);
     if ((st = ld_start(&s.buf, data, size, &s.h)) || (st = ld_scan_geometry(&s)))
         return st;
     st = ld_scan_attributes(&s);
     for (*comps = 0, i = 0; i < s.num_attrs; ++i)
         *comps += s.attrs[i].portable;
     *peak = s.k.peak;
-    *seams = s.is_eb && s.eb.nad > 0;
+    memcpy(learnt, s.learnt, sizeof s.learnt);
+    *unknown = 0;
+    for (i = 0; s.is_eb && i < s.eb.num_decoders; ++i)
+        *unknown |= s.learnt[i] == LD_NEED_UNKNOWN;
     return st;
 }
 
 lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_need *need)
 {
+    uint32_t learnt[LD_MAX_DECODERS];
     size_t lo = 0, hi;
-    int seams;
+    int unknown;
     unsigned comps = 0;
     lumo_draco_info info;
     lumo_status st;
     if (!need)
         return LUMO_ERR_ARG;
-    st = ld_scan_run(data, size, 1, &hi, &seams, &comps);
+    memset(learnt, 0xFF, sizeof learnt);
+    st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &comps);
+    if (!st)  /* again with the value counts the first replay learnt */
+        st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &comps);
     if (st == LUMO_ERR_LIMIT && comps && !lumo_draco_peek(data, size, &info)) {
         /* a stream the scan cannot skip: the header bound */
         hi = lumo_draco_arena_bound(&info, comps) - LUMO_ARENA_SLACK;
-        seams = 1;
+        unknown = 1;
     } else if (st) {
         return st;
     }
-    if (!seams && (st = ld_scan_run(data, size, 0, &lo, &seams, &comps)))
+    if (!unknown && (st = ld_scan_run(data, size, 0, learnt, &lo, &unknown, &comps)))
         return st;
     need->bytes = hi;
     need->bytes_min = lo;

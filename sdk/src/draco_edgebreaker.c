@@ -731,8 +731,15 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
             c = ld_swing_right(&e->ct, c);
         }
     }
-    if (np > e->num_corners)
-        return LUMO_ERR_CORRUPT;  /* at most one per corner (arena need) */
+    {   /* at most one per corner, and at most the attribute vertices
+         * together (each cut of a fan is some attribute's cut): the
+         * bounds of the arena need */
+        uint64_t sum = 0;
+        for (i = 0; i < e->num_attr_data; ++i)
+            sum += e->ad[i].ct.num_vertices;
+        if (np > e->num_corners || np > sum)
+            return LUMO_ERR_CORRUPT;
+    }
     d->num_points = np;
     return LUMO_OK;
 }
@@ -1164,11 +1171,33 @@ lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder)
     return LUMO_OK;
 }
 
+/* Vertices of attribute data `ad`'s corner table: the value count of its
+ * per-corner decoder (every one is visited), when the scan learnt it. */
+static uint64_t ld_eb_need_attr_vertices(const ld_need *k, const ld_eb_need *e, int ad)
+{
+    uint32_t d;
+    for (d = 0; d < e->num_decoders; ++d)
+        if (e->dec_att_data[d] == ad && e->dec_type[d] != 0 && e->known[d] != LD_NEED_UNKNOWN)
+            return e->known[d];
+    return ld_need_pick(k, 1u, 3u * (uint64_t)e->faces);
+}
+
+/* Points cut every vertex fan where any attribute's seams cut it, so
+ * max_i A_i <= points <= sum_i A_i (A_i: vertices of attribute data i;
+ * the decode checks the upper bound), and at most one per corner. */
 uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e)
 {
+    const uint64_t corners = 3u * (uint64_t)e->faces;
+    uint64_t sum = 0, max = 0, a;
+    uint32_t i;
     if (e->nad == 0)
         return e->verts;
-    return ld_need_pick(k, 1u, 3u * (uint64_t)e->faces);
+    for (i = 0; i < e->nad; ++i) {
+        a = ld_eb_need_attr_vertices(k, e, (int)i);
+        sum += a;
+        max = a > max ? a : max;
+    }
+    return ld_need_pick(k, max, sum < corners ? sum : corners);
 }
 
 void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s)
@@ -1177,11 +1206,11 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const int own = ad < 0 || e->dec_type[decoder] == 0;  /* the mesh's corner table */
     const uint64_t corners = 3u * (uint64_t)e->faces;
     /* vertices of the table traversed, and the vertex map's size */
-    const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_need_pick(k, 1u, corners);
+    const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_eb_need_attr_vertices(k, e, ad);
     uint64_t vmap = ld_eb_need_vertices(e), points = ld_eb_need_points(k, e);
     size_t mark;
-    if (ad >= 0 && ld_need_pick(k, 1u, corners) > vmap)
-        vmap = ld_need_pick(k, 1u, corners);
+    if (ad >= 0 && ld_eb_need_attr_vertices(k, e, ad) > vmap)
+        vmap = ld_eb_need_attr_vertices(k, e, ad);
     if (e->nad == 0)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));
     else
@@ -1198,9 +1227,17 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     ld_need_release(k, mark);
     if (e->nad)
         ld_need_out(k, (size_t)points, sizeof(uint32_t));
-    /* values: every point's value (no seams), else at most one per vertex */
-    s->entries = (uint32_t)(e->nad == 0 ? points : nv);
-    s->uncertain = e->nad != 0;
+    /* values: every point's value (no seams); with seams one per vertex
+     * visited, learnt from a tagged stream (else at most nv) */
+    s->uncertain = 0;
+    if (e->nad == 0)
+        s->entries = (uint32_t)points;
+    else if (e->known[decoder] != LD_NEED_UNKNOWN)
+        s->entries = e->known[decoder];
+    else {
+        s->entries = (uint32_t)nv;
+        s->uncertain = 1;
+    }
     s->num_corners = (uint32_t)corners;
     s->mesh = 1;
     s->eb = e;

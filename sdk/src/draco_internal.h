@@ -418,8 +418,12 @@ typedef struct ld_eb_need {
     int8_t dec_att_data[LD_MAX_DECODERS];
     uint8_t dec_type[LD_MAX_DECODERS], dec_traversal[LD_MAX_DECODERS];
     uint8_t ad_used[LD_NEED_MAX_ATTR_DATA];
-    uint8_t pos_used;
+    uint8_t pos_used, num_decoders;
+    /* value count of each attributes decoder, when an earlier scan learnt
+     * it from a tagged stream (with seams), else LD_NEED_UNKNOWN */
+    uint32_t known[LD_MAX_DECODERS];
 } ld_eb_need;
+#define LD_NEED_UNKNOWN 0xFFFFFFFFu
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e);
 lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder);
 /* One attributes decoder's sequence: sets s->entries and s->mesh. */

@@ -206,6 +206,16 @@ static inline uint32_t ld_rans_read(ld_rans *r)
     return ld_rans_step(r, &r->state, 0);
 }
 
+/* Renormalise as the next step would; 1 when that reads every byte and
+ * gives back the encoder's initial state (no symbol left). */
+static int ld_rans_at_start(ld_rans *r)
+{
+    const uint32_t l_base = 4u << r->prec_bits;
+    while (r->state < l_base && r->offset > 0)
+        r->state = (r->state << 8) | r->buf[--r->offset];
+    return r->offset == 0 && r->state == l_base;
+}
+
 /* n symbols into out. A step leaves a state of at least 4 (quo >= 4,
  * frequency >= 1), so three bytes always renormalise it (l_base <= 2^22):
  * offset / 3 steps need no check of the buffer start. */
@@ -270,7 +280,11 @@ static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
             out[i++] = ld_bits_get(&bits, len);
     }
     ld_bits_end(&bits, b);
-    return LUMO_OK;
+    /* The encoder's stream ends where it began: renormalised, every byte
+     * read and the initial state back (libdraco does not check). The arena
+     * need's scan finds the end of tags whose count it does not know by
+     * this. */
+    return ld_rans_at_start(&tags) ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
 static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out)
@@ -390,13 +404,12 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
         /* The count is unknown (values per corner): rANS decoding returns
          * to its initial state with every byte read exactly after the last
          * symbol, and not before unless one tag has all the probability. */
-        const uint32_t l_base = 4u << tags.prec_bits;
         if (tags.num_nz < 2u)
-            return LUMO_ERR_LIMIT;
-        for (*found = 0; tags.offset || tags.state != l_base; ++*found) {
+            return LUMO_ERR_LIMIT;  /* the state never moves */
+        for (*found = 0; !ld_rans_at_start(&tags); ++*found) {
             uint32_t len;
             if (*found >= num_values / comps)
-                return LUMO_ERR_CORRUPT;
+                return LUMO_ERR_CORRUPT;  /* the decode fails on it too */
             if ((len = ld_rans_read(&tags)) > 32u)
                 return LUMO_ERR_CORRUPT;
             for (j = 0; j < comps; ++j)
