@@ -9,10 +9,13 @@
  * point; lumo_draco_dequantize() turns a portable integer into fixed point.
  *
  * Usage:
- *   lumo_draco_info info;
- *   lumo_draco_peek(data, size, &info);        // counts, modes, arena bound
- *   arena of lumo_draco_arena_bound(&info, max_components) bytes
+ *   lumo_draco_need need;
+ *   lumo_draco_arena_need(data, size, &need);  // scan: the arena, before decoding
+ *   arena with need.bytes free bytes (+ LUMO_ARENA_SLACK if the buffer may
+ *   be unaligned); need.exact: exactly what the decode takes, else a bound
  *   lumo_draco_decode(data, size, &arena, &mesh);
+ * (lumo_draco_peek + lumo_draco_arena_bound: a cruder bound from the header
+ * counts alone.)
  *
  * Memory: every output array is carved from the caller's arena; temporary
  * work memory is taken from the top of the arena's free space and given back
