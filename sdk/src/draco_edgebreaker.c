@@ -26,12 +26,14 @@ typedef struct ld_attr_data {
     uint8_t *vseam;        /* per mesh vertex: on a seam */
     uint32_t *c2v;         /* attribute vertex of each corner */
     uint32_t *lmc;         /* attribute vertex -> left-most corner */
+    uint32_t ones;         /* interior edges marked as seams */
     ld_ct ct;
 } ld_attr_data;
 
 struct ld_eb {
     uint8_t valence;
     uint32_t num_faces, num_corners, max_vertices, num_vertices, num_conn_vertices;
+    uint32_t encoded_vertices;  /* V of the header */
     uint32_t *c2v, *opp, *lmc;
     uint8_t *hole;
     uint8_t *lmc_mark;
@@ -584,7 +586,7 @@ static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
 
 static lumo_status ld_eb_seams(struct ld_eb *e)
 {
-    uint32_t f, k, i;
+    uint32_t f, k, i, reads = 0;
     for (f = 0; f < e->num_faces; ++f) {
         const uint32_t c0 = 3u * f, cs[3] = {c0, c0 + 1u, c0 + 2u};
         for (k = 0; k < 3; ++k) {
@@ -596,9 +598,15 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
             }
             if (o / 3u < f)
                 continue;
+            /* one bit per interior edge: at most 3F/2 (the arena need
+             * counts seams in that many) */
+            if (++reads > e->num_corners / 2u)
+                return LUMO_ERR_CORRUPT;
             for (i = 0; i < e->num_attr_data; ++i)
-                if (ld_rabs_bit(&e->ad[i].seams))
+                if (ld_rabs_bit(&e->ad[i].seams)) {
+                    e->ad[i].ones++;
                     ld_add_seam(e, &e->ad[i], cs[k]);
+                }
         }
     }
     return LUMO_OK;
@@ -608,7 +616,7 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
  * attribute vertices along seam edges. */
 static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
 {
-    uint32_t v, n = 0;
+    uint32_t v, n = 0, live = 0;
     a->ct.c2v = a->c2v;
     a->ct.opp = e->opp;
     a->ct.seam = a->seam;
@@ -618,6 +626,7 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
         uint32_t c = e->lmc[v], first, act, vid;
         if (c == LD_INV)
             continue;
+        live++;
         vid = n++;
         first = c;
         if (a->vseam[v]) {
@@ -647,8 +656,11 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
             act = ld_swing_right(&e->ct, act);
         }
     }
-    if (n > e->num_corners)
-        return LUMO_ERR_CORRUPT;  /* at most one per corner (arena need) */
+    /* the bounds the arena need takes: the encoded vertices live (S were
+     * merged), at most one attribute vertex per corner, and a seam edge
+     * splits its two end vertices once each */
+    if (live > e->encoded_vertices || n > e->num_corners || n > live + 2u * (uint64_t)a->ones)
+        return LUMO_ERR_CORRUPT;
     a->ct.num_vertices = n;
     return LUMO_OK;
 }
@@ -734,10 +746,12 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
     {   /* at most one per corner, and at most the attribute vertices
          * together (each cut of a fan is some attribute's cut): the
          * bounds of the arena need */
-        uint64_t sum = 0;
-        for (i = 0; i < e->num_attr_data; ++i)
+        uint64_t sum = 0, ones = 0;
+        for (i = 0; i < e->num_attr_data; ++i) {
             sum += e->ad[i].ct.num_vertices;
-        if (np > e->num_corners || np > sum)
+            ones += e->ad[i].ones;
+        }
+        if (np > e->num_corners || np > sum || np > e->encoded_vertices + 2u * ones)
             return LUMO_ERR_CORRUPT;
     }
     d->num_points = np;
@@ -837,6 +851,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->num_faces = faces;
     e->num_attr_data = nad;
     e->max_vertices = verts + splits;
+    e->encoded_vertices = verts;
     if ((st = ld_eb_alloc(d, e)))
         return st;
     mark = ld_tmp_mark(&d->mem);  /* symbol-phase work memory from here */
@@ -1036,7 +1051,7 @@ static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e,
     return LUMO_OK;
 }
 
-static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, const ld_eb_need *e)
+static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
 {
     ld_rabs r;
     uint32_t i, n;
@@ -1044,9 +1059,15 @@ static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, const ld_eb_need *e
     lumo_status st;
     if (!e->valence && ((st = ld_varint64(b, &size)) || (st = ld_skip(b, size))))
         return st;
-    for (i = 0; i <= e->nad; ++i)  /* start faces, then one seam stream each */
+    for (i = 0; i <= e->nad; ++i) {  /* start faces, then one seam stream each */
+        const uint32_t edges = (uint32_t)((3u * (uint64_t)e->faces) / 2u);
+        uint32_t j;
         if ((st = ld_rabs_start(&r, b)))
             return st;
+        /* the decode reads one bit per interior edge, at most 3F/2 */
+        for (j = 0; i > 0 && j < edges; ++j)
+            e->seam_ones[i - 1u] += (uint32_t)ld_rabs_bit(&r);
+    }
     if (!e->valence)
         return LUMO_OK;
     ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
@@ -1175,11 +1196,12 @@ lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder)
  * per-corner decoder (every one is visited), when the scan learnt it. */
 static uint64_t ld_eb_need_attr_vertices(const ld_need *k, const ld_eb_need *e, int ad)
 {
+    const uint64_t corners = 3u * (uint64_t)e->faces, split = e->verts + 2u * (uint64_t)e->seam_ones[ad];
     uint32_t d;
     for (d = 0; d < e->num_decoders; ++d)
         if (e->dec_att_data[d] == ad && e->dec_type[d] != 0 && e->known[d] != LD_NEED_UNKNOWN)
             return e->known[d];
-    return ld_need_pick(k, 1u, 3u * (uint64_t)e->faces);
+    return ld_need_pick(k, 1u, split < corners ? split : corners);
 }
 
 /* Points cut every vertex fan where any attribute's seams cut it, so
@@ -1188,7 +1210,7 @@ static uint64_t ld_eb_need_attr_vertices(const ld_need *k, const ld_eb_need *e, 
 uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces;
-    uint64_t sum = 0, max = 0, a;
+    uint64_t sum = 0, max = 0, split = e->verts, a;
     uint32_t i;
     if (e->nad == 0)
         return e->verts;
@@ -1196,7 +1218,9 @@ uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e)
         a = ld_eb_need_attr_vertices(k, e, (int)i);
         sum += a;
         max = a > max ? a : max;
+        split += 2u * (uint64_t)e->seam_ones[i];
     }
+    sum = sum < split ? sum : split;
     return ld_need_pick(k, max, sum < corners ? sum : corners);
 }
 

@@ -422,6 +422,8 @@ typedef struct ld_eb_need {
     /* value count of each attributes decoder, when an earlier scan learnt
      * it from a tagged stream (with seams), else LD_NEED_UNKNOWN */
     uint32_t known[LD_MAX_DECODERS];
+    /* seams marked in the first 3F/2 bits of each seam stream */
+    uint32_t seam_ones[LD_NEED_MAX_ATTR_DATA];
 } ld_eb_need;
 #define LD_NEED_UNKNOWN 0xFFFFFFFFu
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e);

@@ -38,6 +38,33 @@ static uint32_t ld_rans_precision(unsigned bit_length)
     return p < 12u ? 12u : (p > 20u ? 20u : p);
 }
 
+/* One entry of a probability table: the probability of symbol *i, or a
+ * run of zero-probability symbols (*i moves to the run's last, prob 0). */
+static lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t *i, uint32_t *prob)
+{
+    uint8_t byte;
+    int extra, j;
+    lumo_status st = ld_u8(b, &byte);
+    if (st)
+        return st;
+    if ((byte & 3u) == 3u) {  /* run of zero-probability symbols */
+        if (*i + (byte >> 2) >= n)
+            return LUMO_ERR_CORRUPT;
+        *i += byte >> 2;
+        *prob = 0;
+        return LUMO_OK;
+    }
+    extra = byte & 3;
+    *prob = byte >> 2;
+    for (j = 0; j < extra; ++j) {
+        uint8_t eb;
+        if ((st = ld_u8(b, &eb)))
+            return st;
+        *prob |= (uint32_t)eb << (8 * (j + 1) - 2);
+    }
+    return LUMO_OK;
+}
+
 /* Read the probability table into tables from `m`, or, with m == NULL,
  * only check it and book the tables the decode takes into `k`. */
 static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k)
@@ -65,25 +92,9 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need 
         r->cum[0] = 0;
     }
     for (i = 0; i < n; ++i) {
-        uint8_t byte;
         uint32_t prob;
-        int extra, j;
-        if ((st = ld_u8(b, &byte)))
+        if ((st = ld_rans_entry(b, n, &i, &prob)))
             return st;
-        if ((byte & 3u) == 3u) {  /* run of zero-probability symbols */
-            if (i + (byte >> 2) >= n)
-                return LUMO_ERR_CORRUPT;
-            i += byte >> 2;
-            continue;
-        }
-        extra = byte & 3;
-        prob = byte >> 2;
-        for (j = 0; j < extra; ++j) {
-            uint8_t eb;
-            if ((st = ld_u8(b, &eb)))
-                return st;
-            prob |= (uint32_t)eb << (8 * (j + 1) - 2);
-        }
         if (prob == 0)
             continue;
         if (prob > (1u << r->prec_bits) - total || nz >= cap)
@@ -302,7 +313,8 @@ static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint
         ld_rans_run_exact(&r, out, num_values);
     else
         ld_rans_run_coarse(&r, out, num_values);
-    return LUMO_OK;
+    /* as for tagged streams: the encoder's stream ends where it began */
+    return ld_rans_at_start(&r) ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
 lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
@@ -429,9 +441,46 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
     return LUMO_OK;
 }
 
-static lumo_status ld_need_raw(ld_buf *b, ld_need *k, uint32_t num_values)
+/* Symbols of a raw stream whose count is unknown, counted without a
+ * table: each step finds its symbol's range by reading the probability
+ * table again from the stream. Bounded: LD_NEED_RAW_WORK table entries
+ * in all, else the count stays unknown (the stream's end is coded). */
+#define LD_NEED_RAW_WORK (1u << 24)
+
+static lumo_status ld_need_raw_count(ld_rans *r, const ld_buf *table, uint32_t max_steps,
+                                     uint32_t *steps)
+{
+    const uint32_t mask = (1u << r->prec_bits) - 1u;
+    uint32_t work = 0;
+    lumo_status st;
+    for (*steps = 0; !ld_rans_at_start(r); ++*steps) {
+        const uint32_t rem = r->state & mask, quo = r->state >> r->prec_bits;
+        uint32_t i, lo = 0, prob = 0;
+        ld_buf t = *table;
+        if (*steps >= max_steps)
+            return LUMO_ERR_CORRUPT;  /* the decode fails on it too */
+        for (i = 0; i < r->num_symbols; ++i) {
+            if (++work > LD_NEED_RAW_WORK)
+                return LUMO_ERR_LIMIT;
+            if ((st = ld_rans_entry(&t, r->num_symbols, &i, &prob)))
+                return st;
+            if (lo + prob > rem)
+                break;
+            lo += prob;
+        }
+        if (i >= r->num_symbols || prob == 0)
+            return LUMO_ERR_CORRUPT;
+        r->state = quo * prob + rem - lo;
+    }
+    return LUMO_OK;
+}
+
+static lumo_status ld_need_raw(ld_buf *b, ld_need *k, uint32_t num_values, unsigned comps,
+                               uint32_t *found)
 {
     ld_rans r;
+    ld_buf table;
+    uint32_t steps, n;
     uint8_t max_bits;
     lumo_status st = ld_u8(b, &max_bits);
     if (st)
@@ -439,12 +488,24 @@ static lumo_status ld_need_raw(ld_buf *b, ld_need *k, uint32_t num_values)
     if (max_bits < 1 || max_bits > 18)
         return LUMO_ERR_CORRUPT;
     r.prec_bits = ld_rans_precision(max_bits);
+    table = *b;
     if ((st = ld_rans_read_table(&r, b, NULL, k)))
         return st;
     if (r.num_symbols == 0)
         return LUMO_ERR_CORRUPT;
     ld_need_lut(k, &r, num_values);
-    return ld_rans_start(&r, b);  /* skips the coded bytes */
+    if ((st = ld_rans_start(&r, b)) || !found || r.num_nz < 2u)
+        return st;  /* the coded bytes skipped; one symbol: the state never moves */
+    (void)ld_varint32(&table, &n);  /* read before: cannot fail */
+    st = ld_need_raw_count(&r, &table, num_values, &steps);
+    if (st == LUMO_ERR_LIMIT)
+        return LUMO_OK;  /* count unknown */
+    if (st)
+        return st;
+    if (steps % comps)
+        return LUMO_ERR_CORRUPT;
+    *found = steps / comps;
+    return LUMO_OK;
 }
 
 lumo_status ld_need_symbols(ld_buf *b, ld_need *k, uint32_t num_values, unsigned num_components,
@@ -464,7 +525,7 @@ lumo_status ld_need_symbols(ld_buf *b, ld_need *k, uint32_t num_values, unsigned
     if (scheme == 0)
         st = ld_need_tagged(b, k, num_values, num_components, found);
     else if (scheme == 1)
-        st = ld_need_raw(b, k, num_values);
+        st = ld_need_raw(b, k, num_values, num_components, found);
     else
         st = LUMO_ERR_CORRUPT;
     ld_need_release(k, mark);
