@@ -79,6 +79,7 @@ static int decode_one(const char *path)
     uint8_t *mem = board_scratch(&bytes);
     lumo_draco_info info;
     lumo_draco_mesh mesh;
+    lumo_draco_need need;
     lumo_arena a;
     lumo_status st;
     char label[96];
@@ -124,8 +125,19 @@ static int decode_one(const char *path)
     con_u64(mesh.num_faces);
     con_str(" faces, ");
     con_u64(mesh.num_attributes);
-    con_str(" attributes");
+    con_str(" attributes, arena ");
+    con_u64(mesh.arena_bytes + mesh.work_bytes);
     con_nl();
+    /* the need computed before decoding, on this target's struct sizes:
+     * it covers the decode, and is its use when it says it is exact */
+    if (lumo_draco_arena_need(g_input, len, &need) != LUMO_OK ||
+        mesh.arena_bytes + mesh.work_bytes > need.bytes ||
+        (need.exact && mesh.arena_bytes + mesh.work_bytes != need.bytes)) {
+        con_str("golden_draco: arena need before decoding is wrong: ");
+        con_u64(need.bytes);
+        con_nl();
+        return 1;
+    }
     return 0;
 }
 
