@@ -99,9 +99,27 @@ $(BOARD_DRACO)/list.txt: $(BOARD_DRACO_GEN) $(BOARD_DRACO_SEEDS)
 	@mkdir -p $(@D)
 	@for f in $(BOARD_DRACO_SEEDS) $(BOARD_DRACO_GEN); do [ -f $$f ] && echo $$f; done >$@; true
 
+# Progressive-mesh streams for golden_pmesh: the committed fuzz seeds plus
+# `lumo-pm build --raw` streams of the bunny and the 11k dragon (skipped
+# when the models are absent).
+BOARD_PMESH       := $(BUILD)/board/pmesh
+BOARD_PMESH_SEEDS := $(sort $(wildcard tests/fuzz/seeds/fuzz_pmesh/*.lpm))
+BOARD_PMESH_GEN   := $(BOARD_PMESH)/bunny.lpm $(BOARD_PMESH)/dragon_11k.lpm
+$(BOARD_PMESH)/bunny.lpm: $(BIN)/lumo-pm
+	@mkdir -p $(@D)
+	@if [ -f $(BUILD)/data/models/bunny.obj ]; then \
+	    $(BIN)/lumo-pm build $(BUILD)/data/models/bunny.obj -o $@ --raw >/dev/null; fi
+$(BOARD_PMESH)/dragon_11k.lpm: $(BIN)/lumo-pm
+	@mkdir -p $(@D)
+	@if [ -f $(BUILD)/data/models/dragon_11k.ply ]; then \
+	    $(BIN)/lumo-pm build $(BUILD)/data/models/dragon_11k.ply -o $@ --raw >/dev/null; fi
+$(BOARD_PMESH)/list.txt: $(BOARD_PMESH_GEN) $(BOARD_PMESH_SEEDS)
+	@mkdir -p $(@D)
+	@for f in $(BOARD_PMESH_SEEDS) $(BOARD_PMESH_GEN); do [ -f $$f ] && echo $$f; done >$@; true
+
 .PHONY: board-tests board-elfs board-facts check-embedded-selftest bench-board
 board-elfs: $(MPS2_ELFS) $(BHOST_BINS)
-board-tests: board-elfs $(BOARD_DRACO)/list.txt
+board-tests: board-elfs $(BOARD_DRACO)/list.txt $(BOARD_PMESH)/list.txt
 	@QEMU="$(MPS2_QEMU)" sh $(MPS2_DIR)/run-tests.sh $(MPS2_OUT) \
 	    "$(filter $(MPS2_OUT)/test_%,$(MPS2_ELFS))" "$(filter $(BHOST_OUT)/golden_%,$(BHOST_BINS))"
 

@@ -1,4 +1,5 @@
 /* golden.c — output of the golden programs (see golden.h). */
+#include <string.h>
 #include "board_io.h"
 #include "console.h"
 #include "golden.h"
@@ -38,4 +39,55 @@ int golden_done(int rc)
         con_nl();
     }
     return rc;
+}
+
+void golden_label(const char *prefix, const char *path, char *out, size_t cap)
+{
+    const char *base = path, *p;
+    size_t np = strlen(prefix), n;
+
+    for (p = path; *p != '\0'; p++)
+        if (*p == '/')
+            base = p + 1;
+    if (cap == 0)
+        return;
+    np = np < cap - 1 ? np : cap - 1;
+    memcpy(out, prefix, np);
+    n = strlen(base);
+    if (n > cap - 1 - np)
+        n = cap - 1 - np;
+    memcpy(out + np, base, n);
+    out[np + n] = '\0';
+}
+
+#define GOLDEN_LIST_MAX 8192u
+#define GOLDEN_PATH_MAX 200u
+
+int golden_each_path(const char *list_path, int (*each)(const char *path))
+{
+    static uint8_t list[GOLDEN_LIST_MAX];
+    size_t len = 0, i = 0;
+    int failed = 0;
+
+    if (board_read_file(list_path, list, sizeof list - 1, &len) != 0) {
+        con_str("cannot read ");
+        con_str(list_path);
+        con_nl();
+        return 1;
+    }
+    list[len] = '\n';
+    while (i < len) {
+        char path[GOLDEN_PATH_MAX];
+        size_t n = 0;
+        while (i < len && list[i] != '\n') {
+            if (n < GOLDEN_PATH_MAX - 1)
+                path[n++] = (char)list[i];
+            i++;
+        }
+        i++;
+        path[n] = '\0';
+        if (n > 0)
+            failed |= each(path);
+    }
+    return failed;
 }
