@@ -156,8 +156,8 @@ typedef struct lumo_draco_need {
 /* Scan a stream and compute the arena its decode needs, before decoding:
  * every header that decides memory is read (connectivity, attribute
  * decoders, prediction schemes, symbol-stream tables) and payloads are
- * skipped by their coded sizes; no memory beyond a fixed stack frame
- * (about 1.5 KB), work linear in the input. Exact for sequential meshes,
+ * skipped by their coded sizes; no memory beyond a fixed stack depth
+ * (about 3 KB on the Cortex-M3), work linear in the input. Exact for sequential meshes,
  * point clouds and EdgeBreaker meshes whose peak does not depend on the
  * connectivity; otherwise a bound (`exact` = 0). Multiples of 8; add
  * LUMO_ARENA_SLACK when the arena's buffer may be unaligned. On error
