@@ -79,7 +79,7 @@ typedef struct {
     uint32_t  faces, moves;   /* of the batch being written */
     lumo_pm_stream_stats st;  /* where the bits go (options->stats gets a copy) */
     uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
-    unsigned  arc_shift;      /* quant_bits - LUMO_PMESH_ARC_BITS, or 0 */
+    unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
 } replay;
 
@@ -300,83 +300,31 @@ static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32
     return a == xb;
 }
 
-/* ---- fans ranked by geometry (mirrors read_arc() in pmesh_batch.c) ----
- * The vertices k brought into p's ring lie about two edges from p, the
- * others one, and k usually takes about half of p's fan: candidates
- * (i, m) — corner i of L(p), the first whose next vertex is nx[i], and m
- * moved corners — are scored on grid integers of at most ARC_BITS bits by
- * 16 * (the sum over their m - 1 inner ring vertices pv[j] of
- * n |pv[j] - p|^2 - ring) - 3 ring (m - (n - 1) / 2)^2, ring = sum
- * |nx - p|^2, and ranked by the key score * 4096 + 4095 - (i << 8 | m),
- * highest first. The weights are measured (docs/progressive-mesh.md §4). */
-#define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
-#define ARC_NONE UINT32_MAX
+/* ---- fans ranked by geometry: the decoder's own ranking
+ * (lumo_pmesh_fan_keys, sdk/src/pmesh_fan.c), so both order the
+ * candidates identically ---- */
 
-typedef struct {
-    uint32_t n, nx[ARC_N], succ[ARC_N], first[ARC_N];
-    int64_t  w[ARC_N], ring;
-} arc_fan;
-
-static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p, unsigned shift)
+static void arc_gather(const replay *r, uint32_t p, uint32_t n, lumo_pmesh_fan *g)
 {
-    int64_t s = 0;
-    for (int d = 0; d < 3; d++) {
-        int64_t e = (int64_t)(q[3 * (size_t)a + d] >> shift) - (q[3 * (size_t)p + d] >> shift);
-        s += e * e;
-    }
-    return s;
-}
-
-static void arc_gather(const replay *r, uint32_t p, uint32_t n, arc_fan *g)
-{
-    uint32_t pv[ARC_N], i = 0;
-    int64_t ring = 0;
+    uint32_t nx[LUMO_PMESH_ARC_MAX_CORNERS], pv[LUMO_PMESH_ARC_MAX_CORNERS], i = 0;
     for (uint32_t c = r->head[p]; c != NIL; c = r->next[c], i++) {
-        g->nx[i] = r->disp[3 * (c / 3) + (c % 3 + 1) % 3];
+        nx[i] = r->disp[3 * (c / 3) + (c % 3 + 1) % 3];
         pv[i] = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
-        ring += dist2(r->q, g->nx[i], p, r->arc_shift);
     }
-    g->n = n, g->ring = ring;
-    for (i = 0; i < n; i++) {
-        g->succ[i] = g->first[i] = ARC_NONE;
-        for (uint32_t j = 0; j < n; j++) {
-            if (g->succ[i] == ARC_NONE && g->nx[j] == pv[i])
-                g->succ[i] = j;
-            if (g->first[i] == ARC_NONE && g->nx[j] == g->nx[i])
-                g->first[i] = j;
-        }
-        g->w[i] = 16 * ((int64_t)n * dist2(r->q, pv[i], p, r->arc_shift) - ring);
-    }
-}
-
-static int64_t arc_key(const arc_fan *g, int64_t inner, uint32_t i, uint32_t m)
-{
-    int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
-    return (inner - 3 * g->ring * d * d) * 4096 + (int64_t)(4095u - (i << 8 | m));
+    lumo_pmesh_fan_init(g, r->q, r->quant_bits, p, nx, pv, n);
 }
 
 /* Rank of the fan (xa, m) among the candidates (the keys above its own),
  * or their count when it is not one of them (the escape). */
-static uint32_t arc_rank(const arc_fan *g, uint32_t xa, uint32_t m)
+static uint32_t arc_rank(const lumo_pmesh_fan *g, uint32_t xa, uint32_t m)
 {
-    uint32_t it = 0, count = 0, above = 0, found = 0;
-    int64_t keys[ARC_N * ARC_N], want = 0;
+    int64_t keys[LUMO_PMESH_ARC_MAX_CORNERS * LUMO_PMESH_ARC_MAX_CORNERS], want = 0;
+    uint32_t it = 0, above = 0, found = 0, count = lumo_pmesh_fan_keys(g, keys);
     while (it < g->n && g->nx[it] != xa)
         it++;
-    for (uint32_t i = 0; i < g->n; i++) {
-        if (g->first[i] != i)
-            continue;
-        int64_t inner = 0;
-        for (uint32_t mm = 1, j = i; mm <= g->n; mm++) {
-            keys[count++] = arc_key(g, inner, i, mm);
-            if (i == it && mm == m)
-                want = keys[count - 1], found = 1;
-            if (g->succ[j] == ARC_NONE)
-                break;
-            inner += g->w[j];
-            j = g->succ[j];
-        }
-    }
+    for (uint32_t c = 0; c < count; c++)
+        if (lumo_pmesh_fan_key_id(keys[c]) == (it << 8 | m))
+            want = keys[c], found = 1;
     for (uint32_t c = 0; c < count; c++)
         above += keys[c] > want;
     return found ? above : count;
@@ -411,8 +359,8 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
     for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
         lp++;
     uint32_t rank = 1, count = 0;
-    if (lp >= 1 && lp <= ARC_N) {
-        arc_fan g;
+    if (lp >= 1 && lp <= LUMO_PMESH_ARC_MAX_CORNERS) {
+        lumo_pmesh_fan g;
         arc_gather(r, p, lp, &g);
         count = arc_rank(&g, NIL, 0);
         rank = r->rank_escape ? count : arc_rank(&g, xa, m);
@@ -760,7 +708,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
     if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
         goto done;
     quantize(pm, &q, r.q);
-    r.arc_shift = q.bits > (int)LUMO_PMESH_ARC_BITS ? (unsigned)q.bits - LUMO_PMESH_ARC_BITS : 0;
+    r.quant_bits = (unsigned)q.bits;
     memset(r.head, 0xff, 4 * (size_t)pm->vertices);
     if (write_batches(&r, o, &q, &s, bi, nb) || s.failed)
         goto done;

@@ -548,85 +548,18 @@ static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, 
     return LUMO_OK;
 }
 
-/* ---- fans ranked by geometry (docs/progressive-mesh.md §2.3 step 3) ----
- * After the collapse of k onto p, the vertices k brought into p's ring
- * lie about two edges from p, the others one, and k usually takes about
- * half of p's fan: the moved fan is most likely a half-fan whose inner
- * ring vertices are farthest from p. The candidates (i, m): corner i of
- * L(p) (the first one whose next vertex is nx[i]) and m moved corners,
- * walking on through succ. On grid integers of at most ARC_BITS bits,
- * with ring = sum_i |nx[i] - p|^2, the score is 16 * (the sum over the
- * m - 1 inner vertices pv[j] of n |pv[j] - p|^2 - ring)
- * - 3 ring (m - (n - 1) / 2)^2, |score| < 2^44; the key
- * score * 4096 + 4095 - (i << 8 | m) orders the candidates (higher score
- * first, then smaller i, then smaller m) in one int64 comparison. */
-#define ARC_N LUMO_PMESH_ARC_MAX_CORNERS
-#define ARC_NONE 0xffu
+/* ---- fans ranked by geometry (docs/progressive-mesh.md §2.3 step 3;
+ * the score is lumo_pmesh_fan_keys in pmesh_fan.c) ---- */
 
-typedef struct {
-    uint32_t n, nx[ARC_N];
-    uint8_t  succ[ARC_N], first[ARC_N];
-    int64_t  w[ARC_N], ring;
-} arc_fan;
-
-static int64_t dist2(const int32_t *q, uint32_t a, uint32_t p, unsigned shift)
+static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, lumo_pmesh_fan *g)
 {
-    int64_t s = 0;
-    for (unsigned d = 0; d < 3; d++) {
-        int64_t e = (int64_t)(q[3 * (size_t)a + d] >> shift) - (q[3 * (size_t)p + d] >> shift);
-        s += e * e;
-    }
-    return s;
-}
-
-static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, arc_fan *g)
-{
-    unsigned shift = pm->h.quant_bits > LUMO_PMESH_ARC_BITS ? pm->h.quant_bits - LUMO_PMESH_ARC_BITS : 0;
-    uint32_t pv[ARC_N], i = 0;
-    int64_t ring = 0;
+    uint32_t nx[LUMO_PMESH_ARC_MAX_CORNERS], pv[LUMO_PMESH_ARC_MAX_CORNERS], i = 0;
     for (uint32_t c = pm->head[p]; c != NIL; c = pm->next[c], i++) {
         const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
-        g->nx[i] = t[(c % 3 + 1) % 3];
+        nx[i] = t[(c % 3 + 1) % 3];
         pv[i] = t[(c % 3 + 2) % 3];
-        ring += dist2(pm->qpos, g->nx[i], p, shift);
     }
-    g->n = n, g->ring = ring;
-    for (i = 0; i < n; i++) {
-        uint32_t j = 0;
-        while (j < i && g->nx[j] != g->nx[i])
-            j++;
-        g->first[i] = (uint8_t)j;
-        for (j = 0; j < n && g->nx[j] != pv[i]; j++)
-            ;
-        g->succ[i] = j < n ? (uint8_t)j : ARC_NONE;
-        g->w[i] = 16 * ((int64_t)n * dist2(pm->qpos, pv[i], p, shift) - ring);
-    }
-}
-
-/* Every candidate's key into key[], in enumeration order; returns their
- * count (at most n^2). The length term 3 ring (m - (n - 1) / 2)^2 is
- * worked out once per m. */
-static uint32_t arc_list(const arc_fan *g, int64_t *key)
-{
-    int64_t length_cost[ARC_N + 1];
-    uint32_t count = 0;
-    for (uint32_t m = 1; m <= g->n; m++) {
-        int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
-        length_cost[m] = 3 * g->ring * d * d;
-    }
-    for (uint32_t i = 0; i < g->n; i++) {
-        if (g->first[i] != i)
-            continue;
-        int64_t inner = 0;
-        for (uint32_t m = 1, j = i; m <= g->n; m++) {
-            key[count++] = (inner - length_cost[m]) * 4096 + (int64_t)(4095u - (i << 8 | m));
-            if (g->succ[j] == ARC_NONE)
-                break;
-            inner += g->w[j];
-            j = g->succ[j];
-        }
-    }
-    return count;
+    lumo_pmesh_fan_init(g, pm->qpos, pm->h.quant_bits, p, nx, pv, n);
 }
 
 /* Quickselect (Lomuto partition around the middle key): afterwards key[r]
@@ -675,22 +608,22 @@ static lumo_status read_eg1(bitreader *b, uint32_t limit, uint32_t *v)
 
 /* The fan as a rank: *xa and *m, or *m = 0 for the escape (rank equal to
  * the candidate count) to the explicit wing and length. Work: the
- * candidates (at most ARC_N^2) once, then arc_select. */
+ * candidates (at most ARC_MAX_CORNERS^2) once, then arc_select. */
 static lumo_status read_arc(split_ctx *s, uint32_t p, uint32_t n, uint32_t *xa, uint32_t *m)
 {
     lumo_pmesh *pm = s->pm;
-    arc_fan g;
+    lumo_pmesh_fan g;
     uint32_t rank;
     lumo_status st;
     arc_gather(pm, p, n, &g);
-    uint32_t count = arc_list(&g, pm->arc_key);
+    uint32_t count = lumo_pmesh_fan_keys(&g, pm->arc_key);
     if ((st = read_eg1(&s->br, count, &rank)))
         return st;
     *m = 0;
     if (rank == count)
         return LUMO_OK;
     arc_select(pm->arc_key, count, rank);
-    uint32_t id = 4095u - (uint32_t)((uint64_t)pm->arc_key[rank] & 4095u);
+    uint32_t id = lumo_pmesh_fan_key_id(pm->arc_key[rank]);
     *xa = g.nx[id >> 8], *m = id & 0xffu;
     return LUMO_OK;
 }
@@ -706,7 +639,7 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
     lumo_status st;
     if (lp > FAN_MAX_CORNERS)
         return LUMO_ERR_LIMIT;
-    if (lp >= 1 && lp <= ARC_N && (st = read_arc(s, p, lp, &xa, &m)))
+    if (lp >= 1 && lp <= LUMO_PMESH_ARC_MAX_CORNERS && (st = read_arc(s, p, lp, &xa, &m)))
         return st;
     if (!m && ((st = read_wing(s, p, k, lp, &xa)) || (st = read_fan_length(s, &m))))
         return st;

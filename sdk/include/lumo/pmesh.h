@@ -186,6 +186,31 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices);
 /* 1 when every vertex of the stream has arrived. */
 int lumo_pmesh_complete(const lumo_pmesh *pm);
 
+/* The candidate fans of a fan split whose parent p has n corners (1 ...
+ * ARC_MAX_CORNERS), ranked by geometry (docs/progressive-mesh.md §2.3
+ * step 3; sdk/src/pmesh_fan.c). The stream writer and the decoder share
+ * it so that both order the candidates identically. nx[i] / pv[i]: the
+ * vertices after / before p in the face of corner i of L(p), in list
+ * order; q: grid integers, 3 per vertex. */
+#define LUMO_PMESH_FAN_NONE 0xffu
+typedef struct lumo_pmesh_fan {
+    uint32_t n;
+    uint32_t nx[LUMO_PMESH_ARC_MAX_CORNERS];
+    uint8_t  succ[LUMO_PMESH_ARC_MAX_CORNERS];   /* corner after i in the fan, or FAN_NONE */
+    uint8_t  first[LUMO_PMESH_ARC_MAX_CORNERS];  /* first corner with the same nx */
+    int64_t  w[LUMO_PMESH_ARC_MAX_CORNERS], ring;
+} lumo_pmesh_fan;
+void lumo_pmesh_fan_init(lumo_pmesh_fan *g, const int32_t *q, unsigned quant_bits, uint32_t p,
+                         const uint32_t *nx, const uint32_t *pv, uint32_t n);
+/* Every candidate's key into key[] (room for n^2), in enumeration order;
+ * returns their count. A higher key ranks first; keys are distinct. */
+uint32_t lumo_pmesh_fan_keys(const lumo_pmesh_fan *g, int64_t *key);
+/* The candidate a key names: i << 8 | m (corner i of L(p), m corners). */
+static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
+{
+    return 4095u - (uint32_t)((uint64_t)key & 4095u);
+}
+
 /* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
  * the smallest n with 2^n >= count (0 for count <= 1). The stream writer
  * and the batch decoder size every packed field with it. */

@@ -1,0 +1,81 @@
+/*
+ * pmesh_fan.c — the geometric ranking of a fan split's candidate fans
+ * (docs/progressive-mesh.md §2.3 step 3), one definition for the stream
+ * writer (server/pm_stream.c) and the batch decoder (pmesh_batch.c): both
+ * must order the candidates identically, bit for bit.
+ *
+ * After the collapse of k onto p, the vertices k brought into p's ring lie
+ * about two edges from p, the others one, and k usually takes about half
+ * of p's fan: the moved fan is most likely a half-fan whose inner ring
+ * vertices are farthest from p. The candidates (i, m): corner i of L(p)
+ * (the first one whose next vertex is nx[i]) and m moved corners, walking
+ * on through succ. On grid integers of at most ARC_BITS bits, with
+ * ring = sum_i |nx[i] - p|^2, the score is 16 * (the sum over the m - 1
+ * inner vertices pv[j] of n |pv[j] - p|^2 - ring) - 3 ring (m - (n-1)/2)^2,
+ * |score| < 2^44; the key score * 4096 + 4095 - (i << 8 | m) orders the
+ * candidates (higher score first, then smaller i, then smaller m) in one
+ * int64 comparison. The weights are measured (docs/progressive-mesh.md §4).
+ */
+#include "lumo/pmesh.h"
+
+#define FAN_N LUMO_PMESH_ARC_MAX_CORNERS
+
+/* Squared distance of grid points a and p, each coordinate >> shift. */
+static int64_t fan_dist2(const int32_t *q, uint32_t a, uint32_t p, unsigned shift)
+{
+    int64_t s = 0;
+    unsigned d;
+    for (d = 0; d < 3; d++) {
+        int64_t e = (int64_t)(q[3 * (size_t)a + d] >> shift) - (q[3 * (size_t)p + d] >> shift);
+        s += e * e;
+    }
+    return s;
+}
+
+void lumo_pmesh_fan_init(lumo_pmesh_fan *g, const int32_t *q, unsigned quant_bits, uint32_t p,
+                         const uint32_t *nx, const uint32_t *pv, uint32_t n)
+{
+    unsigned shift = quant_bits > LUMO_PMESH_ARC_BITS ? quant_bits - LUMO_PMESH_ARC_BITS : 0;
+    int64_t ring = 0;
+    uint32_t i, j;
+
+    for (i = 0; i < n; i++) {
+        g->nx[i] = nx[i];
+        ring += fan_dist2(q, nx[i], p, shift);
+    }
+    g->n = n, g->ring = ring;
+    for (i = 0; i < n; i++) {
+        for (j = 0; j < i && nx[j] != nx[i]; j++)
+            ;
+        g->first[i] = (uint8_t)j;
+        for (j = 0; j < n && nx[j] != pv[i]; j++)
+            ;
+        g->succ[i] = j < n ? (uint8_t)j : LUMO_PMESH_FAN_NONE;
+        g->w[i] = 16 * ((int64_t)n * fan_dist2(q, pv[i], p, shift) - ring);
+    }
+}
+
+/* The length term 3 ring (m - (n - 1) / 2)^2 is worked out once per m. */
+uint32_t lumo_pmesh_fan_keys(const lumo_pmesh_fan *g, int64_t *key)
+{
+    int64_t length_cost[FAN_N + 1];
+    uint32_t count = 0, i, m, j;
+
+    for (m = 1; m <= g->n; m++) {
+        int64_t d = (int64_t)m - (int64_t)(g->n - 1) / 2;
+        length_cost[m] = 3 * g->ring * d * d;
+    }
+    for (i = 0; i < g->n; i++) {
+        int64_t inner = 0;
+        if (g->first[i] != i)
+            continue;
+        for (m = 1, j = i; m <= g->n; m++) {
+            key[count++] = (inner - length_cost[m]) * 4096 + (int64_t)(4095u - (i << 8 | m));
+            if (g->succ[j] == LUMO_PMESH_FAN_NONE)
+                break;
+            inner += g->w[j];
+            j = g->succ[j];
+        }
+    }
+    return count;
+}
