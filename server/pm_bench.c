@@ -71,6 +71,15 @@ static void free_model(model *m)
     free(m->tris);
 }
 
+/* The default stream of pm with its bit statistics; 0 on success. */
+static int stream_stats(const lumo_pm *pm, lumo_pm_stream_stats *st, uint8_t **s, size_t *len)
+{
+    lumo_pm_stream_options o;
+    lumo_pm_stream_default_options(&o);
+    o.stats = st;
+    return lumo_pm_stream_build(pm, &o, s, len, NULL, NULL);
+}
+
 static int stream(const model *m, uint32_t batch, int coding, uint8_t **s, size_t *len)
 {
     lumo_pm_stream_options o;
@@ -343,12 +352,9 @@ static void section_rounds(FILE *o, model *ms, int n)
             else
                 snprintf(order, sizeof order, "one at a time");
             lumo_pm_stream_stats st;
-            lumo_pm_stream_options so;
-            lumo_pm_stream_default_options(&so);
-            so.stats = &st;
             uint8_t *s = NULL;
             size_t len = 0;
-            if (!lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL))
+            if (!stream_stats(&pm, &st, &s, &len))
                 fprintf(o, "| %s | %s | %u | %.2f | %.2f | %.2f | %.2f | %zu |\n", ms[i].name,
                         order, pm.base_vertices, e[0], e[1], e[2],
                         st.splits ? (double)st.parent_bits / st.splits : 0, len);
@@ -371,12 +377,9 @@ static void section_bits(FILE *o, model *ms, int n)
                "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         lumo_pm_stream_stats st;
-        lumo_pm_stream_options so;
-        lumo_pm_stream_default_options(&so);
-        so.stats = &st;
         uint8_t *s = NULL;
         size_t len = 0;
-        if (lumo_pm_stream_build(&ms[i].pm, &so, &s, &len, NULL, NULL) || !st.splits)
+        if (stream_stats(&ms[i].pm, &st, &s, &len) || !st.splits)
             continue;
         double sv = (double)st.splits, fields[7] = {st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv,
                                                      st.mask_bits / sv, st.other_bits / sv,
