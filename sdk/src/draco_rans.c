@@ -40,7 +40,8 @@ static uint32_t ld_rans_precision(unsigned bit_length)
 
 /* One entry of a probability table: the probability of symbol *i, or a
  * run of zero-probability symbols (*i moves to the run's last, prob 0). */
-static lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t *i, uint32_t *prob)
+static LD_FORCE_INLINE lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t *i,
+                                                 uint32_t *prob)
 {
     uint8_t byte;
     int extra, j;
@@ -65,9 +66,12 @@ static lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t *i, uint32_t *p
     return LUMO_OK;
 }
 
-/* Read the probability table into tables from `m`, or, with m == NULL,
- * only check it and book the tables the decode takes into `k`. */
-static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k)
+/* Read the probability table into tables from `m`, or, `count_only`,
+ * only check it and book the tables the decode takes into `k`. Written
+ * once, instantiated for each constant flag (the decode's copy has no
+ * test of it per entry). */
+static LD_FORCE_INLINE lumo_status ld_rans_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k,
+                                                 int count_only)
 {
     uint32_t n, i, total = 0, nz = 0;
     size_t cap;
@@ -80,7 +84,7 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need 
         return LUMO_ERR_LIMIT;  /* 18-bit symbols at most (raw coding) */
     r->num_symbols = n;
     cap = n < ld_remaining(b) ? n : ld_remaining(b);
-    if (!m) {
+    if (count_only) {
         ld_need_tmp(k, cap + 1u, sizeof(uint32_t));
         ld_need_tmp(k, cap + 1u, sizeof(uint32_t));
         r->cum = r->sym = NULL;
@@ -100,16 +104,22 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need 
         if (prob > (1u << r->prec_bits) - total || nz >= cap)
             return LUMO_ERR_CORRUPT;
         total += prob;
-        if (m) {
-            r->sym[nz] = i;
-            r->cum[nz + 1u] = total;
+        if (count_only) {
+            ++nz;
+            continue;
         }
-        ++nz;
+        r->sym[nz] = i;
+        r->cum[++nz] = total;
     }
     r->num_nz = nz;
     if (n && total != (1u << r->prec_bits))
         return LUMO_ERR_CORRUPT;
     return LUMO_OK;
+}
+
+static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k)
+{
+    return m ? ld_rans_table(r, b, m, NULL, 0) : ld_rans_table(r, b, NULL, k, 1);
 }
 
 /* The lookup table has at most 2^LD_LUT_BITS buckets and, for short

@@ -173,7 +173,7 @@ static void test_arena_exact_and_short(void **state)
 }
 
 /* The need before decoding: exact (decodes in that many bytes, not one
- * less) where the stream's headers decide it, else a bound within 1.7x;
+ * less) where the stream's headers decide it, else a bound within 1.1x;
  * an unaligned buffer of need + LUMO_ARENA_SLACK bytes suffices. */
 static void test_arena_need(void **state)
 {
