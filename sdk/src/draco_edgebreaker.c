@@ -1012,9 +1012,11 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
  * vertices merge), the split table, the valence context symbols. Known
  * only after decoding: the active-corner stack (at most one corner per E
  * symbol, which creates 3 vertices), the traversal's stack or queue (a
- * face pushes at most one corner on the depth-first stack, two on the
- * degree queues), and with seams the points and attribute vertices (at
- * most one per corner). */
+ * face pushes at most one corner on the depth-first stack; on the degree
+ * queues a face pushes its two neighbours, or one and moves on to the
+ * other without a pop, so a start's walk never holds more nodes than its
+ * faces + 1, and each start begins with empty queues), and with seams the
+ * points and attribute vertices (bounded below by the seam bits). */
 
 static uint32_t ld_eb_need_vertices(const ld_eb_need *e) { return e->verts + e->splits; }
 
@@ -1244,7 +1246,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     ld_need_tmp(k, e->faces, 1);
     if (e->dec_traversal[decoder]) {
         ld_need_tmp(k, (size_t)nv, sizeof(uint32_t));
-        ld_need_free(k, (size_t)ld_need_pick(k, 1u, 2u * (uint64_t)e->faces + 1u) * 8u);
+        ld_need_free(k, (size_t)ld_need_pick(k, 0u, (uint64_t)e->faces + 1u) * 8u);
     } else {
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
