@@ -493,20 +493,31 @@ typedef struct ld_scan {
     uint32_t learnt[LD_MAX_DECODERS];  /* value counts known after the scan */
 } ld_scan;
 
-/* Raw indices (ld_seq_raw_indices): bytes, 16-bit words, varints or words. */
+/* Raw indices (ld_seq_raw_indices): bytes, 16-bit words, varints or words.
+ * n varints end at the n-th byte below 0x80 (where a decode that
+ * succeeds ends too). */
 static lumo_status ld_scan_raw_indices(ld_buf *b, uint32_t n, uint32_t np)
 {
-    uint32_t i, v;
-    lumo_status st = LUMO_OK;
+    const uint8_t *p = ld_head(b);
+    size_t i, left = ld_remaining(b);
     if (np < 256u)
         return ld_skip(b, n);
     if (np < 65536u)
         return ld_skip(b, (uint64_t)n * 2u);
     if (np >= (1u << 21))
         return ld_skip(b, (uint64_t)n * 4u);
-    for (i = 0; i < n && !st; ++i)
-        st = ld_varint32(b, &v);
-    return st;
+    for (i = 0; left - i >= 8u && n > 8u; i += 8u) {  /* 8 bytes at a time */
+        uint64_t w;
+        memcpy(&w, p + i, 8);
+        w = (~w & 0x8080808080808080ull) >> 7;  /* 1 per terminating byte */
+        n -= (uint32_t)((w * 0x0101010101010101ull) >> 56);
+    }
+    for (; i < left && n; ++i)
+        n -= p[i] < 0x80u;
+    if (n)
+        return LUMO_ERR_TRUNCATED;
+    b->pos += i;
+    return LUMO_OK;
 }
 
 static lumo_status ld_scan_geometry(ld_scan *s)
@@ -619,10 +630,12 @@ static lumo_status ld_scan_attributes(ld_scan *s)
 
 /* One replay: the peak with every unknown at its lower (hi = 0) or upper
  * (hi = 1) bound, value counts in `learnt` (in: known from an earlier
- * replay; out: known after this one). *comps: portable components per
- * point once known; *unknown: some value count stayed unknown. */
+ * replay; out: known after this one, *fresh: some were learnt now).
+ * *comps: portable components per point once known; *unknown: some value
+ * count stayed unknown; *bounded: some quantity was only bounded. */
 static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, uint32_t *learnt,
-                               size_t *peak, int *unknown, unsigned *comps)
+                               size_t *peak, int *unknown, int *bounded, int *fresh,
+                               unsigned *comps)
 {
     ld_scan s;
     uint32_t i;
@@ -636,6 +649,8 @@ static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, uint32_
     for (*comps = 0, i = 0; i < s.num_attrs; ++i)
         *comps += s.attrs[i].portable;
     *peak = s.k.peak;
+    *bounded = s.k.bounded;
+    *fresh = memcmp(learnt, s.learnt, sizeof s.learnt) != 0;
     memcpy(learnt, s.learnt, sizeof s.learnt);
     *unknown = 0;
     for (i = 0; s.is_eb && i < s.eb.num_decoders; ++i)
@@ -646,25 +661,27 @@ static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, uint32_
 lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_need *need)
 {
     uint32_t learnt[LD_MAX_DECODERS];
-    size_t lo = 0, hi;
-    int unknown;
+    size_t lo, hi;
+    int unknown, bounded, fresh;
     unsigned comps = 0;
     lumo_draco_info info;
     lumo_status st;
     if (!need)
         return LUMO_ERR_ARG;
     memset(learnt, 0xFF, sizeof learnt);
-    st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &comps);
-    if (!st)  /* again with the value counts the first replay learnt */
-        st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &comps);
+    st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &bounded, &fresh, &comps);
+    if (!st && bounded && fresh)  /* again with the value counts learnt */
+        st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &bounded, &fresh, &comps);
     if (st == LUMO_ERR_LIMIT && comps && !lumo_draco_peek(data, size, &info)) {
         /* a stream the scan cannot skip: the header bound */
         hi = lumo_draco_arena_bound(&info, comps) - LUMO_ARENA_SLACK;
-        unknown = 1;
+        unknown = bounded = 1;
     } else if (st) {
         return st;
     }
-    if (!unknown && (st = ld_scan_run(data, size, 0, learnt, &lo, &unknown, &comps)))
+    lo = unknown ? 0 : hi;  /* nothing only bounded: one replay was exact */
+    if (!unknown && bounded &&
+        (st = ld_scan_run(data, size, 0, learnt, &lo, &unknown, &bounded, &fresh, &comps)))
         return st;
     need->bytes = hi;
     need->bytes_min = lo;

@@ -1196,7 +1196,7 @@ lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder)
 
 /* Vertices of attribute data `ad`'s corner table: the value count of its
  * per-corner decoder (every one is visited), when the scan learnt it. */
-static uint64_t ld_eb_need_attr_vertices(const ld_need *k, const ld_eb_need *e, int ad)
+static uint64_t ld_eb_need_attr_vertices(ld_need *k, const ld_eb_need *e, int ad)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces, split = e->verts + 2u * (uint64_t)e->seam_ones[ad];
     uint32_t d;
@@ -1209,7 +1209,7 @@ static uint64_t ld_eb_need_attr_vertices(const ld_need *k, const ld_eb_need *e, 
 /* Points cut every vertex fan where any attribute's seams cut it, so
  * max_i A_i <= points <= sum_i A_i (A_i: vertices of attribute data i;
  * the decode checks the upper bound), and at most one per corner. */
-uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e)
+uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces;
     uint64_t sum = 0, max = 0, split = e->verts, a;

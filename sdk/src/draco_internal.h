@@ -154,6 +154,7 @@ typedef struct ld_need {
     size_t work;      /* work bytes in use (ld_tmp, top of the arena) */
     size_t peak;
     int hi;           /* 1: book the upper bounds, 0: the lower bounds */
+    int bounded;      /* some quantity booked had lower != upper bound */
 } ld_need;
 
 static inline size_t ld_need_bytes(size_t n, size_t size)
@@ -190,8 +191,9 @@ static inline void ld_need_free(ld_need *k, size_t bytes)
     ld_need_track(k, ld_need_bytes(bytes, 1));
 }
 /* Which of two bounds the replay books. */
-static inline uint64_t ld_need_pick(const ld_need *k, uint64_t lo, uint64_t hi)
+static inline uint64_t ld_need_pick(ld_need *k, uint64_t lo, uint64_t hi)
 {
+    k->bounded |= lo != hi;
     return k->hi ? hi : lo;
 }
 
@@ -432,7 +434,7 @@ lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder);
 void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s);
 void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites);
 /* Points of the mesh: exact without attribute seams, else a bound. */
-uint64_t ld_eb_need_points(const ld_need *k, const ld_eb_need *e);
+uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e);
 
 lumo_status ld_eb_decode_connectivity(ld_dec *d);
 lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq *seq,
