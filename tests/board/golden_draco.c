@@ -21,9 +21,7 @@ int main(void);
 #endif
 #define LIST_PATH LUMO_BUILD_DIR "/board/draco/list.txt"
 #define MAX_INPUT (2u << 20)
-#define MAX_PATH 200u
 
-static uint8_t g_list[8192];
 static uint8_t g_input[MAX_INPUT];
 
 static uint64_t hash_u32s(uint64_t h, const uint32_t *v, size_t n)
@@ -56,23 +54,6 @@ static uint64_t hash_attribute(uint64_t h, const lumo_draco_attribute *a, uint32
     return h;
 }
 
-/* Label "draco.<file name>" from a path. */
-static void label_of(const char *path, char *out, size_t cap)
-{
-    const char *base = path, *p;
-    size_t n;
-
-    for (p = path; *p != '\0'; p++)
-        if (*p == '/')
-            base = p + 1;
-    memcpy(out, "draco.", 6);
-    n = strlen(base);
-    if (n > cap - 7)
-        n = cap - 7;
-    memcpy(out + 6, base, n);
-    out[6 + n] = '\0';
-}
-
 static int decode_one(const char *path)
 {
     size_t len = 0, bytes = 0;
@@ -86,7 +67,7 @@ static int decode_one(const char *path)
     uint64_t h = BT_FNV_OFFSET;
     uint32_t i, t0;
 
-    label_of(path, label, sizeof label);
+    golden_label("draco.", path, label, sizeof label);
     if (board_read_file(path, g_input, sizeof g_input, &len) != 0) {
         con_str("golden_draco: cannot read ");
         con_str(path);
@@ -143,26 +124,5 @@ static int decode_one(const char *path)
 
 int main(void)
 {
-    size_t len = 0, i = 0;
-    int failed = 0;
-
-    if (board_read_file(LIST_PATH, g_list, sizeof g_list - 1, &len) != 0) {
-        con_str("golden_draco: cannot read " LIST_PATH "\n");
-        return golden_done(1);
-    }
-    g_list[len] = '\n';
-    while (i < len) {
-        char path[MAX_PATH];
-        size_t n = 0;
-        while (i < len && g_list[i] != '\n') {
-            if (n < MAX_PATH - 1)
-                path[n++] = (char)g_list[i];
-            i++;
-        }
-        i++;
-        path[n] = '\0';
-        if (n > 0)
-            failed |= decode_one(path);
-    }
-    return golden_done(failed);
+    return golden_done(golden_each_path(LIST_PATH, decode_one));
 }
