@@ -83,18 +83,26 @@ lumo_status ld_read_attribute_descriptors(ld_dec *d, unsigned decoder,
     return LUMO_OK;
 }
 
+/* The byte width of n values stored without entropy coding (1..4), checked
+ * against the bytes left: the decode and the arena-need scan read it alike. */
+static lumo_status ld_raw_values_width(ld_buf *b, uint32_t n, uint8_t *nb)
+{
+    lumo_status st = ld_u8(b, nb);
+    if (st)
+        return st;
+    if (*nb == 0 || *nb > 4)
+        return LUMO_ERR_CORRUPT;
+    return (uint64_t)*nb * n > ld_remaining(b) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+}
+
 /* Values stored without entropy coding: num_bytes little-endian bytes each. */
 static lumo_status ld_raw_values(ld_buf *b, uint32_t n, int32_t *out)
 {
     uint8_t nb;
     uint32_t i;
-    lumo_status st = ld_u8(b, &nb);
+    lumo_status st = ld_raw_values_width(b, n, &nb);
     if (st)
         return st;
-    if (nb == 0 || nb > 4)
-        return LUMO_ERR_CORRUPT;
-    if ((uint64_t)nb * n > ld_remaining(b))
-        return LUMO_ERR_TRUNCATED;
     for (i = 0; i < n; ++i) {
         const uint8_t *p = ld_head(b);
         uint32_t v = 0;
@@ -284,14 +292,8 @@ int32_t lumo_draco_dequantize(const lumo_draco_attribute *attr, unsigned comp, i
 static lumo_status ld_need_raw_values(ld_buf *b, uint32_t n)
 {
     uint8_t nb;
-    lumo_status st = ld_u8(b, &nb);
-    if (st)
-        return st;
-    if (nb == 0 || nb > 4)
-        return LUMO_ERR_CORRUPT;
-    if ((uint64_t)nb * n > ld_remaining(b))
-        return LUMO_ERR_TRUNCATED;
-    return ld_skip(b, (uint64_t)nb * n);
+    lumo_status st = ld_raw_values_width(b, n, &nb);
+    return st ? st : ld_skip(b, (uint64_t)nb * n);
 }
 
 /* ld_decode_portable on byte counts: the values output, the symbol

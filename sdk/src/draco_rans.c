@@ -308,15 +308,23 @@ static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
     return ld_rans_at_start(&tags) ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
+/* A raw rANS stream's symbol width, 1..18 bits (the decode and the
+ * arena-need scan read it alike). */
+static lumo_status ld_raw_max_bits(ld_buf *b, uint8_t *max_bits)
+{
+    lumo_status st = ld_u8(b, max_bits);
+    if (st)
+        return st;
+    return *max_bits < 1 || *max_bits > 18 ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
 static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out)
 {
     ld_rans r;
     uint8_t max_bits;
-    lumo_status st = ld_u8(b, &max_bits);
+    lumo_status st = ld_raw_max_bits(b, &max_bits);
     if (st)
         return st;
-    if (max_bits < 1 || max_bits > 18)
-        return LUMO_ERR_CORRUPT;
     if ((st = ld_rans_create(&r, b, m, max_bits, num_values)) || (st = ld_rans_start(&r, b)))
         return st;
     if (r.lut_shift == 0)
@@ -492,11 +500,9 @@ static lumo_status ld_need_raw(ld_buf *b, ld_need *k, uint32_t num_values, unsig
     ld_buf table;
     uint32_t steps, n;
     uint8_t max_bits;
-    lumo_status st = ld_u8(b, &max_bits);
+    lumo_status st = ld_raw_max_bits(b, &max_bits);
     if (st)
         return st;
-    if (max_bits < 1 || max_bits > 18)
-        return LUMO_ERR_CORRUPT;
     r.prec_bits = ld_rans_precision(max_bits);
     table = *b;
     if ((st = ld_rans_read_table(&r, b, NULL, k)))

@@ -219,6 +219,21 @@ static void test_arena_need(void **state)
     assert_int_not_equal(lumo_draco_arena_need(s[0].data, 10, &(lumo_draco_need){0, 0, 0}), LUMO_OK);
 }
 
+/* A copy of src with 1-4 random bytes changed: single bit flips on odd
+ * trials t, whole random bytes on even ones. */
+static void mutate(uint8_t *copy, const uint8_t *src, size_t size, unsigned t, test_rng *rng)
+{
+    unsigned k, flips = 1 + (unsigned)(test_rng_next(rng) % 4);
+    memcpy(copy, src, size);
+    for (k = 0; k < flips; ++k) {
+        size_t at = (size_t)(test_rng_next(rng) % size);
+        if (t & 1)
+            copy[at] ^= (uint8_t)(1u << (test_rng_next(rng) % 8));
+        else
+            copy[at] = (uint8_t)test_rng_next(rng);
+    }
+}
+
 /* Hostile input: the scan ends in a status on every prefix and mutation,
  * and whenever a decode succeeds the figure covers what it used. */
 static void test_arena_need_hostile(void **state)
@@ -240,15 +255,7 @@ static void test_arena_need_hostile(void **state)
             lumo_arena a;
             lumo_draco_mesh m;
             lumo_draco_need need;
-            unsigned k, flips = 1 + (unsigned)(test_rng_next(&rng) % 4);
-            memcpy(copy, s[i].data, s[i].size);
-            for (k = 0; k < flips; ++k) {
-                size_t at = (size_t)(test_rng_next(&rng) % s[i].size);
-                if (t & 1)
-                    copy[at] ^= (uint8_t)(1u << (test_rng_next(&rng) % 8));
-                else
-                    copy[at] = (uint8_t)test_rng_next(&rng);
-            }
+            mutate(copy, s[i].data, s[i].size, t, &rng);
             arena_fresh(&a, ARENA_BYTES);
             if (lumo_draco_decode(copy, s[i].size, &a, &m) != LUMO_OK) {
                 (void)lumo_draco_arena_need(copy, s[i].size, &need);
@@ -303,15 +310,7 @@ static void test_bit_flips(void **state)
         for (t = 0; t < 400; ++t) {
             lumo_arena a;
             lumo_draco_mesh m;
-            unsigned k, flips = 1 + (unsigned)(test_rng_next(&rng) % 4);
-            memcpy(copy, s[i].data, s[i].size);
-            for (k = 0; k < flips; ++k) {
-                size_t at = (size_t)(test_rng_next(&rng) % s[i].size);
-                if (t & 1)
-                    copy[at] ^= (uint8_t)(1u << (test_rng_next(&rng) % 8));
-                else
-                    copy[at] = (uint8_t)test_rng_next(&rng);
-            }
+            mutate(copy, s[i].data, s[i].size, t, &rng);
             arena_fresh(&a, ARENA_BYTES);
             if (lumo_draco_decode(copy, s[i].size, &a, &m) == LUMO_OK) {
                 assert_consistent(&m);
