@@ -22,7 +22,7 @@
 #include "lumo_server/package_write.h"
 #include "lumo_server/pm_stream.h"
 
-#define NIL 0xffffffffu
+#define NIL LUMO_PMESH_NIL
 
 /* ---- bytes (lumo_buf, package_write.h) and bits ----------------------------- */
 typedef struct { lumo_buf b; size_t nbits; } bitwriter;
@@ -127,29 +127,16 @@ static void write_base(replay *r, bitwriter *w)
             r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
 }
 
-/* Mirrors predict_split() in pmesh_batch.c: the rounded mean of the corners
- * of k's faces right after its split, the parent counted
- * LUMO_PMESH_PARENT_WEIGHT more times. */
+/* The residual of k from the decoder's own prediction
+ * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c). */
 static void predict(replay *r, uint32_t k)
 {
-    const int32_t *qp = r->q + 3 * (size_t)r->pm->parent[k];
-    int64_t sum[3] = {0, 0, 0};
-    uint32_t n = 0;
-    for (uint32_t c = r->head[k]; c != NIL; c = r->next[c], n += 2) {
-        const uint32_t *t = r->disp + 3 * (size_t)(c / 3);
-        for (int i = 0; i < 3; i++)
-            if (t[i] != k)
-                for (int d = 0; d < 3; d++)
-                    sum[d] += r->q[3 * (size_t)t[i] + d];
-    }
+    int32_t pred[3];
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, r->pm->parent[k], pred);
     for (int d = 0; d < 3; d++)
-        sum[d] += (int64_t)LUMO_PMESH_PARENT_WEIGHT * qp[d];
-    n += LUMO_PMESH_PARENT_WEIGHT;
-    for (int d = 0; d < 3; d++)
-        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - (int32_t)((sum[d] + n / 2) / n);
+        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - pred[d];
 }
 
-/* Mask: corners of p whose full-resolution vertex now resolves to k. */
 static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
 {
     uint32_t prev = NIL, c = r->head[p], lenp = 0;
@@ -301,7 +288,7 @@ static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32
 }
 
 /* ---- fans ranked by geometry: the decoder's own ranking
- * (lumo_pmesh_fan_keys, sdk/src/pmesh_fan.c), so both order the
+ * (lumo_pmesh_fan_keys, sdk/src/pmesh_predict.c), so both order the
  * candidates identically ---- */
 
 static void arc_gather(const replay *r, uint32_t p, uint32_t n, lumo_pmesh_fan *g)

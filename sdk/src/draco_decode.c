@@ -301,16 +301,24 @@ static lumo_status ld_attribute_values(ld_dec *d, unsigned i, ld_decoder_slot *s
     return st;
 }
 
+/* The number of attributes decoders (the decode and the arena-need scan
+ * read it alike). */
+static lumo_status ld_decoder_count(ld_buf *b, uint8_t *n)
+{
+    lumo_status st = ld_u8(b, n);
+    if (st)
+        return st;
+    return *n > LD_MAX_DECODERS ? LUMO_ERR_LIMIT : LUMO_OK;
+}
+
 static lumo_status ld_all_attributes(ld_dec *d)
 {
     ld_decoder_slot slots[LD_MAX_DECODERS];
     const int kd = d->geometry == LUMO_DRACO_POINT_CLOUD && d->method == LUMO_DRACO_METHOD_KD_TREE;
     uint8_t n, i;
-    lumo_status st = ld_u8(&d->buf, &n);
+    lumo_status st = ld_decoder_count(&d->buf, &n);
     if (st)
         return st;
-    if (n > LD_MAX_DECODERS)
-        return LUMO_ERR_LIMIT;
     d->num_decoders = n;
     memset(slots, 0, sizeof slots);
     if ((st = ld_attribute_headers(d, slots, n, kd)))
@@ -592,11 +600,9 @@ static lumo_status ld_scan_attributes(ld_scan *s)
     const int kd = s->h.geometry == LUMO_DRACO_POINT_CLOUD &&
                    s->h.method == LUMO_DRACO_METHOD_KD_TREE;
     uint8_t n, i;
-    lumo_status st = ld_u8(&s->buf, &n);
+    lumo_status st = ld_decoder_count(&s->buf, &n);
     if (st)
         return st;
-    if (n > LD_MAX_DECODERS)
-        return LUMO_ERR_LIMIT;
     if ((st = ld_scan_headers(s, n, kd)))
         return st;
     if (s->is_eb) {

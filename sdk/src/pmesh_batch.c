@@ -21,7 +21,7 @@
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
 
-#define NIL 0xffffffffu
+#define NIL LUMO_PMESH_NIL
 
 /* ---- bits: LSB-first within each byte ------------------------------------ */
 typedef struct {
@@ -447,25 +447,14 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
     return flip ? add_face(s, k, x, p) : add_face(s, k, p, x);
 }
 
-/* k appears among its neighbours: predict it by the rounded mean of the
- * corners of k's faces right after its split, its parent p counted
- * LUMO_PMESH_PARENT_WEIGHT more times. Work: k's valence. */
+/* k appears among its neighbours: lumo_pmesh_predict_position (shared
+ * with the stream writer). Work: k's valence. */
 static lumo_status predict_split(split_ctx *s, uint32_t k)
 {
     lumo_pmesh *pm = s->pm;
-    const int32_t *qp = pm->qpos + 3 * (size_t)pm->batch_parent[k - s->b->first];
-    int64_t sum[3] = {0, 0, 0};
-    uint32_t n = LUMO_PMESH_PARENT_WEIGHT;
-    for (uint32_t c = pm->head[k]; c != NIL; c = pm->next[c], n += 2) {
-        const uint32_t *t = pm->tris + 3 * (size_t)(c / 3);
-        for (unsigned i = 0; i < 3; i++)
-            if (t[i] != k)
-                for (unsigned d = 0; d < 3; d++)
-                    sum[d] += pm->qpos[3 * (size_t)t[i] + d];
-    }
     int32_t pred[3];
-    for (unsigned d = 0; d < 3; d++)
-        pred[d] = (int32_t)((sum[d] + (int64_t)LUMO_PMESH_PARENT_WEIGHT * qp[d] + n / 2) / n);
+    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k,
+                                pm->batch_parent[k - s->b->first], pred);
     return grid_value(pm, k, pred, s->res, k - s->b->first);
 }
 
@@ -549,7 +538,7 @@ static lumo_status read_wing(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp, 
 }
 
 /* ---- fans ranked by geometry (docs/progressive-mesh.md §2.3 step 3;
- * the score is lumo_pmesh_fan_keys in pmesh_fan.c) ---- */
+ * the score is lumo_pmesh_fan_keys in pmesh_predict.c) ---- */
 
 static void arc_gather(const lumo_pmesh *pm, uint32_t p, uint32_t n, lumo_pmesh_fan *g)
 {

@@ -188,7 +188,7 @@ int lumo_pmesh_complete(const lumo_pmesh *pm);
 
 /* The candidate fans of a fan split whose parent p has n corners (1 ...
  * ARC_MAX_CORNERS), ranked by geometry (docs/progressive-mesh.md §2.3
- * step 3; sdk/src/pmesh_fan.c). The stream writer and the decoder share
+ * step 3; sdk/src/pmesh_predict.c). The stream writer and the decoder share
  * it so that both order the candidates identically. nx[i] / pv[i]: the
  * vertices after / before p in the face of corner i of L(p), in list
  * order; q: grid integers, 3 per vertex. */
@@ -210,6 +210,15 @@ static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
 {
     return 4095u - (uint32_t)((uint64_t)key & 4095u);
 }
+
+/* The predicted grid point of split vertex k right after its split, with
+ * parent p (docs/progressive-mesh.md §2.3 step 5; sdk/src/pmesh_predict.c):
+ * L(k) is walked from head[k] through next[] until LUMO_PMESH_NIL, corner c
+ * showing tris[c]; q holds 3 grid integers per vertex. Shared by the stream
+ * writer and the decoder. */
+#define LUMO_PMESH_NIL 0xffffffffu
+void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
+                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3]);
 
 /* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
  * the smallest n with 2^n >= count (0 for count <= 1). The stream writer

@@ -1,9 +1,11 @@
 /*
- * pmesh_fan.c — the geometric ranking of a fan split's candidate fans
- * (docs/progressive-mesh.md §2.3 step 3), one definition for the stream
- * writer (server/pm_stream.c) and the batch decoder (pmesh_batch.c): both
- * must order the candidates identically, bit for bit.
+ * pmesh_predict.c — what a vertex split predicts from the geometry already
+ * held: the ranking of its candidate fans (docs/progressive-mesh.md §2.3
+ * step 3) and its position (step 5). One definition for the stream writer
+ * (server/pm_stream.c) and the batch decoder (pmesh_batch.c): both must
+ * predict identically, bit for bit.
  *
+ * Fans:
  * After the collapse of k onto p, the vertices k brought into p's ring lie
  * about two edges from p, the others one, and k usually takes about half
  * of p's fan: the moved fan is most likely a half-fan whose inner ring
@@ -78,4 +80,27 @@ uint32_t lumo_pmesh_fan_keys(const lumo_pmesh_fan *g, int64_t *key)
         }
     }
     return count;
+}
+
+/* The rounded mean of the corners of k's faces (k itself excluded), the
+ * parent counted LUMO_PMESH_PARENT_WEIGHT more times. Grid integers are
+ * non-negative, so the division rounds half up on every target. */
+void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
+                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3])
+{
+    int64_t sum[3] = {0, 0, 0};
+    uint32_t n = LUMO_PMESH_PARENT_WEIGHT, c;
+    unsigned i, d;
+
+    for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c], n += 2) {
+        const uint32_t *t = tris + 3 * (size_t)(c / 3);
+        for (i = 0; i < 3; i++)
+            if (t[i] != k)
+                for (d = 0; d < 3; d++)
+                    sum[d] += q[3 * (size_t)t[i] + d];
+    }
+    for (d = 0; d < 3; d++) {
+        sum[d] += (int64_t)LUMO_PMESH_PARENT_WEIGHT * q[3 * (size_t)p + d];
+        pred[d] = (int32_t)((sum[d] + n / 2) / n);
+    }
 }
