@@ -1,8 +1,9 @@
 /*
  * draco_bench — time lumo's Draco decoder on one file.
  *
- *   draco-bench FILE.drc REPS
+ *   draco-bench FILE.drc REPS [lean]
  *
+ * `lean`: decode with LUMO_DRACO_LEAN (and its arena need).
  * Prints one line: "lumo ns=<best ns per decode> out=<output bytes>
  * arena=<exact arena bytes> need=<figure before decoding> exact=<0|1>
  * faces=<n> points=<n>". The arena is sized from lumo_draco_arena_need()
@@ -13,6 +14,7 @@
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 #include "lumo/draco.h"
 
@@ -29,12 +31,14 @@ int main(int argc, char **argv)
     uint8_t *data, *mem;
     long size;
     int reps, i;
+    unsigned flags;
     uint64_t best = UINT64_MAX;
     lumo_draco_need need;
     lumo_draco_mesh m;
     size_t bytes;
-    if (argc != 3 || !(f = fopen(argv[1], "rb")))
+    if ((argc != 3 && argc != 4) || !(f = fopen(argv[1], "rb")))
         return 2;
+    flags = argc == 4 && !strcmp(argv[3], "lean") ? LUMO_DRACO_LEAN : 0u;
     reps = atoi(argv[2]);
     fseek(f, 0, SEEK_END);
     size = ftell(f);
@@ -43,7 +47,7 @@ int main(int argc, char **argv)
     if (!data || fread(data, 1, (size_t)size, f) != (size_t)size)
         return 1;
     fclose(f);
-    if (lumo_draco_arena_need(data, (size_t)size, &need))
+    if (lumo_draco_arena_need_ex(data, (size_t)size, flags, &need))
         return 1;
     bytes = need.bytes;
     mem = malloc(bytes);
@@ -55,7 +59,7 @@ int main(int argc, char **argv)
         lumo_status st;
         lumo_arena_init(&a, mem, bytes);
         t0 = now_ns();
-        st = lumo_draco_decode(data, (size_t)size, &a, &m);
+        st = lumo_draco_decode_ex(data, (size_t)size, flags, &a, &m);
         t0 = now_ns() - t0;
         if (st) {
             fprintf(stderr, "draco-bench: %s\n", lumo_strerror(st));

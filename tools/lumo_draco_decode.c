@@ -7,6 +7,9 @@
  *   lumo-draco-decode --dump IN.drc OUT.txt   portable integers + faces, the
  *                                      format of tests/draco/draco_oracle.cc
  *   lumo-draco-decode --bench N IN.drc decode N times (benchmarks)
+ *
+ * A first argument --lean decodes with LUMO_DRACO_LEAN (same output, a
+ * smaller arena, more instructions).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +18,8 @@
 
 #include "lumo/draco.h"
 #include "lumo_host/file_io.h"
+
+static unsigned g_flags;  /* --lean */
 
 /* Decode into an arena of exactly lumo_draco_arena_need() bytes, computed
  * before decoding: the figure is part of the API, so a decode that does
@@ -25,7 +30,7 @@ static lumo_status decode(const uint8_t *data, size_t size, lumo_draco_mesh *m, 
                           lumo_draco_need *need, int check)
 {
     lumo_arena a;
-    lumo_status st = lumo_draco_arena_need(data, size, need);
+    lumo_status st = lumo_draco_arena_need_ex(data, size, g_flags, need);
     size_t used;
     if (st)
         return st;
@@ -33,14 +38,14 @@ static lumo_status decode(const uint8_t *data, size_t size, lumo_draco_mesh *m, 
         return LUMO_ERR_NOMEM;
     if (check && need->exact && need->bytes) {  /* first: it overwrites the buffer */
         lumo_arena_init(&a, *mem, need->bytes - 1u);
-        if (lumo_draco_decode(data, size, &a, m) != LUMO_ERR_NOMEM) {
+        if (lumo_draco_decode_ex(data, size, g_flags, &a, m) != LUMO_ERR_NOMEM) {
             fprintf(stderr, "lumo-draco-decode: decode fits in %zu bytes, 1 below the exact need\n",
                     need->bytes - 1u);
             return LUMO_ERR_STATE;
         }
     }
     lumo_arena_init(&a, *mem, need->bytes);  /* malloc'd: aligned, no slack */
-    st = lumo_draco_decode(data, size, &a, m);
+    st = lumo_draco_decode_ex(data, size, g_flags, &a, m);
     if (st == LUMO_ERR_NOMEM)
         fprintf(stderr, "lumo-draco-decode: decode needs more than lumo_draco_arena_need() = %zu bytes\n",
                 need->bytes);
@@ -214,6 +219,11 @@ int main(int argc, char **argv)
     void *mem = NULL;
     lumo_status st;
     int i, rc = 0;
+    if (argc > 1 && !strcmp(argv[1], "--lean")) {
+        g_flags = LUMO_DRACO_LEAN;
+        argv++;
+        argc--;
+    }
     if (argc == 3 && !strcmp(argv[1], "--info")) {
         mode = "info"; in = argv[2];
     } else if (argc == 4 && !strcmp(argv[1], "--dump")) {
@@ -223,7 +233,7 @@ int main(int argc, char **argv)
     } else if (argc == 3 && argv[1][0] != '-') {
         in = argv[1]; out = argv[2];
     } else {
-        fprintf(stderr, "usage: lumo-draco-decode IN.drc OUT.ply | --info IN.drc | "
+        fprintf(stderr, "usage: lumo-draco-decode [--lean] IN.drc OUT.ply | --info IN.drc | "
                         "--dump IN.drc OUT.txt | --bench N IN.drc\n");
         return 2;
     }

@@ -356,6 +356,7 @@ static lumo_status ld_decode_all(ld_dec *d, lumo_draco_mesh *m)
         st = ld_eb_decode_connectivity(d);
     if (st || (st = ld_all_attributes(d)))
         return st;
+    ld_eb_finish(d);
     m->num_points = d->num_points;
     m->num_faces = d->num_faces;
     m->faces = d->faces;
@@ -366,6 +367,12 @@ static lumo_status ld_decode_all(ld_dec *d, lumo_draco_mesh *m)
 
 lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *arena,
                               lumo_draco_mesh *out)
+{
+    return lumo_draco_decode_ex(data, size, 0, arena, out);
+}
+
+lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flags,
+                                 lumo_arena *arena, lumo_draco_mesh *out)
 {
     ld_dec d;
     ld_header h;
@@ -378,6 +385,7 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
     if ((st = ld_start(&d.buf, data, size, &h)))
         return st;
     d.version = (uint16_t)(h.major << 8 | h.minor);
+    d.lean = (uint8_t)((flags & LUMO_DRACO_LEAN) != 0);
     d.geometry = h.geometry;
     d.method = h.method;
     ld_mem_init(&d.mem, arena);
@@ -424,7 +432,7 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
             (st = ld_varint32(&b, &faces)) || (st = ld_u8(&b, &nad)) ||
             (st = ld_varint32(&b, &symbols)) || (st = ld_varint32(&b, &splits)))
             return st;
-        if (faces > LD_MAX_FACES)
+        if (faces > LD_MAX_EB_FACES)
             return LUMO_ERR_LIMIT;
         r.connectivity = type;
         r.num_faces = faces;
@@ -497,7 +505,7 @@ typedef struct ld_scan {
     ld_need_attr attrs[LUMO_DRACO_MAX_ATTRIBUTES];
     uint32_t first[LD_MAX_DECODERS], count[LD_MAX_DECODERS];
     ld_eb_need eb;
-    uint8_t is_eb;
+    uint8_t is_eb, lean;
     uint32_t learnt[LD_MAX_DECODERS];  /* value counts known after the scan */
 } ld_scan;
 
@@ -540,7 +548,7 @@ static lumo_status ld_scan_geometry(ld_scan *s)
     }
     if (s->h.method == LUMO_DRACO_METHOD_EDGEBREAKER) {
         s->is_eb = 1;
-        if ((st = ld_eb_need_connectivity(&s->buf, &s->k, &s->eb)))
+        if ((st = ld_eb_need_connectivity(&s->buf, &s->k, &s->eb, s->lean)))
             return st;
         s->num_faces = s->eb.faces;
         return LUMO_OK;
@@ -639,15 +647,16 @@ static lumo_status ld_scan_attributes(ld_scan *s)
  * replay; out: known after this one, *fresh: some were learnt now).
  * *comps: portable components per point once known; *unknown: some value
  * count stayed unknown; *bounded: some quantity was only bounded. */
-static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, uint32_t *learnt,
-                               size_t *peak, int *unknown, int *bounded, int *fresh,
-                               unsigned *comps)
+static lumo_status ld_scan_run(const uint8_t *data, size_t size, unsigned flags, int hi,
+                               uint32_t *learnt, size_t *peak, int *unknown, int *bounded,
+                               int *fresh, unsigned *comps)
 {
     ld_scan s;
     uint32_t i;
     lumo_status st;
     memset(&s, 0, sizeof s);
     s.k.hi = hi;
+    s.lean = (uint8_t)((flags & LUMO_DRACO_LEAN) != 0);
     memcpy(s.learnt, learnt, sizeof s.learnt);
     if ((st = ld_start(&s.buf, data, size, &s.h)) || (st = ld_scan_geometry(&s)))
         return st;
@@ -666,6 +675,12 @@ static lumo_status ld_scan_run(const uint8_t *data, size_t size, int hi, uint32_
 
 lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_need *need)
 {
+    return lumo_draco_arena_need_ex(data, size, 0, need);
+}
+
+lumo_status lumo_draco_arena_need_ex(const uint8_t *data, size_t size, unsigned flags,
+                                     lumo_draco_need *need)
+{
     uint32_t learnt[LD_MAX_DECODERS];
     size_t lo, hi;
     int unknown, bounded, fresh;
@@ -675,9 +690,9 @@ lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_n
     if (!need)
         return LUMO_ERR_ARG;
     memset(learnt, 0xFF, sizeof learnt);
-    st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &bounded, &fresh, &comps);
+    st = ld_scan_run(data, size, flags, 1, learnt, &hi, &unknown, &bounded, &fresh, &comps);
     if (!st && bounded && fresh)  /* again with the value counts learnt */
-        st = ld_scan_run(data, size, 1, learnt, &hi, &unknown, &bounded, &fresh, &comps);
+        st = ld_scan_run(data, size, flags, 1, learnt, &hi, &unknown, &bounded, &fresh, &comps);
     if (st == LUMO_ERR_LIMIT && comps && !lumo_draco_peek(data, size, &info)) {
         /* a stream the scan cannot skip: the header bound */
         hi = lumo_draco_arena_bound(&info, comps) - LUMO_ARENA_SLACK;
@@ -687,7 +702,7 @@ lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_n
     }
     lo = unknown ? 0 : hi;  /* nothing only bounded: one replay was exact */
     if (!unknown && bounded &&
-        (st = ld_scan_run(data, size, 0, learnt, &lo, &unknown, &bounded, &fresh, &comps)))
+        (st = ld_scan_run(data, size, flags, 0, learnt, &lo, &unknown, &bounded, &fresh, &comps)))
         return st;
     need->bytes = hi;
     need->bytes_min = lo;

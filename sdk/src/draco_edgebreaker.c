@@ -34,10 +34,19 @@ struct ld_eb {
     uint8_t valence;
     uint32_t num_faces, num_corners, max_vertices, num_vertices, num_conn_vertices;
     uint32_t encoded_vertices;  /* V of the header */
-    uint32_t *c2v, *opp, *lmc;
+    uint8_t lean;              /* LUMO_DRACO_LEAN: packed opposites */
+    uint32_t *c2v, *lmc;
+    uint32_t *opp32;           /* opposites, fast mode */
+    uint8_t *o24;              /* opposites while decoding, lean (ld_o24) */
     uint8_t *hole;
-    uint8_t *lmc_mark;
-    uint8_t *opp_end;          /* one past the opposite table's block */
+    uint8_t *lmc_top;          /* one past the left-most corners' block */
+    uint8_t *o24_top;          /* one past the 24-bit opposites' block */
+    uint8_t *opp_top;          /* one past the 32-bit opposites' block */
+    /* after ld_eb_pack, without seams: work memory from table_lo up to
+     * lmc_top holds the packed table's escapes and indices, then from
+     * table_top the border bytes */
+    uint8_t *table_lo, *table_top;
+    uint8_t packed;            /* words hold packed opposites (ld_pot) */
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -49,7 +58,8 @@ struct ld_eb {
     ld_bits sym_bits;
     ld_rabs start_faces;
     /* valence coding */
-    uint32_t *valences;
+    uint32_t *val32;           /* valences, fast mode */
+    uint8_t *valences;         /* lean: saturating at 255 (min(v, 7) is read) */
     uint8_t *ctx_symbols[LD_VALENCE_CONTEXTS];  /* 0..4, 5 = invalid */
     uint32_t ctx_count[LD_VALENCE_CONTEXTS];
     int active_ctx;
@@ -71,10 +81,71 @@ static int ld_eb_charge(struct ld_eb *e)
     return 1;
 }
 
-static void ld_set_opp(struct ld_eb *e, uint32_t a, uint32_t b)
+/* The opposites while the connectivity is decoded: 32-bit ids (fast) or
+ * 24-bit ids (lean, packed afterwards by ld_eb_pack). `lean` is a
+ * constant in the symbol loop's two instances, e->lean elsewhere. */
+static LD_FORCE_INLINE uint32_t ld_eb_opp(const struct ld_eb *e, uint32_t c, int lean)
 {
-    e->opp[a] = b;
-    e->opp[b] = a;
+    uint32_t o;
+    if (!lean)
+        return e->opp32[c];
+    o = ld_o24(e->o24, c);
+    return o == LD_O24_NONE ? LD_INV : o;
+}
+
+static LD_FORCE_INLINE int ld_has_opp(const struct ld_eb *e, uint32_t c, int lean)
+{
+    return lean ? ld_o24(e->o24, c) != LD_O24_NONE : e->opp32[c] != LD_INV;
+}
+
+static LD_FORCE_INLINE void ld_set_opp(struct ld_eb *e, uint32_t a, uint32_t b, int lean)
+{
+    if (lean) {
+        ld_o24_set(e->o24, a, b);
+        ld_o24_set(e->o24, b, a);
+    } else {
+        e->opp32[a] = b;
+        e->opp32[b] = a;
+    }
+}
+
+/* A new face has no opposites yet. */
+static LD_FORCE_INLINE void ld_eb_clear_face(struct ld_eb *e, uint32_t face, int lean)
+{
+    if (lean) {
+        memset(e->o24 + 9u * (size_t)face, 0xFF, 9);
+    } else {
+        uint32_t *fo = e->opp32 + 3u * face;
+        fo[0] = fo[1] = fo[2] = LD_INV;
+    }
+}
+
+static LD_FORCE_INLINE uint32_t ld_eb_swing_left(const struct ld_eb *e, uint32_t c, int lean)
+{
+    const uint32_t o = ld_eb_opp(e, ld_next_v(c), lean);
+    return o == LD_INV ? LD_INV : ld_next_v(o);
+}
+
+static LD_FORCE_INLINE uint32_t ld_eb_swing_right(const struct ld_eb *e, uint32_t c, int lean)
+{
+    const uint32_t o = ld_eb_opp(e, ld_prev_v(c), lean);
+    return o == LD_INV ? LD_INV : ld_prev_v(o);
+}
+
+/* Valences: 32-bit counters (fast) or bytes saturating at 255 (lean). */
+static LD_FORCE_INLINE void ld_valence_add(struct ld_eb *e, uint32_t v, uint32_t n, int lean)
+{
+    if (lean) {
+        const uint32_t x = e->valences[v] + n;
+        e->valences[v] = (uint8_t)(x > 255u ? 255u : x);
+    } else {
+        e->val32[v] += n;
+    }
+}
+
+static LD_FORCE_INLINE uint32_t ld_valence(const struct ld_eb *e, uint32_t v, int lean)
+{
+    return lean ? e->valences[v] : e->val32[v];
 }
 
 /* ---- header and split events ----------------------------------------------- */
@@ -159,12 +230,15 @@ static lumo_status ld_ctx_symbols(ld_dec *d, uint32_t n, uint8_t **out)
 
 static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 {
+    const size_t vsize = e->lean ? 1u : sizeof(uint32_t);
+    void *val = ld_tmp(&d->mem, e->max_vertices + 3u, vsize);
     unsigned i;
     lumo_status st;
-    e->valences = ld_tmp(&d->mem, e->max_vertices + 3u, sizeof(uint32_t));
-    if (!e->valences)
+    if (!val)
         return LUMO_ERR_NOMEM;
-    memset(e->valences, 0, ((size_t)e->max_vertices + 3u) * sizeof(uint32_t));
+    memset(val, 0, ((size_t)e->max_vertices + 3u) * vsize);
+    e->valences = val;
+    e->val32 = val;
     e->active_ctx = -1;
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         uint32_t n;
@@ -185,7 +259,7 @@ static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 
 /* ---- traversal symbols ------------------------------------------------------- */
 
-static uint32_t ld_eb_symbol(struct ld_eb *e)
+static LD_FORCE_INLINE uint32_t ld_eb_symbol(struct ld_eb *e)
 {
     static const uint8_t to_topology[6] = {LD_TOPO_C, LD_TOPO_S, LD_TOPO_L, LD_TOPO_R, LD_TOPO_E,
                                            LD_TOPO_INVALID};
@@ -215,30 +289,33 @@ static uint32_t ld_eb_symbol(struct ld_eb *e)
 /* `corner` is always the first corner of the face just decoded (every
  * symbol makes its new face the active one), so its next and previous
  * corners are corner + 1 and corner + 2. */
-static void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner)
+static LD_FORCE_INLINE void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner, int lean)
 {
     static const uint8_t ctx_of_valence[8] = {0, 0, 0, 1, 2, 3, 4, 5};  /* clamp to 2..7, - 2 */
-    uint32_t *val = e->valences, next, prev, v;
+    uint32_t next, prev, v;
     next = e->c2v[corner + 1u];
     prev = e->c2v[corner + 2u];
     switch (e->last_symbol) {
     case LD_TOPO_C:
     case LD_TOPO_S:
-        val[next] += 1; val[prev] += 1;
+        ld_valence_add(e, next, 1, lean); ld_valence_add(e, prev, 1, lean);
         break;
     case LD_TOPO_R:
-        val[e->c2v[corner]] += 1; val[next] += 1; val[prev] += 2;
+        ld_valence_add(e, e->c2v[corner], 1, lean);
+        ld_valence_add(e, next, 1, lean); ld_valence_add(e, prev, 2, lean);
         break;
     case LD_TOPO_L:
-        val[e->c2v[corner]] += 1; val[next] += 2; val[prev] += 1;
+        ld_valence_add(e, e->c2v[corner], 1, lean);
+        ld_valence_add(e, next, 2, lean); ld_valence_add(e, prev, 1, lean);
         break;
     case LD_TOPO_E:
-        val[e->c2v[corner]] += 2; val[next] += 2; val[prev] += 2;
+        ld_valence_add(e, e->c2v[corner], 2, lean);
+        ld_valence_add(e, next, 2, lean); ld_valence_add(e, prev, 2, lean);
         break;
     default:
         break;
     }
-    v = val[next];
+    v = ld_valence(e, next, lean);
     e->active_ctx = ctx_of_valence[v > 7u ? 7u : v];
 }
 
@@ -285,7 +362,8 @@ static int ld_valid_vertex(const struct ld_eb *e, uint32_t v)
     return v < e->num_vertices;
 }
 
-static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
+static LD_FORCE_INLINE lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face,
+                                              int lean)
 {
     uint32_t a, b, x, corner = 3u * face, ap, bn;
     if (s->top == 0)
@@ -295,10 +373,10 @@ static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
     if (!ld_valid_vertex(e, x))
         return LUMO_ERR_CORRUPT;
     b = ld_next(e->lmc[x]);
-    if (a == b || b == LD_INV || e->opp[a] != LD_INV || e->opp[b] != LD_INV)
+    if (a == b || b == LD_INV || ld_has_opp(e, a, lean) || ld_has_opp(e, b, lean))
         return LUMO_ERR_CORRUPT;
-    ld_set_opp(e, a, corner + 1u);
-    ld_set_opp(e, b, corner + 2u);
+    ld_set_opp(e, a, corner + 1u, lean);
+    ld_set_opp(e, b, corner + 2u, lean);
     ap = e->c2v[ld_prev_v(a)];
     bn = e->c2v[ld_next_v(b)];
     if (x == ap || x == bn || !ld_valid_vertex(e, ap))
@@ -313,18 +391,19 @@ static lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, uint32_t face)
     return LUMO_OK;
 }
 
-static lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s, uint32_t face, int right)
+static LD_FORCE_INLINE lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s, uint32_t face,
+                                               int right, int lean)
 {
     uint32_t a, corner = 3u * face, oc, cl, cr, nv, vr;
     if (s->top == 0)
         return LUMO_ERR_CORRUPT;
     a = s->stack[s->top - 1];
-    if (e->opp[a] != LD_INV)
+    if (ld_has_opp(e, a, lean))
         return LUMO_ERR_CORRUPT;
     oc = right ? corner + 2u : corner + 1u;
     cl = right ? corner + 1u : corner;
     cr = right ? corner : corner + 2u;
-    ld_set_opp(e, oc, a);
+    ld_set_opp(e, oc, a, lean);
     if (e->num_vertices >= e->max_vertices)
         return LUMO_ERR_CORRUPT;
     nv = ld_eb_new_vertex(e);
@@ -340,7 +419,8 @@ static lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s, uint32_t face, 
     return LUMO_OK;
 }
 
-static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, uint32_t symbol_id)
+static LD_FORCE_INLINE lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face,
+                                              uint32_t symbol_id, int lean)
 {
     uint32_t a, b, corner = 3u * face, vp, vbp, cn, vn, first, split;
     if (s->top == 0)
@@ -352,10 +432,10 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
     if (s->top == 0)
         return LUMO_ERR_CORRUPT;
     a = s->stack[s->top - 1];
-    if (a == b || e->opp[a] != LD_INV || e->opp[b] != LD_INV)
+    if (a == b || ld_has_opp(e, a, lean) || ld_has_opp(e, b, lean))
         return LUMO_ERR_CORRUPT;
-    ld_set_opp(e, a, corner + 2u);
-    ld_set_opp(e, b, corner + 1u);
+    ld_set_opp(e, a, corner + 2u, lean);
+    ld_set_opp(e, b, corner + 1u, lean);
     vp = e->c2v[ld_prev_v(a)];
     e->c2v[corner] = vp;
     e->c2v[corner + 1u] = e->c2v[ld_next_v(a)];
@@ -367,14 +447,14 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
     e->c2v[corner + 2u] = vbp;
     e->lmc[vbp] = corner + 2u;
     if (e->valence)
-        e->valences[vp] += e->valences[vn];
+        ld_valence_add(e, vp, ld_valence(e, vn, lean), lean);
     e->lmc[vp] = e->lmc[vn];
     first = cn;
     while (cn != LD_INV) {
         if (!ld_eb_charge(e))
             return LUMO_ERR_LIMIT;
         e->c2v[cn] = vp;
-        cn = ld_swing_left(&e->ct, cn);
+        cn = ld_eb_swing_left(e, cn, lean);
         if (cn == first)
             return LUMO_ERR_CORRUPT;
     }
@@ -388,7 +468,7 @@ static lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, uint32_t face, u
     return LUMO_OK;
 }
 
-static lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face)
+static LD_FORCE_INLINE lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face)
 {
     uint32_t corner = 3u * face, v;
     if (e->num_vertices + 3u > e->max_vertices)
@@ -412,8 +492,8 @@ static lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face)
 
 /* Splits whose source is the current symbol schedule an active corner for
  * the S symbol that will consume it. */
-static lumo_status ld_eb_check_split(struct ld_eb *e, ld_eb_state *s, uint32_t num_symbols,
-                                     uint32_t symbol_id)
+static LD_FORCE_INLINE lumo_status ld_eb_check_split(struct ld_eb *e, ld_eb_state *s,
+                                                    uint32_t num_symbols, uint32_t symbol_id)
 {
     const uint32_t enc_id = num_symbols - symbol_id - 1u;
     while (e->num_splits) {
@@ -452,13 +532,14 @@ static lumo_status ld_eb_start_faces(struct ld_eb *e, ld_eb_state *s)
         c = ld_next(e->lmc[vx]);
         if (corner == b || corner == c || b == c || b == LD_INV || c == LD_INV)
             return LUMO_ERR_CORRUPT;
-        if (e->opp[corner] != LD_INV || e->opp[b] != LD_INV || e->opp[c] != LD_INV)
+        if (ld_has_opp(e, corner, e->lean) || ld_has_opp(e, b, e->lean) ||
+            ld_has_opp(e, c, e->lean))
             return LUMO_ERR_CORRUPT;
         vp = e->c2v[ld_next(c)];
         nc = 3u * s->faces++;
-        ld_set_opp(e, nc, corner);
-        ld_set_opp(e, nc + 1u, b);
-        ld_set_opp(e, nc + 2u, c);
+        ld_set_opp(e, nc, corner, e->lean);
+        ld_set_opp(e, nc + 1u, b, e->lean);
+        ld_set_opp(e, nc + 2u, c, e->lean);
         e->c2v[nc] = vx;
         e->c2v[nc + 1u] = vp;
         e->c2v[nc + 2u] = vn;
@@ -495,15 +576,15 @@ static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_
                 return LUMO_ERR_CORRUPT;
             e->c2v[c] = iv;
             if (left) {
-                c = ld_swing_left(&e->ct, c);
+                c = ld_eb_swing_left(e, c, e->lean);
                 if (c == LD_INV) {
-                    c = ld_swing_right(&e->ct, start);
+                    c = ld_eb_swing_right(e, start, e->lean);
                     left = 0;
                 } else if (c == start) {
                     c = LD_INV;
                 }
             } else {
-                c = ld_swing_right(&e->ct, c);
+                c = ld_eb_swing_right(e, c, e->lean);
             }
         }
         e->lmc[iv] = e->lmc[src];
@@ -514,12 +595,49 @@ static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_
     return LUMO_OK;
 }
 
+/* The symbol loop, instantiated for each opposite store. */
+static LD_FORCE_INLINE lumo_status ld_eb_symbols(struct ld_eb *e, ld_eb_state *s,
+                                                uint32_t num_symbols, int lean)
+{
+    uint32_t id;
+    lumo_status st = LUMO_OK;
+    for (id = 0; id < num_symbols && !st; ++id) {
+        uint32_t face = s->faces++, sym = ld_eb_symbol(e);
+        int split = 0;
+        ld_eb_clear_face(e, face, lean);
+        switch (sym) {
+        case LD_TOPO_C: st = ld_eb_sym_c(e, s, face, lean); break;
+        case LD_TOPO_R:
+        case LD_TOPO_L: st = ld_eb_sym_rl(e, s, face, sym == LD_TOPO_R, lean); split = 1; break;
+        case LD_TOPO_S: st = ld_eb_sym_s(e, s, face, id, lean); break;
+        case LD_TOPO_E: st = ld_eb_sym_e(e, s, face); split = 1; break;
+        default: st = LUMO_ERR_CORRUPT; break;
+        }
+        if (st)
+            break;
+        if (e->valence)
+            ld_eb_new_active_corner(e, 3u * face, lean);
+        if (split)
+            st = ld_eb_check_split(e, s, num_symbols, id);
+    }
+    return st;
+}
+
+static lumo_status ld_eb_symbols_fast(struct ld_eb *e, ld_eb_state *s, uint32_t n)
+{
+    return ld_eb_symbols(e, s, n, 0);
+}
+
+static lumo_status ld_eb_symbols_lean(struct ld_eb *e, ld_eb_state *s, uint32_t n)
+{
+    return ld_eb_symbols(e, s, n, 1);
+}
+
 static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbols,
                                   uint32_t num_split_symbols)
 {
     ld_eb_state s;
-    uint32_t id;
-    lumo_status st = LUMO_OK;
+    lumo_status st;
     size_t cap;
     memset(&s, 0, sizeof s);
     if (e->num_splits) {
@@ -543,26 +661,7 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
      * when the symbols are done */
     s.stack = ld_free_space(&d->mem, &cap);
     s.cap = cap > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)cap;
-    for (id = 0; id < num_symbols && !st; ++id) {
-        uint32_t face = s.faces++, sym = ld_eb_symbol(e);
-        int split = 0;
-        uint32_t *fo = e->opp + 3u * face;
-        fo[0] = fo[1] = fo[2] = LD_INV;
-        switch (sym) {
-        case LD_TOPO_C: st = ld_eb_sym_c(e, &s, face); break;
-        case LD_TOPO_R:
-        case LD_TOPO_L: st = ld_eb_sym_rl(e, &s, face, sym == LD_TOPO_R); split = 1; break;
-        case LD_TOPO_S: st = ld_eb_sym_s(e, &s, face, id); break;
-        case LD_TOPO_E: st = ld_eb_sym_e(e, &s, face); split = 1; break;
-        default: st = LUMO_ERR_CORRUPT; break;
-        }
-        if (st)
-            break;
-        if (e->valence)
-            ld_eb_new_active_corner(e, 3u * face);
-        if (split)
-            st = ld_eb_check_split(e, &s, num_symbols, id);
-    }
+    st = e->lean ? ld_eb_symbols_lean(e, &s, num_symbols) : ld_eb_symbols_fast(e, &s, num_symbols);
     ld_free_used(&d->mem, (size_t)s.max_top * sizeof(uint32_t));
     if (st || (st = ld_eb_start_faces(e, &s)))
         return st;
@@ -573,14 +672,14 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
 
 static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
 {
-    uint32_t o = e->opp[c];
+    uint32_t o = ld_opp(&e->ct, c);
     a->seam[c] = 1;
-    a->vseam[e->c2v[ld_next(c)]] = 1;
-    a->vseam[e->c2v[ld_prev(c)]] = 1;
+    a->vseam[ld_vert(&e->ct, ld_next(c))] = 1;
+    a->vseam[ld_vert(&e->ct, ld_prev(c))] = 1;
     if (o != LD_INV) {
         a->seam[o] = 1;
-        a->vseam[e->c2v[ld_next(o)]] = 1;
-        a->vseam[e->c2v[ld_prev(o)]] = 1;
+        a->vseam[ld_vert(&e->ct, ld_next(o))] = 1;
+        a->vseam[ld_vert(&e->ct, ld_prev(o))] = 1;
     }
 }
 
@@ -590,7 +689,7 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
     for (f = 0; f < e->num_faces; ++f) {
         const uint32_t c0 = 3u * f, cs[3] = {c0, c0 + 1u, c0 + 2u};
         for (k = 0; k < 3; ++k) {
-            uint32_t o = e->opp[cs[k]];
+            uint32_t o = ld_opp(&e->ct, cs[k]);
             if (o == LD_INV) {
                 for (i = 0; i < e->num_attr_data; ++i)
                     ld_add_seam(e, &e->ad[i], cs[k]);
@@ -618,7 +717,9 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
 {
     uint32_t v, n = 0, live = 0;
     a->ct.c2v = a->c2v;
-    a->ct.opp = e->opp;
+    a->ct.opp32 = e->ct.opp32;
+    a->ct.opp = e->ct.opp;
+    a->ct.vmask = 0xFFFFFFFFu;
     a->ct.seam = a->seam;
     a->ct.lmc = a->lmc;
     a->ct.num_corners = e->num_corners;
@@ -666,26 +767,83 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
 }
 
 /* Without attribute seams the left-most corners serve only the traversal's
- * border test: keep that as one byte per vertex and release the 4-byte
- * table before the attributes. The byte array takes the top of the table's
- * block; filled from the last vertex down, each byte lands above every
- * entry still to be read (byte v at >= 3n + v > 4v). */
-static lumo_status ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
+ * border test: keep that as one byte per vertex in the top of the table's
+ * block (filled from the last vertex down, each byte lands above every
+ * entry still to be read: byte v at >= 3n + v > 4v). */
+static LD_FORCE_INLINE void ld_eb_border_fill(const struct ld_eb *e, uint8_t *border, int lean)
 {
-    const uint32_t *lmc = e->lmc, *opp = e->opp, n = e->num_vertices;
-    uint8_t *border;
+    const uint32_t *lmc = e->lmc;
     uint32_t v;
-    ld_tmp_release(&d->mem, e->lmc_mark);
-    border = ld_tmp(&d->mem, n, 1);  /* fits: the block held 4(n + 3) */
-    if (!border)
-        return LUMO_ERR_NOMEM;
-    for (v = n; v-- > 0;) {
+    for (v = e->num_vertices; v-- > 0;) {
         const uint32_t lc = lmc[v];
-        border[v] = (uint8_t)(lc == LD_INV || opp[ld_next_v(lc)] == LD_INV);
+        border[v] = (uint8_t)(lc == LD_INV || !ld_has_opp(e, ld_next_v(lc), lean));
     }
+}
+
+static uint8_t *ld_eb_border(struct ld_eb *e)
+{
+    uint8_t *border = e->lmc_top - (((size_t)e->num_vertices + 7u) & ~(size_t)7u);
+    if (e->lean)
+        ld_eb_border_fill(e, border, 1);
+    else
+        ld_eb_border_fill(e, border, 0);
     e->ct.border = border;
     e->ct.lmc = NULL;
     e->lmc = NULL;
+    return border;
+}
+
+/* Fast mode: the left-most corners' block is released, the border bytes
+ * stay in its top. */
+static lumo_status ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
+{
+    const uint8_t *border = ld_eb_border(e);
+    ld_tmp_release(&d->mem, e->lmc_top);
+    return ld_tmp(&d->mem, e->ct.num_vertices, 1) == border ? LUMO_OK : LUMO_ERR_NOMEM;
+}
+
+/* Move `bytes` at src up to end at `top` (8-aligned); returns the start. */
+static uint8_t *ld_move_up(uint8_t *top, const void *src, size_t bytes)
+{
+    uint8_t *dst = top - ((bytes + 7u) & ~(size_t)7u);
+    memmove(dst, src, bytes);
+    return dst;
+}
+
+/* Pack the opposites into the corner table's words (ld_pot) and shrink
+ * the work memory to the packed table. Work memory grows down: before,
+ * [left-most corners][24-bit opposites][coarse][fine]; after, without
+ * seams [border bytes][escapes][coarse][fine], with seams
+ * [left-most corners][escapes][coarse][fine]. Everything moves up. */
+static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
+{
+    const uint32_t nc = e->num_corners;
+    const unsigned vshift = ld_pot_vshift(e->num_vertices);
+    const size_t cb = (((size_t)nc + 1023u) >> LD_POT_COARSE) * 4u;
+    const size_t fb = (((size_t)nc + 15u) >> LD_POT_BLOCK) * 2u;
+    ld_pot *t = &e->ct.opp;
+    uint8_t *top = e->o24_top;
+    uint32_t *coarse;
+    uint16_t *fine;
+    size_t esc;
+    if (vshift > 25u)  /* 7 bits at least for the packed field */
+        return LUMO_ERR_LIMIT;
+    if (!e->num_attr_data)
+        top = ld_eb_border(e);
+    coarse = ld_tmp(&d->mem, cb, 1);
+    fine = ld_tmp(&d->mem, fb, 1);
+    if (!coarse || !fine)
+        return LUMO_ERR_NOMEM;
+    ld_pot_build(t, e->c2v, nc, vshift, e->o24, fine, coarse, &esc);
+    e->ct.vmask = 0xFFFFFFFFu >> (32u - vshift);
+    e->packed = 1;
+    e->o24 = NULL;
+    e->table_top = top;
+    t->esc = ld_move_up(top, t->esc, esc);
+    t->coarse = (const uint32_t *)(const void *)ld_move_up((uint8_t *)(uintptr_t)t->esc, coarse, cb);
+    t->fine = (const uint16_t *)(const void *)ld_move_up((uint8_t *)(uintptr_t)t->coarse, fine, fb);
+    e->table_lo = (uint8_t *)(uintptr_t)t->fine;
+    ld_tmp_release(&d->mem, e->table_lo);
     return LUMO_OK;
 }
 
@@ -697,7 +855,7 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
     uint32_t *pts = d->faces;
     if (e->num_attr_data == 0) {  /* pts == e->c2v */
         d->num_points = e->num_conn_vertices;
-        return ld_eb_drop_lmc(d, e);
+        return LUMO_OK;
     }
     memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
     for (v = 0; v < e->num_vertices; ++v) {
@@ -709,7 +867,7 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
             const ld_attr_data *a = &e->ad[i];
             uint32_t vid, act;
             int found = 0;
-            if (!a->vseam[e->c2v[c]])
+            if (!a->vseam[ld_vert(&e->ct, c)])
                 continue;
             vid = a->c2v[c];
             act = ld_swing_right(&e->ct, c);
@@ -768,21 +926,30 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     /* Without attribute seams every vertex is a point: the corner table's
      * vertex map is the output face array itself. */
     e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
-    e->opp_end = ld_tmp_mark(&d->mem);
-    e->opp = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+    if (!e->lean) {
+        e->opp_top = ld_tmp_mark(&d->mem);
+        e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+    }
     /* hole flags are read only to assign points along seams */
     e->hole = e->num_attr_data ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
-    e->lmc_mark = ld_tmp_mark(&d->mem);  /* lmc on top: ld_eb_drop_lmc */
+    e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
-    if (!e->c2v || !e->opp || !e->lmc || (!e->hole && e->num_attr_data) || !d->faces)
+    if (e->lean) {
+        e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
+        e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
+    }
+    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && e->num_attr_data) ||
+        !d->faces)
         return LUMO_ERR_NOMEM;
-    /* No fill of c2v and opp: every symbol writes the three vertices of
-     * its face and clears its three opposites before anything reads them
-     * (corners reach the decoder only from faces already decoded). */
+    /* No fill of c2v and the opposites: every symbol writes the three
+     * vertices of its face and clears its three opposites before anything
+     * reads them (corners reach the decoder only from faces already
+     * decoded). */
     if (e->hole)
         memset(e->hole, 1, (size_t)e->max_vertices + 3u);
     e->ct.c2v = e->c2v;
-    e->ct.opp = e->opp;
+    e->ct.opp32 = e->opp32;
+    e->ct.vmask = 0xFFFFFFFFu;
     e->ct.seam = NULL;
     e->ct.lmc = e->lmc;
     e->ct.num_corners = e->num_corners;
@@ -827,7 +994,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
         return LUMO_ERR_UNSUPPORTED;  /* predictive EdgeBreaker: pre-2.2 only */
     if ((st = ld_varint32(&d->buf, &verts)) || (st = ld_varint32(&d->buf, &faces)))
         return st;
-    if (faces > LD_MAX_FACES)
+    if (faces > LD_MAX_EB_FACES)
         return LUMO_ERR_LIMIT;
     if ((uint64_t)verts > (uint64_t)faces * 3u)
         return LUMO_ERR_CORRUPT;
@@ -847,6 +1014,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     memset(e, 0, sizeof *e);
     d->eb = e;
     d->connectivity = type;
+    e->lean = d->lean;
     e->valence = type == 2;
     e->num_faces = faces;
     e->num_attr_data = nad;
@@ -873,6 +1041,12 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     ld_tmp_release(&d->mem, mark);
     e->valences = NULL;
     e->ct.num_vertices = e->num_vertices;
+    if (e->lean)
+        st = ld_eb_pack(d, e);
+    else if (!nad)
+        st = ld_eb_drop_lmc(d, e);
+    if (st)
+        return st;
     d->num_faces = faces;
     if ((st = ld_eb_alloc_attr_data(d, e)))
         return st;
@@ -946,6 +1120,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
+    seq->faces_mask = e->num_attr_data ? 0xFFFFFFFFu : e->ct.vmask;
     seq->ct = ct;
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
@@ -974,35 +1149,60 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 }
 
 /* The last attributes decoder's only attribute: after its traversal the
- * border flags are dead, and a parallelogram prediction reads of the
+ * border bytes are dead, and a parallelogram prediction reads of the
  * corner table only the opposite of each entry's corner. Move the entry
  * corners (or, for `opposites`, their opposite corners) up over the dead
- * blocks and release those, so neither the flags nor the 12 B/face
- * opposite table is live next to the values. Only for the mesh's own
- * table (no seams: the point map is the vertex map). */
+ * blocks and release those, so neither the border bytes nor (for
+ * `opposites`) the packed table's escapes stay next to the values. Only
+ * for the mesh's own table (no seams: the point map is the vertex map). */
 void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
 {
     struct ld_eb *e = d->eb;
     uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
     const uint32_t n = seq->num_entries;
-    const size_t bytes = ((size_t)n * sizeof(uint32_t) + 7u) & ~(size_t)7u;
-    uint8_t *dst;
-    if (!e || e->num_attr_data || seq->ct != &e->ct || !e->opp || !e->ct.border)
+    uint8_t *top;
+    if (!e || e->num_attr_data || seq->ct != &e->ct || !(e->packed || e->opp32) ||
+        !e->ct.border)
         return;
-    if (opposites)
-        for (i = 0; i < n; ++i)
-            v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp[v2c[i]];
-    /* the opposite table's block, and just below it the border flags */
-    dst = (opposites ? e->opp_end : (uint8_t *)e->opp) - bytes;
-    memmove(dst, v2c, (size_t)n * sizeof(uint32_t));
-    seq->value_to_corner = (const uint32_t *)(const void *)dst;
+    for (i = 0; opposites && e->opp32 && i < n; ++i)
+        v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp32[v2c[i]];
+    for (i = 0; opposites && e->packed && i < n; ++i)
+        v2c[i] = v2c[i] == LD_INV ? LD_INV : ld_pot_opp(&e->ct.opp, v2c[i]);
+    if (!e->packed) {  /* fast: [opposites][border bytes] */
+        top = opposites ? e->opp_top : (uint8_t *)e->opp32;
+        if (opposites)
+            e->opp32 = NULL;
+        e->ct.opp32 = e->opp32;
+    } else if (opposites) {
+        ld_pot_strip(e->c2v, e->num_corners, e->ct.opp.vshift);
+        e->packed = 0;
+        memset(&e->ct.opp, 0, sizeof e->ct.opp);
+        top = e->lmc_top;
+    } else {  /* the packed table moves up over the border bytes */
+        ld_pot *t = &e->ct.opp;
+        const size_t shift = (size_t)(e->lmc_top - e->table_top);
+        memmove(e->table_lo + shift, e->table_lo, (size_t)(e->table_top - e->table_lo));
+        t->esc += shift;
+        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
+        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+        e->table_lo += shift;
+        e->table_top = e->lmc_top;
+        top = e->table_lo;
+    }
+    seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(top, v2c, (size_t)n * 4u);
     seq->opposites = (uint8_t)(opposites != 0);
     e->ct.border = NULL;
-    if (opposites) {
-        e->opp = NULL;
-        e->ct.opp = NULL;
-    }
-    ld_tmp_release(&d->mem, dst);
+    ld_tmp_release(&d->mem, (uint8_t *)(uintptr_t)seq->value_to_corner);
+}
+
+/* The end of a mesh decode: the face array holds vertex ids alone. */
+void ld_eb_finish(ld_dec *d)
+{
+    struct ld_eb *e = d->eb;
+    if (e && e->packed && !e->num_attr_data)
+        ld_pot_strip(e->c2v, e->num_corners, e->ct.opp.vshift);
+    if (e)
+        e->packed = 0;
 }
 
 /* ---- the need before decoding (lumo_draco_arena_need) ----------------------- *
@@ -1072,7 +1272,7 @@ static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
     }
     if (!e->valence)
         return LUMO_OK;
-    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
+    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, e->lean ? 1u : sizeof(uint32_t));
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         if ((st = ld_varint32(b, &n)))
             return st;
@@ -1104,10 +1304,27 @@ static void ld_eb_need_traverse(ld_need *k, const ld_eb_need *e, uint32_t num_sp
                                          max_e < e->symbols ? max_e : e->symbols) * 4u);
 }
 
-lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e)
+/* ld_eb_pack: the indices below the 24-bit table, then escapes and
+ * indices moved up to end at work level `top`. How many corners escape is
+ * known only after decoding: none at best, every corner at worst. */
+static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
+{
+    const uint64_t corners = 3u * (uint64_t)e->faces;
+    const unsigned vshift = ld_pot_vshift(ld_eb_need_vertices(e));
+    const unsigned lshift = vshift > 25u ? 0u : 26u - vshift;
+    const size_t ew = 16u + lshift >= ld_pot_vshift((uint32_t)corners) ? 2u : 3u;
+    const size_t cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
+    const size_t fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
+    ld_need_tmp(k, cb, 1);
+    ld_need_tmp(k, fb, 1);
+    e->w_table = ld_need_bytes((size_t)ld_need_pick(k, 0u, corners), ew) + cb + fb;
+    ld_need_release(k, top + e->w_table);
+}
+
+lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean)
 {
     uint32_t verts, faces, symbols, splits, num_splits, i;
-    size_t mark, lmc_mark;
+    size_t mark, o24_top;
     uint8_t type, nad;
     lumo_status st;
     if ((st = ld_u8(b, &type)))
@@ -1116,7 +1333,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e)
         return LUMO_ERR_UNSUPPORTED;
     if ((st = ld_varint32(b, &verts)) || (st = ld_varint32(b, &faces)))
         return st;
-    if (faces > LD_MAX_FACES)
+    if (faces > LD_MAX_EB_FACES)
         return LUMO_ERR_LIMIT;
     if ((uint64_t)verts > (uint64_t)faces * 3u)
         return LUMO_ERR_CORRUPT;
@@ -1132,6 +1349,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e)
         return LUMO_ERR_UNSUPPORTED;
     memset(e, 0, sizeof *e);
     e->valence = type == 2;
+    e->lean = (uint8_t)lean;
     e->faces = faces;
     e->verts = verts;
     e->splits = splits;
@@ -1142,28 +1360,34 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e)
     ld_need_out(k, 3u * (size_t)faces, sizeof(uint32_t));
     if (nad)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-    e->w_opp_end = k->work;
-    ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
+    e->w_opp_top = k->work;
+    if (!lean)
+        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
     if (nad)
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
-    lmc_mark = k->work;
+    e->w_lmc_top = k->work;
     ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
+    o24_top = k->work;
+    if (lean)
+        ld_need_tmp(k, 9u * (size_t)faces + 1u, 1);
     mark = k->work;
     if ((st = ld_eb_need_splits(b, k, e, &num_splits)) || (st = ld_eb_need_symbols(b, k, e)))
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
+    if (lean) {
+        ld_eb_need_pack(k, e, nad ? o24_top : e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1));
+    } else if (!nad) {  /* ld_eb_drop_lmc */
+        ld_need_release(k, e->w_lmc_top);
+        ld_need_tmp(k, ld_eb_need_vertices(e), 1);
+    }
     for (i = 0; i < nad; ++i) {  /* ld_eb_alloc_attr_data */
         ld_need_tmp(k, 3u * (size_t)faces, 1);
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
         ld_need_tmp(k, 3u * (size_t)faces + 1u, sizeof(uint32_t));
     }
-    if (nad == 0) {  /* ld_eb_drop_lmc */
-        ld_need_release(k, lmc_mark);
-        ld_need_tmp(k, ld_eb_need_vertices(e), 1);
-        e->table_live = 1;
-    }
+    e->table_live = nad == 0;
     return LUMO_OK;
 }
 
@@ -1271,9 +1495,11 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
 
 void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites)
 {
-    const size_t base = e->w_opp_end + (opposites ? 0u : ld_need_bytes(3u * (size_t)e->faces, 4u));
+    const size_t opp = ld_need_bytes(3u * (size_t)e->faces, 4u);
+    const size_t top = !e->lean ? e->w_opp_top + (opposites ? 0u : opp)
+                                : e->w_lmc_top + (opposites ? 0u : e->w_table);
     if (!e->table_live)
         return;
-    ld_need_release(k, base + ld_need_bytes(entries, sizeof(uint32_t)));
+    ld_need_release(k, top + ld_need_bytes(entries, sizeof(uint32_t)));
     e->table_live = 0;
 }

@@ -13,6 +13,7 @@
  *   draco_edgebreaker.c EdgeBreaker connectivity (standard and valence),
  *                       attribute seams, point assignment
  *   draco_traverse.c    attribute traversal orders (depth-first, degree)
+ *   draco_cornertable.c the packed opposite table (ld_pot)
  *   draco_kdtree.c      KD-tree point clouds
  *
  * The libdraco 1.5.5 source is the authority for every behaviour here; the
@@ -36,6 +37,9 @@
 
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)
+/* EdgeBreaker packs corner ids in 24 bits while it decodes (3F < 2^24 - 1,
+ * see ld_pot below). */
+#define LD_MAX_EB_FACES (0xFFFFFEu / 3u)
 #define LD_MAX_POINTS  (1u << 27)
 #define LD_MAX_DECODERS LUMO_DRACO_MAX_ATTRIBUTES
 
@@ -264,6 +268,7 @@ typedef struct ld_dec {
     lumo_draco_attribute *attrs;
     uint32_t num_attrs;
     struct ld_eb *eb;         /* EdgeBreaker state, NULL otherwise */
+    uint8_t lean;             /* LUMO_DRACO_LEAN */
     /* per attributes decoder: point sequence (entry order) */
     uint8_t num_decoders;
 } ld_dec;
@@ -271,7 +276,8 @@ typedef struct ld_dec {
 /* One attributes decoder's point sequence and value mapping. */
 typedef struct ld_seq {
     uint32_t num_entries;
-    const uint32_t *faces;            /* corner -> point (EdgeBreaker) */
+    const uint32_t *faces;            /* corner -> point (EdgeBreaker), */
+    uint32_t faces_mask;              /* ... its bits (& while packed) */
     uint32_t *point_to_value;         /* output map shared by the decoder's
                                          attributes; NULL = identity */
     /* mesh prediction data (EdgeBreaker only, else ct == NULL) */
@@ -355,13 +361,84 @@ int ld_pred_needs_opposites_only(const ld_pred *p);
 
 /* A view of a corner table: the mesh's own, or an attribute's (whose seam
  * edges have no opposite and whose vertices are split along seams). */
+/* The packed opposite table. EdgeBreaker needs every corner's vertex
+ * (the output face array) and its opposite corner at once; 32-bit
+ * opposites next to the faces would double the arena. So the opposites
+ * live in the spare high bits of the mesh's corner -> vertex words:
+ * word = vertex | field << vshift, and with x = corner XOR opposite:
+ *   bit 0 of field clear: x = field >> 1 (neighbouring faces: most corners);
+ *   field all ones:       no opposite (a border edge);
+ *   else, an escape:      bits 1..5 are the corner's rank among the escapes
+ *                         of its block of 16 corners, the bits above are
+ *                         the low part of x, and the escape entry
+ *                         (esc_width bytes, little-endian) its high part.
+ * Escape entries are stored in corner order: the entry of corner c is
+ * coarse[c >> 10] + fine[c >> 4] + rank. XOR keeps everything unsigned. */
+typedef struct ld_pot {
+    const uint32_t *words;     /* corner -> vertex | field << vshift */
+    const uint8_t *esc;        /* escape entries */
+    const uint16_t *fine;      /* escapes from a 1024-block to each 16-block */
+    const uint32_t *coarse;    /* escapes before each 1024-corner block */
+    uint32_t flag;             /* bit 0 of the field: 1u << vshift */
+    uint8_t vshift, lshift, esc_width;
+} ld_pot;
+#define LD_POT_RANK_BITS 5u
+#define LD_POT_BLOCK 4u          /* log2 corners per fine block */
+#define LD_POT_COARSE 10u        /* log2 corners per coarse block */
+
+/* The 24-bit opposite table EdgeBreaker decodes into (3 bytes per corner,
+ * little-endian, LD_O24_NONE: no opposite yet; one byte of padding after
+ * the last entry), packed into an ld_pot afterwards. */
+#define LD_O24_NONE 0xFFFFFFu
+static LD_FORCE_INLINE uint32_t ld_o24(const uint8_t *t, uint32_t c)
+{
+    const uint8_t *p = t + 3u * (size_t)c;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    uint32_t x;
+    memcpy(&x, p, 4);  /* the padding byte keeps the last read in bounds */
+    return x & 0xFFFFFFu;
+#else
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16;
+#endif
+}
+static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
+{
+    uint8_t *p = t + 3u * (size_t)c;
+    p[0] = (uint8_t)v;
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)(v >> 16);
+}
+/* Pack `o24` (num_corners entries) into the spare bits of `words` (vertex
+ * ids below 2^vshift, vshift <= 25), the escapes written over the start of
+ * `o24` in place; `fine` and `coarse` hold (num_corners + 15) / 16 and
+ * (num_corners + 1023) / 1024 entries. Sets *t; *esc_bytes: bytes of
+ * escapes at o24. */
+void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vshift, uint8_t *o24,
+                  uint16_t *fine, uint32_t *coarse, size_t *esc_bytes);
+/* Clear the packed bits: words hold the vertex ids alone again. */
+void ld_pot_strip(uint32_t *words, uint32_t num_corners, unsigned vshift);
+/* Bits of the vertex ids below n (at least 1). */
+unsigned ld_pot_vshift(uint32_t n);
+uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w);
+static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
+{
+    const uint32_t w = t->words[c];
+    if (w & t->flag)
+        return ld_pot_escape(t, c, w);
+    return c ^ (w >> (t->vshift + 1u));
+}
+
+/* A view of a corner table: the mesh's own, or an attribute's (whose seam
+ * edges have no opposite and whose vertices are split along seams). */
 typedef struct ld_ct {
-    const uint32_t *c2v;      /* corner -> vertex */
-    const uint32_t *opp;      /* corner -> opposite corner of the mesh */
+    const uint32_t *c2v;      /* corner -> vertex (& vmask) */
+    const uint32_t *opp32;    /* opposite corners of the mesh, or NULL: */
+    ld_pot opp;               /* ... packed (LUMO_DRACO_LEAN) */
     const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner
                                  has no swing left); NULL: ask lmc */
+    uint32_t vmask;           /* the vertex bits of a c2v word */
     uint32_t num_vertices;
     uint32_t num_corners;
 } ld_ct;
@@ -380,11 +457,11 @@ static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
 {
     if (c == LD_INV || (t->seam && t->seam[c]))
         return LD_INV;
-    return t->opp[c];
+    return t->opp32 ? t->opp32[c] : ld_pot_opp(&t->opp, c);
 }
 static inline uint32_t ld_vert(const ld_ct *t, uint32_t c)
 {
-    return c == LD_INV ? LD_INV : t->c2v[c];
+    return c == LD_INV ? LD_INV : t->c2v[c] & t->vmask;
 }
 /* Swings take a valid corner and may return LD_INV. */
 static inline uint32_t ld_swing_right(const ld_ct *t, uint32_t c)
@@ -414,9 +491,11 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
 #define LD_NEED_MAX_ATTR_DATA 16u
 typedef struct ld_eb_need {
     uint32_t faces, verts, splits, symbols, nad;
-    uint8_t valence;
-    size_t w_opp_end;          /* work below the opposite table's block */
-    uint8_t table_live;        /* opposites and border flags not released */
+    uint8_t valence, lean;
+    size_t w_opp_top;          /* work above the 32-bit opposites (fast) */
+    size_t w_lmc_top;          /* work above the left-most corners' block */
+    size_t w_table;            /* the packed table's escapes and indices */
+    uint8_t table_live;        /* packed table and border bytes not released */
     int8_t dec_att_data[LD_MAX_DECODERS];
     uint8_t dec_type[LD_MAX_DECODERS], dec_traversal[LD_MAX_DECODERS];
     uint8_t ad_used[LD_NEED_MAX_ATTR_DATA];
@@ -428,7 +507,7 @@ typedef struct ld_eb_need {
     uint32_t seam_ones[LD_NEED_MAX_ATTR_DATA];
 } ld_eb_need;
 #define LD_NEED_UNKNOWN 0xFFFFFFFFu
-lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e);
+lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean);
 lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder);
 /* One attributes decoder's sequence: sets s->entries and s->mesh. */
 void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s);
@@ -441,5 +520,6 @@ lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq 
                                             uint8_t *traversal, uint8_t *vertex_attr);
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq);
 void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites);
+void ld_eb_finish(ld_dec *d);
 
 #endif /* LUMO_DRACO_INTERNAL_H */

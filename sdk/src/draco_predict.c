@@ -337,14 +337,25 @@ static int32_t ld_value_of_vertex(const ld_pred *p, uint32_t v)
  * (swing left, then right from the start) is inlined on local copies of
  * the corner table: this is the hottest loop at -cl 9/10. */
 typedef struct ld_fan {
-    const uint32_t *c2v, *opp;
+    const uint32_t *c2v;
+    uint32_t vmask;
+    const uint32_t *opp32;    /* NULL: packed (LUMO_DRACO_LEAN) */
+    ld_pot opp;
+    int packed;               /* opp32 == NULL; the hot loops take it as a constant */
     const uint8_t *seam;
     const int32_t *v2v;
 } ld_fan;
 
-static inline uint32_t ld_fan_opp(const ld_fan *f, uint32_t c)
+static LD_FORCE_INLINE uint32_t ld_fan_opp(const ld_fan *f, uint32_t c, int packed)
 {
-    return (f->seam && f->seam[c]) ? LD_INV : f->opp[c];
+    if (f->seam && f->seam[c])
+        return LD_INV;
+    return packed ? ld_pot_opp(&f->opp, c) : f->opp32[c];
+}
+
+static LD_FORCE_INLINE uint32_t ld_fan_vert(const ld_fan *f, uint32_t c, int packed)
+{
+    return packed ? f->c2v[c] & f->vmask : f->c2v[c];
 }
 
 /* ComputeParallelogramPrediction: the vertex at `oci` (valid corner)
@@ -357,10 +368,12 @@ static inline uint32_t ld_fan_opp(const ld_fan *f, uint32_t c)
  * is all the prediction uses, so a fan walker passes its own corners and
  * needs no % 3. */
 static LD_FORCE_INLINE int ld_para(const ld_fan *f, uint32_t entry, uint32_t oci, uint32_t na,
-                                   uint32_t nb, const int32_t *data, unsigned k, int32_t *out)
+                                   uint32_t nb, const int32_t *data, unsigned k, int32_t *out,
+                                   int packed)
 {
-    const uint32_t eo = (uint32_t)f->v2v[f->c2v[oci]];
-    const uint32_t en = (uint32_t)f->v2v[f->c2v[na]], ep = (uint32_t)f->v2v[f->c2v[nb]];
+    const uint32_t eo = (uint32_t)f->v2v[ld_fan_vert(f, oci, packed)];
+    const uint32_t en = (uint32_t)f->v2v[ld_fan_vert(f, na, packed)];
+    const uint32_t ep = (uint32_t)f->v2v[ld_fan_vert(f, nb, packed)];
     uint32_t c;
     if (eo >= entry || en >= entry || ep >= entry)
         return 0;
@@ -381,28 +394,32 @@ static LD_FORCE_INLINE int ld_para(const ld_fan *f, uint32_t entry, uint32_t oci
 /* Across the edge opposite corner ci (nci, pci: its next and previous). */
 static LD_FORCE_INLINE int ld_fan_parallelogram(const ld_fan *f, uint32_t entry, uint32_t ci,
                                                 uint32_t nci, uint32_t pci, const int32_t *data,
-                                                unsigned k, int32_t *out)
+                                                unsigned k, int32_t *out, int packed)
 {
-    const uint32_t oci = ld_fan_opp(f, ci);
-    return oci != LD_INV && ld_para(f, entry, oci, nci, pci, data, k, out);
+    const uint32_t oci = ld_fan_opp(f, ci, packed);
+    return oci != LD_INV && ld_para(f, entry, oci, nci, pci, data, k, out, packed);
 }
 
 /* Entry i's parallelogram: across from its traversal corner, or, after
  * ld_eb_release_table, from the opposite corner kept in its place. */
 static LD_FORCE_INLINE int ld_entry_parallelogram(const ld_pred *p, const ld_fan *f, uint32_t i,
-                                                  const int32_t *data, unsigned k, int32_t *out)
+                                                  const int32_t *data, unsigned k, int32_t *out,
+                                                  int packed)
 {
     const uint32_t c = p->seq->value_to_corner[i];
-    if (p->seq->opposites)
-        return c != LD_INV && ld_para(f, i, c, ld_next_v(c), ld_prev_v(c), data, k, out);
-    return ld_fan_parallelogram(f, i, c, ld_next_v(c), ld_prev_v(c), data, k, out);
+    if (p->seq->opposites)  /* the table is gone, the faces plain again */
+        return c != LD_INV && ld_para(f, i, c, ld_next_v(c), ld_prev_v(c), data, k, out, 0);
+    return ld_fan_parallelogram(f, i, c, ld_next_v(c), ld_prev_v(c), data, k, out, packed);
 }
 
 static void ld_fan_init(ld_fan *f, const ld_pred *p, int seams)
 {
     const ld_ct *ct = p->seq->ct;
     f->c2v = ct->c2v;
+    f->vmask = ct->vmask;
+    f->opp32 = ct->opp32;
     f->opp = ct->opp;
+    f->packed = ct->opp32 == NULL;
     f->seam = seams ? ct->seam : NULL;
     f->v2v = p->seq->vertex_to_value;
 }
@@ -410,7 +427,7 @@ static void ld_fan_init(ld_fan *f, const ld_pred *p, int seams)
 /* The common case, three components with the wrap transform; `fast`:
  * zig-zag coded corrections and no seams, constants after inlining. */
 static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, uint32_t n,
-                                                  int fast)
+                                                  int fast, int packed)
 {
     const int32_t lo = p->min_value, hi = p->max_value;
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
@@ -427,7 +444,7 @@ static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, 
             dst[1] = ld_zigzag((uint32_t)dst[1]);
             dst[2] = ld_zigzag((uint32_t)dst[2]);
         }
-        if (i && !ld_entry_parallelogram(p, &f, i, v, 3u, pred))
+        if (i && !ld_entry_parallelogram(p, &f, i, v, 3u, pred, packed))
             pr = dst - 3;
         dst[0] = ld_wrap_value(pr[0], dst[0], lo, hi, dif);
         dst[1] = ld_wrap_value(pr[1], dst[1], lo, hi, dif);
@@ -437,10 +454,13 @@ static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, 
 
 static lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
 {
-    if (p->zigzag && !p->seq->ct->seam)
-        ld_parallelogram3_run(p, v, n, 1);
+    const int packed = p->seq->ct->opp32 == NULL;
+    if (p->zigzag && !p->seq->ct->seam && !packed)
+        ld_parallelogram3_run(p, v, n, 1, 0);
+    else if (p->zigzag && !p->seq->ct->seam)
+        ld_parallelogram3_run(p, v, n, 1, 1);
     else
-        ld_parallelogram3_run(p, v, n, 0);
+        ld_parallelogram3_run(p, v, n, 0, packed);
     return LUMO_OK;
 }
 
@@ -455,7 +475,7 @@ static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
     ld_original(p, zero, v, v);
     for (i = 1; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k;
-        if (ld_entry_parallelogram(p, &f, i, v, k, pred))
+        if (ld_entry_parallelogram(p, &f, i, v, k, pred, f.packed))
             ld_original(p, pred, dst, dst);
         else
             ld_original(p, dst - k, dst, dst);
@@ -468,7 +488,7 @@ static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
 static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t start,
                                                const int32_t *v, unsigned k, uint32_t limit,
                                                int32_t preds[][LUMO_DRACO_MAX_COMPONENTS],
-                                               int *count)
+                                               int *count, int packed)
 {
     uint32_t corner = start, guard = 0, o;
     int first_pass = 1;
@@ -477,21 +497,21 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
         const uint32_t nc = ld_next_v(corner), pc = ld_prev_v(corner);
         if (++guard > limit)
             return LUMO_ERR_LIMIT;
-        if (ld_fan_parallelogram(f, i, corner, nc, pc, v, k, preds[*count]) &&
+        if (ld_fan_parallelogram(f, i, corner, nc, pc, v, k, preds[*count], packed) &&
             ++*count == LD_MAX_PARALLELOGRAMS)
             break;
         if (first_pass) {  /* swing left: next(opp(next(c))) */
-            o = ld_fan_opp(f, nc);
+            o = ld_fan_opp(f, nc, packed);
             corner = o == LD_INV ? LD_INV : ld_next_v(o);
         } else {           /* swing right: prev(opp(prev(c))) */
-            o = ld_fan_opp(f, pc);
+            o = ld_fan_opp(f, pc, packed);
             corner = o == LD_INV ? LD_INV : ld_prev_v(o);
         }
         if (corner == start)
             break;
         if (corner == LD_INV && first_pass) {
             first_pass = 0;
-            o = ld_fan_opp(f, ld_prev_v(start));
+            o = ld_fan_opp(f, ld_prev_v(start), packed);
             corner = o == LD_INV ? LD_INV : ld_prev_v(o);
         }
     }
@@ -500,7 +520,8 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
 
 /* `fast`: three components, the wrap transform and no seams, constants
  * after inlining (positions at -cl 9/10); otherwise any attribute. */
-static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t n, int fast)
+static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t n, int fast,
+                                                int packed)
 {
     int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
     int32_t multi[LUMO_DRACO_MAX_COMPONENTS];
@@ -535,7 +556,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
             }
         }
         if (i > 0) {
-            if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count)))
+            if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count, packed)))
                 return st;
             for (j = 0; j < count; ++j) {
                 const int ctx = count - 1;
@@ -565,9 +586,10 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
 
 static lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
 {
+    const int packed = p->seq->ct->opp32 == NULL;
     if (p->comps == 3 && p->transform == LD_XFORM_WRAP && !p->seq->ct->seam)
-        return ld_multi_run(p, v, n, 1);
-    return ld_multi_run(p, v, n, 0);
+        return packed ? ld_multi_run(p, v, n, 1, 1) : ld_multi_run(p, v, n, 1, 0);
+    return ld_multi_run(p, v, n, 0, packed);
 }
 
 static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
@@ -575,7 +597,9 @@ static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
     uint32_t point, c;
     if (entry < 0 || (uint32_t)entry >= p->seq->num_entries)
         return LUMO_ERR_CORRUPT;
-    point = p->seq->faces ? p->seq->faces[p->seq->value_to_corner[entry]] : (uint32_t)entry;
+    point = p->seq->faces
+                ? p->seq->faces[p->seq->value_to_corner[entry]] & p->seq->faces_mask
+                : (uint32_t)entry;
     for (c = 0; c < 3; ++c)
         out[c] = lumo_draco_value(p->pos, point, c);
     return LUMO_OK;

@@ -42,18 +42,22 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 }
 
 /* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
- * (the stores into the order arrays would otherwise force reloads). */
-static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
+ * (the stores into the order arrays would otherwise force reloads);
+ * `packed`: a constant, the opposites are packed (LUMO_DRACO_LEAN). */
+static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack,
+                                          int packed)
 {
     const ld_ct *ct = w->ct;
-    const uint32_t *c2v = ct->c2v, *opp = ct->opp, *lmc = ct->lmc, nv = ct->num_vertices;
+    const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
+    const uint32_t vmask = ct->vmask;
+    const ld_pot opp = ct->opp;
     const uint8_t *seam = ct->seam, *border = ct->border;
     uint8_t *fseen = w->face_seen;
     uint32_t *v2c = w->o->value_to_corner;
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
-#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : opp[c])
+#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_opp(&opp, c) : opp32[c])
 #define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
 #define LD_VISIT(v, c) (v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
     if (w->cap < 2)
@@ -71,7 +75,7 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
         for (;;) {
             uint32_t v, r, l, m3;
             fseen[c / 3u] = 1;
-            v = c2v[c];
+            v = packed ? c2v[c] & vmask : c2v[c];
             if (v >= nv) {
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
@@ -126,6 +130,27 @@ static lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack)
     return LUMO_OK;
 }
 
+/* Every start face; one instance per opposite store. */
+static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int packed)
+{
+    uint32_t f;
+    lumo_status st = LUMO_OK;
+    for (f = 0; f < w->num_faces && !st; ++f)
+        if (!w->face_seen[f])  /* both traversers skip seen start faces */
+            st = ld_dfs(w, 3u * f, stack, packed);
+    return st;
+}
+
+static lumo_status ld_dfs_all_plain(ld_walk *w, uint32_t *stack)
+{
+    return ld_dfs_starts(w, stack, 0);
+}
+
+static lumo_status ld_dfs_all_packed(ld_walk *w, uint32_t *stack)
+{
+    return ld_dfs_starts(w, stack, 1);
+}
+
 /* Prediction-degree traversal: three priority stacks sharing one node pool
  * with a free list. */
 typedef struct ld_pq {
@@ -170,15 +195,32 @@ static LD_FORCE_INLINE uint32_t ld_pq_pop(ld_pq *q)
     return LD_INV;
 }
 
-static LD_FORCE_INLINE int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner)
+/* Corner table reads for a constant `packed` (see ld_dfs). */
+static LD_FORCE_INLINE uint32_t ld_wvert(const ld_walk *w, uint32_t c, int packed)
 {
-    uint32_t tip = ld_vert(w->ct, corner);
+    if (c == LD_INV)
+        return LD_INV;
+    return packed ? w->ct->c2v[c] & w->ct->vmask : w->ct->c2v[c];
+}
+
+static LD_FORCE_INLINE uint32_t ld_wopp(const ld_walk *w, uint32_t c, int packed)
+{
+    const ld_ct *t = w->ct;
+    if (t->seam && t->seam[c])
+        return LD_INV;
+    return packed ? ld_pot_opp(&t->opp, c) : t->opp32[c];
+}
+
+static LD_FORCE_INLINE int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner, int packed)
+{
+    uint32_t tip = ld_wvert(w, corner, packed);
     if (tip >= w->ct->num_vertices || w->o->vertex_to_value[tip] >= 0)
         return 0;
     return ++q->degree[tip] > 1 ? 1 : 2;
 }
 
-static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q)
+static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q,
+                                                 int packed)
 {
     uint32_t tip;
     lumo_status st;
@@ -201,17 +243,17 @@ static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld
             uint32_t v, r, l;
             int rs, ls, pri;
             w->face_seen[corner / 3u] = 1;
-            v = ld_vert(w->ct, corner);
+            v = ld_wvert(w, corner, packed);
             if (v >= w->ct->num_vertices)
                 return LUMO_ERR_CORRUPT;
             if (w->o->vertex_to_value[v] < 0)
                 ld_visit(w, v, corner);
-            r = ld_opp(w->ct, ld_next_v(corner));
-            l = ld_opp(w->ct, ld_prev_v(corner));
+            r = ld_wopp(w, ld_next_v(corner), packed);
+            l = ld_wopp(w, ld_prev_v(corner), packed);
             rs = ld_face_seen(w, r);
             ls = ld_face_seen(w, l);
             if (!ls) {
-                pri = ld_priority(w, q, l);
+                pri = ld_priority(w, q, l, packed);
                 if (rs && pri <= q->best) {
                     corner = l;
                     continue;
@@ -220,7 +262,7 @@ static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld
                     return st;
             }
             if (!rs) {
-                pri = ld_priority(w, q, r);
+                pri = ld_priority(w, q, r, packed);
                 if (pri <= q->best) {
                     corner = r;
                     continue;
@@ -235,8 +277,9 @@ static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld
 }
 
 /* All start faces, on local copies of the walk and the queues: stores into
- * the uint32 arrays could otherwise alias their fields and force reloads. */
-static lumo_status ld_max_degree_all(ld_walk *wp, ld_pq *qp)
+ * the uint32 arrays could otherwise alias their fields and force reloads.
+ * One instance per opposite store. */
+static LD_FORCE_INLINE lumo_status ld_max_degree_starts(ld_walk *wp, ld_pq *qp, int packed)
 {
     ld_walk w = *wp;
     ld_pq q = *qp;
@@ -246,10 +289,15 @@ static lumo_status ld_max_degree_all(ld_walk *wp, ld_pq *qp)
     w.o = &o;
     for (f = 0; f < w.num_faces && !st; ++f)
         if (!w.face_seen[f])  /* seen start faces are skipped */
-            st = ld_max_degree(&w, 3u * f, &q);
+            st = ld_max_degree(&w, 3u * f, &q, packed);
     *wp->o = o;
     qp->used = q.used;
     return st;
+}
+
+static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
+{
+    return w->ct->opp32 ? ld_max_degree_starts(w, q, 0) : ld_max_degree_starts(w, q, 1);
 }
 
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
@@ -257,7 +305,7 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
 {
     ld_walk w;
     ld_pq q;
-    uint32_t *stack = NULL, f, nv = ct->num_vertices, i;
+    uint32_t *stack = NULL, nv = ct->num_vertices, i;
     lumo_status st = LUMO_OK;
     int32_t *vmap = o->vertex_to_value;  /* caller may provide the array */
     uint8_t *mark;
@@ -299,9 +347,8 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     }
     if (prediction_degree)
         st = ld_max_degree_all(&w, &q);
-    for (f = 0; f < w.num_faces && !st && !prediction_degree; ++f)
-        if (!w.face_seen[f])  /* both traversers skip seen start faces */
-            st = ld_dfs(&w, 3u * f, stack);
+    if (!prediction_degree)
+        st = ct->opp32 ? ld_dfs_all_plain(&w, stack) : ld_dfs_all_packed(&w, stack);
     ld_free_used(m, prediction_degree ? (size_t)q.used * 8u : (size_t)w.max_depth * 4u);
     ld_tmp_release(m, mark);
     return st;

@@ -170,6 +170,19 @@ lumo_status lumo_draco_arena_need(const uint8_t *data, size_t size, lumo_draco_n
 lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *arena,
                               lumo_draco_mesh *out);
 
+/* Decoding modes, for the _ex calls (the plain calls: 0). Same output in
+ * every mode; the arena need of a mode comes from lumo_draco_arena_need_ex
+ * with the same flags. */
+#define LUMO_DRACO_LEAN 1u  /* EdgeBreaker meshes: the opposite corners are
+                               packed into the spare bits of the output face
+                               array; arena ~1.2x the output instead of
+                               1.4-1.7x, for ~1.4x the instructions
+                               (docs/draco-decoder.md, "Memory") */
+lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flags,
+                                 lumo_arena *arena, lumo_draco_mesh *out);
+lumo_status lumo_draco_arena_need_ex(const uint8_t *data, size_t size, unsigned flags,
+                                     lumo_draco_need *need);
+
 /* Original value of component `comp` of a QUANTIZED portable value `q`, in
  * fixed point with attr->frac_bits fractional bits (saturated to int32).
  * Other transforms return q unchanged. */
