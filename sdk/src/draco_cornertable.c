@@ -49,43 +49,53 @@ static unsigned ld_pot_xor_bits(uint32_t n)
     return n > 1u ? ld_pot_vshift(n) : 1u;
 }
 
+/* One corner's escape: its rank in the block and the low bits of x in the
+ * word, the high bits as entry e (written at or below entry c of the
+ * 24-bit table, which is read: in place). */
+static void ld_pot_escape_put(uint8_t *o24, unsigned ew, uint32_t e, uint32_t rank, uint32_t x,
+                              unsigned lshift, uint32_t *word, unsigned vshift)
+{
+    uint8_t *p = o24 + (size_t)e * ew;
+    const uint32_t hi = x >> lshift;
+    p[0] = (uint8_t)hi;
+    p[1] = (uint8_t)(hi >> 8);
+    if (ew == 3u)
+        p[2] = (uint8_t)(hi >> 16);
+    *word |= (1u | rank << 1 | (x & ((1u << lshift) - 1u)) << (LD_POT_RANK_BITS + 1u)) << vshift;
+}
+
 void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vshift, uint8_t *o24,
                   uint16_t *fine, uint32_t *coarse, size_t *esc_bytes)
 {
-    const unsigned k = 32u - vshift, lshift = k - (LD_POT_RANK_BITS + 1u);
-    const uint32_t vmask = 0xFFFFFFFFu >> k, direct = 1u << (k - 1u);
-    const uint32_t none = 0xFFFFFFFFu << vshift, lmask = (1u << lshift) - 1u;
+    const unsigned k = 32u - vshift, lshift = k - (LD_POT_RANK_BITS + 1u), s1 = vshift + 1u;
+    const uint32_t direct = 1u << (k - 1u), none = 0xFFFFFFFFu << vshift;
     const unsigned ew = 16u + lshift >= ld_pot_xor_bits(num_corners) ? 2u : 3u;
-    uint32_t c, e = 0, block = 0;
-    for (c = 0; c < num_corners; ++c) {
-        const uint32_t o = ld_o24(o24, c), w = words[c] & vmask;
-        uint32_t x;
-        if (!(c & LD_POT_FINE_MASK)) {
-            if (!(c & LD_POT_COARSE_MASK))
-                coarse[c >> LD_POT_COARSE] = e;
-            block = e;
-            fine[c >> LD_POT_BLOCK] = (uint16_t)(e - coarse[c >> LD_POT_COARSE]);
+    const uint32_t blocks = (num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK;
+    uint32_t b, e = 0;
+    /* the words hold vertex ids below 2^vshift: the spare bits are zero */
+    for (b = 0; b < blocks; ++b) {
+        const uint32_t c0 = b << LD_POT_BLOCK, block = e;
+        const uint32_t c1 = c0 + LD_POT_FINE_MASK + 1u < num_corners ? c0 + LD_POT_FINE_MASK + 1u
+                                                                     : num_corners;
+        uint32_t c;
+        if (!(c0 & LD_POT_COARSE_MASK))
+            coarse[c0 >> LD_POT_COARSE] = e;
+        fine[b] = (uint16_t)(e - coarse[c0 >> LD_POT_COARSE]);
+        for (c = c0; c < c1; ++c) {
+            const uint32_t o = ld_o24(o24, c), x = c ^ o;
+            if (x < direct) {
+                if (o != LD_O24_NONE) {  /* the common case: a near opposite */
+                    words[c] |= x << s1;
+                    continue;
+                }
+            }
+            if (o == LD_O24_NONE) {
+                words[c] |= none;
+                continue;
+            }
+            ld_pot_escape_put(o24, ew, e, e - block, x, lshift, words + c, vshift);
+            ++e;
         }
-        if (o == LD_O24_NONE) {
-            words[c] = w | none;
-            continue;
-        }
-        x = c ^ o;
-        if (x < direct) {
-            words[c] = w | x << (vshift + 1u);
-            continue;
-        }
-        /* escape e is written at or below entry c, which is read */
-        {
-            uint8_t *p = o24 + (size_t)e * ew;
-            const uint32_t hi = x >> lshift;
-            p[0] = (uint8_t)hi;
-            p[1] = (uint8_t)(hi >> 8);
-            if (ew == 3u)
-                p[2] = (uint8_t)(hi >> 16);
-        }
-        words[c] = w | (1u | (e - block) << 1 | (x & lmask) << (LD_POT_RANK_BITS + 1u)) << vshift;
-        ++e;
     }
     t->words = words;
     t->esc = o24;

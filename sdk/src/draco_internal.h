@@ -404,9 +404,16 @@ static LD_FORCE_INLINE uint32_t ld_o24(const uint8_t *t, uint32_t c)
 static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
 {
     uint8_t *p = t + 3u * (size_t)c;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    uint32_t x;  /* the fourth byte (the next entry's) is written back as read */
+    memcpy(&x, p, 4);
+    x = (x & 0xFF000000u) | v;
+    memcpy(p, &x, 4);
+#else
     p[0] = (uint8_t)v;
     p[1] = (uint8_t)(v >> 8);
     p[2] = (uint8_t)(v >> 16);
+#endif
 }
 /* Pack `o24` (num_corners entries) into the spare bits of `words` (vertex
  * ids below 2^vshift, vshift <= 25), the escapes written over the start of
