@@ -36,7 +36,7 @@ struct ld_eb {
     uint32_t encoded_vertices;  /* V of the header */
     uint8_t lean;              /* LUMO_DRACO_LEAN: packed opposites */
     uint32_t *c2v, *lmc;
-    uint32_t *opp32;           /* opposites, fast mode */
+    uint32_t *opp32;           /* opposites, default mode */
     uint8_t *o24;              /* opposites while decoding, lean (ld_o24) */
     uint8_t *hole;
     uint8_t *lmc_top;          /* one past the left-most corners' block */
@@ -58,7 +58,7 @@ struct ld_eb {
     ld_bits sym_bits;
     ld_rabs start_faces;
     /* valence coding */
-    uint32_t *val32;           /* valences, fast mode */
+    uint32_t *val32;           /* valences, default mode */
     uint8_t *valences;         /* lean: saturating at 255 (min(v, 7) is read) */
     uint8_t *ctx_symbols[LD_VALENCE_CONTEXTS];  /* 0..4, 5 = invalid */
     uint32_t ctx_count[LD_VALENCE_CONTEXTS];
@@ -81,7 +81,7 @@ static int ld_eb_charge(struct ld_eb *e)
     return 1;
 }
 
-/* The opposites while the connectivity is decoded: 32-bit ids (fast) or
+/* The opposites while the connectivity is decoded: 32-bit ids (default) or
  * 24-bit ids (lean, packed afterwards by ld_eb_pack). `lean` is a
  * constant in the symbol loop's two instances, e->lean elsewhere. */
 static LD_FORCE_INLINE uint32_t ld_eb_opp(const struct ld_eb *e, uint32_t c, int lean)
@@ -132,7 +132,7 @@ static LD_FORCE_INLINE uint32_t ld_eb_swing_right(const struct ld_eb *e, uint32_
     return o == LD_INV ? LD_INV : ld_prev_v(o);
 }
 
-/* Valences: 32-bit counters (fast) or bytes saturating at 255 (lean). */
+/* Valences: 32-bit counters (default) or bytes saturating at 255 (lean). */
 static LD_FORCE_INLINE void ld_valence_add(struct ld_eb *e, uint32_t v, uint32_t n, int lean)
 {
     if (lean) {
@@ -793,7 +793,7 @@ static uint8_t *ld_eb_border(struct ld_eb *e)
     return border;
 }
 
-/* Fast mode: the left-most corners' block is released, the border bytes
+/* Default mode: the left-most corners' block is released, the border bytes
  * stay in its top. */
 static lumo_status ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
 {
@@ -1168,7 +1168,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
         v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp32[v2c[i]];
     for (i = 0; opposites && e->packed && i < n; ++i)
         v2c[i] = v2c[i] == LD_INV ? LD_INV : ld_pot_opp(&e->ct.opp, v2c[i]);
-    if (!e->packed) {  /* fast: [opposites][border bytes] */
+    if (!e->packed) {  /* default: [opposites][border bytes] */
         top = opposites ? e->opp_top : (uint8_t *)e->opp32;
         if (opposites)
             e->opp32 = NULL;
