@@ -432,7 +432,7 @@ lumo_status lumo_draco_peek(const uint8_t *data, size_t size, lumo_draco_info *i
             (st = ld_varint32(&b, &faces)) || (st = ld_u8(&b, &nad)) ||
             (st = ld_varint32(&b, &symbols)) || (st = ld_varint32(&b, &splits)))
             return st;
-        if (faces > LD_MAX_EB_FACES)
+        if (faces > LD_MAX_FACES)
             return LUMO_ERR_LIMIT;
         r.connectivity = type;
         r.num_faces = faces;

@@ -994,7 +994,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
         return LUMO_ERR_UNSUPPORTED;  /* predictive EdgeBreaker: pre-2.2 only */
     if ((st = ld_varint32(&d->buf, &verts)) || (st = ld_varint32(&d->buf, &faces)))
         return st;
-    if (faces > LD_MAX_EB_FACES)
+    if (faces > (d->lean ? LD_MAX_EB_FACES : LD_MAX_FACES))
         return LUMO_ERR_LIMIT;
     if ((uint64_t)verts > (uint64_t)faces * 3u)
         return LUMO_ERR_CORRUPT;
@@ -1333,7 +1333,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         return LUMO_ERR_UNSUPPORTED;
     if ((st = ld_varint32(b, &verts)) || (st = ld_varint32(b, &faces)))
         return st;
-    if (faces > LD_MAX_EB_FACES)
+    if (faces > (lean ? LD_MAX_EB_FACES : LD_MAX_FACES))
         return LUMO_ERR_LIMIT;
     if ((uint64_t)verts > (uint64_t)faces * 3u)
         return LUMO_ERR_CORRUPT;

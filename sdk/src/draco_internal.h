@@ -37,8 +37,8 @@
 
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)
-/* EdgeBreaker packs corner ids in 24 bits while it decodes (3F < 2^24 - 1,
- * see ld_pot below). */
+/* The lean mode packs EdgeBreaker corner ids in 24 bits while it decodes
+ * (3F < 2^24 - 1, see ld_pot below). */
 #define LD_MAX_EB_FACES (0xFFFFFEu / 3u)
 #define LD_MAX_POINTS  (1u << 27)
 #define LD_MAX_DECODERS LUMO_DRACO_MAX_ATTRIBUTES
