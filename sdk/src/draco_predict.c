@@ -541,11 +541,13 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     else
         ld_original(p, zero, v, v);
     for (i = 1; i < n; ++i) {
-        int32_t *dst = v + (size_t)i * k, multi[LUMO_DRACO_MAX_COMPONENTS] = {0};
+        int32_t *dst = v + (size_t)i * k, multi[LUMO_DRACO_MAX_COMPONENTS];
         int count = 0, used = 0, j;
         lumo_status st;
         if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count)))
             return st;
+        for (c = 0; c < k; ++c)
+            multi[c] = 0;
         if (count > 0) {
             const int ctx = count - 1;
             ld_rabs r = crease[ctx];

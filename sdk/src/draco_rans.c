@@ -51,30 +51,32 @@ static uint32_t ld_rans_precision(unsigned bit_length)
 }
 
 /* One entry of a probability table: the probability of symbol *i, or a
- * run of zero-probability symbols (*i moves to the run's last, prob 0). */
+ * run of zero-probability symbols (*i moves to the run's last, prob 0).
+ * Bytes read in place after one bounds check (a table has up to 2^18
+ * entries, read twice: no call per byte). */
 static LD_FORCE_INLINE lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t *i,
                                                  uint32_t *prob)
 {
-    uint8_t byte;
-    int extra, j;
-    lumo_status st = ld_u8(b, &byte);
-    if (st)
-        return st;
+    const uint8_t *p = ld_head(b);
+    uint32_t byte, extra, j;
+    if (ld_remaining(b) < 1)
+        return LUMO_ERR_TRUNCATED;
+    byte = p[0];
     if ((byte & 3u) == 3u) {  /* run of zero-probability symbols */
         if (*i + (byte >> 2) >= n)
             return LUMO_ERR_CORRUPT;
+        b->pos += 1;
         *i += byte >> 2;
         *prob = 0;
         return LUMO_OK;
     }
-    extra = byte & 3;
+    extra = byte & 3u;
+    if (ld_remaining(b) < 1u + extra)
+        return LUMO_ERR_TRUNCATED;
     *prob = byte >> 2;
-    for (j = 0; j < extra; ++j) {
-        uint8_t eb;
-        if ((st = ld_u8(b, &eb)))
-            return st;
-        *prob |= (uint32_t)eb << (8 * (j + 1) - 2);
-    }
+    for (j = 0; j < extra; ++j)
+        *prob |= (uint32_t)p[1 + j] << (8 * (j + 1) - 2);
+    b->pos += 1u + extra;
     return LUMO_OK;
 }
 
@@ -156,6 +158,21 @@ static unsigned ld_rans_lut_bits(const ld_rans *r, uint32_t num_values)
     return bits;
 }
 
+/* q[0..n) = v, four per turn: a symbol's run of buckets is long (an exact
+ * table of 2^16 buckets over some 10^3 symbols). */
+static void ld_fill_u32(uint32_t *q, uint32_t n, uint32_t v)
+{
+    uint32_t j = 0;
+    for (; j + 4u <= n; j += 4u) {
+        q[j] = v;
+        q[j + 1u] = v;
+        q[j + 2u] = v;
+        q[j + 3u] = v;
+    }
+    for (; j < n; ++j)
+        q[j] = v;
+}
+
 static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
 {
     const unsigned bits = ld_rans_lut_bits(r, num_values);
@@ -172,8 +189,10 @@ static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
     lut = r->lut;
     for (s = 0, bkt = 0; s < r->num_nz; ++s) {
         const uint32_t end = (r->tab[s + 1].lo + (1u << r->lut_shift) - 1u) >> r->lut_shift;
-        for (; bkt < end; ++bkt)
-            lut[bkt] = s * (uint32_t)sizeof(ld_rans_sym);
+        if (end > bkt) {
+            ld_fill_u32(lut + bkt, end - bkt, s * (uint32_t)sizeof(ld_rans_sym));
+            bkt = end;
+        }
     }
     return LUMO_OK;
 }
@@ -268,10 +287,19 @@ static LD_FORCE_INLINE void ld_rans_run(ld_rans *r, uint32_t *out, uint32_t n, i
             out[i++] = ld_rans_step(&c, &x, exact);
             continue;
         }
-        for (; o < end; ++o) {
+        /* two symbols per turn: half the loop's tests and increments */
+        for (; o + 1 < end; o += 2) {
             while (x < l_base)
                 x = (x << 8) | *--p;
-            *o = ld_rans_step(&c, &x, exact);
+            o[0] = ld_rans_step(&c, &x, exact);
+            while (x < l_base)
+                x = (x << 8) | *--p;
+            o[1] = ld_rans_step(&c, &x, exact);
+        }
+        if (o < end) {
+            while (x < l_base)
+                x = (x << 8) | *--p;
+            *o++ = ld_rans_step(&c, &x, exact);
         }
         i = (uint32_t)(o - out);
     }
