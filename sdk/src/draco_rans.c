@@ -323,28 +323,71 @@ static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit
     return ld_rans_build_lut(r, m, num_values);
 }
 
-/* `zz`: the values are zig-zag decoded as they are read (the tags, bit
- * lengths, never are). */
+/* The 8 bytes at p as a little-endian word (compilers make it one load). */
+static inline uint64_t ld_le64(const uint8_t *p)
+{
+    return (uint64_t)p[0] | ((uint64_t)p[1] << 8) | ((uint64_t)p[2] << 16) |
+           ((uint64_t)p[3] << 24) | ((uint64_t)p[4] << 32) | ((uint64_t)p[5] << 40) |
+           ((uint64_t)p[6] << 48) | ((uint64_t)p[7] << 56);
+}
+
+/* Values of up to 32 raw bits after a tag per `comps` values: the bit
+ * length, rANS coded. `zz` (a constant in each instance): the values are
+ * zig-zag decoded as they are read (the tags never are). The tag coder
+ * and the bit position are held in locals (stores to out could alias
+ * them). A group whose bits end 8 bytes before the buffer does is read
+ * from 64-bit windows (a value starts at most 7 bits into its window and
+ * is at most 32 bits long), the same bits ld_bits_get returns; the groups
+ * near the end go through ld_bits_get (zero bits past the end). */
+static LD_FORCE_INLINE lumo_status ld_tagged_run(ld_rans *tags, ld_bits *bits, uint32_t *out,
+                                                 uint32_t num_values, unsigned comps, int zz)
+{
+    ld_rans c = *tags;
+    const uint8_t *const data = bits->data;
+    const size_t size = bits->size;
+    size_t bit = bits->bit;
+    uint32_t *o = out, *const end = out + num_values;
+    unsigned j;
+    while (o < end) {
+        /* a whole group, or the stream's short last one */
+        const unsigned group = (size_t)(end - o) < comps ? (unsigned)(end - o) : comps;
+        const uint32_t len = ld_rans_read(&c);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        if (((bit + (size_t)group * len) >> 3) + 8u <= size) {
+            const uint64_t mask = ((uint64_t)1 << len) - 1u;
+            for (j = 0; j < group; ++j, bit += len) {
+                const uint32_t v = (uint32_t)((ld_le64(data + (bit >> 3)) >> (bit & 7u)) & mask);
+                *o++ = zz ? (uint32_t)ld_zigzag(v) : v;
+            }
+            continue;
+        }
+        bits->bit = bit;
+        for (j = 0; j < group; ++j) {
+            const uint32_t v = ld_bits_get(bits, len);
+            *o++ = zz ? (uint32_t)ld_zigzag(v) : v;
+        }
+        bit = bits->bit;
+    }
+    bits->bit = bit;
+    tags->state = c.state;
+    tags->offset = c.offset;
+    return LUMO_OK;
+}
+
 static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
                                     unsigned comps, uint32_t *out, int zz)
 {
     ld_rans tags;
     ld_bits bits;
-    uint32_t i = 0;
-    unsigned j;
     lumo_status st = ld_rans_create(&tags, b, m, 5, num_values / comps + 1u, 0);
     if (st || (st = ld_rans_start(&tags, b)))
         return st;
     ld_bits_start(&bits, b);
-    while (i < num_values) {
-        uint32_t len = ld_rans_read(&tags);
-        if (len > 32u)
-            return LUMO_ERR_CORRUPT;
-        for (j = 0; j < comps && i < num_values; ++j) {
-            const uint32_t v = ld_bits_get(&bits, len);
-            out[i++] = zz ? (uint32_t)ld_zigzag(v) : v;
-        }
-    }
+    st = zz ? ld_tagged_run(&tags, &bits, out, num_values, comps, 1)
+            : ld_tagged_run(&tags, &bits, out, num_values, comps, 0);
+    if (st)
+        return st;
     ld_bits_end(&bits, b);
     /* The encoder's stream ends where it began: renormalised, every byte
      * read and the initial state back (libdraco does not check). The arena
