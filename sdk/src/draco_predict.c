@@ -17,6 +17,15 @@
 #define LD_XFORM_OCTAHEDRON_CANON 3
 #define LD_MAX_PARALLELOGRAMS 4
 
+/* The hot schemes are kept out of ld_pred_compute: inlined there, each
+ * loop's registers were allocated together with every other scheme's and
+ * a change to one moved spills into another. */
+#if defined(__GNUC__)
+#define LD_NOINLINE __attribute__((noinline))
+#else
+#define LD_NOINLINE
+#endif
+
 static inline int32_t ld_wrap_add(int32_t a, int32_t b)
 {
     return (int32_t)((uint32_t)a + (uint32_t)b);
@@ -299,13 +308,23 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, ld_need *k)
 
 /* ---- schemes ------------------------------------------------------------------ */
 
-/* Delta coding with the wrap transform, any component count, on locals. */
-static lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
+/* Delta coding with the wrap transform, any component count, on locals;
+ * three components (positions) keep the entry before in registers. */
+static LD_NOINLINE lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
 {
     const int32_t lo = p->min_value, hi = p->max_value;
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u, k = p->comps;
     const size_t total = (size_t)n * k;
     size_t i;
+    if (k == 3u) {
+        int32_t p0 = 0, p1 = 0, p2 = 0;
+        for (i = 0; i < total; i += 3u) {
+            v[i] = p0 = ld_wrap_value(p0, v[i], lo, hi, dif);
+            v[i + 1u] = p1 = ld_wrap_value(p1, v[i + 1u], lo, hi, dif);
+            v[i + 2u] = p2 = ld_wrap_value(p2, v[i + 2u], lo, hi, dif);
+        }
+        return LUMO_OK;
+    }
     for (i = 0; i < k && i < total; ++i)
         v[i] = ld_wrap_value(0, v[i], lo, hi, dif);
     for (; i < total; ++i)
@@ -451,7 +470,7 @@ static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, 
     }
 }
 
-static lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
+static LD_NOINLINE lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
 {
     if (!p->seq->ct->seam)
         ld_parallelogram3_run(p, v, n, 1);
@@ -577,7 +596,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     return LUMO_OK;
 }
 
-static lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
+static LD_NOINLINE lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
 {
     if (p->comps == 3 && p->transform == LD_XFORM_WRAP && !p->seq->ct->seam)
         return ld_multi_run(p, v, n, 1);
