@@ -82,8 +82,9 @@ static LD_FORCE_INLINE lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t
 
 /* Read the probability table: check it and count its symbols of
  * non-zero probability into r->num_nz (tab NULL), or fill tab with them
- * (num_nz + 1 entries). Written once, instantiated for each constant
- * flag. `zz`: symbols decode to their zig-zag decoding. */
+ * (num_nz + 1 entries). Inlined at both calls, so the counting pass has
+ * no test of tab per entry. `zz`: symbols decode to their zig-zag
+ * decoding. */
 static LD_FORCE_INLINE lumo_status ld_rans_table(ld_rans *r, ld_buf *b, ld_rans_sym *tab, int zz)
 {
     uint32_t n, i, total = 0, nz = 0;
@@ -240,8 +241,8 @@ static lumo_status ld_rans_start(ld_rans *r, ld_buf *b)
 static inline uint32_t ld_rans_step(const ld_rans *r, uint32_t *state, int exact)
 {
     const uint32_t x = *state, quo = x >> r->prec_bits, rem = x & ((1u << r->prec_bits) - 1u);
-    const ld_rans_sym *e = (const ld_rans_sym *)(const void *)((const uint8_t *)r->tab +
-                                                               r->lut[rem >> (exact ? 0u : r->lut_shift)]);
+    const uint32_t off = r->lut[rem >> (exact ? 0u : r->lut_shift)];
+    const ld_rans_sym *e = (const ld_rans_sym *)(const void *)((const uint8_t *)r->tab + off);
     if (!exact)
         while (e[1].lo <= rem)
             ++e;
