@@ -543,7 +543,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
 {
     static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
     int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
-    uint32_t pos[LD_MAX_PARALLELOGRAMS] = {0, 0, 0, 0};
+    uint32_t left[LD_MAX_PARALLELOGRAMS];   /* crease flags not yet read */
     ld_rabs crease[LD_MAX_PARALLELOGRAMS];  /* local: the value stores cannot alias */
     const ld_ct *ct = p->seq->ct;
     const uint32_t *v2c = p->seq->value_to_corner, limit = ct->num_corners + 1u;
@@ -553,6 +553,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     uint32_t i, c;
     ld_fan_init(&f, p, !fast);
     memcpy(crease, p->crease, sizeof crease);
+    memcpy(left, p->num_crease, sizeof left);
     if (n == 0)
         return LUMO_OK;
     if (fast)
@@ -570,9 +571,9 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
         if (count > 0) {
             const int ctx = count - 1;
             ld_rabs r = crease[ctx];
-            if (p->num_crease[ctx] - pos[ctx] < (uint32_t)count)
+            if (left[ctx] < (uint32_t)count)
                 return LUMO_ERR_CORRUPT;  /* more flags than the stream has */
-            pos[ctx] += (uint32_t)count;
+            left[ctx] -= (uint32_t)count;
             for (j = 0; j < count; ++j) {
                 if (ld_rabs_bit(&r))
                     continue;  /* across a crease */
@@ -582,16 +583,17 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
             }
             crease[ctx] = r;
         }
-        if (used == 0)
-            for (c = 0; c < k; ++c)
-                multi[c] = (dst - k)[c];
-        else
+        if (fast && used == 0)
+            ld_wrap3(w, dst, dst[-3], dst[-2], dst[-1]);
+        else if (fast)
+            ld_wrap3(w, dst, multi[0] / used, multi[1] / used, multi[2] / used);
+        else if (used == 0)
+            ld_original(p, dst - k, dst, dst);
+        else {
             for (c = 0; c < k; ++c)
                 multi[c] /= used;
-        if (fast)
-            ld_wrap3(w, dst, multi[0], multi[1], multi[2]);
-        else
             ld_original(p, multi, dst, dst);
+        }
     }
     return LUMO_OK;
 }
