@@ -139,6 +139,7 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, ld_seq
     ld_pred pred;
     int8_t method, transform = -1;
     uint8_t compressed, *mark;
+    int zz;
     lumo_status st;
 
     if (num_values > 0xFFFFFFFFu)
@@ -178,17 +179,19 @@ static lumo_status ld_decode_portable(ld_dec *d, lumo_draco_attribute *a, ld_seq
     if ((st = ld_u8(&d->buf, &compressed)))
         return st;
     a->modes.compressed = compressed ? 1 : 0;
-    if (compressed)
+    /* Values are zig-zag coded, except octahedral corrections (stored as
+     * non-negative values); entropy-coded ones come out converted. */
+    zz = !(method != LD_PRED_NONE && transform >= 2);
+    if (compressed && zz)
+        st = ld_decode_signed_symbols(&d->buf, &d->mem, (uint32_t)num_values, comps,
+                                      a->values, &a->modes.symbol_coding);
+    else if (compressed)
         st = ld_decode_symbols(&d->buf, &d->mem, (uint32_t)num_values, comps,
                                (uint32_t *)a->values, &a->modes.symbol_coding);
-    else
-        st = ld_raw_values(&d->buf, (uint32_t)num_values, a->values);
+    else if (!(st = ld_raw_values(&d->buf, (uint32_t)num_values, a->values)) && zz)
+        ld_symbols_to_signed(a->values, (uint32_t)num_values);
     if (st)
         return st;
-    /* Octahedral corrections are stored as non-negative values. */
-    pred.zigzag = (uint8_t)(method != LD_PRED_NONE && ld_pred_fuses_zigzag(&pred));
-    if (num_values && !(method != LD_PRED_NONE && transform >= 2) && !pred.zigzag)
-        ld_symbols_to_signed(a->values, (uint32_t)num_values);
     if (method == LD_PRED_NONE)
         return LUMO_OK;
     mark = ld_tmp_mark(&d->mem);

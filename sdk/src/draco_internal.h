@@ -251,6 +251,12 @@ static inline int32_t ld_zigzag(uint32_t s)
 {
     return (int32_t)((s >> 1) ^ (0u - (s & 1u)));
 }
+/* ld_decode_symbols for zig-zag coded values: each comes out already
+ * converted by ld_zigzag (a raw stream's table holds the converted words,
+ * so the conversion costs nothing per value). */
+lumo_status ld_decode_signed_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
+                                     unsigned num_components, int32_t *out,
+                                     uint8_t *scheme_out);
 
 /* ---- decoder state (draco_decode.c) ------------------------------------- */
 struct ld_eb;

@@ -17,6 +17,15 @@
 #define LD_XFORM_OCTAHEDRON_CANON 3
 #define LD_MAX_PARALLELOGRAMS 4
 
+/* The hot schemes are kept out of ld_pred_compute: inlined there, each
+ * loop's registers were allocated together with every other scheme's and
+ * a change to one moved spills into another. */
+#if defined(__GNUC__)
+#define LD_NOINLINE __attribute__((noinline))
+#else
+#define LD_NOINLINE
+#endif
+
 static inline int32_t ld_wrap_add(int32_t a, int32_t b)
 {
     return (int32_t)((uint32_t)a + (uint32_t)b);
@@ -85,17 +94,23 @@ static lumo_status ld_transform_read(ld_pred *p, ld_buf *b)
 
 /* Wrap transform of one value: clamp the prediction into [lo, hi], add the
  * correction, fold back by dif = hi - lo + 1, all in wrapping 32-bit
- * arithmetic as libdraco does. The one copy every wrap path calls. */
+ * arithmetic as libdraco does. The one copy every wrap path calls.
+ * Computed on u = v - lo (mod 2^32): lo <= v <= hi exactly when u <= hi -
+ * lo, one unsigned test, so a prediction and a result in range (nearly
+ * every value) cost a test each and no clamp or fold. */
 static inline int32_t ld_wrap_value(int32_t pred, int32_t corr, int32_t lo, int32_t hi,
                                     uint32_t dif)
 {
-    int32_t v = pred > hi ? hi : (pred < lo ? lo : pred);
-    v = ld_wrap_add(v, corr);
-    if (v > hi)
-        return (int32_t)((uint32_t)v - dif);
-    if (v < lo)
-        return (int32_t)((uint32_t)v + dif);
-    return v;
+    const uint32_t range = dif - 1u;
+    uint32_t u = (uint32_t)pred - (uint32_t)lo;
+    int32_t v;
+    if (u > range)  /* clamp */
+        u = pred > hi ? range : 0u;
+    u += (uint32_t)corr;
+    v = (int32_t)(u + (uint32_t)lo);
+    if (u <= range)
+        return v;
+    return (int32_t)((uint32_t)v + (v > hi ? 0u - dif : dif));  /* fold */
 }
 
 static inline void ld_wrap_original(const ld_pred *p, const int32_t *pred, const int32_t *corr,
@@ -294,25 +309,26 @@ lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, ld_need *k)
 /* ---- schemes ------------------------------------------------------------------ */
 
 /* Delta coding with the wrap transform, any component count, on locals;
- * `zz`: the corrections are still zig-zag symbols. */
-static inline void ld_delta_wrap_run(const ld_pred *p, int32_t *v, uint32_t n, int zz)
+ * three components (positions) keep the entry before in registers. */
+static LD_NOINLINE lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
 {
     const int32_t lo = p->min_value, hi = p->max_value;
     const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u, k = p->comps;
     const size_t total = (size_t)n * k;
     size_t i;
+    if (k == 3u) {
+        int32_t p0 = 0, p1 = 0, p2 = 0;
+        for (i = 0; i < total; i += 3u) {
+            v[i] = p0 = ld_wrap_value(p0, v[i], lo, hi, dif);
+            v[i + 1u] = p1 = ld_wrap_value(p1, v[i + 1u], lo, hi, dif);
+            v[i + 2u] = p2 = ld_wrap_value(p2, v[i + 2u], lo, hi, dif);
+        }
+        return LUMO_OK;
+    }
     for (i = 0; i < k && i < total; ++i)
-        v[i] = ld_wrap_value(0, zz ? ld_zigzag((uint32_t)v[i]) : v[i], lo, hi, dif);
+        v[i] = ld_wrap_value(0, v[i], lo, hi, dif);
     for (; i < total; ++i)
-        v[i] = ld_wrap_value(v[i - k], zz ? ld_zigzag((uint32_t)v[i]) : v[i], lo, hi, dif);
-}
-
-static lumo_status ld_delta_wrap(const ld_pred *p, int32_t *v, uint32_t n)
-{
-    if (p->zigzag)
-        ld_delta_wrap_run(p, v, n, 1);
-    else
-        ld_delta_wrap_run(p, v, n, 0);
+        v[i] = ld_wrap_value(v[i - k], v[i], lo, hi, dif);
     return LUMO_OK;
 }
 
@@ -424,40 +440,59 @@ static void ld_fan_init(ld_fan *f, const ld_pred *p, int seams)
     f->v2v = p->seq->vertex_to_value;
 }
 
-/* The common case, three components with the wrap transform; `fast`:
- * zig-zag coded corrections and no seams, constants after inlining. */
+/* The wrap transform's bounds, copied into a local by the loops: the value
+ * stores could alias ld_pred's fields and force a reload per value. */
+typedef struct ld_wrap {
+    int32_t lo, hi;
+    uint32_t dif;
+} ld_wrap;
+
+static inline ld_wrap ld_wrap_of(const ld_pred *p)
+{
+    ld_wrap w;
+    w.lo = p->min_value;
+    w.hi = p->max_value;
+    w.dif = (uint32_t)w.hi - (uint32_t)w.lo + 1u;
+    return w;
+}
+
+/* Three values through the wrap transform, predicted by p0, p1, p2. */
+static inline void ld_wrap3(ld_wrap w, int32_t *dst, int32_t p0, int32_t p1, int32_t p2)
+{
+    dst[0] = ld_wrap_value(p0, dst[0], w.lo, w.hi, w.dif);
+    dst[1] = ld_wrap_value(p1, dst[1], w.lo, w.hi, w.dif);
+    dst[2] = ld_wrap_value(p2, dst[2], w.lo, w.hi, w.dif);
+}
+
+/* The common case, three components with the wrap transform; `fast`: no
+ * seams, a constant after inlining. The first entry is predicted by 0,
+ * the others by their parallelogram, else by the entry before. The
+ * prediction goes to the transform in scalars: a pointer choosing between
+ * two arrays would keep it in memory. */
 static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, uint32_t n,
                                                   int fast, int packed)
 {
-    const int32_t lo = p->min_value, hi = p->max_value;
-    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
-    const int zz = fast ? 1 : p->zigzag;
+    const ld_wrap w = ld_wrap_of(p);
     ld_fan f;
     uint32_t i;
     ld_fan_init(&f, p, !fast);
-    for (i = 0; i < n; ++i) {
-        int32_t *dst = v + 3u * (size_t)i;
-        int32_t pred[3] = {0, 0, 0};
-        const int32_t *pr = pred;
-        if (zz) {  /* entry i is read only from here on */
-            dst[0] = ld_zigzag((uint32_t)dst[0]);
-            dst[1] = ld_zigzag((uint32_t)dst[1]);
-            dst[2] = ld_zigzag((uint32_t)dst[2]);
-        }
-        if (i && !ld_entry_parallelogram(p, &f, i, v, 3u, pred, packed))
-            pr = dst - 3;
-        dst[0] = ld_wrap_value(pr[0], dst[0], lo, hi, dif);
-        dst[1] = ld_wrap_value(pr[1], dst[1], lo, hi, dif);
-        dst[2] = ld_wrap_value(pr[2], dst[2], lo, hi, dif);
+    if (n)
+        ld_wrap3(w, v, 0, 0, 0);
+    for (i = 1; i < n; ++i) {
+        int32_t *dst = v + 3u * (size_t)i, pred[3];
+        if (ld_entry_parallelogram(p, &f, i, v, 3u, pred, packed))
+            ld_wrap3(w, dst, pred[0], pred[1], pred[2]);
+        else
+            ld_wrap3(w, dst, dst[-3], dst[-2], dst[-1]);
     }
 }
 
-static lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
+static LD_NOINLINE lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
 {
     const int packed = p->seq->ct->opp32 == NULL;
-    if (p->zigzag && !p->seq->ct->seam && !packed)
+    if (!p->seq->ct->seam && !packed)
         ld_parallelogram3_run(p, v, n, 1, 0);
-    else if (p->zigzag && !p->seq->ct->seam)
+    else if (!p->seq->ct->seam)
         ld_parallelogram3_run(p, v, n, 1, 1);
     else
         ld_parallelogram3_run(p, v, n, 0, packed);
@@ -519,72 +554,72 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
 }
 
 /* `fast`: three components, the wrap transform and no seams, constants
- * after inlining (positions at -cl 9/10); otherwise any attribute. */
+ * after inlining (positions at -cl 9/10); otherwise any attribute. Entry
+ * 0 is predicted by 0; entry i by the mean of its fan's parallelograms
+ * the crease flags keep, else by entry i - 1. The flags of one entry all
+ * come from the context of its parallelogram count: its coder is held in
+ * a local across them and its bound checked once. */
 static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t n, int fast,
                                                 int packed)
 {
+    static const int32_t zero[LUMO_DRACO_MAX_COMPONENTS];
     int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
-    int32_t multi[LUMO_DRACO_MAX_COMPONENTS];
-    uint32_t pos[LD_MAX_PARALLELOGRAMS] = {0, 0, 0, 0};
+    uint32_t left[LD_MAX_PARALLELOGRAMS];   /* crease flags not yet read */
     ld_rabs crease[LD_MAX_PARALLELOGRAMS];  /* local: the value stores cannot alias */
     const ld_ct *ct = p->seq->ct;
     const uint32_t *v2c = p->seq->value_to_corner, limit = ct->num_corners + 1u;
     const unsigned k = fast ? 3u : p->comps;
-    const int32_t lo = p->min_value, hi = p->max_value;
-    const uint32_t dif = (uint32_t)hi - (uint32_t)lo + 1u;
+    const ld_wrap w = ld_wrap_of(p);
     ld_fan f;
     uint32_t i, c;
     ld_fan_init(&f, p, !fast);
     memcpy(crease, p->crease, sizeof crease);
-    for (i = 0; i < n; ++i) {
-        int32_t *dst = v + (size_t)i * k;
-        const int32_t *pred = multi;
+    memcpy(left, p->num_crease, sizeof left);
+    if (n == 0)
+        return LUMO_OK;
+    if (fast)
+        ld_wrap3(w, v, 0, 0, 0);
+    else
+        ld_original(p, zero, v, v);
+    for (i = 1; i < n; ++i) {
+        int32_t *dst = v + (size_t)i * k, multi[LUMO_DRACO_MAX_COMPONENTS];
         int count = 0, used = 0, j;
         lumo_status st;
-        if (fast) {  /* entry i is read only from here on */
-            int32_t *q = dst;
-            if (p->zigzag) {
-                q[0] = ld_zigzag((uint32_t)q[0]);
-                q[1] = ld_zigzag((uint32_t)q[1]);
-                q[2] = ld_zigzag((uint32_t)q[2]);
-            }
-            multi[0] = multi[1] = multi[2] = 0;
-        } else {
-            for (c = 0; c < k; ++c) {
-                dst[c] = p->zigzag ? ld_zigzag((uint32_t)dst[c]) : dst[c];
-                multi[c] = 0;
-            }
-        }
-        if (i > 0) {
-            if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count, packed)))
-                return st;
+        if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count, packed)))
+            return st;
+        for (c = 0; c < k; ++c)
+            multi[c] = 0;
+        if (count > 0) {
+            const int ctx = count - 1;
+            ld_rabs r = crease[ctx];
+            if (left[ctx] < (uint32_t)count)
+                return LUMO_ERR_CORRUPT;  /* more flags than the stream has */
+            left[ctx] -= (uint32_t)count;
             for (j = 0; j < count; ++j) {
-                const int ctx = count - 1;
-                if (pos[ctx]++ >= p->num_crease[ctx])
-                    return LUMO_ERR_CORRUPT;
-                if (ld_rabs_bit(&crease[ctx]))
-                    continue;
-                ++used;
+                if (ld_rabs_bit(&r))
+                    continue;  /* across a crease */
                 for (c = 0; c < k; ++c)
                     multi[c] = ld_wrap_add(multi[c], preds[j][c]);
+                ++used;
             }
-            if (used == 0)
-                pred = dst - k;
-            else
-                for (c = 0; c < k; ++c)
-                    multi[c] /= used;
+            crease[ctx] = r;
         }
-        if (fast) {
-            dst[0] = ld_wrap_value(pred[0], dst[0], lo, hi, dif);
-            dst[1] = ld_wrap_value(pred[1], dst[1], lo, hi, dif);
-            dst[2] = ld_wrap_value(pred[2], dst[2], lo, hi, dif);
-        } else
-            ld_original(p, pred, dst, dst);
+        if (fast && used == 0)
+            ld_wrap3(w, dst, dst[-3], dst[-2], dst[-1]);
+        else if (fast)
+            ld_wrap3(w, dst, multi[0] / used, multi[1] / used, multi[2] / used);
+        else if (used == 0)
+            ld_original(p, dst - k, dst, dst);
+        else {
+            for (c = 0; c < k; ++c)
+                multi[c] /= used;
+            ld_original(p, multi, dst, dst);
+        }
     }
     return LUMO_OK;
 }
 
-static lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
+static LD_NOINLINE lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
 {
     const int packed = p->seq->ct->opp32 == NULL;
     if (p->comps == 3 && p->transform == LD_XFORM_WRAP && !p->seq->ct->seam)
@@ -854,14 +889,6 @@ static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
 int ld_pred_needs_opposites_only(const ld_pred *p)
 {
     return ld_effective_method(p) == LD_PRED_PARALLELOGRAM;
-}
-
-int ld_pred_fuses_zigzag(const ld_pred *p)
-{
-    const int m = ld_effective_method(p);
-    return p->transform == LD_XFORM_WRAP &&
-           (m == LD_PRED_DIFFERENCE || m == LD_PRED_CONSTRAINED_MULTI ||
-            (m == LD_PRED_PARALLELOGRAM && p->comps == 3));
 }
 
 lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries)

@@ -16,6 +16,17 @@
 #define LD_LUT_BITS 14u
 #define LD_LUT_EXACT_BITS 16u
 
+/* One symbol of non-zero probability: its probability range [lo, lo +
+ * freq) and the word it decodes to (the symbol, or its zig-zag decoding
+ * for signed streams: folded here once per symbol, not once per value).
+ * The table ends with a sentinel whose `lo` is 2^prec_bits, so a coarse
+ * bucket's scan needs no bound. */
+typedef struct ld_rans_sym {
+    uint32_t lo;
+    uint32_t freq;
+    uint32_t value;
+} ld_rans_sym;
+
 typedef struct ld_rans {
     const uint8_t *buf;
     uint32_t offset;
@@ -25,9 +36,10 @@ typedef struct ld_rans {
     /* Only symbols of non-zero probability are kept (each costs at least
      * one input byte, so the tables are bounded by the input size). */
     uint32_t num_nz;
-    uint32_t *sym;     /* num_nz symbol values */
-    uint32_t *cum;     /* num_nz + 1 cumulative probabilities */
-    uint32_t *lut;     /* bucket -> first table entry of the bucket */
+    ld_rans_sym *tab;  /* num_nz + 1 entries */
+    uint32_t *lut;     /* bucket -> first table entry of the bucket, as a
+                          byte offset into tab (an address without a
+                          multiply per symbol) */
     unsigned lut_shift;
 } ld_rans;
 
@@ -39,42 +51,43 @@ static uint32_t ld_rans_precision(unsigned bit_length)
 }
 
 /* One entry of a probability table: the probability of symbol *i, or a
- * run of zero-probability symbols (*i moves to the run's last, prob 0). */
+ * run of zero-probability symbols (*i moves to the run's last, prob 0).
+ * Bytes read in place after one bounds check (a table has up to 2^18
+ * entries, read twice: no call per byte). */
 static LD_FORCE_INLINE lumo_status ld_rans_entry(ld_buf *b, uint32_t n, uint32_t *i,
                                                  uint32_t *prob)
 {
-    uint8_t byte;
-    int extra, j;
-    lumo_status st = ld_u8(b, &byte);
-    if (st)
-        return st;
+    const uint8_t *p = ld_head(b);
+    uint32_t byte, extra, j;
+    if (ld_remaining(b) < 1)
+        return LUMO_ERR_TRUNCATED;
+    byte = p[0];
     if ((byte & 3u) == 3u) {  /* run of zero-probability symbols */
         if (*i + (byte >> 2) >= n)
             return LUMO_ERR_CORRUPT;
+        b->pos += 1;
         *i += byte >> 2;
         *prob = 0;
         return LUMO_OK;
     }
-    extra = byte & 3;
+    extra = byte & 3u;
+    if (ld_remaining(b) < 1u + extra)
+        return LUMO_ERR_TRUNCATED;
     *prob = byte >> 2;
-    for (j = 0; j < extra; ++j) {
-        uint8_t eb;
-        if ((st = ld_u8(b, &eb)))
-            return st;
-        *prob |= (uint32_t)eb << (8 * (j + 1) - 2);
-    }
+    for (j = 0; j < extra; ++j)
+        *prob |= (uint32_t)p[1 + j] << (8 * (j + 1) - 2);
+    b->pos += 1u + extra;
     return LUMO_OK;
 }
 
-/* Read the probability table into tables from `m`, or, `count_only`,
- * only check it and book the tables the decode takes into `k`. Written
- * once, instantiated for each constant flag (the decode's copy has no
- * test of it per entry). */
-static LD_FORCE_INLINE lumo_status ld_rans_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k,
-                                                 int count_only)
+/* Read the probability table: check it and count its symbols of
+ * non-zero probability into r->num_nz (tab NULL), or fill tab with them
+ * (num_nz + 1 entries). Inlined at both calls, so the counting pass has
+ * no test of tab per entry. `zz`: symbols decode to their zig-zag
+ * decoding. */
+static LD_FORCE_INLINE lumo_status ld_rans_table(ld_rans *r, ld_buf *b, ld_rans_sym *tab, int zz)
 {
     uint32_t n, i, total = 0, nz = 0;
-    size_t cap;
     lumo_status st = ld_varint32(b, &n);
     if (st)
         return st;
@@ -83,33 +96,23 @@ static LD_FORCE_INLINE lumo_status ld_rans_table(ld_rans *r, ld_buf *b, ld_mem *
     if (n > (1u << 18))
         return LUMO_ERR_LIMIT;  /* 18-bit symbols at most (raw coding) */
     r->num_symbols = n;
-    cap = n < ld_remaining(b) ? n : ld_remaining(b);
-    if (count_only) {
-        ld_need_tmp(k, cap + 1u, sizeof(uint32_t));
-        ld_need_tmp(k, cap + 1u, sizeof(uint32_t));
-        r->cum = r->sym = NULL;
-    } else {
-        r->cum = ld_tmp(m, cap + 1u, sizeof(uint32_t));
-        r->sym = ld_tmp(m, cap + 1u, sizeof(uint32_t));
-        if (!r->cum || !r->sym)
-            return LUMO_ERR_NOMEM;
-        r->cum[0] = 0;
-    }
+    if (tab)
+        tab[0].lo = 0;
     for (i = 0; i < n; ++i) {
         uint32_t prob;
         if ((st = ld_rans_entry(b, n, &i, &prob)))
             return st;
         if (prob == 0)
             continue;
-        if (prob > (1u << r->prec_bits) - total || nz >= cap)
+        if (prob > (1u << r->prec_bits) - total)
             return LUMO_ERR_CORRUPT;
         total += prob;
-        if (count_only) {
-            ++nz;
-            continue;
+        if (tab) {
+            tab[nz].freq = prob;
+            tab[nz].value = zz ? (uint32_t)ld_zigzag(i) : i;
+            tab[nz + 1u].lo = total;
         }
-        r->sym[nz] = i;
-        r->cum[++nz] = total;
+        ++nz;
     }
     r->num_nz = nz;
     if (n && total != (1u << r->prec_bits))
@@ -117,9 +120,25 @@ static LD_FORCE_INLINE lumo_status ld_rans_table(ld_rans *r, ld_buf *b, ld_mem *
     return LUMO_OK;
 }
 
-static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k)
+/* The table into r->tab from `m`, sized by a first, checking pass to its
+ * symbols of non-zero probability (an alphabet of 2048 symbols often has
+ * a third unused: zero runs cost a byte for many); m == NULL: only check
+ * it and book its memory into `k`. */
+static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need *k, int zz)
 {
-    return m ? ld_rans_table(r, b, m, NULL, 0) : ld_rans_table(r, b, NULL, k, 1);
+    ld_buf probe = *b;
+    lumo_status st = ld_rans_table(r, m ? &probe : b, NULL, 0);
+    r->tab = NULL;
+    if (st)
+        return st;
+    if (!m) {
+        ld_need_tmp(k, r->num_nz + 1u, sizeof(ld_rans_sym));
+        return LUMO_OK;
+    }
+    r->tab = ld_tmp(m, r->num_nz + 1u, sizeof(ld_rans_sym));
+    if (!r->tab)
+        return LUMO_ERR_NOMEM;
+    return ld_rans_table(r, b, r->tab, zz);
 }
 
 /* The lookup table has at most 2^LD_LUT_BITS buckets and, for short
@@ -140,6 +159,21 @@ static unsigned ld_rans_lut_bits(const ld_rans *r, uint32_t num_values)
     return bits;
 }
 
+/* q[0..n) = v, four per turn: a symbol's run of buckets is long (an exact
+ * table of 2^16 buckets over some 10^3 symbols). */
+static void ld_fill_u32(uint32_t *q, uint32_t n, uint32_t v)
+{
+    uint32_t j = 0;
+    for (; j + 4u <= n; j += 4u) {
+        q[j] = v;
+        q[j + 1u] = v;
+        q[j + 2u] = v;
+        q[j + 3u] = v;
+    }
+    for (; j < n; ++j)
+        q[j] = v;
+}
+
 static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
 {
     const unsigned bits = ld_rans_lut_bits(r, num_values);
@@ -150,13 +184,16 @@ static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
     if (!r->lut)
         return LUMO_ERR_NOMEM;
     /* Bucket b starts at b << shift; its first symbol is the one whose
-     * range [cum[s], cum[s+1]) holds that start: fill symbol by symbol the
-     * buckets whose start falls in its range (cum[num_nz] == 2^prec). */
+     * range [tab[s].lo, tab[s+1].lo) holds that start: fill symbol by
+     * symbol the buckets whose start falls in its range (the sentinel
+     * tab[num_nz].lo == 2^prec). */
     lut = r->lut;
     for (s = 0, bkt = 0; s < r->num_nz; ++s) {
-        const uint32_t end = (r->cum[s + 1] + (1u << r->lut_shift) - 1u) >> r->lut_shift;
-        for (; bkt < end; ++bkt)
-            lut[bkt] = s;
+        const uint32_t end = (r->tab[s + 1].lo + (1u << r->lut_shift) - 1u) >> r->lut_shift;
+        if (end > bkt) {
+            ld_fill_u32(lut + bkt, end - bkt, s * (uint32_t)sizeof(ld_rans_sym));
+            bkt = end;
+        }
     }
     return LUMO_OK;
 }
@@ -193,28 +230,24 @@ static lumo_status ld_rans_start(ld_rans *r, ld_buf *b)
     return LUMO_OK;
 }
 
-/* One decoding step on a renormalised state. `exact`: the lookup table has
- * one bucket per probability unit (lut_shift 0), so no scan. The caller
- * keeps the coder in a local copy: stores to the output may alias an
- * ld_rans reached through a pointer and force a reload of every field. */
+/* One decoding step on a renormalised state: the symbol e whose range
+ * holds rem = x mod 2^prec, then x = quo * freq + rem - lo. `exact`: the
+ * lookup table has one bucket per probability unit (lut_shift 0) and
+ * gives e itself; else it gives the first symbol of a coarse bucket and a
+ * short forward scan the exact one (it stops at the sentinel at the
+ * latest: rem < 2^prec). The caller keeps the coder in a local copy:
+ * stores to the output may alias an ld_rans reached through a pointer and
+ * force a reload of every field. */
 static inline uint32_t ld_rans_step(const ld_rans *r, uint32_t *state, int exact)
 {
     const uint32_t x = *state, quo = x >> r->prec_bits, rem = x & ((1u << r->prec_bits) - 1u);
-    uint32_t s, lo, hi;
-    if (exact) {
-        const uint32_t *cp;
-        s = r->lut[rem];
-        cp = r->cum + s;
-        lo = cp[0];
-        hi = cp[1];
-    } else {
-        s = r->lut[rem >> r->lut_shift];
-        while ((hi = r->cum[s + 1]) <= rem)
-            ++s;  /* coarse bucket: find the exact symbol */
-        lo = r->cum[s];
-    }
-    *state = quo * (hi - lo) + rem - lo;
-    return r->sym[s];
+    const uint32_t off = r->lut[rem >> (exact ? 0u : r->lut_shift)];
+    const ld_rans_sym *e = (const ld_rans_sym *)(const void *)((const uint8_t *)r->tab + off);
+    if (!exact)
+        while (e[1].lo <= rem)
+            ++e;
+    *state = quo * e->freq + rem - e->lo;
+    return e->value;
 }
 
 /* Renormalise and step, checking the start of the buffer: libdraco stops
@@ -255,10 +288,19 @@ static LD_FORCE_INLINE void ld_rans_run(ld_rans *r, uint32_t *out, uint32_t n, i
             out[i++] = ld_rans_step(&c, &x, exact);
             continue;
         }
-        for (; o < end; ++o) {
+        /* two symbols per turn: half the loop's tests and increments */
+        for (; o + 1 < end; o += 2) {
             while (x < l_base)
                 x = (x << 8) | *--p;
-            *o = ld_rans_step(&c, &x, exact);
+            o[0] = ld_rans_step(&c, &x, exact);
+            while (x < l_base)
+                x = (x << 8) | *--p;
+            o[1] = ld_rans_step(&c, &x, exact);
+        }
+        if (o < end) {
+            while (x < l_base)
+                x = (x << 8) | *--p;
+            *o++ = ld_rans_step(&c, &x, exact);
         }
         i = (uint32_t)(o - out);
     }
@@ -271,35 +313,82 @@ static void ld_rans_run_exact(ld_rans *r, uint32_t *out, uint32_t n) { ld_rans_r
 static void ld_rans_run_coarse(ld_rans *r, uint32_t *out, uint32_t n) { ld_rans_run(r, out, n, 0); }
 
 static lumo_status ld_rans_create(ld_rans *r, ld_buf *b, ld_mem *m, unsigned bit_length,
-                                  uint32_t num_values)
+                                  uint32_t num_values, int zz)
 {
     lumo_status st;
     r->prec_bits = ld_rans_precision(bit_length);
-    if ((st = ld_rans_read_table(r, b, m, NULL)))
+    if ((st = ld_rans_read_table(r, b, m, NULL, zz)))
         return st;
     if (r->num_symbols == 0)
         return LUMO_ERR_CORRUPT;  /* values announced but no alphabet */
     return ld_rans_build_lut(r, m, num_values);
 }
 
+/* The 8 bytes at p as a little-endian word (compilers make it one load). */
+static inline uint64_t ld_le64(const uint8_t *p)
+{
+    return (uint64_t)p[0] | ((uint64_t)p[1] << 8) | ((uint64_t)p[2] << 16) |
+           ((uint64_t)p[3] << 24) | ((uint64_t)p[4] << 32) | ((uint64_t)p[5] << 40) |
+           ((uint64_t)p[6] << 48) | ((uint64_t)p[7] << 56);
+}
+
+/* Values of up to 32 raw bits after a tag per `comps` values: the bit
+ * length, rANS coded. `zz` (a constant in each instance): the values are
+ * zig-zag decoded as they are read (the tags never are). The tag coder
+ * and the bit position are held in locals (stores to out could alias
+ * them). A group whose bits end 8 bytes before the buffer does is read
+ * from 64-bit windows (a value starts at most 7 bits into its window and
+ * is at most 32 bits long), the same bits ld_bits_get returns; the groups
+ * near the end go through ld_bits_get (zero bits past the end). */
+static LD_FORCE_INLINE lumo_status ld_tagged_run(ld_rans *tags, ld_bits *bits, uint32_t *out,
+                                                 uint32_t num_values, unsigned comps, int zz)
+{
+    ld_rans c = *tags;
+    const uint8_t *const data = bits->data;
+    const size_t size = bits->size;
+    size_t bit = bits->bit;
+    uint32_t *o = out, *const end = out + num_values;
+    unsigned j;
+    while (o < end) {
+        /* a whole group, or the stream's short last one */
+        const unsigned group = (size_t)(end - o) < comps ? (unsigned)(end - o) : comps;
+        const uint32_t len = ld_rans_read(&c);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        if (((bit + (size_t)group * len) >> 3) + 8u <= size) {
+            const uint64_t mask = ((uint64_t)1 << len) - 1u;
+            for (j = 0; j < group; ++j, bit += len) {
+                const uint32_t v = (uint32_t)((ld_le64(data + (bit >> 3)) >> (bit & 7u)) & mask);
+                *o++ = zz ? (uint32_t)ld_zigzag(v) : v;
+            }
+            continue;
+        }
+        bits->bit = bit;
+        for (j = 0; j < group; ++j) {
+            const uint32_t v = ld_bits_get(bits, len);
+            *o++ = zz ? (uint32_t)ld_zigzag(v) : v;
+        }
+        bit = bits->bit;
+    }
+    bits->bit = bit;
+    tags->state = c.state;
+    tags->offset = c.offset;
+    return LUMO_OK;
+}
+
 static lumo_status ld_decode_tagged(ld_buf *b, ld_mem *m, uint32_t num_values,
-                                    unsigned comps, uint32_t *out)
+                                    unsigned comps, uint32_t *out, int zz)
 {
     ld_rans tags;
     ld_bits bits;
-    uint32_t i = 0;
-    unsigned j;
-    lumo_status st = ld_rans_create(&tags, b, m, 5, num_values / comps + 1u);
+    lumo_status st = ld_rans_create(&tags, b, m, 5, num_values / comps + 1u, 0);
     if (st || (st = ld_rans_start(&tags, b)))
         return st;
     ld_bits_start(&bits, b);
-    while (i < num_values) {
-        uint32_t len = ld_rans_read(&tags);
-        if (len > 32u)
-            return LUMO_ERR_CORRUPT;
-        for (j = 0; j < comps && i < num_values; ++j)
-            out[i++] = ld_bits_get(&bits, len);
-    }
+    st = zz ? ld_tagged_run(&tags, &bits, out, num_values, comps, 1)
+            : ld_tagged_run(&tags, &bits, out, num_values, comps, 0);
+    if (st)
+        return st;
     ld_bits_end(&bits, b);
     /* The encoder's stream ends where it began: renormalised, every byte
      * read and the initial state back (libdraco does not check). The arena
@@ -318,14 +407,15 @@ static lumo_status ld_raw_max_bits(ld_buf *b, uint8_t *max_bits)
     return *max_bits < 1 || *max_bits > 18 ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
-static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out)
+static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint32_t *out,
+                                 int zz)
 {
     ld_rans r;
     uint8_t max_bits;
     lumo_status st = ld_raw_max_bits(b, &max_bits);
     if (st)
         return st;
-    if ((st = ld_rans_create(&r, b, m, max_bits, num_values)) || (st = ld_rans_start(&r, b)))
+    if ((st = ld_rans_create(&r, b, m, max_bits, num_values, zz)) || (st = ld_rans_start(&r, b)))
         return st;
     if (r.lut_shift == 0)
         ld_rans_run_exact(&r, out, num_values);
@@ -335,9 +425,9 @@ static lumo_status ld_decode_raw(ld_buf *b, ld_mem *m, uint32_t num_values, uint
     return ld_rans_at_start(&r) ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
-lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
-                              unsigned num_components, uint32_t *out,
-                              uint8_t *scheme_out)
+static lumo_status ld_decode_stream(ld_buf *b, ld_mem *m, uint32_t num_values,
+                                    unsigned num_components, uint32_t *out,
+                                    uint8_t *scheme_out, int zz)
 {
     uint8_t scheme;
     uint8_t *mark;
@@ -352,13 +442,27 @@ lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
         *scheme_out = scheme;
     mark = ld_tmp_mark(m);
     if (scheme == 0)
-        st = ld_decode_tagged(b, m, num_values, num_components, out);
+        st = ld_decode_tagged(b, m, num_values, num_components, out, zz);
     else if (scheme == 1)
-        st = ld_decode_raw(b, m, num_values, out);
+        st = ld_decode_raw(b, m, num_values, out, zz);
     else
         st = LUMO_ERR_CORRUPT;
     ld_tmp_release(m, mark);
     return st;
+}
+
+lumo_status ld_decode_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
+                              unsigned num_components, uint32_t *out,
+                              uint8_t *scheme_out)
+{
+    return ld_decode_stream(b, m, num_values, num_components, out, scheme_out, 0);
+}
+
+lumo_status ld_decode_signed_symbols(ld_buf *b, ld_mem *m, uint32_t num_values,
+                                     unsigned num_components, int32_t *out,
+                                     uint8_t *scheme_out)
+{
+    return ld_decode_stream(b, m, num_values, num_components, (uint32_t *)out, scheme_out, 1);
 }
 
 /* ---- rABS binary decoder --------------------------------------------------- */
@@ -416,7 +520,7 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
     unsigned j;
     lumo_status st;
     tags.prec_bits = ld_rans_precision(5);
-    if ((st = ld_rans_read_table(&tags, b, NULL, k)))
+    if ((st = ld_rans_read_table(&tags, b, NULL, k, 0)))
         return st;
     if (tags.num_symbols == 0)
         return LUMO_ERR_CORRUPT;
@@ -425,7 +529,7 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
         return LUMO_ERR_LIMIT;  /* not a stream the encoder writes */
     lumo_arena_init(&a, space, sizeof space);
     ld_mem_init(&m, &a);
-    if ((st = ld_rans_read_table(&tags, &table, &m, NULL)) || (st = ld_rans_start(&tags, b)))
+    if ((st = ld_rans_read_table(&tags, &table, &m, NULL, 0)) || (st = ld_rans_start(&tags, b)))
         return st;
     tags.lut = (uint32_t *)(uintptr_t)&zero;  /* one bucket: search from 0 */
     tags.lut_shift = tags.prec_bits;
@@ -505,7 +609,7 @@ static lumo_status ld_need_raw(ld_buf *b, ld_need *k, uint32_t num_values, unsig
         return st;
     r.prec_bits = ld_rans_precision(max_bits);
     table = *b;
-    if ((st = ld_rans_read_table(&r, b, NULL, k)))
+    if ((st = ld_rans_read_table(&r, b, NULL, k, 0)))
         return st;
     if (r.num_symbols == 0)
         return LUMO_ERR_CORRUPT;
