@@ -347,17 +347,11 @@ typedef struct ld_pred {
     uint8_t *orient;
     uint32_t num_orient;
     ld_rabs flip;
-    /* corrections still zig-zag coded: ld_pred_compute converts them in
-     * its own pass (see ld_pred_fuses_zigzag) */
-    uint8_t zigzag;
 } ld_pred;
 
 /* m == NULL: only read the data and book its work memory into k. */
 lumo_status ld_pred_decode_data(ld_pred *p, ld_buf *b, ld_mem *m, ld_need *k);
 lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
-/* 1 when ld_pred_compute can take zig-zag coded corrections (method and
- * transform known, data not yet read): one pass over the values, not two. */
-int ld_pred_fuses_zigzag(const ld_pred *p);
 /* 1 when the prediction reads the corner table only as the opposite of
  * each entry's corner (parallelogram). */
 int ld_pred_needs_opposites_only(const ld_pred *p);
