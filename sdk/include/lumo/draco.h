@@ -176,7 +176,7 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
 #define LUMO_DRACO_LEAN 1u  /* EdgeBreaker meshes: the opposite corners are
                                packed into the spare bits of the output face
                                array; arena ~1.2x the output instead of
-                               1.4-1.7x, for ~1.4x the instructions
+                               1.4-1.7x, for 1.35-1.55x the instructions
                                (docs/draco-decoder.md, "Memory") */
 lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flags,
                                  lumo_arena *arena, lumo_draco_mesh *out);
