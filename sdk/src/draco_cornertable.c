@@ -10,7 +10,8 @@
  * unused, and EdgeBreaker's opposites are mostly a few corners away
  * (measured on the Stanford dragons: 72% of the corners at 871k
  * triangles, 97% at 203k, fit in those bits). The rest are escapes of 2
- * (or, for meshes above a few million faces, 3) bytes each.
+ * (3 when 16 bits above the word's low part do not reach 3F: meshes of
+ * more than about a million faces with over 2^19 vertices) bytes each.
  */
 #include "draco_internal.h"
 
