@@ -177,7 +177,9 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
                                packed into the spare bits of the output face
                                array; arena ~1.2x the output instead of
                                1.4-1.7x, for 1.35-1.55x the instructions
-                               (docs/draco-decoder.md, "Memory") */
+                               (docs/draco-decoder.md, "Memory"); its
+                               need.bytes assumes the worst packing, its
+                               bytes_min is close to the exact need */
 lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flags,
                                  lumo_arena *arena, lumo_draco_mesh *out);
 lumo_status lumo_draco_arena_need_ex(const uint8_t *data, size_t size, unsigned flags,
