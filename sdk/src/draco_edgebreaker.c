@@ -770,13 +770,20 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
  * border test: keep that as one byte per vertex in the top of the table's
  * block (filled from the last vertex down, each byte lands above every
  * entry still to be read: byte v at >= 3n + v > 4v). */
-static LD_FORCE_INLINE void ld_eb_border_fill(const struct ld_eb *e, uint8_t *border, int lean)
+/* On local copies of the tables: the byte stores could alias e's fields. */
+static LD_FORCE_INLINE void ld_eb_border_fill(const uint32_t *lmc, const uint32_t *opp32,
+                                              const uint8_t *o24, uint32_t n, uint8_t *border,
+                                              int lean)
 {
-    const uint32_t *lmc = e->lmc;
     uint32_t v;
-    for (v = e->num_vertices; v-- > 0;) {
+    for (v = n; v-- > 0;) {
         const uint32_t lc = lmc[v];
-        border[v] = (uint8_t)(lc == LD_INV || !ld_has_opp(e, ld_next_v(lc), lean));
+        if (lc == LD_INV)
+            border[v] = 1;
+        else if (lean)
+            border[v] = (uint8_t)(ld_o24(o24, ld_next_v(lc)) == LD_O24_NONE);
+        else
+            border[v] = (uint8_t)(opp32[ld_next_v(lc)] == LD_INV);
     }
 }
 
@@ -784,9 +791,9 @@ static uint8_t *ld_eb_border(struct ld_eb *e)
 {
     uint8_t *border = e->lmc_top - (((size_t)e->num_vertices + 7u) & ~(size_t)7u);
     if (e->lean)
-        ld_eb_border_fill(e, border, 1);
+        ld_eb_border_fill(e->lmc, NULL, e->o24, e->num_vertices, border, 1);
     else
-        ld_eb_border_fill(e, border, 0);
+        ld_eb_border_fill(e->lmc, e->opp32, NULL, e->num_vertices, border, 0);
     e->ct.border = border;
     e->ct.lmc = NULL;
     e->lmc = NULL;
