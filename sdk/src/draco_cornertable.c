@@ -44,10 +44,16 @@ uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w)
     return c ^ (hi << t->lshift | field >> (LD_POT_RANK_BITS + 1u));
 }
 
-/* Bits needed by any corner XOR corner below n. */
-static unsigned ld_pot_xor_bits(uint32_t n)
+unsigned ld_pot_lshift(unsigned vshift)
 {
-    return n > 1u ? ld_pot_vshift(n) : 1u;
+    return 32u - vshift - (LD_POT_RANK_BITS + 1u);
+}
+
+/* 2 bytes when they and the word's low part cover any corner XOR corner
+ * below num_corners (ld_pot_vshift bits), else 3. */
+unsigned ld_pot_escape_width(uint32_t num_corners, unsigned vshift)
+{
+    return 16u + ld_pot_lshift(vshift) >= ld_pot_vshift(num_corners) ? 2u : 3u;
 }
 
 /* One corner's escape: its rank in the block and the low bits of x in the
@@ -68,9 +74,9 @@ static void ld_pot_escape_put(uint8_t *o24, unsigned ew, uint32_t e, uint32_t ra
 void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vshift, uint8_t *o24,
                   uint16_t *fine, uint32_t *coarse, size_t *esc_bytes)
 {
-    const unsigned k = 32u - vshift, lshift = k - (LD_POT_RANK_BITS + 1u), s1 = vshift + 1u;
+    const unsigned k = 32u - vshift, lshift = ld_pot_lshift(vshift), s1 = vshift + 1u;
     const uint32_t direct = 1u << (k - 1u), none = 0xFFFFFFFFu << vshift;
-    const unsigned ew = 16u + lshift >= ld_pot_xor_bits(num_corners) ? 2u : 3u;
+    const unsigned ew = ld_pot_escape_width(num_corners, vshift);
     const uint32_t blocks = (num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK;
     uint32_t b, e = 0;
     /* the words hold vertex ids below 2^vshift: the spare bits are zero */

@@ -58,8 +58,10 @@ struct ld_eb {
     ld_bits sym_bits;
     ld_rabs start_faces;
     /* valence coding */
-    uint32_t *val32;           /* valences, default mode */
-    uint8_t *valences;         /* lean: saturating at 255 (min(v, 7) is read) */
+    union {                    /* valences: */
+        uint32_t *w;           /* default mode */
+        uint8_t *b;            /* lean: saturating at 255 (min(v, 7) is read) */
+    } val;
     uint8_t *ctx_symbols[LD_VALENCE_CONTEXTS];  /* 0..4, 5 = invalid */
     uint32_t ctx_count[LD_VALENCE_CONTEXTS];
     int active_ctx;
@@ -136,16 +138,16 @@ static LD_FORCE_INLINE uint32_t ld_eb_swing_right(const struct ld_eb *e, uint32_
 static LD_FORCE_INLINE void ld_valence_add(struct ld_eb *e, uint32_t v, uint32_t n, int lean)
 {
     if (lean) {
-        const uint32_t x = e->valences[v] + n;
-        e->valences[v] = (uint8_t)(x > 255u ? 255u : x);
+        const uint32_t x = e->val.b[v] + n;
+        e->val.b[v] = (uint8_t)(x > 255u ? 255u : x);
     } else {
-        e->val32[v] += n;
+        e->val.w[v] += n;
     }
 }
 
 static LD_FORCE_INLINE uint32_t ld_valence(const struct ld_eb *e, uint32_t v, int lean)
 {
-    return lean ? e->valences[v] : e->val32[v];
+    return lean ? e->val.b[v] : e->val.w[v];
 }
 
 /* ---- header and split events ----------------------------------------------- */
@@ -237,8 +239,10 @@ static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
     if (!val)
         return LUMO_ERR_NOMEM;
     memset(val, 0, ((size_t)e->max_vertices + 3u) * vsize);
-    e->valences = val;
-    e->val32 = val;
+    if (e->lean)
+        e->val.b = val;
+    else
+        e->val.w = val;
     e->active_ctx = -1;
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         uint32_t n;
@@ -1046,7 +1050,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     if (e->num_vertices != e->max_vertices || (!nad && e->num_conn_vertices != verts))
         return LUMO_ERR_CORRUPT;
     ld_tmp_release(&d->mem, mark);
-    e->valences = NULL;
+    memset(&e->val, 0, sizeof e->val);
     e->ct.num_vertices = e->num_vertices;
     if (e->lean)
         st = ld_eb_pack(d, e);
@@ -1123,7 +1127,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (!o.vertex_to_value)
             return LUMO_ERR_NOMEM;
     }
-    if ((st = ld_traverse(&d->mem, ct, vmap, e->dec_traversal[decoder], d->faces, &o)))
+    if ((st = ld_traverse(&d->mem, ct, vmap, e->dec_traversal[decoder], &o)))
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
@@ -1171,10 +1175,12 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
     if (!e || e->num_attr_data || seq->ct != &e->ct || !(e->packed || e->opp32) ||
         !e->ct.border)
         return;
-    for (i = 0; opposites && e->opp32 && i < n; ++i)
-        v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp32[v2c[i]];
-    for (i = 0; opposites && e->packed && i < n; ++i)
-        v2c[i] = v2c[i] == LD_INV ? LD_INV : ld_pot_opp(&e->ct.opp, v2c[i]);
+    if (opposites && e->opp32)  /* one loop per store: no test per entry */
+        for (i = 0; i < n; ++i)
+            v2c[i] = v2c[i] == LD_INV ? LD_INV : e->opp32[v2c[i]];
+    else if (opposites)
+        for (i = 0; i < n; ++i)
+            v2c[i] = v2c[i] == LD_INV ? LD_INV : ld_pot_opp(&e->ct.opp, v2c[i]);
     if (!e->packed) {  /* default: [opposites][border bytes] */
         top = opposites ? e->opp_top : (uint8_t *)e->opp32;
         if (opposites)
@@ -1318,8 +1324,7 @@ static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces;
     const unsigned vshift = ld_pot_vshift(ld_eb_need_vertices(e));
-    const unsigned lshift = vshift > 25u ? 0u : 26u - vshift;
-    const size_t ew = 16u + lshift >= ld_pot_vshift((uint32_t)corners) ? 2u : 3u;
+    const size_t ew = vshift > 25u ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
     const size_t cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
     const size_t fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
     ld_need_tmp(k, cb, 1);

@@ -426,6 +426,10 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
 void ld_pot_strip(uint32_t *words, uint32_t num_corners, unsigned vshift);
 /* Bits of the vertex ids below n (at least 1). */
 unsigned ld_pot_vshift(uint32_t n);
+/* The low bits of x an escaped word holds (vshift <= 25), and the bytes of
+ * an escape entry: shared by the packing and the arena-need replay. */
+unsigned ld_pot_lshift(unsigned vshift);
+unsigned ld_pot_escape_width(uint32_t num_corners, unsigned vshift);
 uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w);
 static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
 {
@@ -491,7 +495,7 @@ typedef struct ld_order {
 
 /* o->vertex_to_value: NULL, or an array of vmap_size entries to fill. */
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
-                        const uint32_t *faces, ld_order *o);
+                        ld_order *o);
 
 /* ---- EdgeBreaker (draco_edgebreaker.c) ----------------------------------- */
 /* What the need scanner knows of an EdgeBreaker mesh (lumo_draco_arena_need). */

@@ -8,7 +8,6 @@
 
 typedef struct ld_walk {
     const ld_ct *ct;
-    const uint32_t *faces;     /* corner -> point */
     uint8_t *face_seen;        /* a vertex is seen once it has a value */
     uint32_t num_faces;
     uint32_t cap, max_depth;   /* DFS stack in free space */
@@ -301,7 +300,7 @@ static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
 }
 
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
-                        const uint32_t *faces, ld_order *o)
+                        ld_order *o)
 {
     ld_walk w;
     ld_pq q;
@@ -317,7 +316,6 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     o->value_to_corner = ld_tmp(m, nv, sizeof(uint32_t));
     mark = ld_tmp_mark(m);  /* the rest is released on return */
     w.ct = ct;
-    w.faces = faces;
     w.o = o;
     w.num_faces = ct->num_corners / 3u;
     w.face_seen = ld_tmp(m, w.num_faces, 1);
