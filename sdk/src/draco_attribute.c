@@ -388,3 +388,25 @@ lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs,
             return st;
     return LUMO_OK;
 }
+
+/* Whether the mesh attribute whose values start at `b` is predicted by a
+ * scheme that reads of the corner table only each entry's opposite corner
+ * (the parallelogram): its method byte, peeked. The EdgeBreaker decoder
+ * and its arena-need replay ask before a traversal (ld_eb_sequence). */
+int ld_peek_opposites_only(const ld_buf *b)
+{
+    ld_buf c = *b;
+    ld_ct ct;
+    ld_seq seq;
+    ld_pred pred;
+    int8_t method;
+    if (ld_u8(&c, (uint8_t *)&method))
+        return 0;
+    memset(&ct, 0, sizeof ct);
+    memset(&seq, 0, sizeof seq);
+    memset(&pred, 0, sizeof pred);
+    seq.ct = &ct;
+    pred.method = method;
+    pred.seq = &seq;
+    return ld_pred_needs_opposites_only(&pred);
+}

@@ -290,9 +290,9 @@ static lumo_status ld_attribute_values(ld_dec *d, unsigned i, ld_decoder_slot *s
     if (kd)
         return ld_kd_decode_attributes(d, slot->first, slot->count);
     if (d->eb) {
+        slot->seq.last = (uint8_t)(i + 1u == d->num_decoders && slot->count == 1u);
         if ((st = ld_eb_sequence(d, i, &slot->seq)))
             return st;
-        slot->seq.last = (uint8_t)(i + 1u == d->num_decoders && slot->count == 1u);
     } else {
         slot->seq.num_entries = d->num_points;  /* linear sequencer */
     }
@@ -626,8 +626,8 @@ static lumo_status ld_scan_attributes(ld_scan *s)
             st = ld_kd_need(&s->buf, &s->k, s->attrs + s->first[i], s->count[i], s->num_points);
         } else {
             if (s->is_eb) {
-                ld_eb_need_sequence(&s->k, &s->eb, i, &seq);
                 seq.last = (uint8_t)(i + 1u == n && s->count[i] == 1u);
+                ld_eb_need_sequence(&s->k, &s->eb, i, &seq, &s->buf);
             } else {
                 seq.entries = s->num_points;
             }

@@ -775,20 +775,25 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
  * block (filled from the last vertex down, each byte lands above every
  * entry still to be read: byte v at >= 3n + v > 4v). */
 /* On local copies of the tables: the byte stores could alias e's fields. */
+/* A vertex is on a border when it has no left-most corner or that corner
+ * has no swing left (DepthFirstTraverser's IsOnBoundary). */
+static LD_FORCE_INLINE int ld_eb_on_border(uint32_t lc, const uint32_t *opp32, const uint8_t *o24,
+                                           int lean)
+{
+    if (lc == LD_INV)
+        return 1;
+    if (lean)
+        return ld_o24(o24, ld_next_v(lc)) == LD_O24_NONE;
+    return opp32[ld_next_v(lc)] == LD_INV;
+}
+
 static LD_FORCE_INLINE void ld_eb_border_fill(const uint32_t *lmc, const uint32_t *opp32,
                                               const uint8_t *o24, uint32_t n, uint8_t *border,
                                               int lean)
 {
     uint32_t v;
-    for (v = n; v-- > 0;) {
-        const uint32_t lc = lmc[v];
-        if (lc == LD_INV)
-            border[v] = 1;
-        else if (lean)
-            border[v] = (uint8_t)(ld_o24(o24, ld_next_v(lc)) == LD_O24_NONE);
-        else
-            border[v] = (uint8_t)(opp32[ld_next_v(lc)] == LD_INV);
-    }
+    for (v = n; v-- > 0;)
+        border[v] = (uint8_t)ld_eb_on_border(lmc[v], opp32, o24, lean);
 }
 
 static uint8_t *ld_eb_border(struct ld_eb *e)
@@ -1052,9 +1057,11 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     ld_tmp_release(&d->mem, mark);
     memset(&e->val, 0, sizeof e->val);
     e->ct.num_vertices = e->num_vertices;
-    if (e->lean)
+    /* lean without seams: the first sequence packs the table or reads it
+     * as decoded (ld_eb_reads_o24) */
+    if (e->lean && nad)
         st = ld_eb_pack(d, e);
-    else if (!nad)
+    else if (!e->lean && !nad)
         st = ld_eb_drop_lmc(d, e);
     if (st)
         return st;
@@ -1105,6 +1112,58 @@ lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq 
     return LUMO_OK;
 }
 
+/* Lean, no seams: the 24-bit table is as the symbols left it. When the
+ * stream's only attributes decoder holds one attribute, walked depth-first
+ * and predicted by parallelograms (positions at -cl 3..8: the default
+ * level), the table is read as it is: the traversal marks faces in the
+ * face words and finds borders in the vertex map, and the prediction
+ * keeps only each entry's opposite (ld_eb_release_table), so the table is
+ * never packed. Otherwise it is packed now, before the first traversal.
+ * The arena-need replay decides alike (ld_eb_need_sequence). */
+static int ld_eb_reads_o24(const ld_dec *d, const struct ld_eb *e, unsigned decoder,
+                           const ld_seq *seq)
+{
+    return decoder == 0 && d->num_decoders == 1 && seq->last && e->dec_traversal[0] == 0 &&
+           ld_peek_opposites_only(&d->buf);
+}
+
+/* The 24-bit table moves up to end at `top`, over dead work memory. */
+static void ld_eb_lift_o24(ld_dec *d, struct ld_eb *e, uint8_t *top)
+{
+    e->o24 = ld_move_up(top, e->o24, 9u * (size_t)e->num_faces + 1u);
+    ld_tmp_release(&d->mem, e->o24);
+}
+
+/* Before the vertex map is allocated: the left-most corners become the
+ * border bytes (ld_eb_border) and the table moves up over the rest ... */
+static void ld_eb_keep_o24_begin(ld_dec *d, struct ld_eb *e)
+{
+    ld_eb_lift_o24(d, e, ld_eb_border(e));
+}
+
+/* ... then the vertex map starts as the border flags (-2 on a border,
+ * else -1) and the table moves up over the bytes. */
+static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
+{
+    const uint8_t *border = e->ct.border;
+    uint32_t v;
+    for (v = 0; v < e->num_vertices; ++v)
+        vmap[v] = border[v] ? -2 : -1;
+    ld_eb_lift_o24(d, e, e->lmc_top);
+    e->ct.border = NULL;
+    e->ct.o24 = e->o24;
+    e->ct.vmask = 0x7FFFFFFFu;  /* bit 31: the face-seen flags */
+}
+
+/* Clear the traversal's face-seen flags (bit 31 of each face's first word). */
+static void ld_eb_unmark_faces(struct ld_eb *e)
+{
+    uint32_t c;
+    for (c = 0; c < e->num_corners; c += 3u)
+        e->c2v[c] &= 0x7FFFFFFFu;
+    e->ct.vmask = 0xFFFFFFFFu;
+}
+
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
@@ -1112,12 +1171,20 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     uint32_t vmap = e->num_vertices, c;
     int8_t ad = e->dec_att_data[decoder];
     ld_order o;
+    int keep = 0;
     lumo_status st;
     if (ad >= 0) {
         if (e->dec_type[decoder] != 0)
             ct = &e->ad[ad].ct;
         if (e->ad[ad].ct.num_vertices > vmap)
             vmap = e->ad[ad].ct.num_vertices;
+    }
+    if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
+        keep = ld_eb_reads_o24(d, e, decoder, seq);
+        if (!keep && (st = ld_eb_pack(d, e)))
+            return st;
+        if (keep)
+            ld_eb_keep_o24_begin(d, e);
     }
     o.vertex_to_value = NULL;
     if (e->num_attr_data == 0) {
@@ -1126,8 +1193,13 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
         if (!o.vertex_to_value)
             return LUMO_ERR_NOMEM;
+        if (keep)
+            ld_eb_keep_o24(d, e, o.vertex_to_value);
     }
-    if ((st = ld_traverse(&d->mem, ct, vmap, e->dec_traversal[decoder], &o)))
+    /* read as decoded, the table leaves no room for the split vertices'
+     * entries: a mesh without seams has d->num_points vertices in use */
+    if ((st = ld_traverse(&d->mem, ct, vmap, keep ? d->num_points : vmap,
+                          e->dec_traversal[decoder], &o)))
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
@@ -1159,6 +1231,27 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     return LUMO_OK;
 }
 
+/* The 24-bit table read as decoded (ld_eb_keep_o24): each entry's corner
+ * becomes its opposite, the entries move up over the table, and the face
+ * words lose their flags. */
+static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
+{
+    struct ld_eb *e = d->eb;
+    uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
+    const uint32_t n = seq->num_entries;
+    const uint8_t *o24 = e->o24;
+    for (i = 0; i < n; ++i) {
+        const uint32_t o = v2c[i] == LD_INV ? LD_O24_NONE : ld_o24(o24, v2c[i]);
+        v2c[i] = o == LD_O24_NONE ? LD_INV : o;
+    }
+    ld_eb_unmark_faces(e);
+    e->o24 = NULL;
+    e->ct.o24 = NULL;
+    seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);
+    seq->opposites = 1;
+    ld_tmp_release(&d->mem, (uint8_t *)(uintptr_t)seq->value_to_corner);
+}
+
 /* The last attributes decoder's only attribute: after its traversal the
  * border bytes are dead, and a parallelogram prediction reads of the
  * corner table only the opposite of each entry's corner. Move the entry
@@ -1172,6 +1265,10 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
     uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
     const uint32_t n = seq->num_entries;
     uint8_t *top;
+    if (e && e->ct.o24 && seq->ct == &e->ct && opposites) {
+        ld_eb_release_o24(d, seq);
+        return;
+    }
     if (!e || e->num_attr_data || seq->ct != &e->ct || !(e->packed || e->opp32) ||
         !e->ct.border)
         return;
@@ -1214,6 +1311,8 @@ void ld_eb_finish(ld_dec *d)
     struct ld_eb *e = d->eb;
     if (e && e->packed && !e->num_attr_data)
         ld_pot_strip(e->c2v, e->num_corners, e->ct.opp.vshift);
+    if (e && e->ct.o24)
+        ld_eb_unmark_faces(e);
     if (e)
         e->packed = 0;
 }
@@ -1387,9 +1486,9 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
-    if (lean) {
-        ld_eb_need_pack(k, e, nad ? o24_top : e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1));
-    } else if (!nad) {  /* ld_eb_drop_lmc */
+    if (lean && nad) {
+        ld_eb_need_pack(k, e, o24_top);
+    } else if (!lean && !nad) {  /* ld_eb_drop_lmc */
         ld_need_release(k, e->w_lmc_top);
         ld_need_tmp(k, ld_eb_need_vertices(e), 1);
     }
@@ -1462,7 +1561,16 @@ uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e)
     return ld_need_pick(k, max, sum < corners ? sum : corners);
 }
 
-void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s)
+/* ld_eb_reads_o24, on the scan's state. */
+static int ld_eb_need_reads_o24(const ld_eb_need *e, unsigned decoder, const ld_need_seq *s,
+                                const ld_buf *b)
+{
+    return decoder == 0 && e->num_decoders == 1 && s->last && e->dec_traversal[0] == 0 &&
+           ld_peek_opposites_only(b);
+}
+
+void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s,
+                         const ld_buf *b)
 {
     const int8_t ad = e->dec_att_data[decoder];
     const int own = ad < 0 || e->dec_type[decoder] == 0;  /* the mesh's corner table */
@@ -1470,16 +1578,29 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     /* vertices of the table traversed, and the vertex map's size */
     const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_eb_need_attr_vertices(k, e, ad);
     uint64_t vmap = ld_eb_need_vertices(e), points = ld_eb_need_points(k, e);
+    const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
+    int keep = 0;
     if (ad >= 0 && ld_eb_need_attr_vertices(k, e, ad) > vmap)
         vmap = ld_eb_need_attr_vertices(k, e, ad);
+    if (e->lean && !e->nad && !e->settled) {  /* ld_eb_sequence: keep or pack */
+        e->settled = 1;
+        keep = ld_eb_need_reads_o24(e, decoder, s, b);
+        if (!keep)
+            ld_eb_need_pack(k, e, e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1));
+        else  /* ld_eb_keep_o24_begin: the table moves up over the left-most corners */
+            ld_need_release(k, e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1) + o24);
+    }
     if (e->nad == 0)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));
     else
         ld_need_tmp(k, (size_t)vmap, sizeof(int32_t));
-    ld_need_tmp(k, (size_t)nv, sizeof(uint32_t));  /* value -> corner */
+    if (keep)  /* ld_eb_keep_o24: ... and over the border bytes */
+        ld_need_release(k, e->w_lmc_top + o24);
+    ld_need_tmp(k, (size_t)(keep ? points : nv), sizeof(uint32_t));  /* value -> corner */
     mark = k->work;
-    ld_need_tmp(k, e->faces, 1);
+    if (!keep)  /* else the face flags are in the face words */
+        ld_need_tmp(k, e->faces, 1);
     if (e->dec_traversal[decoder]) {
         ld_need_tmp(k, (size_t)nv, sizeof(uint32_t));
         ld_need_free(k, (size_t)ld_need_pick(k, 0u, (uint64_t)e->faces + 1u) * 8u);

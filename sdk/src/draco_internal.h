@@ -355,6 +355,8 @@ lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
 /* 1 when the prediction reads the corner table only as the opposite of
  * each entry's corner (parallelogram). */
 int ld_pred_needs_opposites_only(const ld_pred *p);
+/* draco_attribute.c: the same for the attribute whose values start at b */
+int ld_peek_opposites_only(const ld_buf *b);
 
 /* ---- corner tables (draco_traverse.c) ------------------------------------ */
 #define LD_INV 0xFFFFFFFFu
@@ -444,7 +446,13 @@ static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
 typedef struct ld_ct {
     const uint32_t *c2v;      /* corner -> vertex (& vmask) */
     const uint32_t *opp32;    /* opposite corners of the mesh, or NULL: */
-    ld_pot opp;               /* ... packed (LUMO_DRACO_LEAN) */
+    ld_pot opp;               /* ... packed (LUMO_DRACO_LEAN), or */
+    const uint8_t  *o24;      /* ... the lean decode's 24-bit table, read
+                                 as decoded by the depth-first traversal
+                                 of a mesh without seams (see
+                                 ld_eb_sequence): faces seen are bit 31 of
+                                 their first corner's c2v word, border
+                                 vertices -2 in the unvisited vertex map */
     const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner
@@ -493,9 +501,11 @@ typedef struct ld_order {
     uint32_t num_values;
 } ld_order;
 
-/* o->vertex_to_value: NULL, or an array of vmap_size entries to fill. */
-lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
-                        ld_order *o);
+/* o->vertex_to_value: NULL, or an array of vmap_size entries to fill;
+ * with ct->o24, filled by the caller (-1, or -2 for a border vertex).
+ * At most max_values vertices get a value (more: LUMO_ERR_CORRUPT). */
+lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t max_values,
+                        int prediction_degree, ld_order *o);
 
 /* ---- EdgeBreaker (draco_edgebreaker.c) ----------------------------------- */
 /* What the need scanner knows of an EdgeBreaker mesh (lumo_draco_arena_need). */
@@ -507,6 +517,8 @@ typedef struct ld_eb_need {
     size_t w_lmc_top;          /* work above the left-most corners' block */
     size_t w_table;            /* the packed table's escapes and indices */
     uint8_t table_live;        /* packed table and border bytes not released */
+    uint8_t settled;           /* lean, no seams: the first sequence chose how
+                                  to read the table (ld_eb_need_sequence) */
     int8_t dec_att_data[LD_MAX_DECODERS];
     uint8_t dec_type[LD_MAX_DECODERS], dec_traversal[LD_MAX_DECODERS];
     uint8_t ad_used[LD_NEED_MAX_ATTR_DATA];
@@ -521,7 +533,9 @@ typedef struct ld_eb_need {
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean);
 lumo_status ld_eb_need_decoder(ld_buf *b, ld_eb_need *e, unsigned decoder);
 /* One attributes decoder's sequence: sets s->entries and s->mesh. */
-void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s);
+/* b: the stream at the decoder's first attribute (its method is peeked) */
+void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s,
+                         const ld_buf *b);
 void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites);
 /* Points of the mesh: exact without attribute seams, else a bound. */
 uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e);

@@ -11,6 +11,8 @@ typedef struct ld_walk {
     uint8_t *face_seen;        /* a vertex is seen once it has a value */
     uint32_t num_faces;
     uint32_t cap, max_depth;   /* DFS stack in free space */
+    uint32_t max_values;       /* entries of o->value_to_corner */
+    uint8_t overflow;          /* more vertices visited: a corrupt stream */
     ld_order *o;
 } ld_walk;
 
@@ -23,6 +25,10 @@ static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
 static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
 {
     ld_order *o = w->o;
+    if (o->num_values >= w->max_values) {
+        w->overflow = 1;
+        return;
+    }
     o->value_to_corner[o->num_values] = corner;
     o->vertex_to_value[v] = (int32_t)o->num_values;
     o->num_values++;
@@ -40,25 +46,52 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
     return LUMO_OK;
 }
 
+/* Where a traversal finds the opposites: 32-bit ids, the packed table
+ * (LUMO_DRACO_LEAN), or the lean decode's 24-bit table with the face flags
+ * in the face words and the border flags in the vertex map (ld_ct.o24). */
+#define LD_STORE_PLAIN  0
+#define LD_STORE_PACKED 1
+#define LD_STORE_O24    2
+#define LD_FACE_SEEN    0x80000000u  /* LD_STORE_O24: bit 31 of word 3f */
+#define LD_VMAP_BORDER  (-2)         /* LD_STORE_O24: unvisited, on a border */
+
+/* One opposite for a constant `store` (ld_dfs). */
+static LD_FORCE_INLINE uint32_t ld_dfs_opp(const uint32_t *opp32, const ld_pot *opp,
+                                           const uint8_t *o24, uint32_t c, int store)
+{
+    uint32_t o;
+    if (store == LD_STORE_PLAIN)
+        return opp32[c];
+    if (store == LD_STORE_PACKED)
+        return ld_pot_opp(opp, c);
+    o = ld_o24(o24, c);
+    return o == LD_O24_NONE ? LD_INV : o;
+}
+
 /* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
  * (the stores into the order arrays would otherwise force reloads);
- * `packed`: a constant, the opposites are packed (LUMO_DRACO_LEAN). */
+ * `store`: a constant, one of LD_STORE_*. */
 static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack,
-                                          int packed)
+                                          int store)
 {
     const ld_ct *ct = w->ct;
-    const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
+    const uint32_t *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
+    uint32_t *c2v = (uint32_t *)(uintptr_t)ct->c2v;  /* written: LD_STORE_O24 */
     const uint32_t vmask = ct->vmask;
     const ld_pot opp = ct->opp;
-    const uint8_t *seam = ct->seam, *border = ct->border;
+    const uint8_t *seam = ct->seam, *border = ct->border, *o24 = ct->o24;
     uint8_t *fseen = w->face_seen;
     uint32_t *v2c = w->o->value_to_corner;
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
-#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_opp(&opp, c) : opp32[c])
-#define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
+#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, &opp, o24, c, store))
+#define LD_FACE(c) ((c) - (c) % 3u)
+#define LD_SEEN(c) ((c) == LD_INV || (store == LD_STORE_O24 ? c2v[LD_FACE(c)] >> 31 \
+                                                              : fseen[(c) / 3u]))
 #define LD_VISIT(v, c) (v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
+    /* LD_STORE_O24: room for the mesh's points only (ld_traverse) */
+#define LD_VISIT_ROOM() (store != LD_STORE_O24 || n < w->max_values)
     if (w->cap < 2)
         return LUMO_ERR_NOMEM;
     if ((st = ld_visit_edge(w, corner)))
@@ -67,27 +100,35 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     stack[top++] = corner;
     while (top) {
         uint32_t c = stack[top - 1];
-        if (fseen[c / 3u]) {
+        if (LD_SEEN(c)) {
             --top;
             continue;
         }
         for (;;) {
-            uint32_t v, r, l, m3;
-            fseen[c / 3u] = 1;
-            v = packed ? c2v[c] & vmask : c2v[c];
+            uint32_t v, r, l, m3 = c % 3u;
+            if (store == LD_STORE_O24)
+                c2v[c - m3] |= LD_FACE_SEEN;
+            else
+                fseen[c / 3u] = 1;
+            v = store != LD_STORE_PLAIN ? c2v[c] & vmask : c2v[c];
             if (v >= nv) {
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
             }
-            m3 = c % 3u;
             if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
-                if (border) {
+                if (store == LD_STORE_O24) {
+                    boundary = vmap[v] == LD_VMAP_BORDER;
+                } else if (border) {
                     boundary = border[v];
                 } else {
                     const uint32_t lc = lmc[v];
                     boundary = lc == LD_INV || LD_OPP(ld_next_v(lc)) == LD_INV;
+                }
+                if (!LD_VISIT_ROOM()) {
+                    w->o->num_values = n;
+                    return LUMO_ERR_CORRUPT;
                 }
                 LD_VISIT(v, c);
                 if (!boundary) {
@@ -123,31 +164,34 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
         }
     }
 #undef LD_OPP
+#undef LD_FACE
 #undef LD_SEEN
 #undef LD_VISIT
+#undef LD_VISIT_ROOM
     w->o->num_values = n;
     return LUMO_OK;
 }
 
 /* Every start face; one instance per opposite store. */
-static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int packed)
+static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int store)
 {
     uint32_t f;
     lumo_status st = LUMO_OK;
-    for (f = 0; f < w->num_faces && !st; ++f)
-        if (!w->face_seen[f])  /* both traversers skip seen start faces */
-            st = ld_dfs(w, 3u * f, stack, packed);
+    for (f = 0; f < w->num_faces && !st; ++f) {
+        /* both traversers skip seen start faces */
+        const int seen = store == LD_STORE_O24 ? (int)(w->ct->c2v[3u * f] >> 31) : w->face_seen[f];
+        if (!seen)
+            st = ld_dfs(w, 3u * f, stack, store);
+    }
     return st;
 }
 
-static lumo_status ld_dfs_all_plain(ld_walk *w, uint32_t *stack)
+static lumo_status ld_dfs_all(ld_walk *w, uint32_t *stack)
 {
-    return ld_dfs_starts(w, stack, 0);
-}
-
-static lumo_status ld_dfs_all_packed(ld_walk *w, uint32_t *stack)
-{
-    return ld_dfs_starts(w, stack, 1);
+    if (w->ct->o24)
+        return ld_dfs_starts(w, stack, LD_STORE_O24);
+    return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN)
+                        : ld_dfs_starts(w, stack, LD_STORE_PACKED);
 }
 
 /* Prediction-degree traversal: three priority stacks sharing one node pool
@@ -290,6 +334,7 @@ static LD_FORCE_INLINE lumo_status ld_max_degree_starts(ld_walk *wp, ld_pq *qp, 
         if (!w.face_seen[f])  /* seen start faces are skipped */
             st = ld_max_degree(&w, 3u * f, &q, packed);
     *wp->o = o;
+    wp->overflow = w.overflow;
     qp->used = q.used;
     return st;
 }
@@ -299,8 +344,8 @@ static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
     return w->ct->opp32 ? ld_max_degree_starts(w, q, 0) : ld_max_degree_starts(w, q, 1);
 }
 
-lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int prediction_degree,
-                        ld_order *o)
+lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t max_values,
+                        int prediction_degree, ld_order *o)
 {
     ld_walk w;
     ld_pq q;
@@ -313,17 +358,23 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     memset(&q, 0, sizeof q);
     o->ct = ct;
     o->vertex_to_value = vmap ? vmap : ld_tmp(m, vmap_size, sizeof(int32_t));
-    o->value_to_corner = ld_tmp(m, nv, sizeof(uint32_t));
+    w.max_values = max_values < nv ? max_values : nv;
+    o->value_to_corner = ld_tmp(m, w.max_values, sizeof(uint32_t));
     mark = ld_tmp_mark(m);  /* the rest is released on return */
     w.ct = ct;
     w.o = o;
     w.num_faces = ct->num_corners / 3u;
-    w.face_seen = ld_tmp(m, w.num_faces, 1);
-    if (!o->vertex_to_value || !o->value_to_corner || !w.face_seen)
+    if (ct->o24 && (prediction_degree || !vmap))
+        return LUMO_ERR_CORRUPT;  /* only the depth-first walk of a filled map */
+    if (!ct->o24)  /* else the flags are in the face words and the map */
+        w.face_seen = ld_tmp(m, w.num_faces, 1);
+    if (!o->vertex_to_value || !o->value_to_corner || (!ct->o24 && !w.face_seen))
         return LUMO_ERR_NOMEM;
-    for (i = 0; i < vmap_size; ++i)
-        o->vertex_to_value[i] = -1;
-    memset(w.face_seen, 0, w.num_faces);
+    if (!ct->o24) {
+        for (i = 0; i < vmap_size; ++i)
+            o->vertex_to_value[i] = -1;
+        memset(w.face_seen, 0, w.num_faces);
+    }
     if (prediction_degree) {
         size_t cap;
         q.degree = ld_tmp(m, nv, sizeof(uint32_t));
@@ -346,7 +397,9 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, int pred
     if (prediction_degree)
         st = ld_max_degree_all(&w, &q);
     if (!prediction_degree)
-        st = ct->opp32 ? ld_dfs_all_plain(&w, stack) : ld_dfs_all_packed(&w, stack);
+        st = ld_dfs_all(&w, stack);
+    if (!st && w.overflow)
+        st = LUMO_ERR_CORRUPT;
     ld_free_used(m, prediction_degree ? (size_t)q.used * 8u : (size_t)w.max_depth * 4u);
     ld_tmp_release(m, mark);
     return st;
