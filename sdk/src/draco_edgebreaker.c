@@ -114,8 +114,9 @@ static LD_FORCE_INLINE void ld_set_opp(struct ld_eb *e, uint32_t a, uint32_t b, 
 /* A new face has no opposites yet. */
 static LD_FORCE_INLINE void ld_eb_clear_face(struct ld_eb *e, uint32_t face, int lean)
 {
-    if (lean) {
-        memset(e->o24 + 9u * (size_t)face, 0xFF, 9);
+    if (lean) {  /* three LD_O24_NONE, bit 23 (the traversal's flag) clear */
+        static const uint8_t none[9] = {0xFF, 0xFF, 0x7F, 0xFF, 0xFF, 0x7F, 0xFF, 0xFF, 0x7F};
+        memcpy(e->o24 + 9u * (size_t)face, none, 9);
     } else {
         uint32_t *fo = e->opp32 + 3u * face;
         fo[0] = fo[1] = fo[2] = LD_INV;
@@ -1115,10 +1116,11 @@ lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq 
 /* Lean, no seams: the 24-bit table is as the symbols left it. When the
  * stream's only attributes decoder holds one attribute, walked depth-first
  * and predicted by parallelograms (positions at -cl 3..8: the default
- * level), the table is read as it is: the traversal marks faces in the
- * face words and finds borders in the vertex map, and the prediction
- * keeps only each entry's opposite (ld_eb_release_table), so the table is
- * never packed. Otherwise it is packed now, before the first traversal.
+ * level), the table is read as it is: the traversal
+ * flags faces in the table and finds borders in the vertex map, and the
+ * prediction keeps only each entry's opposite (ld_eb_release_table), so
+ * the table is never packed. Otherwise it is packed now, before the first
+ * traversal.
  * The arena-need replay decides alike (ld_eb_need_sequence). */
 static int ld_eb_reads_o24(const ld_dec *d, const struct ld_eb *e, unsigned decoder,
                            const ld_seq *seq)
@@ -1146,22 +1148,13 @@ static void ld_eb_keep_o24_begin(ld_dec *d, struct ld_eb *e)
 static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
 {
     const uint8_t *border = e->ct.border;
+    const uint32_t n = e->num_vertices;
     uint32_t v;
-    for (v = 0; v < e->num_vertices; ++v)
-        vmap[v] = border[v] ? -2 : -1;
+    for (v = 0; v < n; ++v)
+        vmap[v] = -1 - (int32_t)border[v];
     ld_eb_lift_o24(d, e, e->lmc_top);
     e->ct.border = NULL;
     e->ct.o24 = e->o24;
-    e->ct.vmask = 0x7FFFFFFFu;  /* bit 31: the face-seen flags */
-}
-
-/* Clear the traversal's face-seen flags (bit 31 of each face's first word). */
-static void ld_eb_unmark_faces(struct ld_eb *e)
-{
-    uint32_t c;
-    for (c = 0; c < e->num_corners; c += 3u)
-        e->c2v[c] &= 0x7FFFFFFFu;
-    e->ct.vmask = 0xFFFFFFFFu;
 }
 
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
@@ -1232,8 +1225,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 }
 
 /* The 24-bit table read as decoded (ld_eb_keep_o24): each entry's corner
- * becomes its opposite, the entries move up over the table, and the face
- * words lose their flags. */
+ * becomes its opposite and the entries move up over the table. */
 static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
@@ -1244,7 +1236,6 @@ static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
         const uint32_t o = v2c[i] == LD_INV ? LD_O24_NONE : ld_o24(o24, v2c[i]);
         v2c[i] = o == LD_O24_NONE ? LD_INV : o;
     }
-    ld_eb_unmark_faces(e);
     e->o24 = NULL;
     e->ct.o24 = NULL;
     seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);
@@ -1311,8 +1302,6 @@ void ld_eb_finish(ld_dec *d)
     struct ld_eb *e = d->eb;
     if (e && e->packed && !e->num_attr_data)
         ld_pot_strip(e->c2v, e->num_corners, e->ct.opp.vshift);
-    if (e && e->ct.o24)
-        ld_eb_unmark_faces(e);
     if (e)
         e->packed = 0;
 }
@@ -1599,7 +1588,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_release(k, e->w_lmc_top + o24);
     ld_need_tmp(k, (size_t)(keep ? points : nv), sizeof(uint32_t));  /* value -> corner */
     mark = k->work;
-    if (!keep)  /* else the face flags are in the face words */
+    if (!keep)  /* else the face flags are in the table */
         ld_need_tmp(k, e->faces, 1);
     if (e->dec_traversal[decoder]) {
         ld_need_tmp(k, (size_t)nv, sizeof(uint32_t));

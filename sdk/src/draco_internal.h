@@ -37,9 +37,9 @@
 
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)
-/* The lean mode packs EdgeBreaker corner ids in 24 bits while it decodes
- * (3F < 2^24 - 1, see ld_pot below). */
-#define LD_MAX_EB_FACES (0xFFFFFEu / 3u)
+/* The lean mode keeps EdgeBreaker corner ids in 23 bits while it decodes
+ * (3F < 2^23 - 1, see ld_o24 below). */
+#define LD_MAX_EB_FACES ((LD_O24_NONE - 1u) / 3u)
 #define LD_MAX_POINTS  (1u << 27)
 #define LD_MAX_DECODERS LUMO_DRACO_MAX_ATTRIBUTES
 
@@ -389,18 +389,21 @@ typedef struct ld_pot {
 #define LD_POT_COARSE 10u        /* log2 corners per coarse block */
 
 /* The 24-bit opposite table EdgeBreaker decodes into (3 bytes per corner,
- * little-endian, LD_O24_NONE: no opposite yet; one byte of padding after
- * the last entry), packed into an ld_pot afterwards. */
-#define LD_O24_NONE 0xFFFFFFu
+ * little-endian, one byte of padding after the last entry): a corner id
+ * below LD_O24_NONE (no opposite yet) in bits 0..22, and bit 23 free for
+ * the face flags of the traversal that reads the table as decoded
+ * (ld_ct.o24: bit 23 of a face's first entry). Packed into an ld_pot
+ * afterwards in the other cases. */
+#define LD_O24_NONE 0x7FFFFFu
 static LD_FORCE_INLINE uint32_t ld_o24(const uint8_t *t, uint32_t c)
 {
     const uint8_t *p = t + 3u * (size_t)c;
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
     uint32_t x;
     memcpy(&x, p, 4);  /* the padding byte keeps the last read in bounds */
-    return x & 0xFFFFFFu;
+    return x & LD_O24_NONE;
 #else
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16;
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)(p[2] & 0x7Fu) << 16;
 #endif
 }
 static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
@@ -416,6 +419,15 @@ static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
     p[1] = (uint8_t)(v >> 8);
     p[2] = (uint8_t)(v >> 16);
 #endif
+}
+/* A face's flag (ld_ct.o24 traversal): bit 23 of its first entry. */
+static LD_FORCE_INLINE int ld_o24_seen(const uint8_t *t, uint32_t face)
+{
+    return t[9u * (size_t)face + 2u] >> 7;
+}
+static LD_FORCE_INLINE void ld_o24_mark(uint8_t *t, uint32_t face)
+{
+    t[9u * (size_t)face + 2u] |= 0x80u;
 }
 /* Pack `o24` (num_corners entries) into the spare bits of `words` (vertex
  * ids below 2^vshift, vshift <= 25), the escapes written over the start of
@@ -450,9 +462,9 @@ typedef struct ld_ct {
     const uint8_t  *o24;      /* ... the lean decode's 24-bit table, read
                                  as decoded by the depth-first traversal
                                  of a mesh without seams (see
-                                 ld_eb_sequence): faces seen are bit 31 of
-                                 their first corner's c2v word, border
-                                 vertices -2 in the unvisited vertex map */
+                                 ld_eb_sequence): faces seen flagged in
+                                 the table (LD_O24_SEEN), border vertices
+                                 -2 in the unvisited vertex map */
     const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner

@@ -52,7 +52,6 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 #define LD_STORE_PLAIN  0
 #define LD_STORE_PACKED 1
 #define LD_STORE_O24    2
-#define LD_FACE_SEEN    0x80000000u  /* LD_STORE_O24: bit 31 of word 3f */
 #define LD_VMAP_BORDER  (-2)         /* LD_STORE_O24: unvisited, on a border */
 
 /* One opposite for a constant `store` (ld_dfs). */
@@ -75,20 +74,19 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
                                           int store)
 {
     const ld_ct *ct = w->ct;
-    const uint32_t *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
-    uint32_t *c2v = (uint32_t *)(uintptr_t)ct->c2v;  /* written: LD_STORE_O24 */
+    const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
     const uint32_t vmask = ct->vmask;
     const ld_pot opp = ct->opp;
-    const uint8_t *seam = ct->seam, *border = ct->border, *o24 = ct->o24;
+    const uint8_t *seam = ct->seam, *border = ct->border;
+    uint8_t *o24 = (uint8_t *)(uintptr_t)ct->o24;  /* face flags: LD_STORE_O24 */
     uint8_t *fseen = w->face_seen;
     uint32_t *v2c = w->o->value_to_corner;
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
 #define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, &opp, o24, c, store))
-#define LD_FACE(c) ((c) - (c) % 3u)
-#define LD_SEEN(c) ((c) == LD_INV || (store == LD_STORE_O24 ? c2v[LD_FACE(c)] >> 31 \
-                                                              : fseen[(c) / 3u]))
+#define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, (c) / 3u) : fseen[(c) / 3u])
+#define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
 #define LD_VISIT(v, c) (v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
     /* LD_STORE_O24: room for the mesh's points only (ld_traverse) */
 #define LD_VISIT_ROOM() (store != LD_STORE_O24 || n < w->max_values)
@@ -100,21 +98,22 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     stack[top++] = corner;
     while (top) {
         uint32_t c = stack[top - 1];
-        if (LD_SEEN(c)) {
+        if (LD_FACE_SEEN(c)) {  /* stacked corners are valid */
             --top;
             continue;
         }
         for (;;) {
-            uint32_t v, r, l, m3 = c % 3u;
+            uint32_t v, r, l, m3;
             if (store == LD_STORE_O24)
-                c2v[c - m3] |= LD_FACE_SEEN;
+                ld_o24_mark(o24, c / 3u);
             else
                 fseen[c / 3u] = 1;
-            v = store != LD_STORE_PLAIN ? c2v[c] & vmask : c2v[c];
+            v = store == LD_STORE_PACKED ? c2v[c] & vmask : c2v[c];
             if (v >= nv) {
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
             }
+            m3 = c % 3u;
             if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
@@ -164,7 +163,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
         }
     }
 #undef LD_OPP
-#undef LD_FACE
+#undef LD_FACE_SEEN
 #undef LD_SEEN
 #undef LD_VISIT
 #undef LD_VISIT_ROOM
@@ -179,7 +178,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, in
     lumo_status st = LUMO_OK;
     for (f = 0; f < w->num_faces && !st; ++f) {
         /* both traversers skip seen start faces */
-        const int seen = store == LD_STORE_O24 ? (int)(w->ct->c2v[3u * f] >> 31) : w->face_seen[f];
+        const int seen = store == LD_STORE_O24 ? ld_o24_seen(w->ct->o24, f) : w->face_seen[f];
         if (!seen)
             st = ld_dfs(w, 3u * f, stack, store);
     }
