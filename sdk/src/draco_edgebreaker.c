@@ -1145,13 +1145,16 @@ static void ld_eb_keep_o24_begin(ld_dec *d, struct ld_eb *e)
 
 /* ... then the vertex map starts as the border flags (-2 on a border,
  * else -1) and the table moves up over the bytes. */
-static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
+static void ld_eb_fill_vmap(int32_t *restrict vmap, const uint8_t *restrict border, uint32_t n)
 {
-    const uint8_t *border = e->ct.border;
-    const uint32_t n = e->num_vertices;
     uint32_t v;
     for (v = 0; v < n; ++v)
         vmap[v] = -1 - (int32_t)border[v];
+}
+
+static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
+{
+    ld_eb_fill_vmap(vmap, e->ct.border, e->num_vertices);
     ld_eb_lift_o24(d, e, e->lmc_top);
     e->ct.border = NULL;
     e->ct.o24 = e->o24;

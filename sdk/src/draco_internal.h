@@ -392,8 +392,7 @@ typedef struct ld_pot {
  * little-endian, one byte of padding after the last entry): a corner id
  * below LD_O24_NONE (no opposite yet) in bits 0..22, and bit 23 free for
  * the face flags of the traversal that reads the table as decoded
- * (ld_ct.o24: bit 23 of a face's first entry). Packed into an ld_pot
- * afterwards in the other cases. */
+ * (ld_ct.o24). Packed into an ld_pot afterwards in the other cases. */
 #define LD_O24_NONE 0x7FFFFFu
 static LD_FORCE_INLINE uint32_t ld_o24(const uint8_t *t, uint32_t c)
 {
@@ -420,14 +419,18 @@ static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
     p[2] = (uint8_t)(v >> 16);
 #endif
 }
-/* A face's flag (ld_ct.o24 traversal): bit 23 of its first entry. */
-static LD_FORCE_INLINE int ld_o24_seen(const uint8_t *t, uint32_t face)
+/* A face's flag (ld_ct.o24 traversal): bit 23 of each of its entries, so
+ * that any corner tests it without a division by 3. */
+static LD_FORCE_INLINE int ld_o24_seen(const uint8_t *t, uint32_t c)
 {
-    return t[9u * (size_t)face + 2u] >> 7;
+    return t[3u * (size_t)c + 2u] >> 7;
 }
-static LD_FORCE_INLINE void ld_o24_mark(uint8_t *t, uint32_t face)
+static LD_FORCE_INLINE void ld_o24_mark(uint8_t *t, uint32_t first_corner)
 {
-    t[9u * (size_t)face + 2u] |= 0x80u;
+    uint8_t *p = t + 3u * (size_t)first_corner + 2u;
+    p[0] |= 0x80u;
+    p[3] |= 0x80u;
+    p[6] |= 0x80u;
 }
 /* Pack `o24` (num_corners entries) into the spare bits of `words` (vertex
  * ids below 2^vshift, vshift <= 25), the escapes written over the start of

@@ -85,7 +85,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
 #define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, &opp, o24, c, store))
-#define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, (c) / 3u) : fseen[(c) / 3u])
+#define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
 #define LD_VISIT(v, c) (v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
     /* LD_STORE_O24: room for the mesh's points only (ld_traverse) */
@@ -103,9 +103,10 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
             continue;
         }
         for (;;) {
-            uint32_t v, r, l, m3;
+            const uint32_t m3 = c % 3u;
+            uint32_t v, r, l;
             if (store == LD_STORE_O24)
-                ld_o24_mark(o24, c / 3u);
+                ld_o24_mark(o24, c - m3);
             else
                 fseen[c / 3u] = 1;
             v = store == LD_STORE_PACKED ? c2v[c] & vmask : c2v[c];
@@ -113,7 +114,6 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
             }
-            m3 = c % 3u;
             if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
@@ -178,7 +178,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, in
     lumo_status st = LUMO_OK;
     for (f = 0; f < w->num_faces && !st; ++f) {
         /* both traversers skip seen start faces */
-        const int seen = store == LD_STORE_O24 ? ld_o24_seen(w->ct->o24, f) : w->face_seen[f];
+        const int seen = store == LD_STORE_O24 ? ld_o24_seen(w->ct->o24, 3u * f) : w->face_seen[f];
         if (!seen)
             st = ld_dfs(w, 3u * f, stack, store);
     }
