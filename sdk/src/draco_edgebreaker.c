@@ -1227,18 +1227,13 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     return LUMO_OK;
 }
 
-/* The 24-bit table read as decoded (ld_eb_keep_o24): each entry's corner
- * becomes its opposite and the entries move up over the table. */
+/* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
+ * each entry its corner's opposite already; the entries move up over the
+ * table. */
 static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
-    uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
-    const uint32_t n = seq->num_entries;
-    const uint8_t *o24 = e->o24;
-    for (i = 0; i < n; ++i) {
-        const uint32_t o = v2c[i] == LD_INV ? LD_O24_NONE : ld_o24(o24, v2c[i]);
-        v2c[i] = o == LD_O24_NONE ? LD_INV : o;
-    }
+    const uint32_t *v2c = seq->value_to_corner, n = seq->num_entries;
     e->o24 = NULL;
     e->ct.o24 = NULL;
     seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);

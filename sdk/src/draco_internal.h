@@ -466,8 +466,9 @@ typedef struct ld_ct {
                                  as decoded by the depth-first traversal
                                  of a mesh without seams (see
                                  ld_eb_sequence): faces seen flagged in
-                                 the table (LD_O24_SEEN), border vertices
-                                 -2 in the unvisited vertex map */
+                                 the table (ld_o24_mark), border vertices
+                                 -2 in the unvisited vertex map, and each
+                                 value keeps its corner's opposite */
     const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner

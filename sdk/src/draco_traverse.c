@@ -21,31 +21,6 @@ static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
     return corner == LD_INV || w->face_seen[corner / 3u];
 }
 
-/* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
-static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
-{
-    ld_order *o = w->o;
-    if (o->num_values >= w->max_values) {
-        w->overflow = 1;
-        return;
-    }
-    o->value_to_corner[o->num_values] = corner;
-    o->vertex_to_value[v] = (int32_t)o->num_values;
-    o->num_values++;
-}
-
-static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
-{
-    uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
-    if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
-        return LUMO_ERR_CORRUPT;
-    if (w->o->vertex_to_value[n] < 0)
-        ld_visit(w, n, ld_next_v(corner));
-    if (w->o->vertex_to_value[p] < 0)
-        ld_visit(w, p, ld_prev_v(corner));
-    return LUMO_OK;
-}
-
 /* Where a traversal finds the opposites: 32-bit ids, the packed table
  * (LUMO_DRACO_LEAN), or the lean decode's 24-bit table with the face flags
  * in the face words and the border flags in the vertex map (ld_ct.o24). */
@@ -65,6 +40,33 @@ static LD_FORCE_INLINE uint32_t ld_dfs_opp(const uint32_t *opp32, const ld_pot *
         return ld_pot_opp(opp, c);
     o = ld_o24(o24, c);
     return o == LD_O24_NONE ? LD_INV : o;
+}
+
+/* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
+static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
+{
+    ld_order *o = w->o;
+    if (o->num_values >= w->max_values) {
+        w->overflow = 1;
+        return;
+    }
+    if (w->ct->o24)  /* the entry keeps its corner's opposite (ld_ct.o24) */
+        corner = ld_dfs_opp(NULL, NULL, w->ct->o24, corner, LD_STORE_O24);
+    o->value_to_corner[o->num_values] = corner;
+    o->vertex_to_value[v] = (int32_t)o->num_values;
+    o->num_values++;
+}
+
+static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
+{
+    uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
+    if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
+        return LUMO_ERR_CORRUPT;
+    if (w->o->vertex_to_value[n] < 0)
+        ld_visit(w, n, ld_next_v(corner));
+    if (w->o->vertex_to_value[p] < 0)
+        ld_visit(w, p, ld_prev_v(corner));
+    return LUMO_OK;
 }
 
 /* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
@@ -87,7 +89,9 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
 #define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, &opp, o24, c, store))
 #define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
-#define LD_VISIT(v, c) (v2c[n] = (c), vmap[v] = (int32_t)n, ++n)
+    /* LD_STORE_O24: the entry keeps its corner's opposite (ld_ct.o24) */
+#define LD_VISIT(v, c) (v2c[n] = store == LD_STORE_O24 ? ld_dfs_opp(opp32, &opp, o24, c, store) : (c), \
+                        vmap[v] = (int32_t)n, ++n)
     /* LD_STORE_O24: room for the mesh's points only (ld_traverse) */
 #define LD_VISIT_ROOM() (store != LD_STORE_O24 || n < w->max_values)
     if (w->cap < 2)
