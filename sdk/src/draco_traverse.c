@@ -107,10 +107,9 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
             continue;
         }
         for (;;) {
-            const uint32_t m3 = c % 3u;
-            uint32_t v, r, l;
+            uint32_t v, r, l, m3;
             if (store == LD_STORE_O24)
-                ld_o24_mark(o24, c - m3);
+                ld_o24_mark(o24, c - c % 3u);
             else
                 fseen[c / 3u] = 1;
             v = store == LD_STORE_PACKED ? c2v[c] & vmask : c2v[c];
@@ -118,6 +117,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
             }
+            m3 = c % 3u;
             if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
