@@ -115,10 +115,18 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     *esc_bytes = (size_t)e * ew;
 }
 
+/* Four words a step through a pointer: the compiler turns the block into
+ * vector code at -O2 (it does not vectorize the plain loop). */
 void ld_pot_strip(uint32_t *words, uint32_t num_corners, unsigned vshift)
 {
     const uint32_t vmask = 0xFFFFFFFFu >> (32u - vshift);
-    uint32_t c;
-    for (c = 0; c < num_corners; ++c)
-        words[c] &= vmask;
+    uint32_t *p = words, *const end = words + num_corners, *const end4 = end - num_corners % 4u;
+    for (; p != end4; p += 4) {
+        p[0] &= vmask;
+        p[1] &= vmask;
+        p[2] &= vmask;
+        p[3] &= vmask;
+    }
+    for (; p != end; ++p)
+        *p &= vmask;
 }
