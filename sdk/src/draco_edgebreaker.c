@@ -18,6 +18,15 @@
 #define LD_MAX_ATTR_DATA 16u
 #define LD_VALENCE_CONTEXTS 6u   /* valences 2..7 */
 
+/* Valence counters: 32-bit (default mode) or bytes saturating at 255 (lean;
+ * only min(v, 7) is read). Passed by value: a local copy of the pointer,
+ * which the byte stores (char stores alias anything) cannot force to be
+ * reloaded. */
+typedef union ld_valences {
+    uint32_t *w;
+    uint8_t *b;
+} ld_valences;
+
 typedef struct ld_attr_data {
     int32_t decoder_id;
     uint8_t connectivity_used;
@@ -58,10 +67,7 @@ struct ld_eb {
     ld_bits sym_bits;
     ld_rabs start_faces;
     /* valence coding */
-    union {                    /* valences: */
-        uint32_t *w;           /* default mode */
-        uint8_t *b;            /* lean: saturating at 255 (min(v, 7) is read) */
-    } val;
+    ld_valences val;
     uint8_t *ctx_symbols[LD_VALENCE_CONTEXTS];  /* 0..4, 5 = invalid */
     uint32_t ctx_count[LD_VALENCE_CONTEXTS];
     int active_ctx;
@@ -135,20 +141,24 @@ static LD_FORCE_INLINE uint32_t ld_eb_swing_right(const struct ld_eb *e, uint32_
     return o == LD_INV ? LD_INV : ld_prev_v(o);
 }
 
-/* Valences: 32-bit counters (default) or bytes saturating at 255 (lean). */
-static LD_FORCE_INLINE void ld_valence_add(struct ld_eb *e, uint32_t v, uint32_t n, int lean)
+/* `sat`: the lean counters may pass 255 (else the caller checked they are
+ * all small enough for plain byte adds). */
+static LD_FORCE_INLINE void ld_valence_add(ld_valences val, uint32_t v, uint32_t n, int lean,
+                                           int sat)
 {
-    if (lean) {
-        const uint32_t x = e->val.b[v] + n;
-        e->val.b[v] = (uint8_t)(x > 255u ? 255u : x);
+    if (lean && sat) {
+        const uint32_t x = val.b[v] + n;
+        val.b[v] = (uint8_t)(x > 255u ? 255u : x);
+    } else if (lean) {
+        val.b[v] = (uint8_t)(val.b[v] + n);
     } else {
-        e->val.w[v] += n;
+        val.w[v] += n;
     }
 }
 
-static LD_FORCE_INLINE uint32_t ld_valence(const struct ld_eb *e, uint32_t v, int lean)
+static LD_FORCE_INLINE uint32_t ld_valence(ld_valences val, uint32_t v, int lean)
 {
-    return lean ? e->val.b[v] : e->val.w[v];
+    return lean ? val.b[v] : val.w[v];
 }
 
 /* ---- header and split events ----------------------------------------------- */
@@ -289,38 +299,57 @@ static LD_FORCE_INLINE uint32_t ld_eb_symbol(struct ld_eb *e)
     return s;
 }
 
-/* Valence contexts: the valence of the next vertex selects the context of
- * the next symbol (libdraco MeshEdgebreakerTraversalValenceDecoder). */
-/* `corner` is always the first corner of the face just decoded (every
- * symbol makes its new face the active one), so its next and previous
- * corners are corner + 1 and corner + 2. */
-static LD_FORCE_INLINE void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner, int lean)
+/* The valences of the new face's vertices: by 1 at the corners the symbol
+ * joins to the boundary, by 2 where it adds two edges (libdraco
+ * MeshEdgebreakerTraversalValenceDecoder::NewActiveCornerReached). */
+static LD_FORCE_INLINE void ld_valence_face(ld_valences val, uint32_t symbol, const uint32_t *c2v,
+                                            uint32_t corner, uint32_t next, uint32_t prev,
+                                            int lean, int sat)
 {
-    static const uint8_t ctx_of_valence[8] = {0, 0, 0, 1, 2, 3, 4, 5};  /* clamp to 2..7, - 2 */
-    uint32_t next, prev, v;
-    next = e->c2v[corner + 1u];
-    prev = e->c2v[corner + 2u];
-    switch (e->last_symbol) {
+    switch (symbol) {
     case LD_TOPO_C:
     case LD_TOPO_S:
-        ld_valence_add(e, next, 1, lean); ld_valence_add(e, prev, 1, lean);
+        ld_valence_add(val, next, 1, lean, sat); ld_valence_add(val, prev, 1, lean, sat);
         break;
     case LD_TOPO_R:
-        ld_valence_add(e, e->c2v[corner], 1, lean);
-        ld_valence_add(e, next, 1, lean); ld_valence_add(e, prev, 2, lean);
+        ld_valence_add(val, c2v[corner], 1, lean, sat);
+        ld_valence_add(val, next, 1, lean, sat); ld_valence_add(val, prev, 2, lean, sat);
         break;
     case LD_TOPO_L:
-        ld_valence_add(e, e->c2v[corner], 1, lean);
-        ld_valence_add(e, next, 2, lean); ld_valence_add(e, prev, 1, lean);
+        ld_valence_add(val, c2v[corner], 1, lean, sat);
+        ld_valence_add(val, next, 2, lean, sat); ld_valence_add(val, prev, 1, lean, sat);
         break;
     case LD_TOPO_E:
-        ld_valence_add(e, e->c2v[corner], 2, lean);
-        ld_valence_add(e, next, 2, lean); ld_valence_add(e, prev, 2, lean);
+        ld_valence_add(val, c2v[corner], 2, lean, sat);
+        ld_valence_add(val, next, 2, lean, sat); ld_valence_add(val, prev, 2, lean, sat);
         break;
     default:
         break;
     }
-    v = ld_valence(e, next, lean);
+}
+
+/* Valence contexts: the valence of the next vertex selects the context of
+ * the next symbol (libdraco MeshEdgebreakerTraversalValenceDecoder). */
+/* `corner` is always the first corner of the face just decoded (every
+ * symbol makes its new face the active one), so its next and previous
+ * corners are corner + 1 and corner + 2. Lean byte counters: when the
+ * three are below 128 no sum of this face's adds (at most 6) passes 255,
+ * so plain byte adds do, and only high valences pay for saturation. */
+static LD_FORCE_INLINE void ld_eb_new_active_corner(struct ld_eb *e, uint32_t corner, int lean)
+{
+    static const uint8_t ctx_of_valence[8] = {0, 0, 0, 1, 2, 3, 4, 5};  /* clamp to 2..7, - 2 */
+    const ld_valences val = e->val;
+    const uint32_t *c2v = e->c2v, sym = e->last_symbol;
+    const uint32_t next = c2v[corner + 1u], prev = c2v[corner + 2u];
+    uint32_t v;
+    if (!lean)
+        ld_valence_face(val, sym, c2v, corner, next, prev, 0, 0);
+    else if ((val.b[next] | val.b[prev] |
+              (sym == LD_TOPO_C || sym == LD_TOPO_S ? 0u : val.b[c2v[corner]])) < 128u)
+        ld_valence_face(val, sym, c2v, corner, next, prev, 1, 0);
+    else
+        ld_valence_face(val, sym, c2v, corner, next, prev, 1, 1);
+    v = ld_valence(val, next, lean);
     e->active_ctx = ctx_of_valence[v > 7u ? 7u : v];
 }
 
@@ -452,7 +481,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, 
     e->c2v[corner + 2u] = vbp;
     e->lmc[vbp] = corner + 2u;
     if (e->valence)
-        ld_valence_add(e, vp, ld_valence(e, vn, lean), lean);
+        ld_valence_add(e->val, vp, ld_valence(e->val, vn, lean), lean, 1);
     e->lmc[vp] = e->lmc[vn];
     first = cn;
     while (cn != LD_INV) {
