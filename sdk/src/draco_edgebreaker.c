@@ -800,11 +800,6 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
     return LUMO_OK;
 }
 
-/* Without attribute seams the left-most corners serve only the traversal's
- * border test: keep that as one byte per vertex in the top of the table's
- * block (filled from the last vertex down, each byte lands above every
- * entry still to be read: byte v at >= 3n + v > 4v). */
-/* On local copies of the tables: the byte stores could alias e's fields. */
 /* A vertex is on a border when it has no left-most corner or that corner
  * has no swing left (DepthFirstTraverser's IsOnBoundary). */
 static LD_FORCE_INLINE int ld_eb_on_border(uint32_t lc, const uint32_t *opp32, const uint8_t *o24,
@@ -817,6 +812,11 @@ static LD_FORCE_INLINE int ld_eb_on_border(uint32_t lc, const uint32_t *opp32, c
     return opp32[ld_next_v(lc)] == LD_INV;
 }
 
+/* Without attribute seams the left-most corners serve only the traversal's
+ * border test: keep that as one byte per vertex in the top of the table's
+ * block (filled from the last vertex down, each byte lands above every
+ * entry still to be read: byte v at >= 3n + v > 4v). */
+/* On local copies of the tables: the byte stores could alias e's fields. */
 static LD_FORCE_INLINE void ld_eb_border_fill(const uint32_t *lmc, const uint32_t *opp32,
                                               const uint8_t *o24, uint32_t n, uint8_t *border,
                                               int lean)
@@ -1145,17 +1145,17 @@ lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq 
 /* Lean, no seams: the 24-bit table is as the symbols left it. When the
  * stream's only attributes decoder holds one attribute, walked depth-first
  * and predicted by parallelograms (positions at -cl 3..8: the default
- * level), the table is read as it is: the traversal
- * flags faces in the table and finds borders in the vertex map, and the
- * prediction keeps only each entry's opposite (ld_eb_release_table), so
- * the table is never packed. Otherwise it is packed now, before the first
- * traversal.
- * The arena-need replay decides alike (ld_eb_need_sequence). */
-static int ld_eb_reads_o24(const ld_dec *d, const struct ld_eb *e, unsigned decoder,
-                           const ld_seq *seq)
+ * level), the table is read as it is: the traversal flags faces in the
+ * table and finds borders in the vertex map, and the prediction keeps only
+ * each entry's opposite (ld_eb_release_table), so the table is never
+ * packed. Otherwise it is packed before the first traversal. The decode
+ * and the arena-need replay (ld_eb_need_sequence) ask alike; `b` is the
+ * stream at the decoder's first attribute. */
+static int ld_eb_reads_o24(unsigned decoder, unsigned num_decoders, int last, uint8_t traversal,
+                           const ld_buf *b)
 {
-    return decoder == 0 && d->num_decoders == 1 && seq->last && e->dec_traversal[0] == 0 &&
-           ld_peek_opposites_only(&d->buf);
+    return decoder == 0 && num_decoders == 1 && last && traversal == 0 &&
+           ld_peek_opposites_only(b);
 }
 
 /* The 24-bit table moves up to end at `top`, over dead work memory. */
@@ -1205,7 +1205,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
             vmap = e->ad[ad].ct.num_vertices;
     }
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
-        keep = ld_eb_reads_o24(d, e, decoder, seq);
+        keep = ld_eb_reads_o24(decoder, d->num_decoders, seq->last, e->dec_traversal[0], &d->buf);
         if (!keep && (st = ld_eb_pack(d, e)))
             return st;
         if (keep)
@@ -1265,7 +1265,8 @@ static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
     const uint32_t *v2c = seq->value_to_corner, n = seq->num_entries;
     e->o24 = NULL;
     e->ct.o24 = NULL;
-    seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);
+    seq->value_to_corner =
+        (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);
     seq->opposites = 1;
     ld_tmp_release(&d->mem, (uint8_t *)(uintptr_t)seq->value_to_corner);
 }
@@ -1577,14 +1578,6 @@ uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e)
     return ld_need_pick(k, max, sum < corners ? sum : corners);
 }
 
-/* ld_eb_reads_o24, on the scan's state. */
-static int ld_eb_need_reads_o24(const ld_eb_need *e, unsigned decoder, const ld_need_seq *s,
-                                const ld_buf *b)
-{
-    return decoder == 0 && e->num_decoders == 1 && s->last && e->dec_traversal[0] == 0 &&
-           ld_peek_opposites_only(b);
-}
-
 void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_seq *s,
                          const ld_buf *b)
 {
@@ -1601,7 +1594,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         vmap = ld_eb_need_attr_vertices(k, e, ad);
     if (e->lean && !e->nad && !e->settled) {  /* ld_eb_sequence: keep or pack */
         e->settled = 1;
-        keep = ld_eb_need_reads_o24(e, decoder, s, b);
+        keep = ld_eb_reads_o24(decoder, e->num_decoders, s->last, e->dec_traversal[0], b);
         if (!keep)
             ld_eb_need_pack(k, e, e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1));
         else  /* ld_eb_keep_o24_begin: the table moves up over the left-most corners */

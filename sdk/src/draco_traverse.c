@@ -23,7 +23,7 @@ static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
 
 /* Where a traversal finds the opposites: 32-bit ids, the packed table
  * (LUMO_DRACO_LEAN), or the lean decode's 24-bit table with the face flags
- * in the face words and the border flags in the vertex map (ld_ct.o24). */
+ * in its bit 23 and the border flags in the vertex map (ld_ct.o24). */
 #define LD_STORE_PLAIN  0
 #define LD_STORE_PACKED 1
 #define LD_STORE_O24    2
@@ -90,8 +90,9 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
 #define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
     /* LD_STORE_O24: the entry keeps its corner's opposite (ld_ct.o24) */
-#define LD_VISIT(v, c) (v2c[n] = store == LD_STORE_O24 ? ld_dfs_opp(opp32, &opp, o24, c, store) : (c), \
-                        vmap[v] = (int32_t)n, ++n)
+#define LD_VISIT(v, c)                                                               \
+    (v2c[n] = store == LD_STORE_O24 ? ld_dfs_opp(opp32, &opp, o24, c, store) : (c), \
+     vmap[v] = (int32_t)n, ++n)
     /* LD_STORE_O24: room for the mesh's points only (ld_traverse) */
 #define LD_VISIT_ROOM() (store != LD_STORE_O24 || n < w->max_values)
     if (w->cap < 2)
@@ -182,7 +183,8 @@ static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, in
     lumo_status st = LUMO_OK;
     for (f = 0; f < w->num_faces && !st; ++f) {
         /* both traversers skip seen start faces */
-        const int seen = store == LD_STORE_O24 ? ld_o24_seen(w->ct->o24, 3u * f) : w->face_seen[f];
+        const int seen =
+            store == LD_STORE_O24 ? ld_o24_seen(w->ct->o24, 3u * f) : w->face_seen[f];
         if (!seen)
             st = ld_dfs(w, 3u * f, stack, store);
     }
@@ -369,7 +371,7 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t
     w.num_faces = ct->num_corners / 3u;
     if (ct->o24 && (prediction_degree || !vmap))
         return LUMO_ERR_CORRUPT;  /* only the depth-first walk of a filled map */
-    if (!ct->o24)  /* else the flags are in the face words and the map */
+    if (!ct->o24)  /* else the flags are in the table and the map */
         w.face_seen = ld_tmp(m, w.num_faces, 1);
     if (!o->vertex_to_value || !o->value_to_corner || (!ct->o24 && !w.face_seen))
         return LUMO_ERR_NOMEM;
