@@ -106,7 +106,8 @@ run_case() {  # run_case N LINE
     if ! "$bin/draco-oracle" "$d/in.drc" "$d/oracle.txt" 2> "$d/oracle.err"; then
         echo "FAIL oracle: $name"; return
     fi
-    # both decoding modes (LUMO_DRACO_LEAN packs the corner table), the
+    # both decoding modes (LUMO_DRACO_LEAN: a 24-bit corner table, read as
+    # decoded or packed), the
     # same integers and faces, each in exactly its own arena need
     for m in "" --lean; do
         if ! "$lumo" $m --dump "$d/in.drc" "$d/lumo$m.txt" 2> "$d/lumo$m.err"; then
