@@ -53,7 +53,7 @@ static lumo_status decode(const uint8_t *data, size_t size, unsigned flags, lumo
     return st;
 }
 
-/* Both modes (LUMO_DRACO_LEAN packs the corner table) must agree: the
+/* Both modes (LUMO_DRACO_LEAN: a 24-bit corner table) must agree: the
  * same status, and on success the same faces. */
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -73,7 +73,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     lean = decode(data, size, LUMO_DRACO_LEAN, &m);
     /* allowed differences: the arena (either side may not fit) and the
-     * lean mode's lower face limit (24-bit corner ids) */
+     * lean mode's lower face limit (23-bit corner ids) */
     if (lean != st && st != LUMO_ERR_NOMEM && lean != LUMO_ERR_NOMEM && lean != LUMO_ERR_LIMIT)
         abort();
     if (lean == LUMO_OK && st == LUMO_OK && n && memcmp(faces, m.faces, n * sizeof faces[0]))
