@@ -1284,6 +1284,8 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
     uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
     const uint32_t n = seq->num_entries;
     uint8_t *top;
+    /* read as decoded: ld_eb_reads_o24 admitted only the last decoder's
+     * only attribute predicted by parallelograms, so `opposites` is set */
     if (e && e->ct.o24 && seq->ct == &e->ct && opposites) {
         ld_eb_release_o24(d, seq);
         return;
