@@ -519,38 +519,90 @@ static lumo_status ld_parallelogram_all(ld_pred *p, int32_t *v, uint32_t n)
 }
 
 /* The parallelograms around entry i's vertex, at most four: swing left
- * from its corner, then right from it when the left walk met a border. */
+ * from its corner, then right from it when the left walk met a border
+ * (libdraco's order). A swing crosses the edge from the vertex to a
+ * neighbour, so the next face shares that neighbour: each step reads one
+ * new neighbour's entry and carries the other (en, ep: the entries at the
+ * corner's next and previous vertices), and the opposite corner of a
+ * parallelogram is read only when both edge ends are decoded. */
+static LD_FORCE_INLINE void ld_fan_para(const ld_fan *f, uint32_t i, uint32_t corner, uint32_t en,
+                                        uint32_t ep, const int32_t *v, unsigned k,
+                                        int32_t preds[][LUMO_DRACO_MAX_COMPONENTS], int *count,
+                                        int packed)
+{
+    uint32_t oci, eo, c;
+    if (en >= i || ep >= i)
+        return;
+    oci = ld_fan_opp(f, corner, packed);
+    if (oci == LD_INV)
+        return;
+    eo = (uint32_t)f->v2v[ld_fan_vert(f, oci, packed)];
+    if (eo >= i)
+        return;
+    if (k == 3u) {  /* a constant in the fast instances: no loop */
+        const int32_t *po = v + 3u * (size_t)eo, *pn = v + 3u * (size_t)en,
+                      *pp = v + 3u * (size_t)ep;
+        int32_t *out = preds[*count];
+        out[0] = (int32_t)((uint32_t)pn[0] + (uint32_t)pp[0] - (uint32_t)po[0]);
+        out[1] = (int32_t)((uint32_t)pn[1] + (uint32_t)pp[1] - (uint32_t)po[1]);
+        out[2] = (int32_t)((uint32_t)pn[2] + (uint32_t)pp[2] - (uint32_t)po[2]);
+    } else {
+        for (c = 0; c < k; ++c)
+            preds[*count][c] = (int32_t)((uint32_t)v[(size_t)en * k + c] +
+                                         (uint32_t)v[(size_t)ep * k + c] -
+                                         (uint32_t)v[(size_t)eo * k + c]);
+    }
+    ++*count;
+}
+
+static LD_FORCE_INLINE uint32_t ld_fan_entry(const ld_fan *f, uint32_t c, int packed)
+{
+    return (uint32_t)f->v2v[ld_fan_vert(f, c, packed)];
+}
+
 static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t start,
                                                const int32_t *v, unsigned k, uint32_t limit,
                                                int32_t preds[][LUMO_DRACO_MAX_COMPONENTS],
                                                int *count, int packed)
 {
-    uint32_t corner = start, guard = 0, o;
-    int first_pass = 1;
+    const uint32_t pc0 = ld_prev_v(start), en0 = ld_fan_entry(f, ld_next_v(start), packed);
+    uint32_t corner = start, nc = ld_next_v(start), pc = pc0, en = en0,
+             ep = ld_fan_entry(f, pc0, packed), guard = 0, o;
     *count = 0;
-    while (corner != LD_INV) {
-        const uint32_t nc = ld_next_v(corner), pc = ld_prev_v(corner);
+    for (;;) {  /* swing left: next(opp(next(c))); the new face's next vertex is ep's */
         if (++guard > limit)
             return LUMO_ERR_LIMIT;
-        if (ld_fan_parallelogram(f, i, corner, nc, pc, v, k, preds[*count], packed) &&
-            ++*count == LD_MAX_PARALLELOGRAMS)
+        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
+        if (*count == LD_MAX_PARALLELOGRAMS)
+            return LUMO_OK;
+        o = ld_fan_opp(f, nc, packed);
+        if (o == LD_INV)
             break;
-        if (first_pass) {  /* swing left: next(opp(next(c))) */
-            o = ld_fan_opp(f, nc, packed);
-            corner = o == LD_INV ? LD_INV : ld_next_v(o);
-        } else {           /* swing right: prev(opp(prev(c))) */
-            o = ld_fan_opp(f, pc, packed);
-            corner = o == LD_INV ? LD_INV : ld_prev_v(o);
-        }
+        corner = ld_next_v(o);
         if (corner == start)
-            break;
-        if (corner == LD_INV && first_pass) {
-            first_pass = 0;
-            o = ld_fan_opp(f, ld_prev_v(start), packed);
-            corner = o == LD_INV ? LD_INV : ld_prev_v(o);
-        }
+            return LUMO_OK;
+        nc = ld_prev_v(o);
+        en = ep;
+        ep = ld_fan_entry(f, o, packed);
     }
-    return LUMO_OK;
+    o = ld_fan_opp(f, pc0, packed);  /* swing right from the start */
+    if (o == LD_INV)
+        return LUMO_OK;
+    ep = en0;
+    for (;;) {  /* prev(opp(prev(c))); the new face's previous vertex is en's */
+        corner = ld_prev_v(o);
+        pc = ld_next_v(o);
+        en = ld_fan_entry(f, o, packed);
+        if (++guard > limit)
+            return LUMO_ERR_LIMIT;
+        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
+        if (*count == LD_MAX_PARALLELOGRAMS)
+            return LUMO_OK;
+        o = ld_fan_opp(f, pc, packed);
+        if (o == LD_INV || ld_prev_v(o) == start)
+            return LUMO_OK;
+        ep = en;
+    }
 }
 
 /* `fast`: three components, the wrap transform and no seams, constants
