@@ -200,153 +200,162 @@ static lumo_status ld_dfs_all(ld_walk *w, uint32_t *stack)
 }
 
 /* Prediction-degree traversal: three priority stacks sharing one node pool
- * with a free list. */
+ * (corner, next) with a free list; `tipped`: one byte per vertex, set
+ * when an unvisited vertex is first the tip of a corner put on a stack
+ * (libdraco counts these "prediction degrees" but reads only whether one
+ * is above 1). */
 typedef struct ld_pq {
     uint32_t *corner, *next;
-    uint32_t head[3], free, used, cap;
-    int best;
-    uint32_t *degree;
+    uint32_t used, cap;
+    uint8_t *tipped;
 } ld_pq;
 
-static LD_FORCE_INLINE lumo_status ld_pq_push(ld_pq *q, uint32_t corner, int pri)
+/* MaxPredictionDegreeTraverser::TraverseFromCorner for every start face,
+ * all state in locals (stores into the uint32 arrays could otherwise alias
+ * the structs' fields and force reloads); `packed`: a constant, one
+ * instance per opposite store. */
+static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int packed)
 {
-    uint32_t n;
-    if (q->free != LD_INV) {
-        n = q->free;
-        q->free = q->next[n];
-    } else {
-        if (q->used >= q->cap)
-            return LUMO_ERR_NOMEM;
-        n = q->used++;
-    }
-    q->corner[n] = corner;
-    q->next[n] = q->head[pri];
-    q->head[pri] = n;
-    if (pri < q->best)
-        q->best = pri;
-    return LUMO_OK;
-}
-
-static LD_FORCE_INLINE uint32_t ld_pq_pop(ld_pq *q)
-{
-    int i;
-    for (i = q->best; i < 3; ++i) {
-        uint32_t n = q->head[i];
-        if (n == LD_INV)
+    const ld_ct *ct = w->ct;
+    const uint32_t *c2v = ct->c2v, *opp32 = ct->opp32, nv = ct->num_vertices, vmask = ct->vmask;
+    const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap;
+    const ld_pot opp = ct->opp;
+    const uint8_t *seam = ct->seam;
+    uint8_t *fseen = w->face_seen, *tipped = q->tipped;
+    uint32_t *v2c = w->o->value_to_corner, *qc = q->corner, *qn = q->next;
+    int32_t *vmap = w->o->vertex_to_value;
+    uint32_t n = w->o->num_values, used = 0, fre = LD_INV, head[3], f;
+    lumo_status st = LUMO_OK;
+    int best = 0;
+#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_opp(&opp, c) : opp32[c])
+#define LD_VERT(c) (packed ? c2v[c] & vmask : c2v[c])
+#define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
+    /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
+#define LD_VISIT(v, c)                      \
+    do {                                    \
+        if (vmap[v] < 0) {                  \
+            if (n >= maxv) {                \
+                st = LUMO_ERR_CORRUPT;      \
+                goto out;                   \
+            }                               \
+            v2c[n] = (c);                   \
+            vmap[v] = (int32_t)n++;         \
+        }                                   \
+    } while (0)
+#define LD_PUSH(c, pri)                                \
+    do {                                               \
+        uint32_t node_ = fre;                          \
+        if (node_ != LD_INV) {                         \
+            fre = qn[node_];                           \
+        } else if (used < cap) {                       \
+            node_ = used++;                            \
+        } else {                                       \
+            st = LUMO_ERR_NOMEM;                       \
+            goto out;                                  \
+        }                                              \
+        qc[node_] = (c);                               \
+        qn[node_] = head[pri];                         \
+        head[pri] = node_;                             \
+        if ((pri) < best)                              \
+            best = (pri);                              \
+    } while (0)
+    head[0] = head[1] = head[2] = LD_INV;
+    for (f = 0; f < nfaces; ++f) {
+        uint32_t corner = 3u * f, a, b;
+        if (fseen[f] || nv == 0)  /* seen start faces are skipped */
             continue;
-        q->head[i] = q->next[n];
-        q->next[n] = q->free;
-        q->free = n;
-        q->best = i;
-        return q->corner[n];
-    }
-    return LD_INV;
-}
-
-/* Corner table reads for a constant `packed` (see ld_dfs). */
-static LD_FORCE_INLINE uint32_t ld_wvert(const ld_walk *w, uint32_t c, int packed)
-{
-    if (c == LD_INV)
-        return LD_INV;
-    return packed ? w->ct->c2v[c] & w->ct->vmask : w->ct->c2v[c];
-}
-
-static LD_FORCE_INLINE uint32_t ld_wopp(const ld_walk *w, uint32_t c, int packed)
-{
-    const ld_ct *t = w->ct;
-    if (t->seam && t->seam[c])
-        return LD_INV;
-    return packed ? ld_pot_opp(&t->opp, c) : t->opp32[c];
-}
-
-static LD_FORCE_INLINE int ld_priority(ld_walk *w, ld_pq *q, uint32_t corner, int packed)
-{
-    uint32_t tip = ld_wvert(w, corner, packed);
-    if (tip >= w->ct->num_vertices || w->o->vertex_to_value[tip] >= 0)
-        return 0;
-    return ++q->degree[tip] > 1 ? 1 : 2;
-}
-
-static LD_FORCE_INLINE lumo_status ld_max_degree(ld_walk *w, uint32_t corner, ld_pq *q,
-                                                 int packed)
-{
-    uint32_t tip;
-    lumo_status st;
-    if (w->ct->num_vertices == 0)
-        return LUMO_OK;
-    if ((st = ld_pq_push(q, corner, 0)))
-        return st;
-    q->best = 0;
-    if ((st = ld_visit_edge(w, corner)))
-        return st;
-    tip = ld_vert(w->ct, corner);
-    if (tip >= w->ct->num_vertices)
-        return LUMO_ERR_CORRUPT;
-    if (w->o->vertex_to_value[tip] < 0)
-        ld_visit(w, tip, corner);
-    while ((corner = ld_pq_pop(q)) != LD_INV) {
-        if (w->face_seen[corner / 3u])
-            continue;
+        /* the start face's three vertices: next, previous, then the tip */
+        a = LD_VERT(corner + 1u);
+        b = LD_VERT(corner + 2u);
+        if (a >= nv || b >= nv) {
+            st = LUMO_ERR_CORRUPT;
+            goto out;
+        }
+        LD_VISIT(a, corner + 1u);
+        LD_VISIT(b, corner + 2u);
+        a = LD_VERT(corner);
+        if (a >= nv) {
+            st = LUMO_ERR_CORRUPT;
+            goto out;
+        }
+        LD_VISIT(a, corner);
+        LD_PUSH(corner, 0);
+        best = 0;
         for (;;) {
-            uint32_t v, r, l;
-            int rs, ls, pri;
-            w->face_seen[corner / 3u] = 1;
-            v = ld_wvert(w, corner, packed);
-            if (v >= w->ct->num_vertices)
-                return LUMO_ERR_CORRUPT;
-            if (w->o->vertex_to_value[v] < 0)
-                ld_visit(w, v, corner);
-            r = ld_wopp(w, ld_next_v(corner), packed);
-            l = ld_wopp(w, ld_prev_v(corner), packed);
-            rs = ld_face_seen(w, r);
-            ls = ld_face_seen(w, l);
-            if (!ls) {
-                pri = ld_priority(w, q, l, packed);
-                if (rs && pri <= q->best) {
-                    corner = l;
-                    continue;
-                }
-                if ((st = ld_pq_push(q, l, pri)))
-                    return st;
+            int pri;
+            for (pri = best; pri < 3 && head[pri] == LD_INV; ++pri)
+                ;
+            if (pri == 3)
+                break;
+            {  /* pop */
+                const uint32_t node = head[pri];
+                head[pri] = qn[node];
+                qn[node] = fre;
+                fre = node;
+                best = pri;
+                corner = qc[node];
             }
-            if (!rs) {
-                pri = ld_priority(w, q, r, packed);
-                if (pri <= q->best) {
-                    corner = r;
-                    continue;
+            if (fseen[corner / 3u])
+                continue;
+            for (;;) {
+                const uint32_t m3 = corner % 3u;
+                uint32_t v, r, l;
+                int rs, ls;
+                fseen[corner / 3u] = 1;
+                v = LD_VERT(corner);
+                if (v >= nv) {
+                    st = LUMO_ERR_CORRUPT;
+                    goto out;
                 }
-                if ((st = ld_pq_push(q, r, pri)))
-                    return st;
+                LD_VISIT(v, corner);
+                r = LD_OPP(m3 == 2u ? corner - 2u : corner + 1u);  /* right: opp(next) */
+                l = LD_OPP(m3 == 0u ? corner + 2u : corner - 1u);  /* left: opp(prev) */
+                rs = LD_SEEN(r);
+                ls = LD_SEEN(l);
+                if (!ls) {
+                    const uint32_t tip = LD_VERT(l);
+                    pri = 0;  /* priority 0 toward a visited tip, else 2 or 1 */
+                    if (tip < nv && vmap[tip] < 0) {
+                        pri = tipped[tip] ? 1 : 2;
+                        tipped[tip] = 1;
+                    }
+                    if (rs && pri <= best) {
+                        corner = l;
+                        continue;
+                    }
+                    LD_PUSH(l, pri);
+                }
+                if (!rs) {
+                    const uint32_t tip = LD_VERT(r);
+                    pri = 0;
+                    if (tip < nv && vmap[tip] < 0) {
+                        pri = tipped[tip] ? 1 : 2;
+                        tipped[tip] = 1;
+                    }
+                    if (pri <= best) {
+                        corner = r;
+                        continue;
+                    }
+                    LD_PUSH(r, pri);
+                }
+                break;
             }
-            break;
         }
     }
-    return LUMO_OK;
-}
-
-/* All start faces, on local copies of the walk and the queues: stores into
- * the uint32 arrays could otherwise alias their fields and force reloads.
- * One instance per opposite store. */
-static LD_FORCE_INLINE lumo_status ld_max_degree_starts(ld_walk *wp, ld_pq *qp, int packed)
-{
-    ld_walk w = *wp;
-    ld_pq q = *qp;
-    ld_order o = *wp->o;
-    uint32_t f;
-    lumo_status st = LUMO_OK;
-    w.o = &o;
-    for (f = 0; f < w.num_faces && !st; ++f)
-        if (!w.face_seen[f])  /* seen start faces are skipped */
-            st = ld_max_degree(&w, 3u * f, &q, packed);
-    *wp->o = o;
-    wp->overflow = w.overflow;
-    qp->used = q.used;
+out:
+#undef LD_OPP
+#undef LD_VERT
+#undef LD_SEEN
+#undef LD_VISIT
+#undef LD_PUSH
+    w->o->num_values = n;
+    q->used = used;
     return st;
 }
 
 static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
 {
-    return w->ct->opp32 ? ld_max_degree_starts(w, q, 0) : ld_max_degree_starts(w, q, 1);
+    return w->ct->opp32 ? ld_degree_walk(w, q, 0) : ld_degree_walk(w, q, 1);
 }
 
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t max_values,
@@ -382,17 +391,15 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t
     }
     if (prediction_degree) {
         size_t cap;
-        q.degree = ld_tmp(m, nv, sizeof(uint32_t));
-        if (!q.degree)
+        q.tipped = ld_tmp(m, nv, 1);
+        if (!q.tipped)
             return LUMO_ERR_NOMEM;
-        memset(q.degree, 0, (size_t)nv * sizeof(uint32_t));
+        memset(q.tipped, 0, nv);
         /* node pool (corner, next) pairs in the free space */
         q.corner = ld_free_space(m, &cap);
         cap /= 2u;
         q.cap = cap > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)cap;
         q.next = q.corner + q.cap;
-        q.head[0] = q.head[1] = q.head[2] = LD_INV;
-        q.free = LD_INV;
     } else {
         size_t cap;
         stack = ld_free_space(m, &cap);
