@@ -578,9 +578,9 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
         o = ld_fan_opp(f, nc, packed);
         if (o == LD_INV)
             break;
-        corner = ld_next_v(o);
-        if (corner == start)
+        if (o == pc0)  /* next(o) == start: the fan is closed */
             return LUMO_OK;
+        corner = ld_next_v(o);
         nc = ld_prev_v(o);
         en = ep;
         ep = ld_fan_entry(f, o, packed);
