@@ -75,7 +75,13 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
                   uint16_t *fine, uint32_t *coarse, size_t *esc_bytes)
 {
     const unsigned k = 32u - vshift, lshift = ld_pot_lshift(vshift), s1 = vshift + 1u;
-    const uint32_t direct = 1u << (k - 1u), none = 0xFFFFFFFFu << vshift;
+    /* x = c ^ LD_O24_NONE is 2^23 - 1 - c >= 2^23 - num_corners: capping
+     * `direct` there makes every border edge fail the near test, so the
+     * hot loop has one test (the cap only turns near opposites into
+     * escapes in meshes of over 2^22 corners) */
+    const uint32_t cap = (LD_O24_NONE + 1u) - num_corners;
+    const uint32_t direct = (1u << (k - 1u)) < cap ? 1u << (k - 1u) : cap;
+    const uint32_t none = 0xFFFFFFFFu << vshift;
     const unsigned ew = ld_pot_escape_width(num_corners, vshift);
     const uint32_t blocks = (num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK;
     uint32_t b, e = 0;
@@ -89,19 +95,15 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
             coarse[c0 >> LD_POT_COARSE] = e;
         fine[b] = (uint16_t)(e - coarse[c0 >> LD_POT_COARSE]);
         for (c = c0; c < c1; ++c) {
-            const uint32_t o = ld_o24(o24, c), x = c ^ o;
-            if (x < direct) {
-                if (o != LD_O24_NONE) {  /* the common case: a near opposite */
-                    words[c] |= x << s1;
-                    continue;
-                }
-            }
-            if (o == LD_O24_NONE) {
+            const uint32_t x = c ^ ld_o24(o24, c);
+            if (x < direct) {  /* the common case: a near opposite */
+                words[c] |= x << s1;
+            } else if ((x ^ c) == LD_O24_NONE) {
                 words[c] |= none;
-                continue;
+            } else {
+                ld_pot_escape_put(o24, ew, e, e - block, x, lshift, words + c, vshift);
+                ++e;
             }
-            ld_pot_escape_put(o24, ew, e, e - block, x, lshift, words + c, vshift);
-            ++e;
         }
     }
     t->words = words;
