@@ -56,6 +56,7 @@ struct ld_eb {
      * table_top the border bytes */
     uint8_t *table_lo, *table_top;
     uint8_t packed;            /* words hold packed opposites (ld_pot) */
+    uint8_t released;          /* ld_eb_release_table has run */
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -839,13 +840,39 @@ static uint8_t *ld_eb_border(struct ld_eb *e)
     return border;
 }
 
+/* Only the depth-first traversal tests borders: when every attributes
+ * decoder walks by prediction degree (-cl 10) no border bytes are kept.
+ * The decode and the arena-need replay ask alike. */
+static int ld_eb_border_needed(unsigned num_decoders, const uint8_t *dec_traversal)
+{
+    unsigned i;
+    for (i = 0; i < num_decoders; ++i)
+        if (dec_traversal[i] == 0)
+            return 1;
+    return 0;
+}
+
+/* Without seams, at the first sequence: the left-most corners become the
+ * border bytes in the top of their block, or go. Returns where the dead
+ * part of the block ends (the border bytes' start, else its top). */
+static uint8_t *ld_eb_lmc_end(const ld_dec *d, struct ld_eb *e)
+{
+    if (ld_eb_border_needed(d->num_decoders, e->dec_traversal))
+        return ld_eb_border(e);
+    e->ct.lmc = NULL;
+    e->lmc = NULL;
+    return e->lmc_top;
+}
+
 /* Default mode: the left-most corners' block is released, the border bytes
- * stay in its top. */
+ * (if any) stay in its top. */
 static lumo_status ld_eb_drop_lmc(ld_dec *d, struct ld_eb *e)
 {
-    const uint8_t *border = ld_eb_border(e);
+    const uint8_t *end = ld_eb_lmc_end(d, e);
     ld_tmp_release(&d->mem, e->lmc_top);
-    return ld_tmp(&d->mem, e->ct.num_vertices, 1) == border ? LUMO_OK : LUMO_ERR_NOMEM;
+    if (end == e->lmc_top)
+        return LUMO_OK;
+    return ld_tmp(&d->mem, e->ct.num_vertices, 1) == end ? LUMO_OK : LUMO_ERR_NOMEM;
 }
 
 /* Move `bytes` at src up to end at `top` (8-aligned); returns the start. */
@@ -875,7 +902,7 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
     if (vshift > 25u)  /* 7 bits at least for the packed field */
         return LUMO_ERR_LIMIT;
     if (!e->num_attr_data)
-        top = ld_eb_border(e);
+        top = ld_eb_lmc_end(d, e);
     coarse = ld_tmp(&d->mem, cb, 1);
     fine = ld_tmp(&d->mem, fb, 1);
     if (!coarse || !fine)
@@ -1087,13 +1114,10 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     ld_tmp_release(&d->mem, mark);
     memset(&e->val, 0, sizeof e->val);
     e->ct.num_vertices = e->num_vertices;
-    /* lean without seams: the first sequence packs the table or reads it
-     * as decoded (ld_eb_reads_o24) */
-    if (e->lean && nad)
-        st = ld_eb_pack(d, e);
-    else if (!e->lean && !nad)
-        st = ld_eb_drop_lmc(d, e);
-    if (st)
+    /* without seams the first sequence, which knows the traversals, drops
+     * the left-most corners (default) or packs the table or reads it as
+     * decoded (lean, ld_eb_reads_o24) */
+    if (e->lean && nad && (st = ld_eb_pack(d, e)))
         return st;
     d->num_faces = faces;
     if ((st = ld_eb_alloc_attr_data(d, e)))
@@ -1204,6 +1228,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (e->ad[ad].ct.num_vertices > vmap)
             vmap = e->ad[ad].ct.num_vertices;
     }
+    if (!e->lean && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
+        return st;  /* default, no seams, first sequence */
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
         keep = ld_eb_reads_o24(decoder, d->num_decoders, seq->last, e->dec_traversal[0], &d->buf);
         if (!keep && (st = ld_eb_pack(d, e)))
@@ -1290,8 +1316,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
         ld_eb_release_o24(d, seq);
         return;
     }
-    if (!e || e->num_attr_data || seq->ct != &e->ct || !(e->packed || e->opp32) ||
-        !e->ct.border)
+    if (!e || e->num_attr_data || seq->ct != &e->ct || !(e->packed || e->opp32) || e->released)
         return;
     if (opposites && e->opp32)  /* one loop per store: no test per entry */
         for (i = 0; i < n; ++i)
@@ -1323,6 +1348,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
     seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(top, v2c, (size_t)n * 4u);
     seq->opposites = (uint8_t)(opposites != 0);
     e->ct.border = NULL;
+    e->released = 1;
     ld_tmp_release(&d->mem, (uint8_t *)(uintptr_t)seq->value_to_corner);
 }
 
@@ -1505,12 +1531,8 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
-    if (lean && nad) {
+    if (lean && nad)
         ld_eb_need_pack(k, e, o24_top);
-    } else if (!lean && !nad) {  /* ld_eb_drop_lmc */
-        ld_need_release(k, e->w_lmc_top);
-        ld_need_tmp(k, ld_eb_need_vertices(e), 1);
-    }
     for (i = 0; i < nad; ++i) {  /* ld_eb_alloc_attr_data */
         ld_need_tmp(k, 3u * (size_t)faces, 1);
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
@@ -1594,13 +1616,22 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     int keep = 0;
     if (ad >= 0 && ld_eb_need_attr_vertices(k, e, ad) > vmap)
         vmap = ld_eb_need_attr_vertices(k, e, ad);
-    if (e->lean && !e->nad && !e->settled) {  /* ld_eb_sequence: keep or pack */
+    if (!e->nad && !e->settled) {  /* ld_eb_sequence: the left-most corners */
+        const size_t border = ld_eb_border_needed(e->num_decoders, e->dec_traversal)
+                                  ? ld_need_bytes(ld_eb_need_vertices(e), 1)
+                                  : 0u;
         e->settled = 1;
-        keep = ld_eb_reads_o24(decoder, e->num_decoders, s->last, e->dec_traversal[0], b);
-        if (!keep)
-            ld_eb_need_pack(k, e, e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1));
-        else  /* ld_eb_keep_o24_begin: the table moves up over the left-most corners */
-            ld_need_release(k, e->w_lmc_top + ld_need_bytes(ld_eb_need_vertices(e), 1) + o24);
+        keep = e->lean &&
+               ld_eb_reads_o24(decoder, e->num_decoders, s->last, e->dec_traversal[0], b);
+        if (!e->lean) {  /* ld_eb_drop_lmc */
+            ld_need_release(k, e->w_lmc_top);
+            if (border)
+                ld_need_tmp(k, ld_eb_need_vertices(e), 1);
+        } else if (!keep) {
+            ld_eb_need_pack(k, e, e->w_lmc_top + border);
+        } else {  /* ld_eb_keep_o24_begin: the table moves up over the left-most corners */
+            ld_need_release(k, e->w_lmc_top + border + o24);
+        }
     }
     if (e->nad == 0)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));

@@ -533,8 +533,9 @@ typedef struct ld_eb_need {
     size_t w_lmc_top;          /* work above the left-most corners' block */
     size_t w_table;            /* the packed table's escapes and indices */
     uint8_t table_live;        /* packed table and border bytes not released */
-    uint8_t settled;           /* lean, no seams: the first sequence chose how
-                                  to read the table (ld_eb_need_sequence) */
+    uint8_t settled;           /* no seams: the first sequence dropped the
+                                  left-most corners and chose how to read
+                                  the table (ld_eb_need_sequence) */
     int8_t dec_att_data[LD_MAX_DECODERS];
     uint8_t dec_type[LD_MAX_DECODERS], dec_traversal[LD_MAX_DECODERS];
     uint8_t ad_used[LD_NEED_MAX_ATTR_DATA];
