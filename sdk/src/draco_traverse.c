@@ -176,18 +176,32 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     return LUMO_OK;
 }
 
+/* The first start face from f on that no walk has reached (both
+ * traversers skip seen ones, and most are): a byte scan by memchr
+ * (vectorised), or a step over the 24-bit table's face flags. */
+static LD_FORCE_INLINE uint32_t ld_next_start(const uint8_t *fseen, const uint8_t *o24, uint32_t f,
+                                              uint32_t num_faces)
+{
+    const uint8_t *q;
+    if (o24) {
+        while (f < num_faces && ld_o24_seen(o24, 3u * f))
+            ++f;
+        return f;
+    }
+    if (f >= num_faces)
+        return num_faces;
+    q = memchr(fseen + f, 0, num_faces - f);
+    return q ? (uint32_t)(q - fseen) : num_faces;
+}
+
 /* Every start face; one instance per opposite store. */
 static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int store)
 {
-    uint32_t f;
+    const uint8_t *o24 = store == LD_STORE_O24 ? w->ct->o24 : NULL;
+    uint32_t f = 0;
     lumo_status st = LUMO_OK;
-    for (f = 0; f < w->num_faces && !st; ++f) {
-        /* both traversers skip seen start faces */
-        const int seen =
-            store == LD_STORE_O24 ? ld_o24_seen(w->ct->o24, 3u * f) : w->face_seen[f];
-        if (!seen)
-            st = ld_dfs(w, 3u * f, stack, store);
-    }
+    while (!st && (f = ld_next_start(w->face_seen, o24, f, w->num_faces)) < w->num_faces)
+        st = ld_dfs(w, 3u * f++, stack, store);
     return st;
 }
 
@@ -260,10 +274,8 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
             best = (pri);                              \
     } while (0)
     head[0] = head[1] = head[2] = LD_INV;
-    for (f = 0; f < nfaces; ++f) {
+    for (f = 0; nv > 0 && (f = ld_next_start(fseen, NULL, f, nfaces)) < nfaces; ++f) {
         uint32_t corner = 3u * f, a, b;
-        if (fseen[f] || nv == 0)  /* seen start faces are skipped */
-            continue;
         /* the start face's three vertices: next, previous, then the tip */
         a = LD_VERT(corner + 1u);
         b = LD_VERT(corner + 2u);
