@@ -448,12 +448,35 @@ unsigned ld_pot_vshift(uint32_t n);
 unsigned ld_pot_lshift(unsigned vshift);
 unsigned ld_pot_escape_width(uint32_t num_corners, unsigned vshift);
 uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w);
+/* A hot loop holds the near case's three fields in locals (ld_pot_near)
+ * and passes the table itself only to the escapes: a loop that passed the
+ * address of its own copy would have to reload the copy after every
+ * escape. */
+typedef struct ld_pot_near {
+    const uint32_t *words;
+    uint32_t flag;
+    unsigned s1;               /* vshift + 1 */
+    const ld_pot *t;
+} ld_pot_near;
+static inline ld_pot_near ld_pot_near_of(const ld_pot *t)
+{
+    ld_pot_near n;
+    n.words = t->words;
+    n.flag = t->flag;
+    n.s1 = t->vshift + 1u;
+    n.t = t;
+    return n;
+}
+static LD_FORCE_INLINE uint32_t ld_pot_near_opp(ld_pot_near n, uint32_t c)
+{
+    const uint32_t w = n.words[c];
+    if (w & n.flag)
+        return ld_pot_escape(n.t, c, w);
+    return c ^ (w >> n.s1);
+}
 static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
 {
-    const uint32_t w = t->words[c];
-    if (w & t->flag)
-        return ld_pot_escape(t, c, w);
-    return c ^ (w >> (t->vshift + 1u));
+    return ld_pot_near_opp(ld_pot_near_of(t), c);
 }
 
 /* A view of a corner table: the mesh's own, or an attribute's (whose seam

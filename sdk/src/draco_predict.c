@@ -356,7 +356,7 @@ typedef struct ld_fan {
     const uint32_t *c2v;
     uint32_t vmask;
     const uint32_t *opp32;    /* NULL: packed (LUMO_DRACO_LEAN) */
-    ld_pot opp;
+    ld_pot_near opp;
     int packed;               /* opp32 == NULL; the hot loops take it as a constant */
     const uint8_t *seam;
     const int32_t *v2v;
@@ -366,7 +366,7 @@ static LD_FORCE_INLINE uint32_t ld_fan_opp(const ld_fan *f, uint32_t c, int pack
 {
     if (f->seam && f->seam[c])
         return LD_INV;
-    return packed ? ld_pot_opp(&f->opp, c) : f->opp32[c];
+    return packed ? ld_pot_near_opp(f->opp, c) : f->opp32[c];
 }
 
 static LD_FORCE_INLINE uint32_t ld_fan_vert(const ld_fan *f, uint32_t c, int packed)
@@ -434,7 +434,7 @@ static void ld_fan_init(ld_fan *f, const ld_pred *p, int seams)
     f->c2v = ct->c2v;
     f->vmask = ct->vmask;
     f->opp32 = ct->opp32;
-    f->opp = ct->opp;
+    f->opp = ld_pot_near_of(&ct->opp);
     f->packed = ct->opp32 == NULL;
     f->seam = seams ? ct->seam : NULL;
     f->v2v = p->seq->vertex_to_value;

@@ -30,14 +30,14 @@ static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
 #define LD_VMAP_BORDER  (-2)         /* LD_STORE_O24: unvisited, on a border */
 
 /* One opposite for a constant `store` (ld_dfs). */
-static LD_FORCE_INLINE uint32_t ld_dfs_opp(const uint32_t *opp32, const ld_pot *opp,
+static LD_FORCE_INLINE uint32_t ld_dfs_opp(const uint32_t *opp32, ld_pot_near opp,
                                            const uint8_t *o24, uint32_t c, int store)
 {
     uint32_t o;
     if (store == LD_STORE_PLAIN)
         return opp32[c];
     if (store == LD_STORE_PACKED)
-        return ld_pot_opp(opp, c);
+        return ld_pot_near_opp(opp, c);
     o = ld_o24(o24, c);
     return o == LD_O24_NONE ? LD_INV : o;
 }
@@ -51,7 +51,7 @@ static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
         return;
     }
     if (w->ct->o24)  /* the entry keeps its corner's opposite (ld_ct.o24) */
-        corner = ld_dfs_opp(NULL, NULL, w->ct->o24, corner, LD_STORE_O24);
+        corner = ld_dfs_opp(NULL, ld_pot_near_of(&w->ct->opp), w->ct->o24, corner, LD_STORE_O24);
     o->value_to_corner[o->num_values] = corner;
     o->vertex_to_value[v] = (int32_t)o->num_values;
     o->num_values++;
@@ -78,7 +78,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
     const uint32_t vmask = ct->vmask;
-    const ld_pot opp = ct->opp;
+    const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam, *border = ct->border;
     uint8_t *o24 = (uint8_t *)(uintptr_t)ct->o24;  /* face flags: LD_STORE_O24 */
     uint8_t *fseen = w->face_seen;
@@ -86,12 +86,12 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
-#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, &opp, o24, c, store))
+#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
 #define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
     /* LD_STORE_O24: the entry keeps its corner's opposite (ld_ct.o24) */
 #define LD_VISIT(v, c)                                                               \
-    (v2c[n] = store == LD_STORE_O24 ? ld_dfs_opp(opp32, &opp, o24, c, store) : (c), \
+    (v2c[n] = store == LD_STORE_O24 ? ld_dfs_opp(opp32, opp, o24, c, store) : (c), \
      vmap[v] = (int32_t)n, ++n)
     /* LD_STORE_O24: room for the mesh's points only (ld_traverse) */
 #define LD_VISIT_ROOM() (store != LD_STORE_O24 || n < w->max_values)
@@ -233,7 +233,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *opp32 = ct->opp32, nv = ct->num_vertices, vmask = ct->vmask;
     const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap;
-    const ld_pot opp = ct->opp;
+    const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam;
     uint8_t *fseen = w->face_seen, *tipped = q->tipped;
     uint32_t *v2c = w->o->value_to_corner, *qc = q->corner, *qn = q->next;
@@ -241,7 +241,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     uint32_t n = w->o->num_values, used = 0, fre = LD_INV, head[3], f;
     lumo_status st = LUMO_OK;
     int best = 0;
-#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_opp(&opp, c) : opp32[c])
+#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
 #define LD_VERT(c) (packed ? c2v[c] & vmask : c2v[c])
 #define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
     /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
