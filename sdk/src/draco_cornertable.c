@@ -109,11 +109,15 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
         }                                                                               \
     } while (0)
         if (c1 - c0 == LD_POT_FINE_MASK + 1u) {
-            for (c = c0; c < c1; c += 4u) {  /* four a turn: a quarter of the loop's steps */
+            for (c = c0; c < c1; c += 8u) {  /* eight a turn: an eighth of the loop's steps */
                 LD_POT_PUT(c);
                 LD_POT_PUT(c + 1u);
                 LD_POT_PUT(c + 2u);
                 LD_POT_PUT(c + 3u);
+                LD_POT_PUT(c + 4u);
+                LD_POT_PUT(c + 5u);
+                LD_POT_PUT(c + 6u);
+                LD_POT_PUT(c + 7u);
             }
         } else {
             for (c = c0; c < c1; ++c)

@@ -555,6 +555,20 @@ static LD_FORCE_INLINE void ld_fan_para(const ld_fan *f, uint32_t i, uint32_t co
     ++*count;
 }
 
+/* The fan's next face: the guard against a crafted cycle (LUMO_ERR_LIMIT),
+ * then the face's parallelogram; *done when it was the fourth. */
+static LD_FORCE_INLINE lumo_status ld_fan_face(const ld_fan *f, uint32_t i, uint32_t corner,
+                                               uint32_t en, uint32_t ep, const int32_t *v,
+                                               unsigned k, uint32_t *guard, uint32_t limit,
+                                               int32_t preds[][LUMO_DRACO_MAX_COMPONENTS],
+                                               int *count, int packed)
+{
+    if (++*guard > limit)
+        return LUMO_ERR_LIMIT;
+    ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
+    return LUMO_OK;
+}
+
 static LD_FORCE_INLINE uint32_t ld_fan_entry(const ld_fan *f, uint32_t c, int packed)
 {
     return (uint32_t)f->v2v[ld_fan_vert(f, c, packed)];
@@ -568,11 +582,11 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
     const uint32_t pc0 = ld_prev_v(start), en0 = ld_fan_entry(f, ld_next_v(start), packed);
     uint32_t corner = start, nc = ld_next_v(start), pc = pc0, en = en0,
              ep = ld_fan_entry(f, pc0, packed), guard = 0, o;
+    lumo_status st;
     *count = 0;
     for (;;) {  /* swing left: next(opp(next(c))); the new face's next vertex is ep's */
-        if (++guard > limit)
-            return LUMO_ERR_LIMIT;
-        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
+        if ((st = ld_fan_face(f, i, corner, en, ep, v, k, &guard, limit, preds, count, packed)))
+            return st;
         if (*count == LD_MAX_PARALLELOGRAMS)
             return LUMO_OK;
         o = ld_fan_opp(f, nc, packed);
@@ -593,9 +607,8 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
         corner = ld_prev_v(o);
         pc = ld_next_v(o);
         en = ld_fan_entry(f, o, packed);
-        if (++guard > limit)
-            return LUMO_ERR_LIMIT;
-        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
+        if ((st = ld_fan_face(f, i, corner, en, ep, v, k, &guard, limit, preds, count, packed)))
+            return st;
         if (*count == LD_MAX_PARALLELOGRAMS)
             return LUMO_OK;
         o = ld_fan_opp(f, pc, packed);
