@@ -16,11 +16,6 @@ typedef struct ld_walk {
     ld_order *o;
 } ld_walk;
 
-static LD_FORCE_INLINE int ld_face_seen(const ld_walk *w, uint32_t corner)
-{
-    return corner == LD_INV || w->face_seen[corner / 3u];
-}
-
 /* Where a traversal finds the opposites: 32-bit ids, the packed table
  * (LUMO_DRACO_LEAN), or the lean decode's 24-bit table with the face flags
  * in its bit 23 and the border flags in the vertex map (ld_ct.o24). */
