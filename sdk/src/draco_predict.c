@@ -556,7 +556,7 @@ static LD_FORCE_INLINE void ld_fan_para(const ld_fan *f, uint32_t i, uint32_t co
 }
 
 /* The fan's next face: the guard against a crafted cycle (LUMO_ERR_LIMIT),
- * then the face's parallelogram; *done when it was the fourth. */
+ * then the face's parallelogram (the walk stops at the fourth). */
 static LD_FORCE_INLINE lumo_status ld_fan_face(const ld_fan *f, uint32_t i, uint32_t corner,
                                                uint32_t en, uint32_t ep, const int32_t *v,
                                                unsigned k, uint32_t *guard, uint32_t limit,
