@@ -109,6 +109,12 @@ uint32_t ld_bits_get_slow(ld_bits *r, unsigned nbits)
     return v;
 }
 
+void ld_bits_skip(ld_bits *r, uint64_t n)
+{
+    const uint64_t left = (uint64_t)r->size * 8u - r->bit;
+    r->bit += (size_t)(n < left ? n : left);
+}
+
 void ld_bits_end(ld_bits *r, ld_buf *b)
 {
     size_t bytes = (r->bit + 7u) >> 3;

@@ -112,6 +112,8 @@ static inline uint32_t ld_bits_get(ld_bits *r, unsigned nbits)
 }
 /* Advance `b` past the whole bytes the reader touched. */
 void ld_bits_end(ld_bits *r, ld_buf *b);
+/* Skip n bits as n one-bit reads would (stopping at the end). */
+void ld_bits_skip(ld_bits *r, uint64_t n);
 
 /* ---- memory (draco_mem.c) ------------------------------------------------ */
 typedef struct ld_mem {

@@ -506,6 +506,18 @@ static void ld_need_lut(ld_need *k, const ld_rans *r, uint32_t num_values)
  * linear search, and the bits are skipped. */
 #define LD_NEED_TAGS 64u
 
+/* The scan reads every tag without having paid for its values in arena
+ * memory (the decode allocates them first), so a header claiming millions
+ * of values over a few bytes of near-certain tags would keep it busy: it
+ * reads at most this many values, 64 per byte left plus 2^20 (a real
+ * stream spends well over a bit per value unless its values are all the
+ * same length, which one tag codes without a loop), else LUMO_ERR_LIMIT. */
+static uint32_t ld_need_tag_budget(const ld_buf *b)
+{
+    const size_t n = ld_remaining(b);
+    return n > 0xFFFFFFu ? 0xFFFFFFFFu : (uint32_t)(n * 64u) + (1u << 20);
+}
+
 static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, unsigned comps,
                                   uint32_t *found)
 {
@@ -516,6 +528,7 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
     lumo_arena a;
     ld_mem m;
     ld_bits bits;
+    const uint32_t budget = ld_need_tag_budget(b);
     uint32_t i = 0;
     unsigned j;
     lumo_status st;
@@ -544,6 +557,8 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
             uint32_t len;
             if (*found >= num_values / comps)
                 return LUMO_ERR_CORRUPT;  /* the decode fails on it too */
+            if (*found >= budget / comps)
+                return LUMO_ERR_LIMIT;
             if ((len = ld_rans_read(&tags)) > 32u)
                 return LUMO_ERR_CORRUPT;
             for (j = 0; j < comps; ++j)
@@ -552,6 +567,16 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
         ld_bits_end(&bits, b);
         return LUMO_OK;
     }
+    if (tags.num_nz < 2u) {  /* one tag: every value has its length */
+        const uint32_t len = ld_rans_read(&tags);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        ld_bits_skip(&bits, (uint64_t)len * num_values);
+        ld_bits_end(&bits, b);
+        return LUMO_OK;
+    }
+    if (num_values > budget)
+        return LUMO_ERR_LIMIT;
     while (i < num_values) {
         const uint32_t len = ld_rans_read(&tags);
         if (len > 32u)
