@@ -18,6 +18,7 @@
 
 #define LD_POT_FINE_MASK ((1u << LD_POT_BLOCK) - 1u)
 #define LD_POT_COARSE_MASK ((1u << LD_POT_COARSE) - 1u)
+#define LD_POT_BASE_MASK ((1u << LD_POT_BASE) - 1u)
 
 unsigned ld_pot_vshift(uint32_t n)
 {
@@ -29,6 +30,9 @@ unsigned ld_pot_vshift(uint32_t n)
     return b;
 }
 
+/* Field bits below an escape's rank: the near flag and the based flag. */
+#define LD_POT_MODE_BITS 2u
+
 uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w)
 {
     const uint32_t field = w >> t->vshift;
@@ -37,17 +41,17 @@ uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w)
     if (field == 0xFFFFFFFFu >> t->vshift)
         return LD_INV;
     e = t->coarse[c >> LD_POT_COARSE] + t->fine[c >> LD_POT_BLOCK] +
-        ((field >> 1) & ((1u << LD_POT_RANK_BITS) - 1u));
+        ((field >> LD_POT_MODE_BITS) & ((1u << LD_POT_RANK_BITS) - 1u));
     p = t->esc + (size_t)e * t->esc_width;
     hi = (uint32_t)p[0] | (uint32_t)p[1] << 8;
     if (t->esc_width == 3)
         hi |= (uint32_t)p[2] << 16;
-    return hi << t->lshift | field >> (LD_POT_RANK_BITS + 1u);
+    return hi << t->lshift | field >> (LD_POT_RANK_BITS + LD_POT_MODE_BITS);
 }
 
 unsigned ld_pot_lshift(unsigned vshift)
 {
-    return 32u - vshift - (LD_POT_RANK_BITS + 1u);
+    return 32u - vshift - (LD_POT_RANK_BITS + LD_POT_MODE_BITS);
 }
 
 /* 2 bytes when they and the word's low part cover any corner below
@@ -69,11 +73,41 @@ static void ld_pot_escape_put(uint8_t *o24, unsigned ew, uint32_t e, uint32_t ra
     p[1] = (uint8_t)(hi >> 8);
     if (ew == 3u)
         p[2] = (uint8_t)(hi >> 16);
-    *word |= (1u | rank << 1 | (x & ((1u << lshift) - 1u)) << (LD_POT_RANK_BITS + 1u)) << vshift;
+    *word |= (3u | rank << LD_POT_MODE_BITS |
+              (x & ((1u << lshift) - 1u)) << (LD_POT_RANK_BITS + LD_POT_MODE_BITS))
+             << vshift;
+}
+
+/* The bases of one block of 2^LD_POT_BASE corners while it is packed:
+ * has[dir] once the first far opposite of that direction set base[dir]. */
+typedef struct ld_pot_bases_state {
+    int16_t *base;
+    int has[2];
+    int32_t half;  /* 2^(k-4): a based offset is o - c - base in [0, 2 half) */
+} ld_pot_bases_state;
+
+/* The based field of corner c with far opposite o, or 0 when o is not
+ * within its block's base window (an escape). */
+static LD_FORCE_INLINE uint32_t ld_pot_based(ld_pot_bases_state *b, uint32_t c, uint32_t o)
+{
+    const int32_t d = (int32_t)(o - c);
+    const unsigned dir = d > 0;
+    uint32_t off;
+    if (!b->has[dir]) {
+        const int32_t first = d - b->half;
+        if (first < INT16_MIN || first > INT16_MAX)
+            return 0;
+        b->base[dir] = (int16_t)first;
+        b->has[dir] = 1;
+    }
+    off = (uint32_t)d - (uint32_t)(int32_t)b->base[dir];
+    if (off >= 2u * (uint32_t)b->half)
+        return 0;
+    return 1u | dir << 2 | off << 3;
 }
 
 void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vshift, uint8_t *o24,
-                  uint16_t *fine, uint32_t *coarse, size_t *esc_bytes)
+                  uint16_t *fine, uint32_t *coarse, int16_t *base, size_t *esc_bytes)
 {
     const unsigned k = 32u - vshift, lshift = ld_pot_lshift(vshift), s1 = vshift + 1u;
     /* near: o - c in [-bias, bias), stored as o - c + bias. For a border
@@ -86,15 +120,23 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     const uint32_t none = 0xFFFFFFFFu << vshift;
     const unsigned ew = ld_pot_escape_width(num_corners, vshift);
     const uint32_t blocks = (num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK;
+    ld_pot_bases_state bs;
     uint32_t b, e = 0;
+    memset(base, 0, ld_pot_bases(num_corners) * 2u * sizeof *base);
+    bs.half = (int32_t)1 << (k - 4u);
+    bs.base = base;
     /* the words hold vertex ids below 2^vshift: the spare bits are zero */
     for (b = 0; b < blocks; ++b) {
         const uint32_t c0 = b << LD_POT_BLOCK, block = e;
         const uint32_t c1 = c0 + LD_POT_FINE_MASK + 1u < num_corners ? c0 + LD_POT_FINE_MASK + 1u
                                                                      : num_corners;
-        uint32_t c;
+        uint32_t c, f;
         if (!(c0 & LD_POT_COARSE_MASK))
             coarse[c0 >> LD_POT_COARSE] = e;
+        if (!(c0 & LD_POT_BASE_MASK)) {
+            bs.base = base + 2u * (c0 >> LD_POT_BASE);
+            bs.has[0] = bs.has[1] = 0;
+        }
         fine[b] = (uint16_t)(e - coarse[c0 >> LD_POT_COARSE]);
 #define LD_POT_PUT(c)                                                                   \
     do {                                                                                \
@@ -103,6 +145,8 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
             words[c] |= x_ << s1;                                                       \
         } else if (o_ == LD_O24_NONE) {                                                 \
             words[c] |= none;                                                           \
+        } else if ((f = ld_pot_based(&bs, c, o_)) != 0) {                               \
+            words[c] |= f << vshift;                                                    \
         } else {                                                                        \
             ld_pot_escape_put(o24, ew, e, e - block, o_, lshift, words + (c), vshift); \
             ++e;                                                                        \
@@ -129,6 +173,7 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     t->esc = o24;
     t->fine = fine;
     t->coarse = coarse;
+    t->base = base;
     t->flag = 1u << vshift;
     t->bias = bias;
     t->vshift = (uint8_t)vshift;

@@ -885,29 +885,32 @@ static uint8_t *ld_move_up(uint8_t *top, const void *src, size_t bytes)
 
 /* Pack the opposites into the corner table's words (ld_pot) and shrink
  * the work memory to the packed table. Work memory grows down: before,
- * [left-most corners][24-bit opposites][coarse][fine]; after, without
- * seams [border bytes][escapes][coarse][fine], with seams
- * [left-most corners][escapes][coarse][fine]. Everything moves up. */
+ * [left-most corners][24-bit opposites][coarse][fine][bases]; after,
+ * without seams [border bytes][escapes][coarse][fine][bases], with seams
+ * [left-most corners][escapes][coarse][fine][bases]. Everything moves up. */
 static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
 {
     const uint32_t nc = e->num_corners;
     const unsigned vshift = ld_pot_vshift(e->num_vertices);
     const size_t cb = (((size_t)nc + 1023u) >> LD_POT_COARSE) * 4u;
     const size_t fb = (((size_t)nc + 15u) >> LD_POT_BLOCK) * 2u;
+    const size_t bb = ld_pot_bases(nc) * 4u;
     ld_pot *t = &e->ct.opp;
     uint8_t *top = e->o24_top;
     uint32_t *coarse;
     uint16_t *fine;
+    int16_t *base;
     size_t esc;
-    if (vshift > 25u)  /* 7 bits at least for the packed field */
+    if (vshift > LD_POT_MAX_VSHIFT)
         return LUMO_ERR_LIMIT;
     if (!e->num_attr_data)
         top = ld_eb_lmc_end(d, e);
     coarse = ld_tmp(&d->mem, cb, 1);
     fine = ld_tmp(&d->mem, fb, 1);
-    if (!coarse || !fine)
+    base = ld_tmp(&d->mem, bb, 1);
+    if (!coarse || !fine || !base)
         return LUMO_ERR_NOMEM;
-    ld_pot_build(t, e->c2v, nc, vshift, e->o24, fine, coarse, &esc);
+    ld_pot_build(t, e->c2v, nc, vshift, e->o24, fine, coarse, base, &esc);
     e->ct.vmask = 0xFFFFFFFFu >> (32u - vshift);
     e->packed = 1;
     e->o24 = NULL;
@@ -915,7 +918,8 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
     t->esc = ld_move_up(top, t->esc, esc);
     t->coarse = (const uint32_t *)(const void *)ld_move_up((uint8_t *)(uintptr_t)t->esc, coarse, cb);
     t->fine = (const uint16_t *)(const void *)ld_move_up((uint8_t *)(uintptr_t)t->coarse, fine, fb);
-    e->table_lo = (uint8_t *)(uintptr_t)t->fine;
+    t->base = (const int16_t *)(const void *)ld_move_up((uint8_t *)(uintptr_t)t->fine, base, bb);
+    e->table_lo = (uint8_t *)(uintptr_t)t->base;
     ld_tmp_release(&d->mem, e->table_lo);
     return LUMO_OK;
 }
@@ -1341,6 +1345,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
         t->esc += shift;
         t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
         t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
         e->table_lo += shift;
         e->table_top = e->lmc_top;
         top = e->table_lo;
@@ -1468,12 +1473,14 @@ static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces;
     const unsigned vshift = ld_pot_vshift(ld_eb_need_vertices(e));
-    const size_t ew = vshift > 25u ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
+    const size_t ew = vshift > LD_POT_MAX_VSHIFT ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
     const size_t cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
     const size_t fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
+    const size_t bb = ld_need_bytes(ld_pot_bases(corners), 4u);
     ld_need_tmp(k, cb, 1);
     ld_need_tmp(k, fb, 1);
-    e->w_table = ld_need_bytes((size_t)ld_need_pick(k, 0u, corners), ew) + cb + fb;
+    ld_need_tmp(k, bb, 1);
+    e->w_table = ld_need_bytes((size_t)ld_need_pick(k, 0u, corners), ew) + cb + fb + bb;
     ld_need_release(k, top + e->w_table);
 }
 
