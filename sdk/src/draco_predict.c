@@ -555,45 +555,36 @@ static LD_FORCE_INLINE void ld_fan_para(const ld_fan *f, uint32_t i, uint32_t co
     ++*count;
 }
 
-/* The fan's next face: the guard against a crafted cycle (LUMO_ERR_LIMIT),
- * then the face's parallelogram (the walk stops at the fourth). */
-static LD_FORCE_INLINE lumo_status ld_fan_face(const ld_fan *f, uint32_t i, uint32_t corner,
-                                               uint32_t en, uint32_t ep, const int32_t *v,
-                                               unsigned k, uint32_t *guard, uint32_t limit,
-                                               int32_t preds[][LUMO_DRACO_MAX_COMPONENTS],
-                                               int *count, int packed)
-{
-    if (++*guard > limit)
-        return LUMO_ERR_LIMIT;
-    ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
-    return LUMO_OK;
-}
-
 static LD_FORCE_INLINE uint32_t ld_fan_entry(const ld_fan *f, uint32_t c, int packed)
 {
     return (uint32_t)f->v2v[ld_fan_vert(f, c, packed)];
 }
 
-static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t start,
-                                               const int32_t *v, unsigned k, uint32_t limit,
-                                               int32_t preds[][LUMO_DRACO_MAX_COMPONENTS],
-                                               int *count, int packed)
+/* The walk needs no guard against a cycle: the decoder sets opposites in
+ * pairs of corners that had none (ld_set_opp after ld_has_opp), so the
+ * opposite map is injective, seams only cut it, and so is the swing
+ * next(opp(next(c))). Iterating an injective map from `start` either stops
+ * at a border or comes back to `start` itself (a first repeat elsewhere
+ * would have two predecessors), which the loops test: at most one turn
+ * of the fan, below num_corners steps, on any stream. */
+static LD_FORCE_INLINE void ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t start,
+                                        const int32_t *v, unsigned k,
+                                        int32_t preds[][LUMO_DRACO_MAX_COMPONENTS], int *count,
+                                        int packed)
 {
     const uint32_t pc0 = ld_prev_v(start), en0 = ld_fan_entry(f, ld_next_v(start), packed);
     uint32_t corner = start, nc = ld_next_v(start), pc = pc0, en = en0,
-             ep = ld_fan_entry(f, pc0, packed), guard = 0, o;
-    lumo_status st;
+             ep = ld_fan_entry(f, pc0, packed), o;
     *count = 0;
     for (;;) {  /* swing left: next(opp(next(c))); the new face's next vertex is ep's */
-        if ((st = ld_fan_face(f, i, corner, en, ep, v, k, &guard, limit, preds, count, packed)))
-            return st;
+        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
         if (*count == LD_MAX_PARALLELOGRAMS)
-            return LUMO_OK;
+            return;
         o = ld_fan_opp(f, nc, packed);
         if (o == LD_INV)
             break;
         if (o == pc0)  /* next(o) == start: the fan is closed */
-            return LUMO_OK;
+            return;
         corner = ld_next_v(o);
         nc = ld_prev_v(o);
         en = ep;
@@ -601,19 +592,18 @@ static LD_FORCE_INLINE lumo_status ld_fan_walk(const ld_fan *f, uint32_t i, uint
     }
     o = ld_fan_opp(f, pc0, packed);  /* swing right from the start */
     if (o == LD_INV)
-        return LUMO_OK;
+        return;
     ep = en0;
     for (;;) {  /* prev(opp(prev(c))); the new face's previous vertex is en's */
         corner = ld_prev_v(o);
         pc = ld_next_v(o);
         en = ld_fan_entry(f, o, packed);
-        if ((st = ld_fan_face(f, i, corner, en, ep, v, k, &guard, limit, preds, count, packed)))
-            return st;
+        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
         if (*count == LD_MAX_PARALLELOGRAMS)
-            return LUMO_OK;
+            return;
         o = ld_fan_opp(f, pc, packed);
         if (o == LD_INV || ld_prev_v(o) == start)
-            return LUMO_OK;
+            return;
         ep = en;
     }
 }
@@ -631,8 +621,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     int32_t preds[LD_MAX_PARALLELOGRAMS][LUMO_DRACO_MAX_COMPONENTS];
     uint32_t left[LD_MAX_PARALLELOGRAMS];   /* crease flags not yet read */
     ld_rabs crease[LD_MAX_PARALLELOGRAMS];  /* local: the value stores cannot alias */
-    const ld_ct *ct = p->seq->ct;
-    const uint32_t *v2c = p->seq->value_to_corner, limit = ct->num_corners + 1u;
+    const uint32_t *v2c = p->seq->value_to_corner;
     const unsigned k = fast ? 3u : p->comps;
     const ld_wrap w = ld_wrap_of(p);
     ld_fan f;
@@ -649,9 +638,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
     for (i = 1; i < n; ++i) {
         int32_t *dst = v + (size_t)i * k, multi[LUMO_DRACO_MAX_COMPONENTS];
         int count = 0, used = 0, j;
-        lumo_status st;
-        if ((st = ld_fan_walk(&f, i, v2c[i], v, k, limit, preds, &count, packed)))
-            return st;
+        ld_fan_walk(&f, i, v2c[i], v, k, preds, &count, packed);
         for (c = 0; c < k; ++c)
             multi[c] = 0;
         if (count > 0) {
