@@ -61,47 +61,66 @@ unsigned ld_pot_escape_width(uint32_t num_corners, unsigned vshift)
     return 16u + ld_pot_lshift(vshift) >= ld_pot_vshift(num_corners) ? 2u : 3u;
 }
 
-/* One corner's escape: its rank in the block and the low bits of its
- * opposite x in the word, the high bits as entry e (written at or below
- * entry c of the 24-bit table, which is read: in place). */
-static void ld_pot_escape_put(uint8_t *o24, unsigned ew, uint32_t e, uint32_t rank, uint32_t x,
-                              unsigned lshift, uint32_t *word, unsigned vshift)
+/* A base not set yet (no far opposite of its direction in its block so
+ * far); a base is never this value. */
+#define LD_POT_BASE_UNSET INT16_MIN
+
+/* The packing's escapes: their entries, written over the start of the
+ * 24-bit table, and the index blocks, which only an escape's read looks
+ * at and which are filled when a block's first escape comes. */
+typedef struct ld_pot_esc {
+    uint32_t *words;
+    uint8_t *o24;
+    uint16_t *fine;
+    uint32_t *coarse;
+    uint32_t fine_block, coarse_block;  /* blocks of the last escape, or LD_INV */
+    uint32_t e;         /* escapes so far */
+    uint32_t rank0;     /* escapes before fine_block */
+    unsigned vshift, lshift, ew;
+} ld_pot_esc;
+
+/* Corner c's escape: its rank in its 16-corner block and the low bits of o
+ * in the word, the high bits as entry e (written at or below entry c of
+ * the 24-bit table, which is read: in place). Rare: out of the loop. */
+static LD_NOINLINE void ld_pot_escape_put(ld_pot_esc *s, uint32_t c, uint32_t o)
 {
-    uint8_t *p = o24 + (size_t)e * ew;
-    const uint32_t hi = x >> lshift;
+    uint8_t *p = s->o24 + (size_t)s->e * s->ew;
+    const uint32_t hi = o >> s->lshift;
+    if (c >> LD_POT_COARSE != s->coarse_block) {
+        s->coarse_block = c >> LD_POT_COARSE;
+        s->coarse[s->coarse_block] = s->e;
+    }
+    if (c >> LD_POT_BLOCK != s->fine_block) {
+        s->fine_block = c >> LD_POT_BLOCK;
+        s->fine[s->fine_block] = (uint16_t)(s->e - s->coarse[s->coarse_block]);
+        s->rank0 = s->e;
+    }
     p[0] = (uint8_t)hi;
     p[1] = (uint8_t)(hi >> 8);
-    if (ew == 3u)
+    if (s->ew == 3u)
         p[2] = (uint8_t)(hi >> 16);
-    *word |= (3u | rank << LD_POT_MODE_BITS |
-              (x & ((1u << lshift) - 1u)) << (LD_POT_RANK_BITS + LD_POT_MODE_BITS))
-             << vshift;
+    s->words[c] |= (3u | (s->e - s->rank0) << LD_POT_MODE_BITS |
+                    (o & ((1u << s->lshift) - 1u)) << (LD_POT_RANK_BITS + LD_POT_MODE_BITS))
+                   << s->vshift;
+    s->e++;
 }
 
-/* The bases of one block of 2^LD_POT_BASE corners while it is packed:
- * has[dir] once the first far opposite of that direction set base[dir]. */
-typedef struct ld_pot_bases_state {
-    int16_t *base;
-    int has[2];
-    int32_t half;  /* 2^(k-4): a based offset is o - c - base in [0, 2 half) */
-} ld_pot_bases_state;
-
-/* The based field of corner c with far opposite o, or 0 when o is not
- * within its block's base window (an escape). */
-static LD_FORCE_INLINE uint32_t ld_pot_based(ld_pot_bases_state *b, uint32_t c, uint32_t o)
+/* The based field of corner c with far opposite o (d = o - c), or 0 when
+ * o is not within its block's base window; the block's first far opposite
+ * of a direction sets the base (its distance less `half`). */
+static LD_FORCE_INLINE uint32_t ld_pot_based(int16_t *base, int32_t half, uint32_t c, uint32_t d)
 {
-    const int32_t d = (int32_t)(o - c);
-    const unsigned dir = d > 0;
+    const unsigned dir = (int32_t)d > 0;
+    int16_t *b = base + ((c >> LD_POT_BASE << 1) | dir);
     uint32_t off;
-    if (!b->has[dir]) {
-        const int32_t first = d - b->half;
-        if (first < INT16_MIN || first > INT16_MAX)
+    if (*b == LD_POT_BASE_UNSET) {
+        const int32_t first = (int32_t)d - half;
+        if (first <= LD_POT_BASE_UNSET || first > INT16_MAX)
             return 0;
-        b->base[dir] = (int16_t)first;
-        b->has[dir] = 1;
+        *b = (int16_t)first;
     }
-    off = (uint32_t)d - (uint32_t)(int32_t)b->base[dir];
-    if (off >= 2u * (uint32_t)b->half)
+    off = d - (uint32_t)(int32_t)*b;
+    if (off >= 2u * (uint32_t)half)
         return 0;
     return 1u | dir << 2 | off << 3;
 }
@@ -109,7 +128,7 @@ static LD_FORCE_INLINE uint32_t ld_pot_based(ld_pot_bases_state *b, uint32_t c, 
 void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vshift, uint8_t *o24,
                   uint16_t *fine, uint32_t *coarse, int16_t *base, size_t *esc_bytes)
 {
-    const unsigned k = 32u - vshift, lshift = ld_pot_lshift(vshift), s1 = vshift + 1u;
+    const unsigned k = 32u - vshift, s1 = vshift + 1u;
     /* near: o - c in [-bias, bias), stored as o - c + bias. For a border
      * edge o - c = LD_O24_NONE - c >= 2^23 - num_corners: capping the bias
      * there makes every border edge fail the near test, so the hot loop
@@ -117,58 +136,57 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
      * meshes of over 2^22 corners) */
     const uint32_t cap = (LD_O24_NONE + 1u) - num_corners;
     const uint32_t bias = (1u << (k - 2u)) < cap ? 1u << (k - 2u) : cap;
-    const uint32_t none = 0xFFFFFFFFu << vshift;
-    const unsigned ew = ld_pot_escape_width(num_corners, vshift);
-    const uint32_t blocks = (num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK;
-    ld_pot_bases_state bs;
-    uint32_t b, e = 0;
-    memset(base, 0, ld_pot_bases(num_corners) * 2u * sizeof *base);
-    bs.half = (int32_t)1 << (k - 4u);
-    bs.base = base;
+    const uint32_t none = 0xFFFFFFFFu << vshift, n8 = num_corners & ~7u;
+    const size_t nb = 2u * ld_pot_bases(num_corners);
+    const int32_t half = (int32_t)1 << (k - 4u);  /* a based offset is in [0, 2 half) */
+    ld_pot_esc s;
+    uint32_t c, f;
+    size_t i;
+    for (i = 0; i < nb; ++i)
+        base[i] = LD_POT_BASE_UNSET;
+    memset(fine, 0, ((num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK) * sizeof *fine);
+    memset(coarse, 0, ((num_corners + LD_POT_COARSE_MASK) >> LD_POT_COARSE) * sizeof *coarse);
+    s.words = words;
+    s.o24 = o24;
+    s.fine = fine;
+    s.coarse = coarse;
+    s.fine_block = s.coarse_block = LD_INV;
+    s.e = s.rank0 = 0;
+    s.vshift = vshift;
+    s.lshift = ld_pot_lshift(vshift);
+    s.ew = ld_pot_escape_width(num_corners, vshift);
     /* the words hold vertex ids below 2^vshift: the spare bits are zero */
-    for (b = 0; b < blocks; ++b) {
-        const uint32_t c0 = b << LD_POT_BLOCK, block = e;
-        const uint32_t c1 = c0 + LD_POT_FINE_MASK + 1u < num_corners ? c0 + LD_POT_FINE_MASK + 1u
-                                                                     : num_corners;
-        uint32_t c, f;
-        if (!(c0 & LD_POT_COARSE_MASK))
-            coarse[c0 >> LD_POT_COARSE] = e;
-        if (!(c0 & LD_POT_BASE_MASK)) {
-            bs.base = base + 2u * (c0 >> LD_POT_BASE);
-            bs.has[0] = bs.has[1] = 0;
-        }
-        fine[b] = (uint16_t)(e - coarse[c0 >> LD_POT_COARSE]);
-#define LD_POT_PUT(c)                                                                   \
-    do {                                                                                \
-        const uint32_t o_ = ld_o24(o24, c), x_ = o_ - (c) + bias;                       \
-        if (x_ < 2u * bias) { /* the common case: a near opposite */                    \
-            words[c] |= x_ << s1;                                                       \
-        } else if (o_ == LD_O24_NONE) {                                                 \
-            words[c] |= none;                                                           \
-        } else if ((f = ld_pot_based(&bs, c, o_)) != 0) {                               \
-            words[c] |= f << vshift;                                                    \
-        } else {                                                                        \
-            ld_pot_escape_put(o24, ew, e, e - block, o_, lshift, words + (c), vshift); \
-            ++e;                                                                        \
-        }                                                                               \
+    /* corner c + j from the turn's pointers: constant displacements */
+#define LD_POT_PUT(j)                                                       \
+    do {                                                                    \
+        const uint32_t o_ = ld_o24(o24c, j), x_ = o_ - (c + (j)) + bias;   \
+        if (x_ < 2u * bias) /* the common case: a near opposite */          \
+            wc[j] |= x_ << s1;                                              \
+        else if (o_ == LD_O24_NONE)                                         \
+            wc[j] |= none;                                                  \
+        else if ((f = ld_pot_based(base, half, c + (j), o_ - (c + (j)))) != 0) \
+            wc[j] |= f << vshift;                                           \
+        else                                                                \
+            ld_pot_escape_put(&s, c + (j), o_);                             \
     } while (0)
-        if (c1 - c0 == LD_POT_FINE_MASK + 1u) {
-            for (c = c0; c < c1; c += 8u) {  /* eight a turn: an eighth of the loop's steps */
-                LD_POT_PUT(c);
-                LD_POT_PUT(c + 1u);
-                LD_POT_PUT(c + 2u);
-                LD_POT_PUT(c + 3u);
-                LD_POT_PUT(c + 4u);
-                LD_POT_PUT(c + 5u);
-                LD_POT_PUT(c + 6u);
-                LD_POT_PUT(c + 7u);
-            }
-        } else {
-            for (c = c0; c < c1; ++c)
-                LD_POT_PUT(c);
-        }
-#undef LD_POT_PUT
+    for (c = 0; c < n8; c += 8u) {  /* eight a turn: an eighth of the loop's steps */
+        const uint8_t *o24c = o24 + 3u * (size_t)c;
+        uint32_t *wc = words + c;
+        LD_POT_PUT(0u);
+        LD_POT_PUT(1u);
+        LD_POT_PUT(2u);
+        LD_POT_PUT(3u);
+        LD_POT_PUT(4u);
+        LD_POT_PUT(5u);
+        LD_POT_PUT(6u);
+        LD_POT_PUT(7u);
     }
+    for (; c < num_corners; ++c) {
+        const uint8_t *o24c = o24 + 3u * (size_t)c;
+        uint32_t *wc = words + c;
+        LD_POT_PUT(0u);
+    }
+#undef LD_POT_PUT
     t->words = words;
     t->esc = o24;
     t->fine = fine;
@@ -177,9 +195,9 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     t->flag = 1u << vshift;
     t->bias = bias;
     t->vshift = (uint8_t)vshift;
-    t->lshift = (uint8_t)lshift;
-    t->esc_width = (uint8_t)ew;
-    *esc_bytes = (size_t)e * ew;
+    t->lshift = (uint8_t)s.lshift;
+    t->esc_width = (uint8_t)s.ew;
+    *esc_bytes = (size_t)s.e * s.ew;
 }
 
 /* Four words a step through a pointer: the compiler turns the block into

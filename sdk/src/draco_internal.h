@@ -34,6 +34,12 @@
 #else
 #define LD_FORCE_INLINE inline
 #endif
+/* For a rare path kept out of a hot loop, whose registers stay the loop's. */
+#if defined(__GNUC__)
+#define LD_NOINLINE __attribute__((noinline))
+#else
+#define LD_NOINLINE
+#endif
 
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)

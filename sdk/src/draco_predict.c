@@ -17,14 +17,9 @@
 #define LD_XFORM_OCTAHEDRON_CANON 3
 #define LD_MAX_PARALLELOGRAMS 4
 
-/* The hot schemes are kept out of ld_pred_compute: inlined there, each
- * loop's registers were allocated together with every other scheme's and
- * a change to one moved spills into another. */
-#if defined(__GNUC__)
-#define LD_NOINLINE __attribute__((noinline))
-#else
-#define LD_NOINLINE
-#endif
+/* The hot schemes are kept out of ld_pred_compute (LD_NOINLINE): inlined
+ * there, each loop's registers were allocated together with every other
+ * scheme's and a change to one moved spills into another. */
 
 static inline int32_t ld_wrap_add(int32_t a, int32_t b)
 {
