@@ -8,7 +8,8 @@
 
 typedef struct ld_walk {
     const ld_ct *ct;
-    uint8_t *face_seen;        /* a vertex is seen once it has a value */
+    uint8_t *face_seen;        /* a face is seen once walked: a byte per face,
+                                  or per corner for the degree walk */
     uint32_t num_faces;
     uint32_t cap, max_depth;   /* DFS stack in free space */
     uint32_t max_values;       /* entries of o->value_to_corner */
@@ -238,7 +239,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     int best = 0;
 #define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
 #define LD_VERT(c) (packed ? c2v[c] & vmask : c2v[c])
-#define LD_SEEN(c) ((c) == LD_INV || fseen[(c) / 3u])
+#define LD_SEEN(c) ((c) == LD_INV || fseen[c])
     /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
 #define LD_VISIT(v, c)                      \
     do {                                    \
@@ -269,8 +270,9 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
             best = (pri);                              \
     } while (0)
     head[0] = head[1] = head[2] = LD_INV;
-    for (f = 0; nv > 0 && (f = ld_next_start(fseen, NULL, f, nfaces)) < nfaces; ++f) {
-        uint32_t corner = 3u * f, a, b;
+    for (f = 0; nv > 0 && (f = ld_next_start(fseen, NULL, f, 3u * nfaces)) < 3u * nfaces;
+         f += 3u) {
+        uint32_t corner = f, a, b;
         /* the start face's three vertices: next, previous, then the tip */
         a = LD_VERT(corner + 1u);
         b = LD_VERT(corner + 2u);
@@ -302,13 +304,13 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
                 best = pri;
                 corner = qc[node];
             }
-            if (fseen[corner / 3u])
+            if (fseen[corner])
                 continue;
             for (;;) {
                 const uint32_t m3 = corner % 3u;
                 uint32_t v, r, l;
                 int rs, ls;
-                fseen[corner / 3u] = 1;
+                memset(fseen + (corner - m3), 1, 3);
                 v = LD_VERT(corner);
                 if (v >= nv) {
                     st = LUMO_ERR_CORRUPT;
@@ -370,7 +372,7 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t
 {
     ld_walk w;
     ld_pq q;
-    uint32_t *stack = NULL, nv = ct->num_vertices, i;
+    uint32_t *stack = NULL, nv = ct->num_vertices, i, fbytes;
     lumo_status st = LUMO_OK;
     int32_t *vmap = o->vertex_to_value;  /* caller may provide the array */
     uint8_t *mark;
@@ -387,14 +389,18 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t
     w.num_faces = ct->num_corners / 3u;
     if (ct->o24 && (prediction_degree || !vmap))
         return LUMO_ERR_CORRUPT;  /* only the depth-first walk of a filled map */
+    /* the degree walk tests a face from any of its corners: a flag per
+     * corner spares a division by 3 per test; the depth-first walks keep
+     * one per face (their arena is the tighter one) */
+    fbytes = prediction_degree ? ct->num_corners : w.num_faces;
     if (!ct->o24)  /* else the flags are in the table and the map */
-        w.face_seen = ld_tmp(m, w.num_faces, 1);
+        w.face_seen = ld_tmp(m, fbytes, 1);
     if (!o->vertex_to_value || !o->value_to_corner || (!ct->o24 && !w.face_seen))
         return LUMO_ERR_NOMEM;
     if (!ct->o24) {
         for (i = 0; i < vmap_size; ++i)
             o->vertex_to_value[i] = -1;
-        memset(w.face_seen, 0, w.num_faces);
+        memset(w.face_seen, 0, fbytes);
     }
     if (prediction_degree) {
         size_t cap;
