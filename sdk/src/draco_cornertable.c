@@ -30,7 +30,8 @@ unsigned ld_pot_vshift(uint32_t n)
     return b;
 }
 
-/* Field bits below an escape's rank: the near flag and the based flag. */
+/* Bits of an escape's field besides its rank and the low part of o: the
+ * far flag (bit 31) and the escape bit (g bit 0). */
 #define LD_POT_MODE_BITS 2u
 
 uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w)
@@ -41,12 +42,12 @@ uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w)
     if (field == 0xFFFFFFFFu >> t->vshift)
         return LD_INV;
     e = t->coarse[c >> LD_POT_COARSE] + t->fine[c >> LD_POT_BLOCK] +
-        ((field >> LD_POT_MODE_BITS) & ((1u << LD_POT_RANK_BITS) - 1u));
+        ((field >> 1) & ((1u << LD_POT_RANK_BITS) - 1u));
     p = t->esc + (size_t)e * t->esc_width;
     hi = (uint32_t)p[0] | (uint32_t)p[1] << 8;
     if (t->esc_width == 3)
         hi |= (uint32_t)p[2] << 16;
-    return hi << t->lshift | field >> (LD_POT_RANK_BITS + LD_POT_MODE_BITS);
+    return hi << t->lshift | ((field >> (LD_POT_RANK_BITS + 1u)) & ((1u << t->lshift) - 1u));
 }
 
 unsigned ld_pot_lshift(unsigned vshift)
@@ -99,37 +100,40 @@ static LD_NOINLINE void ld_pot_escape_put(ld_pot_esc *s, uint32_t c, uint32_t o)
     p[1] = (uint8_t)(hi >> 8);
     if (s->ew == 3u)
         p[2] = (uint8_t)(hi >> 16);
-    s->words[c] |= (3u | (s->e - s->rank0) << LD_POT_MODE_BITS |
-                    (o & ((1u << s->lshift) - 1u)) << (LD_POT_RANK_BITS + LD_POT_MODE_BITS))
-                   << s->vshift;
+    s->words[c] |= LD_POT_FAR | (1u | (s->e - s->rank0) << 1 |
+                                 (o & ((1u << s->lshift) - 1u)) << (LD_POT_RANK_BITS + 1u))
+                                    << s->vshift;
     s->e++;
 }
 
-/* The based field of corner c with far opposite o (d = o - c), or 0 when
- * o is not within its block's base window; the block's first far opposite
- * of a direction sets the base (its distance less `half`). */
+/* The based g (the far field's low bits) of corner c with far opposite o
+ * (d = o - c), or LD_INV when o is not within its block's base window.
+ * The block's first far opposite of a direction sets the base: its
+ * distance less `half`, and less the 2 half that the far flag adds to a
+ * read's field >> 2. */
 static LD_FORCE_INLINE uint32_t ld_pot_based(int16_t *base, int32_t half, uint32_t c, uint32_t d)
 {
     const unsigned dir = (int32_t)d > 0;
     int16_t *b = base + ((c >> LD_POT_BASE << 1) | dir);
     uint32_t off;
     if (*b == LD_POT_BASE_UNSET) {
-        const int32_t first = (int32_t)d - half;
-        if (first <= LD_POT_BASE_UNSET || first > INT16_MAX)
-            return 0;
-        *b = (int16_t)first;
+        const int32_t stored = (int32_t)d - 3 * half;
+        if (stored <= LD_POT_BASE_UNSET || stored > INT16_MAX)
+            return LD_INV;
+        *b = (int16_t)stored;
     }
-    off = d - (uint32_t)(int32_t)*b;
+    off = d - (uint32_t)(int32_t)*b - 2u * (uint32_t)half;
     if (off >= 2u * (uint32_t)half)
-        return 0;
-    return 1u | dir << 2 | off << 3;
+        return LD_INV;
+    return dir << 1 | off << 2;
 }
 
 void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vshift, uint8_t *o24,
                   uint16_t *fine, uint32_t *coarse, int16_t *base, size_t *esc_bytes)
 {
-    const unsigned k = 32u - vshift, s1 = vshift + 1u;
-    /* near: o - c in [-bias, bias), stored as o - c + bias. For a border
+    const unsigned k = 32u - vshift;
+    /* near: o - c in [-bias, bias), stored as o - c in the k - 1 bits
+     * from bit vshift (x = o - c + bias is the test). For a border
      * edge o - c = LD_O24_NONE - c >= 2^23 - num_corners: capping the bias
      * there makes every border edge fail the near test, so the hot loop
      * has one test (the cap only turns near opposites into escapes in
@@ -161,11 +165,11 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     do {                                                                    \
         const uint32_t o_ = ld_o24(o24c, j), x_ = o_ - (c + (j)) + bias;   \
         if (x_ < 2u * bias) /* the common case: a near opposite */          \
-            wc[j] |= x_ << s1;                                              \
+            wc[j] |= ((x_ - bias) << vshift) & ~LD_POT_FAR;                \
         else if (o_ == LD_O24_NONE)                                         \
             wc[j] |= none;                                                  \
-        else if ((f = ld_pot_based(base, half, c + (j), o_ - (c + (j)))) != 0) \
-            wc[j] |= f << vshift;                                           \
+        else if ((f = ld_pot_based(base, half, c + (j), o_ - (c + (j)))) != LD_INV) \
+            wc[j] |= LD_POT_FAR | f << vshift;                              \
         else                                                                \
             ld_pot_escape_put(&s, c + (j), o_);                             \
     } while (0)
@@ -192,8 +196,6 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     t->fine = fine;
     t->coarse = coarse;
     t->base = base;
-    t->flag = 1u << vshift;
-    t->bias = bias;
     t->vshift = (uint8_t)vshift;
     t->lshift = (uint8_t)s.lshift;
     t->esc_width = (uint8_t)s.ew;

@@ -121,6 +121,11 @@ void ld_bits_end(ld_bits *r, ld_buf *b);
 /* Skip n bits as n one-bit reads would (stopping at the end). */
 void ld_bits_skip(ld_bits *r, uint64_t n);
 
+/* The packed opposite table (ld_pot) reads a near opposite's offset by an
+ * arithmetic right shift of a negative int32, which C99 leaves to the
+ * implementation: refuse to build where it is not arithmetic. */
+typedef char ld_arithmetic_shift_check[(-2 >> 1) == -1 ? 1 : -1];
+
 /* ---- memory (draco_mem.c) ------------------------------------------------ */
 typedef struct ld_mem {
     uint8_t *lo;      /* next output byte (grows up) */
@@ -373,23 +378,30 @@ int ld_peek_opposites_only(const ld_buf *b);
  * (the output face array) and its opposite corner at once; 32-bit
  * opposites next to the faces would double the arena. So the opposites
  * live in the spare high bits of the mesh's corner -> vertex words:
- * word = vertex | field << vshift (k = 32 - vshift bits of field), and for
+ * word = vertex | field << vshift (k = 32 - vshift bits of field). For
  * corner c with opposite o:
- *   bit 0 clear:          o = c + (field >> 1) - bias (a near opposite,
- *                         o - c in [-bias, bias): most corners);
- *   bits 0..1 = 01:       o = c + base[2 * (c >> LD_POT_BASE) + dir] +
- *                         (field >> 3), dir = bit 2 (a based opposite);
- *   field all ones:       no opposite (a border edge);
- *   else (bits 0..1 = 11), an escape: bits 2..6 are the corner's rank
- *                         among the escapes of its block of 16 corners,
- *                         the bits above the low part of o, and the escape
- *                         entry (esc_width bytes, little-endian) its high
- *                         part.
+ *   bit 31 clear:         a near opposite, o = c + d with d the k - 1
+ *                         bits from bit vshift, two's complement (read
+ *                         by an arithmetic shift of the word), within
+ *                         [-bias, bias): most corners;
+ *   bit 31 set, the k - 1 bits below it g:
+ *     g bit 0 clear:      a based opposite, o = c + base[2 * (c >>
+ *                         LD_POT_BASE) + dir] + (field >> 2), dir = g
+ *                         bit 1 (the flag's 2^(k-3) in field >> 2 is
+ *                         taken off the stored base);
+ *     g all ones:         no opposite (a border edge);
+ *     else, an escape:    g bits 1..5 are the corner's rank among the
+ *                         escapes of its block of 16 corners, the bits
+ *                         above the low part of o, and the escape entry
+ *                         (esc_width bytes, little-endian) its high part.
+ * The flag is the sign bit and the near offset needs no bias, so the hot
+ * loops test and read a near word with no field of the table in a
+ * register but the shift.
  * Why based: the opposites beyond the near window are the spiral's
  * previous and next rings, whose distance from the corner changes slowly
  * along the face order. Each block of 2^LD_POT_BASE corners keeps, per
  * direction (dir 1: o > c), the distance of its first far opposite as an
- * int16 base (less the window's half, 2^(k-4)); the others of that
+ * int16 base (less half the window, 2^(k-4)); the others of that
  * direction within the window of 2^(k-3) above it are based. Measured on
  * the 871k dragon (k = 13): 71.8% near, 27.2% based, 1.0% escapes, for 4
  * bytes per 128 corners.
@@ -404,10 +416,9 @@ typedef struct ld_pot {
     const uint16_t *fine;      /* escapes from a 1024-block to each 16-block */
     const uint32_t *coarse;    /* escapes before each 1024-corner block */
     const int16_t *base;       /* two per 2^LD_POT_BASE corners */
-    uint32_t flag;             /* bit 0 of the field: 1u << vshift */
-    uint32_t bias;             /* a near field holds opposite - corner + bias */
     uint8_t vshift, lshift, esc_width;
 } ld_pot;
+#define LD_POT_FAR 0x80000000u   /* the flag of a word that is not near */
 #define LD_POT_RANK_BITS 5u
 #define LD_POT_BLOCK 4u          /* log2 corners per fine block */
 #define LD_POT_COARSE 10u        /* log2 corners per coarse block */
@@ -480,13 +491,12 @@ unsigned ld_pot_vshift(uint32_t n);
 unsigned ld_pot_lshift(unsigned vshift);
 unsigned ld_pot_escape_width(uint32_t num_corners, unsigned vshift);
 uint32_t ld_pot_escape(const ld_pot *t, uint32_t c, uint32_t w);
-/* A hot loop holds the near case's three fields in locals (ld_pot_near)
- * and passes the table itself only to the escapes: a loop that passed the
+/* A hot loop holds the near case's fields in locals (ld_pot_near) and
+ * passes the table itself only to the far words: a loop that passed the
  * address of its own copy would have to reload the copy after every
  * escape. */
 typedef struct ld_pot_near {
     const uint32_t *words;
-    uint32_t flag, bias;
     unsigned s1;               /* vshift + 1 */
     const ld_pot *t;
 } ld_pot_near;
@@ -494,8 +504,6 @@ static inline ld_pot_near ld_pot_near_of(const ld_pot *t)
 {
     ld_pot_near n;
     n.words = t->words;
-    n.flag = t->flag;
-    n.bias = t->bias;
     n.s1 = t->vshift + 1u;
     n.t = t;
     return n;
@@ -506,17 +514,17 @@ static inline ld_pot_near ld_pot_near_of(const ld_pot *t)
 static LD_FORCE_INLINE uint32_t ld_pot_far(const ld_pot *t, uint32_t c, uint32_t w)
 {
     const uint32_t field = w >> t->vshift;
-    if (!(field & 2u))
-        return c + (uint32_t)(int32_t)t->base[(c >> LD_POT_BASE << 1) | (field >> 2 & 1u)] +
-               (field >> 3);
+    if (!(field & 1u))
+        return c + (uint32_t)(int32_t)t->base[(c >> LD_POT_BASE << 1) | (field >> 1 & 1u)] +
+               (field >> 2);
     return ld_pot_escape(t, c, w);
 }
 static LD_FORCE_INLINE uint32_t ld_pot_near_opp(ld_pot_near n, uint32_t c)
 {
     const uint32_t w = n.words[c];
-    if (w & n.flag)
+    if (w & LD_POT_FAR)
         return ld_pot_far(n.t, c, w);
-    return c + (w >> n.s1) - n.bias;
+    return c + (uint32_t)((int32_t)(w << 1) >> n.s1);
 }
 static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
 {
