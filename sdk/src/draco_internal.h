@@ -34,6 +34,12 @@
 #else
 #define LD_FORCE_INLINE inline
 #endif
+/* A branch the hot loops rarely take: its spills go to its own side. */
+#if defined(__GNUC__)
+#define LD_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define LD_UNLIKELY(x) (x)
+#endif
 /* For a rare path kept out of a hot loop, whose registers stay the loop's. */
 #if defined(__GNUC__)
 #define LD_NOINLINE __attribute__((noinline))
@@ -514,7 +520,7 @@ static inline ld_pot_near ld_pot_near_of(const ld_pot *t)
 static LD_FORCE_INLINE uint32_t ld_pot_far(const ld_pot *t, uint32_t c, uint32_t w)
 {
     const uint32_t field = w >> t->vshift;
-    if (!(field & 1u))
+    if (!LD_UNLIKELY(field & 1u))
         return c + (uint32_t)(int32_t)t->base[(c >> LD_POT_BASE << 1) | (field >> 1 & 1u)] +
                (field >> 2);
     return ld_pot_escape(t, c, w);
