@@ -576,7 +576,7 @@ static LD_FORCE_INLINE void ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t st
         if (*count == LD_MAX_PARALLELOGRAMS)
             return;
         o = ld_fan_opp(f, nc, packed);
-        if (o == LD_INV)
+        if (LD_UNLIKELY(o == LD_INV))
             break;
         if (o == pc0)  /* next(o) == start: the fan is closed */
             return;
