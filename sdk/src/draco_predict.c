@@ -568,11 +568,10 @@ static LD_FORCE_INLINE void ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t st
                                         int packed)
 {
     const uint32_t pc0 = ld_prev_v(start), en0 = ld_fan_entry(f, ld_next_v(start), packed);
-    uint32_t corner = start, nc = ld_next_v(start), pc = pc0, en = en0,
-             ep = ld_fan_entry(f, pc0, packed), o;
+    uint32_t corner, nc = ld_next_v(start), pc, en = en0, ep = ld_fan_entry(f, pc0, packed), o;
     *count = 0;
+    ld_fan_para(f, i, start, en, ep, v, k, preds, count, packed);
     for (;;) {  /* swing left: next(opp(next(c))); the new face's next vertex is ep's */
-        ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
         if (*count == LD_MAX_PARALLELOGRAMS)
             return;
         o = ld_fan_opp(f, nc, packed);
@@ -580,10 +579,11 @@ static LD_FORCE_INLINE void ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t st
             break;
         if (o == pc0)  /* next(o) == start: the fan is closed */
             return;
-        corner = ld_next_v(o);
         nc = ld_prev_v(o);
         en = ep;
         ep = ld_fan_entry(f, o, packed);
+        /* the face's corner at the vertex, computed where the parallelogram needs it */
+        ld_fan_para(f, i, ld_next_v(o), en, ep, v, k, preds, count, packed);
     }
     o = ld_fan_opp(f, pc0, packed);  /* swing right from the start */
     if (o == LD_INV)
