@@ -140,7 +140,7 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
      * meshes of over 2^22 corners) */
     const uint32_t cap = (LD_O24_NONE + 1u) - num_corners;
     const uint32_t bias = (1u << (k - 2u)) < cap ? 1u << (k - 2u) : cap;
-    const uint32_t none = 0xFFFFFFFFu << vshift, n8 = num_corners & ~7u;
+    const uint32_t none = 0xFFFFFFFFu << vshift, n8 = num_corners & ~7u, bsh = bias << vshift;
     const size_t nb = 2u * ld_pot_bases(num_corners);
     const int32_t half = (int32_t)1 << (k - 4u);  /* a based offset is in [0, 2 half) */
     ld_pot_esc s;
@@ -160,12 +160,13 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     s.lshift = ld_pot_lshift(vshift);
     s.ew = ld_pot_escape_width(num_corners, vshift);
     /* the words hold vertex ids below 2^vshift: the spare bits are zero */
-    /* corner c + j from the turn's pointers: constant displacements */
+    /* corner c + j from the turn's pointers and cb = bias - c: constant
+     * displacements; x = o - (c + j) + bias is the near test */
 #define LD_POT_PUT(j)                                                       \
     do {                                                                    \
-        const uint32_t o_ = ld_o24(o24c, j), x_ = o_ - (c + (j)) + bias;   \
+        const uint32_t o_ = ld_o24(o24c, j), x_ = o_ + cb - (j);           \
         if (x_ < 2u * bias) /* the common case: a near opposite */          \
-            wc[j] |= ((x_ - bias) << vshift) & ~LD_POT_FAR;                \
+            wc[j] |= ((x_ << vshift) - bsh) & ~LD_POT_FAR;                  \
         else if (o_ == LD_O24_NONE)                                         \
             wc[j] |= none;                                                  \
         else if ((f = ld_pot_based(base, half, c + (j), o_ - (c + (j)))) != LD_INV) \
@@ -176,6 +177,7 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     for (c = 0; c < n8; c += 8u) {  /* eight a turn: an eighth of the loop's steps */
         const uint8_t *o24c = o24 + 3u * (size_t)c;
         uint32_t *wc = words + c;
+        const uint32_t cb = bias - c;
         LD_POT_PUT(0u);
         LD_POT_PUT(1u);
         LD_POT_PUT(2u);
@@ -188,6 +190,7 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     for (; c < num_corners; ++c) {
         const uint8_t *o24c = o24 + 3u * (size_t)c;
         uint32_t *wc = words + c;
+        const uint32_t cb = bias - c;
         LD_POT_PUT(0u);
     }
 #undef LD_POT_PUT
