@@ -118,6 +118,20 @@ static LD_FORCE_INLINE void ld_set_opp(struct ld_eb *e, uint32_t a, uint32_t b, 
     }
 }
 
+/* The same for an existing corner a and a corner b of the face just
+ * cleared, where b's entry may be written blind (ld_o24_put_new: the
+ * face's later entries are written after it, or b is its last). */
+static LD_FORCE_INLINE void ld_set_opp_new(struct ld_eb *e, uint32_t a, uint32_t b, int lean)
+{
+    if (lean) {
+        ld_o24_set(e->o24, a, b);
+        ld_o24_put_new(e->o24, b, a);
+    } else {
+        e->opp32[a] = b;
+        e->opp32[b] = a;
+    }
+}
+
 /* A new face has no opposites yet. */
 static LD_FORCE_INLINE void ld_eb_clear_face(struct ld_eb *e, uint32_t face, int lean)
 {
@@ -410,8 +424,8 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, 
     b = ld_next(e->lmc[x]);
     if (a == b || b == LD_INV || ld_has_opp(e, a, lean) || ld_has_opp(e, b, lean))
         return LUMO_ERR_CORRUPT;
-    ld_set_opp(e, a, corner + 1u, lean);
-    ld_set_opp(e, b, corner + 2u, lean);
+    ld_set_opp_new(e, a, corner + 1u, lean);
+    ld_set_opp_new(e, b, corner + 2u, lean);
     ap = e->c2v[ld_prev_v(a)];
     bn = e->c2v[ld_next_v(b)];
     if (x == ap || x == bn || !ld_valid_vertex(e, ap))
@@ -438,7 +452,10 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s,
     oc = right ? corner + 2u : corner + 1u;
     cl = right ? corner + 1u : corner;
     cr = right ? corner : corner + 2u;
-    ld_set_opp(e, oc, a, lean);
+    if (right)  /* the face's last corner */
+        ld_set_opp_new(e, a, oc, lean);
+    else
+        ld_set_opp(e, oc, a, lean);
     if (e->num_vertices >= e->max_vertices)
         return LUMO_ERR_CORRUPT;
     nv = ld_eb_new_vertex(e);
@@ -469,8 +486,8 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, 
     a = s->stack[s->top - 1];
     if (a == b || ld_has_opp(e, a, lean) || ld_has_opp(e, b, lean))
         return LUMO_ERR_CORRUPT;
-    ld_set_opp(e, a, corner + 2u, lean);
-    ld_set_opp(e, b, corner + 1u, lean);
+    ld_set_opp_new(e, b, corner + 1u, lean);  /* in corner order */
+    ld_set_opp_new(e, a, corner + 2u, lean);
     vp = e->c2v[ld_prev_v(a)];
     e->c2v[corner] = vp;
     e->c2v[corner + 1u] = e->c2v[ld_next_v(a)];

@@ -462,6 +462,18 @@ static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
     p[2] = (uint8_t)(v >> 16);
 #endif
 }
+/* Entry c of a new face, written in increasing corner order after the
+ * face was cleared: a blind 4-byte store, whose fourth byte (the next
+ * entry's first) the next write of the face, or of the next face, puts
+ * right. */
+static LD_FORCE_INLINE void ld_o24_put_new(uint8_t *t, uint32_t c, uint32_t v)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    memcpy(t + 3u * (size_t)c, &v, 4);
+#else
+    ld_o24_set(t, c, v);
+#endif
+}
 /* A face's flag (ld_ct.o24 traversal): bit 23 of each of its entries, so
  * that any corner tests it without a division by 3. */
 static LD_FORCE_INLINE int ld_o24_seen(const uint8_t *t, uint32_t c)
