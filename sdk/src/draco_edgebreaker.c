@@ -1668,7 +1668,6 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     if (!keep)  /* else the face flags are in the table (degree walk: per corner) */
         ld_need_tmp(k, e->dec_traversal[decoder] ? (size_t)corners : e->faces, 1);
     if (e->dec_traversal[decoder]) {
-        ld_need_tmp(k, (size_t)nv, 1);  /* tipped flags */
         ld_need_free(k, (size_t)ld_need_pick(k, 0u, (uint64_t)e->faces + 1u) * 8u);
     } else {
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);

@@ -24,6 +24,7 @@ typedef struct ld_walk {
 #define LD_STORE_PACKED 1
 #define LD_STORE_O24    2
 #define LD_VMAP_BORDER  (-2)         /* LD_STORE_O24: unvisited, on a border */
+#define LD_VMAP_TIPPED  (-3)         /* degree walk: unvisited, a tip before */
 
 /* One opposite for a constant `store` (ld_dfs). */
 static LD_FORCE_INLINE uint32_t ld_dfs_opp(const uint32_t *opp32, ld_pot_near opp,
@@ -210,14 +211,13 @@ static lumo_status ld_dfs_all(ld_walk *w, uint32_t *stack)
 }
 
 /* Prediction-degree traversal: three priority stacks sharing one node pool
- * (corner, next) with a free list; `tipped`: one byte per vertex, set
- * when an unvisited vertex is first the tip of a corner put on a stack
- * (libdraco counts these "prediction degrees" but reads only whether one
- * is above 1). */
+ * (corner, next) with a free list. An unvisited vertex that was the tip of
+ * a corner put on a stack is LD_VMAP_TIPPED in the vertex map (libdraco
+ * counts these "prediction degrees" but reads only whether one is above
+ * 1): no array of its own, and one load tells both. */
 typedef struct ld_pq {
     uint32_t *corner, *next;
     uint32_t used, cap;
-    uint8_t *tipped;
 } ld_pq;
 
 /* MaxPredictionDegreeTraverser::TraverseFromCorner for every start face,
@@ -231,7 +231,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap;
     const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam;
-    uint8_t *fseen = w->face_seen, *tipped = q->tipped;
+    uint8_t *fseen = w->face_seen;
     uint32_t *v2c = w->o->value_to_corner, *qc = q->corner, *qn = q->next;
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, used = 0, fre = LD_INV, head[3], f;
@@ -310,6 +310,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
                 const uint32_t m3 = corner % 3u;
                 uint32_t v, r, l;
                 int rs, ls;
+                int32_t x;
                 memset(fseen + (corner - m3), 1, 3);
                 v = LD_VERT(corner);
                 if (v >= nv) {
@@ -324,9 +325,9 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
                 if (!ls) {
                     const uint32_t tip = LD_VERT(l);
                     pri = 0;  /* priority 0 toward a visited tip, else 2 or 1 */
-                    if (tip < nv && vmap[tip] < 0) {
-                        pri = tipped[tip] ? 1 : 2;
-                        tipped[tip] = 1;
+                    if (tip < nv && (x = vmap[tip]) < 0) {
+                        pri = x == LD_VMAP_TIPPED ? 1 : 2;
+                        vmap[tip] = LD_VMAP_TIPPED;
                     }
                     if (rs && pri <= best) {
                         corner = l;
@@ -337,9 +338,9 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
                 if (!rs) {
                     const uint32_t tip = LD_VERT(r);
                     pri = 0;
-                    if (tip < nv && vmap[tip] < 0) {
-                        pri = tipped[tip] ? 1 : 2;
-                        tipped[tip] = 1;
+                    if (tip < nv && (x = vmap[tip]) < 0) {
+                        pri = x == LD_VMAP_TIPPED ? 1 : 2;
+                        vmap[tip] = LD_VMAP_TIPPED;
                     }
                     if (pri <= best) {
                         corner = r;
@@ -404,10 +405,6 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t
     }
     if (prediction_degree) {
         size_t cap;
-        q.tipped = ld_tmp(m, nv, 1);
-        if (!q.tipped)
-            return LUMO_ERR_NOMEM;
-        memset(q.tipped, 0, nv);
         /* node pool (corner, next) pairs in the free space */
         q.corner = ld_free_space(m, &cap);
         cap /= 2u;
