@@ -223,8 +223,9 @@ typedef struct ld_pq {
 /* MaxPredictionDegreeTraverser::TraverseFromCorner for every start face,
  * all state in locals (stores into the uint32 arrays could otherwise alias
  * the structs' fields and force reloads); `packed`: a constant, one
- * instance per opposite store. */
-static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int packed)
+ * instance per opposite store and per seams (an attribute's table) or none
+ * (the mesh's: no seam test per opposite). */
+static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int packed, int seams)
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *opp32 = ct->opp32, nv = ct->num_vertices, vmask = ct->vmask;
@@ -237,7 +238,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     uint32_t n = w->o->num_values, used = 0, fre = LD_INV, head[3], f;
     lumo_status st = LUMO_OK;
     int best = 0;
-#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
+#define LD_OPP(c) ((seams && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
 #define LD_VERT(c) (packed ? c2v[c] & vmask : c2v[c])
 #define LD_SEEN(c) ((c) == LD_INV || fseen[c])
     /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
@@ -365,7 +366,9 @@ out:
 
 static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
 {
-    return w->ct->opp32 ? ld_degree_walk(w, q, 0) : ld_degree_walk(w, q, 1);
+    if (!w->ct->seam)  /* the mesh's own table: no seam test per opposite */
+        return w->ct->opp32 ? ld_degree_walk(w, q, 0, 0) : ld_degree_walk(w, q, 1, 0);
+    return w->ct->opp32 ? ld_degree_walk(w, q, 0, 1) : ld_degree_walk(w, q, 1, 1);
 }
 
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t max_values,
