@@ -68,9 +68,10 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 
 /* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
  * (the stores into the order arrays would otherwise force reloads);
- * `store`: a constant, one of LD_STORE_*. */
+ * `store`: a constant, one of LD_STORE_*; `seams`: a constant, 0 for the
+ * mesh's own table (no seam test per opposite). */
 static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack,
-                                          int store)
+                                          int store, int seams)
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
@@ -83,7 +84,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
-#define LD_OPP(c) ((seam && seam[c]) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
+#define LD_OPP(c) ((seams && seam[c]) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
 #define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
     /* LD_STORE_O24: the entry keeps its corner's opposite (ld_ct.o24) */
@@ -191,23 +192,26 @@ static LD_FORCE_INLINE uint32_t ld_next_start(const uint8_t *fseen, const uint8_
     return q ? (uint32_t)(q - fseen) : num_faces;
 }
 
-/* Every start face; one instance per opposite store. */
-static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int store)
+/* Every start face; one instance per opposite store and seams or none. */
+static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int store, int seams)
 {
     const uint8_t *o24 = store == LD_STORE_O24 ? w->ct->o24 : NULL;
     uint32_t f = 0;
     lumo_status st = LUMO_OK;
     while (!st && (f = ld_next_start(w->face_seen, o24, f, w->num_faces)) < w->num_faces)
-        st = ld_dfs(w, 3u * f++, stack, store);
+        st = ld_dfs(w, 3u * f++, stack, store, seams);
     return st;
 }
 
 static lumo_status ld_dfs_all(ld_walk *w, uint32_t *stack)
 {
-    if (w->ct->o24)
-        return ld_dfs_starts(w, stack, LD_STORE_O24);
-    return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN)
-                        : ld_dfs_starts(w, stack, LD_STORE_PACKED);
+    if (w->ct->o24)  /* a mesh without seams */
+        return ld_dfs_starts(w, stack, LD_STORE_O24, 0);
+    if (!w->ct->seam)
+        return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 0)
+                            : ld_dfs_starts(w, stack, LD_STORE_PACKED, 0);
+    return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 1)
+                        : ld_dfs_starts(w, stack, LD_STORE_PACKED, 1);
 }
 
 /* Prediction-degree traversal: three priority stacks sharing one node pool
