@@ -118,9 +118,11 @@ static LD_FORCE_INLINE void ld_set_opp(struct ld_eb *e, uint32_t a, uint32_t b, 
     }
 }
 
-/* The same for an existing corner a and a corner b of the face just
- * cleared, where b's entry may be written blind (ld_o24_put_new: the
- * face's later entries are written after it, or b is its last). */
+/* The same for an existing corner a and a corner b of the new face, whose
+ * entry is written blind (ld_o24_put_new). Every symbol writes its new
+ * face's three entries in corner order (ld_set_opp_new, ld_eb_no_opp):
+ * each blind store's fourth byte is the next entry's, written next, or
+ * the next face's first, written when that face is made. */
 static LD_FORCE_INLINE void ld_set_opp_new(struct ld_eb *e, uint32_t a, uint32_t b, int lean)
 {
     if (lean) {
@@ -132,16 +134,14 @@ static LD_FORCE_INLINE void ld_set_opp_new(struct ld_eb *e, uint32_t a, uint32_t
     }
 }
 
-/* A new face has no opposites yet. */
-static LD_FORCE_INLINE void ld_eb_clear_face(struct ld_eb *e, uint32_t face, int lean)
+/* A corner of the new face with no opposite yet (LD_O24_NONE: bit 23, the
+ * traversal's flag, clear). */
+static LD_FORCE_INLINE void ld_eb_no_opp(struct ld_eb *e, uint32_t c, int lean)
 {
-    if (lean) {  /* three LD_O24_NONE, bit 23 (the traversal's flag) clear */
-        static const uint8_t none[9] = {0xFF, 0xFF, 0x7F, 0xFF, 0xFF, 0x7F, 0xFF, 0xFF, 0x7F};
-        memcpy(e->o24 + 9u * (size_t)face, none, 9);
-    } else {
-        uint32_t *fo = e->opp32 + 3u * face;
-        fo[0] = fo[1] = fo[2] = LD_INV;
-    }
+    if (lean)
+        ld_o24_put_new(e->o24, c, LD_O24_NONE);
+    else
+        e->opp32[c] = LD_INV;
 }
 
 static LD_FORCE_INLINE uint32_t ld_eb_swing_left(const struct ld_eb *e, uint32_t c, int lean)
@@ -424,6 +424,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_c(struct ld_eb *e, ld_eb_state *s, 
     b = ld_next(e->lmc[x]);
     if (a == b || b == LD_INV || ld_has_opp(e, a, lean) || ld_has_opp(e, b, lean))
         return LUMO_ERR_CORRUPT;
+    ld_eb_no_opp(e, corner, lean);
     ld_set_opp_new(e, a, corner + 1u, lean);
     ld_set_opp_new(e, b, corner + 2u, lean);
     ap = e->c2v[ld_prev_v(a)];
@@ -452,10 +453,14 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_rl(struct ld_eb *e, ld_eb_state *s,
     oc = right ? corner + 2u : corner + 1u;
     cl = right ? corner + 1u : corner;
     cr = right ? corner : corner + 2u;
-    if (right)  /* the face's last corner */
+    ld_eb_no_opp(e, corner, lean);
+    if (right) {
+        ld_eb_no_opp(e, corner + 1u, lean);
         ld_set_opp_new(e, a, oc, lean);
-    else
-        ld_set_opp(e, oc, a, lean);
+    } else {
+        ld_set_opp_new(e, a, oc, lean);
+        ld_eb_no_opp(e, corner + 2u, lean);
+    }
     if (e->num_vertices >= e->max_vertices)
         return LUMO_ERR_CORRUPT;
     nv = ld_eb_new_vertex(e);
@@ -486,7 +491,8 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, 
     a = s->stack[s->top - 1];
     if (a == b || ld_has_opp(e, a, lean) || ld_has_opp(e, b, lean))
         return LUMO_ERR_CORRUPT;
-    ld_set_opp_new(e, b, corner + 1u, lean);  /* in corner order */
+    ld_eb_no_opp(e, corner, lean);
+    ld_set_opp_new(e, b, corner + 1u, lean);
     ld_set_opp_new(e, a, corner + 2u, lean);
     vp = e->c2v[ld_prev_v(a)];
     e->c2v[corner] = vp;
@@ -520,9 +526,13 @@ static LD_FORCE_INLINE lumo_status ld_eb_sym_s(struct ld_eb *e, ld_eb_state *s, 
     return LUMO_OK;
 }
 
-static LD_FORCE_INLINE lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face)
+static LD_FORCE_INLINE lumo_status ld_eb_sym_e(struct ld_eb *e, ld_eb_state *s, uint32_t face,
+                                              int lean)
 {
     uint32_t corner = 3u * face, v;
+    ld_eb_no_opp(e, corner, lean);
+    ld_eb_no_opp(e, corner + 1u, lean);
+    ld_eb_no_opp(e, corner + 2u, lean);
     if (e->num_vertices + 3u > e->max_vertices)
         return LUMO_ERR_CORRUPT;
     v = ld_eb_new_vertex(e);
@@ -656,13 +666,12 @@ static LD_FORCE_INLINE lumo_status ld_eb_symbols(struct ld_eb *e, ld_eb_state *s
     for (id = 0; id < num_symbols && !st; ++id) {
         uint32_t face = s->faces++, sym = ld_eb_symbol(e);
         int split = 0;
-        ld_eb_clear_face(e, face, lean);
-        switch (sym) {
+        switch (sym) {  /* each writes its new face's opposites, in corner order */
         case LD_TOPO_C: st = ld_eb_sym_c(e, s, face, lean); break;
         case LD_TOPO_R:
         case LD_TOPO_L: st = ld_eb_sym_rl(e, s, face, sym == LD_TOPO_R, lean); split = 1; break;
         case LD_TOPO_S: st = ld_eb_sym_s(e, s, face, id, lean); break;
-        case LD_TOPO_E: st = ld_eb_sym_e(e, s, face); split = 1; break;
+        case LD_TOPO_E: st = ld_eb_sym_e(e, s, face, lean); split = 1; break;
         default: st = LUMO_ERR_CORRUPT; break;
         }
         if (st)
