@@ -178,7 +178,7 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
                                predicted by parallelograms (-cl 3..8), else
                                packed into the spare bits of the output face
                                array; arena ~1.2x the output instead of
-                               1.4-1.7x, for 1.1x (-cl 7) to 1.3-1.45x
+                               1.4-1.7x, for 1.1x (-cl 7) to 1.25-1.35x
                                (-cl 10) the instructions (docs/draco-
                                decoder.md, "The lean mode"); where it packs,
                                need.bytes assumes the worst packing and
