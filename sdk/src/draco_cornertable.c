@@ -18,7 +18,6 @@
 
 #define LD_POT_FINE_MASK ((1u << LD_POT_BLOCK) - 1u)
 #define LD_POT_COARSE_MASK ((1u << LD_POT_COARSE) - 1u)
-#define LD_POT_BASE_MASK ((1u << LD_POT_BASE) - 1u)
 
 unsigned ld_pot_vshift(uint32_t n)
 {

@@ -556,8 +556,9 @@ static LD_FORCE_INLINE uint32_t ld_fan_entry(const ld_fan *f, uint32_t c, int pa
 }
 
 /* The walk needs no guard against a cycle: the decoder sets opposites in
- * pairs of corners that had none (ld_set_opp after ld_has_opp), so the
- * opposite map is injective, seams only cut it, and so is the swing
+ * pairs of corners that had none (a new face's corners, and old corners
+ * after ld_has_opp: ld_set_opp, ld_set_opp_new), so the opposite map is
+ * injective, seams only cut it, and so is the swing
  * next(opp(next(c))). Iterating an injective map from `start` either stops
  * at a border or comes back to `start` itself (a first repeat elsewhere
  * would have two predecessors), which the loops test: at most one turn
