@@ -16,9 +16,6 @@
  */
 #include "draco_internal.h"
 
-#define LD_POT_FINE_MASK ((1u << LD_POT_BLOCK) - 1u)
-#define LD_POT_COARSE_MASK ((1u << LD_POT_COARSE) - 1u)
-
 unsigned ld_pot_vshift(uint32_t n)
 {
     unsigned b = 1;
@@ -147,8 +144,8 @@ void ld_pot_build(ld_pot *t, uint32_t *words, uint32_t num_corners, unsigned vsh
     size_t i;
     for (i = 0; i < nb; ++i)
         base[i] = LD_POT_BASE_UNSET;
-    memset(fine, 0, ((num_corners + LD_POT_FINE_MASK) >> LD_POT_BLOCK) * sizeof *fine);
-    memset(coarse, 0, ((num_corners + LD_POT_COARSE_MASK) >> LD_POT_COARSE) * sizeof *coarse);
+    /* fine and coarse are not cleared: only the blocks holding an escape
+     * are read, and ld_pot_escape_put writes them at their first escape */
     s.words = words;
     s.o24 = o24;
     s.fine = fine;
