@@ -462,10 +462,10 @@ static LD_FORCE_INLINE void ld_o24_set(uint8_t *t, uint32_t c, uint32_t v)
     p[2] = (uint8_t)(v >> 16);
 #endif
 }
-/* Entry c of a new face, written in increasing corner order after the
- * face was cleared: a blind 4-byte store, whose fourth byte (the next
- * entry's first) the next write of the face, or of the next face, puts
- * right. */
+/* Entry c of a new face, its entries written in increasing corner order:
+ * a blind 4-byte store, whose fourth byte (the next entry's first) the
+ * face's next write, or the next face's first, puts right (the table's
+ * padding byte takes the last face's). */
 static LD_FORCE_INLINE void ld_o24_put_new(uint8_t *t, uint32_t c, uint32_t v)
 {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
@@ -528,7 +528,9 @@ static inline ld_pot_near ld_pot_near_of(const ld_pot *t)
 }
 /* The opposite of a corner whose word is not near: a based one inline
  * (its fields read from the table, not held in the hot loop's registers),
- * escapes and borders in ld_pot_escape. */
+ * escapes and borders in ld_pot_escape. The based case comes first: with
+ * the test the other way round GCC 12 lays the loops out 1.3 M
+ * instructions longer on the 871k dragon. */
 static LD_FORCE_INLINE uint32_t ld_pot_far(const ld_pot *t, uint32_t c, uint32_t w)
 {
     const uint32_t field = w >> t->vshift;

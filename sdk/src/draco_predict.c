@@ -569,7 +569,7 @@ static LD_FORCE_INLINE void ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t st
                                         int packed)
 {
     const uint32_t pc0 = ld_prev_v(start), en0 = ld_fan_entry(f, ld_next_v(start), packed);
-    uint32_t corner, nc = ld_next_v(start), pc, en = en0, ep = ld_fan_entry(f, pc0, packed), o;
+    uint32_t nc = ld_next_v(start), en = en0, ep = ld_fan_entry(f, pc0, packed), o;
     *count = 0;
     ld_fan_para(f, i, start, en, ep, v, k, preds, count, packed);
     for (;;) {  /* swing left: next(opp(next(c))); the new face's next vertex is ep's */
@@ -591,8 +591,7 @@ static LD_FORCE_INLINE void ld_fan_walk(const ld_fan *f, uint32_t i, uint32_t st
         return;
     ep = en0;
     for (;;) {  /* prev(opp(prev(c))); the new face's previous vertex is en's */
-        corner = ld_prev_v(o);
-        pc = ld_next_v(o);
+        const uint32_t corner = ld_prev_v(o), pc = ld_next_v(o);
         en = ld_fan_entry(f, o, packed);
         ld_fan_para(f, i, corner, en, ep, v, k, preds, count, packed);
         if (*count == LD_MAX_PARALLELOGRAMS)
