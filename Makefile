@@ -26,7 +26,7 @@ CLANG   ?= clang
 # ---- flags ------------------------------------------------------------------
 WARN        := -Wall -Wextra -Wshadow -Wpointer-arith -Wvla -Wstrict-prototypes \
                -Wmissing-prototypes -Werror
-CLIENT_INC  := -Isdk/include -Irasterizer/include -Inet/include
+CLIENT_INC  := -Isdk/include -Isdk/shared -Irasterizer/include -Inet/include
 CLIENT_STD  := -std=c99 -pedantic
 # Client code (sdk/, rasterizer/soft/, the net codec): C99, no float, no heap.
 CLIENT_CFLAGS_rel := $(CLIENT_STD) $(WARN) $(CLIENT_INC) -O2 -g

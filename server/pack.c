@@ -36,7 +36,7 @@ static int pack_info(lumo_pkg_writer *w, const lumo_scene *s)
     lumo_buf_f32(&b, s->camera.fovy_deg);
     for (size_t i = 0; i < s->nlights; i++)
         put_light(&b, &s->lights[i]);
-    int rc = b.failed || s->nlights > LUMO_PKG_MAX_LIGHTS ? -1 : lumo_pkgw_add(w, LUMO_PKG_INFO, b.p, b.len);
+    int rc = b.failed || s->nlights > LUMO_MAX_LIGHTS ? -1 : lumo_pkgw_add(w, LUMO_PKG_INFO, b.p, b.len);
     lumo_buf_free(&b);
     return rc;
 }

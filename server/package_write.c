@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
+#include "lumo/wire.h"
 #include "lumo_server/package_write.h"
 
 void lumo_buf_put(lumo_buf *b, const void *data, size_t n)
@@ -106,7 +107,7 @@ int lumo_pkgw_serialize(const lumo_pkg_writer *w, uint8_t **out, size_t *len)
         lumo_buf_u32(&table, w->chunks[i].type);
         lumo_buf_u32(&table, (uint32_t)pos);
         lumo_buf_u32(&table, (uint32_t)d->len);
-        lumo_buf_u32(&table, lumo_package_crc32(0, d->p, d->len));
+        lumo_buf_u32(&table, lumo_wire_crc32(0, d->p, d->len));
         pos += d->len;
     }
     if (pos > UINT32_MAX) {
@@ -118,8 +119,8 @@ int lumo_pkgw_serialize(const lumo_pkg_writer *w, uint8_t **out, size_t *len)
     lumo_buf_u16(&file, LUMO_PKG_VERSION_MINOR);
     lumo_buf_u32(&file, (uint32_t)w->n);
     lumo_buf_u32(&file, 0);                        /* flags */
-    lumo_buf_u32(&file, lumo_package_crc32(0, table.p, table.len));
-    lumo_buf_u32(&file, file.failed ? 0 : lumo_package_crc32(0, file.p, 20));
+    lumo_buf_u32(&file, lumo_wire_crc32(0, table.p, table.len));
+    lumo_buf_u32(&file, file.failed ? 0 : lumo_wire_crc32(0, file.p, 20));
     lumo_buf_put(&file, table.p, table.len);
     for (size_t i = 0; i < w->n; i++) {
         lumo_buf_put(&file, k_zero, (4u - (file.len & 3u)) & 3u);

@@ -18,7 +18,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
+#include "lumo/wire.h"
 #include "lumo/pmesh.h"
+#include "lumo_shared/pmesh_shared.h"
 #include "lumo_server/package_write.h"
 #include "lumo_server/pm_stream.h"
 
@@ -531,9 +533,9 @@ static int write_record(lumo_buf *out, uint32_t index, uint32_t first, uint32_t 
     size_t hn = put_varint(head, index);
     hn += put_varint(head + hn, (uint32_t)w->b.len);
     hn += put_varint(head + hn, (uint32_t)drc_len);
-    uint32_t crc = lumo_package_crc32(0, head, hn);
-    crc = lumo_package_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
-    crc = lumo_package_crc32(crc, drc, drc_len);
+    uint32_t crc = lumo_wire_crc32(0, head, hn);
+    crc = lumo_wire_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    crc = lumo_wire_crc32(crc, drc, drc_len);
     *info = (lumo_pm_batch_info){first, count, r->faces, r->moves, out->len,
                                  hn + 4 + w->b.len + drc_len, w->b.len, drc_len};
     lumo_buf_put(out, head, hn);
@@ -563,7 +565,7 @@ static void write_header(uint8_t *d, const lumo_pm *pm, const lumo_pm_stream_opt
     for (int i = 0; i < 16; i++)
         for (int k = 0; k < 4; k++)
             d[4 * i + k] = (uint8_t)(f[i] >> (8 * k));
-    uint32_t crc = lumo_package_crc32(0, d, 64);
+    uint32_t crc = lumo_wire_crc32(0, d, 64);
     for (int k = 0; k < 4; k++)
         d[64 + k] = (uint8_t)(crc >> (8 * k));
 }

@@ -46,7 +46,7 @@ static const char usage[] =
 
 typedef struct options {
     const char *input, *output, *backend, *camera, *model;
-    const char *lights[LUMO_RASTER_MAX_LIGHTS];
+    const char *lights[LUMO_MAX_LIGHTS];
     int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set;
     const char *lod_arg;
     host_lod lod;
@@ -58,8 +58,8 @@ static int parse_size(const char *s, uint16_t *w, uint16_t *h)
 {
     unsigned a, b;
     char tail;
-    if (sscanf(s, "%ux%u%c", &a, &b, &tail) != 2 || a < 1 || b < 1 || a > LUMO_RASTER_MAX_DIM
-        || b > LUMO_RASTER_MAX_DIM)
+    if (sscanf(s, "%ux%u%c", &a, &b, &tail) != 2 || a < 1 || b < 1 || a > LUMO_MAX_FRAME_DIM
+        || b > LUMO_MAX_FRAME_DIM)
         return -1;
     *w = (uint16_t)a;
     *h = (uint16_t)b;
@@ -114,11 +114,11 @@ static int parse_args(int argc, char **argv, options *o)
         case O_DEFAULT: o->use_default = 1; break;
         case O_MODEL: o->model = optarg; break;
         case O_LIGHT:
-            if (o->nlights == LUMO_RASTER_MAX_LIGHTS) return -1;
+            if (o->nlights == LUMO_MAX_LIGHTS) return -1;
             o->lights[o->nlights++] = optarg;
             break;
         case O_BANDS: { long k = strtol(optarg, &end, 10);
-                        if (*end || k < 1 || k > LUMO_RASTER_MAX_DIM) return -1;
+                        if (*end || k < 1 || k > LUMO_MAX_FRAME_DIM) return -1;
                         o->ro.band_rows = (uint16_t)k; break; }
         case O_565: o->ro.format = LUMO_PIXEL_RGB565; break;
         case O_D16: o->ro.depth_bits = 16; break;

@@ -21,7 +21,7 @@ typedef struct host_mesh {
 
 typedef struct host_scene {
     host_mesh mesh;
-    lumo_raster_light lights[LUMO_RASTER_MAX_LIGHTS];
+    lumo_raster_light lights[LUMO_MAX_LIGHTS];
     uint32_t light_count;
     lumo_raster_camera camera;
 } host_scene;

@@ -289,7 +289,7 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
         free(data);
         return -1;
     }
-    for (i = 0; i < info.light_count && s->light_count < LUMO_RASTER_MAX_LIGHTS; i++) {
+    for (i = 0; i < info.light_count && s->light_count < LUMO_MAX_LIGHTS; i++) {
         lumo_pkg_light pl;
         if (lumo_package_light(&pkg, i, &pl) == LUMO_OK)
             convert_light(&pl, &s->lights[s->light_count++]);

@@ -402,9 +402,9 @@ static void camera_matrix(const lumo_gl *g, const lumo_raster_camera *cam, float
 
 static void set_lights(lumo_gl *g, GLuint p, const lumo_raster_scene *s)
 {
-    GLint kind[16];
-    float pos[48], dir[48], cosv[16], val[48];
-    uint32_t i, n = s->light_count > 16 ? 16 : s->light_count;
+    GLint kind[LUMO_MAX_LIGHTS];
+    float pos[3 * LUMO_MAX_LIGHTS], dir[3 * LUMO_MAX_LIGHTS], cosv[LUMO_MAX_LIGHTS], val[3 * LUMO_MAX_LIGHTS];
+    uint32_t i, n = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
     int k;
 
     for (i = 0; i < n; i++) {

@@ -7,17 +7,24 @@
 #ifndef LUMO_RASTER_GL_SHADERS_H
 #define LUMO_RASTER_GL_SHADERS_H
 
+#include "lumo/config.h"
+
+/* The light arrays are sized by LUMO_MAX_LIGHTS, spelled into the source. */
+#define LUMO_GL_STR_(x) #x
+#define LUMO_GL_STR(x) LUMO_GL_STR_(x)
+#define LUMO_GL_MAX_LIGHTS LUMO_GL_STR(LUMO_MAX_LIGHTS)
+
 /* Uniforms and functions both stages use. */
 static const char lumo_gl_common_glsl[] =
     "const float PI = 3.14159265358979;\n"
     "uniform vec3 u_eye;\n"
     "uniform float u_exposure;\n"
     "uniform int u_nlights;\n"
-    "uniform int u_kind[16];\n"          /* 0 point, 1 spot, 2 directional */
-    "uniform vec3 u_lpos[16];\n"
-    "uniform vec3 u_ldir[16];\n"
-    "uniform float u_lcos[16];\n"
-    "uniform vec3 u_lval[16];\n"         /* intensity W/sr, or E W/m^2 */
+    "uniform int u_kind[" LUMO_GL_MAX_LIGHTS "];\n"          /* 0 point, 1 spot, 2 directional */
+    "uniform vec3 u_lpos[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform vec3 u_ldir[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform float u_lcos[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform vec3 u_lval[" LUMO_GL_MAX_LIGHTS "];\n"         /* intensity W/sr, or E W/m^2 */
     "uniform int u_indirect;\n"
     "uniform vec3 u_gmin, u_gext, u_tscale, u_toff;\n"
     "uniform highp sampler3D u_cpx, u_cnx, u_cpy, u_cny, u_cpz, u_cnz;\n"

@@ -117,7 +117,7 @@ static lumo_status check_inputs(const lumo_raster_view *v, const lumo_raster_sce
         return LUMO_ERR_ARG;
     if ((m->vertex_count && (!m->pos || !m->normal)) || (m->tri_count && !m->tris))
         return LUMO_ERR_ARG;
-    if (s->light_count > LUMO_RASTER_MAX_LIGHTS || (s->light_count && !s->lights))
+    if (s->light_count > LUMO_MAX_LIGHTS || (s->light_count && !s->lights))
         return LUMO_ERR_RANGE;
     if (v->znear <= 0 || v->width == 0 || v->height == 0)
         return LUMO_ERR_RANGE;

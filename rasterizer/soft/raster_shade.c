@@ -156,8 +156,8 @@ void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
     lumo_uq16_16 e[3] = {0, 0, 0};
     uint32_t i, count = s->light_count;
 
-    if (count > LUMO_RASTER_MAX_LIGHTS)
-        count = LUMO_RASTER_MAX_LIGHTS;
+    if (count > LUMO_MAX_LIGHTS)
+        count = LUMO_MAX_LIGHTS;
     for (i = 0; i < count; i++) {
         const lumo_raster_light *L = &s->lights[i];
         if (L->kind == LUMO_LIGHT_DIRECTIONAL)

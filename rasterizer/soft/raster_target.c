@@ -14,7 +14,7 @@ static size_t pixel_bytes(lumo_pixel_format f)
 size_t lumo_raster_band_bytes(uint16_t width, uint16_t rows, lumo_pixel_format format,
                               uint8_t depth_bits)
 {
-    if (width == 0 || rows == 0 || width > LUMO_RASTER_MAX_DIM || rows > LUMO_RASTER_MAX_DIM)
+    if (width == 0 || rows == 0 || width > LUMO_MAX_FRAME_DIM || rows > LUMO_MAX_FRAME_DIM)
         return 0;
     if ((format != LUMO_PIXEL_XRGB8888 && format != LUMO_PIXEL_RGB565)
         || (depth_bits != 16 && depth_bits != 32))
@@ -48,7 +48,7 @@ lumo_status lumo_raster_target_check(const lumo_raster_target *t)
         return LUMO_ERR_ARG;
     if (lumo_raster_band_bytes(t->width, t->band_rows, t->format, t->depth_bits) == 0)
         return LUMO_ERR_RANGE;
-    if (t->height == 0 || t->height > LUMO_RASTER_MAX_DIM
+    if (t->height == 0 || t->height > LUMO_MAX_FRAME_DIM
         || (uint32_t)t->band_y + t->band_rows > t->height)
         return LUMO_ERR_RANGE;
     if (t->color_stride < t->width * pixel_bytes(t->format) || t->color_stride % pixel_bytes(t->format))

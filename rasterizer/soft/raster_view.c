@@ -81,7 +81,7 @@ lumo_status lumo_raster_view_init(lumo_raster_view *v, const lumo_raster_camera 
 
     if (!v || !cam)
         return LUMO_ERR_ARG;
-    if (width == 0 || height == 0 || width > LUMO_RASTER_MAX_DIM || height > LUMO_RASTER_MAX_DIM)
+    if (width == 0 || height == 0 || width > LUMO_MAX_FRAME_DIM || height > LUMO_MAX_FRAME_DIM)
         return LUMO_ERR_RANGE;
     if (cam->znear <= 0)
         return LUMO_ERR_RANGE;

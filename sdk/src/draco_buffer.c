@@ -1,8 +1,11 @@
 /*
- * draco_buffer.c — bounds-checked little-endian reader, Draco varints and
- * the LSB-first bit reader (libdraco's DecoderBuffer::BitDecoder).
+ * draco_buffer.c — the Draco decoder's bounds-checked cursor over the wire
+ * layer (lumo/wire.h), and libdraco's own bit reader (DecoderBuffer::
+ * BitDecoder), kept apart from lumo_wire_bits because a read past its end
+ * yields zero bits instead of an error, as libdraco's does.
  */
 #include "draco_internal.h"
+#include "lumo/wire.h"
 
 lumo_status ld_u8(ld_buf *b, uint8_t *v)
 {
@@ -18,7 +21,7 @@ lumo_status ld_u16(ld_buf *b, uint16_t *v)
     if (ld_remaining(b) < 2)
         return LUMO_ERR_TRUNCATED;
     p = ld_head(b);
-    *v = (uint16_t)(p[0] | (p[1] << 8));
+    *v = lumo_wire_le16(p);
     b->pos += 2;
     return LUMO_OK;
 }
@@ -29,29 +32,16 @@ lumo_status ld_u32(ld_buf *b, uint32_t *v)
     if (ld_remaining(b) < 4)
         return LUMO_ERR_TRUNCATED;
     p = ld_head(b);
-    *v = (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+    *v = lumo_wire_le32(p);
     b->pos += 4;
     return LUMO_OK;
 }
 
-/* LEB128, low groups first. libdraco accepts sizeof(T) + 1 + sizeof(T) / 8
- * bytes and silently drops bits that overflow the type; so do we. */
+/* LEB128 as libdraco reads it: sizeof(T) + 1 + sizeof(T) / 8 bytes at most,
+ * bits that overflow the type silently dropped (lumo_wire_leb128). */
 static lumo_status ld_varint(ld_buf *b, unsigned max_bytes, uint64_t *v)
 {
-    uint64_t r = 0;
-    unsigned i;
-    for (i = 0; i < max_bytes; ++i) {
-        uint8_t byte;
-        if (ld_u8(b, &byte))
-            return LUMO_ERR_TRUNCATED;
-        if (7 * i < 64)
-            r |= (uint64_t)(byte & 0x7Fu) << (7 * i);
-        if (!(byte & 0x80u)) {
-            *v = r;
-            return LUMO_OK;
-        }
-    }
-    return LUMO_ERR_CORRUPT;
+    return lumo_wire_leb128(b->data, b->size, &b->pos, max_bytes, v);
 }
 
 lumo_status ld_varint32_slow(ld_buf *b, uint32_t *v)

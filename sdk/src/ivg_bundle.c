@@ -10,6 +10,7 @@
  */
 #include <string.h>
 #include "ivg_internal.h"
+#include "lumo/wire.h"
 
 static const uint8_t k_magic[4] = {0x49, 0x56, 0x47, 0x42};   /* "IVGB" */
 
@@ -26,16 +27,6 @@ typedef struct bundle {
     size_t         entry_bytes;
 } bundle;
 
-static uint32_t rd_u16(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8;
-}
-
-static uint32_t rd_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t len, bundle *b)
 {
     int a;
@@ -49,12 +40,12 @@ static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t le
     if (buf[5] != LUMO_IVG_FORM_FLOAT && buf[5] != LUMO_IVG_FORM_QUANTIZED)
         return LUMO_ERR_UNSUPPORTED;
     for (a = 0; a < 3; a++)
-        if (rd_u16(buf + 6 + 2 * a) != g->desc.dims[a])
+        if (lumo_wire_le16(buf + 6 + 2 * a) != g->desc.dims[a])
             return LUMO_ERR_RANGE;
     b->p = buf;
     b->len = len;
     b->form = buf[5];
-    b->records = rd_u32(buf + 12);
+    b->records = lumo_wire_le32(buf + 12);
     b->entry_bytes = b->form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_ENTRY : LUMO_IVG_QUANT_ENTRY;
     /* Each record is at least its 4-byte index word; with duplicates
      * rejected no valid bundle has more records than the grid vertices. */
@@ -107,7 +98,7 @@ static lumo_status decode_quantized(const uint8_t *p, lumo_ivg_entry *e)
         return st;
     for (k = 0; k < 3; k++)
         e->d[k] = snorm8_to_q14(q[k]);
-    lumo_rgb9e5_to_uq16(rd_u32(p + 3), e->c);
+    lumo_rgb9e5_to_uq16(lumo_wire_le32(p + 3), e->c);
     e->reserved = 0;
     return LUMO_OK;
 }
@@ -144,7 +135,7 @@ static lumo_status decode_binary32(const uint8_t *p, lumo_ivg_entry *e)
 
     /* Non-finite values first, wherever they are: NaN is never a range error. */
     for (k = 0; k < 6; k++) {
-        bits[k] = rd_u32(p + 4 * k);
+        bits[k] = lumo_wire_le32(p + 4 * k);
         if (!lumo_f32bits_is_finite(bits[k]))
             return LUMO_ERR_NONFINITE;
     }
@@ -184,7 +175,7 @@ static lumo_status validate(lumo_ivg *g, const bundle *b, uint32_t *done)
         *done = r;
         if (b->len - pos < 4u)
             return LUMO_ERR_TRUNCATED;
-        word = rd_u32(b->p + pos);
+        word = lumo_wire_le32(b->p + pos);
         pos += 4u;
         v = word & ~LUMO_IVG_SOLID_BIT;
         if (v >= g->count)
@@ -232,7 +223,7 @@ static void walk(lumo_ivg *g, const bundle *b, uint32_t records, int store)
     int a;
 
     for (r = 0; r < records; r++) {
-        uint32_t word = rd_u32(b->p + pos);
+        uint32_t word = lumo_wire_le32(b->p + pos);
         uint32_t v = word & ~LUMO_IVG_SOLID_BIT;
         lumo_ivg_entry *e = &g->level[0].e[(size_t)v * LUMO_IVG_AXES];
         int solid = (word & LUMO_IVG_SOLID_BIT) != 0;

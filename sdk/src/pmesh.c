@@ -2,16 +2,12 @@
  * (docs/progressive-mesh.md; seed 000 §4.2). Batches: pmesh_batch.c. */
 #include <string.h>
 #include "lumo/draco.h"
-#include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo_shared/pmesh_shared.h"
+#include "lumo/wire.h"
 
 /* Counts above this are refused (LIMIT) so 3 * count and byte sizes fit. */
 #define MAX_COUNT (1u << 28)
-
-static uint32_t rd32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
 
 static uint32_t max_u32(uint32_t a, uint32_t b) { return a > b ? a : b; }
 
@@ -47,25 +43,25 @@ lumo_status lumo_pmesh_read_header(const uint8_t *d, size_t size, lumo_pmesh_hea
         return LUMO_ERR_ARG;
     if (size < LUMO_PMESH_HEADER_SIZE)
         return LUMO_ERR_TRUNCATED;
-    if (rd32(d) != LUMO_PMESH_MAGIC)
+    if (lumo_wire_le32(d) != LUMO_PMESH_MAGIC)
         return LUMO_ERR_CORRUPT;
     if ((d[4] | d[5] << 8) != LUMO_PMESH_VERSION)
         return LUMO_ERR_VERSION;
     if ((d[6] | d[7] << 8) != LUMO_PMESH_HEADER_SIZE)
         return LUMO_ERR_CORRUPT;
-    if (lumo_package_crc32(0, d, 64) != rd32(d + 64))
+    if (lumo_wire_crc32(0, d, 64) != lumo_wire_le32(d + 64))
         return LUMO_ERR_CHECKSUM;
-    h.vertices = rd32(d + 8), h.faces = rd32(d + 12);
-    h.base_vertices = rd32(d + 16), h.base_faces = rd32(d + 20);
-    h.batch_vertices = rd32(d + 24), h.batch_count = rd32(d + 28);
-    h.max_batch_faces = rd32(d + 32), h.max_batch_moves = rd32(d + 36);
-    h.max_batch_bytes = rd32(d + 40);
+    h.vertices = lumo_wire_le32(d + 8), h.faces = lumo_wire_le32(d + 12);
+    h.base_vertices = lumo_wire_le32(d + 16), h.base_faces = lumo_wire_le32(d + 20);
+    h.batch_vertices = lumo_wire_le32(d + 24), h.batch_count = lumo_wire_le32(d + 28);
+    h.max_batch_faces = lumo_wire_le32(d + 32), h.max_batch_moves = lumo_wire_le32(d + 36);
+    h.max_batch_bytes = lumo_wire_le32(d + 40);
     h.quant_bits = d[44], h.position_coding = d[45], h.flags = d[46];
     if (d[47])
         return LUMO_ERR_CORRUPT;
     for (int i = 0; i < 3; i++)
-        h.origin_bits[i] = rd32(d + 48 + 4 * i);
-    h.range_bits = rd32(d + 60);
+        h.origin_bits[i] = lumo_wire_le32(d + 48 + 4 * i);
+    h.range_bits = lumo_wire_le32(d + 60);
     lumo_status st = check_counts(&h);
     if (st)
         return st;
@@ -167,26 +163,6 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
     return LUMO_OK;
 }
 
-/* LEB128: 7 bits per byte, low group first, high bit = more. At most 5
- * bytes; the value must be < 2^28 (MAX_COUNT) and minimally coded (no
- * trailing zero group), so every value has one encoding. */
-static lumo_status read_varint(const uint8_t *d, size_t size, size_t *at, uint32_t *v)
-{
-    uint32_t x = 0;
-    for (unsigned i = 0; i < 5; i++) {
-        if (*at >= size)
-            return LUMO_ERR_TRUNCATED;
-        uint8_t b = d[(*at)++];
-        x |= (uint32_t)(b & 0x7fu) << (7 * i);
-        if (!(b & 0x80u)) {
-            if ((i && !b) || x > MAX_COUNT)
-                return LUMO_ERR_CORRUPT;
-            return *v = x, LUMO_OK;
-        }
-    }
-    return LUMO_ERR_CORRUPT;
-}
-
 lumo_status lumo_pmesh_read_record_head(const uint8_t *d, size_t size, lumo_pmesh_record_head *out)
 {
     lumo_pmesh_record_head h;
@@ -194,12 +170,14 @@ lumo_status lumo_pmesh_read_record_head(const uint8_t *d, size_t size, lumo_pmes
     lumo_status st;
     if (!d || !out)
         return LUMO_ERR_ARG;
-    if ((st = read_varint(d, size, &at, &h.index)) || (st = read_varint(d, size, &at, &h.side_bytes)) ||
-        (st = read_varint(d, size, &at, &h.draco_bytes)))
+    /* Minimally coded varints below 2^28 (docs/progressive-mesh.md §2.2). */
+    if ((st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.index)) ||
+        (st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.side_bytes)) ||
+        (st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.draco_bytes)))
         return st;
     if (size - at < 4)
         return LUMO_ERR_TRUNCATED;
-    h.crc = rd32(d + at);
+    h.crc = lumo_wire_le32(d + at);
     h.head_bytes = (uint32_t)at + 4u;
     *out = h;
     return LUMO_OK;

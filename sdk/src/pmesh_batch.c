@@ -18,26 +18,19 @@
  * mesh stays at its last good level. */
 #include <string.h>
 #include "lumo/draco.h"
-#include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo_shared/pmesh_shared.h"
+#include "lumo/wire.h"
 
 #define NIL LUMO_PMESH_NIL
 
-/* ---- bits: LSB-first within each byte ------------------------------------ */
-typedef struct {
-    const uint8_t *p;
-    size_t nbits, pos;
-} bitreader;
+/* Bit fields are LSB-first (lumo/wire.h); a read past the record's end is
+ * an error (nonzero), which every caller turns into CORRUPT or TRUNCATED. */
+typedef lumo_wire_bits bitreader;
 
 static int read_bits(bitreader *b, unsigned n, uint32_t *out)
 {
-    uint32_t v = 0;
-    if (n > b->nbits - b->pos)
-        return -1;
-    for (unsigned i = 0; i < n; i++, b->pos++)
-        v |= (uint32_t)(b->p[b->pos >> 3] >> (b->pos & 7) & 1u) << i;
-    *out = v;
-    return 0;
+    return lumo_wire_bits_read(b, n, out) != LUMO_OK;
 }
 
 /* tb(c) of docs/progressive-mesh.md §2.3: a value in [0, c) in truncated
@@ -114,8 +107,8 @@ static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t s
         return LUMO_ERR_CORRUPT;
     if (need > pm->h.max_batch_bytes)
         return LUMO_ERR_LIMIT;  /* the Draco scratch is sized for the largest record */
-    uint32_t crc = lumo_package_crc32(0, r, rh.head_bytes - 4u);
-    crc = lumo_package_crc32(crc, r + rh.head_bytes, need - rh.head_bytes);
+    uint32_t crc = lumo_wire_crc32(0, r, rh.head_bytes - 4u);
+    crc = lumo_wire_crc32(crc, r + rh.head_bytes, need - rh.head_bytes);
     if (crc != rh.crc)
         return LUMO_ERR_CHECKSUM;
     if (rh.index != pm->batches_applied || pm->vertex_count == pm->h.vertices)

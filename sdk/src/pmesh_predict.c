@@ -19,6 +19,7 @@
  * int64 comparison. The weights are measured (docs/progressive-mesh.md §4).
  */
 #include "lumo/pmesh.h"
+#include "lumo_shared/pmesh_shared.h"
 
 #define FAN_N LUMO_PMESH_ARC_MAX_CORNERS
 

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 #include "lumo/package.h"
+#include "lumo/wire.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -65,10 +66,10 @@ static void fix_crcs(uint8_t *d, size_t size)
         uint8_t *e = d + LUMO_PKG_HEADER_SIZE + (size_t)i * LUMO_PKG_ENTRY_SIZE;
         uint32_t off = rd32(e + 4), len = rd32(e + 8);
         if (off <= size && len <= size - off)
-            wr32(e + 12, lumo_package_crc32(0, d + off, len));
+            wr32(e + 12, lumo_wire_crc32(0, d + off, len));
     }
-    wr32(d + 16, lumo_package_crc32(0, d + LUMO_PKG_HEADER_SIZE, (size_t)n * LUMO_PKG_ENTRY_SIZE));
-    wr32(d + 20, lumo_package_crc32(0, d, 20));
+    wr32(d + 16, lumo_wire_crc32(0, d + LUMO_PKG_HEADER_SIZE, (size_t)n * LUMO_PKG_ENTRY_SIZE));
+    wr32(d + 20, lumo_wire_crc32(0, d, 20));
 }
 
 static void exercise(const uint8_t *data, size_t size);

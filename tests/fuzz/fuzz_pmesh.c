@@ -10,6 +10,7 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo/wire.h"
 
 #define MAX_ARENA ((size_t)64 << 20)
 
@@ -23,12 +24,12 @@ static void put32(uint8_t *p, uint32_t v)
 static void fix_crcs(uint8_t *s, size_t size)
 {
     size_t at = LUMO_PMESH_HEADER_SIZE, n;
-    put32(s + 64, lumo_package_crc32(0, s, 64));
+    put32(s + 64, lumo_wire_crc32(0, s, 64));
     lumo_pmesh_record_head rh;
     while (!lumo_pmesh_read_record_head(s + at, size - at, &rh) &&
            (n = (size_t)rh.head_bytes + rh.side_bytes + rh.draco_bytes) <= size - at) {
-        uint32_t crc = lumo_package_crc32(0, s + at, rh.head_bytes - 4u);
-        put32(s + at + rh.head_bytes - 4u, lumo_package_crc32(crc, s + at + rh.head_bytes, n - rh.head_bytes));
+        uint32_t crc = lumo_wire_crc32(0, s + at, rh.head_bytes - 4u);
+        put32(s + at + rh.head_bytes - 4u, lumo_wire_crc32(crc, s + at + rh.head_bytes, n - rh.head_bytes));
         at += n;
     }
 }

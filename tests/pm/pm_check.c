@@ -11,6 +11,8 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo_shared/pmesh_shared.h"
+#include "lumo/wire.h"
 #include "lumo_server/pm.h"
 #include "lumo_server/pm_client.h"
 #include "lumo_server/pm_load.h"
@@ -369,8 +371,8 @@ static void put32(uint8_t *p, uint32_t v)
 
 static void fix_crc(uint8_t *r, size_t n)
 {
-    uint32_t crc = lumo_package_crc32(0, r, 32);
-    put32(r + 32, lumo_package_crc32(crc, r + 36, n - 36));
+    uint32_t crc = lumo_wire_crc32(0, r, 32);
+    put32(r + 32, lumo_wire_crc32(crc, r + 36, n - 36));
 }
 
 /* One bad variant of the next record must fail and leave the mesh as it was. */

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo_shared/pmesh_shared.h"
+#include "lumo/wire.h"
 
 static const uint8_t k_stream[] = {
     0x4c, 0x50, 0x4d, 0x31, 0x03, 0x00, 0x44, 0x00, 0x14, 0x00, 0x00, 0x00, 0x24, 0x00, 0x00, 0x00,
@@ -204,7 +206,7 @@ static void test_header(void **state)
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         memcpy(b, k_stream, sizeof b);
         put32(b + cases[c].at, cases[c].v);
-        put32(b + 64, lumo_package_crc32(0, b, 64));
+        put32(b + 64, lumo_wire_crc32(0, b, 64));
         assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &h), cases[c].want);
     }
 }
@@ -302,8 +304,8 @@ static uint32_t side_bytes(const uint8_t *r, size_t n)
 static void fix_crc(uint8_t *r, size_t n)
 {
     uint32_t hb = head_bytes(r, n);
-    uint32_t crc = lumo_package_crc32(0, r, hb - 4u);
-    put32(r + hb - 4u, lumo_package_crc32(crc, r + hb, n - hb));
+    uint32_t crc = lumo_wire_crc32(0, r, hb - 4u);
+    put32(r + hb - 4u, lumo_wire_crc32(crc, r + hb, n - hb));
 }
 
 /* Bit flips behind a valid CRC reach the split decoder: each is either

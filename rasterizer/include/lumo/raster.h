@@ -33,14 +33,13 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "lumo/config.h"
 #include "lumo/fixed.h"
 #include "lumo/status.h"
 
-/* Largest frame the rasterizer accepts, per axis (bounds the edge-function
- * ranges: see docs/rasterizer.md, "ranges"). */
-#define LUMO_RASTER_MAX_DIM 2048
-/* Most lights one frame may carry. */
-#define LUMO_RASTER_MAX_LIGHTS 16
+/* Limits (lumo/config.h): frames up to LUMO_MAX_FRAME_DIM pixels per axis
+ * (it bounds the edge-function ranges: docs/rasterizer.md, "ranges"), up to
+ * LUMO_MAX_LIGHTS lights per frame. */
 
 /* ---- camera ------------------------------------------------------------- */
 
@@ -87,7 +86,7 @@ void lumo_raster_ivg_irradiance(const void *ivg, const lumo_q16_16 p[3],
 
 typedef struct lumo_raster_scene {
     const lumo_raster_light *lights;   /* light_count entries (may be NULL if 0) */
-    uint32_t light_count;              /* <= LUMO_RASTER_MAX_LIGHTS */
+    uint32_t light_count;              /* <= LUMO_MAX_LIGHTS */
     lumo_raster_indirect_fn indirect;  /* NULL: no indirect light */
     const void *indirect_ctx;
     lumo_uq16_16 exposure;             /* multiplies radiance; 1.0 = LUMO_Q16_ONE */
@@ -114,7 +113,7 @@ typedef enum lumo_pixel_format {
 } lumo_pixel_format;
 
 typedef struct lumo_raster_target {
-    uint16_t width, height;    /* the whole frame, <= LUMO_RASTER_MAX_DIM */
+    uint16_t width, height;    /* the whole frame, <= LUMO_MAX_FRAME_DIM */
     uint16_t band_y;           /* first frame row held in the buffers */
     uint16_t band_rows;        /* rows held (K); band_y + K <= height */
     lumo_pixel_format format;

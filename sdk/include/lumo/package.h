@@ -1,6 +1,8 @@
 /*
  * lumo/package.h — reading a .lumo package (docs/package-format.md): a
- * versioned container of checksummed chunks (scene info, meshes, IVG).
+ * versioned container of checksummed chunks (scene info, meshes, IVG). The
+ * payloads' decoders are in lumo/scene.h, lumo/pmesh.h and lumo/ivg.h; the
+ * getters here find a chunk and hand it to them.
  *
  * The package is read in place: lumo_package_open() validates the header,
  * the chunk table and every chunk's CRC-32 over the caller's buffer, which
@@ -16,16 +18,17 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "lumo/config.h"
 #include "lumo/fixed.h"
 #include "lumo/ivg.h"
+#include "lumo/scene.h"
 #include "lumo/status.h"
 
 #define LUMO_PKG_VERSION_MAJOR 1u
 #define LUMO_PKG_VERSION_MINOR 0u
 #define LUMO_PKG_HEADER_SIZE   24u
 #define LUMO_PKG_ENTRY_SIZE    16u
-#define LUMO_PKG_MAX_CHUNKS    256u
-#define LUMO_PKG_MAX_LIGHTS    64u
+#define LUMO_PKG_MAX_CHUNKS    ((uint32_t)LUMO_MAX_CHUNKS)
 
 /* Chunk types: four ASCII characters, first character in the lowest byte. */
 #define LUMO_PKG_FOURCC(a, b, c, d) \
@@ -47,39 +50,6 @@ typedef struct lumo_package {
     uint16_t       version_major, version_minor;
     uint32_t       chunk_count;
 } lumo_package;
-
-/* Light kinds, as in docs/scene-format.md. */
-typedef enum lumo_pkg_light_kind {
-    LUMO_PKG_LIGHT_POINT = 0, LUMO_PKG_LIGHT_SPOT = 1,
-    LUMO_PKG_LIGHT_DIRECTIONAL = 2, LUMO_PKG_LIGHT_AREA = 3
-} lumo_pkg_light_kind;
-
-/* One light in fixed point. power: W per channel (point/spot/area) or
- * irradiance W/m^2 (directional), UQ16.16. pos, u, v in metres (Q16.16);
- * dir unit (Q1.14): spot axis, direction of travel, or area normal u x v.
- * cos_half: cosine of the spot's half angle (Q1.14). */
-typedef struct lumo_pkg_light {
-    lumo_pkg_light_kind kind;
-    lumo_q16_16  pos[3], u[3], v[3];
-    lumo_q1_14   dir[3];
-    lumo_q1_14   cos_half;
-    lumo_q16_16  half_angle_deg;
-    lumo_uq16_16 power[3];
-} lumo_pkg_light;
-
-/* Scene info: counts, bounds (metres, Q16.16) and the default camera
- * (docs/scene-format.md "Camera"; fovy in degrees, Q16.16). */
-typedef struct lumo_pkg_info {
-    uint32_t    mesh_count, light_count, triangle_count;
-    lumo_q16_16 bmin[3], bmax[3];
-    lumo_q16_16 eye[3], target[3], up[3], fovy_deg;
-} lumo_pkg_info;
-
-typedef struct lumo_pkg_mesh_info {
-    uint32_t nverts, ntris;
-    uint32_t flags;          /* LUMO_PKG_MESH_EMITTER */
-} lumo_pkg_mesh_info;
-#define LUMO_PKG_MESH_EMITTER 1u
 
 /* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout),
  * VERSION (other major), CHECKSUM, LIMIT (too many chunks); *pkg is written
@@ -114,9 +84,5 @@ lumo_status lumo_package_ivg_desc(const lumo_package *pkg, lumo_ivg_desc *out);
  * lumo_package_ivg_desc (through lumo_ivg_apply_bundle: all or nothing). */
 lumo_status lumo_package_load_ivg(const lumo_package *pkg, lumo_ivg *g, lumo_ivg_form form,
                                   uint32_t *applied);
-
-/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32): continue `crc` (0 to
- * start) over len bytes. */
-uint32_t lumo_package_crc32(uint32_t crc, const uint8_t *buf, size_t len);
 
 #endif /* LUMO_PACKAGE_H */

@@ -41,24 +41,6 @@
 #define LUMO_PMESH_BATCH_HEAD_MAX 19u
 #define LUMO_PMESH_VERSION     3u
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
-/* Lookup-table parents of a split record (docs/progressive-mesh.md §2.3):
- * Rice-coded gaps of an increasing run with a parameter of RICE_BITS bits
- * (at most MAX_RICE) per record; PARENT_ESCAPE zero bits announce an
- * explicit parent. */
-#define LUMO_PMESH_RICE_BITS      5u
-#define LUMO_PMESH_MAX_RICE       24u
-#define LUMO_PMESH_PARENT_ESCAPE  16u
-/* Fan splits whose parent has at most ARC_MAX_CORNERS corners name their
- * fan (first wing and length) by its rank among p's fans ordered by a
- * geometric score, an order-1 Exp-Golomb code (§2.3 step 3). */
-#define LUMO_PMESH_ARC_MAX_CORNERS 16u
-/* The fan score sees grid integers of at most ARC_BITS bits (q >> (bits -
- * ARC_BITS) on finer grids), so a score and the candidate's id fit one
- * int64 key. */
-#define LUMO_PMESH_ARC_BITS 14u
-/* Predicted positions: a split vertex is predicted by the rounded mean of
- * the corners of its faces, its parent counted this many extra times. */
-#define LUMO_PMESH_PARENT_WEIGHT  1u
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
  * Draco tools show the points); PREDICTED: a GENERIC int32 x3 attribute
@@ -185,50 +167,5 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices);
 
 /* 1 when every vertex of the stream has arrived. */
 int lumo_pmesh_complete(const lumo_pmesh *pm);
-
-/* The candidate fans of a fan split whose parent p has n corners (1 ...
- * ARC_MAX_CORNERS), ranked by geometry (docs/progressive-mesh.md §2.3
- * step 3; sdk/src/pmesh_predict.c). The stream writer and the decoder share
- * it so that both order the candidates identically. nx[i] / pv[i]: the
- * vertices after / before p in the face of corner i of L(p), in list
- * order; q: grid integers, 3 per vertex. */
-#define LUMO_PMESH_FAN_NONE 0xffu
-typedef struct lumo_pmesh_fan {
-    uint32_t n;
-    uint32_t nx[LUMO_PMESH_ARC_MAX_CORNERS];
-    uint8_t  succ[LUMO_PMESH_ARC_MAX_CORNERS];   /* corner after i in the fan, or FAN_NONE */
-    uint8_t  first[LUMO_PMESH_ARC_MAX_CORNERS];  /* first corner with the same nx */
-    int64_t  w[LUMO_PMESH_ARC_MAX_CORNERS], ring;
-} lumo_pmesh_fan;
-void lumo_pmesh_fan_init(lumo_pmesh_fan *g, const int32_t *q, unsigned quant_bits, uint32_t p,
-                         const uint32_t *nx, const uint32_t *pv, uint32_t n);
-/* Every candidate's key into key[] (room for n^2), in enumeration order;
- * returns their count. A higher key ranks first; keys are distinct. */
-uint32_t lumo_pmesh_fan_keys(const lumo_pmesh_fan *g, int64_t *key);
-/* The candidate a key names: i << 8 | m (corner i of L(p), m corners). */
-static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
-{
-    return 4095u - (uint32_t)((uint64_t)key & 4095u);
-}
-
-/* The predicted grid point of split vertex k right after its split, with
- * parent p (docs/progressive-mesh.md §2.3 step 5; sdk/src/pmesh_predict.c):
- * L(k) is walked from head[k] through next[] until LUMO_PMESH_NIL, corner c
- * showing tris[c]; q holds 3 grid integers per vertex. Shared by the stream
- * writer and the decoder. */
-#define LUMO_PMESH_NIL 0xffffffffu
-void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3]);
-
-/* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
- * the smallest n with 2^n >= count (0 for count <= 1). The stream writer
- * and the batch decoder size every packed field with it. */
-static inline unsigned lumo_pmesh_field_bits(uint32_t count)
-{
-    unsigned n = 0;
-    while (n < 32 && ((uint64_t)1 << n) < count)
-        n++;
-    return n;
-}
 
 #endif /* LUMO_PMESH_H */

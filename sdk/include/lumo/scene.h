@@ -1,0 +1,76 @@
+/*
+ * lumo/scene.h — the scene payloads of docs/package-format.md: scene info
+ * (counts, bounds, default camera) with its lights, raw meshes, and the IVG
+ * grid descriptor. They arrive as package chunks (lumo/package.h) or as
+ * network messages; these decoders take the payload bytes either way.
+ *
+ * Every byte is hostile: each decoder bounds-checks what it reads, converts
+ * the binary32 fields to lumo fixed point with integer code only
+ * (lumo_f32bits_to_fixed), and writes its outputs only on success.
+ */
+#ifndef LUMO_SCENE_H
+#define LUMO_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/config.h"
+#include "lumo/fixed.h"
+#include "lumo/ivg.h"
+#include "lumo/status.h"
+
+/* Light kinds, as in docs/scene-format.md. */
+typedef enum lumo_pkg_light_kind {
+    LUMO_PKG_LIGHT_POINT = 0, LUMO_PKG_LIGHT_SPOT = 1,
+    LUMO_PKG_LIGHT_DIRECTIONAL = 2, LUMO_PKG_LIGHT_AREA = 3
+} lumo_pkg_light_kind;
+
+/* One light in fixed point. power: W per channel (point/spot/area) or
+ * irradiance W/m^2 (directional), UQ16.16. pos, u, v in metres (Q16.16);
+ * dir unit (Q1.14): spot axis, direction of travel, or area normal u x v.
+ * cos_half: cosine of the spot's half angle (Q1.14). */
+typedef struct lumo_pkg_light {
+    lumo_pkg_light_kind kind;
+    lumo_q16_16  pos[3], u[3], v[3];
+    lumo_q1_14   dir[3];
+    lumo_q1_14   cos_half;
+    lumo_q16_16  half_angle_deg;
+    lumo_uq16_16 power[3];
+} lumo_pkg_light;
+
+/* Scene info: counts, bounds (metres, Q16.16) and the default camera
+ * (docs/scene-format.md "Camera"; fovy in degrees, Q16.16). */
+typedef struct lumo_pkg_info {
+    uint32_t    mesh_count, light_count, triangle_count;
+    lumo_q16_16 bmin[3], bmax[3];
+    lumo_q16_16 eye[3], target[3], up[3], fovy_deg;
+} lumo_pkg_info;
+
+typedef struct lumo_pkg_mesh_info {
+    uint32_t nverts, ntris;
+    uint32_t flags;          /* LUMO_PKG_MESH_EMITTER */
+} lumo_pkg_mesh_info;
+#define LUMO_PKG_MESH_EMITTER 1u
+
+/* The INFO payload: TRUNCATED, CORRUPT (size), LIMIT (more than
+ * LUMO_MAX_LIGHTS lights), NONFINITE, RANGE (field of view). */
+lumo_status lumo_scene_info_decode(const uint8_t *p, size_t len, lumo_pkg_info *out);
+
+/* Light `index` of an INFO payload: errors as lumo_scene_info_decode, RANGE
+ * for an index past the light count, UNSUPPORTED for an unknown kind. */
+lumo_status lumo_scene_light_decode(const uint8_t *p, size_t len, uint32_t index, lumo_pkg_light *out);
+
+/* The counts of a MESH payload (TRUNCATED, CORRUPT, UNSUPPORTED flags). */
+lumo_status lumo_scene_mesh_info_decode(const uint8_t *p, size_t len, lumo_pkg_mesh_info *out);
+
+/* A MESH payload into caller arrays sized from its counts: pos 3*nverts
+ * (Q16.16 metres), nrm 3*nverts (Q1.14 unit, may be NULL), albedo 3*nverts
+ * (Q1.14 in [0,1], may be NULL), tris 3*ntris (may be NULL). The whole
+ * payload is validated (finite values, ranges, indices < nverts) before any
+ * output is written. */
+lumo_status lumo_scene_mesh_decode(const uint8_t *p, size_t len, lumo_q16_16 *pos, lumo_q1_14 *nrm,
+                                   lumo_q1_14 *albedo, uint32_t *tris);
+
+/* The IVGD payload: the grid's dims and bounds (Q16.16). */
+lumo_status lumo_scene_ivg_desc_decode(const uint8_t *p, size_t len, lumo_ivg_desc *out);
+
+#endif /* LUMO_SCENE_H */
