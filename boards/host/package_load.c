@@ -8,7 +8,7 @@
 #include <string.h>
 #include "lumo/arena.h"
 #include "lumo/package.h"
-#include "lumo/pmesh.h"
+#include "lumo/session.h"
 #include "lumo_host/file_io.h"
 #include "package_load.h"
 
@@ -75,139 +75,36 @@ static int mesh_append(host_mesh *m, const lumo_q16_16 *pos, const lumo_q1_14 *n
     return 0;
 }
 
-static int load_raw_meshes(const lumo_package *pkg, const lumo_pkg_info *info, host_mesh *m,
-                           host_load_stats *stats)
+/* The session's meshes, one after the other, into m. */
+static int take_meshes(const lumo_session *ses, host_mesh *m, host_load_stats *stats)
 {
+    const lumo_pkg_info *info = lumo_session_info(ses);
     uint32_t i;
 
     for (i = 0; i < info->mesh_count; i++) {
-        lumo_pkg_mesh_info mi;
-        host_mesh part;
-        int rc;
-        if (lumo_package_mesh_info(pkg, i, &mi))
+        lumo_pmesh_view v;
+        lumo_session_progress p;
+        if (lumo_session_mesh(ses, i, &v) || lumo_session_mesh_progress(ses, i, &p)
+            || mesh_append(m, v.positions, v.normals, v.albedo, v.vertex_count, v.triangles, v.face_count))
             return -1;
-        memset(&part, 0, sizeof part);
-        part.pos = malloc((size_t)mi.nverts * 3 * sizeof *part.pos + 1);
-        part.normal = malloc((size_t)mi.nverts * 3 * sizeof *part.normal + 1);
-        part.albedo = malloc((size_t)mi.nverts * 3 * sizeof *part.albedo + 1);
-        part.tris = malloc((size_t)mi.ntris * 3 * sizeof *part.tris + 1);
-        rc = !part.pos || !part.normal || !part.albedo || !part.tris
-             || lumo_package_mesh_read(pkg, i, part.pos, part.normal, part.albedo, part.tris)
-             || mesh_append(m, part.pos, part.normal, part.albedo, mi.nverts, part.tris, mi.ntris);
-        host_mesh_free(&part);
-        if (rc)
-            return -1;
-        stats->vertices += mi.nverts;
-        stats->full_vertices += mi.nverts;
+        stats->progressive += p.progressive;
+        stats->vertices += p.vertices;
+        stats->full_vertices += p.full_vertices;
     }
     return 0;
 }
 
-/* The vertex count of the level `lod` asks of a stream with header h. */
-static uint32_t lod_target(const host_lod *lod, const lumo_pmesh_header *h)
+/* Which message of the package failed, in words. */
+static void describe_failure(const lumo_session_where *w, lumo_status st, char *err, size_t errlen)
 {
-    uint32_t t = h->vertices;
-
-    if (lod && lod->vertices)
-        t = lod->vertices < h->vertices ? lod->vertices : h->vertices;
-    else if (lod && lod->fraction < 1)
-        /* less a hair so that 7% of 100 is 7, not the 8 of 7.000000000000001 */
-        t = h->base_vertices + (uint32_t)ceil(lod->fraction * (h->vertices - h->base_vertices) - 1e-9);
-    return t < h->base_vertices ? h->base_vertices : t;
-}
-
-/* Batches in stream order until the level has `target` vertices, then a
- * step back inside the last batch when it overshoots (lumo_pmesh_rewind):
- * the client path of a device that stops receiving at that level. */
-static lumo_status pm_refine(lumo_pmesh *pm, const uint8_t *stream, size_t len, uint32_t target,
-                             uint32_t *batch)
-{
-    size_t at = LUMO_PMESH_HEADER_SIZE, n;
-    lumo_pmesh_view v;
-    lumo_status st;
-
-    for (*batch = 0;; ++*batch) {
-        lumo_pmesh_get_view(pm, &v);
-        if (v.vertex_count >= target || lumo_pmesh_complete(pm))
-            break;
-        if ((st = lumo_pmesh_record_size(stream + at, len - at, &n)))
-            return st;
-        if (n > len - at)
-            return LUMO_ERR_TRUNCATED;
-        if ((st = lumo_pmesh_apply(pm, stream + at, n)))
-            return st;
-        at += n;
-    }
-    return v.vertex_count > target ? lumo_pmesh_rewind(pm, target) : LUMO_OK;
-}
-
-/* Progressive stream `index` at the asked level, appended to m. */
-static int load_stream(const uint8_t *stream, size_t len, uint32_t index, const host_lod *lod,
-                       host_mesh *m, host_load_stats *stats, char *err, size_t errlen)
-{
-    lumo_pmesh_header h;
-    lumo_pmesh pm;
-    lumo_pmesh_view v;
-    lumo_arena arena;
-    lumo_status st;
-    uint32_t batch = 0;
-    size_t bytes;
-    void *mem;
-
-    if ((st = lumo_pmesh_read_header(stream, len, &h))) {
-        snprintf(err, errlen, "progressive mesh %u: bad stream header: %s", index, lumo_strerror(st));
-        return -1;
-    }
-    bytes = lumo_pmesh_arena_bytes(&h);
-    if (bytes == SIZE_MAX || !(mem = malloc(bytes))) {
-        snprintf(err, errlen, "progressive mesh %u: no memory for a %zu-byte arena", index, bytes);
-        return -1;
-    }
-    lumo_arena_init(&arena, mem, bytes);
-    if ((st = lumo_pmesh_init(&pm, &h, &arena))
-        || (st = pm_refine(&pm, stream, len, lod_target(lod, &h), &batch))) {
-        snprintf(err, errlen, "progressive mesh %u, batch %u: %s", index, batch, lumo_strerror(st));
-        free(mem);
-        return -1;
-    }
-    lumo_pmesh_get_view(&pm, &v);
-    if (mesh_append(m, v.positions, v.normals, v.albedo, v.vertex_count, v.triangles, v.face_count)) {
-        snprintf(err, errlen, "progressive mesh %u: out of memory", index);
-        free(mem);
-        return -1;
-    }
-    stats->progressive++;
-    stats->vertices += v.vertex_count;
-    stats->full_vertices += h.vertices;
-    free(mem);
-    return 0;
-}
-
-/* One PMSH stream per mesh (in mesh order) replaces the MESH chunks. */
-static int load_meshes(const lumo_package *pkg, const lumo_pkg_info *info, const host_lod *lod,
-                       host_mesh *m, host_load_stats *stats, char *err, size_t errlen)
-{
-    const uint8_t *stream;
-    uint32_t i, len, streams = 0;
-
-    while (lumo_package_find(pkg, LUMO_PKG_PMSH, streams, &stream, &len) == LUMO_OK)
-        streams++;
-    if (streams == 0) {
-        if (load_raw_meshes(pkg, info, m, stats) == 0)
-            return 0;
-        snprintf(err, errlen, "bad MESH chunk");
-        return -1;
-    }
-    if (streams != info->mesh_count) {
-        snprintf(err, errlen, "%u progressive mesh streams for %u meshes", streams, info->mesh_count);
-        return -1;
-    }
-    for (i = 0; i < streams; i++) {
-        lumo_package_find(pkg, LUMO_PKG_PMSH, i, &stream, &len);
-        if (load_stream(stream, len, i, lod, m, stats, err, errlen))
-            return -1;
-    }
-    return 0;
+    if (w->type == LUMO_PKG_PMSH)
+        snprintf(err, errlen, "progressive mesh %u, batch %u: %s", w->index, w->batch, lumo_strerror(st));
+    else if (w->type == LUMO_PKG_MESH)
+        snprintf(err, errlen, "bad MESH chunk %u: %s", w->index, lumo_strerror(st));
+    else if (w->type == LUMO_PKG_INFO)
+        snprintf(err, errlen, "%s", lumo_strerror(st));
+    else
+        snprintf(err, errlen, "bad IVG chunk: %s", lumo_strerror(st));
 }
 
 int host_lod_parse(const char *s, host_lod *lod)
@@ -236,42 +133,62 @@ int host_lod_parse(const char *s, host_lod *lod)
     return 0;
 }
 
-static int load_ivg(const lumo_package *pkg, host_ivg *ivg)
+/* The level of detail as the session counts it: a vertex cap, or parts per
+ * million of the streamed vertices (7% of 100 is 70000 ppm: 7 vertices). */
+static lumo_session_config session_config(const host_lod *lod)
 {
-    lumo_ivg_desc desc;
+    lumo_session_config cfg = {{0, LUMO_SESSION_LOD_ALL}, LUMO_IVG_SMOOTH};
+
+    if (lod && lod->vertices)
+        cfg.lod.vertices = lod->vertices;
+    else if (lod && lod->fraction < 1)
+        cfg.lod.ppm = (uint32_t)llround(lod->fraction * LUMO_SESSION_LOD_ALL);
+    return cfg;
+}
+
+/* Feed the whole package to a session in a heap arena sized by the SDK (a
+ * desktop may use the heap; the session itself never does). */
+static int run_session(const lumo_package *pkg, const host_lod *lod, lumo_session *ses, host_ivg *ivg,
+                       char *err, size_t errlen)
+{
+    lumo_session_config cfg = session_config(lod);
+    lumo_session_where w = {0, 0, 0};
     lumo_arena arena;
+    lumo_status st;
     size_t bytes;
 
-    memset(ivg, 0, sizeof *ivg);
-    if (lumo_package_ivg_desc(pkg, &desc))
-        return 0;                                   /* no IVG: fine */
-    bytes = lumo_ivg_memory_size(&desc);
-    if (!bytes || !(ivg->memory = malloc(bytes + LUMO_ARENA_SLACK)))
+    if ((st = lumo_session_package_need(pkg, &bytes))) {
+        snprintf(err, errlen, "%s", lumo_strerror(st));
         return -1;
-    lumo_arena_init(&arena, ivg->memory, bytes + LUMO_ARENA_SLACK);
-    if (lumo_ivg_create(&ivg->grid, &arena, &desc))
+    }
+    if (!(ivg->memory = malloc(bytes))) {
+        snprintf(err, errlen, "no memory for a %zu-byte arena", bytes);
         return -1;
-    /* The quantized form is what a client receives; the float form if the
-     * package only has that. */
-    if (lumo_package_load_ivg(pkg, ivg->grid, LUMO_IVG_FORM_QUANTIZED, &ivg->received)
-        && lumo_package_load_ivg(pkg, ivg->grid, LUMO_IVG_FORM_FLOAT, &ivg->received))
+    }
+    lumo_arena_init(&arena, ivg->memory, bytes);
+    if ((st = lumo_session_init(ses, &cfg, &arena)) || (st = lumo_session_feed_package(ses, pkg, &w))) {
+        describe_failure(&w, st, err, errlen);
         return -1;
-    if (lumo_ivg_received_count(ivg->grid) < lumo_ivg_vertex_count(ivg->grid))
-        lumo_ivg_pushpull(ivg->grid, LUMO_IVG_SMOOTH);
+    }
+    lumo_session_update(ses);
+    ivg->grid = lumo_session_ivg(ses);
+    if (ivg->grid)
+        ivg->received = lumo_ivg_received_count(ivg->grid);
     return 0;
 }
 
 int host_package_load(const char *path, const host_lod *lod, host_scene *s, host_ivg *ivg,
                       host_load_stats *stats, char *err, size_t errlen)
 {
+    static lumo_session ses;   /* 19 KB: not on the stack */
     host_load_stats local;
     char why[200];
     size_t size = 0;
     uint8_t *data = lumo_read_file(path, &size);
+    const lumo_pkg_light *lights;
     lumo_package pkg;
-    lumo_pkg_info info;
     lumo_status st;
-    uint32_t i;
+    uint32_t i, nl;
     int k;
 
     if (!stats)
@@ -284,31 +201,29 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
         snprintf(err, errlen, "%s: cannot read", path);
         return -1;
     }
-    if ((st = lumo_package_open(&pkg, data, size)) || (st = lumo_package_info(&pkg, &info))) {
+    if ((st = lumo_package_open(&pkg, data, size))) {
         snprintf(err, errlen, "%s: %s", path, lumo_strerror(st));
         free(data);
         return -1;
     }
-    for (i = 0; i < info.light_count && s->light_count < LUMO_MAX_LIGHTS; i++) {
-        lumo_pkg_light pl;
-        if (lumo_package_light(&pkg, i, &pl) == LUMO_OK)
-            convert_light(&pl, &s->lights[s->light_count++]);
-    }
-    for (k = 0; k < 3; k++) {
-        s->camera.eye[k] = info.eye[k];
-        s->camera.target[k] = info.target[k];
-        s->camera.up[k] = info.up[k];
-    }
-    s->camera.fovy_deg = info.fovy_deg;
-    s->camera.znear = host_q16(0.01);
-    if (load_meshes(&pkg, &info, lod, &s->mesh, stats, why, sizeof why)
-        || (load_ivg(&pkg, ivg) && snprintf(why, sizeof why, "bad IVG chunk"))) {
+    if (run_session(&pkg, lod, &ses, ivg, why, sizeof why)
+        || (take_meshes(&ses, &s->mesh, stats) && snprintf(why, sizeof why, "out of memory"))) {
         snprintf(err, errlen, "%s: %s", path, why);
         free(data);
         host_scene_free(s);
         host_ivg_free(ivg);
         return -1;
     }
+    lights = lumo_session_lights(&ses, &nl);
+    for (i = 0; i < nl; i++)
+        convert_light(&lights[i], &s->lights[s->light_count++]);
+    for (k = 0; k < 3; k++) {
+        s->camera.eye[k] = lumo_session_info(&ses)->eye[k];
+        s->camera.target[k] = lumo_session_info(&ses)->target[k];
+        s->camera.up[k] = lumo_session_info(&ses)->up[k];
+    }
+    s->camera.fovy_deg = lumo_session_info(&ses)->fovy_deg;
+    s->camera.znear = host_q16(0.01);
     free(data);
     return 0;
 }

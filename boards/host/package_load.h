@@ -2,11 +2,10 @@
  * package_load.h — a .lumo package (docs/package-format.md) into a host
  * scene: meshes, lights, default camera, and the IVG in an arena.
  *
- * Meshes come from the progressive streams (PMSH chunks, one per mesh)
- * when the package has them, decoded exactly as a device does it: the
- * SDK's lumo_pmesh in an arena sized from the stream header, batches
- * applied in order (seed 000 §4.2, docs/progressive-mesh.md). A package
- * without streams gives its raw MESH chunks.
+ * The package is fed to the SDK's client session (lumo/session.h), exactly
+ * as a device takes it: progressive streams refined to the asked level of
+ * detail (seed 000 §4.2, docs/progressive-mesh.md) or raw MESH chunks, the
+ * IVG with push-pull, all in one arena sized by the SDK.
  */
 #ifndef LUMO_HOST_PACKAGE_LOAD_H
 #define LUMO_HOST_PACKAGE_LOAD_H
@@ -16,8 +15,8 @@
 #include "mesh_build.h"
 
 typedef struct host_ivg {
-    lumo_ivg *grid;       /* NULL when the package has none */
-    void *memory;         /* the arena's buffer */
+    const lumo_ivg *grid; /* NULL when the package has none */
+    void *memory;         /* the session's arena (the grid lives in it) */
     uint32_t received;
 } host_ivg;
 

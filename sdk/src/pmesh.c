@@ -195,6 +195,25 @@ lumo_status lumo_pmesh_record_size(const uint8_t *d, size_t size, size_t *record
     return LUMO_OK;
 }
 
+lumo_status lumo_pmesh_next_record(const uint8_t *d, size_t size, size_t *at, const uint8_t **record,
+                                   size_t *record_bytes)
+{
+    size_t n;
+    lumo_status st;
+    if (!d || !at || !record || !record_bytes || *at > size)
+        return LUMO_ERR_ARG;
+    if (*at == size)
+        return LUMO_ERR_RANGE;
+    if ((st = lumo_pmesh_record_size(d + *at, size - *at, &n)))
+        return st;
+    if (n > size - *at)
+        return LUMO_ERR_TRUNCATED;
+    *record = d + *at;
+    *record_bytes = n;
+    *at += n;
+    return LUMO_OK;
+}
+
 void lumo_pmesh_get_view(const lumo_pmesh *pm, lumo_pmesh_view *out)
 {
     out->vertex_count = pm->vertex_count;
@@ -208,4 +227,9 @@ void lumo_pmesh_get_view(const lumo_pmesh *pm, lumo_pmesh_view *out)
 int lumo_pmesh_complete(const lumo_pmesh *pm)
 {
     return pm->vertex_count == pm->h.vertices;
+}
+
+uint32_t lumo_pmesh_batches(const lumo_pmesh *pm)
+{
+    return pm->batches_applied;
 }

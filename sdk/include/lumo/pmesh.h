@@ -148,6 +148,15 @@ lumo_status lumo_pmesh_read_record_head(const uint8_t *data, size_t size, lumo_p
  * splitting a stream; errors as lumo_pmesh_read_record_head. */
 lumo_status lumo_pmesh_record_size(const uint8_t *data, size_t size, size_t *record_bytes);
 
+/* The next batch record of a stream: the record at data[*at] (a header's
+ * LUMO_PMESH_HEADER_SIZE bytes in at the start), its bytes in *record and
+ * *record_bytes, *at advanced past it. LUMO_ERR_RANGE at the end of the data
+ * (*at == size), TRUNCATED when the record is cut, errors of
+ * lumo_pmesh_read_record_head for a bad head; *at unchanged on error. This
+ * is the one walk over a stream's records. */
+lumo_status lumo_pmesh_next_record(const uint8_t *data, size_t size, size_t *at,
+                                   const uint8_t **record, size_t *record_bytes);
+
 /* Apply one batch record (exactly one record: `size` is its length).
  * STATE when it is not the next batch (out of order, repeated);
  * TRUNCATED, CORRUPT, CHECKSUM, RANGE, LIMIT, UNSUPPORTED, NOMEM for bad
@@ -167,5 +176,8 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices);
 
 /* 1 when every vertex of the stream has arrived. */
 int lumo_pmesh_complete(const lumo_pmesh *pm);
+
+/* Batch records applied so far (the next one expected has this index). */
+uint32_t lumo_pmesh_batches(const lumo_pmesh *pm);
 
 #endif /* LUMO_PMESH_H */
