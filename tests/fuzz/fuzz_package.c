@@ -1,6 +1,6 @@
 /* fuzz_package.c — hostile bytes into the .lumo reader: open, then every
  * getter (info, lights, meshes into fixed buffers, IVG descriptor and both
- * bundles into a grid). Nothing may read or write out of bounds. The CRCs
+ * bundles into a grid), then the whole package through the client session. Nothing may read or write out of bounds. The CRCs
  * would stop almost every mutation at open(), so each input is also tried
  * with its checksums recomputed: the content checks get fuzzed too. Seeds
  * in tests/fuzz/seeds/fuzz_package/ are real packages from lumo-bake. */
@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <string.h>
 #include "lumo/package.h"
+#include "lumo/session.h"
 #include "lumo/wire.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -72,6 +73,34 @@ static void fix_crcs(uint8_t *d, size_t size)
     wr32(d + 20, lumo_wire_crc32(0, d, 20));
 }
 
+/* The whole package through the client session, in an arena of exactly its
+ * need when that fits (so a need that is too small shows as an ASan error
+ * or NOMEM, never silently): every mesh view read back, push-pull run. */
+static lumo_session g_session;
+
+static void run_session(const lumo_package *pkg)
+{
+    lumo_pmesh_view v;
+    lumo_arena arena;
+    size_t need, i, k;
+    volatile uint32_t sink = 0;
+    if (lumo_session_package_need(pkg, &need) != LUMO_OK || need > sizeof g_mem)
+        return;
+    lumo_arena_init(&arena, g_mem, need);
+    if (lumo_session_init(&g_session, NULL, &arena) != LUMO_OK)
+        return;
+    lumo_session_feed_package(&g_session, pkg, NULL);
+    lumo_session_update(&g_session);
+    for (i = 0; i < LUMO_MAX_MESHES; i++)
+        if (lumo_session_mesh(&g_session, (uint32_t)i, &v) == LUMO_OK)
+            for (k = 0; k < 3u * v.face_count; k++) {
+                if (v.triangles[k] >= v.vertex_count)
+                    __builtin_trap();   /* a view must never index past its vertices */
+                sink += (uint32_t)v.positions[3 * (size_t)v.triangles[k]];
+            }
+    (void)sink;
+}
+
 static void exercise(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -101,4 +130,5 @@ static void exercise(const uint8_t *data, size_t size)
             lumo_package_light(&pkg, i, &l);
     read_meshes(&pkg);
     read_ivg(&pkg);
+    run_session(&pkg);
 }
