@@ -99,19 +99,22 @@ static int apply_stream(lumo_pmesh *pm, const uint8_t *s, size_t len, const char
     size_t at = LUMO_PMESH_HEADER_SIZE, n = 0;
     uint32_t batch = 0, first = 0, t0 = board_ticks();
     uint64_t h = BT_FNV_OFFSET;
-    lumo_status st = LUMO_OK;
+    const uint8_t *rec;
+    lumo_pmesh_view v;
+    lumo_status st;
 
-    while (at < len && st == LUMO_OK) {
-        if ((st = lumo_pmesh_record_size(s + at, len - at, &n)) != LUMO_OK)
-            break;
-        if (batch == 1u && reject_corrupt(pm, s + at, n, path))
+    while ((st = lumo_pmesh_next_record(s, len, &at, &rec, &n)) == LUMO_OK) {
+        if (batch == 1u && reject_corrupt(pm, rec, n, path))
             return 1;
-        first = pm->vertex_count;
-        if ((st = lumo_pmesh_apply(pm, s + at, n)) == LUMO_OK)
-            h = hash_u64(h, hash_level(pm));
-        at += n;
+        lumo_pmesh_get_view(pm, &v);
+        first = v.vertex_count;
+        if ((st = lumo_pmesh_apply(pm, rec, n)) != LUMO_OK)
+            break;
+        h = hash_u64(h, hash_level(pm));
         batch++;
     }
+    if (st == LUMO_ERR_RANGE)   /* the end of the stream */
+        st = LUMO_OK;
     golden_cost(label, t0);
     h = bt_fnv1a_u32(h, (uint32_t)st);
     if (st == LUMO_OK && lumo_pmesh_rewind(pm, first) == LUMO_OK)

@@ -67,12 +67,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lumo_arena_init(&a, mem, need);
     if (mem && !lumo_pmesh_init(&pm, &h, &a)) {
         size_t at = LUMO_PMESH_HEADER_SIZE, n;
-        while (at < size && !lumo_pmesh_record_size(s + at, size - at, &n)) {
-            if (n > size - at)
-                n = size - at;  /* a truncated last record */
-            if (!lumo_pmesh_apply(&pm, s + at, n))
+        const uint8_t *rec;
+        lumo_status st;
+        while ((st = lumo_pmesh_next_record(s, size, &at, &rec, &n)) != LUMO_ERR_RANGE) {
+            if (st == LUMO_ERR_TRUNCATED)   /* a truncated last record goes in as it is */
+                rec = s + at, n = size - at, at = size;
+            else if (st)
+                break;
+            if (!lumo_pmesh_apply(&pm, rec, n))
                 check_level(&pm);
-            at += n;
         }
     }
     free(mem);
