@@ -35,7 +35,7 @@ CLIENT_CFLAGS_san := $(CLIENT_STD) $(WARN) $(CLIENT_INC) -O1 -g $(SAN_FLAGS)
 M3_ARCH           := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 CLIENT_CFLAGS_m3  := $(CLIENT_STD) $(WARN) $(CLIENT_INC) $(M3_ARCH) -Os -g \
                      -ffunction-sections -fdata-sections
-# Desktop code (server/, boards/host/, GL backends, tests): C11, POSIX.
+# Desktop code (server/, tools/, GL backends, tests): C11, POSIX.
 HOST_CFLAGS   := -std=c11 -D_GNU_SOURCE $(WARN) -Wno-missing-prototypes $(CLIENT_INC) -Iserver/include -Itools/lib/include -O2 -g -pthread
 HOST_CXXFLAGS := -std=c++17 -Wall -Wextra -Werror -Iserver/include -O2 -g -pthread
 TEST_CFLAGS   := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror $(CLIENT_INC) -Iserver/include -Itools/lib/include -Itests/include \
@@ -52,7 +52,7 @@ FUZZ_STEPS  :=      # phony targets run by `make fuzz`
 ALL_TARGETS :=
 
 # Fragments: every part of the tree owns one (sdk/sdk.mk, server/server.mk,
-# boards/host/host.mk, tests/draco/draco.mk, ...).
+# tools/lumo-render/lumo-render.mk, tests/draco/draco.mk, ...).
 include sdk/sdk.mk
 include $(sort $(filter-out sdk/sdk.mk,$(wildcard sdk/*.mk rasterizer/*.mk rasterizer/*/*.mk \
         net/*.mk server/*.mk boards/*/*.mk tests/*.mk tests/*/*.mk bench/*.mk tools/*.mk tools/*/*.mk)))
@@ -136,9 +136,6 @@ bench: $(SETUP_STAMP) all
 	+@sh bench/run.sh $(BUILD) "$(BENCH_STEPS)"
 
 fuzz: $(SETUP_STAMP) $(FUZZ_STEPS)
-
-demo: $(SETUP_STAMP) all
-	@sh tools/demo.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD)/rel $(BUILD)/san $(BUILD)/m3 $(BUILD)/host $(BUILD)/tests $(BIN) $(BUILD)/fuzz $(BUILD)/board
