@@ -1,13 +1,14 @@
 /*
- * semihost.c — board_io (tests/board/board_io.h) for mps2-an385 over ARM
- * semihosting: `bkpt 0xab` with the operation in r0 and a parameter block in
- * r1 (ARM "Semihosting for AArch32 and AArch64", v2). QEMU serves it when
- * started with `-semihosting-config enable=on,target=native`.
+ * semihost.c — the console, exit and file calls of boards/board.h for any
+ * ARMv7-M board over ARM semihosting: `bkpt 0xab` with the operation in r0
+ * and a parameter block in r1 (ARM "Semihosting for AArch32 and AArch64",
+ * v2). QEMU serves it when started with
+ * `-semihosting-config enable=on,target=native`.
  */
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include "board_io.h"
+#include "board.h"
 #include "semihost.h"
 
 enum {

@@ -1,6 +1,6 @@
-/* semihost.h — the raw semihosting trap of mps2-an385 (see semihost.c). */
-#ifndef LUMO_MPS2_SEMIHOST_H
-#define LUMO_MPS2_SEMIHOST_H
+/* semihost.h — the raw ARM semihosting trap (see semihost.c). */
+#ifndef LUMO_ARMV7M_SEMIHOST_H
+#define LUMO_ARMV7M_SEMIHOST_H
 
 #include <stdint.h>
 

@@ -1,9 +1,12 @@
 /*
- * startup.c — reset and exceptions for the Cortex-M3 of mps2-an385 (QEMU).
+ * startup.c — reset and exceptions of any ARMv7-M board (mps2-an385,
+ * lm3s6965evb).
  *
  * QEMU loads the ELF and then boots like the hardware: the initial stack
  * pointer and the reset vector are the first two words at address 0 (the
- * vector table, placed there by mps2-an385.ld). Reset copies .data from its
+ * vector table, placed there by the board's linker script, which also
+ * defines the symbols used below: __data_load, __data_start, __data_end,
+ * __bss_start, __bss_end, __stack_top, __stack_paint_low). Reset copies .data from its
  * load address, zeroes .bss, paints the stack to measure its peak, runs
  * main() and exits QEMU with main's return value through semihosting.
  *
@@ -20,7 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include "board_io.h"
+#include "board.h"
 #include "console.h"
 
 int main(void);

@@ -1,12 +1,19 @@
 /*
- * timer.c — board_ticks() on mps2-an385: the CMSDK APB dual timer (timer 1
- * at 0x40002000) as a free-running 32-bit down-counter at the 25 MHz system
- * clock. QEMU drives it from its virtual clock; with `-icount shift=0` that
- * clock advances exactly 1 ns per guest instruction, so ticks * 40 is a
- * deterministic instruction count (docs/porting.md).
+ * board.c — the mps2-an385 parts of boards/board.h (the rest is the ARMv7-M
+ * family code of boards/armv7m/: startup, faults, semihosting).
+ *
+ * board_ticks(): the CMSDK APB dual timer (timer 1 at 0x40002000) as a
+ * free-running 32-bit down-counter at the 25 MHz system clock. QEMU drives
+ * it from its virtual clock; with `-icount shift=0` that clock advances
+ * exactly 1 ns per guest instruction, so ticks * 40 is a deterministic
+ * instruction count (docs/porting.md).
+ *
+ * board_scratch(): the whole 16 MiB PSRAM at 0x21000000 (section .psram,
+ * NOLOAD in mps2-an385.ld, so it costs nothing to load or clear).
  */
+#include <stddef.h>
 #include <stdint.h>
-#include "board_io.h"
+#include "board.h"
 
 #define DUALTIMER1_LOAD    (*(volatile uint32_t *)0x40002000u)
 #define DUALTIMER1_VALUE   (*(volatile const uint32_t *)0x40002004u)
@@ -27,4 +34,15 @@ uint32_t board_ticks(void)
 uint32_t board_tick_hz(void)
 {
     return SYSCLK_HZ;
+}
+
+#define PSRAM_BYTES (16u << 20)
+
+__attribute__((section(".psram"), aligned(8)))
+static uint8_t g_psram[PSRAM_BYTES];
+
+uint8_t *board_scratch(size_t *bytes)
+{
+    *bytes = sizeof g_psram;
+    return g_psram;
 }
