@@ -6,10 +6,10 @@
 #   make check-embedded-selftest  feeds the check deliberately bad objects
 #
 # A board of the family links the family code — startup.c (vector table,
-# reset, stack paint and MPU guard, fault report) and semihost.c (console,
-# exit, files) — with boards/common/console.c, its own board.c (ticks,
-# scratch) and its linker script. Its fragment names these files itself:
-# fragments are included in any order.
+# reset, stack paint and MPU guard), fault.c (fault report) and semihost.c
+# (console, exit, files) — with boards/common/console.c, its own board.c
+# (ticks, scratch) and its linker script. Its fragment names these files
+# itself: fragments are included in any order.
 
 # Board code and board programs, for every M3 board: the client flags.
 $(BUILD)/board/obj-m3/%.o: %.c

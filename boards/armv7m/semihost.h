@@ -5,6 +5,6 @@
 #include <stdint.h>
 
 /* Semihosting operation `op` with parameter block `arg`; returns r0. */
-int32_t lumo_semihost_call(uint32_t op, const void *arg);
+int32_t armv7m_semihost_call(uint32_t op, const void *arg);
 
 #endif
