@@ -1,5 +1,6 @@
 # rasterizer/rasterizer.mk — the soft rasterizer (client rules: C99, no heap,
-# no float). The GL backends are desktop objects linked by
+# no float), built into liblumo_raster.a by the top Makefile (clients that
+# draw link it before liblumo.a). The GL backends are desktop objects linked by
 # tools/lumo-render/lumo-render.mk.
 CLIENT_SRCS += $(sort $(wildcard rasterizer/soft/*.c))
 
@@ -14,11 +15,12 @@ raster-tables:
 # bundles with the server's IVG encoder (server library). Libraries are named
 # literally: fragments are included in any order.
 RASTER_UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/bin/%,$(wildcard tests/unit/test_raster*.c))
-RASTER_UNIT_LIBS   = $(RASTER_UNIT_LIBS_$*) $(BUILD)/tests/libmesh_build.a $(BUILD)/san/liblumo.a
+RASTER_UNIT_LIBS   = $(RASTER_UNIT_LIBS_$*) $(BUILD)/tests/libmesh_build.a $(BUILD)/san/liblumo_raster.a \
+                     $(BUILD)/san/liblumo.a
 RASTER_UNIT_LIBS_test_raster_ivg := $(BUILD)/host/libserver.a
 
 $(RASTER_UNIT_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/unit/%.o $(BUILD)/tests/libmesh_build.a \
-                      $(BUILD)/san/liblumo.a
+                      $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $< $(RASTER_UNIT_LIBS) $(TEST_LDLIBS)
 $(BUILD)/tests/bin/test_raster_ivg: $(BUILD)/host/libserver.a

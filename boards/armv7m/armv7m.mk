@@ -2,7 +2,8 @@
 # mps2-an385 and lm3s6965evb) and the proof of the client rules on the
 # Cortex-M3 build of the client libraries (docs/porting.md).
 #
-#   make check-embedded           nm + source rules on the objects of build/m3/liblumo.a
+#   make check-embedded           nm + source rules on the objects of
+#                                 build/m3/liblumo.a and build/m3/liblumo_raster.a
 #   make check-embedded-selftest  feeds the check deliberately bad objects
 #
 # A board of the family links the family code — startup.c (vector table,
@@ -27,7 +28,7 @@ CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(
     $(wildcard sdk/include/lumo/*.h))
 
 .PHONY: check-embedded check-embedded-selftest
-check-embedded: $(BUILD)/m3/liblumo.a
+check-embedded: $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a
 	@deps=$$(cat $(CLIENT_OBJS_m3:.o=.d) 2>/dev/null | tr ' \\' '\n\n' | sed 's/:$$//' \
 	        | grep '\.h$$' | grep -v '^/' | sort -u); \
 	srcs=$$({ for f in $(CHECK_EMBEDDED_SRCS); do echo $$f; done; \

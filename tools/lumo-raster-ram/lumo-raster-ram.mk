@@ -3,6 +3,7 @@
 # markdown table (docs/rasterizer.md, bench/raster.sh).
 HOST_TOOLS += $(BIN)/lumo-raster-ram
 
-$(BIN)/lumo-raster-ram: $(BUILD)/host/tools/lumo-raster-ram/raster_ram.o $(BUILD)/rel/liblumo.a
+$(BIN)/lumo-raster-ram: $(BUILD)/host/tools/lumo-raster-ram/raster_ram.o $(BUILD)/rel/liblumo_raster.a \
+                        $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^

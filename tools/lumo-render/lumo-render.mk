@@ -26,6 +26,6 @@ $(BUILD)/tests/libmesh_build.a: $(BUILD)/tests/tools/lumo-render/mesh_build.o
 HOST_TOOLS += $(BIN)/lumo-render
 
 $(BIN)/lumo-render: $(RENDER_OBJS) $(RASTER_GL_OBJS) $(BUILD)/host/libmesh_build.a $(BUILD)/host/libhost.a \
-                    $(BUILD)/rel/liblumo.a
+                    $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ $(RASTER_GL_LIBS) -lpng -lm
