@@ -35,7 +35,7 @@ CLIENT_CFLAGS_san := $(CLIENT_STD) $(WARN) $(CLIENT_INC) -O1 -g $(SAN_FLAGS)
 M3_ARCH           := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 CLIENT_CFLAGS_m3  := $(CLIENT_STD) $(WARN) $(CLIENT_INC) $(M3_ARCH) -Os -g \
                      -ffunction-sections -fdata-sections
-# Desktop code (server/, boards/host/, GL backends, tests): C11, POSIX.
+# Desktop code (server/, tools/, GL backends, tests): C11, POSIX.
 HOST_CFLAGS   := -std=c11 -D_GNU_SOURCE $(WARN) -Wno-missing-prototypes $(CLIENT_INC) -Iserver/include -Itools/lib/include -O2 -g -pthread
 HOST_CXXFLAGS := -std=c++17 -Wall -Wextra -Werror -Iserver/include -O2 -g -pthread
 TEST_CFLAGS   := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror $(CLIENT_INC) -Iserver/include -Itools/lib/include -Itests/include \
@@ -52,14 +52,19 @@ FUZZ_STEPS  :=      # phony targets run by `make fuzz`
 ALL_TARGETS :=
 
 # Fragments: every part of the tree owns one (sdk/sdk.mk, server/server.mk,
-# boards/host/host.mk, tests/draco/draco.mk, ...).
+# tools/lumo-render/lumo-render.mk, tests/draco/draco.mk, ...).
 include sdk/sdk.mk
 include $(sort $(filter-out sdk/sdk.mk,$(wildcard sdk/*.mk rasterizer/*.mk rasterizer/*/*.mk \
         net/*.mk server/*.mk boards/*/*.mk tests/*.mk tests/*/*.mk bench/*.mk tools/*.mk tools/*/*.mk)))
 
-# ---- client libraries, one per variant ---------------------------------------
+# ---- client libraries, each in three variants --------------------------------
+# liblumo.a: the SDK (sdk/), every client; decode-only builds link only it.
+# liblumo_raster.a: the soft rasterizer (rasterizer/soft/), linked before
+# liblumo.a by clients that draw.
 # rel: host -O2 (tools, benchmarks); san: host ASan/UBSan (tests);
 # m3: Cortex-M3 soft-float (check-embedded, the QEMU board).
+LUMO_SRCS   := $(filter sdk/%,$(CLIENT_SRCS))
+RASTER_SRCS := $(filter rasterizer/soft/%,$(CLIENT_SRCS))
 CLIENT_OBJS_rel := $(patsubst %.c,$(BUILD)/rel/%.o,$(CLIENT_SRCS))
 CLIENT_OBJS_san := $(patsubst %.c,$(BUILD)/san/%.o,$(CLIENT_SRCS))
 CLIENT_OBJS_m3  := $(patsubst %.c,$(BUILD)/m3/%.o,$(CLIENT_SRCS))
@@ -74,11 +79,17 @@ $(BUILD)/m3/%.o: %.c
 	@mkdir -p $(@D)
 	$(ARM_CC) $(CLIENT_CFLAGS_m3) -MMD -MP -c $< -o $@
 
-$(BUILD)/rel/liblumo.a: $(CLIENT_OBJS_rel)
+$(BUILD)/rel/liblumo.a: $(patsubst %.c,$(BUILD)/rel/%.o,$(LUMO_SRCS))
 	rm -f $@ && ar rcs $@ $^
-$(BUILD)/san/liblumo.a: $(CLIENT_OBJS_san)
+$(BUILD)/san/liblumo.a: $(patsubst %.c,$(BUILD)/san/%.o,$(LUMO_SRCS))
 	rm -f $@ && ar rcs $@ $^
-$(BUILD)/m3/liblumo.a: $(CLIENT_OBJS_m3)
+$(BUILD)/m3/liblumo.a: $(patsubst %.c,$(BUILD)/m3/%.o,$(LUMO_SRCS))
+	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+$(BUILD)/rel/liblumo_raster.a: $(patsubst %.c,$(BUILD)/rel/%.o,$(RASTER_SRCS))
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/san/liblumo_raster.a: $(patsubst %.c,$(BUILD)/san/%.o,$(RASTER_SRCS))
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/m3/liblumo_raster.a: $(patsubst %.c,$(BUILD)/m3/%.o,$(RASTER_SRCS))
 	rm -f $@ && arm-none-eabi-ar rcs $@ $^
 
 # Desktop objects (server, host board, tests) keep their own trees.
@@ -126,19 +137,16 @@ $(SETUP_STAMP): tools/setup.sh
 	sh tools/setup.sh
 	@touch $@
 
-all: $(SETUP_STAMP) $(BUILD)/rel/liblumo.a $(ALL_TARGETS) $(HOST_TOOLS)
+all: $(SETUP_STAMP) $(BUILD)/rel/liblumo.a $(BUILD)/rel/liblumo_raster.a $(ALL_TARGETS) $(HOST_TOOLS)
 
 test: $(SETUP_STAMP)
-	@$(MAKE) --no-print-directory all $(UNIT_TESTS) $(BUILD)/m3/liblumo.a
+	@$(MAKE) --no-print-directory all $(UNIT_TESTS) $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a
 	+@sh tests/run.sh $(BUILD) "$(UNIT_TESTS)" "$(TEST_STEPS)"
 
 bench: $(SETUP_STAMP) all
 	+@sh bench/run.sh $(BUILD) "$(BENCH_STEPS)"
 
 fuzz: $(SETUP_STAMP) $(FUZZ_STEPS)
-
-demo: $(SETUP_STAMP) all
-	@sh tools/demo.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD)/rel $(BUILD)/san $(BUILD)/m3 $(BUILD)/host $(BUILD)/tests $(BIN) $(BUILD)/fuzz $(BUILD)/board

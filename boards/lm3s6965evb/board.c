@@ -1,12 +1,12 @@
 /*
- * board.c — the lm3s6965evb parts of board_io.h that differ from
- * mps2-an385 (whose generic ARMv7-M startup.c and semihost.c it reuses):
+ * board.c — the lm3s6965evb parts of boards/board.h (the rest is the
+ * ARMv7-M family code of boards/armv7m/: startup, faults, semihosting):
  * no cost timer, and scratch memory is a static array inside the 64 KiB
  * SRAM, sized so .bss + stack still fit (lm3s6965evb.ld checks it).
  */
 #include <stddef.h>
 #include <stdint.h>
-#include "board_io.h"
+#include "board.h"
 
 #ifndef LM3S_SCRATCH_BYTES
 #define LM3S_SCRATCH_BYTES (48u << 10)

@@ -10,7 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lumo/ivg.h"
-#include "board_io.h"
+#include "board.h"
 #include "console.h"
 #include "harness.h"
 #include "ivg_wire.h"

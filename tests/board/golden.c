@@ -1,6 +1,6 @@
 /* golden.c — output of the golden programs (see golden.h). */
 #include <string.h>
-#include "board_io.h"
+#include "board.h"
 #include "console.h"
 #include "golden.h"
 

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "lumo/draco.h"
-#include "board_io.h"
+#include "board.h"
 #include "golden.h"
 
 int main(void);

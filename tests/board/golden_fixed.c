@@ -4,7 +4,7 @@
  */
 #include <stdint.h>
 #include "lumo/fixed.h"
-#include "board_io.h"
+#include "board.h"
 #include "golden.h"
 
 #define N 20000

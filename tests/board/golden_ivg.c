@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "lumo/ivg.h"
-#include "board_io.h"
+#include "board.h"
 #include "golden.h"
 #include "ivg_wire.h"
 

@@ -14,7 +14,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "lumo/pmesh.h"
-#include "board_io.h"
+#include "board.h"
 #include "golden.h"
 
 int main(void);

@@ -13,7 +13,7 @@
 #include <string.h>
 #include "lumo/ivg.h"
 #include "lumo/raster.h"
-#include "board_io.h"
+#include "board.h"
 #include "golden.h"
 #include "ivg_wire.h"
 

@@ -1,6 +1,6 @@
 /* harness.c — the board test harness (see harness.h). */
 #include <stddef.h>
-#include "board_io.h"
+#include "board.h"
 #include "harness.h"
 
 static unsigned g_passed, g_failed, g_check_failures, g_test_failures;

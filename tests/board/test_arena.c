@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "lumo/arena.h"
-#include "board_io.h"
+#include "board.h"
 #include "harness.h"
 
 static uint8_t g_buf[256];

@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "lumo/ivg.h"
-#include "board_io.h"
+#include "board.h"
 #include "harness.h"
 #include "ivg_wire.h"
 

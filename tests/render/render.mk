@@ -11,3 +11,10 @@ raster-truth: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake
 
 raster-cli: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake
 	sh tests/render/cli.sh $(BUILD)
+
+# Progressive meshes in lumo-render (issue 5): pm vs raw package (mean
+# Delta E <= 1), --lod levels, a damaged stream (tests/render/lod.sh).
+.PHONY: raster-lod
+TEST_STEPS += raster-lod
+raster-lod: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake $(BIN)/lumo-inspect
+	sh tests/render/lod.sh $(BUILD)

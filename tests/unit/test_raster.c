@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include "test_common.h"
 #include "lumo/raster.h"
-#include "../../boards/host/mesh_build.h"
+#include "../../tools/lumo-render/mesh_build.h"
 #include "../../rasterizer/soft/raster_internal.h"
 
 #define W 64

@@ -13,7 +13,7 @@
 #include "lumo/ivg.h"
 #include "lumo/raster.h"
 #include "lumo_server/ivg_encode.h"
-#include "../../boards/host/mesh_build.h"
+#include "../../tools/lumo-render/mesh_build.h"
 
 #define W 128
 #define H 96

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include "test_common.h"
 #include "lumo/raster.h"
-#include "../../boards/host/mesh_build.h"
+#include "../../tools/lumo-render/mesh_build.h"
 
 #define W 160
 #define H 120

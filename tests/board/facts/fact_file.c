@@ -4,7 +4,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include "board_io.h"
+#include "board.h"
 #include "console.h"
 
 int main(void);

@@ -2,7 +2,7 @@
  * `-icount shift=0` the printed count must be the same on every run, and
  * ticks * (1e9 / tick_hz) must approximate the executed instructions. */
 #include <stdint.h>
-#include "board_io.h"
+#include "board.h"
 #include "console.h"
 
 int main(void);

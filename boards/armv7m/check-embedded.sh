@@ -1,5 +1,5 @@
 #!/bin/sh
-# boards/mps2-an385/check-embedded.sh — prove the client rules (ARCHITECTURE.md
+# boards/armv7m/check-embedded.sh — prove the client rules (ARCHITECTURE.md
 # "Rules for the client side") on the Cortex-M3 objects and on the sources.
 #
 #   check-embedded.sh NM "OBJECTS" "SOURCES"

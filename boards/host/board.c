@@ -1,11 +1,13 @@
 /*
- * host_io.c — board_io.h on the host (Linux): the same board test programs
- * built natively, so a golden program's host hash can be compared with the
- * board's. Desktop code: stdio allowed.
+ * board.c — the Linux board: boards/board.h on the host, so the same board
+ * programs run natively (under ASan/UBSan) and a golden program's host hash
+ * can be compared with the board's. Console on stdout, files through stdio,
+ * scratch memory a 16 MiB static array, no ticks and no stack measure.
+ * Desktop code: stdio allowed.
  */
 #include <stdio.h>
 #include <stdlib.h>
-#include "board_io.h"
+#include "board.h"
 
 void board_console_write(const char *s, size_t n)
 {

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lumo/ivg.h"
-#include "board_io.h"
+#include "board.h"
 #include "golden.h"
 #include "ivg_wire.h"
 

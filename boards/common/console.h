@@ -1,5 +1,6 @@
 /*
- * console.h — printf-free text output on the board console (board_io.h).
+ * console.h — printf-free text output on the board console
+ * (board_console_write of boards/board.h), for every board and board program.
  *
  * newlib's printf pulls in malloc through _sbrk; these few calls format
  * strings and integers by hand instead, so a board program links without any

@@ -1,13 +1,14 @@
 /*
- * semihost.c — board_io (tests/board/board_io.h) for mps2-an385 over ARM
- * semihosting: `bkpt 0xab` with the operation in r0 and a parameter block in
- * r1 (ARM "Semihosting for AArch32 and AArch64", v2). QEMU serves it when
- * started with `-semihosting-config enable=on,target=native`.
+ * semihost.c — the console, exit and file calls of boards/board.h for any
+ * ARMv7-M board over ARM semihosting: `bkpt 0xab` with the operation in r0
+ * and a parameter block in r1 (ARM "Semihosting for AArch32 and AArch64",
+ * v2). QEMU serves it when started with
+ * `-semihosting-config enable=on,target=native`.
  */
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include "board_io.h"
+#include "board.h"
 #include "semihost.h"
 
 enum {
@@ -20,7 +21,7 @@ enum { MODE_RB = 1, MODE_WB = 5, MODE_A = 8 };
  * QEMU's exit status. */
 #define ADP_STOPPED_APPLICATION_EXIT 0x20026u
 
-int32_t lumo_semihost_call(uint32_t op, const void *arg)
+int32_t armv7m_semihost_call(uint32_t op, const void *arg)
 {
     register uint32_t r0 __asm__("r0") = op;
     register const void *r1 __asm__("r1") = arg;
@@ -34,14 +35,14 @@ static int32_t sh_open(const char *path, uint32_t mode)
     blk[0] = (uint32_t)(uintptr_t)path;
     blk[1] = mode;
     blk[2] = (uint32_t)strlen(path);
-    return lumo_semihost_call(SYS_OPEN, blk);
+    return armv7m_semihost_call(SYS_OPEN, blk);
 }
 
 static void sh_close(int32_t fd)
 {
     uint32_t blk[1];
     blk[0] = (uint32_t)fd;
-    lumo_semihost_call(SYS_CLOSE, blk);
+    armv7m_semihost_call(SYS_CLOSE, blk);
 }
 
 /* SYS_READ and SYS_WRITE return the number of bytes NOT transferred. */
@@ -51,7 +52,7 @@ static int32_t sh_transfer(uint32_t op, int32_t fd, const void *buf, size_t n)
     blk[0] = (uint32_t)fd;
     blk[1] = (uint32_t)(uintptr_t)buf;
     blk[2] = (uint32_t)n;
-    return lumo_semihost_call(op, blk);
+    return armv7m_semihost_call(op, blk);
 }
 
 /* ":tt" opened for append is the host's stderr (semihosting v2,
@@ -72,7 +73,7 @@ void board_exit(int status)
     blk[0] = ADP_STOPPED_APPLICATION_EXIT;
     blk[1] = (uint32_t)status;
     for (;;)
-        lumo_semihost_call(SYS_EXIT_EXTENDED, blk);
+        armv7m_semihost_call(SYS_EXIT_EXTENDED, blk);
 }
 
 int board_read_file(const char *path, uint8_t *buf, size_t cap, size_t *len)
@@ -84,7 +85,7 @@ int board_read_file(const char *path, uint8_t *buf, size_t cap, size_t *len)
     if (fd < 0)
         return -1;
     blk[0] = (uint32_t)fd;
-    size = lumo_semihost_call(SYS_FLEN, blk);
+    size = armv7m_semihost_call(SYS_FLEN, blk);
     if (size < 0)
         rc = -1;
     else if ((size_t)size > cap)

@@ -1,7 +1,7 @@
 /* console.c — printf-free console output (see console.h). */
 #include <stddef.h>
 #include <string.h>
-#include "board_io.h"
+#include "board.h"
 #include "console.h"
 
 void con_str(const char *s)

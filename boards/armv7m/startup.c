@@ -1,41 +1,35 @@
 /*
- * startup.c — reset and exceptions for the Cortex-M3 of mps2-an385 (QEMU).
+ * startup.c — reset and exceptions of any ARMv7-M board (mps2-an385,
+ * lm3s6965evb).
  *
  * QEMU loads the ELF and then boots like the hardware: the initial stack
  * pointer and the reset vector are the first two words at address 0 (the
- * vector table, placed there by mps2-an385.ld). Reset copies .data from its
+ * vector table, placed there by the board's linker script, which also
+ * defines the symbols used below: __data_load, __data_start, __data_end,
+ * __bss_start, __bss_end, __stack_top, __stack_paint_low). Reset copies .data from its
  * load address, zeroes .bss, paints the stack to measure its peak, runs
  * main() and exits QEMU with main's return value through semihosting.
- *
- * Any fault prints its name and the faulting pc on the console and exits
- * with status 128 + exception number (HardFault 131, MemManage 132,
- * BusFault 133, UsageFault 134), so a crash can never hang CI.
+ * Every exception goes to Fault_Handler (fault.c).
  *
  * The stack is bounded: the lowest STACK_GUARD bytes of the stack area
  * (from __stack_paint_low) are made inaccessible with the ARMv7-M MPU, so
  * overflowing it raises MemManage ("FAULT: stack overflow", exit 132)
- * instead of silently overwriting .bss. The fault handler runs on its own
- * small stack for that reason.
+ * instead of silently overwriting .bss.
  */
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include "board_io.h"
-#include "console.h"
+#include "board.h"
+#include "armv7m.h"
 
 int main(void);
 void Reset_Handler(void);
-void Fault_Handler(void);
-void lumo_fault_report(const uint32_t *frame, uint32_t exc_return);
 
 /* Symbols of the linker script (addresses only). */
 extern uint32_t __data_load[], __data_start[], __data_end[];
-extern uint32_t __bss_start[], __bss_end[], __stack_top[], __stack_paint_low[];
+extern uint32_t __bss_start[], __bss_end[];
 
 #define STACK_PAINT 0x5AC0FFEEu
-/* MPU guard at the bottom of the stack area: 1 KiB, the linker scripts
- * keep __stack_paint_low 1 KiB aligned (an MPU region is size aligned). */
-#define STACK_GUARD 1024u
 /* Bytes below the current frame left unpainted while painting. */
 #define PAINT_MARGIN 64u
 
@@ -60,9 +54,6 @@ static const vector g_vectors[16] = {
     Fault_Handler, /* PendSV */
     Fault_Handler  /* SysTick */
 };
-
-/* The fault handler's own stack (the main one may be what overflowed). */
-uint32_t lumo_fault_stack[128];
 
 static void paint_stack(void)
 {
@@ -92,9 +83,6 @@ size_t board_stack_peak(void)
 #define MPU_RBAR   (*(volatile uint32_t *)0xE000ED9Cu)
 #define MPU_RASR   (*(volatile uint32_t *)0xE000EDA0u)
 #define SCB_SHCSR  (*(volatile uint32_t *)0xE000ED24u)
-/* Fault status: CFSR says which MemManage/Bus/Usage fault, HFSR why HardFault. */
-#define SCB_CFSR   (*(volatile const uint32_t *)0xE000ED28u)
-#define SCB_HFSR   (*(volatile const uint32_t *)0xE000ED2Cu)
 #define MPU_CTRL_ENABLE     1u
 #define MPU_CTRL_PRIVDEFENA 4u         /* default memory map elsewhere */
 #define RASR_XN             (1u << 28)
@@ -124,73 +112,4 @@ void Reset_Handler(void)
     paint_stack();
     guard_stack();
     board_exit(main());
-}
-
-/* Naked so that no prologue moves the stack before the exception frame
- * (r0-r3, r12, lr, pc, xpsr) is located: EXC_RETURN bit 2 says whether it
- * was pushed on the main or the process stack. Then the handler switches
- * to its own stack. */
-__attribute__((naked)) void Fault_Handler(void)
-{
-    __asm__ volatile(
-        "tst lr, #4\n"
-        "ite eq\n"
-        "mrseq r0, msp\n"
-        "mrsne r0, psp\n"
-        "mov r1, lr\n"
-        "ldr r2, =lumo_fault_stack + 512\n"
-        "mov sp, r2\n"
-        "b lumo_fault_report\n");
-}
-
-static const char *exception_name(uint32_t n)
-{
-    static const char *const names[16] = {
-        "thread", "reset", "NMI", "HardFault", "MemManage", "BusFault", "UsageFault",
-        "reserved", "reserved", "reserved", "reserved", "SVCall", "DebugMonitor",
-        "reserved", "PendSV", "SysTick"
-    };
-    return n < 16 ? names[n] : "interrupt";
-}
-
-
-/* CFSR.MSTKERR: the exception frame could not be pushed (stack overflow
- * into the guard), so there is no frame to read. */
-#define CFSR_MSTKERR (1u << 4)
-
-static int in_guard(const uint32_t *frame)
-{
-    uintptr_t f = (uintptr_t)frame, lo = (uintptr_t)__stack_paint_low;
-    return f >= lo && f < lo + STACK_GUARD + 32u;
-}
-
-void lumo_fault_report(const uint32_t *frame, uint32_t exc_return)
-{
-    uint32_t ipsr;
-
-    __asm__ volatile("mrs %0, ipsr" : "=r"(ipsr));
-    ipsr &= 0x1FFu;
-    con_str("FAULT: ");
-    if ((SCB_CFSR & CFSR_MSTKERR) != 0 || in_guard(frame)) {
-        con_str("stack overflow (");
-        con_str(exception_name(ipsr));
-        con_str(", sp=");
-        con_hex((uint32_t)(uintptr_t)frame, 8);
-        con_str(")");
-        con_nl();
-        board_exit((int)(128u + ipsr));
-    }
-    con_str(exception_name(ipsr));
-    con_str(" pc=");
-    con_hex(frame[6], 8);
-    con_str(" lr=");
-    con_hex(frame[5], 8);
-    con_str(" cfsr=");
-    con_hex(SCB_CFSR, 8);
-    con_str(" hfsr=");
-    con_hex(SCB_HFSR, 8);
-    con_str(" exc_return=");
-    con_hex(exc_return, 8);
-    con_nl();
-    board_exit((int)(128u + ipsr));
 }

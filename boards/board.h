@@ -1,14 +1,17 @@
 /*
- * board_io.h — what a board gives the board test programs (tests/board/).
+ * board.h — the board contract: what every board gives the programs that run
+ * on it (the board tests and golden programs of tests/board/, a device's
+ * application).
  *
- * Every board (boards/mps2-an385 over QEMU semihosting, the host shim
- * tests/board/host_io.c, a real board over its UART) implements these few
- * calls; the test harness and the golden programs use nothing else, so the
- * same C99 program runs everywhere. No heap, no stdio, no float: the rules of
- * the client code apply (docs/porting.md).
+ * Every board port (boards/mps2-an385 and boards/lm3s6965evb over QEMU
+ * semihosting, the Linux board boards/host, a real board over its UART)
+ * implements these few calls; a board program uses nothing else, so the same
+ * C99 program runs everywhere. No heap, no stdio, no float: the rules of the
+ * client code apply (docs/porting.md, which also says what a new board must
+ * provide).
  */
-#ifndef LUMO_BOARD_IO_H
-#define LUMO_BOARD_IO_H
+#ifndef LUMO_BOARD_H
+#define LUMO_BOARD_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -47,4 +50,4 @@ uint8_t *board_scratch(size_t *bytes);
  * the board cannot tell. */
 size_t board_stack_peak(void);
 
-#endif /* LUMO_BOARD_IO_H */
+#endif /* LUMO_BOARD_H */

@@ -1,0 +1,48 @@
+/*
+ * board.c — the mps2-an385 parts of boards/board.h (the rest is the ARMv7-M
+ * family code of boards/armv7m/: startup, faults, semihosting).
+ *
+ * board_ticks(): the CMSDK APB dual timer (timer 1 at 0x40002000) as a
+ * free-running 32-bit down-counter at the 25 MHz system clock. QEMU drives
+ * it from its virtual clock; with `-icount shift=0` that clock advances
+ * exactly 1 ns per guest instruction, so ticks * 40 is a deterministic
+ * instruction count (docs/porting.md).
+ *
+ * board_scratch(): the whole 16 MiB PSRAM at 0x21000000 (section .psram,
+ * NOLOAD in mps2-an385.ld, so it costs nothing to load or clear).
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include "board.h"
+
+#define DUALTIMER1_LOAD    (*(volatile uint32_t *)0x40002000u)
+#define DUALTIMER1_VALUE   (*(volatile const uint32_t *)0x40002004u)
+#define DUALTIMER1_CONTROL (*(volatile uint32_t *)0x40002008u)
+#define CTRL_ENABLE 0x80u
+#define CTRL_32BIT  0x02u   /* free-running mode: periodic bit 6 left clear */
+#define SYSCLK_HZ   25000000u
+
+uint32_t board_ticks(void)
+{
+    if ((DUALTIMER1_CONTROL & CTRL_ENABLE) == 0) {
+        DUALTIMER1_LOAD = 0xFFFFFFFFu;
+        DUALTIMER1_CONTROL = CTRL_ENABLE | CTRL_32BIT;
+    }
+    return 0xFFFFFFFFu - DUALTIMER1_VALUE;
+}
+
+uint32_t board_tick_hz(void)
+{
+    return SYSCLK_HZ;
+}
+
+#define PSRAM_BYTES (16u << 20)
+
+__attribute__((section(".psram"), aligned(8)))
+static uint8_t g_psram[PSRAM_BYTES];
+
+uint8_t *board_scratch(size_t *bytes)
+{
+    *bytes = sizeof g_psram;
+    return g_psram;
+}
