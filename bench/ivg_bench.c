@@ -20,7 +20,7 @@
 #include <math.h>
 #include <time.h>
 #include "lumo/ivg.h"
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 
 static uint64_t g_rng = 0x9E3779B97F4A7C15ull;
 

@@ -6,13 +6,13 @@
 #include <string.h>
 #include <unistd.h>
 #include "lumo_host/png_io.h"
-#include "lumo_server/bake.h"
-#include "lumo_server/import.h"
-#include "lumo_server/package_write.h"
-#include "lumo_server/pm_stream.h"
-#include "lumo_server/progress.h"
-#include "lumo_server/reference.h"
-#include "lumo_server/shapes.h"
+#include "bake/bake.h"
+#include "scene/import.h"
+#include "package/package_write.h"
+#include "pm/pm_stream.h"
+#include "common/progress.h"
+#include "bake/reference.h"
+#include "scene/shapes.h"
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
 
@@ -265,7 +265,7 @@ static void cell_dims(const lumo_scene *s, float cell, int dims[3])
 }
 
 /* INFO, then the meshes as --mesh asks: raw chunks and/or one progressive
- * stream per mesh (lumo_pm_pack, server/pm_pack.c), in mesh order. */
+ * stream per mesh (lumo_pm_pack, server/pm/pm_pack.c), in mesh order. */
 _Static_assert(sizeof(vec3) == 3 * sizeof(float), "positions are passed as a float xyz array");
 
 static int pack_meshes(const options *o, lumo_pkg_writer *w, const lumo_scene *s, char *err, size_t errlen)

@@ -8,11 +8,11 @@
 #include <string.h>
 #include "lumo_host/image_diff.h"
 #include "lumo_host/tonemap.h"
-#include "lumo_server/bake.h"
-#include "lumo_server/import.h"
-#include "lumo_server/progress.h"
-#include "lumo_server/reference.h"
-#include "lumo_server/shapes.h"
+#include "bake/bake.h"
+#include "scene/import.h"
+#include "common/progress.h"
+#include "bake/reference.h"
+#include "scene/shapes.h"
 
 #define DRAGON48 "build/data/models/dragon_48k.ply"
 #define DRAGON203 "build/data/models/dragon_203k.ply"

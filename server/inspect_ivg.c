@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/ivg.h"
-#include "lumo_server/inspect.h"
+#include "include/lumo_server/inspect.h"
 
 static const char *k_axes[LUMO_IVG_AXES] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 

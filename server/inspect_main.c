@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
-#include "lumo_server/inspect.h"
+#include "include/lumo_server/inspect.h"
 
 #define MAX_COMMANDS 16
 

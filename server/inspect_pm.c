@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
-#include "lumo_server/inspect.h"
-#include "lumo_server/pm_client.h"
+#include "include/lumo_server/inspect.h"
+#include "pm/pm_client.h"
 
 static int load(const char *path, uint8_t **data, size_t *len)
 {

@@ -2,7 +2,7 @@
  * and IVG descriptor of a package, as decoded by the client reader. */
 #include <stdio.h>
 #include <stdlib.h>
-#include "lumo_server/inspect.h"
+#include "include/lumo_server/inspect.h"
 
 static double q16(int32_t v) { return (double)v / 65536.0; }
 

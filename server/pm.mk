@@ -2,9 +2,9 @@
 # collapse, stream writer, libdraco shim), the lumo-pm tool, the pm tests
 # and the pm benchmark. Included before server/server.mk, whose tools link
 # LUMO_SERVER_EXTRA_OBJS/LIBS (lumo-inspect gets server/inspect_pm.c).
-PM_SERVER_SRCS := server/pm_clean.c server/pm_simplify.c server/pm_build.c server/pm_stream.c \
-                  server/pm_client.c server/pm_load.c server/pm_pack.c
-PM_OBJS        := $(patsubst %.c,$(BUILD)/host/%.o,$(PM_SERVER_SRCS)) $(BUILD)/host/server/draco_shim.o
+PM_SERVER_SRCS := server/pm/pm_clean.c server/pm/pm_simplify.c server/pm/pm_build.c server/pm/pm_stream.c \
+                  server/pm/pm_client.c server/pm/pm_load.c server/pm/pm_pack.c
+PM_OBJS        := $(patsubst %.c,$(BUILD)/host/%.o,$(PM_SERVER_SRCS)) $(BUILD)/host/server/pm/draco_shim.o
 PM_LIBS        := -ldraco -lstdc++ -lm
 
 LUMO_SERVER_EXTRA_OBJS += $(PM_OBJS)

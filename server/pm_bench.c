@@ -16,9 +16,9 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
-#include "lumo_server/pm_client.h"
-#include "lumo_server/pm_load.h"
-#include "lumo_server/pm_stream.h"
+#include "pm/pm_client.h"
+#include "pm/pm_load.h"
+#include "pm/pm_stream.h"
 
 int lumo_pm_bench_main(int argc, char **argv);
 

@@ -12,10 +12,10 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo_host/file_io.h"
-#include "lumo_server/package_write.h"
-#include "lumo_server/pm_client.h"
-#include "lumo_server/pm_load.h"
-#include "lumo_server/pm_stream.h"
+#include "package/package_write.h"
+#include "pm/pm_client.h"
+#include "pm/pm_load.h"
+#include "pm/pm_stream.h"
 
 int lumo_pm_bench_main(int argc, char **argv);
 

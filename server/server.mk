@@ -10,8 +10,9 @@
 # library build/host/libhost.a (tools/lib/hostlib.mk, included after this
 # file, so named literally; it needs -lpng -lm from SERVER_LIBS).
 
-SERVER_CORE := camera scene shapes import scene_file default_scene rt pathtrace parallel \
-               progress bake reference package_write pack ivg_encode
+SERVER_CORE := scene/camera scene/scene scene/shapes scene/import scene/scene_file scene/default_scene \
+               bake/rt bake/pathtrace common/parallel common/progress bake/bake bake/reference \
+               package/package_write package/pack package/ivg_encode
 SERVER_OBJS := $(patsubst %,$(BUILD)/host/server/%.o,$(SERVER_CORE))
 SERVER_LIB  := $(BUILD)/host/libserver.a
 SERVER_LIBS := -lembree3 -lassimp -lpng -lm -pthread

@@ -4,9 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "lumo_server/bake.h"
-#include "lumo_server/parallel.h"
-#include "lumo_server/progress.h"
+#include "bake/bake.h"
+#include "common/parallel.h"
+#include "common/progress.h"
 
 #define MAX_WORKERS 256
 

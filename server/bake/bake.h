@@ -19,7 +19,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "lumo_server/trace.h"
+#include "bake/trace.h"
 
 typedef struct lumo_grid {
     int  dims[3];          /* vertices per axis, each in [2, 256] */

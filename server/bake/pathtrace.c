@@ -2,7 +2,7 @@
  * roulette. Light sources are reached only by next-event estimation: a path
  * that hits an emitter ends there, so no light is counted twice. */
 #include <math.h>
-#include "lumo_server/trace.h"
+#include "bake/trace.h"
 
 #define MAX_BOUNCES 512     /* safety only: roulette ends paths long before */
 #define RR_MAX_SURVIVAL 0.95f

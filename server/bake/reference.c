@@ -2,8 +2,8 @@
  * one random stream per pixel (deterministic for any thread count). */
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/parallel.h"
-#include "lumo_server/reference.h"
+#include "common/parallel.h"
+#include "bake/reference.h"
 
 #define MAX_WORKERS 256
 

@@ -9,8 +9,8 @@
 #define LUMO_SERVER_REFERENCE_H
 
 #include <stdint.h>
-#include "lumo_server/camera.h"
-#include "lumo_server/trace.h"
+#include "scene/camera.h"
+#include "bake/trace.h"
 
 typedef struct lumo_image {
     int    w, h;

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/rt.h"
+#include "bake/rt.h"
 
 struct lumo_rt {
     RTCDevice   dev;

@@ -6,7 +6,7 @@
 #define LUMO_SERVER_RT_H
 
 #include <stddef.h>
-#include "lumo_server/scene.h"
+#include "scene/scene.h"
 
 typedef struct lumo_rt lumo_rt;
 

@@ -7,8 +7,8 @@
 #define LUMO_SERVER_TRACE_H
 
 #include <stdint.h>
-#include "lumo_server/rng.h"
-#include "lumo_server/rt.h"
+#include "common/rng.h"
+#include "bake/rt.h"
 
 typedef struct lumo_tracer {
     const lumo_scene *s;

@@ -3,8 +3,8 @@
 #include <pthread.h>
 #include <stdatomic.h>
 #include <time.h>
-#include "lumo_server/parallel.h"
-#include "lumo_server/progress.h"
+#include "common/parallel.h"
+#include "common/progress.h"
 
 #define MAX_THREADS 256
 

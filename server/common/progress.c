@@ -2,7 +2,7 @@
 #include <stdio.h>
 #include <time.h>
 #include <unistd.h>
-#include "lumo_server/progress.h"
+#include "common/progress.h"
 
 #define BAR_WIDTH 40
 

@@ -1,10 +1,10 @@
 /*
  * ivg_encode.c — IVG compression, quantization and bundle writing on the
- * server (seed 000 §3.3 and §4.1; lumo_server/ivg_encode.h).
+ * server (seed 000 §3.3 and §4.1; package/ivg_encode.h).
  */
 #include <math.h>
 #include <string.h>
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 
 static float clamp_colour(float v)
 {

@@ -1,5 +1,5 @@
 /*
- * lumo_server/ivg_encode.h — the server's half of the Irradiance Vector Grid
+ * package/ivg_encode.h — the server's half of the Irradiance Vector Grid
  * wire forms (seed 000 §3.3; byte layout in lumo/ivg.h and
  * docs/ivg-format.md): compress a hemisphere's 3x3 irradiance matrix into a
  * direction and a colour, quantize them, and write sample bundles the client

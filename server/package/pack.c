@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
-#include "lumo_server/ivg_encode.h"
-#include "lumo_server/package_write.h"
+#include "package/ivg_encode.h"
+#include "package/package_write.h"
 
 static void put_light(lumo_buf *b, const lumo_light *l)
 {

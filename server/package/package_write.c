@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
-#include "lumo_server/package_write.h"
+#include "package/package_write.h"
 
 void lumo_buf_put(lumo_buf *b, const void *data, size_t n)
 {

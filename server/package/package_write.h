@@ -7,8 +7,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "lumo_server/bake.h"
-#include "lumo_server/scene.h"
+#include "bake/bake.h"
+#include "scene/scene.h"
 
 /* A growable little-endian byte buffer. */
 typedef struct lumo_buf {
@@ -43,7 +43,7 @@ int lumo_pkgw_write_file(const lumo_pkg_writer *w, const char *path, char *err, 
  * beside). 0 or -1. */
 int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s, int raw_meshes);
 /* IVG chunks: IVGD, then the bundle in both wire forms (IVGQ, IVGF) made by
- * the IVG encoder (server/ivg_encode.c). 0 or -1 with err. */
+ * the IVG encoder (server/package/ivg_encode.c). 0 or -1 with err. */
 int lumo_pack_ivg(lumo_pkg_writer *w, const lumo_bake_result *r, uint32_t spp, uint64_t seed,
                   char *err, size_t errlen);
 

@@ -1,8 +1,8 @@
-// server/draco_shim.cc — the only C++ in lumo: libdraco's encoder behind the
-// extern "C" API of lumo_server/draco_shim.h. Exceptions never cross the
+// server/pm/draco_shim.cc — the only C++ in lumo: libdraco's encoder behind the
+// extern "C" API of pm/draco_shim.h. Exceptions never cross the
 // boundary (libdraco reports through draco::Status; allocation failure ends
 // the process as any C tool would).
-#include "lumo_server/draco_shim.h"
+#include "pm/draco_shim.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 /*
- * lumo_server/draco_shim.h — the one C door to libdraco's C++ encoder.
+ * pm/draco_shim.h — the one C door to libdraco's C++ encoder.
  *
  * The progressive-mesh stream (docs/progressive-mesh.md) carries every
  * batch's vertex positions as a Draco point-cloud bitstream, so stock Draco

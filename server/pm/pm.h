@@ -1,5 +1,5 @@
 /*
- * lumo_server/pm.h — progressive meshes on the server (seed 000 §4.2).
+ * pm/pm.h — progressive meshes on the server (seed 000 §4.2).
  *
  * lumo_pm_build() simplifies a triangle mesh by half-edge collapses (an edge
  * collapses onto one of its end vertices; no new vertex) ordered by the

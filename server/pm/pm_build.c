@@ -3,7 +3,7 @@
  * lookup table, and faces sorted by the level at which they appear. */
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/pm_internal.h"
+#include "pm/pm_internal.h"
 
 void lumo_pm_default_options(lumo_pm_options *o)
 {

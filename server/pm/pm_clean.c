@@ -3,7 +3,7 @@
  * positions, drop degenerate and duplicate faces, drop unused vertices. */
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/pm_internal.h"
+#include "pm/pm_internal.h"
 
 static const float *g_sort_xyz;  /* qsort has no context argument in C11 */
 static const uint8_t *g_sort_rgb;

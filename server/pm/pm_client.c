@@ -3,8 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
-#include "lumo_server/pm_client.h"
-#include "lumo_server/pm_stream.h"
+#include "pm/pm_client.h"
+#include "pm/pm_stream.h"
 
 lumo_status lumo_pm_client_open(lumo_pm_client *c, const uint8_t *stream, size_t len)
 {

@@ -1,5 +1,5 @@
 /*
- * lumo_server/pm_client.h — desktop helpers that drive the real client
+ * pm/pm_client.h — desktop helpers that drive the real client
  * (lumo/pmesh.h) over a whole stream: lumo-inspect, lumo-pm, tests and
  * benchmarks decode exactly as a device does.
  */

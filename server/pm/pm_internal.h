@@ -1,12 +1,12 @@
 /*
- * lumo_server/pm_internal.h — the stages of lumo_pm_build() (server/pm_*.c),
+ * pm/pm_internal.h — the stages of lumo_pm_build() (server/pm/pm_*.c),
  * exposed for the stream builder and the tests.
  */
 #ifndef LUMO_SERVER_PM_INTERNAL_H
 #define LUMO_SERVER_PM_INTERNAL_H
 
 #include <stdint.h>
-#include "lumo_server/pm.h"
+#include "pm/pm.h"
 
 /* A cleaned indexed face set: duplicate positions welded, degenerate and
  * duplicate (same vertex set) faces dropped, unreferenced vertices removed.

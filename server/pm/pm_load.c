@@ -1,10 +1,10 @@
 /* pm_load.c — mesh files for the progressive-mesh tools (assimp through
- * server/import.c in; binary PLY out, which stock draco_encoder reads). */
+ * server/scene/import.c in; binary PLY out, which stock draco_encoder reads). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/import.h"
-#include "lumo_server/pm_load.h"
+#include "scene/import.h"
+#include "pm/pm_load.h"
 
 static uint8_t to_byte(float a)
 {

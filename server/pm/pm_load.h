@@ -1,5 +1,5 @@
 /*
- * lumo_server/pm_load.h — triangle soups in and out for the progressive-mesh
+ * pm/pm_load.h — triangle soups in and out for the progressive-mesh
  * tools: any file assimp reads (all meshes merged), and binary PLY out.
  */
 #ifndef LUMO_SERVER_PM_LOAD_H

@@ -3,8 +3,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "lumo/package.h"
-#include "lumo_server/package_write.h"
-#include "lumo_server/pm_stream.h"
+#include "package/package_write.h"
+#include "pm/pm_stream.h"
 
 int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
                  const uint32_t *tris, uint32_t nf, const lumo_pm_stream_options *o, char *err,

@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/pm_internal.h"
+#include "pm/pm_internal.h"
 
 typedef struct { uint32_t *f; uint32_t n, cap; } flist;
 

@@ -19,8 +19,8 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
-#include "lumo_server/package_write.h"
-#include "lumo_server/pm_stream.h"
+#include "package/package_write.h"
+#include "pm/pm_stream.h"
 
 #define NIL LUMO_PMESH_NIL
 

@@ -1,6 +1,6 @@
 /*
- * lumo_server/pm_stream.h — writing the progressive-mesh stream of
- * docs/progressive-mesh.md from a lumo_pm (server/pm_build.c). The client
+ * pm/pm_stream.h — writing the progressive-mesh stream of
+ * docs/progressive-mesh.md from a lumo_pm (server/pm/pm_build.c). The client
  * reads it with lumo/pmesh.h.
  */
 #ifndef LUMO_SERVER_PM_STREAM_H
@@ -8,8 +8,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "lumo_server/draco_shim.h"
-#include "lumo_server/pm.h"
+#include "pm/draco_shim.h"
+#include "pm/pm.h"
 
 /* Where the bits go (split records only), filled when options->stats is
  * set: bits of each split-block field summed over the split vertices, and
@@ -52,7 +52,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
 
 #endif
 
-/* For lumo-bake (server/pm_pack.c): simplify one mesh, build its stream and
+/* For lumo-bake (server/pm/pm_pack.c): simplify one mesh, build its stream and
  * append it to a package as a PMSH chunk (one chunk per mesh, in mesh
  * order, replacing the raw MESH chunk). albedo: 3 bytes per vertex (0..255)
  * or NULL. o may be NULL for the defaults.

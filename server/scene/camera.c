@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include "lumo_server/camera.h"
-#include "lumo_server/scene.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
 
 int lumo_camera_parse(const char *text, lumo_camera *out)
 {

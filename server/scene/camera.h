@@ -7,7 +7,7 @@
 #ifndef LUMO_SERVER_CAMERA_H
 #define LUMO_SERVER_CAMERA_H
 
-#include "lumo_server/vec3.h"
+#include "common/vec3.h"
 
 typedef struct lumo_camera {
     vec3  eye, target, up;

@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include "lumo_server/import.h"
-#include "lumo_server/shapes.h"
+#include "scene/import.h"
+#include "scene/shapes.h"
 
 #define DRAGON_LENGTH 1.4f
 

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
-#include "lumo_server/import.h"
+#include "scene/import.h"
 
 #define DEFAULT_ALBEDO 0.8f
 #define MAX_ALBEDO 0.98f   /* reflection must never create light */

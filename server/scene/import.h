@@ -6,7 +6,7 @@
 #define LUMO_SERVER_IMPORT_H
 
 #include <stddef.h>
-#include "lumo_server/scene.h"
+#include "scene/scene.h"
 
 /* Scale, then rotate about an axis, then translate. */
 typedef struct lumo_xform {

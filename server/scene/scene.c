@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/scene.h"
+#include "scene/scene.h"
 
 void lumo_scene_init(lumo_scene *s)
 {

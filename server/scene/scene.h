@@ -11,8 +11,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "lumo_server/camera.h"
-#include "lumo_server/vec3.h"
+#include "scene/camera.h"
+#include "common/vec3.h"
 
 /* The package holds at most this many lights (LUMO_PKG_MAX_LIGHTS). */
 #define LUMO_SCENE_MAX_LIGHTS 64

@@ -3,8 +3,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "lumo_server/import.h"
-#include "lumo_server/shapes.h"
+#include "scene/import.h"
+#include "scene/shapes.h"
 
 #define MAX_WORDS 16
 

@@ -1,7 +1,7 @@
 /* shapes.c — rectangles, cuboids, spheres and area-light emitters built in
  * code (for the default scene, scene files and the physics tests). */
 #include <math.h>
-#include "lumo_server/shapes.h"
+#include "scene/shapes.h"
 
 static void fill_albedo(lumo_mesh *m, vec3 albedo)
 {

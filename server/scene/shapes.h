@@ -6,7 +6,7 @@
 #ifndef LUMO_SERVER_SHAPES_H
 #define LUMO_SERVER_SHAPES_H
 
-#include "lumo_server/scene.h"
+#include "scene/scene.h"
 
 /* Rectangle corner + edges u, v; its front face looks along u x v. */
 int lumo_add_quad(lumo_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, vec3 albedo);

@@ -11,10 +11,10 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
-#include "lumo_server/pm.h"
-#include "lumo_server/pm_client.h"
-#include "lumo_server/pm_load.h"
-#include "lumo_server/pm_stream.h"
+#include "pm/pm.h"
+#include "pm/pm_client.h"
+#include "pm/pm_load.h"
+#include "pm/pm_stream.h"
 #include "pm_meshes.h"
 
 static int g_pass, g_fail;
@@ -181,7 +181,7 @@ static int cmp_keyed(const void *a, const void *b)
 }
 
 /* The input's faces minus degenerate ones and later copies of a vertex set
- * (the same rule as server/pm_clean.c, stated on positions here). */
+ * (the same rule as server/pm/pm_clean.c, stated on positions here). */
 static size_t input_faces(const pm_test_mesh *in, ptri *out)
 {
     keyed *k = malloc(sizeof *k * (in->nf + 1));

@@ -5,8 +5,8 @@
 
 #include <stdio.h>
 #include <string.h>
-#include "lumo_server/bake.h"
-#include "lumo_server/shapes.h"
+#include "bake/bake.h"
+#include "scene/shapes.h"
 
 typedef struct {
     lumo_scene       scene;

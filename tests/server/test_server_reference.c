@@ -13,9 +13,9 @@
 #include "test_common.h"
 #include <stdio.h>
 #include <stdlib.h>
-#include "lumo_server/bake.h"
-#include "lumo_server/reference.h"
-#include "lumo_server/shapes.h"
+#include "bake/bake.h"
+#include "bake/reference.h"
+#include "scene/shapes.h"
 
 #define K_SIGMA 5.0
 #define RHO 0.6

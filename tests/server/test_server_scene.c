@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include "bake_fixture.h"
 #include "lumo/package.h"
-#include "lumo_server/import.h"
-#include "lumo_server/ivg_encode.h"
-#include "lumo_server/package_write.h"
+#include "scene/import.h"
+#include "package/ivg_encode.h"
+#include "package/package_write.h"
 
 static void cornell(bake_fixture *f, int n, int spp, uint64_t seed, int threads)
 {

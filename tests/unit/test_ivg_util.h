@@ -1,7 +1,7 @@
 /*
  * test_ivg_util.h — helpers shared by the IVG unit tests (test_ivg*.c):
  * grids on a heap buffer, random irradiance fields in float, bundles built
- * with the server's writer (server/ivg_encode.c) as the server would.
+ * with the server's writer (server/package/ivg_encode.c) as the server would.
  */
 #ifndef LUMO_TEST_IVG_UTIL_H
 #define LUMO_TEST_IVG_UTIL_H
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include "test_common.h"
 #include "lumo/ivg.h"
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 
 #define Q16 65536.0
 #define Q14 16384.0

@@ -12,7 +12,7 @@
 #include "lumo/arena.h"
 #include "lumo/ivg.h"
 #include "lumo/raster.h"
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 #include "../../boards/host/mesh_build.h"
 
 #define W 128
