@@ -11,4 +11,4 @@ raster-tables:
 # builder (floats are fine in tests).
 $(BUILD)/tests/bin/test_raster: $(BUILD)/tests/boards/host/mesh_build.o
 $(BUILD)/tests/bin/test_raster_shading: $(BUILD)/tests/boards/host/mesh_build.o
-$(BUILD)/tests/bin/test_raster_ivg: $(BUILD)/tests/boards/host/mesh_build.o $(BUILD)/tests/server/ivg_encode.o
+$(BUILD)/tests/bin/test_raster_ivg: $(BUILD)/tests/boards/host/mesh_build.o $(BUILD)/tests/server/package/ivg_encode.o
