@@ -1,4 +1,4 @@
-/* bench_bake.c — `make bench-bake`: bake time and rays/s for 16^3 and 32^3
+/* bench/bench_bake.c — `make bench-bake`: bake time and rays/s for 16^3 and 32^3
  * grids on the default scene and the dragon at several spp with 1 and 2
  * threads, and the reference renderer's mean CIE Lab Delta E between spp
  * levels. Writes the markdown section on stdout (numbers, not pass/fail). */
@@ -138,7 +138,7 @@ int main(void)
     if (make_scene(&def, "default (Cornell + dragon 48k)", 0) || make_scene(&dragon, "dragon 203k alone", 1))
         return 1;
     printf("## IVG bake and reference renderer (lumo-bake)\n\n");
-    printf("Command: `make bench-bake` (runs `build/host/bench/lumo-bench-bake`, source server/bench_bake.c). "
+    printf("Command: `make bench-bake` (runs `build/host/bench/lumo-bench-bake`, source bench/bench_bake.c). "
            "Seed 1; grid over the scene bounds; Embree 3, paths with NEE + Russian roulette; "
            "rays = all rays cast (path segments + shadow rays). Speed-up = time(1 thread) / time(2 threads).\n\n");
     FILE *la = fopen("/proc/loadavg", "r");

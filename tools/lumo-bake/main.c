@@ -1,4 +1,4 @@
-/* bake_main.c — lumo-bake: scene in, .lumo package (or reference PNG) out.
+/* tools/lumo-bake/main.c — lumo-bake: scene in, .lumo package (or reference PNG) out.
  * Usage in docs/server.md; every failure is one line on stderr, exit 1. */
 #include <getopt.h>
 #include <stdio.h>

@@ -1,9 +1,9 @@
 /*
- * inspect.h — lumo-inspect's subcommands. Each lives in its own
- * server/inspect_*.c (linked automatically by server/server.mk) and
+ * inspect.h — lumo-inspect's subcommands. Each lives in its own .c file in
+ * tools/lumo-inspect/ (every one is linked by lumo-inspect.mk) and
  * registers itself with LUMO_INSPECT_COMMAND. lumo-inspect runs the first
  * registered command whose flag appears among its arguments, else the
- * summary. Example, in server/inspect_stream.c:
+ * summary. Example, in tools/lumo-inspect/stream.c:
  *
  *   static int run_stream(int argc, char **argv) { ... return 0; }
  *   LUMO_INSPECT_COMMAND(stream_cmd, "--stream", "--stream FILE.lumo  print the mesh stream", run_stream)

@@ -1,4 +1,4 @@
-/* inspect_ivg.c — `lumo-inspect --ivg [--quantized] FILE`: one line per grid
+/* tools/lumo-inspect/ivg.c — `lumo-inspect --ivg [--quantized] FILE`: one line per grid
  * vertex and hemisphere, "i j k axis valid dx dy dz r g b", from the
  * package's IVG decoded by the client (lumo_ivg_apply_bundle). valid is 0
  * for vertices the bake marked solid (their values print as zero). */
@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/ivg.h"
-#include "include/lumo_server/inspect.h"
+#include "inspect.h"
 
 static const char *k_axes[LUMO_IVG_AXES] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 

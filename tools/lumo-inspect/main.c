@@ -1,10 +1,10 @@
-/* inspect_main.c — lumo-inspect: dispatch to the registered subcommands
+/* tools/lumo-inspect/main.c — lumo-inspect: dispatch to the registered subcommands
  * (inspect.h), the package summary by default. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
-#include "include/lumo_server/inspect.h"
+#include "inspect.h"
 
 #define MAX_COMMANDS 16
 

@@ -1,4 +1,4 @@
-/* inspect_pm.c — lumo-inspect subcommands for the progressive-mesh stream
+/* tools/lumo-inspect/pm.c — lumo-inspect subcommands for the progressive-mesh stream
  * (docs/progressive-mesh.md), decoded by the real client (lumo/pmesh.h):
  *
  *   lumo-inspect --stream FILE           the header and every batch record
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
-#include "include/lumo_server/inspect.h"
+#include "inspect.h"
 #include "pm/pm_client.h"
 
 static int load(const char *path, uint8_t **data, size_t *len)

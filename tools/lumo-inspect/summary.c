@@ -1,8 +1,8 @@
-/* inspect_summary.c — `lumo-inspect FILE`: header, chunk table, scene info
+/* tools/lumo-inspect/summary.c — `lumo-inspect FILE`: header, chunk table, scene info
  * and IVG descriptor of a package, as decoded by the client reader. */
 #include <stdio.h>
 #include <stdlib.h>
-#include "include/lumo_server/inspect.h"
+#include "inspect.h"
 
 static double q16(int32_t v) { return (double)v / 65536.0; }
 

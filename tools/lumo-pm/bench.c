@@ -1,4 +1,4 @@
-/* pm_bench.c — `lumo-pm bench`: the progressive-mesh numbers of issue 5 as
+/* tools/lumo-pm/bench.c — `lumo-pm bench`: the progressive-mesh numbers of issue 5 as
  * a markdown section (bench/pm.mk writes build/bench/sections/60-pm.md).
  *
  *   lumo-pm bench --out FILE.md --cmd "COMMAND" [--fig5 MODEL] MODEL...

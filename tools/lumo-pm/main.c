@@ -1,11 +1,11 @@
-/* pm_tool.c — lumo-pm: build a progressive-mesh stream from a mesh file
- * (docs/progressive-mesh.md), and the pm benchmark driver (pm_bench.c).
+/* tools/lumo-pm/main.c — lumo-pm: build a progressive-mesh stream from a mesh file
+ * (docs/progressive-mesh.md), and the pm benchmark driver (bench.c).
  *
  *   lumo-pm build IN.ply -o OUT.lumo [--batch N] [--bits B] [--raw]
  *   lumo-pm clean IN.ply -o OUT.ply      the welded, cleaned input mesh
  *   lumo-pm apply STREAM [N]             apply the first N records with the
  *                                        client (for callgrind in the bench)
- *   lumo-pm bench ...                    see pm_bench.c
+ *   lumo-pm bench ...                    see bench.c
  */
 #include <stdio.h>
 #include <stdlib.h>
