@@ -17,25 +17,25 @@
 #define DRAGON48 "build/data/models/dragon_48k.ply"
 #define DRAGON203 "build/data/models/dragon_203k.ply"
 
-typedef struct { const char *name; lumo_scene s; lumo_rt *rt; lumo_tracer t; } bench_scene;
+typedef struct { const char *name; srv_scene s; srv_rt *rt; srv_tracer t; } bench_scene;
 
 static int make_scene(bench_scene *b, const char *name, int dragon_only)
 {
     char err[256];
-    lumo_xform x = lumo_xform_identity();
+    srv_xform x = srv_xform_identity();
     b->name = name;
-    lumo_scene_init(&b->s);
-    int rc = dragon_only ? lumo_import_file(&b->s, DRAGON203, &x, NULL, err, sizeof err)
-                         : lumo_default_scene(&b->s, DRAGON48, err, sizeof err);
+    srv_scene_init(&b->s);
+    int rc = dragon_only ? srv_import_file(&b->s, DRAGON203, &x, NULL, err, sizeof err)
+                         : srv_default_scene(&b->s, DRAGON48, err, sizeof err);
     if (!rc && dragon_only) {
-        lumo_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, 0.35f, 0.2f}, .power = {1, 1, 1}};
-        rc = lumo_scene_add_light(&b->s, &l);
+        srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, 0.35f, 0.2f}, .power = {1, 1, 1}};
+        rc = srv_scene_add_light(&b->s, &l);
     }
-    if (rc || lumo_scene_validate(&b->s, err, sizeof err) || !(b->rt = lumo_rt_create(&b->s, 2, err, sizeof err))) {
+    if (rc || srv_scene_validate(&b->s, err, sizeof err) || !(b->rt = srv_rt_create(&b->s, 2, err, sizeof err))) {
         fprintf(stderr, "bench-bake: %s: %s\n", name, err);
         return -1;
     }
-    lumo_tracer_init(&b->t, &b->s, b->rt);
+    srv_tracer_init(&b->t, &b->s, b->rt);
     return 0;
 }
 
@@ -50,19 +50,19 @@ static void bake_rows(bench_scene *b)
             double t1 = 0.0;
             for (int threads = 1; threads <= 2; threads++) {
                 int dims[3] = {grids[gi], grids[gi], grids[gi]};
-                lumo_grid g = lumo_grid_over(&b->s, dims);
-                lumo_bake_opts o = {spps[si], 1, threads, 0, 0.25f};
-                lumo_bake_result r;
-                if (lumo_bake(&b->t, &g, &o, &r, err, sizeof err))
+                srv_grid g = srv_grid_over(&b->s, dims);
+                srv_bake_opts o = {spps[si], 1, threads, 0, 0.25f};
+                srv_bake_result r;
+                if (srv_bake(&b->t, &g, &o, &r, err, sizeof err))
                     continue;
                 if (threads == 1)
                     t1 = r.seconds;
                 printf("| %s | %zu | %d³ | %d | %d | %.2f | %.2f | %.2f | %s |\n", b->name,
-                       lumo_scene_triangle_count(&b->s), grids[gi], spps[si], threads, r.seconds,
+                       srv_scene_triangle_count(&b->s), grids[gi], spps[si], threads, r.seconds,
                        (double)r.rays * 1e-6, (double)r.rays * 1e-6 / r.seconds,
                        threads == 1 ? "1.00" : (snprintf(err, sizeof err, "%.2f", t1 / r.seconds), err));
                 fflush(stdout);
-                lumo_bake_result_free(&r);
+                srv_bake_result_free(&r);
             }
         }
 }
@@ -73,42 +73,42 @@ static void ivg_error_rows(bench_scene *b)
 {
     static const int spps[] = {16, 64, 256, 1024};
     int dims[3] = {16, 16, 16};
-    lumo_grid g = lumo_grid_over(&b->s, dims);
-    lumo_bake_opts o = {4096, 2, 2, 0, 0.25f};
-    lumo_bake_result truth, r;
+    srv_grid g = srv_grid_over(&b->s, dims);
+    srv_bake_opts o = {4096, 2, 2, 0, 0.25f};
+    srv_bake_result truth, r;
     char err[256];
-    if (lumo_bake(&b->t, &g, &o, &truth, err, sizeof err))
+    if (srv_bake(&b->t, &g, &o, &truth, err, sizeof err))
         return;
     for (int i = 0; i < 4; i++) {
         o.spp = spps[i];
         o.seed = 1;
-        if (lumo_bake(&b->t, &g, &o, &r, err, sizeof err))
+        if (srv_bake(&b->t, &g, &o, &r, err, sizeof err))
             continue;
         double num = 0, den = 0;
         for (size_t v = 0; v < r.nverts; v++)
             for (int h = 0; v < r.nverts && r.valid[v] && truth.valid[v] && h < 6; h++)
                 for (int ch = 0; ch < 3; ch++) {
-                    size_t at = LUMO_BAKE_I(v, h, ch) + (size_t)(h / 2);
+                    size_t at = SRV_BAKE_I(v, h, ch) + (size_t)(h / 2);
                     num += fabs(r.I[at] - truth.I[at]);
                     den += fabs(truth.I[at]);
                 }
         printf("| %s | 16³ | %d | %.2f | %.2f %% |\n", b->name, spps[i], r.seconds, 100.0 * num / den);
         fflush(stdout);
-        lumo_bake_result_free(&r);
+        srv_bake_result_free(&r);
     }
-    lumo_bake_result_free(&truth);
+    srv_bake_result_free(&truth);
 }
 
 static uint8_t *render8(bench_scene *b, int w, int h, int spp, int indirect, double *secs)
 {
-    lumo_image img;
-    lumo_render_opts o = {spp, 99, 2, indirect, 0};
-    double t0 = lumo_now();
-    if (lumo_render_reference(&b->t, &b->s.camera, w, h, &o, &img, NULL))
+    srv_image img;
+    srv_render_opts o = {spp, 99, 2, indirect, 0};
+    double t0 = srv_now();
+    if (srv_render_reference(&b->t, &b->s.camera, w, h, &o, &img, NULL))
         return NULL;
-    *secs = lumo_now() - t0;
+    *secs = srv_now() - t0;
     uint8_t *px = lumo_tonemap_rgb8(img.rgb, (size_t)w * (size_t)h * 3, 1.0f);
-    lumo_image_free(&img);
+    srv_image_free(&img);
     return px;
 }
 
@@ -162,9 +162,9 @@ int main(void)
     printf("| image | spp | time (s) | mean ΔE vs 1024 spp |\n|---|---|---|---|\n");
     reference_rows(&def, 0);
     reference_rows(&def, 1);
-    lumo_rt_free(def.rt);
-    lumo_rt_free(dragon.rt);
-    lumo_scene_free(&def.s);
-    lumo_scene_free(&dragon.s);
+    srv_rt_free(def.rt);
+    srv_rt_free(dragon.rt);
+    srv_scene_free(&def.s);
+    srv_scene_free(&dragon.s);
     return 0;
 }

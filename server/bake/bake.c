@@ -11,20 +11,20 @@
 #define MAX_WORKERS 256
 
 typedef struct {
-    const lumo_tracer    *t;
-    const lumo_grid      *g;
-    const lumo_bake_opts *o;
-    lumo_bake_result     *res;
-    lumo_trace_stats      stats[MAX_WORKERS];
+    const srv_tracer     *t;
+    const srv_grid       *g;
+    const srv_bake_opts *o;
+    srv_bake_result      *res;
+    srv_trace_stats       stats[MAX_WORKERS];
 } bake_job;
 
-lumo_grid lumo_grid_over(const lumo_scene *s, const int dims[3])
+srv_grid srv_grid_over(const srv_scene *s, const int dims[3])
 {
-    lumo_grid g;
+    srv_grid g;
     memset(&g, 0, sizeof g);
     for (int a = 0; a < 3; a++)
         g.dims[a] = dims[a];
-    lumo_scene_bounds(s, &g.bmin, &g.bmax);
+    srv_scene_bounds(s, &g.bmin, &g.bmax);
     /* A flat scene (one floor quad) still needs a box with volume: the
      * client requires bmax > bmin on every axis. */
     float ext = v3_maxc(v3_sub(g.bmax, g.bmin)), pad = fmaxf(0.01f * ext, 1e-3f);
@@ -35,7 +35,7 @@ lumo_grid lumo_grid_over(const lumo_scene *s, const int dims[3])
     return g;
 }
 
-vec3 lumo_grid_vertex(const lumo_grid *g, int i, int j, int k)
+vec3 srv_grid_vertex(const srv_grid *g, int i, int j, int k)
 {
     vec3 e = v3_sub(g->bmax, g->bmin);
     return v3_add(g->bmin, v3(e.x * (float)i / (float)(g->dims[0] - 1),
@@ -54,10 +54,10 @@ static vec3 sphere_dir(float u1, float u2)
  * by a hair so that rays leave from the scene's side of the wall. */
 static vec3 vertex_position(const bake_job *j, size_t v)
 {
-    const lumo_grid *g = j->g;
+    const srv_grid *g = j->g;
     int i = (int)(v % (size_t)g->dims[0]), jj = (int)((v / (size_t)g->dims[0]) % (size_t)g->dims[1]);
     int k = (int)(v / ((size_t)g->dims[0] * (size_t)g->dims[1]));
-    vec3 p = lumo_grid_vertex(g, i, jj, k), in = v3_scale(v3(1, 1, 1), 4.0f * j->t->eps);
+    vec3 p = srv_grid_vertex(g, i, jj, k), in = v3_scale(v3(1, 1, 1), 4.0f * j->t->eps);
     return v3_max(v3_add(g->bmin, in), v3_min(v3_sub(g->bmax, in), p));
 }
 
@@ -66,19 +66,19 @@ static void bake_vertex(void *ctx, size_t v, int worker)
     bake_job *j = ctx;
     int spp = j->o->spp, side = (int)sqrtf((float)spp), back = 0;
     double sum[6][3][3], sq[6][3];
-    lumo_rng r;
+    srv_rng r;
     vec3 p = vertex_position(j, v);
     memset(sum, 0, sizeof sum);
     memset(sq, 0, sizeof sq);
-    lumo_rng_seed(&r, j->o->seed, v);
+    srv_rng_seed(&r, j->o->seed, v);
     for (int s = 0; s < spp; s++) {
         /* side*side jittered strata first; the remainder uniform. */
-        float u1 = lumo_rng_float(&r), u2 = lumo_rng_float(&r);
+        float u1 = srv_rng_float(&r), u2 = srv_rng_float(&r);
         if (s < side * side)
             u1 = ((float)(s % side) + u1) / (float)side, u2 = ((float)(s / side) + u2) / (float)side;
         vec3 w = sphere_dir(u1, u2);
         int b;
-        vec3 L = v3_scale(lumo_trace_indirect(j->t, p, w, &r, &j->stats[worker], &b), 4.0f * (float)M_PI);
+        vec3 L = v3_scale(srv_trace_indirect(j->t, p, w, &r, &j->stats[worker], &b), 4.0f * (float)M_PI);
         back += b;
         for (int a = 0; a < 3; a++) {
             float wa = v3_get(w, a);
@@ -91,7 +91,7 @@ static void bake_vertex(void *ctx, size_t v, int worker)
             }
         }
     }
-    lumo_bake_result *res = j->res;
+    srv_bake_result *res = j->res;
     res->valid[v] = (float)back <= j->o->solid_fraction * (float)spp;
     for (int h = 0; h < 6; h++)
         for (int ch = 0; ch < 3; ch++) {
@@ -99,7 +99,7 @@ static void bake_vertex(void *ctx, size_t v, int worker)
             double var = sq[h][ch] / spp - mean * mean;
             res->se[(v * 6 + (size_t)h) * 3 + (size_t)ch] = (float)sqrt(fmax(var, 0.0) / spp);
             for (int c = 0; c < 3; c++)
-                res->I[LUMO_BAKE_I(v, h, ch) + (size_t)c] =
+                res->I[SRV_BAKE_I(v, h, ch) + (size_t)c] =
                     res->valid[v] ? (float)(sum[h][ch][c] / spp) : 0.0f;
         }
 }
@@ -118,8 +118,8 @@ static int fits_in_memory(size_t nverts, char *err, size_t errlen)
     return 1;
 }
 
-int lumo_bake(const lumo_tracer *t, const lumo_grid *g, const lumo_bake_opts *o,
-              lumo_bake_result *res, char *err, size_t errlen)
+int srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
+             srv_bake_result *res, char *err, size_t errlen)
 {
     memset(res, 0, sizeof *res);
     res->grid = *g;
@@ -132,27 +132,27 @@ int lumo_bake(const lumo_tracer *t, const lumo_grid *g, const lumo_bake_opts *o,
     res->valid = calloc(res->nverts, 1);
     if (!j || !res->I || !res->se || !res->valid) {
         free(j);
-        lumo_bake_result_free(res);
+        srv_bake_result_free(res);
         snprintf(err, errlen, "out of memory for a %zu-vertex grid", res->nverts);
         return -1;
     }
     *j = (bake_job){.t = t, .g = g, .o = o, .res = res};
-    double t0 = lumo_now();
+    double t0 = srv_now();
     int threads = o->threads > MAX_WORKERS ? MAX_WORKERS : o->threads;
-    if (lumo_parallel_for(res->nverts, threads, bake_vertex, j, "bake", o->progress)) {
+    if (srv_parallel_for(res->nverts, threads, bake_vertex, j, "bake", o->progress)) {
         free(j);
-        lumo_bake_result_free(res);
+        srv_bake_result_free(res);
         snprintf(err, errlen, "cannot start worker threads");
         return -1;
     }
-    res->seconds = lumo_now() - t0;
+    res->seconds = srv_now() - t0;
     for (int w = 0; w < MAX_WORKERS; w++)
         res->rays += j->stats[w].rays;
     free(j);
     return 0;
 }
 
-void lumo_bake_result_free(lumo_bake_result *res)
+void srv_bake_result_free(srv_bake_result *res)
 {
     free(res->I);
     free(res->se);

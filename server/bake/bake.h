@@ -14,47 +14,47 @@
  * vertex index) and is computed by one thread, so the result is identical
  * for any thread count.
  */
-#ifndef LUMO_SERVER_BAKE_H
-#define LUMO_SERVER_BAKE_H
+#ifndef SRV_BAKE_H
+#define SRV_BAKE_H
 
 #include <stddef.h>
 #include <stdint.h>
 #include "bake/trace.h"
 
-typedef struct lumo_grid {
+typedef struct srv_grid {
     int  dims[3];          /* vertices per axis, each in [2, 256] */
     vec3 bmin, bmax;       /* scene units; vertex (i,j,k) at bmin + (bmax-bmin)*(i,j,k)/(dims-1) */
-} lumo_grid;
+} srv_grid;
 
-typedef struct lumo_bake_opts {
+typedef struct srv_bake_opts {
     int      spp;          /* paths per grid vertex (full sphere) */
     uint64_t seed;
     int      threads;      /* worker threads, >= 1 */
     int      progress;     /* draw a progress bar on stderr */
     float    solid_fraction; /* back-face share of first hits above which a vertex is solid */
-} lumo_bake_opts;
+} srv_bake_opts;
 
-/* Offset in lumo_bake_result.I of the 3-vector of vertex v (i + nx*(j + ny*k),
+/* Offset in srv_bake_result.I of the 3-vector of vertex v (i + nx*(j + ny*k),
  * the lumo/ivg.h order), hemisphere h (lumo_ivg_axis order), channel ch. */
-#define LUMO_BAKE_I(v, h, ch) ((((size_t)(v) * 6 + (h)) * 3 + (ch)) * 3)
+#define SRV_BAKE_I(v, h, ch) ((((size_t)(v) * 6 + (h)) * 3 + (ch)) * 3)
 
-typedef struct lumo_bake_result {
-    lumo_grid grid;
+typedef struct srv_bake_result {
+    srv_grid  grid;
     size_t    nverts;
     float    *I;       /* nverts x 6 hemispheres x 3 channels x 3 components (W/m^2) */
     float    *se;      /* nverts x 6 x 3: standard error of I.delta */
     uint8_t  *valid;   /* nverts: 0 when inside solid geometry */
     uint64_t  rays;
     double    seconds;
-} lumo_bake_result;
+} srv_bake_result;
 
 /* The grid over the scene bounds: dims given, box = bounds. */
-lumo_grid lumo_grid_over(const lumo_scene *s, const int dims[3]);
-vec3 lumo_grid_vertex(const lumo_grid *g, int i, int j, int k);
+srv_grid srv_grid_over(const srv_scene *s, const int dims[3]);
+vec3 srv_grid_vertex(const srv_grid *g, int i, int j, int k);
 
 /* Bake. Returns 0, or -1 on allocation/thread failure (err set). */
-int lumo_bake(const lumo_tracer *t, const lumo_grid *g, const lumo_bake_opts *o,
-              lumo_bake_result *res, char *err, size_t errlen);
-void lumo_bake_result_free(lumo_bake_result *res);
+int srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
+             srv_bake_result *res, char *err, size_t errlen);
+void srv_bake_result_free(srv_bake_result *res);
 
 #endif

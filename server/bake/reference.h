@@ -5,30 +5,30 @@
  * pixels and PNG files through the desktop library (tools/lib:
  * lumo_host/tonemap.h, lumo_host/png_io.h; docs/scene-format.md).
  */
-#ifndef LUMO_SERVER_REFERENCE_H
-#define LUMO_SERVER_REFERENCE_H
+#ifndef SRV_REFERENCE_H
+#define SRV_REFERENCE_H
 
 #include <stdint.h>
 #include "scene/camera.h"
 #include "bake/trace.h"
 
-typedef struct lumo_image {
+typedef struct srv_image {
     int    w, h;
     float *rgb;     /* w*h*3 linear radiance, rows from the top */
-} lumo_image;
+} srv_image;
 
-typedef struct lumo_render_opts {
+typedef struct srv_render_opts {
     int      spp;            /* paths per pixel */
     uint64_t seed;
     int      threads;
     int      indirect_only;
     int      progress;
-} lumo_render_opts;
+} srv_render_opts;
 
-/* Render into img (allocated here; free with lumo_image_free). rays gets
+/* Render into img (allocated here; free with srv_image_free). rays gets
  * the number of rays cast (may be NULL). 0 or -1. */
-int lumo_render_reference(const lumo_tracer *t, const lumo_camera *cam, int w, int h,
-                          const lumo_render_opts *o, lumo_image *img, uint64_t *rays);
-void lumo_image_free(lumo_image *img);
+int srv_render_reference(const srv_tracer *t, const srv_camera *cam, int w, int h,
+                         const srv_render_opts *o, srv_image *img, uint64_t *rays);
+void srv_image_free(srv_image *img);
 
 #endif

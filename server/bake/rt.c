@@ -8,18 +8,18 @@
 #include <string.h>
 #include "bake/rt.h"
 
-struct lumo_rt {
+struct srv_rt {
     RTCDevice   dev;
     RTCScene    scene;
-    const lumo_scene *s;
+    const srv_scene *s;
     vec3      **tri_n;      /* per mesh, per triangle unit normal */
     int        *emit_light; /* per mesh: area light index or -1 */
     float       eps;
 };
 
-static int attach_mesh(lumo_rt *rt, unsigned id)
+static int attach_mesh(srv_rt *rt, unsigned id)
 {
-    const lumo_mesh *m = &rt->s->meshes[id];
+    const srv_mesh *m = &rt->s->meshes[id];
     RTCGeometry g = rtcNewGeometry(rt->dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                         3 * sizeof(float), m->nverts);
@@ -45,26 +45,26 @@ static int attach_mesh(lumo_rt *rt, unsigned id)
 
 /* The area light whose rectangle a mesh is (emitters are added right after
  * their light, in order). */
-static void map_emitters(lumo_rt *rt)
+static void map_emitters(srv_rt *rt)
 {
     size_t next = 0;
     for (size_t i = 0; i < rt->s->nmeshes; i++) {
         rt->emit_light[i] = -1;
         if (!rt->s->meshes[i].emitter)
             continue;
-        while (next < rt->s->nlights && rt->s->lights[next].kind != LUMO_LIGHT_AREA)
+        while (next < rt->s->nlights && rt->s->lights[next].kind != SRV_LIGHT_AREA)
             next++;
         if (next < rt->s->nlights)
             rt->emit_light[i] = (int)next++;
     }
 }
 
-lumo_rt *lumo_rt_create(const lumo_scene *s, int threads, char *err, size_t errlen)
+srv_rt *srv_rt_create(const srv_scene *s, int threads, char *err, size_t errlen)
 {
     char cfg[64];
-    lumo_rt *rt = calloc(1, sizeof *rt);
+    srv_rt *rt = calloc(1, sizeof *rt);
     vec3 lo, hi;
-    if (!rt || !lumo_scene_bounds(s, &lo, &hi))
+    if (!rt || !srv_scene_bounds(s, &lo, &hi))
         goto fail;
     rt->s = s;
     rt->eps = 1e-5f * fmaxf(v3_len(v3_sub(hi, lo)), v3_maxc(v3_max(v3_max(lo, v3_scale(lo, -1)),
@@ -89,11 +89,11 @@ lumo_rt *lumo_rt_create(const lumo_scene *s, int threads, char *err, size_t errl
     return rt;
 fail:
     snprintf(err, errlen, "cannot build the ray-tracing scene (Embree error or out of memory)");
-    lumo_rt_free(rt);
+    srv_rt_free(rt);
     return NULL;
 }
 
-void lumo_rt_free(lumo_rt *rt)
+void srv_rt_free(srv_rt *rt)
 {
     if (!rt)
         return;
@@ -115,7 +115,7 @@ static void set_ray(struct RTCRay *r, vec3 o, vec3 d, float tnear, float tfar)
     r->time = 0.0f, r->mask = 0xFFFFFFFFu, r->id = 0, r->flags = 0;
 }
 
-int lumo_rt_intersect(const lumo_rt *rt, vec3 o, vec3 d, float tnear, float tfar, lumo_hit *hit)
+int srv_rt_intersect(const srv_rt *rt, vec3 o, vec3 d, float tnear, float tfar, srv_hit *hit)
 {
     struct RTCIntersectContext ctx;
     struct RTCRayHit rh;
@@ -126,7 +126,7 @@ int lumo_rt_intersect(const lumo_rt *rt, vec3 o, vec3 d, float tnear, float tfar
     rtcIntersect1(rt->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return 0;
-    const lumo_mesh *m = &rt->s->meshes[rh.hit.geomID];
+    const srv_mesh *m = &rt->s->meshes[rh.hit.geomID];
     const uint32_t *ix = &m->tris[3 * rh.hit.primID];
     float u = rh.hit.u, v = rh.hit.v;
     hit->t = rh.ray.tfar;
@@ -138,7 +138,7 @@ int lumo_rt_intersect(const lumo_rt *rt, vec3 o, vec3 d, float tnear, float tfar
     return 1;
 }
 
-int lumo_rt_occluded(const lumo_rt *rt, vec3 o, vec3 d, float tnear, float tfar)
+int srv_rt_occluded(const srv_rt *rt, vec3 o, vec3 d, float tnear, float tfar)
 {
     struct RTCIntersectContext ctx;
     struct RTCRay r;
@@ -148,7 +148,7 @@ int lumo_rt_occluded(const lumo_rt *rt, vec3 o, vec3 d, float tnear, float tfar)
     return r.tfar < 0.0f;
 }
 
-float lumo_rt_epsilon(const lumo_rt *rt)
+float srv_rt_epsilon(const srv_rt *rt)
 {
     return rt->eps;
 }

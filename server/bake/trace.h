@@ -3,39 +3,39 @@
  * renderer: diffuse surfaces, next-event estimation towards every light,
  * Russian roulette (seed 000 §3.1: the IVG holds indirect light only).
  */
-#ifndef LUMO_SERVER_TRACE_H
-#define LUMO_SERVER_TRACE_H
+#ifndef SRV_TRACE_H
+#define SRV_TRACE_H
 
 #include <stdint.h>
 #include "common/rng.h"
 #include "bake/rt.h"
 
-typedef struct lumo_tracer {
-    const lumo_scene *s;
-    const lumo_rt    *rt;
+typedef struct srv_tracer {
+    const srv_scene *s;
+    const srv_rt     *rt;
     float             eps;
-} lumo_tracer;
+} srv_tracer;
 
 /* Per-thread counter of rays cast (for rays/s), one cache line each so
  * that workers counting side by side do not share a line. */
-typedef struct { uint64_t rays; uint8_t pad[56]; } lumo_trace_stats;
+typedef struct { uint64_t rays; uint8_t pad[56]; } srv_trace_stats;
 
-void lumo_tracer_init(lumo_tracer *t, const lumo_scene *s, const lumo_rt *rt);
+void srv_tracer_init(srv_tracer *t, const srv_scene *s, const srv_rt *rt);
 
 /* Indirect radiance arriving at p from direction d (unit): radiance that
  * bounced at least once (light sources seen directly count zero). Also
  * reports whether the first hit was a back face (*back, may be NULL). */
-vec3 lumo_trace_indirect(const lumo_tracer *t, vec3 p, vec3 d, lumo_rng *r, lumo_trace_stats *st,
-                         int *back);
+vec3 srv_trace_indirect(const srv_tracer *t, vec3 p, vec3 d, srv_rng *r, srv_trace_stats *st,
+                        int *back);
 
 /* Radiance seen along a camera ray: emitters + direct + indirect, or only
  * the indirect part reflected by the first surface (indirect_only), which
  * is what the client's IVG term reproduces. */
-vec3 lumo_trace_camera(const lumo_tracer *t, vec3 eye, vec3 d, int indirect_only, lumo_rng *r,
-                       lumo_trace_stats *st);
+vec3 srv_trace_camera(const srv_tracer *t, vec3 eye, vec3 d, int indirect_only, srv_rng *r,
+                      srv_trace_stats *st);
 
 /* Direct irradiance (W/m^2 per channel) at x with unit normal n from every
  * light, with shadow rays (one sample per area light). */
-vec3 lumo_direct_irradiance(const lumo_tracer *t, vec3 x, vec3 n, lumo_rng *r, lumo_trace_stats *st);
+vec3 srv_direct_irradiance(const srv_tracer *t, vec3 x, vec3 n, srv_rng *r, srv_trace_stats *st);
 
 #endif

@@ -11,7 +11,7 @@
 typedef struct {
     size_t        n;
     atomic_size_t next, done;
-    lumo_item_fn  fn;
+    srv_item_fn   fn;
     void         *ctx;
 } pool;
 
@@ -31,18 +31,18 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
-int lumo_parallel_for(size_t n, int threads, lumo_item_fn fn, void *ctx, const char *label,
-                      int progress)
+int srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const char *label,
+                     int progress)
 {
     pthread_t tid[MAX_THREADS];
     worker_arg args[MAX_THREADS];
     pool p = {.n = n, .fn = fn, .ctx = ctx};
-    lumo_progress bar;
+    srv_progress bar;
     int started = 0, rc = 0;
     atomic_init(&p.next, 0);
     atomic_init(&p.done, 0);
     threads = threads < 1 ? 1 : threads > MAX_THREADS ? MAX_THREADS : threads;
-    lumo_progress_begin(&bar, label, n, progress);
+    srv_progress_begin(&bar, label, n, progress);
     for (; started < threads; started++) {
         args[started] = (worker_arg){&p, started};
         if (pthread_create(&tid[started], NULL, worker_main, &args[started])) {
@@ -52,12 +52,12 @@ int lumo_parallel_for(size_t n, int threads, lumo_item_fn fn, void *ctx, const c
     }
     while (started > 0 && atomic_load(&p.done) < n && bar.enabled) {
         struct timespec ts = {0, 200 * 1000 * 1000};
-        lumo_progress_update(&bar, atomic_load(&p.done));
+        srv_progress_update(&bar, atomic_load(&p.done));
         nanosleep(&ts, NULL);
     }
     for (int i = 0; i < started; i++)
         pthread_join(tid[i], NULL);
-    lumo_progress_end(&bar);
+    srv_progress_end(&bar);
     /* If no thread started, nothing ran: report; partial starts still finish. */
     return started == 0 ? -1 : (rc && atomic_load(&p.done) < n ? -1 : 0);
 }

@@ -2,15 +2,15 @@
  * pthreads pulling items from a shared counter; the calling thread draws
  * the progress bar. Results must be written per item so that the output
  * does not depend on which worker ran what. */
-#ifndef LUMO_SERVER_PARALLEL_H
-#define LUMO_SERVER_PARALLEL_H
+#ifndef SRV_PARALLEL_H
+#define SRV_PARALLEL_H
 
 #include <stddef.h>
 
-typedef void (*lumo_item_fn)(void *ctx, size_t item, int worker);
+typedef void (*srv_item_fn)(void *ctx, size_t item, int worker);
 
 /* 0, or -1 when threads could not be started. */
-int lumo_parallel_for(size_t n, int threads, lumo_item_fn fn, void *ctx, const char *label,
-                      int progress);
+int srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const char *label,
+                     int progress);
 
 #endif

@@ -6,26 +6,26 @@
 
 #define BAR_WIDTH 40
 
-double lumo_now(void)
+double srv_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void lumo_progress_begin(lumo_progress *p, const char *label, size_t total, int want)
+void srv_progress_begin(srv_progress *p, const char *label, size_t total, int want)
 {
     p->label = label;
     p->total = total ? total : 1;
-    p->start = lumo_now();
+    p->start = srv_now();
     p->enabled = want && isatty(STDERR_FILENO);
 }
 
-void lumo_progress_update(lumo_progress *p, size_t done)
+void srv_progress_update(srv_progress *p, size_t done)
 {
     if (!p->enabled)
         return;
-    double f = (double)done / (double)p->total, el = lumo_now() - p->start;
+    double f = (double)done / (double)p->total, el = srv_now() - p->start;
     double eta = done ? el * (1.0 / f - 1.0) : 0.0;
     int fill = (int)(f * BAR_WIDTH);
     char bar[BAR_WIDTH + 1];
@@ -36,7 +36,7 @@ void lumo_progress_update(lumo_progress *p, size_t done)
     fflush(stderr);
 }
 
-void lumo_progress_end(lumo_progress *p)
+void srv_progress_end(srv_progress *p)
 {
     if (p->enabled)
         fprintf(stderr, "\r%*s\r", BAR_WIDTH + 40, "");

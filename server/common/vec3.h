@@ -1,6 +1,6 @@
 /* vec3.h — the small float vector kit the server's geometry and tracer share. */
-#ifndef LUMO_SERVER_VEC3_H
-#define LUMO_SERVER_VEC3_H
+#ifndef SRV_VEC3_H
+#define SRV_VEC3_H
 
 #include <math.h>
 

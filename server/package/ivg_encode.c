@@ -10,10 +10,10 @@ static float clamp_colour(float v)
 {
     if (!(v > 0.0f))                 /* negative, zero and NaN */
         return 0.0f;
-    return v > LUMO_IVG_C_MAX ? LUMO_IVG_C_MAX : v;
+    return v > SRV_IVG_C_MAX ? SRV_IVG_C_MAX : v;
 }
 
-void lumo_ivg_compress(const float I[3][3], lumo_ivg_axis axis, lumo_ivg_fentry *out)
+void srv_ivg_compress(const float I[3][3], lumo_ivg_axis axis, srv_ivg_fentry *out)
 {
     int a = (int)axis / 2, k;
     float sign = ((int)axis & 1) ? -1.0f : 1.0f;
@@ -34,7 +34,7 @@ void lumo_ivg_compress(const float I[3][3], lumo_ivg_axis axis, lumo_ivg_fentry 
         out->c[k] = clamp_colour((float)(sign * I[k][a] / ddot));
 }
 
-void lumo_ivg_quantize_d(const float d[3], int8_t q[3])
+void srv_ivg_quantize_d(const float d[3], int8_t q[3])
 {
     int k;
 
@@ -45,7 +45,7 @@ void lumo_ivg_quantize_d(const float d[3], int8_t q[3])
 }
 
 /* GL_EXT_texture_shared_exponent, "RGB9E5": N = 9 mantissa bits, bias 15. */
-uint32_t lumo_ivg_rgb9e5_pack(const float c[3])
+uint32_t srv_ivg_rgb9e5_pack(const float c[3])
 {
     float v[3], maxc;
     int k, e, exp_shared;
@@ -68,7 +68,7 @@ uint32_t lumo_ivg_rgb9e5_pack(const float c[3])
     return packed | (uint32_t)exp_shared << 27;
 }
 
-void lumo_ivg_rgb9e5_unpack(uint32_t packed, float c[3])
+void srv_ivg_rgb9e5_unpack(uint32_t packed, float c[3])
 {
     int k, e = (int)(packed >> 27);
 
@@ -76,18 +76,18 @@ void lumo_ivg_rgb9e5_unpack(uint32_t packed, float c[3])
         c[k] = (float)ldexp((double)((packed >> (9 * k)) & 0x1FFu), e - 24);
 }
 
-void lumo_ivg_dequantize(const lumo_ivg_fentry *in, lumo_ivg_fentry *out)
+void srv_ivg_dequantize(const srv_ivg_fentry *in, srv_ivg_fentry *out)
 {
     int8_t q[3];
     int k;
 
-    lumo_ivg_quantize_d(in->d, q);
-    lumo_ivg_rgb9e5_unpack(lumo_ivg_rgb9e5_pack(in->c), out->c);
+    srv_ivg_quantize_d(in->d, q);
+    srv_ivg_rgb9e5_unpack(srv_ivg_rgb9e5_pack(in->c), out->c);
     for (k = 0; k < 3; k++)
         out->d[k] = q[k] / 127.0f;
 }
 
-size_t lumo_ivg_bundle_bytes(lumo_ivg_form form, uint32_t data, uint32_t solid)
+size_t srv_ivg_bundle_bytes(lumo_ivg_form form, uint32_t data, uint32_t solid)
 {
     size_t rec = form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_RECORD : LUMO_IVG_QUANT_RECORD;
     return LUMO_IVG_BUNDLE_HEADER + (size_t)data * rec + (size_t)solid * 4u;
@@ -112,8 +112,8 @@ static void put_f32(uint8_t *p, float f)
     put_u32(p, u);
 }
 
-lumo_status lumo_ivg_writer_begin(lumo_ivg_writer *w, uint8_t *buf, size_t cap,
-                                  lumo_ivg_form form, const uint16_t dims[3])
+lumo_status srv_ivg_writer_begin(srv_ivg_writer *w, uint8_t *buf, size_t cap,
+                                 lumo_ivg_form form, const uint16_t dims[3])
 {
     static const uint8_t magic[4] = {0x49, 0x56, 0x47, 0x42};
     int a;
@@ -137,7 +137,7 @@ lumo_status lumo_ivg_writer_begin(lumo_ivg_writer *w, uint8_t *buf, size_t cap,
 }
 
 /* Room for `bytes` more and a valid index, or the writer's error. */
-static lumo_status reserve(lumo_ivg_writer *w, uint32_t vertex, size_t bytes)
+static lumo_status reserve(srv_ivg_writer *w, uint32_t vertex, size_t bytes)
 {
     if (w->error)
         return w->error;
@@ -148,16 +148,16 @@ static lumo_status reserve(lumo_ivg_writer *w, uint32_t vertex, size_t bytes)
     return LUMO_OK;
 }
 
-static void put_entry(uint8_t *p, lumo_ivg_form form, const lumo_ivg_fentry *e)
+static void put_entry(uint8_t *p, lumo_ivg_form form, const srv_ivg_fentry *e)
 {
     int k;
 
     if (form == LUMO_IVG_FORM_QUANTIZED) {
         int8_t q[3];
-        lumo_ivg_quantize_d(e->d, q);
+        srv_ivg_quantize_d(e->d, q);
         for (k = 0; k < 3; k++)
             p[k] = (uint8_t)q[k];
-        put_u32(p + 3, lumo_ivg_rgb9e5_pack(e->c));
+        put_u32(p + 3, srv_ivg_rgb9e5_pack(e->c));
         return;
     }
     for (k = 0; k < 3; k++) {
@@ -166,7 +166,7 @@ static void put_entry(uint8_t *p, lumo_ivg_form form, const lumo_ivg_fentry *e)
     }
 }
 
-lumo_status lumo_ivg_writer_add(lumo_ivg_writer *w, uint32_t vertex, const lumo_ivg_fentry e[LUMO_IVG_AXES])
+lumo_status srv_ivg_writer_add(srv_ivg_writer *w, uint32_t vertex, const srv_ivg_fentry e[LUMO_IVG_AXES])
 {
     size_t entry = w->form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_ENTRY : LUMO_IVG_QUANT_ENTRY;
     lumo_status st = reserve(w, vertex, 4u + LUMO_IVG_AXES * entry);
@@ -182,7 +182,7 @@ lumo_status lumo_ivg_writer_add(lumo_ivg_writer *w, uint32_t vertex, const lumo_
     return LUMO_OK;
 }
 
-lumo_status lumo_ivg_writer_add_solid(lumo_ivg_writer *w, uint32_t vertex)
+lumo_status srv_ivg_writer_add_solid(srv_ivg_writer *w, uint32_t vertex)
 {
     lumo_status st = reserve(w, vertex, 4u);
 
@@ -194,7 +194,7 @@ lumo_status lumo_ivg_writer_add_solid(lumo_ivg_writer *w, uint32_t vertex)
     return LUMO_OK;
 }
 
-size_t lumo_ivg_writer_finish(lumo_ivg_writer *w)
+size_t srv_ivg_writer_finish(srv_ivg_writer *w)
 {
     if (w->error)
         return 0;

@@ -7,43 +7,43 @@
 #include "package/ivg_encode.h"
 #include "package/package_write.h"
 
-static void put_light(lumo_buf *b, const lumo_light *l)
+static void put_light(srv_buf *b, const srv_light *l)
 {
-    lumo_buf_u32(b, (uint32_t)l->kind);
-    lumo_buf_vec3(b, l->pos);
-    lumo_buf_vec3(b, l->dir);
-    lumo_buf_vec3(b, l->u);
-    lumo_buf_vec3(b, l->v);
-    lumo_buf_f32(b, l->half_angle_deg);
-    lumo_buf_f32(b, l->kind == LUMO_LIGHT_SPOT ? l->cos_half : -1.0f);
-    lumo_buf_vec3(b, l->power);
+    srv_buf_u32(b, (uint32_t)l->kind);
+    srv_buf_vec3(b, l->pos);
+    srv_buf_vec3(b, l->dir);
+    srv_buf_vec3(b, l->u);
+    srv_buf_vec3(b, l->v);
+    srv_buf_f32(b, l->half_angle_deg);
+    srv_buf_f32(b, l->kind == SRV_LIGHT_SPOT ? l->cos_half : -1.0f);
+    srv_buf_vec3(b, l->power);
 }
 
-static int pack_info(lumo_pkg_writer *w, const lumo_scene *s)
+static int pack_info(srv_pkg_writer *w, const srv_scene *s)
 {
-    lumo_buf b = {0};
+    srv_buf b = {0};
     vec3 lo = v3(0, 0, 0), hi = v3(0, 0, 0);
-    lumo_scene_bounds(s, &lo, &hi);
-    lumo_buf_u32(&b, (uint32_t)s->nmeshes);
-    lumo_buf_u32(&b, (uint32_t)s->nlights);
-    lumo_buf_u32(&b, (uint32_t)lumo_scene_triangle_count(s));
-    lumo_buf_u32(&b, 0);
-    lumo_buf_vec3(&b, lo);
-    lumo_buf_vec3(&b, hi);
-    lumo_buf_vec3(&b, s->camera.eye);
-    lumo_buf_vec3(&b, s->camera.target);
-    lumo_buf_vec3(&b, s->camera.up);
-    lumo_buf_f32(&b, s->camera.fovy_deg);
+    srv_scene_bounds(s, &lo, &hi);
+    srv_buf_u32(&b, (uint32_t)s->nmeshes);
+    srv_buf_u32(&b, (uint32_t)s->nlights);
+    srv_buf_u32(&b, (uint32_t)srv_scene_triangle_count(s));
+    srv_buf_u32(&b, 0);
+    srv_buf_vec3(&b, lo);
+    srv_buf_vec3(&b, hi);
+    srv_buf_vec3(&b, s->camera.eye);
+    srv_buf_vec3(&b, s->camera.target);
+    srv_buf_vec3(&b, s->camera.up);
+    srv_buf_f32(&b, s->camera.fovy_deg);
     for (size_t i = 0; i < s->nlights; i++)
         put_light(&b, &s->lights[i]);
-    int rc = b.failed || s->nlights > LUMO_PKG_MAX_LIGHTS ? -1 : lumo_pkgw_add(w, LUMO_PKG_INFO, b.p, b.len);
-    lumo_buf_free(&b);
+    int rc = b.failed || s->nlights > LUMO_PKG_MAX_LIGHTS ? -1 : srv_pkgw_add(w, LUMO_PKG_INFO, b.p, b.len);
+    srv_buf_free(&b);
     return rc;
 }
 
 /* Area-weighted vertex normals of the wound faces: what a client shades
  * with (the path tracer itself uses face normals). */
-static vec3 *vertex_normals(const lumo_mesh *m)
+static vec3 *vertex_normals(const srv_mesh *m)
 {
     vec3 *n = calloc(m->nverts ? m->nverts : 1, sizeof *n);
     if (!n)
@@ -60,30 +60,30 @@ static vec3 *vertex_normals(const lumo_mesh *m)
     return n;
 }
 
-static int pack_mesh(lumo_pkg_writer *w, const lumo_mesh *m)
+static int pack_mesh(srv_pkg_writer *w, const srv_mesh *m)
 {
-    lumo_buf b = {0};
+    srv_buf b = {0};
     vec3 *n = vertex_normals(m);
     if (!n)
         return -1;
-    lumo_buf_u32(&b, m->emitter ? LUMO_PKG_MESH_EMITTER : 0);
-    lumo_buf_u32(&b, m->nverts);
-    lumo_buf_u32(&b, m->ntris);
-    lumo_buf_u32(&b, 0);
+    srv_buf_u32(&b, m->emitter ? LUMO_PKG_MESH_EMITTER : 0);
+    srv_buf_u32(&b, m->nverts);
+    srv_buf_u32(&b, m->ntris);
+    srv_buf_u32(&b, 0);
     for (uint32_t v = 0; v < m->nverts; v++) {
-        lumo_buf_vec3(&b, m->pos[v]);
-        lumo_buf_vec3(&b, n[v]);
-        lumo_buf_vec3(&b, m->albedo[v]);
+        srv_buf_vec3(&b, m->pos[v]);
+        srv_buf_vec3(&b, n[v]);
+        srv_buf_vec3(&b, m->albedo[v]);
     }
     for (uint32_t i = 0; i < 3u * m->ntris; i++)
-        lumo_buf_u32(&b, m->tris[i]);
+        srv_buf_u32(&b, m->tris[i]);
     free(n);
-    int rc = b.failed ? -1 : lumo_pkgw_add(w, LUMO_PKG_MESH, b.p, b.len);
-    lumo_buf_free(&b);
+    int rc = b.failed ? -1 : srv_pkgw_add(w, LUMO_PKG_MESH, b.p, b.len);
+    srv_buf_free(&b);
     return rc;
 }
 
-int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s, int raw_meshes)
+int srv_pack_scene(srv_pkg_writer *w, const srv_scene *s, int raw_meshes)
 {
     if (pack_info(w, s))
         return -1;
@@ -93,62 +93,62 @@ int lumo_pack_scene(lumo_pkg_writer *w, const lumo_scene *s, int raw_meshes)
     return 0;
 }
 
-int lumo_pack_ivg_desc(lumo_pkg_writer *w, const lumo_bake_result *r, uint32_t spp, uint64_t seed);
-int lumo_pack_ivg_desc(lumo_pkg_writer *w, const lumo_bake_result *r, uint32_t spp, uint64_t seed)
+int srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed);
+int srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed)
 {
-    lumo_buf b = {0};
+    srv_buf b = {0};
     uint32_t valid = 0;
     for (size_t v = 0; v < r->nverts; v++)
         valid += r->valid[v];
     for (int a = 0; a < 3; a++)
-        lumo_buf_u16(&b, (uint32_t)r->grid.dims[a]);
-    lumo_buf_u16(&b, 0);
-    lumo_buf_vec3(&b, r->grid.bmin);
-    lumo_buf_vec3(&b, r->grid.bmax);
-    lumo_buf_u32(&b, spp);
-    lumo_buf_u32(&b, (uint32_t)seed);
-    lumo_buf_u32(&b, (uint32_t)(seed >> 32));
-    lumo_buf_u32(&b, valid);
-    int rc = b.failed ? -1 : lumo_pkgw_add(w, LUMO_PKG_IVGD, b.p, b.len);
-    lumo_buf_free(&b);
+        srv_buf_u16(&b, (uint32_t)r->grid.dims[a]);
+    srv_buf_u16(&b, 0);
+    srv_buf_vec3(&b, r->grid.bmin);
+    srv_buf_vec3(&b, r->grid.bmax);
+    srv_buf_u32(&b, spp);
+    srv_buf_u32(&b, (uint32_t)seed);
+    srv_buf_u32(&b, (uint32_t)(seed >> 32));
+    srv_buf_u32(&b, valid);
+    int rc = b.failed ? -1 : srv_pkgw_add(w, LUMO_PKG_IVGD, b.p, b.len);
+    srv_buf_free(&b);
     return rc;
 }
 
 /* One bundle of every grid vertex in the given wire form (solid vertices as
  * solid records), through the IVG encoder (seed 000 §3.3). */
-static int pack_bundle(lumo_pkg_writer *w, const lumo_bake_result *r, lumo_ivg_form form, uint32_t type)
+static int pack_bundle(srv_pkg_writer *w, const srv_bake_result *r, lumo_ivg_form form, uint32_t type)
 {
     uint32_t solid = 0;
     for (size_t v = 0; v < r->nverts; v++)
         solid += !r->valid[v];
-    size_t cap = lumo_ivg_bundle_bytes(form, (uint32_t)r->nverts - solid, solid);
+    size_t cap = srv_ivg_bundle_bytes(form, (uint32_t)r->nverts - solid, solid);
     uint8_t *buf = malloc(cap);
     uint16_t dims[3] = {(uint16_t)r->grid.dims[0], (uint16_t)r->grid.dims[1], (uint16_t)r->grid.dims[2]};
-    lumo_ivg_writer iw;
-    if (!buf || lumo_ivg_writer_begin(&iw, buf, cap, form, dims)) {
+    srv_ivg_writer iw;
+    if (!buf || srv_ivg_writer_begin(&iw, buf, cap, form, dims)) {
         free(buf);
         return -1;
     }
     for (size_t v = 0; v < r->nverts; v++) {
-        lumo_ivg_fentry e[LUMO_IVG_AXES];
+        srv_ivg_fentry e[LUMO_IVG_AXES];
         if (!r->valid[v]) {
-            lumo_ivg_writer_add_solid(&iw, (uint32_t)v);
+            srv_ivg_writer_add_solid(&iw, (uint32_t)v);
             continue;
         }
         for (int h = 0; h < LUMO_IVG_AXES; h++)
-            lumo_ivg_compress((const float(*)[3]) & r->I[LUMO_BAKE_I(v, h, 0)], (lumo_ivg_axis)h, &e[h]);
-        lumo_ivg_writer_add(&iw, (uint32_t)v, e);
+            srv_ivg_compress((const float(*)[3]) & r->I[SRV_BAKE_I(v, h, 0)], (lumo_ivg_axis)h, &e[h]);
+        srv_ivg_writer_add(&iw, (uint32_t)v, e);
     }
-    size_t len = lumo_ivg_writer_finish(&iw);
-    int rc = len ? lumo_pkgw_add(w, type, buf, len) : -1;
+    size_t len = srv_ivg_writer_finish(&iw);
+    int rc = len ? srv_pkgw_add(w, type, buf, len) : -1;
     free(buf);
     return rc;
 }
 
-int lumo_pack_ivg(lumo_pkg_writer *w, const lumo_bake_result *r, uint32_t spp, uint64_t seed,
-                  char *err, size_t errlen)
+int srv_pack_ivg(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed,
+                 char *err, size_t errlen)
 {
-    if (lumo_pack_ivg_desc(w, r, spp, seed) ||
+    if (srv_pack_ivg_desc(w, r, spp, seed) ||
         pack_bundle(w, r, LUMO_IVG_FORM_QUANTIZED, LUMO_PKG_IVGQ) ||
         pack_bundle(w, r, LUMO_IVG_FORM_FLOAT, LUMO_PKG_IVGF)) {
         snprintf(err, errlen, "cannot encode the IVG (out of memory)");

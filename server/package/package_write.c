@@ -7,7 +7,7 @@
 #include "lumo/package.h"
 #include "package/package_write.h"
 
-void lumo_buf_put(lumo_buf *b, const void *data, size_t n)
+void srv_buf_put(srv_buf *b, const void *data, size_t n)
 {
     if (b->failed)
         return;
@@ -28,52 +28,52 @@ void lumo_buf_put(lumo_buf *b, const void *data, size_t n)
     b->len += n;
 }
 
-void lumo_buf_u16(lumo_buf *b, uint32_t v)
+void srv_buf_u16(srv_buf *b, uint32_t v)
 {
     uint8_t x[2] = {(uint8_t)v, (uint8_t)(v >> 8)};
-    lumo_buf_put(b, x, 2);
+    srv_buf_put(b, x, 2);
 }
 
-void lumo_buf_u32(lumo_buf *b, uint32_t v)
+void srv_buf_u32(srv_buf *b, uint32_t v)
 {
     uint8_t x[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
-    lumo_buf_put(b, x, 4);
+    srv_buf_put(b, x, 4);
 }
 
-void lumo_buf_f32(lumo_buf *b, float v)
+void srv_buf_f32(srv_buf *b, float v)
 {
     uint32_t u;
     memcpy(&u, &v, 4);
-    lumo_buf_u32(b, u);
+    srv_buf_u32(b, u);
 }
 
-void lumo_buf_vec3(lumo_buf *b, vec3 v)
+void srv_buf_vec3(srv_buf *b, vec3 v)
 {
-    lumo_buf_f32(b, v.x);
-    lumo_buf_f32(b, v.y);
-    lumo_buf_f32(b, v.z);
+    srv_buf_f32(b, v.x);
+    srv_buf_f32(b, v.y);
+    srv_buf_f32(b, v.z);
 }
 
-void lumo_buf_free(lumo_buf *b)
+void srv_buf_free(srv_buf *b)
 {
     free(b->p);
     memset(b, 0, sizeof *b);
 }
 
-void lumo_pkgw_init(lumo_pkg_writer *w)
+void srv_pkgw_init(srv_pkg_writer *w)
 {
     memset(w, 0, sizeof *w);
 }
 
-void lumo_pkgw_free(lumo_pkg_writer *w)
+void srv_pkgw_free(srv_pkg_writer *w)
 {
     for (size_t i = 0; i < w->n; i++)
-        lumo_buf_free(&w->chunks[i].data);
+        srv_buf_free(&w->chunks[i].data);
     free(w->chunks);
     memset(w, 0, sizeof *w);
 }
 
-int lumo_pkgw_add(lumo_pkg_writer *w, uint32_t type, const void *data, size_t len)
+int srv_pkgw_add(srv_pkg_writer *w, uint32_t type, const void *data, size_t len)
 {
     if (w->n == LUMO_PKG_MAX_CHUNKS || len > UINT32_MAX / 2)
         return -1;
@@ -87,7 +87,7 @@ int lumo_pkgw_add(lumo_pkg_writer *w, uint32_t type, const void *data, size_t le
     }
     memset(&w->chunks[w->n], 0, sizeof w->chunks[w->n]);
     w->chunks[w->n].type = type;
-    lumo_buf_put(&w->chunks[w->n].data, data, len);
+    srv_buf_put(&w->chunks[w->n].data, data, len);
     if (w->chunks[w->n].data.failed)
         return -1;
     w->n++;
@@ -96,39 +96,39 @@ int lumo_pkgw_add(lumo_pkg_writer *w, uint32_t type, const void *data, size_t le
 
 static const uint8_t k_zero[4];
 
-int lumo_pkgw_serialize(const lumo_pkg_writer *w, uint8_t **out, size_t *len)
+int srv_pkgw_serialize(const srv_pkg_writer *w, uint8_t **out, size_t *len)
 {
-    lumo_buf table = {0}, file = {0};
+    srv_buf table = {0}, file = {0};
     size_t pos = LUMO_PKG_HEADER_SIZE + w->n * LUMO_PKG_ENTRY_SIZE;
     for (size_t i = 0; i < w->n; i++) {
-        const lumo_buf *d = &w->chunks[i].data;
+        const srv_buf *d = &w->chunks[i].data;
         pos = (pos + 3u) & ~(size_t)3u;          /* chunks start 4-byte aligned */
-        lumo_buf_u32(&table, w->chunks[i].type);
-        lumo_buf_u32(&table, (uint32_t)pos);
-        lumo_buf_u32(&table, (uint32_t)d->len);
-        lumo_buf_u32(&table, lumo_package_crc32(0, d->p, d->len));
+        srv_buf_u32(&table, w->chunks[i].type);
+        srv_buf_u32(&table, (uint32_t)pos);
+        srv_buf_u32(&table, (uint32_t)d->len);
+        srv_buf_u32(&table, lumo_package_crc32(0, d->p, d->len));
         pos += d->len;
     }
     if (pos > UINT32_MAX) {
-        lumo_buf_free(&table);
+        srv_buf_free(&table);
         return -1;
     }
-    lumo_buf_put(&file, "LUMO", 4);
-    lumo_buf_u16(&file, LUMO_PKG_VERSION_MAJOR);
-    lumo_buf_u16(&file, LUMO_PKG_VERSION_MINOR);
-    lumo_buf_u32(&file, (uint32_t)w->n);
-    lumo_buf_u32(&file, 0);                        /* flags */
-    lumo_buf_u32(&file, lumo_package_crc32(0, table.p, table.len));
-    lumo_buf_u32(&file, file.failed ? 0 : lumo_package_crc32(0, file.p, 20));
-    lumo_buf_put(&file, table.p, table.len);
+    srv_buf_put(&file, "LUMO", 4);
+    srv_buf_u16(&file, LUMO_PKG_VERSION_MAJOR);
+    srv_buf_u16(&file, LUMO_PKG_VERSION_MINOR);
+    srv_buf_u32(&file, (uint32_t)w->n);
+    srv_buf_u32(&file, 0);                         /* flags */
+    srv_buf_u32(&file, lumo_package_crc32(0, table.p, table.len));
+    srv_buf_u32(&file, file.failed ? 0 : lumo_package_crc32(0, file.p, 20));
+    srv_buf_put(&file, table.p, table.len);
     for (size_t i = 0; i < w->n; i++) {
-        lumo_buf_put(&file, k_zero, (4u - (file.len & 3u)) & 3u);
-        lumo_buf_put(&file, w->chunks[i].data.p, w->chunks[i].data.len);
+        srv_buf_put(&file, k_zero, (4u - (file.len & 3u)) & 3u);
+        srv_buf_put(&file, w->chunks[i].data.p, w->chunks[i].data.len);
     }
     int failed = file.failed || table.failed;
-    lumo_buf_free(&table);
+    srv_buf_free(&table);
     if (failed) {
-        lumo_buf_free(&file);
+        srv_buf_free(&file);
         return -1;
     }
     *out = file.p;
@@ -136,11 +136,11 @@ int lumo_pkgw_serialize(const lumo_pkg_writer *w, uint8_t **out, size_t *len)
     return 0;
 }
 
-int lumo_pkgw_write_file(const lumo_pkg_writer *w, const char *path, char *err, size_t errlen)
+int srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char *err, size_t errlen)
 {
     uint8_t *data;
     size_t len;
-    if (lumo_pkgw_serialize(w, &data, &len)) {
+    if (srv_pkgw_serialize(w, &data, &len)) {
         snprintf(err, errlen, "%s: package too large or out of memory", path);
         return -1;
     }

@@ -67,7 +67,7 @@ int report(const draco::Status &st, const char *what)
     return -1;
 }
 
-void set_quant(draco::Encoder *enc, const lumo_draco_quant *q)
+void set_quant(draco::Encoder *enc, const srv_draco_quant *q)
 {
     enc->SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, q->bits, 3,
                                           q->origin, q->range);
@@ -83,7 +83,7 @@ static float draco_text_float(double v)
     return std::strtof(text, nullptr);
 }
 
-extern "C" void lumo_draco_grid(const float lo[3], const float hi[3], int bits, lumo_draco_quant *q)
+extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, srv_draco_quant *q)
 {
     double extent = 0;
     q->bits = bits;
@@ -102,19 +102,19 @@ extern "C" void lumo_draco_grid(const float lo[3], const float hi[3], int bits, 
         q->range = 1;
 }
 
-extern "C" lumo_draco_settings lumo_draco_default_settings(void)
+extern "C" srv_draco_settings srv_draco_default_settings(void)
 {
     // Sequential point clouds keep point order, which the vertex numbering of
     // the stream relies on. Speed 5 lets libdraco use rANS-coded differences.
-    lumo_draco_settings s;
+    srv_draco_settings s;
     s.speed = 5;
     s.method = draco::POINT_CLOUD_SEQUENTIAL_ENCODING;
     return s;
 }
 
-extern "C" int lumo_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
-                                        const lumo_draco_quant *q, lumo_draco_settings s,
-                                        uint8_t **out, size_t *out_len)
+extern "C" int srv_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
+                                       const srv_draco_quant *q, srv_draco_settings s,
+                                       uint8_t **out, size_t *out_len)
 {
     draco::PointCloud pc;
     if (add_positions(&pc, xyz, n) || add_color(&pc, rgb, n))
@@ -129,8 +129,8 @@ extern "C" int lumo_draco_encode_points(const float *xyz, const uint8_t *rgb, si
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int lumo_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
-                                      lumo_draco_settings s, uint8_t **out, size_t *out_len)
+extern "C" int srv_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
+                                     srv_draco_settings s, uint8_t **out, size_t *out_len)
 {
     draco::PointCloud pc;
     pc.set_num_points(static_cast<draco::PointIndex::ValueType>(n));
@@ -157,9 +157,9 @@ extern "C" int lumo_draco_encode_ints(const int32_t *values, const uint8_t *rgb,
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int lumo_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
-                                      const lumo_draco_quant *q, int cl, uint8_t **out,
-                                      size_t *out_len)
+extern "C" int srv_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
+                                     const srv_draco_quant *q, int cl, uint8_t **out,
+                                     size_t *out_len)
 {
     draco::Mesh mesh;
     if (add_positions(&mesh, xyz, nv))
@@ -182,7 +182,7 @@ extern "C" int lumo_draco_encode_mesh(const float *xyz, size_t nv, const uint32_
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int lumo_draco_decode_points(const uint8_t *data, size_t len, float **xyz, size_t *n)
+extern "C" int srv_draco_decode_points(const uint8_t *data, size_t len, float **xyz, size_t *n)
 {
     draco::DecoderBuffer in;
     in.Init(reinterpret_cast<const char *>(data), len);

@@ -1,7 +1,7 @@
 /*
  * pm/pm.h — progressive meshes on the server (seed 000 §4.2).
  *
- * lumo_pm_build() simplifies a triangle mesh by half-edge collapses (an edge
+ * srv_pm_build() simplifies a triangle mesh by half-edge collapses (an edge
  * collapses onto one of its end vertices; no new vertex) ordered by the
  * quadric error metric of Garland & Heckbert, then renumbers the vertices by
  * significance: the base mesh first, then the collapsed vertices with the
@@ -12,15 +12,15 @@
  * each corner v resolved by following parent[] until it is below k.
  *
  * Units: positions in the input's units (metres in lumo). Memory: every
- * array is malloc'ed; lumo_pm_free() releases them.
+ * array is malloc'ed; srv_pm_free() releases them.
  */
-#ifndef LUMO_SERVER_PM_H
-#define LUMO_SERVER_PM_H
+#ifndef SRV_PM_H
+#define SRV_PM_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-typedef struct lumo_pm_options {
+typedef struct srv_pm_options {
     uint32_t min_vertices;     /* stop collapsing at this many (default 3) */
     double   boundary_weight;  /* penalty quadric weight of boundary edges (100) */
     double   flip_cos;         /* reject a collapse turning a face normal by
@@ -28,9 +28,9 @@ typedef struct lumo_pm_options {
     double   round_fraction;   /* independent-set rounds: each round considers
                                   the cheapest fraction of the candidates
                                   (0.25); 0 = one collapse at a time */
-} lumo_pm_options;
+} srv_pm_options;
 
-typedef struct lumo_pm {
+typedef struct srv_pm {
     uint32_t  vertices;        /* n, after welding duplicates */
     uint32_t  faces;           /* after dropping degenerate/duplicate faces */
     uint32_t  base_vertices;   /* vertices of the coarsest level */
@@ -44,31 +44,31 @@ typedef struct lumo_pm {
     uint32_t *source;          /* vertices: an input vertex welded into it */
     uint32_t  welded;          /* input vertices merged into another */
     uint32_t  dropped_faces;   /* degenerate or duplicate input faces */
-} lumo_pm;
+} srv_pm;
 
-void lumo_pm_default_options(lumo_pm_options *o);
+void srv_pm_default_options(srv_pm_options *o);
 
 /* Build from nv positions (xyz) and nf triangles. 0, or -1 on allocation
  * failure or an index out of range. */
-int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
-                  const lumo_pm_options *opt, lumo_pm *out);
+int srv_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
+                 const srv_pm_options *opt, srv_pm *out);
 
 /* The same with a per-vertex albedo (3 bytes per vertex, linear 0..255,
  * may be NULL). Vertices weld only when position and albedo agree, so a
  * colour seam stays a seam: the simplifier sees it as a boundary, which it
  * penalises and only slides along. */
-int lumo_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
-                         uint32_t nf, const lumo_pm_options *opt, lumo_pm *out);
-void lumo_pm_free(lumo_pm *pm);
+int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
+                        uint32_t nf, const srv_pm_options *opt, srv_pm *out);
+void srv_pm_free(srv_pm *pm);
 
 /* Vertex v resolved at level k (k > 0): follows parent[] while v >= k. */
-uint32_t lumo_pm_resolve(const lumo_pm *pm, uint32_t v, uint32_t k);
+uint32_t srv_pm_resolve(const srv_pm *pm, uint32_t v, uint32_t k);
 
 /* Number of faces at level k (the prefix of faces with level <= k). */
-uint32_t lumo_pm_level_faces(const lumo_pm *pm, uint32_t k);
+uint32_t srv_pm_level_faces(const srv_pm *pm, uint32_t k);
 
 /* Write the faces of level k (3 per face, resolved) into out, which holds
- * 3 * lumo_pm_level_faces(pm, k) entries. Returns that face count. */
-uint32_t lumo_pm_level(const lumo_pm *pm, uint32_t k, uint32_t *out);
+ * 3 * srv_pm_level_faces(pm, k) entries. Returns that face count. */
+uint32_t srv_pm_level(const srv_pm *pm, uint32_t k, uint32_t *out);
 
 #endif

@@ -5,7 +5,7 @@
 #include <string.h>
 #include "pm/pm_internal.h"
 
-void lumo_pm_default_options(lumo_pm_options *o)
+void srv_pm_default_options(srv_pm_options *o)
 {
     o->min_vertices = 3;
     o->boundary_weight = 100.0;
@@ -69,11 +69,11 @@ static int renumber(const pm_clean_mesh *m, const pm_collapses *c, uint32_t *new
 
 /* Each face that reappears with vertex k = level - 1 starts at the corner
  * showing k (same winding): the stream then need not say where k sits. */
-static void rotate_faces(lumo_pm *pm)
+static void rotate_faces(srv_pm *pm)
 {
     for (uint32_t f = pm->base_faces; f < pm->faces; f++) {
         uint32_t *t = pm->tris + 3 * (size_t)f, k = pm->level[f] - 1;
-        for (int turn = 0; turn < 2 && lumo_pm_resolve(pm, t[0], k + 1) != k; turn++) {
+        for (int turn = 0; turn < 2 && srv_pm_resolve(pm, t[0], k + 1) != k; turn++) {
             uint32_t x = t[0];
             t[0] = t[1], t[1] = t[2], t[2] = x;
         }
@@ -82,7 +82,7 @@ static void rotate_faces(lumo_pm *pm)
 
 /* Within a level, the face (k, p, x) comes before (k, x, p): the stream
  * then need not say which of an opposite pair is which. */
-static void order_pairs(lumo_pm *pm)
+static void order_pairs(srv_pm *pm)
 {
     for (uint32_t f = pm->base_faces; f + 1 < pm->faces; f++) {
         uint32_t L = pm->level[f];
@@ -90,7 +90,7 @@ static void order_pairs(lumo_pm *pm)
             (f > pm->base_faces && pm->level[f - 1] == L))
             continue;  /* only levels with exactly two faces */
         uint32_t *a = pm->tris + 3 * (size_t)f, *b = a + 3, p = pm->parent[L - 1];
-        if (lumo_pm_resolve(pm, b[1], L) == p && lumo_pm_resolve(pm, a[1], L) != p)
+        if (srv_pm_resolve(pm, b[1], L) == p && srv_pm_resolve(pm, a[1], L) != p)
             for (int i = 0; i < 3; i++) {
                 uint32_t x = a[i];
                 a[i] = b[i], b[i] = x;
@@ -98,7 +98,7 @@ static void order_pairs(lumo_pm *pm)
     }
 }
 
-static int assemble(const pm_clean_mesh *m, const pm_collapses *c, lumo_pm *pm)
+static int assemble(const pm_clean_mesh *m, const pm_collapses *c, srv_pm *pm)
 {
     uint32_t n = m->nv, nf = m->nf;
     uint32_t *newv = malloc(sizeof *newv * (n ? n : 1));
@@ -143,22 +143,22 @@ done:
     return rc;
 }
 
-int lumo_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
-                  const lumo_pm_options *opt, lumo_pm *out)
+int srv_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
+                 const srv_pm_options *opt, srv_pm *out)
 {
-    return lumo_pm_build_albedo(xyz, NULL, nv, tris, nf, opt, out);
+    return srv_pm_build_albedo(xyz, NULL, nv, tris, nf, opt, out);
 }
 
-int lumo_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
-                         uint32_t nf, const lumo_pm_options *opt, lumo_pm *out)
+int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
+                        uint32_t nf, const srv_pm_options *opt, srv_pm *out)
 {
-    lumo_pm_options def;
+    srv_pm_options def;
     pm_clean_mesh m;
     pm_collapses c;
     memset(out, 0, sizeof *out);
     memset(&c, 0, sizeof c);
     if (!opt) {
-        lumo_pm_default_options(&def);
+        srv_pm_default_options(&def);
         opt = &def;
     }
     if (pm_clean(xyz, albedo, nv, tris, nf, &m))
@@ -184,11 +184,11 @@ done:
     pm_clean_free(&m);
     pm_collapses_free(&c);
     if (rc)
-        lumo_pm_free(out);
+        srv_pm_free(out);
     return rc;
 }
 
-void lumo_pm_free(lumo_pm *pm)
+void srv_pm_free(srv_pm *pm)
 {
     free(pm->xyz);
     free(pm->parent);
@@ -199,14 +199,14 @@ void lumo_pm_free(lumo_pm *pm)
     memset(pm, 0, sizeof *pm);
 }
 
-uint32_t lumo_pm_resolve(const lumo_pm *pm, uint32_t v, uint32_t k)
+uint32_t srv_pm_resolve(const srv_pm *pm, uint32_t v, uint32_t k)
 {
     while (v >= k)
         v = pm->parent[v];
     return v;
 }
 
-uint32_t lumo_pm_level_faces(const lumo_pm *pm, uint32_t k)
+uint32_t srv_pm_level_faces(const srv_pm *pm, uint32_t k)
 {
     uint32_t lo = 0, hi = pm->faces;  /* faces are sorted by level */
     while (lo < hi) {
@@ -219,10 +219,10 @@ uint32_t lumo_pm_level_faces(const lumo_pm *pm, uint32_t k)
     return lo;
 }
 
-uint32_t lumo_pm_level(const lumo_pm *pm, uint32_t k, uint32_t *out)
+uint32_t srv_pm_level(const srv_pm *pm, uint32_t k, uint32_t *out)
 {
-    uint32_t nf = lumo_pm_level_faces(pm, k);
+    uint32_t nf = srv_pm_level_faces(pm, k);
     for (size_t i = 0; i < 3 * (size_t)nf; i++)
-        out[i] = lumo_pm_resolve(pm, pm->tris[i], k);
+        out[i] = srv_pm_resolve(pm, pm->tris[i], k);
     return nf;
 }

@@ -6,7 +6,7 @@
 #include "pm/pm_client.h"
 #include "pm/pm_stream.h"
 
-lumo_status lumo_pm_client_open(lumo_pm_client *c, const uint8_t *stream, size_t len)
+lumo_status srv_pm_client_open(srv_pm_client *c, const uint8_t *stream, size_t len)
 {
     memset(c, 0, sizeof *c);
     lumo_status st = lumo_pmesh_read_header(stream, len, &c->h);
@@ -17,14 +17,14 @@ lumo_status lumo_pm_client_open(lumo_pm_client *c, const uint8_t *stream, size_t
         return LUMO_ERR_NOMEM;
     lumo_arena_init(&c->arena, c->mem, c->arena_bytes);
     if ((st = lumo_pmesh_init(&c->pm, &c->h, &c->arena))) {
-        lumo_pm_client_close(c);
+        srv_pm_client_close(c);
         return st;
     }
     c->stream = stream, c->len = len, c->at = LUMO_PMESH_HEADER_SIZE;
     return LUMO_OK;
 }
 
-lumo_status lumo_pm_client_next(const lumo_pm_client *c, const uint8_t **rec, size_t *bytes)
+lumo_status srv_pm_client_next(const srv_pm_client *c, const uint8_t **rec, size_t *bytes)
 {
     lumo_status st = lumo_pmesh_record_size(c->stream + c->at, c->len - c->at, bytes);
     if (st)
@@ -35,32 +35,32 @@ lumo_status lumo_pm_client_next(const lumo_pm_client *c, const uint8_t **rec, si
     return LUMO_OK;
 }
 
-lumo_status lumo_pm_client_step(lumo_pm_client *c)
+lumo_status srv_pm_client_step(srv_pm_client *c)
 {
     const uint8_t *rec;
     size_t n;
-    lumo_status st = lumo_pm_client_next(c, &rec, &n);
+    lumo_status st = srv_pm_client_next(c, &rec, &n);
     if (!st && !(st = lumo_pmesh_apply(&c->pm, rec, n)))
         c->at += n;
     return st;
 }
 
-lumo_status lumo_pm_client_until(lumo_pm_client *c, uint32_t vertices)
+lumo_status srv_pm_client_until(srv_pm_client *c, uint32_t vertices)
 {
     lumo_status st = LUMO_OK;
     while (!st && c->pm.vertex_count < vertices && !lumo_pmesh_complete(&c->pm))
-        st = lumo_pm_client_step(c);
+        st = srv_pm_client_step(c);
     return st;
 }
 
-void lumo_pm_client_close(lumo_pm_client *c)
+void srv_pm_client_close(srv_pm_client *c)
 {
     free(c->mem);
     memset(c, 0, sizeof *c);
 }
 
-lumo_status lumo_pm_find_stream(const uint8_t *file, size_t len, uint32_t nth,
-                                const uint8_t **stream, size_t *stream_len)
+lumo_status srv_pm_find_stream(const uint8_t *file, size_t len, uint32_t nth,
+                               const uint8_t **stream, size_t *stream_len)
 {
     lumo_package pkg;
     uint32_t n;

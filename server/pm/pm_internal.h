@@ -1,9 +1,9 @@
 /*
- * pm/pm_internal.h — the stages of lumo_pm_build() (server/pm/pm_*.c),
+ * pm/pm_internal.h — the stages of srv_pm_build() (server/pm/pm_*.c),
  * exposed for the stream builder and the tests.
  */
-#ifndef LUMO_SERVER_PM_INTERNAL_H
-#define LUMO_SERVER_PM_INTERNAL_H
+#ifndef SRV_PM_INTERNAL_H
+#define SRV_PM_INTERNAL_H
 
 #include <stdint.h>
 #include "pm/pm.h"
@@ -34,7 +34,7 @@ typedef struct pm_collapses {
     uint32_t *face_die;
 } pm_collapses;
 
-int  pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses *out);
+int  pm_simplify(const pm_clean_mesh *m, const srv_pm_options *opt, pm_collapses *out);
 void pm_collapses_free(pm_collapses *c);
 
 #endif

@@ -12,7 +12,7 @@ static uint8_t to_byte(float a)
     return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-static int merge(const lumo_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
+static int merge(const srv_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
                  uint32_t *nf)
 {
     size_t v = 0, f = 0;
@@ -26,7 +26,7 @@ static int merge(const lumo_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, 
         return -1;
     *nv = 0, *nf = 0;
     for (size_t m = 0; m < s->nmeshes; m++) {
-        const lumo_mesh *me = &s->meshes[m];
+        const srv_mesh *me = &s->meshes[m];
         for (uint32_t i = 0; i < me->nverts; i++) {
             float *p = *xyz + 3 * (size_t)(*nv + i);
             p[0] = me->pos[i].x, p[1] = me->pos[i].y, p[2] = me->pos[i].z;
@@ -42,21 +42,21 @@ static int merge(const lumo_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, 
     return 0;
 }
 
-int lumo_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
-                 uint32_t *nf, char *err, size_t errlen)
+int srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
+                uint32_t *nf, char *err, size_t errlen)
 {
-    lumo_scene s;
-    lumo_xform x = lumo_xform_identity();
-    lumo_scene_init(&s);
+    srv_scene s;
+    srv_xform x = srv_xform_identity();
+    srv_scene_init(&s);
     *xyz = NULL, *tris = NULL;
     if (rgb)
         *rgb = NULL;
-    int rc = lumo_import_file(&s, path, &x, NULL, err, errlen);
+    int rc = srv_import_file(&s, path, &x, NULL, err, errlen);
     if (!rc && merge(&s, xyz, rgb, nv, tris, nf)) {
         snprintf(err, errlen, "%s: out of memory", path);
         rc = -1;
     }
-    lumo_scene_free(&s);
+    srv_scene_free(&s);
     if (rc) {
         free(*xyz), free(*tris);
         *xyz = NULL, *tris = NULL;
@@ -68,8 +68,8 @@ int lumo_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uin
     return rc;
 }
 
-int lumo_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
-                      uint32_t nf)
+int srv_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
+                     uint32_t nf)
 {
     FILE *f = fopen(path, "wb");
     if (!f)

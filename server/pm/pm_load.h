@@ -2,8 +2,8 @@
  * pm/pm_load.h — triangle soups in and out for the progressive-mesh
  * tools: any file assimp reads (all meshes merged), and binary PLY out.
  */
-#ifndef LUMO_SERVER_PM_LOAD_H
-#define LUMO_SERVER_PM_LOAD_H
+#ifndef SRV_PM_LOAD_H
+#define SRV_PM_LOAD_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -11,11 +11,11 @@
 /* Positions (metres, 3 per vertex) and triangles, malloc'ed; with rgb not
  * NULL also the per-vertex albedo as 3 bytes (0..255) per vertex. 0 or -1
  * with a one-line reason in err. */
-int lumo_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
-                 uint32_t *nf, char *err, size_t errlen);
+int srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
+                uint32_t *nf, char *err, size_t errlen);
 
 /* Binary little-endian PLY: float x y z, uchar-count int indices. 0 or -1. */
-int lumo_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
-                      uint32_t nf);
+int srv_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
+                     uint32_t nf);
 
 #endif

@@ -6,23 +6,23 @@
 #include "package/package_write.h"
 #include "pm/pm_stream.h"
 
-int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
-                 const uint32_t *tris, uint32_t nf, const lumo_pm_stream_options *o, char *err,
-                 size_t errlen)
+int srv_pm_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
+                const uint32_t *tris, uint32_t nf, const srv_pm_stream_options *o, char *err,
+                size_t errlen)
 {
-    lumo_pm pm;
+    srv_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;
-    if (lumo_pm_build_albedo(xyz, albedo, nv, tris, nf, NULL, &pm)) {
+    if (srv_pm_build_albedo(xyz, albedo, nv, tris, nf, NULL, &pm)) {
         snprintf(err, errlen, "progressive mesh: cannot simplify (bad index or out of memory)");
         return -1;
     }
-    int rc = lumo_pm_stream_build(&pm, o, &s, &len, NULL, NULL);
+    int rc = srv_pm_stream_build(&pm, o, &s, &len, NULL, NULL);
     if (rc)
         snprintf(err, errlen, "progressive mesh: cannot encode the stream");
-    else if ((rc = lumo_pkgw_add(w, LUMO_PKG_PMSH, s, len)))
+    else if ((rc = srv_pkgw_add(w, LUMO_PKG_PMSH, s, len)))
         snprintf(err, errlen, "progressive mesh: out of memory");
     free(s);
-    lumo_pm_free(&pm);
+    srv_pm_free(&pm);
     return rc;
 }

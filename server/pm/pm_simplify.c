@@ -33,7 +33,7 @@ typedef struct {
     size_t       hn, hcap;
     uint32_t    *nb_u, *nb_v; /* neighbour scratch */
     uint32_t     nb_cap;
-    const lumo_pm_options *opt;
+    const srv_pm_options *opt;
 } simp;
 
 /* ---- small vector helpers ------------------------------------------------ */
@@ -572,7 +572,7 @@ static void simp_free(simp *s)
     free(s->nb_v);
 }
 
-int pm_simplify(const pm_clean_mesh *m, const lumo_pm_options *opt, pm_collapses *out)
+int pm_simplify(const pm_clean_mesh *m, const srv_pm_options *opt, pm_collapses *out)
 {
     simp s;
     memset(&s, 0, sizeof s);

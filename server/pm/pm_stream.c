@@ -24,15 +24,15 @@
 
 #define NIL LUMO_PMESH_NIL
 
-/* ---- bytes (lumo_buf, package_write.h) and bits ----------------------------- */
-typedef struct { lumo_buf b; size_t nbits; } bitwriter;
+/* ---- bytes (srv_buf, package_write.h) and bits ----------------------------- */
+typedef struct { srv_buf b; size_t nbits; } bitwriter;
 
 static void put_bits(bitwriter *w, uint32_t v, unsigned n)
 {
     for (unsigned i = 0; i < n; i++, w->nbits++) {
         if ((w->nbits & 7) == 0) {
             uint8_t z = 0;
-            lumo_buf_put(&w->b, &z, 1);
+            srv_buf_put(&w->b, &z, 1);
         }
         if (!w->b.failed)
             w->b.p[w->nbits >> 3] |= (uint8_t)((v >> i & 1u) << (w->nbits & 7));
@@ -71,13 +71,13 @@ static void put_writer(bitwriter *w, const bitwriter *src)
 
 /* ---- the client's state, replayed --------------------------------------------- */
 typedef struct {
-    const lumo_pm *pm;
+    const srv_pm *pm;
     int32_t  *q;              /* grid integers, 3 per vertex */
     int32_t  *res;            /* their residuals from the client's prediction */
     uint32_t *disp, *next, *head;
     uint32_t  face_count;
     uint32_t  faces, moves;   /* of the batch being written */
-    lumo_pm_stream_stats st;  /* where the bits go (options->stats gets a copy) */
+    srv_pm_stream_stats st;   /* where the bits go (options->stats gets a copy) */
     uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
     unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
@@ -113,11 +113,11 @@ static void add_face(replay *r, const uint32_t t[3])
 
 static void write_base(replay *r, bitwriter *w)
 {
-    const lumo_pm *pm = r->pm;
+    const srv_pm *pm = r->pm;
     for (uint32_t f = 0; f < pm->base_faces; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++) {
-            t[i] = lumo_pm_resolve(pm, pm->tris[3 * (size_t)f + i], pm->base_vertices);
+            t[i] = srv_pm_resolve(pm, pm->tris[3 * (size_t)f + i], pm->base_vertices);
             put_trunc(w, t[i], pm->base_vertices);
         }
         add_face(r, t);
@@ -142,7 +142,7 @@ static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
     uint32_t prev = NIL, c = r->head[p], lenp = 0;
     while (c != NIL) {
         uint32_t nextc = r->next[c];
-        int move = lumo_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
+        int move = srv_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
         put_bits(w, (uint32_t)move, 1);
         if (!move) {
             prev = c, c = nextc, lenp++;
@@ -203,7 +203,7 @@ static int face_flip(const replay *r, uint32_t f, uint32_t p, uint32_t k)
 {
     uint32_t t[3];
     for (int i = 0; i < 3; i++)
-        t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+        t[i] = srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
     if (t[0] != k)
         return -1;  /* pm_build.c rotates k to corner 0 */
     return t[1] == p ? 0 : t[2] == p ? 1 : -1;
@@ -217,7 +217,7 @@ static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint3
         return -1;  /* a reappearing face always holds edge (k, p), k first */
     uint32_t t[3];
     for (int i = 0; i < 3; i++)
-        t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+        t[i] = srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
     if (!flip_implied)
         put_bits(w, (uint32_t)flip, 1);
     write_third(r, w, p, k, lp, lk, flip ? t[1] : t[2]);
@@ -250,7 +250,7 @@ static void put_fan_length(bitwriter *w, uint32_t m)
 
 static int moves_to_k(const replay *r, uint32_t c, uint32_t k)
 {
-    return lumo_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
+    return srv_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
 }
 
 /* The corner fan_step() in pmesh_batch.c takes: the first of p's list,
@@ -373,7 +373,7 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
     for (uint32_t f = f0; f < f0 + 2; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++)
-            t[i] = lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+            t[i] = srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
         add_face(r, t);
     }
 }
@@ -381,7 +381,7 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
 /* The third vertex of face f at level k + 1. */
 static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
 {
-    return lumo_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + (flip ? 1 : 2)], k + 1);
+    return srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + (flip ? 1 : 2)], k + 1);
 }
 
 /* ---- parents: increasing runs, Rice-coded gaps (mirrors read_parent) ---- */
@@ -415,7 +415,7 @@ static void put_parent(bitwriter *w, uint32_t p, uint32_t prev, uint32_t k, unsi
 }
 
 /* The batch's Rice parameter: the one that codes its parents shortest. */
-static unsigned choose_rice(const lumo_pm *pm, uint32_t first, uint32_t count, uint32_t prev0)
+static unsigned choose_rice(const srv_pm *pm, uint32_t first, uint32_t count, uint32_t prev0)
 {
     unsigned best = 0;
     uint64_t best_bits = UINT64_MAX;
@@ -431,7 +431,7 @@ static unsigned choose_rice(const lumo_pm *pm, uint32_t first, uint32_t count, u
 
 static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsigned rice)
 {
-    const lumo_pm *pm = r->pm;
+    const srv_pm *pm = r->pm;
     uint32_t p = pm->parent[k], moves0 = r->moves;
     size_t mark = w->nbits;
     put_parent(w, p, prev, k, rice);
@@ -464,7 +464,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
 }
 
 /* ---- records -------------------------------------------------------------------- */
-static void grid_of(const lumo_pm *pm, int bits, lumo_draco_quant *q)
+static void grid_of(const srv_pm *pm, int bits, srv_draco_quant *q)
 {
     float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     for (uint32_t v = 0; v < pm->vertices; v++)
@@ -473,7 +473,7 @@ static void grid_of(const lumo_pm *pm, int bits, lumo_draco_quant *q)
             lo[c] = x < lo[c] ? x : lo[c];
             hi[c] = x > hi[c] ? x : hi[c];
         }
-    lumo_draco_grid(lo, hi, bits, q);
+    srv_draco_grid(lo, hi, bits, q);
 }
 
 static uint32_t f32bits(float f)
@@ -485,7 +485,7 @@ static uint32_t f32bits(float f)
 
 /* Grid integer of x: round((x - origin) / range * (2^bits - 1)), clamped;
  * the client turns it back into metres (pmesh_batch.c store_positions). */
-static void quantize(const lumo_pm *pm, const lumo_draco_quant *q, int32_t *out)
+static void quantize(const srv_pm *pm, const srv_draco_quant *q, int32_t *out)
 {
     double qmax = (double)((1u << q->bits) - 1u);
     for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
@@ -498,13 +498,13 @@ static void quantize(const lumo_pm *pm, const lumo_draco_quant *q, int32_t *out)
 /* The batch's Draco payload: the residuals the replay recorded (split
  * vertices from their neighbours' mean, base vertices from the previous
  * one), or absolute positions on the shared grid. */
-static int encode_payload(const replay *r, uint32_t first, uint32_t count, const lumo_pm_stream_options *o,
-                          const lumo_draco_quant *q, uint8_t **drc, size_t *len)
+static int encode_payload(const replay *r, uint32_t first, uint32_t count, const srv_pm_stream_options *o,
+                          const srv_draco_quant *q, uint8_t **drc, size_t *len)
 {
     const uint8_t *rgb = r->pm->albedo ? r->pm->albedo + 3 * (size_t)first : NULL;
     if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
-        return lumo_draco_encode_points(r->pm->xyz + 3 * (size_t)first, rgb, count, q, o->draco, drc, len);
-    return lumo_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
+        return srv_draco_encode_points(r->pm->xyz + 3 * (size_t)first, rgb, count, q, o->draco, drc, len);
+    return srv_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
 }
 
 /* LEB128, minimal (mirrors read_varint() in pmesh.c): 7 bits per byte,
@@ -520,9 +520,9 @@ static size_t put_varint(uint8_t *d, uint32_t v)
 
 /* The record: index, side bytes and Draco bytes as varints, the CRC-32 of
  * those varints followed by the block and the payload, then the two. */
-static int write_record(lumo_buf *out, uint32_t index, uint32_t first, uint32_t count,
-                        const replay *r, const bitwriter *w, const lumo_pm_stream_options *o,
-                        const lumo_draco_quant *q, lumo_pm_batch_info *info)
+static int write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t count,
+                        const replay *r, const bitwriter *w, const srv_pm_stream_options *o,
+                        const srv_draco_quant *q, srv_pm_batch_info *info)
 {
     uint8_t *drc = NULL, head[LUMO_PMESH_BATCH_HEAD_MAX];
     size_t drc_len = 0;
@@ -534,18 +534,18 @@ static int write_record(lumo_buf *out, uint32_t index, uint32_t first, uint32_t 
     uint32_t crc = lumo_package_crc32(0, head, hn);
     crc = lumo_package_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
     crc = lumo_package_crc32(crc, drc, drc_len);
-    *info = (lumo_pm_batch_info){first, count, r->faces, r->moves, out->len,
-                                 hn + 4 + w->b.len + drc_len, w->b.len, drc_len};
-    lumo_buf_put(out, head, hn);
-    lumo_buf_u32(out, crc);
-    lumo_buf_put(out, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
-    lumo_buf_put(out, drc, drc_len);
+    *info = (srv_pm_batch_info){first, count, r->faces, r->moves, out->len,
+                                hn + 4 + w->b.len + drc_len, w->b.len, drc_len};
+    srv_buf_put(out, head, hn);
+    srv_buf_u32(out, crc);
+    srv_buf_put(out, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    srv_buf_put(out, drc, drc_len);
     free(drc);
     return out->failed ? -1 : 0;
 }
 
-static void write_header(uint8_t *d, const lumo_pm *pm, const lumo_pm_stream_options *o,
-                         const lumo_draco_quant *q, uint32_t nb, const lumo_pm_batch_info *bi)
+static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_options *o,
+                         const srv_draco_quant *q, uint32_t nb, const srv_pm_batch_info *bi)
 {
     uint32_t maxf = 0, maxm = 0, maxb = 0;
     for (uint32_t i = 0; i < nb; i++) {
@@ -568,25 +568,25 @@ static void write_header(uint8_t *d, const lumo_pm *pm, const lumo_pm_stream_opt
         d[64 + k] = (uint8_t)(crc >> (8 * k));
 }
 
-void lumo_pm_stream_default_options(lumo_pm_stream_options *o)
+void srv_pm_stream_default_options(srv_pm_stream_options *o)
 {
     o->batch_vertices = 250;
     o->quant_bits = 12;
-    o->draco = lumo_draco_default_settings();
+    o->draco = srv_draco_default_settings();
     o->position_coding = LUMO_PMESH_POS_PREDICTED;
     o->stats = NULL;
     o->fan_rank_escape = 0;
 }
 
-static uint64_t field_bits(const lumo_pm_stream_stats *st)
+static uint64_t field_bits(const srv_pm_stream_stats *st)
 {
     return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits;
 }
 
 /* A written split record's share of the stats: fields_before is
  * field_bits() before its splits. */
-static void tally_record(lumo_pm_stream_stats *st, uint64_t fields_before, uint32_t count,
-                         const lumo_pm_batch_info *bi)
+static void tally_record(srv_pm_stream_stats *st, uint64_t fields_before, uint32_t count,
+                         const srv_pm_batch_info *bi)
 {
     st->splits += count;
     st->other_bits += 8 * (uint64_t)bi->side_bytes - (field_bits(st) - fields_before);
@@ -632,10 +632,10 @@ static void join_split_block(replay *r, bitwriter *w, const bitwriter *fields, u
     free(kinds.b.p);
 }
 
-static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_draco_quant *q,
-                         lumo_buf *out, lumo_pm_batch_info *bi, uint32_t nb)
+static int write_batches(replay *r, const srv_pm_stream_options *o, const srv_draco_quant *q,
+                         srv_buf *out, srv_pm_batch_info *bi, uint32_t nb)
 {
-    const lumo_pm *pm = r->pm;
+    const srv_pm *pm = r->pm;
     for (uint32_t i = 0; i < nb; i++) {
         uint32_t first = i ? pm->base_vertices + (i - 1) * o->batch_vertices : 0;
         uint32_t count = i ? pm->vertices - first : pm->base_vertices;
@@ -668,12 +668,12 @@ static int write_batches(replay *r, const lumo_pm_stream_options *o, const lumo_
     return 0;
 }
 
-int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uint8_t **out,
-                         size_t *len, lumo_pm_batch_info **batches, uint32_t *nbatches)
+int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                        size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
 {
-    lumo_pm_stream_options def;
+    srv_pm_stream_options def;
     if (!o) {
-        lumo_pm_stream_default_options(&def);
+        srv_pm_stream_default_options(&def);
         o = &def;
     }
     if (!pm->vertices || !o->batch_vertices || o->quant_bits < 1 ||
@@ -681,16 +681,16 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
         return -1;
     uint32_t rest = pm->vertices - pm->base_vertices;
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
-    lumo_draco_quant q;
+    srv_draco_quant q;
     grid_of(pm, o->quant_bits, &q);
     replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
                 malloc(12 * (size_t)pm->faces + 4),
                 malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, {0},
                 malloc(4 * (size_t)o->batch_vertices), 0, 0, o->fan_rank_escape};
-    lumo_pm_batch_info *bi = calloc(nb, sizeof *bi);
-    lumo_buf s = {0};
+    srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
+    srv_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
-    lumo_buf_put(&s, header, sizeof header);
+    srv_buf_put(&s, header, sizeof header);
     int rc = -1;
     if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
         goto done;

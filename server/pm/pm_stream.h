@@ -1,10 +1,10 @@
 /*
  * pm/pm_stream.h — writing the progressive-mesh stream of
- * docs/progressive-mesh.md from a lumo_pm (server/pm/pm_build.c). The client
+ * docs/progressive-mesh.md from a srv_pm (server/pm/pm_build.c). The client
  * reads it with lumo/pmesh.h.
  */
-#ifndef LUMO_SERVER_PM_STREAM_H
-#define LUMO_SERVER_PM_STREAM_H
+#ifndef SRV_PM_STREAM_H
+#define SRV_PM_STREAM_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -14,7 +14,7 @@
 /* Where the bits go (split records only), filled when options->stats is
  * set: bits of each split-block field summed over the split vertices, and
  * the bytes of their Draco payloads and record framing. */
-typedef struct lumo_pm_stream_stats {
+typedef struct srv_pm_stream_stats {
     uint64_t splits;                    /* split vertices */
     uint64_t parent_bits, kind_bits;    /* lookup-table parents, kind codes */
     uint64_t fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
@@ -22,32 +22,32 @@ typedef struct lumo_pm_stream_stats {
     uint64_t mask_bits;                 /* mask splits: masks, flips, third vertices */
     uint64_t other_bits;                /* Rice parameters and padding */
     uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
-} lumo_pm_stream_stats;
+} srv_pm_stream_stats;
 
-typedef struct lumo_pm_stream_options {
+typedef struct srv_pm_stream_options {
     uint32_t            batch_vertices;  /* vertices per batch (paper: 250) */
     int                 quant_bits;      /* position grid bits (12) */
-    lumo_draco_settings draco;           /* the payload encoder choice */
+    srv_draco_settings  draco;           /* the payload encoder choice */
     int                 position_coding; /* LUMO_PMESH_POS_PREDICTED (default) or _ABSOLUTE */
-    lumo_pm_stream_stats *stats;         /* NULL (default), or filled by the build */
+    srv_pm_stream_stats *stats;          /* NULL (default), or filled by the build */
     int                 fan_rank_escape; /* 1: every fan takes the rank's escape and is
                                             coded explicitly (tests the decoder's escape
                                             path; larger streams), 0 (default) */
-} lumo_pm_stream_options;
+} srv_pm_stream_options;
 
-void lumo_pm_stream_default_options(lumo_pm_stream_options *o);
+void srv_pm_stream_default_options(srv_pm_stream_options *o);
 
 /* One record's place in the stream, for listings and benchmarks. */
-typedef struct lumo_pm_batch_info {
+typedef struct srv_pm_batch_info {
     uint32_t first_vertex, vertex_count, face_count, move_count;
     size_t   offset, bytes, side_bytes, draco_bytes;
-} lumo_pm_batch_info;
+} srv_pm_batch_info;
 
 /* Build the whole stream (header + every batch record) into one malloc'ed
  * buffer. If `batches` is not NULL it receives a malloc'ed array of
  * *nbatches entries. 0, or -1 with a message on stderr. */
-int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uint8_t **out,
-                         size_t *len, lumo_pm_batch_info **batches, uint32_t *nbatches);
+int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                        size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches);
 
 
 #endif
@@ -57,7 +57,7 @@ int lumo_pm_stream_build(const lumo_pm *pm, const lumo_pm_stream_options *o, uin
  * order, replacing the raw MESH chunk). albedo: 3 bytes per vertex (0..255)
  * or NULL. o may be NULL for the defaults.
  * 0, or -1 with a one-line reason in err. */
-struct lumo_pkg_writer;
-int lumo_pm_pack(struct lumo_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
-                 const uint32_t *tris, uint32_t nf, const lumo_pm_stream_options *o, char *err,
-                 size_t errlen);
+struct srv_pkg_writer;
+int srv_pm_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
+                const uint32_t *tris, uint32_t nf, const srv_pm_stream_options *o, char *err,
+                size_t errlen);

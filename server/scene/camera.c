@@ -6,7 +6,7 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 
-int lumo_camera_parse(const char *text, lumo_camera *out)
+int srv_camera_parse(const char *text, srv_camera *out)
 {
     char buf[256], *parts[4], *save = NULL;
     float v[4][3], fovy;
@@ -23,12 +23,12 @@ int lumo_camera_parse(const char *text, lumo_camera *out)
     if (n != 4)
         return -1;
     for (int i = 0; i < 3; i++)
-        if (lumo_parse_floats(parts[i], v[i], 3))
+        if (srv_parse_floats(parts[i], v[i], 3))
             return -1;
-    if (lumo_parse_floats(parts[3], &fovy, 1) || !(fovy > 0.0f && fovy < 180.0f))
+    if (srv_parse_floats(parts[3], &fovy, 1) || !(fovy > 0.0f && fovy < 180.0f))
         return -1;
-    lumo_camera c = {v3(v[0][0], v[0][1], v[0][2]), v3(v[1][0], v[1][1], v[1][2]),
-                     v3(v[2][0], v[2][1], v[2][2]), fovy};
+    srv_camera c = {v3(v[0][0], v[0][1], v[0][2]), v3(v[1][0], v[1][1], v[1][2]),
+                    v3(v[2][0], v[2][1], v[2][2]), fovy};
     vec3 f = v3_sub(c.target, c.eye);
     if (v3_len(f) <= 0.0f || v3_len(v3_cross(v3_norm(f), v3_norm(c.up))) < 1e-6f)
         return -1;
@@ -36,7 +36,7 @@ int lumo_camera_parse(const char *text, lumo_camera *out)
     return 0;
 }
 
-vec3 lumo_camera_ray(const lumo_camera *c, int w, int h, float px, float py)
+vec3 srv_camera_ray(const srv_camera *c, int w, int h, float px, float py)
 {
     vec3 f = v3_norm(v3_sub(c->target, c->eye));
     vec3 r = v3_norm(v3_cross(f, c->up));
@@ -47,8 +47,8 @@ vec3 lumo_camera_ray(const lumo_camera *c, int w, int h, float px, float py)
     return v3_norm(v3_add(f, v3_add(v3_scale(r, s), v3_scale(u, q))));
 }
 
-lumo_camera lumo_camera_default(void)
+srv_camera srv_camera_default(void)
 {
-    lumo_camera c = {{0, 1, 3.4f}, {0, 1, 0}, {0, 1, 0}, 40.0f};
+    srv_camera c = {{0, 1, 3.4f}, {0, 1, 0}, {0, 1, 0}, 40.0f};
     return c;
 }

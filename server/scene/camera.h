@@ -4,26 +4,26 @@
  * "Camera": right-handed look-at, vertical field of view in degrees, pixel
  * rows from the top).
  */
-#ifndef LUMO_SERVER_CAMERA_H
-#define LUMO_SERVER_CAMERA_H
+#ifndef SRV_CAMERA_H
+#define SRV_CAMERA_H
 
 #include "common/vec3.h"
 
-typedef struct lumo_camera {
+typedef struct srv_camera {
     vec3  eye, target, up;
     float fovy_deg;        /* vertical, in (0, 180) */
-} lumo_camera;
+} srv_camera;
 
 /* Parse "ex,ey,ez:tx,ty,tz:ux,uy,uz:fovy". 0 on success, -1 on a malformed,
  * non-finite or degenerate camera (eye == target, up parallel to the view,
  * fovy outside (0, 180)). */
-int lumo_camera_parse(const char *text, lumo_camera *out);
+int srv_camera_parse(const char *text, srv_camera *out);
 
 /* Unit direction of the ray through image position (px, py) in pixels
  * (px in [0, w), py in [0, h), row 0 at the top; a pixel's centre is +0.5). */
-vec3 lumo_camera_ray(const lumo_camera *c, int w, int h, float px, float py);
+vec3 srv_camera_ray(const srv_camera *c, int w, int h, float px, float py);
 
 /* The default scene's camera: 0,1,3.4:0,1,0:0,1,0:40. */
-lumo_camera lumo_camera_default(void);
+srv_camera srv_camera_default(void);
 
 #endif

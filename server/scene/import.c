@@ -13,9 +13,9 @@
 #define DEFAULT_ALBEDO 0.8f
 #define MAX_ALBEDO 0.98f   /* reflection must never create light */
 
-lumo_xform lumo_xform_identity(void)
+srv_xform srv_xform_identity(void)
 {
-    lumo_xform x = {{1, 1, 1}, {0, 1, 0}, 0.0f, {0, 0, 0}};
+    srv_xform x = {{1, 1, 1}, {0, 1, 0}, 0.0f, {0, 0, 0}};
     return x;
 }
 
@@ -27,7 +27,7 @@ static vec3 rotate(vec3 p, vec3 k, float deg)
                   v3_scale(k, v3_dot(k, p) * (1.0f - c)));
 }
 
-vec3 lumo_xform_apply(const lumo_xform *x, vec3 p)
+vec3 srv_xform_apply(const srv_xform *x, vec3 p)
 {
     p = v3_mul(p, x->scale);
     if (x->angle_deg != 0.0f && v3_len(x->axis) > 0.0f)
@@ -60,8 +60,8 @@ static int material_albedo(const struct aiScene *sc, unsigned idx, vec3 *out)
     return 1;
 }
 
-static int import_mesh(lumo_scene *s, const struct aiScene *sc, const struct aiMesh *am,
-                       const lumo_xform *x, const vec3 *albedo, const char *path)
+static int import_mesh(srv_scene *s, const struct aiScene *sc, const struct aiMesh *am,
+                       const srv_xform *x, const vec3 *albedo, const char *path)
 {
     uint32_t ntris = 0;
     for (unsigned f = 0; f < am->mNumFaces; f++)
@@ -69,14 +69,14 @@ static int import_mesh(lumo_scene *s, const struct aiScene *sc, const struct aiM
     if (ntris == 0)
         return 0;   /* point or line primitives: nothing to shade */
     const char *base = strrchr(path, '/');
-    lumo_mesh *m = lumo_scene_add_mesh(s, base ? base + 1 : path, am->mNumVertices, ntris);
+    srv_mesh *m = srv_scene_add_mesh(s, base ? base + 1 : path, am->mNumVertices, ntris);
     if (!m)
         return -1;
     vec3 mat = v3(DEFAULT_ALBEDO, DEFAULT_ALBEDO, DEFAULT_ALBEDO);
     material_albedo(sc, am->mMaterialIndex, &mat);
     for (unsigned v = 0; v < am->mNumVertices; v++) {
         struct aiVector3D p = am->mVertices[v];
-        m->pos[v] = lumo_xform_apply(x, v3(p.x, p.y, p.z));
+        m->pos[v] = srv_xform_apply(x, v3(p.x, p.y, p.z));
         /* Priority: the caller's override, vertex colours, the material. */
         vec3 a = mat;
         if (albedo)
@@ -123,8 +123,8 @@ static const struct aiNode *find_node(const struct aiNode *n, const char *name, 
     return NULL;
 }
 
-static int import_light(lumo_scene *s, const struct aiScene *sc, const struct aiLight *al,
-                        const lumo_xform *x)
+static int import_light(srv_scene *s, const struct aiScene *sc, const struct aiLight *al,
+                        const srv_xform *x)
 {
     struct aiVector3D p = al->mPosition, d = al->mDirection;
     const struct aiNode *node = find_node(sc->mRootNode, al->mName.data, 0);
@@ -135,32 +135,32 @@ static int import_light(lumo_scene *s, const struct aiScene *sc, const struct ai
         aiTransformVecByMatrix4(&p, &w);
         aiTransformVecByMatrix3(&d, &r);
     }
-    lumo_light l;
+    srv_light l;
     memset(&l, 0, sizeof l);
     vec3 col = v3(al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b);
-    l.pos = lumo_xform_apply(x, v3(p.x, p.y, p.z));
-    lumo_xform rot = *x;
+    l.pos = srv_xform_apply(x, v3(p.x, p.y, p.z));
+    srv_xform rot = *x;
     rot.translate = v3(0, 0, 0);
-    l.dir = v3_norm(lumo_xform_apply(&rot, v3(d.x, d.y, d.z)));
+    l.dir = v3_norm(srv_xform_apply(&rot, v3(d.x, d.y, d.z)));
     l.power = v3_scale(col, 4.0f * (float)M_PI);   /* assimp colour as intensity W/sr */
     switch (al->mType) {
-    case aiLightSource_POINT: l.kind = LUMO_LIGHT_POINT; break;
+    case aiLightSource_POINT: l.kind = SRV_LIGHT_POINT; break;
     case aiLightSource_SPOT:
-        l.kind = LUMO_LIGHT_SPOT;
+        l.kind = SRV_LIGHT_SPOT;
         l.half_angle_deg = al->mAngleOuterCone * 180.0f / (float)M_PI;
         l.cos_half = cosf(al->mAngleOuterCone);
         break;
-    case aiLightSource_DIRECTIONAL: l.kind = LUMO_LIGHT_DIRECTIONAL; l.power = col; break;
+    case aiLightSource_DIRECTIONAL: l.kind = SRV_LIGHT_DIRECTIONAL; l.power = col; break;
     default: return 0;   /* ambient / area lights of the file format: not imported */
     }
     if (!v3_finite(l.pos) || !v3_finite(l.dir) || !v3_finite(l.power) ||
-        (l.kind != LUMO_LIGHT_POINT && v3_len(l.dir) == 0.0f))
+        (l.kind != SRV_LIGHT_POINT && v3_len(l.dir) == 0.0f))
         return 0;   /* a light the file cannot place is skipped, not guessed */
-    return lumo_scene_add_light(s, &l);
+    return srv_scene_add_light(s, &l);
 }
 
-int lumo_import_file(lumo_scene *s, const char *path, const lumo_xform *x, const vec3 *albedo,
-                     char *err, size_t errlen)
+int srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
+                    char *err, size_t errlen)
 {
     struct stat st;
     if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -177,7 +177,7 @@ int lumo_import_file(lumo_scene *s, const char *path, const lumo_xform *x, const
         return -1;
     }
     int rc = 0;
-    size_t before = lumo_scene_triangle_count(s);
+    size_t before = srv_scene_triangle_count(s);
     for (unsigned i = 0; i < sc->mNumMeshes && !rc; i++)
         rc = import_mesh(s, sc, sc->mMeshes[i], x, albedo, path);
     for (unsigned i = 0; i < sc->mNumLights && !rc; i++)
@@ -187,7 +187,7 @@ int lumo_import_file(lumo_scene *s, const char *path, const lumo_xform *x, const
         snprintf(err, errlen, "%s: out of memory", path);
         return -1;
     }
-    if (lumo_scene_triangle_count(s) == before) {
+    if (srv_scene_triangle_count(s) == before) {
         snprintf(err, errlen, "%s: no triangle in the file", path);
         return -1;
     }

@@ -7,13 +7,13 @@
 #include <string.h>
 #include "scene/scene.h"
 
-void lumo_scene_init(lumo_scene *s)
+void srv_scene_init(srv_scene *s)
 {
     memset(s, 0, sizeof *s);
-    s->camera = lumo_camera_default();
+    s->camera = srv_camera_default();
 }
 
-void lumo_scene_free(lumo_scene *s)
+void srv_scene_free(srv_scene *s)
 {
     for (size_t i = 0; i < s->nmeshes; i++) {
         free(s->meshes[i].pos);
@@ -22,7 +22,7 @@ void lumo_scene_free(lumo_scene *s)
     }
     free(s->meshes);
     free(s->lights);
-    lumo_scene_init(s);
+    srv_scene_init(s);
 }
 
 static int grow(void **p, size_t *cap, size_t need, size_t elem)
@@ -40,11 +40,11 @@ static int grow(void **p, size_t *cap, size_t need, size_t elem)
     return 0;
 }
 
-lumo_mesh *lumo_scene_add_mesh(lumo_scene *s, const char *name, uint32_t nverts, uint32_t ntris)
+srv_mesh *srv_scene_add_mesh(srv_scene *s, const char *name, uint32_t nverts, uint32_t ntris)
 {
     if (grow((void **)&s->meshes, &s->cap_meshes, s->nmeshes + 1, sizeof *s->meshes))
         return NULL;
-    lumo_mesh *m = &s->meshes[s->nmeshes];
+    srv_mesh *m = &s->meshes[s->nmeshes];
     memset(m, 0, sizeof *m);
     snprintf(m->name, sizeof m->name, "%s", name ? name : "mesh");
     m->pos = calloc(nverts ? nverts : 1, sizeof *m->pos);
@@ -62,7 +62,7 @@ lumo_mesh *lumo_scene_add_mesh(lumo_scene *s, const char *name, uint32_t nverts,
     return m;
 }
 
-int lumo_scene_add_light(lumo_scene *s, const lumo_light *l)
+int srv_scene_add_light(srv_scene *s, const srv_light *l)
 {
     if (grow((void **)&s->lights, &s->cap_lights, s->nlights + 1, sizeof *s->lights))
         return -1;
@@ -70,14 +70,14 @@ int lumo_scene_add_light(lumo_scene *s, const lumo_light *l)
     return 0;
 }
 
-void lumo_scene_override_albedo(lumo_scene *s, vec3 albedo)
+void srv_scene_override_albedo(srv_scene *s, vec3 albedo)
 {
     for (size_t i = 0; i < s->nmeshes; i++)
         for (uint32_t v = 0; v < s->meshes[i].nverts && !s->meshes[i].emitter; v++)
             s->meshes[i].albedo[v] = albedo;
 }
 
-int lumo_scene_bounds(const lumo_scene *s, vec3 *bmin, vec3 *bmax)
+int srv_scene_bounds(const srv_scene *s, vec3 *bmin, vec3 *bmax)
 {
     int any = 0;
     for (size_t i = 0; i < s->nmeshes; i++)
@@ -90,7 +90,7 @@ int lumo_scene_bounds(const lumo_scene *s, vec3 *bmin, vec3 *bmax)
     return any;
 }
 
-size_t lumo_scene_triangle_count(const lumo_scene *s)
+size_t srv_scene_triangle_count(const srv_scene *s)
 {
     size_t n = 0;
     for (size_t i = 0; i < s->nmeshes; i++)
@@ -98,7 +98,7 @@ size_t lumo_scene_triangle_count(const lumo_scene *s)
     return n;
 }
 
-static int validate_mesh(const lumo_mesh *m, float min_area, char *err, size_t errlen)
+static int validate_mesh(const srv_mesh *m, float min_area, char *err, size_t errlen)
 {
     for (uint32_t v = 0; v < m->nverts; v++)
         if (!v3_finite(m->pos[v])) {
@@ -121,10 +121,10 @@ static int validate_mesh(const lumo_mesh *m, float min_area, char *err, size_t e
     return 0;
 }
 
-int lumo_scene_validate(const lumo_scene *s, char *err, size_t errlen)
+int srv_scene_validate(const srv_scene *s, char *err, size_t errlen)
 {
     vec3 lo, hi;
-    if (lumo_scene_triangle_count(s) == 0 || !lumo_scene_bounds(s, &lo, &hi)) {
+    if (srv_scene_triangle_count(s) == 0 || !srv_scene_bounds(s, &lo, &hi)) {
         snprintf(err, errlen, "the scene has no geometry");
         return -1;
     }
@@ -132,9 +132,9 @@ int lumo_scene_validate(const lumo_scene *s, char *err, size_t errlen)
         snprintf(err, errlen, "the scene has no light (add one with --light)");
         return -1;
     }
-    if (s->nlights > LUMO_SCENE_MAX_LIGHTS) {
+    if (s->nlights > SRV_SCENE_MAX_LIGHTS) {
         snprintf(err, errlen, "the scene has %zu lights, at most %d are supported", s->nlights,
-                 LUMO_SCENE_MAX_LIGHTS);
+                 SRV_SCENE_MAX_LIGHTS);
         return -1;
     }
     /* Zero area relative to the scene's size: float cross products of a
@@ -144,7 +144,7 @@ int lumo_scene_validate(const lumo_scene *s, char *err, size_t errlen)
         if (validate_mesh(&s->meshes[i], 1e-14f * ext * ext, err, errlen))
             return -1;
     for (size_t i = 0; i < s->nlights; i++) {
-        const lumo_light *l = &s->lights[i];
+        const srv_light *l = &s->lights[i];
         if (!v3_finite(l->pos) || !v3_finite(l->dir) || !v3_finite(l->power) ||
             l->power.x < 0 || l->power.y < 0 || l->power.z < 0) {
             snprintf(err, errlen, "light %zu: non-finite or negative value", i);
@@ -154,7 +154,7 @@ int lumo_scene_validate(const lumo_scene *s, char *err, size_t errlen)
     return 0;
 }
 
-int lumo_parse_floats(const char *text, float *out, int n)
+int srv_parse_floats(const char *text, float *out, int n)
 {
     const char *p = text;
     for (int i = 0; i < n; i++) {
@@ -190,16 +190,16 @@ static int split_fields(char *buf, char **f, int max)
 static int parse_vec(const char *t, vec3 *v)
 {
     float f[3];
-    if (lumo_parse_floats(t, f, 3))
+    if (srv_parse_floats(t, f, 3))
         return -1;
     *v = v3(f[0], f[1], f[2]);
     return 0;
 }
 
-int lumo_light_parse(const char *text, lumo_light *out, char *err, size_t errlen)
+int srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen)
 {
     char buf[512], *f[7];
-    lumo_light l;
+    srv_light l;
     float ha = 0.0f;
     memset(&l, 0, sizeof l);
     if (strlen(text) >= sizeof buf) {
@@ -210,18 +210,18 @@ int lumo_light_parse(const char *text, lumo_light *out, char *err, size_t errlen
     int n = split_fields(buf, f, 6);
     int ok = 0;
     if (n == 3 && !strcmp(f[0], "point")) {
-        l.kind = LUMO_LIGHT_POINT;
+        l.kind = SRV_LIGHT_POINT;
         ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.power);
     } else if (n == 5 && !strcmp(f[0], "spot")) {
-        l.kind = LUMO_LIGHT_SPOT;
+        l.kind = SRV_LIGHT_SPOT;
         ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.dir) &&
-             !lumo_parse_floats(f[3], &ha, 1) && !parse_vec(f[4], &l.power) &&
+             !srv_parse_floats(f[3], &ha, 1) && !parse_vec(f[4], &l.power) &&
              ha > 0.0f && ha <= 180.0f && v3_len(l.dir) > 0.0f;
     } else if (n == 3 && !strcmp(f[0], "directional")) {
-        l.kind = LUMO_LIGHT_DIRECTIONAL;
+        l.kind = SRV_LIGHT_DIRECTIONAL;
         ok = !parse_vec(f[1], &l.dir) && !parse_vec(f[2], &l.power) && v3_len(l.dir) > 0.0f;
     } else if (n == 5 && !strcmp(f[0], "area")) {
-        l.kind = LUMO_LIGHT_AREA;
+        l.kind = SRV_LIGHT_AREA;
         ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.u) && !parse_vec(f[3], &l.v) &&
              !parse_vec(f[4], &l.power) && v3_len(v3_cross(l.u, l.v)) > 0.0f;
     }
@@ -229,7 +229,7 @@ int lumo_light_parse(const char *text, lumo_light *out, char *err, size_t errlen
         snprintf(err, errlen, "bad light '%s' (see docs/scene-format.md)", text);
         return -1;
     }
-    l.dir = v3_norm(l.kind == LUMO_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
+    l.dir = v3_norm(l.kind == SRV_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
     l.half_angle_deg = ha;
     l.cos_half = cosf(ha * (float)M_PI / 180.0f);
     *out = l;

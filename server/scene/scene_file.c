@@ -9,7 +9,7 @@
 #define MAX_WORDS 16
 
 typedef struct {
-    lumo_scene *s;
+    srv_scene *s;
     char dir[1024];
     char *w[MAX_WORDS];
     int  n;
@@ -19,7 +19,7 @@ typedef struct {
 static int vec_arg(const char *t, vec3 *v)
 {
     float f[3];
-    if (!t || lumo_parse_floats(t, f, 3))
+    if (!t || srv_parse_floats(t, f, 3))
         return -1;
     *v = v3(f[0], f[1], f[2]);
     return 0;
@@ -46,7 +46,7 @@ static int shape_opts(parser *p, int from, vec3 *albedo, int *inward, int *segme
 
 static int st_mesh(parser *p)
 {
-    lumo_xform x = lumo_xform_identity();
+    srv_xform x = srv_xform_identity();
     vec3 albedo;
     int has_albedo = 0;
     char path[2048];
@@ -58,11 +58,11 @@ static int st_mesh(parser *p)
         int ok = a != NULL;
         if (ok && !strcmp(p->w[i], "translate"))
             ok = !vec_arg(a, &x.translate);
-        else if (ok && !strcmp(p->w[i], "scale") && !lumo_parse_floats(a, f, 1))
+        else if (ok && !strcmp(p->w[i], "scale") && !srv_parse_floats(a, f, 1))
             x.scale = v3(f[0], f[0], f[0]);
         else if (ok && !strcmp(p->w[i], "scale"))
             ok = !vec_arg(a, &x.scale);
-        else if (ok && !strcmp(p->w[i], "rotate") && !lumo_parse_floats(a, f, 4))
+        else if (ok && !strcmp(p->w[i], "rotate") && !srv_parse_floats(a, f, 4))
             x.axis = v3(f[0], f[1], f[2]), x.angle_deg = f[3];
         else if (ok && !strcmp(p->w[i], "albedo"))
             ok = !vec_arg(a, &albedo) && (has_albedo = 1);
@@ -76,7 +76,7 @@ static int st_mesh(parser *p)
         snprintf(path, sizeof path, "%s", p->w[1]);
     else
         snprintf(path, sizeof path, "%s/%s", p->dir, p->w[1]);
-    return lumo_import_file(p->s, path, &x, has_albedo ? &albedo : NULL, p->err, sizeof p->err);
+    return srv_import_file(p->s, path, &x, has_albedo ? &albedo : NULL, p->err, sizeof p->err);
 }
 
 static int st_shape(parser *p)
@@ -86,19 +86,19 @@ static int st_shape(parser *p)
     const char *k = p->w[0];
     if (!strcmp(k, "quad") && p->n >= 4 && !vec_arg(p->w[1], &a) && !vec_arg(p->w[2], &b) &&
         !vec_arg(p->w[3], &c))
-        return shape_opts(p, 4, &albedo, NULL, NULL) ? -1 : lumo_add_quad(p->s, "quad", a, b, c, albedo);
+        return shape_opts(p, 4, &albedo, NULL, NULL) ? -1 : srv_add_quad(p->s, "quad", a, b, c, albedo);
     if (!strcmp(k, "box") && p->n >= 3 && !vec_arg(p->w[1], &a) && !vec_arg(p->w[2], &b) &&
         a.x < b.x && a.y < b.y && a.z < b.z)
         return shape_opts(p, 3, &albedo, &inward, NULL) ? -1
-               : lumo_add_box(p->s, "box", a, b, albedo, inward);
+               : srv_add_box(p->s, "box", a, b, albedo, inward);
     float r;
     if (!strcmp(k, "sphere") && p->n >= 3 && !vec_arg(p->w[1], &a) &&
-        !lumo_parse_floats(p->w[2], &r, 1) && r > 0.0f) {
+        !srv_parse_floats(p->w[2], &r, 1) && r > 0.0f) {
         if (shape_opts(p, 3, &albedo, &inward, &seg))
             return -1;
         if (seg < 8 || seg > 4096)
             return snprintf(p->err, sizeof p->err, "segments must be in [8, 4096]"), -1;
-        return lumo_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
+        return srv_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
     }
     snprintf(p->err, sizeof p->err, "malformed %s", k);
     return -1;
@@ -109,16 +109,16 @@ static int st_other(parser *p)
     const char *k = p->w[0];
     vec3 a;
     if (!strcmp(k, "light") && p->n == 2) {
-        lumo_light l;
-        if (lumo_light_parse(p->w[1], &l, p->err, sizeof p->err))
+        srv_light l;
+        if (srv_light_parse(p->w[1], &l, p->err, sizeof p->err))
             return -1;
-        return l.kind == LUMO_LIGHT_AREA ? lumo_add_area_light(p->s, &l) : lumo_scene_add_light(p->s, &l);
+        return l.kind == SRV_LIGHT_AREA ? srv_add_area_light(p->s, &l) : srv_scene_add_light(p->s, &l);
     }
     if (!strcmp(k, "albedo") && p->n == 2 && !vec_arg(p->w[1], &a)) {
-        lumo_scene_override_albedo(p->s, a);
+        srv_scene_override_albedo(p->s, a);
         return 0;
     }
-    if (!strcmp(k, "camera") && p->n == 2 && !lumo_camera_parse(p->w[1], &p->s->camera)) {
+    if (!strcmp(k, "camera") && p->n == 2 && !srv_camera_parse(p->w[1], &p->s->camera)) {
         p->s->has_camera = 1;
         return 0;
     }
@@ -135,7 +135,7 @@ static int statement(parser *p)
     return st_other(p);
 }
 
-int lumo_scene_load(lumo_scene *s, const char *path, char *err, size_t errlen)
+int srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
     char line[2048], tmp[1024];

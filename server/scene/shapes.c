@@ -3,15 +3,15 @@
 #include <math.h>
 #include "scene/shapes.h"
 
-static void fill_albedo(lumo_mesh *m, vec3 albedo)
+static void fill_albedo(srv_mesh *m, vec3 albedo)
 {
     for (uint32_t i = 0; i < m->nverts; i++)
         m->albedo[i] = albedo;
 }
 
-int lumo_add_quad(lumo_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, vec3 albedo)
+int srv_add_quad(srv_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, vec3 albedo)
 {
-    lumo_mesh *m = lumo_scene_add_mesh(s, name, 4, 2);
+    srv_mesh *m = srv_scene_add_mesh(s, name, 4, 2);
     if (!m)
         return -1;
     m->pos[0] = corner;
@@ -25,7 +25,7 @@ int lumo_add_quad(lumo_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, 
     return 0;
 }
 
-int lumo_add_box(lumo_scene *s, const char *name, vec3 lo, vec3 hi, vec3 albedo, int inward)
+int srv_add_box(srv_scene *s, const char *name, vec3 lo, vec3 hi, vec3 albedo, int inward)
 {
     vec3 d = v3_sub(hi, lo);
     vec3 ex = v3(d.x, 0, 0), ey = v3(0, d.y, 0), ez = v3(0, 0, d.z);
@@ -37,18 +37,18 @@ int lumo_add_box(lumo_scene *s, const char *name, vec3 lo, vec3 hi, vec3 albedo,
     };
     for (int i = 0; i < 6; i++) {
         vec3 u = inward ? f[i][2] : f[i][1], v = inward ? f[i][1] : f[i][2];
-        if (lumo_add_quad(s, name, f[i][0], u, v, albedo))
+        if (srv_add_quad(s, name, f[i][0], u, v, albedo))
             return -1;
     }
     return 0;
 }
 
-int lumo_add_sphere(lumo_scene *s, const char *name, vec3 c, float r, int segments, vec3 albedo,
-                    int inward)
+int srv_add_sphere(srv_scene *s, const char *name, vec3 c, float r, int segments, vec3 albedo,
+                   int inward)
 {
     int nu = segments < 8 ? 8 : segments, nv = nu / 2;
     uint32_t nverts = (uint32_t)((nv - 1) * nu + 2), ntris = (uint32_t)(2 * nu * (nv - 1));
-    lumo_mesh *m = lumo_scene_add_mesh(s, name, nverts, ntris);
+    srv_mesh *m = srv_scene_add_mesh(s, name, nverts, ntris);
     if (!m)
         return -1;
     m->pos[0] = v3_add(c, v3(0, r, 0));
@@ -87,9 +87,9 @@ int lumo_add_sphere(lumo_scene *s, const char *name, vec3 c, float r, int segmen
     return 0;
 }
 
-int lumo_add_area_light(lumo_scene *s, const lumo_light *l)
+int srv_add_area_light(srv_scene *s, const srv_light *l)
 {
-    if (lumo_scene_add_light(s, l) || lumo_add_quad(s, "area-light", l->pos, l->u, l->v, v3(0, 0, 0)))
+    if (srv_scene_add_light(s, l) || srv_add_quad(s, "area-light", l->pos, l->u, l->v, v3(0, 0, 0)))
         return -1;
     s->meshes[s->nmeshes - 1].emitter = 1;
     return 0;

@@ -33,7 +33,7 @@ typedef struct {
     vec3  albedo;
     int   has_albedo, has_camera;
     int   mesh_mode;          /* MESH_RAW, MESH_PM or MESH_BOTH */
-    lumo_camera camera;
+    srv_camera camera;
     const char *lights[64];
     int   nlights;
 } options;
@@ -115,7 +115,7 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
     case O_DEFAULT: o->use_default = 1; return 0;
     case 'o': o->out = arg; return 0;
     case O_GRID: if (!parse_grid(arg, o->dims)) return 0; break;
-    case O_CELL: if (!lumo_parse_floats(arg, &o->cell, 1) && o->cell > 0) return 0; break;
+    case O_CELL: if (!srv_parse_floats(arg, &o->cell, 1) && o->cell > 0) return 0; break;
     case O_SPP: if (!parse_int(arg, 1, 1 << 24, &o->spp)) return 0; break;
     case O_SEED:
         o->seed = strtoull(arg, &end, 0);
@@ -127,7 +127,7 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
         break;
     case O_ALBEDO: {
         float f[3];
-        if (!lumo_parse_floats(arg, f, 3) && f[0] >= 0 && f[1] >= 0 && f[2] >= 0 &&
+        if (!srv_parse_floats(arg, f, 3) && f[0] >= 0 && f[1] >= 0 && f[2] >= 0 &&
             f[0] <= 1 && f[1] <= 1 && f[2] <= 1) {
             o->albedo = v3(fminf(f[0], 0.98f), fminf(f[1], 0.98f), fminf(f[2], 0.98f));
             o->has_albedo = 1;
@@ -141,9 +141,9 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
             o->ref_h > 0 && o->ref_w <= 16384 && o->ref_h <= 16384)
             return 0;
         break;
-    case O_CAMERA: if (!lumo_camera_parse(arg, &o->camera)) { o->has_camera = 1; return 0; } break;
+    case O_CAMERA: if (!srv_camera_parse(arg, &o->camera)) { o->has_camera = 1; return 0; } break;
     case O_INDIRECT: o->indirect_only = 1; return 0;
-    case O_EXPOSURE: if (!lumo_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
+    case O_EXPOSURE: if (!srv_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
     case O_NOPROGRESS: o->progress = 0; return 0;
     case O_MESH:
         o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM
@@ -206,47 +206,47 @@ static int is_description(const char *path)
     return dot && (!strcmp(dot, ".txt") || !strcmp(dot, ".scene"));
 }
 
-static int load_file(const char *path, lumo_scene *s, char *err, size_t errlen)
+static int load_file(const char *path, srv_scene *s, char *err, size_t errlen)
 {
-    lumo_xform x = lumo_xform_identity();
+    srv_xform x = srv_xform_identity();
     if (is_description(path))
-        return lumo_scene_load(s, path, err, errlen);
-    return lumo_import_file(s, path, &x, NULL, err, errlen);
+        return srv_scene_load(s, path, err, errlen);
+    return srv_import_file(s, path, &x, NULL, err, errlen);
 }
 
-static int load_scene(const options *o, lumo_scene *s, char *err, size_t errlen)
+static int load_scene(const options *o, srv_scene *s, char *err, size_t errlen)
 {
     const char *dragon = o->dragon ? o->dragon : getenv("LUMO_DRAGON") ? getenv("LUMO_DRAGON") : DEFAULT_DRAGON;
-    if (o->use_default ? lumo_default_scene(s, dragon, err, errlen) : load_file(o->scene, s, err, errlen))
+    if (o->use_default ? srv_default_scene(s, dragon, err, errlen) : load_file(o->scene, s, err, errlen))
         return -1;
     for (int i = 0; i < o->nlights; i++) {
-        lumo_light l;
-        if (lumo_light_parse(o->lights[i], &l, err, errlen) ||
-            (l.kind == LUMO_LIGHT_AREA ? lumo_add_area_light(s, &l) : lumo_scene_add_light(s, &l)))
+        srv_light l;
+        if (srv_light_parse(o->lights[i], &l, err, errlen) ||
+            (l.kind == SRV_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l)))
             return -1;
     }
     if (o->has_albedo)
-        lumo_scene_override_albedo(s, o->albedo);
+        srv_scene_override_albedo(s, o->albedo);
     if (o->has_camera)
         s->camera = o->camera;
-    return lumo_scene_validate(s, err, errlen);
+    return srv_scene_validate(s, err, errlen);
 }
 
-static int run_reference(const options *o, const lumo_scene *s, const lumo_tracer *t)
+static int run_reference(const options *o, const srv_scene *s, const srv_tracer *t)
 {
     char err[512];
-    lumo_image img;
+    srv_image img;
     uint64_t rays = 0;
-    lumo_render_opts ro = {o->spp, o->seed, o->threads, o->indirect_only, o->progress};
-    double t0 = lumo_now();
-    if (lumo_render_reference(t, &s->camera, o->ref_w, o->ref_h, &ro, &img, &rays))
+    srv_render_opts ro = {o->spp, o->seed, o->threads, o->indirect_only, o->progress};
+    double t0 = srv_now();
+    if (srv_render_reference(t, &s->camera, o->ref_w, o->ref_h, &ro, &img, &rays))
         return fail("cannot render (out of memory or threads)");
-    double dt = lumo_now() - t0;
+    double dt = srv_now() - t0;
     if (lumo_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err)) {
-        lumo_image_free(&img);
+        srv_image_free(&img);
         return fail(err);
     }
-    lumo_image_free(&img);
+    srv_image_free(&img);
     fprintf(stderr, "lumo-bake: %dx%d %s reference, %d spp, %.2f M rays in %.2f s (%.2f M rays/s, %d threads) -> %s\n",
             o->ref_w, o->ref_h, o->indirect_only ? "indirect-only" : "full", o->spp, (double)rays * 1e-6,
             dt, (double)rays * 1e-6 / (dt > 0 ? dt : 1e-9), o->threads, o->out);
@@ -254,10 +254,10 @@ static int run_reference(const options *o, const lumo_scene *s, const lumo_trace
 }
 
 /* Grid dims from --cell: spacing over the bounds, clamped to [2, 256]. */
-static void cell_dims(const lumo_scene *s, float cell, int dims[3])
+static void cell_dims(const srv_scene *s, float cell, int dims[3])
 {
     vec3 lo, hi;
-    lumo_scene_bounds(s, &lo, &hi);
+    srv_scene_bounds(s, &lo, &hi);
     for (int a = 0; a < 3; a++) {
         float n = ceilf((v3_get(hi, a) - v3_get(lo, a)) / cell) + 1.0f;
         dims[a] = n < 2.0f ? 2 : n > 256.0f ? 256 : (int)n;
@@ -265,17 +265,17 @@ static void cell_dims(const lumo_scene *s, float cell, int dims[3])
 }
 
 /* INFO, then the meshes as --mesh asks: raw chunks and/or one progressive
- * stream per mesh (lumo_pm_pack, server/pm/pm_pack.c), in mesh order. */
+ * stream per mesh (srv_pm_pack, server/pm/pm_pack.c), in mesh order. */
 _Static_assert(sizeof(vec3) == 3 * sizeof(float), "positions are passed as a float xyz array");
 
-static int pack_meshes(const options *o, lumo_pkg_writer *w, const lumo_scene *s, char *err, size_t errlen)
+static int pack_meshes(const options *o, srv_pkg_writer *w, const srv_scene *s, char *err, size_t errlen)
 {
-    if (lumo_pack_scene(w, s, o->mesh_mode & MESH_RAW)) {
+    if (srv_pack_scene(w, s, o->mesh_mode & MESH_RAW)) {
         snprintf(err, errlen, "out of memory");
         return -1;
     }
     for (size_t i = 0; (o->mesh_mode & MESH_PM) && i < s->nmeshes; i++) {
-        const lumo_mesh *m = &s->meshes[i];
+        const srv_mesh *m = &s->meshes[i];
         uint8_t *albedo = malloc(3u * (m->nverts ? m->nverts : 1));
         if (!albedo) {
             snprintf(err, errlen, "out of memory");
@@ -284,7 +284,7 @@ static int pack_meshes(const options *o, lumo_pkg_writer *w, const lumo_scene *s
         for (uint32_t v = 0; v < m->nverts; v++)   /* the stream's albedo is 8-bit linear */
             for (int c = 0; c < 3; c++)
                 albedo[3 * v + (uint32_t)c] = (uint8_t)lrintf(255.0f * v3_get(m->albedo[v], c));
-        int rc = lumo_pm_pack(w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, NULL, err, errlen);
+        int rc = srv_pm_pack(w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, NULL, err, errlen);
         free(albedo);
         if (rc)
             return -1;
@@ -292,24 +292,24 @@ static int pack_meshes(const options *o, lumo_pkg_writer *w, const lumo_scene *s
     return 0;
 }
 
-static int run_bake(options *o, const lumo_scene *s, const lumo_tracer *t)
+static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
 {
     char err[512];
-    lumo_bake_result res;
-    lumo_pkg_writer w;
+    srv_bake_result res;
+    srv_pkg_writer w;
     if (o->cell > 0)
         cell_dims(s, o->cell, o->dims);
-    lumo_grid g = lumo_grid_over(s, o->dims);
-    lumo_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
-    if (lumo_bake(t, &g, &bo, &res, err, sizeof err))
+    srv_grid g = srv_grid_over(s, o->dims);
+    srv_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
+    if (srv_bake(t, &g, &bo, &res, err, sizeof err))
         return fail(err);
-    lumo_pkgw_init(&w);
+    srv_pkgw_init(&w);
     int rc = pack_meshes(o, &w, s, err, sizeof err);
     if (!rc)
-        rc = lumo_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
+        rc = srv_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
     if (!rc)
-        rc = lumo_pkgw_write_file(&w, o->out, err, sizeof err);
-    lumo_pkgw_free(&w);
+        rc = srv_pkgw_write_file(&w, o->out, err, sizeof err);
+    srv_pkgw_free(&w);
     size_t solid = 0;
     for (size_t v = 0; v < res.nverts; v++)
         solid += !res.valid[v];
@@ -319,14 +319,14 @@ static int run_bake(options *o, const lumo_scene *s, const lumo_tracer *t)
                 g.dims[0], g.dims[1], g.dims[2], res.nverts, solid, o->spp, (double)res.rays * 1e-6,
                 res.seconds, (double)res.rays * 1e-6 / (res.seconds > 0 ? res.seconds : 1e-9), o->threads,
                 o->out);
-    lumo_bake_result_free(&res);
+    srv_bake_result_free(&res);
     return rc ? fail(err) : 0;
 }
 
 int main(int argc, char **argv)
 {
     options o;
-    lumo_scene s;
+    srv_scene s;
     char err[512];
     int rc = parse_args(&o, argc, argv, err, sizeof err);
     if (rc == 1) {
@@ -335,20 +335,20 @@ int main(int argc, char **argv)
     }
     if (rc)
         return fail(err);
-    lumo_scene_init(&s);
+    srv_scene_init(&s);
     if (load_scene(&o, &s, err, sizeof err)) {
-        lumo_scene_free(&s);
+        srv_scene_free(&s);
         return fail(err);
     }
-    lumo_rt *rt = lumo_rt_create(&s, o.threads, err, sizeof err);
+    srv_rt *rt = srv_rt_create(&s, o.threads, err, sizeof err);
     if (!rt) {
-        lumo_scene_free(&s);
+        srv_scene_free(&s);
         return fail(err);
     }
-    lumo_tracer t;
-    lumo_tracer_init(&t, &s, rt);
+    srv_tracer t;
+    srv_tracer_init(&t, &s, rt);
     rc = o.ref_w ? run_reference(&o, &s, &t) : run_bake(&o, &s, &t);
-    lumo_rt_free(rt);
-    lumo_scene_free(&s);
+    srv_rt_free(rt);
+    srv_scene_free(&s);
     return rc;
 }

@@ -32,15 +32,15 @@ static uint32_t mesh_arg(int argc, char **argv)
     return 0;
 }
 
-static int open_stream(const char *path, uint32_t mesh, uint8_t **file, lumo_pm_client *c)
+static int open_stream(const char *path, uint32_t mesh, uint8_t **file, srv_pm_client *c)
 {
     size_t len, slen;
     const uint8_t *s;
     if (load(path, file, &len))
         return -1;
-    lumo_status st = lumo_pm_find_stream(*file, len, mesh, &s, &slen);
+    lumo_status st = srv_pm_find_stream(*file, len, mesh, &s, &slen);
     if (!st)
-        st = lumo_pm_client_open(c, s, slen);
+        st = srv_pm_client_open(c, s, slen);
     if (st) {
         fprintf(stderr, "lumo-inspect: error: %s: no progressive mesh stream %u: %s\n", path, mesh,
                 lumo_strerror(st));
@@ -53,7 +53,7 @@ static int open_stream(const char *path, uint32_t mesh, uint8_t **file, lumo_pm_
 static int run_stream(int argc, char **argv)
 {
     uint8_t *file;
-    lumo_pm_client c;
+    srv_pm_client c;
     if (open_stream(lumo_inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
         return 1;
     const lumo_pmesh_header *h = &c.h;
@@ -67,13 +67,13 @@ static int run_stream(int argc, char **argv)
     while (!lumo_pmesh_complete(&c.pm)) {
         const uint8_t *r;
         size_t n;
-        lumo_status st = lumo_pm_client_next(&c, &r, &n);
+        lumo_status st = srv_pm_client_next(&c, &r, &n);
         if (!st) {
             uint32_t f[8];
             for (int i = 0; i < 8; i++)
                 f[i] = r[4 * i] | r[4 * i + 1] << 8 | r[4 * i + 2] << 16 | (uint32_t)r[4 * i + 3] << 24;
             printf("%6u %9u %8u %8u %8u %8u %8u %9zu %10zu\n", f[1], f[2], f[3], f[4], f[5], f[6], f[7], n, c.at);
-            st = lumo_pm_client_step(&c);
+            st = srv_pm_client_step(&c);
         }
         if (st) {
             fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", c.pm.batches_applied, lumo_strerror(st));
@@ -81,7 +81,7 @@ static int run_stream(int argc, char **argv)
             break;
         }
     }
-    lumo_pm_client_close(&c);
+    srv_pm_client_close(&c);
     free(file);
     return rc;
 }
@@ -125,7 +125,7 @@ static int run_lod(int argc, char **argv)
         return 1;
     }
     uint8_t *file;
-    lumo_pm_client c;
+    srv_pm_client c;
     if (open_stream(lumo_inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
         return 1;
     char *end;
@@ -136,7 +136,7 @@ static int run_lod(int argc, char **argv)
                 c.h.base_vertices, c.h.vertices);
         goto done;
     }
-    lumo_status st = lumo_pm_client_until(&c, (uint32_t)n);
+    lumo_status st = srv_pm_client_until(&c, (uint32_t)n);
     if (!st)
         st = lumo_pmesh_rewind(&c.pm, (uint32_t)n);
     if (st) {
@@ -152,7 +152,7 @@ static int run_lod(int argc, char **argv)
     printf("%s: level %u: %u vertices, %u triangles\n", out, v.vertex_count, v.vertex_count, v.face_count);
     rc = 0;
 done:
-    lumo_pm_client_close(&c);
+    srv_pm_client_close(&c);
     free(file);
     return rc;
 }

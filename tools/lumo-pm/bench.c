@@ -31,7 +31,7 @@ typedef struct {
     const char *path, *name;
     float *xyz;
     uint32_t *tris, nv, nf;
-    lumo_pm pm;
+    srv_pm pm;
     double build_s;
 } model;
 
@@ -53,12 +53,12 @@ static int load_model(const char *path, model *m)
     char err[256];
     memset(m, 0, sizeof *m);
     m->path = path, m->name = base_name(path);
-    if (lumo_pm_load(path, &m->xyz, NULL, &m->nv, &m->tris, &m->nf, err, sizeof err)) {
+    if (srv_pm_load(path, &m->xyz, NULL, &m->nv, &m->tris, &m->nf, err, sizeof err)) {
         fprintf(stderr, "lumo-pm bench: %s\n", err);
         return -1;
     }
     double t0 = now();
-    if (lumo_pm_build(m->xyz, m->nv, m->tris, m->nf, NULL, &m->pm))
+    if (srv_pm_build(m->xyz, m->nv, m->tris, m->nf, NULL, &m->pm))
         return -1;
     m->build_s = now() - t0;
     return 0;
@@ -66,27 +66,27 @@ static int load_model(const char *path, model *m)
 
 static void free_model(model *m)
 {
-    lumo_pm_free(&m->pm);
+    srv_pm_free(&m->pm);
     free(m->xyz);
     free(m->tris);
 }
 
 /* The default stream of pm with its bit statistics; 0 on success. */
-static int stream_stats(const lumo_pm *pm, lumo_pm_stream_stats *st, uint8_t **s, size_t *len)
+static int stream_stats(const srv_pm *pm, srv_pm_stream_stats *st, uint8_t **s, size_t *len)
 {
-    lumo_pm_stream_options o;
-    lumo_pm_stream_default_options(&o);
+    srv_pm_stream_options o;
+    srv_pm_stream_default_options(&o);
     o.stats = st;
-    return lumo_pm_stream_build(pm, &o, s, len, NULL, NULL);
+    return srv_pm_stream_build(pm, &o, s, len, NULL, NULL);
 }
 
 static int stream(const model *m, uint32_t batch, int coding, uint8_t **s, size_t *len)
 {
-    lumo_pm_stream_options o;
-    lumo_pm_stream_default_options(&o);
+    srv_pm_stream_options o;
+    srv_pm_stream_default_options(&o);
     o.batch_vertices = batch;
     o.position_coding = coding;
-    return lumo_pm_stream_build(&m->pm, &o, s, len, NULL, NULL);
+    return srv_pm_stream_build(&m->pm, &o, s, len, NULL, NULL);
 }
 
 /* Size of `draco_encoder -qp 12 -cl CL` on the cleaned mesh, or 0. */
@@ -95,7 +95,7 @@ static long draco_cli_size(const model *m, int cl)
     char ply[64], drc[64], cmd[256];
     snprintf(ply, sizeof ply, "/tmp/lumo-pm-bench-%d.ply", (int)getpid());
     snprintf(drc, sizeof drc, "/tmp/lumo-pm-bench-%d.drc", (int)getpid());
-    if (lumo_pm_write_ply(ply, m->pm.xyz, m->pm.vertices, m->pm.tris, m->pm.faces))
+    if (srv_pm_write_ply(ply, m->pm.xyz, m->pm.vertices, m->pm.tris, m->pm.faces))
         return 0;
     snprintf(cmd, sizeof cmd, "draco_encoder -i %s -o %s -qp 12 -cl %d >/dev/null 2>&1", ply, drc, cl);
     long size = 0;
@@ -144,20 +144,20 @@ static void section_sizes(FILE *o, model *ms, int n)
 /* Apply a whole stream with the client; per-batch times into t (seconds). */
 static int run_client(const uint8_t *s, size_t len, double *t, uint32_t *nb, size_t *arena)
 {
-    lumo_pm_client c;
-    if (lumo_pm_client_open(&c, s, len))
+    srv_pm_client c;
+    if (srv_pm_client_open(&c, s, len))
         return -1;
     *nb = 0;
     while (!lumo_pmesh_complete(&c.pm)) {
         double t0 = now();
-        if (lumo_pm_client_step(&c)) {
-            lumo_pm_client_close(&c);
+        if (srv_pm_client_step(&c)) {
+            srv_pm_client_close(&c);
             return -1;
         }
         t[(*nb)++] = now() - t0;
     }
     *arena = c.arena_bytes;
-    lumo_pm_client_close(&c);
+    srv_pm_client_close(&c);
     return 0;
 }
 
@@ -285,7 +285,7 @@ static void section_scaling(FILE *o, model *ms, int n, const char *self)
 /* RMS distance of level k from the full mesh, in the quadric sense: every
  * full-resolution face's plane, area weighted, against the level's
  * positions of its three corners (each resolved at level k). */
-static double level_rms(const lumo_pm *pm, uint32_t k)
+static double level_rms(const srv_pm *pm, uint32_t k)
 {
     double err = 0, area = 0;
     for (uint32_t f = 0; f < pm->faces; f++) {
@@ -298,7 +298,7 @@ static double level_rms(const lumo_pm *pm, uint32_t k)
         if (len <= 0)
             continue;
         for (int i = 0; i < 3; i++) {
-            const float *p = pm->xyz + 3 * (size_t)lumo_pm_resolve(pm, t[i], k);
+            const float *p = pm->xyz + 3 * (size_t)srv_pm_resolve(pm, t[i], k);
             double d = ((p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2]) / len;
             err += 0.5 * len * d * d;
         }
@@ -307,7 +307,7 @@ static double level_rms(const lumo_pm *pm, uint32_t k)
     return area > 0 ? sqrt(err / area) : 0;
 }
 
-static double bbox_diagonal(const lumo_pm *pm)
+static double bbox_diagonal(const srv_pm *pm)
 {
     float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
     for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
@@ -334,12 +334,12 @@ static void section_rounds(FILE *o, model *ms, int n)
     for (int i = 0; i < n; i++) {
         static const double fraction[] = {0, -1, 1};  /* -1: the default */
         for (int j = 0; j < 3; j++) {
-            lumo_pm_options po;
-            lumo_pm pm;
-            lumo_pm_default_options(&po);
+            srv_pm_options po;
+            srv_pm pm;
+            srv_pm_default_options(&po);
             if (fraction[j] >= 0)
                 po.round_fraction = fraction[j];
-            if (lumo_pm_build(ms[i].xyz, ms[i].nv, ms[i].tris, ms[i].nf, &po, &pm))
+            if (srv_pm_build(ms[i].xyz, ms[i].nv, ms[i].tris, ms[i].nf, &po, &pm))
                 continue;
             double diag = bbox_diagonal(&pm), e[3];
             for (int l = 0; l < 3; l++) {
@@ -351,7 +351,7 @@ static void section_rounds(FILE *o, model *ms, int n)
                 snprintf(order, sizeof order, "rounds %g", po.round_fraction);
             else
                 snprintf(order, sizeof order, "one at a time");
-            lumo_pm_stream_stats st;
+            srv_pm_stream_stats st;
             uint8_t *s = NULL;
             size_t len = 0;
             if (!stream_stats(&pm, &st, &s, &len))
@@ -359,7 +359,7 @@ static void section_rounds(FILE *o, model *ms, int n)
                         order, pm.base_vertices, e[0], e[1], e[2],
                         st.splits ? (double)st.parent_bits / st.splits : 0, len);
             free(s);
-            lumo_pm_free(&pm);
+            srv_pm_free(&pm);
         }
     }
     fprintf(o, "\n");
@@ -376,7 +376,7 @@ static void section_bits(FILE *o, model *ms, int n)
                "| Draco payload | record heads | total bits/vertex | fan splits by rank |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
-        lumo_pm_stream_stats st;
+        srv_pm_stream_stats st;
         uint8_t *s = NULL;
         size_t len = 0;
         if (stream_stats(&ms[i].pm, &st, &s, &len) || !st.splits)

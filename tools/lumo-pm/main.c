@@ -21,8 +21,8 @@ int lumo_pm_bench_main(int argc, char **argv);
 
 typedef struct {
     const char *in, *out;
-    lumo_pm_stream_options so;
-    lumo_pm_options po;
+    srv_pm_stream_options so;
+    srv_pm_options po;
     int raw, albedo;
 } args;
 
@@ -38,8 +38,8 @@ static int usage(void)
 static int parse(int argc, char **argv, args *a)
 {
     memset(a, 0, sizeof *a);
-    lumo_pm_stream_default_options(&a->so);
-    lumo_pm_default_options(&a->po);
+    srv_pm_stream_default_options(&a->so);
+    srv_pm_default_options(&a->po);
     for (int i = 2; i < argc; i++) {
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(argv[i], "-o") && v)
@@ -77,13 +77,13 @@ static int write_output(const args *a, const uint8_t *s, size_t n)
 {
     if (a->raw)
         return write_file(a->out, s, n);
-    lumo_pkg_writer w;
+    srv_pkg_writer w;
     char err[256];
-    lumo_pkgw_init(&w);
-    int rc = lumo_pkgw_add(&w, LUMO_PKG_PMSH, s, n) || lumo_pkgw_write_file(&w, a->out, err, sizeof err);
+    srv_pkgw_init(&w);
+    int rc = srv_pkgw_add(&w, LUMO_PKG_PMSH, s, n) || srv_pkgw_write_file(&w, a->out, err, sizeof err);
     if (rc)
         fprintf(stderr, "lumo-pm: error: %s\n", err);
-    lumo_pkgw_free(&w);
+    srv_pkgw_free(&w);
     return rc ? -1 : 0;
 }
 
@@ -93,26 +93,26 @@ static int cmd_build(const args *a, int clean_only)
     uint8_t *rgb = NULL;
     uint32_t *tris, nv, nf, nb;
     char err[256];
-    lumo_pm pm;
+    srv_pm pm;
     uint8_t *s = NULL;
     size_t n = 0;
-    if (lumo_pm_load(a->in, &xyz, a->albedo ? &rgb : NULL, &nv, &tris, &nf, err, sizeof err)) {
+    if (srv_pm_load(a->in, &xyz, a->albedo ? &rgb : NULL, &nv, &tris, &nf, err, sizeof err)) {
         fprintf(stderr, "lumo-pm: error: %s\n", err);
         return 1;
     }
     int rc = 1;
-    if (lumo_pm_build_albedo(xyz, rgb, nv, tris, nf, &a->po, &pm)) {
+    if (srv_pm_build_albedo(xyz, rgb, nv, tris, nf, &a->po, &pm)) {
         fprintf(stderr, "lumo-pm: error: %s: cannot simplify (bad indices or out of memory)\n", a->in);
         goto done;
     }
     if (clean_only) {
-        rc = lumo_pm_write_ply(a->out, pm.xyz, pm.vertices, pm.tris, pm.faces) ? 1 : 0;
+        rc = srv_pm_write_ply(a->out, pm.xyz, pm.vertices, pm.tris, pm.faces) ? 1 : 0;
         goto done;
     }
-    lumo_pm_stream_stats st;
-    lumo_pm_stream_options so = a->so;
+    srv_pm_stream_stats st;
+    srv_pm_stream_options so = a->so;
     so.stats = &st;
-    if (lumo_pm_stream_build(&pm, &so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
+    if (srv_pm_stream_build(&pm, &so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
         fprintf(stderr, "lumo-pm: error: %s: cannot write the stream\n", a->out);
         goto done;
     }
@@ -131,7 +131,7 @@ static int cmd_build(const args *a, int clean_only)
     rc = 0;
 done:
     free(s);
-    lumo_pm_free(&pm);
+    srv_pm_free(&pm);
     free(xyz);
     free(rgb);
     free(tris);
@@ -144,14 +144,14 @@ static int cmd_apply(int argc, char **argv)
     uint8_t *d = argc > 2 ? lumo_read_file(argv[2], &len) : NULL;
     if (d == NULL)
         return usage();
-    lumo_pm_client c;
+    srv_pm_client c;
     unsigned long records = argc > 3 ? strtoul(argv[3], NULL, 10) : (unsigned long)-1, done = 0;
-    lumo_status st = lumo_pm_client_open(&c, d, len);
+    lumo_status st = srv_pm_client_open(&c, d, len);
     while (!st && done < records && !lumo_pmesh_complete(&c.pm))
-        st = lumo_pm_client_step(&c), done++;
+        st = srv_pm_client_step(&c), done++;
     printf("%lu records, %u vertices, %u faces: %s\n", done, c.pm.vertex_count, c.pm.face_count,
            lumo_strerror(st));
-    lumo_pm_client_close(&c);
+    srv_pm_client_close(&c);
     free(d);
     return st ? 1 : 0;
 }
