@@ -28,7 +28,7 @@ static void print_grid(const lumo_ivg *g)
 
 static int run_ivg(int argc, char **argv)
 {
-    const char *path = lumo_inspect_file_arg(argc, argv);
+    const char *path = inspect_file_arg(argc, argv);
     lumo_ivg_form form = LUMO_IVG_FORM_FLOAT;
     uint8_t *data;
     size_t len;
@@ -45,7 +45,7 @@ static int run_ivg(int argc, char **argv)
         fprintf(stderr, "lumo-inspect: error: --ivg needs a package file\n");
         return 1;
     }
-    if (lumo_inspect_load(path, &data, &len, &pkg))
+    if (inspect_load(path, &data, &len, &pkg))
         return 1;
     lumo_status st = lumo_package_ivg_desc(&pkg, &d);
     if (st == LUMO_ERR_RANGE && lumo_package_find(&pkg, LUMO_PKG_IVGD, 0, &(const uint8_t *){0}, &(uint32_t){0})) {
@@ -74,7 +74,7 @@ static int run_ivg(int argc, char **argv)
     return st ? 1 : 0;
 }
 
-LUMO_INSPECT_COMMAND(ivg_cmd, "--ivg",
-                     "--ivg [--quantized] FILE.lumo  one line per vertex and hemisphere: "
-                     "i j k axis valid dx dy dz r g b",
-                     run_ivg)
+INSPECT_COMMAND(ivg_cmd, "--ivg",
+                "--ivg [--quantized] FILE.lumo  one line per vertex and hemisphere: "
+                "i j k axis valid dx dy dz r g b",
+                run_ivg)

@@ -1,7 +1,7 @@
 # tools/lumo-inspect/lumo-inspect.mk — lumo-inspect: read a .lumo package
 # (or a raw progressive-mesh stream) with the client. Every
 # tools/lumo-inspect/*.c is linked in; a subcommand registers itself with
-# LUMO_INSPECT_COMMAND (inspect.h). The objects are linked directly (not
+# INSPECT_COMMAND (inspect.h). The objects are linked directly (not
 # from an archive) so their registration constructors are kept; their link
 # order (sorted names) is the order of --help and of the flag lookup.
 # Archives are named literally (server/server.mk, tools/lib/hostlib.mk).

@@ -8,16 +8,16 @@
 
 #define MAX_COMMANDS 16
 
-static const lumo_inspect_cmd *g_cmds[MAX_COMMANDS];
+static const inspect_cmd *g_cmds[MAX_COMMANDS];
 static int g_ncmds;
 
-void lumo_inspect_register(const lumo_inspect_cmd *cmd)
+void inspect_register(const inspect_cmd *cmd)
 {
     if (g_ncmds < MAX_COMMANDS)
         g_cmds[g_ncmds++] = cmd;
 }
 
-int lumo_inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pkg)
+int inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pkg)
 {
     *data = lumo_read_file(path, len);
     if (!*data) {
@@ -34,12 +34,12 @@ int lumo_inspect_load(const char *path, uint8_t **data, size_t *len, lumo_packag
     return 0;
 }
 
-const char *lumo_inspect_file_arg(int argc, char **argv)
+const char *inspect_file_arg(int argc, char **argv)
 {
     return argc > 1 && argv[argc - 1][0] != '-' ? argv[argc - 1] : NULL;
 }
 
-int lumo_inspect_summary(int argc, char **argv);
+int inspect_summary(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
@@ -60,5 +60,5 @@ int main(int argc, char **argv)
             fprintf(stderr, "lumo-inspect: error: unknown option '%s' (try --help)\n", argv[i]);
             return 1;
         }
-    return lumo_inspect_summary(argc, argv);
+    return inspect_summary(argc, argv);
 }

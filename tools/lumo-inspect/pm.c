@@ -54,7 +54,7 @@ static int run_stream(int argc, char **argv)
 {
     uint8_t *file;
     srv_pm_client c;
-    if (open_stream(lumo_inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
+    if (open_stream(inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
         return 1;
     const lumo_pmesh_header *h = &c.h;
     printf("progressive mesh: %u vertices, %u faces; base %u vertices, %u faces; %u batches of %u "
@@ -126,7 +126,7 @@ static int run_lod(int argc, char **argv)
     }
     uint8_t *file;
     srv_pm_client c;
-    if (open_stream(lumo_inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
+    if (open_stream(inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
         return 1;
     char *end;
     unsigned long n = strcmp(lod, "all") ? strtoul(lod, &end, 10) : c.h.vertices;
@@ -157,8 +157,8 @@ done:
     return rc;
 }
 
-LUMO_INSPECT_COMMAND(pm_stream_cmd, "--stream",
-                     "--stream [--mesh I] FILE.lumo      list the progressive-mesh batches", run_stream)
-LUMO_INSPECT_COMMAND(pm_lod_cmd, "--lod",
-                     "--lod N|all --ply OUT.ply [--mesh I] FILE.lumo  write the level with N vertices",
-                     run_lod)
+INSPECT_COMMAND(pm_stream_cmd, "--stream",
+                "--stream [--mesh I] FILE.lumo      list the progressive-mesh batches", run_stream)
+INSPECT_COMMAND(pm_lod_cmd, "--lod",
+                "--lod N|all --ply OUT.ply [--mesh I] FILE.lumo  write the level with N vertices",
+                run_lod)

@@ -85,10 +85,10 @@ static void print_ivg(const lumo_package *pkg)
            q16(d.bmax[0]), q16(d.bmax[1]), q16(d.bmax[2]));
 }
 
-int lumo_inspect_summary(int argc, char **argv);
-int lumo_inspect_summary(int argc, char **argv)
+int inspect_summary(int argc, char **argv);
+int inspect_summary(int argc, char **argv)
 {
-    const char *path = lumo_inspect_file_arg(argc, argv);
+    const char *path = inspect_file_arg(argc, argv);
     uint8_t *data;
     size_t len;
     lumo_package pkg;
@@ -96,7 +96,7 @@ int lumo_inspect_summary(int argc, char **argv)
         fprintf(stderr, "lumo-inspect: error: give one package file (try --help)\n");
         return 1;
     }
-    if (lumo_inspect_load(path, &data, &len, &pkg))
+    if (inspect_load(path, &data, &len, &pkg))
         return 1;
     print_chunks(&pkg);
     int rc = print_scene(&pkg);

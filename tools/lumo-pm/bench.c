@@ -20,7 +20,7 @@
 #include "pm/pm_load.h"
 #include "pm/pm_stream.h"
 
-int lumo_pm_bench_main(int argc, char **argv);
+int bench_main(int argc, char **argv);
 
 /* Link model for Fig. 5: 802.11g-like 20 Mbit/s effective, one request
  * round trip of 2 ms per batch (the client asks for each batch). */
@@ -394,7 +394,7 @@ static void section_bits(FILE *o, model *ms, int n)
     fprintf(o, "\n");
 }
 
-int lumo_pm_bench_main(int argc, char **argv)
+int bench_main(int argc, char **argv)
 {
     char self[4096];
     ssize_t sl = readlink("/proc/self/exe", self, sizeof self - 1);

@@ -17,7 +17,7 @@
 #include "pm/pm_load.h"
 #include "pm/pm_stream.h"
 
-int lumo_pm_bench_main(int argc, char **argv);
+int bench_main(int argc, char **argv);
 
 typedef struct {
     const char *in, *out;
@@ -162,7 +162,7 @@ int main(int argc, char **argv)
     if (argc >= 2 && !strcmp(argv[1], "apply"))
         return cmd_apply(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "bench"))
-        return lumo_pm_bench_main(argc - 1, argv + 1);
+        return bench_main(argc - 1, argv + 1);
     if (argc < 2 || parse(argc, argv, &a))
         return usage();
     if (!strcmp(argv[1], "build"))
