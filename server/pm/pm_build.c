@@ -37,7 +37,7 @@ static int cmp_key(const void *a, const void *b)
  * stream's lookup-table entries increase (docs/progressive-mesh.md §2.3).
  * A parent outlives its round, so it is numbered before its children.
  * Without rounds (one collapse each) the step removed at t gets n-1-t. */
-static int renumber(const pm_clean_mesh *m, const pm_collapses *c, uint32_t *newv)
+static int renumber(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, uint32_t *newv)
 {
     uint32_t n = m->nv, b = 0;
     uint32_t *steps = malloc(sizeof *steps * (c->count ? c->count : 1));
@@ -98,7 +98,7 @@ static void order_pairs(srv_pm *pm)
     }
 }
 
-static int assemble(const pm_clean_mesh *m, const pm_collapses *c, srv_pm *pm)
+static int assemble(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, srv_pm *pm)
 {
     uint32_t n = m->nv, nf = m->nf;
     uint32_t *newv = malloc(sizeof *newv * (n ? n : 1));
@@ -153,18 +153,18 @@ int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, co
                         uint32_t nf, const srv_pm_options *opt, srv_pm *out)
 {
     srv_pm_options def;
-    pm_clean_mesh m;
-    pm_collapses c;
+    srv_pm_clean_mesh m;
+    srv_pm_collapses c;
     memset(out, 0, sizeof *out);
     memset(&c, 0, sizeof c);
     if (!opt) {
         srv_pm_default_options(&def);
         opt = &def;
     }
-    if (pm_clean(xyz, albedo, nv, tris, nf, &m))
+    if (srv_pm_clean(xyz, albedo, nv, tris, nf, &m))
         return -1;
     int rc = -1;
-    if (pm_simplify(&m, opt, &c))
+    if (srv_pm_simplify(&m, opt, &c))
         goto done;
     size_t n = m.nv ? m.nv : 1, f = m.nf ? m.nf : 1;
     out->xyz = malloc(sizeof *out->xyz * 3 * n);
@@ -181,8 +181,8 @@ int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, co
     out->dropped_faces = m.dropped_faces;
     rc = 0;
 done:
-    pm_clean_free(&m);
-    pm_collapses_free(&c);
+    srv_pm_clean_free(&m);
+    srv_pm_collapses_free(&c);
     if (rc)
         srv_pm_free(out);
     return rc;

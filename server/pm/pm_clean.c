@@ -98,8 +98,8 @@ static int face_keep(const uint32_t *tris, uint32_t nf, uint8_t *keep)
     return 0;
 }
 
-int pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris, uint32_t nf,
-             pm_clean_mesh *out)
+int srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris,
+                 uint32_t nf, srv_pm_clean_mesh *out)
 {
     memset(out, 0, sizeof *out);
     for (size_t i = 0; i < 3 * (size_t)nf; i++)
@@ -153,11 +153,11 @@ done:
     free(keep);
     free(newv);
     if (rc)
-        pm_clean_free(out);
+        srv_pm_clean_free(out);
     return rc;
 }
 
-void pm_clean_free(pm_clean_mesh *m)
+void srv_pm_clean_free(srv_pm_clean_mesh *m)
 {
     free(m->xyz);
     free(m->rgb);

@@ -11,30 +11,30 @@
 /* A cleaned indexed face set: duplicate positions welded, degenerate and
  * duplicate (same vertex set) faces dropped, unreferenced vertices removed.
  * source[v] is the first input vertex of v's weld class. */
-typedef struct pm_clean_mesh {
+typedef struct srv_pm_clean_mesh {
     uint32_t  nv, nf;
     float    *xyz;
     uint8_t  *rgb;            /* 3 per vertex, or NULL: albedo, part of the weld key */
     uint32_t *tris;
     uint32_t *source;
     uint32_t  welded, dropped_faces;
-} pm_clean_mesh;
+} srv_pm_clean_mesh;
 
-int  pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris, uint32_t nf,
-              pm_clean_mesh *out);
-void pm_clean_free(pm_clean_mesh *m);
+int  srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris,
+                  uint32_t nf, srv_pm_clean_mesh *out);
+void srv_pm_clean_free(srv_pm_clean_mesh *m);
 
-/* The collapse sequence of pm_simplify(): at step t vertex removed[t]
+/* The collapse sequence of srv_pm_simplify(): at step t vertex removed[t]
  * collapses onto target[t] in round round[t] (non-decreasing; the
  * collapses of one round commute); face_die[f] is the step that removed
  * face f, or UINT32_MAX for faces of the base mesh. */
-typedef struct pm_collapses {
+typedef struct srv_pm_collapses {
     uint32_t  count;
     uint32_t *removed, *target, *round;
     uint32_t *face_die;
-} pm_collapses;
+} srv_pm_collapses;
 
-int  pm_simplify(const pm_clean_mesh *m, const srv_pm_options *opt, pm_collapses *out);
-void pm_collapses_free(pm_collapses *c);
+int  srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt, srv_pm_collapses *out);
+void srv_pm_collapses_free(srv_pm_collapses *c);
 
 #endif

@@ -413,7 +413,7 @@ static int append_vertex_edges(simp *s, uint32_t u)
 }
 
 /* ---- the collapse --------------------------------------------------------- */
-static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, pm_collapses *out)
+static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm_collapses *out)
 {
     for (uint32_t i = s->vf[u].n; i-- > 0;) {
         uint32_t f = s->vf[u].f[i];
@@ -454,7 +454,7 @@ static int push_all(simp *s)
  * valid; a rejected candidate can become valid after its neighbourhood
  * changes, so the heap is refilled from every edge once it runs dry, until
  * a whole pass makes no progress. Every collapse is a round of its own. */
-static int run_single(simp *s, pm_collapses *out)
+static int run_single(simp *s, srv_pm_collapses *out)
 {
     uint32_t alive = s->nv, target = s->opt->min_vertices;
     for (int pass = 0; pass < 16 && alive > target; pass++) {
@@ -526,7 +526,7 @@ static int collect_round(simp *s)
  * the candidates (further only until one collapse is taken) and keeps
  * those that are valid and free of the round's locks. Ends when a whole
  * candidate list gives nothing. */
-static int run_rounds(simp *s, pm_collapses *out)
+static int run_rounds(simp *s, srv_pm_collapses *out)
 {
     uint32_t alive = s->nv, target = s->opt->min_vertices;
     for (uint32_t r = 1; alive > target; r++) {
@@ -549,7 +549,7 @@ static int run_rounds(simp *s, pm_collapses *out)
     return 0;
 }
 
-static int run(simp *s, pm_collapses *out)
+static int run(simp *s, srv_pm_collapses *out)
 {
     return s->opt->round_fraction > 0 ? run_rounds(s, out) : run_single(s, out);
 }
@@ -572,7 +572,7 @@ static void simp_free(simp *s)
     free(s->nb_v);
 }
 
-int pm_simplify(const pm_clean_mesh *m, const srv_pm_options *opt, pm_collapses *out)
+int srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt, srv_pm_collapses *out)
 {
     simp s;
     memset(&s, 0, sizeof s);
@@ -608,11 +608,11 @@ int pm_simplify(const pm_clean_mesh *m, const srv_pm_options *opt, pm_collapses 
 done:
     simp_free(&s);
     if (rc)
-        pm_collapses_free(out);
+        srv_pm_collapses_free(out);
     return rc;
 }
 
-void pm_collapses_free(pm_collapses *c)
+void srv_pm_collapses_free(srv_pm_collapses *c)
 {
     free(c->removed);
     free(c->target);
