@@ -107,7 +107,7 @@ static uint8_t *render8(bench_scene *b, int w, int h, int spp, int indirect, dou
     if (srv_render_reference(&b->t, &b->s.camera, w, h, &o, &img, NULL))
         return NULL;
     *secs = srv_now() - t0;
-    uint8_t *px = lumo_tonemap_rgb8(img.rgb, (size_t)w * (size_t)h * 3, 1.0f);
+    uint8_t *px = host_tonemap_rgb8(img.rgb, (size_t)w * (size_t)h * 3, 1.0f);
     srv_image_free(&img);
     return px;
 }
@@ -122,10 +122,10 @@ static void reference_rows(bench_scene *b, int indirect)
         return;
     for (int i = 0; i < 4; i++) {
         uint8_t *img = render8(b, W, H, spps[i], indirect, &secs);
-        lumo_image_diff d;
+        host_image_diff d;
         if (!img)
             continue;
-        lumo_image_diff_rgb8(img, truth, (size_t)W * H, &d);
+        host_image_diff_rgb8(img, truth, (size_t)W * H, &d);
         printf("| %s | %d | %.2f | %.3f |\n", indirect ? "indirect only" : "full", spps[i], secs, d.mean_de);
         free(img);
     }

@@ -242,7 +242,7 @@ static int run_reference(const options *o, const srv_scene *s, const srv_tracer 
     if (srv_render_reference(t, &s->camera, o->ref_w, o->ref_h, &ro, &img, &rays))
         return fail("cannot render (out of memory or threads)");
     double dt = srv_now() - t0;
-    if (lumo_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err)) {
+    if (host_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err)) {
         srv_image_free(&img);
         return fail(err);
     }

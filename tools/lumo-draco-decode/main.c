@@ -237,7 +237,7 @@ int main(int argc, char **argv)
                         "--dump IN.drc OUT.txt | --bench N IN.drc\n");
         return 2;
     }
-    data = lumo_read_file(in, &size);
+    data = host_read_file(in, &size);
     if (!data) {
         fprintf(stderr, "lumo-draco-decode: cannot read %s\n", in);
         return 1;

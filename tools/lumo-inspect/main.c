@@ -19,7 +19,7 @@ void inspect_register(const inspect_cmd *cmd)
 
 int inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pkg)
 {
-    *data = lumo_read_file(path, len);
+    *data = host_read_file(path, len);
     if (!*data) {
         fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path);
         return -1;

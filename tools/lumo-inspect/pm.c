@@ -15,7 +15,7 @@
 
 static int load(const char *path, uint8_t **data, size_t *len)
 {
-    *data = path ? lumo_read_file(path, len) : NULL;
+    *data = path ? host_read_file(path, len) : NULL;
     if (*data == NULL) {
         fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path ? path : "(no file)");
         return -1;

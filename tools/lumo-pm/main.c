@@ -141,7 +141,7 @@ done:
 static int cmd_apply(int argc, char **argv)
 {
     size_t len = 0;
-    uint8_t *d = argc > 2 ? lumo_read_file(argv[2], &len) : NULL;
+    uint8_t *d = argc > 2 ? host_read_file(argv[2], &len) : NULL;
     if (d == NULL)
         return usage();
     srv_pm_client c;
