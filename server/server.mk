@@ -18,3 +18,6 @@ SERVER_LIBS := -lembree3 -lassimp -ldraco -lstdc++ -lpng -lm -pthread
 
 $(BUILD)/host/libserver.a: $(SERVER_OBJS)
 	rm -f $@ && ar rcs $@ $^
+
+# The libdraco shim (C++) returns lumo_status (lumo/status.h).
+$(BUILD)/host/server/pm/draco_shim.o: HOST_CXXFLAGS += -Isdk/include

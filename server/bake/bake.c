@@ -118,14 +118,14 @@ static int fits_in_memory(size_t nverts, char *err, size_t errlen)
     return 1;
 }
 
-int srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
-             srv_bake_result *res, char *err, size_t errlen)
+lumo_status srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
+                     srv_bake_result *res, char *err, size_t errlen)
 {
     memset(res, 0, sizeof *res);
     res->grid = *g;
     res->nverts = (size_t)g->dims[0] * (size_t)g->dims[1] * (size_t)g->dims[2];
     if (!fits_in_memory(res->nverts, err, errlen))
-        return -1;
+        return LUMO_ERR_NOMEM;
     bake_job *j = calloc(1, sizeof *j);
     res->I = calloc(res->nverts * 6 * 9, sizeof *res->I);
     res->se = calloc(res->nverts * 6 * 3, sizeof *res->se);
@@ -134,22 +134,23 @@ int srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
         free(j);
         srv_bake_result_free(res);
         snprintf(err, errlen, "out of memory for a %zu-vertex grid", res->nverts);
-        return -1;
+        return LUMO_ERR_NOMEM;
     }
     *j = (bake_job){.t = t, .g = g, .o = o, .res = res};
     double t0 = srv_now();
     int threads = o->threads > MAX_WORKERS ? MAX_WORKERS : o->threads;
-    if (srv_parallel_for(res->nverts, threads, bake_vertex, j, "bake", o->progress)) {
+    lumo_status st = srv_parallel_for(res->nverts, threads, bake_vertex, j, "bake", o->progress);
+    if (st) {
         free(j);
         srv_bake_result_free(res);
         snprintf(err, errlen, "cannot start worker threads");
-        return -1;
+        return st;
     }
     res->seconds = srv_now() - t0;
     for (int w = 0; w < MAX_WORKERS; w++)
         res->rays += j->stats[w].rays;
     free(j);
-    return 0;
+    return LUMO_OK;
 }
 
 void srv_bake_result_free(srv_bake_result *res)

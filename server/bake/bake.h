@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "bake/trace.h"
+#include "lumo/status.h"
 
 typedef struct srv_grid {
     int  dims[3];          /* vertices per axis, each in [2, 256] */
@@ -52,9 +53,10 @@ typedef struct srv_bake_result {
 srv_grid srv_grid_over(const srv_scene *s, const int dims[3]);
 vec3 srv_grid_vertex(const srv_grid *g, int i, int j, int k);
 
-/* Bake. Returns 0, or -1 on allocation/thread failure (err set). */
-int srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
-             srv_bake_result *res, char *err, size_t errlen);
+/* Bake. LUMO_OK, or LUMO_ERR_NOMEM when the grid does not fit in memory
+ * or threads cannot start (err set). */
+lumo_status srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
+                     srv_bake_result *res, char *err, size_t errlen);
 void srv_bake_result_free(srv_bake_result *res);
 
 #endif

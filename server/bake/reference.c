@@ -36,8 +36,8 @@ static void render_row(void *ctx, size_t y, int worker)
     }
 }
 
-int srv_render_reference(const srv_tracer *t, const srv_camera *cam, int w, int h,
-                         const srv_render_opts *o, srv_image *img, uint64_t *rays)
+lumo_status srv_render_reference(const srv_tracer *t, const srv_camera *cam, int w, int h,
+                                 const srv_render_opts *o, srv_image *img, uint64_t *rays)
 {
     render_job *j = calloc(1, sizeof *j);
     img->w = w;
@@ -46,11 +46,12 @@ int srv_render_reference(const srv_tracer *t, const srv_camera *cam, int w, int 
     if (!j || !img->rgb) {
         free(j);
         srv_image_free(img);
-        return -1;
+        return LUMO_ERR_NOMEM;
     }
     *j = (render_job){.t = t, .cam = cam, .o = o, .img = img};
-    int rc = srv_parallel_for((size_t)h, o->threads > MAX_WORKERS ? MAX_WORKERS : o->threads,
-                              render_row, j, "render", o->progress);
+    lumo_status rc = srv_parallel_for((size_t)h,
+                                      o->threads > MAX_WORKERS ? MAX_WORKERS : o->threads,
+                                      render_row, j, "render", o->progress);
     if (rays) {
         *rays = 0;
         for (int i = 0; i < MAX_WORKERS; i++)

@@ -11,6 +11,7 @@
 #include <stdint.h>
 #include "scene/camera.h"
 #include "bake/trace.h"
+#include "lumo/status.h"
 
 typedef struct srv_image {
     int    w, h;
@@ -26,9 +27,10 @@ typedef struct srv_render_opts {
 } srv_render_opts;
 
 /* Render into img (allocated here; free with srv_image_free). rays gets
- * the number of rays cast (may be NULL). 0 or -1. */
-int srv_render_reference(const srv_tracer *t, const srv_camera *cam, int w, int h,
-                         const srv_render_opts *o, srv_image *img, uint64_t *rays);
+ * the number of rays cast (may be NULL). LUMO_OK, or LUMO_ERR_NOMEM (out
+ * of memory, threads cannot start). */
+lumo_status srv_render_reference(const srv_tracer *t, const srv_camera *cam, int w, int h,
+                                 const srv_render_opts *o, srv_image *img, uint64_t *rays);
 void srv_image_free(srv_image *img);
 
 #endif

@@ -31,8 +31,8 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
-int srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const char *label,
-                     int progress)
+lumo_status srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const char *label,
+                             int progress)
 {
     pthread_t tid[MAX_THREADS];
     worker_arg args[MAX_THREADS];
@@ -59,5 +59,7 @@ int srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const cha
         pthread_join(tid[i], NULL);
     srv_progress_end(&bar);
     /* If no thread started, nothing ran: report; partial starts still finish. */
-    return started == 0 ? -1 : (rc && atomic_load(&p.done) < n ? -1 : 0);
+    if (started == 0 || (rc && atomic_load(&p.done) < n))
+        return LUMO_ERR_NOMEM;
+    return LUMO_OK;
 }

@@ -6,11 +6,13 @@
 #define SRV_PARALLEL_H
 
 #include <stddef.h>
+#include "lumo/status.h"
 
 typedef void (*srv_item_fn)(void *ctx, size_t item, int worker);
 
-/* 0, or -1 when threads could not be started. */
-int srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const char *label,
-                     int progress);
+/* LUMO_OK, or LUMO_ERR_NOMEM when threads could not be started (out of
+ * resources). */
+lumo_status srv_parallel_for(size_t n, int threads, srv_item_fn fn, void *ctx, const char *label,
+                             int progress);
 
 #endif

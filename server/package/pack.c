@@ -19,7 +19,7 @@ static void put_light(srv_buf *b, const srv_light *l)
     srv_buf_vec3(b, l->power);
 }
 
-static int pack_info(srv_pkg_writer *w, const srv_scene *s)
+static lumo_status pack_info(srv_pkg_writer *w, const srv_scene *s)
 {
     srv_buf b = {0};
     vec3 lo = v3(0, 0, 0), hi = v3(0, 0, 0);
@@ -36,7 +36,9 @@ static int pack_info(srv_pkg_writer *w, const srv_scene *s)
     srv_buf_f32(&b, s->camera.fovy_deg);
     for (size_t i = 0; i < s->nlights; i++)
         put_light(&b, &s->lights[i]);
-    int rc = b.failed || s->nlights > LUMO_PKG_MAX_LIGHTS ? -1 : srv_pkgw_add(w, LUMO_PKG_INFO, b.p, b.len);
+    lumo_status rc = b.failed ? LUMO_ERR_NOMEM
+                     : s->nlights > LUMO_PKG_MAX_LIGHTS ? LUMO_ERR_LIMIT
+                     : srv_pkgw_add(w, LUMO_PKG_INFO, b.p, b.len);
     srv_buf_free(&b);
     return rc;
 }
@@ -60,12 +62,12 @@ static vec3 *vertex_normals(const srv_mesh *m)
     return n;
 }
 
-static int pack_mesh(srv_pkg_writer *w, const srv_mesh *m)
+static lumo_status pack_mesh(srv_pkg_writer *w, const srv_mesh *m)
 {
     srv_buf b = {0};
     vec3 *n = vertex_normals(m);
     if (!n)
-        return -1;
+        return LUMO_ERR_NOMEM;
     srv_buf_u32(&b, m->emitter ? LUMO_PKG_MESH_EMITTER : 0);
     srv_buf_u32(&b, m->nverts);
     srv_buf_u32(&b, m->ntris);
@@ -78,23 +80,23 @@ static int pack_mesh(srv_pkg_writer *w, const srv_mesh *m)
     for (uint32_t i = 0; i < 3u * m->ntris; i++)
         srv_buf_u32(&b, m->tris[i]);
     free(n);
-    int rc = b.failed ? -1 : srv_pkgw_add(w, LUMO_PKG_MESH, b.p, b.len);
+    lumo_status rc = b.failed ? LUMO_ERR_NOMEM : srv_pkgw_add(w, LUMO_PKG_MESH, b.p, b.len);
     srv_buf_free(&b);
     return rc;
 }
 
-int srv_pack_scene(srv_pkg_writer *w, const srv_scene *s, int raw_meshes)
+lumo_status srv_pack_scene(srv_pkg_writer *w, const srv_scene *s, int raw_meshes)
 {
-    if (pack_info(w, s))
-        return -1;
-    for (size_t i = 0; raw_meshes && i < s->nmeshes; i++)
-        if (pack_mesh(w, &s->meshes[i]))
-            return -1;
-    return 0;
+    lumo_status st = pack_info(w, s);
+    for (size_t i = 0; !st && raw_meshes && i < s->nmeshes; i++)
+        st = pack_mesh(w, &s->meshes[i]);
+    return st;
 }
 
-int srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed);
-int srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed)
+lumo_status srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp,
+                              uint64_t seed);
+lumo_status srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp,
+                              uint64_t seed)
 {
     srv_buf b = {0};
     uint32_t valid = 0;
@@ -109,14 +111,15 @@ int srv_pack_ivg_desc(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp,
     srv_buf_u32(&b, (uint32_t)seed);
     srv_buf_u32(&b, (uint32_t)(seed >> 32));
     srv_buf_u32(&b, valid);
-    int rc = b.failed ? -1 : srv_pkgw_add(w, LUMO_PKG_IVGD, b.p, b.len);
+    lumo_status rc = b.failed ? LUMO_ERR_NOMEM : srv_pkgw_add(w, LUMO_PKG_IVGD, b.p, b.len);
     srv_buf_free(&b);
     return rc;
 }
 
 /* One bundle of every grid vertex in the given wire form (solid vertices as
  * solid records), through the IVG encoder (seed 000 §3.3). */
-static int pack_bundle(srv_pkg_writer *w, const srv_bake_result *r, lumo_ivg_form form, uint32_t type)
+static lumo_status pack_bundle(srv_pkg_writer *w, const srv_bake_result *r, lumo_ivg_form form,
+                               uint32_t type)
 {
     uint32_t solid = 0;
     for (size_t v = 0; v < r->nverts; v++)
@@ -125,9 +128,10 @@ static int pack_bundle(srv_pkg_writer *w, const srv_bake_result *r, lumo_ivg_for
     uint8_t *buf = malloc(cap);
     uint16_t dims[3] = {(uint16_t)r->grid.dims[0], (uint16_t)r->grid.dims[1], (uint16_t)r->grid.dims[2]};
     srv_ivg_writer iw;
-    if (!buf || srv_ivg_writer_begin(&iw, buf, cap, form, dims)) {
+    lumo_status st = buf ? srv_ivg_writer_begin(&iw, buf, cap, form, dims) : LUMO_ERR_NOMEM;
+    if (st) {
         free(buf);
-        return -1;
+        return st;
     }
     for (size_t v = 0; v < r->nverts; v++) {
         srv_ivg_fentry e[LUMO_IVG_AXES];
@@ -140,19 +144,20 @@ static int pack_bundle(srv_pkg_writer *w, const srv_bake_result *r, lumo_ivg_for
         srv_ivg_writer_add(&iw, (uint32_t)v, e);
     }
     size_t len = srv_ivg_writer_finish(&iw);
-    int rc = len ? srv_pkgw_add(w, type, buf, len) : -1;
+    lumo_status rc = len ? srv_pkgw_add(w, type, buf, len) : iw.error;
     free(buf);
     return rc;
 }
 
-int srv_pack_ivg(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed,
-                 char *err, size_t errlen)
+lumo_status srv_pack_ivg(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed,
+                         char *err, size_t errlen)
 {
-    if (srv_pack_ivg_desc(w, r, spp, seed) ||
-        pack_bundle(w, r, LUMO_IVG_FORM_QUANTIZED, LUMO_PKG_IVGQ) ||
-        pack_bundle(w, r, LUMO_IVG_FORM_FLOAT, LUMO_PKG_IVGF)) {
+    lumo_status st = srv_pack_ivg_desc(w, r, spp, seed);
+    if (!st)
+        st = pack_bundle(w, r, LUMO_IVG_FORM_QUANTIZED, LUMO_PKG_IVGQ);
+    if (!st)
+        st = pack_bundle(w, r, LUMO_IVG_FORM_FLOAT, LUMO_PKG_IVGF);
+    if (st)
         snprintf(err, errlen, "cannot encode the IVG (out of memory)");
-        return -1;
-    }
-    return 0;
+    return st;
 }

@@ -73,15 +73,15 @@ void srv_pkgw_free(srv_pkg_writer *w)
     memset(w, 0, sizeof *w);
 }
 
-int srv_pkgw_add(srv_pkg_writer *w, uint32_t type, const void *data, size_t len)
+lumo_status srv_pkgw_add(srv_pkg_writer *w, uint32_t type, const void *data, size_t len)
 {
     if (w->n == LUMO_PKG_MAX_CHUNKS || len > UINT32_MAX / 2)
-        return -1;
+        return LUMO_ERR_LIMIT;
     if (w->n == w->cap) {
         size_t cap = w->cap ? 2 * w->cap : 8;
         void *p = realloc(w->chunks, cap * sizeof *w->chunks);
         if (!p)
-            return -1;
+            return LUMO_ERR_NOMEM;
         w->chunks = p;
         w->cap = cap;
     }
@@ -89,14 +89,14 @@ int srv_pkgw_add(srv_pkg_writer *w, uint32_t type, const void *data, size_t len)
     w->chunks[w->n].type = type;
     srv_buf_put(&w->chunks[w->n].data, data, len);
     if (w->chunks[w->n].data.failed)
-        return -1;
+        return LUMO_ERR_NOMEM;
     w->n++;
-    return 0;
+    return LUMO_OK;
 }
 
 static const uint8_t k_zero[4];
 
-int srv_pkgw_serialize(const srv_pkg_writer *w, uint8_t **out, size_t *len)
+lumo_status srv_pkgw_serialize(const srv_pkg_writer *w, uint8_t **out, size_t *len)
 {
     srv_buf table = {0}, file = {0};
     size_t pos = LUMO_PKG_HEADER_SIZE + w->n * LUMO_PKG_ENTRY_SIZE;
@@ -111,7 +111,7 @@ int srv_pkgw_serialize(const srv_pkg_writer *w, uint8_t **out, size_t *len)
     }
     if (pos > UINT32_MAX) {
         srv_buf_free(&table);
-        return -1;
+        return LUMO_ERR_LIMIT;
     }
     srv_buf_put(&file, "LUMO", 4);
     srv_buf_u16(&file, LUMO_PKG_VERSION_MAJOR);
@@ -129,20 +129,22 @@ int srv_pkgw_serialize(const srv_pkg_writer *w, uint8_t **out, size_t *len)
     srv_buf_free(&table);
     if (failed) {
         srv_buf_free(&file);
-        return -1;
+        return LUMO_ERR_NOMEM;
     }
     *out = file.p;
     *len = file.len;
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char *err, size_t errlen)
+lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char *err,
+                                size_t errlen)
 {
     uint8_t *data;
     size_t len;
-    if (srv_pkgw_serialize(w, &data, &len)) {
+    lumo_status st = srv_pkgw_serialize(w, &data, &len);
+    if (st) {
         snprintf(err, errlen, "%s: package too large or out of memory", path);
-        return -1;
+        return st;
     }
     FILE *f = fopen(path, "wb");
     int ok = f && fwrite(data, 1, len, f) == len;
@@ -151,7 +153,7 @@ int srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char *err, si
     free(data);
     if (!ok) {
         snprintf(err, errlen, "%s: cannot write", path);
-        return -1;
+        return LUMO_ERR_IO;
     }
-    return 0;
+    return LUMO_OK;
 }

@@ -18,7 +18,8 @@
 namespace {
 
 // Fill `pc` with one float32 xyz POSITION attribute, one value per point.
-int add_positions(draco::PointCloud *pc, const float *xyz, size_t n)
+// libdraco fails to add an attribute only when it cannot allocate it.
+lumo_status add_positions(draco::PointCloud *pc, const float *xyz, size_t n)
 {
     pc->set_num_points(static_cast<draco::PointIndex::ValueType>(n));
     draco::GeometryAttribute ga;
@@ -26,45 +27,46 @@ int add_positions(draco::PointCloud *pc, const float *xyz, size_t n)
             sizeof(float) * 3, 0);
     const int id = pc->AddAttribute(ga, true, static_cast<uint32_t>(n));
     if (id < 0)
-        return -1;
+        return LUMO_ERR_NOMEM;
     draco::PointAttribute *att = pc->attribute(id);
     for (size_t i = 0; i < n; ++i)
         att->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), xyz + 3 * i);
-    return 0;
+    return LUMO_OK;
 }
 
 // Optional COLOR uint8 x3 attribute (albedo), one value per point.
-int add_color(draco::PointCloud *pc, const uint8_t *rgb, size_t n)
+lumo_status add_color(draco::PointCloud *pc, const uint8_t *rgb, size_t n)
 {
     if (!rgb)
-        return 0;
+        return LUMO_OK;
     draco::GeometryAttribute ga;
     ga.Init(draco::GeometryAttribute::COLOR, nullptr, 3, draco::DT_UINT8, true, 3, 0);
     const int id = pc->AddAttribute(ga, true, static_cast<uint32_t>(n));
     if (id < 0)
-        return -1;
+        return LUMO_ERR_NOMEM;
     for (size_t i = 0; i < n; ++i)
         pc->attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
                                              rgb + 3 * i);
-    return 0;
+    return LUMO_OK;
 }
 
-int copy_out(const draco::EncoderBuffer &buf, uint8_t **out, size_t *out_len)
+lumo_status copy_out(const draco::EncoderBuffer &buf, uint8_t **out, size_t *out_len)
 {
     *out_len = buf.size();
     *out = static_cast<uint8_t *>(std::malloc(buf.size() ? buf.size() : 1));
     if (!*out)
-        return -1;
+        return LUMO_ERR_NOMEM;
     std::memcpy(*out, buf.data(), buf.size());
-    return 0;
+    return LUMO_OK;
 }
 
-int report(const draco::Status &st, const char *what)
+// LUMO_OK, or `code` with libdraco's message on stderr.
+lumo_status report(const draco::Status &st, const char *what, lumo_status code)
 {
     if (st.ok())
-        return 0;
+        return LUMO_OK;
     std::fprintf(stderr, "draco: %s: %s\n", what, st.error_msg());
-    return -1;
+    return code;
 }
 
 void set_quant(draco::Encoder *enc, const srv_draco_quant *q)
@@ -112,25 +114,29 @@ extern "C" srv_draco_settings srv_draco_default_settings(void)
     return s;
 }
 
-extern "C" int srv_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
-                                       const srv_draco_quant *q, srv_draco_settings s,
-                                       uint8_t **out, size_t *out_len)
+extern "C" lumo_status srv_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
+                                               const srv_draco_quant *q, srv_draco_settings s,
+                                               uint8_t **out, size_t *out_len)
 {
     draco::PointCloud pc;
-    if (add_positions(&pc, xyz, n) || add_color(&pc, rgb, n))
-        return -1;
+    lumo_status st = add_positions(&pc, xyz, n);
+    if (!st)
+        st = add_color(&pc, rgb, n);
+    if (st)
+        return st;
     draco::Encoder enc;
     set_quant(&enc, q);
     enc.SetSpeedOptions(s.speed, s.speed);
     enc.SetEncodingMethod(s.method);
     draco::EncoderBuffer buf;
-    if (report(enc.EncodePointCloudToBuffer(pc, &buf), "encode points"))
-        return -1;
+    if ((st = report(enc.EncodePointCloudToBuffer(pc, &buf), "encode points", LUMO_ERR_ARG)))
+        return st;
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int srv_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
-                                     srv_draco_settings s, uint8_t **out, size_t *out_len)
+extern "C" lumo_status srv_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n,
+                                             int comps, srv_draco_settings s, uint8_t **out,
+                                             size_t *out_len)
 {
     draco::PointCloud pc;
     pc.set_num_points(static_cast<draco::PointIndex::ValueType>(n));
@@ -139,31 +145,34 @@ extern "C" int srv_draco_encode_ints(const int32_t *values, const uint8_t *rgb, 
             false, sizeof(int32_t) * comps, 0);
     const int id = pc.AddAttribute(ga, true, static_cast<uint32_t>(n));
     if (id < 0)
-        return -1;
+        return LUMO_ERR_NOMEM;
     for (size_t i = 0; i < n; ++i)
         pc.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)),
                                             values + comps * i);
-    if (add_color(&pc, rgb, n))
-        return -1;
+    lumo_status st = add_color(&pc, rgb, n);
+    if (st)
+        return st;
     draco::Encoder enc;
     enc.SetSpeedOptions(s.speed, s.speed);
     enc.SetEncodingMethod(s.method);
-    if (report(enc.SetAttributePredictionScheme(draco::GeometryAttribute::GENERIC,
-                                                draco::PREDICTION_NONE), "prediction"))
-        return -1;
+    if ((st = report(enc.SetAttributePredictionScheme(draco::GeometryAttribute::GENERIC,
+                                                      draco::PREDICTION_NONE), "prediction",
+                     LUMO_ERR_ARG)))
+        return st;
     draco::EncoderBuffer buf;
-    if (report(enc.EncodePointCloudToBuffer(pc, &buf), "encode ints"))
-        return -1;
+    if ((st = report(enc.EncodePointCloudToBuffer(pc, &buf), "encode ints", LUMO_ERR_ARG)))
+        return st;
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int srv_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
-                                     const srv_draco_quant *q, int cl, uint8_t **out,
-                                     size_t *out_len)
+extern "C" lumo_status srv_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris,
+                                             size_t nt, const srv_draco_quant *q, int cl,
+                                             uint8_t **out, size_t *out_len)
 {
     draco::Mesh mesh;
-    if (add_positions(&mesh, xyz, nv))
-        return -1;
+    lumo_status st = add_positions(&mesh, xyz, nv);
+    if (st)
+        return st;
     mesh.SetNumFaces(nt);
     for (size_t f = 0; f < nt; ++f) {
         draco::Mesh::Face face;
@@ -177,28 +186,30 @@ extern "C" int srv_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t
     enc.SetEncodingMethod(cl == 0 ? draco::MESH_SEQUENTIAL_ENCODING
                                   : draco::MESH_EDGEBREAKER_ENCODING);
     draco::EncoderBuffer buf;
-    if (report(enc.EncodeMeshToBuffer(mesh, &buf), "encode mesh"))
-        return -1;
+    if ((st = report(enc.EncodeMeshToBuffer(mesh, &buf), "encode mesh", LUMO_ERR_ARG)))
+        return st;
     return copy_out(buf, out, out_len);
 }
 
-extern "C" int srv_draco_decode_points(const uint8_t *data, size_t len, float **xyz, size_t *n)
+extern "C" lumo_status srv_draco_decode_points(const uint8_t *data, size_t len, float **xyz,
+                                               size_t *n)
 {
     draco::DecoderBuffer in;
     in.Init(reinterpret_cast<const char *>(data), len);
     draco::Decoder dec;
     auto res = dec.DecodePointCloudFromBuffer(&in);
-    if (report(res.status(), "decode"))
-        return -1;
+    lumo_status st = report(res.status(), "decode", LUMO_ERR_CORRUPT);
+    if (st)
+        return st;
     std::unique_ptr<draco::PointCloud> pc = std::move(res).value();
     const draco::PointAttribute *att = pc->GetNamedAttribute(draco::GeometryAttribute::POSITION);
     if (!att)
-        return -1;
+        return LUMO_ERR_CORRUPT;
     *n = pc->num_points();
     *xyz = static_cast<float *>(std::malloc(sizeof(float) * 3 * (*n ? *n : 1)));
     if (!*xyz)
-        return -1;
+        return LUMO_ERR_NOMEM;
     for (uint32_t i = 0; i < *n; ++i)
         att->GetMappedValue(draco::PointIndex(i), *xyz + 3 * i);
-    return 0;
+    return LUMO_OK;
 }

@@ -8,13 +8,17 @@
  * client decoder learns more of Draco.
  *
  * Buffers returned through `out` are malloc'ed; the caller frees them.
- * Functions return 0 on success and -1 on failure (message on stderr).
+ * Functions return LUMO_OK, or on failure LUMO_ERR_NOMEM (out of memory),
+ * LUMO_ERR_ARG (libdraco refused to encode: its message on stderr) or
+ * LUMO_ERR_CORRUPT (libdraco cannot decode the buffer: its message on
+ * stderr; or the buffer has no positions).
  */
 #ifndef SRV_DRACO_SHIM_H
 #define SRV_DRACO_SHIM_H
 
 #include <stddef.h>
 #include <stdint.h>
+#include "lumo/status.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -47,26 +51,26 @@ srv_draco_settings srv_draco_default_settings(void);
 /* Encode n points (xyz, metres) as a Draco point cloud with one quantized
  * POSITION attribute on grid q, plus a COLOR uint8 x3 attribute when rgb is
  * not NULL (3 bytes per point). Point order is preserved. */
-int srv_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
-                            const srv_draco_quant *q, srv_draco_settings s, uint8_t **out,
-                            size_t *out_len);
+lumo_status srv_draco_encode_points(const float *xyz, const uint8_t *rgb, size_t n,
+                                    const srv_draco_quant *q, srv_draco_settings s, uint8_t **out,
+                                    size_t *out_len);
 
 /* Encode n points carrying one GENERIC int32 attribute of `comps`
  * components (values: n * comps), no prediction (the caller predicts),
  * entropy coded by libdraco, plus COLOR as above when rgb is not NULL.
  * Point order is preserved. */
-int srv_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
-                          srv_draco_settings s, uint8_t **out, size_t *out_len);
+lumo_status srv_draco_encode_ints(const int32_t *values, const uint8_t *rgb, size_t n, int comps,
+                                  srv_draco_settings s, uint8_t **out, size_t *out_len);
 
 /* Encode a triangle mesh single-shot (for size comparisons): positions
  * quantized on grid q, Draco compression level cl (0..10, as draco_encoder
  * -cl), EdgeBreaker unless cl == 0 (sequential). */
-int srv_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
-                          const srv_draco_quant *q, int cl, uint8_t **out, size_t *out_len);
+lumo_status srv_draco_encode_mesh(const float *xyz, size_t nv, const uint32_t *tris, size_t nt,
+                                  const srv_draco_quant *q, int cl, uint8_t **out, size_t *out_len);
 
 /* Decode a point cloud or mesh with libdraco (server tools and tests only):
  * positions dequantized to metres, malloc'ed into *xyz (3 per point). */
-int srv_draco_decode_points(const uint8_t *buf, size_t len, float **xyz, size_t *n);
+lumo_status srv_draco_decode_points(const uint8_t *buf, size_t len, float **xyz, size_t *n);
 
 #ifdef __cplusplus
 }

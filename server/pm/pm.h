@@ -19,6 +19,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "lumo/status.h"
 
 typedef struct srv_pm_options {
     uint32_t min_vertices;     /* stop collapsing at this many (default 3) */
@@ -48,17 +49,18 @@ typedef struct srv_pm {
 
 void srv_pm_default_options(srv_pm_options *o);
 
-/* Build from nv positions (xyz) and nf triangles. 0, or -1 on allocation
- * failure or an index out of range. */
-int srv_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
-                 const srv_pm_options *opt, srv_pm *out);
+/* Build from nv positions (xyz) and nf triangles. LUMO_OK, LUMO_ERR_NOMEM,
+ * or LUMO_ERR_RANGE for an index out of range. */
+lumo_status srv_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
+                         const srv_pm_options *opt, srv_pm *out);
 
 /* The same with a per-vertex albedo (3 bytes per vertex, linear 0..255,
  * may be NULL). Vertices weld only when position and albedo agree, so a
  * colour seam stays a seam: the simplifier sees it as a boundary, which it
  * penalises and only slides along. */
-int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
-                        uint32_t nf, const srv_pm_options *opt, srv_pm *out);
+lumo_status srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv,
+                                const uint32_t *tris, uint32_t nf, const srv_pm_options *opt,
+                                srv_pm *out);
 void srv_pm_free(srv_pm *pm);
 
 /* Vertex v resolved at level k (k > 0): follows parent[] while v >= k. */

@@ -143,14 +143,15 @@ done:
     return rc;
 }
 
-int srv_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
-                 const srv_pm_options *opt, srv_pm *out)
+lumo_status srv_pm_build(const float *xyz, uint32_t nv, const uint32_t *tris, uint32_t nf,
+                         const srv_pm_options *opt, srv_pm *out)
 {
     return srv_pm_build_albedo(xyz, NULL, nv, tris, nf, opt, out);
 }
 
-int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, const uint32_t *tris,
-                        uint32_t nf, const srv_pm_options *opt, srv_pm *out)
+lumo_status srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv,
+                                const uint32_t *tris, uint32_t nf, const srv_pm_options *opt,
+                                srv_pm *out)
 {
     srv_pm_options def;
     srv_pm_clean_mesh m;
@@ -161,11 +162,12 @@ int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, co
         srv_pm_default_options(&def);
         opt = &def;
     }
-    if (srv_pm_clean(xyz, albedo, nv, tris, nf, &m))
-        return -1;
-    int rc = -1;
-    if (srv_pm_simplify(&m, opt, &c))
+    lumo_status rc = srv_pm_clean(xyz, albedo, nv, tris, nf, &m);
+    if (rc)
+        return rc;
+    if ((rc = srv_pm_simplify(&m, opt, &c)))
         goto done;
+    rc = LUMO_ERR_NOMEM;
     size_t n = m.nv ? m.nv : 1, f = m.nf ? m.nf : 1;
     out->xyz = malloc(sizeof *out->xyz * 3 * n);
     out->parent = malloc(sizeof *out->parent * n);
@@ -179,7 +181,7 @@ int srv_pm_build_albedo(const float *xyz, const uint8_t *albedo, uint32_t nv, co
         goto done;
     out->welded = m.welded;
     out->dropped_faces = m.dropped_faces;
-    rc = 0;
+    rc = LUMO_OK;
 done:
     srv_pm_clean_free(&m);
     srv_pm_collapses_free(&c);

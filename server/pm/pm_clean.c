@@ -98,18 +98,18 @@ static int face_keep(const uint32_t *tris, uint32_t nf, uint8_t *keep)
     return 0;
 }
 
-int srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris,
-                 uint32_t nf, srv_pm_clean_mesh *out)
+lumo_status srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris,
+                         uint32_t nf, srv_pm_clean_mesh *out)
 {
     memset(out, 0, sizeof *out);
     for (size_t i = 0; i < 3 * (size_t)nf; i++)
         if (tris[i] >= nv)
-            return -1;
+            return LUMO_ERR_RANGE;
     uint32_t *weld = weld_map(xyz, rgb, nv, &out->welded);
     uint32_t *wt = malloc(sizeof *wt * 3 * (size_t)(nf ? nf : 1));
     uint8_t *keep = malloc(nf ? nf : 1);
     uint32_t *newv = malloc(sizeof *newv * (nv ? nv : 1));
-    int rc = -1;
+    lumo_status rc = LUMO_ERR_NOMEM;
     if (!weld || !wt || !keep || !newv)
         goto done;
     for (size_t i = 0; i < 3 * (size_t)nf; i++)
@@ -146,7 +146,7 @@ int srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32
             out->tris[3 * (size_t)out->nf + c] = newv[wt[3 * (size_t)f + c]];
         out->nf++;
     }
-    rc = 0;
+    rc = LUMO_OK;
 done:
     free(weld);
     free(wt);

@@ -20,9 +20,10 @@ typedef struct srv_pm_clean_mesh {
     uint32_t  welded, dropped_faces;
 } srv_pm_clean_mesh;
 
-int  srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris,
-                  uint32_t nf, srv_pm_clean_mesh *out);
-void srv_pm_clean_free(srv_pm_clean_mesh *m);
+/* LUMO_OK, LUMO_ERR_RANGE (an index >= nv) or LUMO_ERR_NOMEM. */
+lumo_status srv_pm_clean(const float *xyz, const uint8_t *rgb, uint32_t nv, const uint32_t *tris,
+                         uint32_t nf, srv_pm_clean_mesh *out);
+void        srv_pm_clean_free(srv_pm_clean_mesh *m);
 
 /* The collapse sequence of srv_pm_simplify(): at step t vertex removed[t]
  * collapses onto target[t] in round round[t] (non-decreasing; the
@@ -34,7 +35,9 @@ typedef struct srv_pm_collapses {
     uint32_t *face_die;
 } srv_pm_collapses;
 
-int  srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt, srv_pm_collapses *out);
-void srv_pm_collapses_free(srv_pm_collapses *c);
+/* LUMO_OK or LUMO_ERR_NOMEM. */
+lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt,
+                            srv_pm_collapses *out);
+void        srv_pm_collapses_free(srv_pm_collapses *c);
 
 #endif

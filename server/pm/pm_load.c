@@ -12,8 +12,8 @@ static uint8_t to_byte(float a)
     return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
-static int merge(const srv_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
-                 uint32_t *nf)
+static lumo_status merge(const srv_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv,
+                         uint32_t **tris, uint32_t *nf)
 {
     size_t v = 0, f = 0;
     for (size_t m = 0; m < s->nmeshes; m++)
@@ -21,9 +21,11 @@ static int merge(const srv_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, u
     *xyz = malloc(sizeof **xyz * 3 * (v ? v : 1));
     *tris = malloc(sizeof **tris * 3 * (f ? f : 1));
     if (rgb && !(*rgb = malloc(3 * (v ? v : 1))))
-        return -1;
-    if (!*xyz || !*tris || v > UINT32_MAX / 4 || f > UINT32_MAX / 4)
-        return -1;
+        return LUMO_ERR_NOMEM;
+    if (!*xyz || !*tris)
+        return LUMO_ERR_NOMEM;
+    if (v > UINT32_MAX / 4 || f > UINT32_MAX / 4)
+        return LUMO_ERR_LIMIT;
     *nv = 0, *nf = 0;
     for (size_t m = 0; m < s->nmeshes; m++) {
         const srv_mesh *me = &s->meshes[m];
@@ -39,11 +41,11 @@ static int merge(const srv_scene *s, float **xyz, uint8_t **rgb, uint32_t *nv, u
             (*tris)[3 * (size_t)*nf + i] = me->tris[i] + *nv;
         *nv += me->nverts, *nf += me->ntris;
     }
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
-                uint32_t *nf, char *err, size_t errlen)
+lumo_status srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint32_t **tris,
+                        uint32_t *nf, char *err, size_t errlen)
 {
     srv_scene s;
     srv_xform x = srv_xform_identity();
@@ -51,11 +53,9 @@ int srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint
     *xyz = NULL, *tris = NULL;
     if (rgb)
         *rgb = NULL;
-    int rc = srv_import_file(&s, path, &x, NULL, err, errlen);
-    if (!rc && merge(&s, xyz, rgb, nv, tris, nf)) {
+    lumo_status rc = srv_import_file(&s, path, &x, NULL, err, errlen);
+    if (!rc && (rc = merge(&s, xyz, rgb, nv, tris, nf)))
         snprintf(err, errlen, "%s: out of memory", path);
-        rc = -1;
-    }
     srv_scene_free(&s);
     if (rc) {
         free(*xyz), free(*tris);
@@ -68,12 +68,12 @@ int srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *nv, uint
     return rc;
 }
 
-int srv_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
-                     uint32_t nf)
+lumo_status srv_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint32_t *tris,
+                             uint32_t nf)
 {
     FILE *f = fopen(path, "wb");
     if (!f)
-        return -1;
+        return LUMO_ERR_IO;
     fprintf(f, "ply\nformat binary_little_endian 1.0\nelement vertex %u\n"
                "property float x\nproperty float y\nproperty float z\nelement face %u\n"
                "property list uchar int vertex_indices\nend_header\n", nv, nf);
@@ -83,5 +83,5 @@ int srv_pm_write_ply(const char *path, const float *xyz, uint32_t nv, const uint
         fwrite(&three, 1, 1, f);
         fwrite(tris + 3 * (size_t)i, sizeof(uint32_t), 3, f);
     }
-    return fclose(f) ? -1 : 0;
+    return fclose(f) ? LUMO_ERR_IO : LUMO_OK;
 }

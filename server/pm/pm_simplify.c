@@ -572,7 +572,8 @@ static void simp_free(simp *s)
     free(s->nb_v);
 }
 
-int srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt, srv_pm_collapses *out)
+lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt,
+                            srv_pm_collapses *out)
 {
     simp s;
     memset(&s, 0, sizeof s);
@@ -591,7 +592,7 @@ int srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt, srv_p
     out->removed = malloc(sizeof *out->removed * nv);
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
-    int rc = -1;
+    lumo_status rc = LUMO_ERR_NOMEM;
     if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring ||
         !out->round || !out->removed || !out->target || !out->face_die)
         goto done;
@@ -604,7 +605,7 @@ int srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt, srv_p
             if (flist_push(&s.vf[s.tri[3 * (size_t)f + c]], f))
                 goto done;
     init_quadrics(&s);
-    rc = run(&s, out);
+    rc = run(&s, out) ? LUMO_ERR_NOMEM : LUMO_OK;   /* its helpers fail only to allocate */
 done:
     simp_free(&s);
     if (rc)

@@ -498,8 +498,9 @@ static void quantize(const srv_pm *pm, const srv_draco_quant *q, int32_t *out)
 /* The batch's Draco payload: the residuals the replay recorded (split
  * vertices from their neighbours' mean, base vertices from the previous
  * one), or absolute positions on the shared grid. */
-static int encode_payload(const replay *r, uint32_t first, uint32_t count, const srv_pm_stream_options *o,
-                          const srv_draco_quant *q, uint8_t **drc, size_t *len)
+static lumo_status encode_payload(const replay *r, uint32_t first, uint32_t count,
+                                  const srv_pm_stream_options *o, const srv_draco_quant *q,
+                                  uint8_t **drc, size_t *len)
 {
     const uint8_t *rgb = r->pm->albedo ? r->pm->albedo + 3 * (size_t)first : NULL;
     if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
@@ -520,14 +521,15 @@ static size_t put_varint(uint8_t *d, uint32_t v)
 
 /* The record: index, side bytes and Draco bytes as varints, the CRC-32 of
  * those varints followed by the block and the payload, then the two. */
-static int write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t count,
-                        const replay *r, const bitwriter *w, const srv_pm_stream_options *o,
-                        const srv_draco_quant *q, srv_pm_batch_info *info)
+static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t count,
+                                const replay *r, const bitwriter *w, const srv_pm_stream_options *o,
+                                const srv_draco_quant *q, srv_pm_batch_info *info)
 {
     uint8_t *drc = NULL, head[LUMO_PMESH_BATCH_HEAD_MAX];
     size_t drc_len = 0;
-    if (encode_payload(r, first, count, o, q, &drc, &drc_len))
-        return -1;
+    lumo_status st = encode_payload(r, first, count, o, q, &drc, &drc_len);
+    if (st)
+        return st;
     size_t hn = put_varint(head, index);
     hn += put_varint(head + hn, (uint32_t)w->b.len);
     hn += put_varint(head + hn, (uint32_t)drc_len);
@@ -541,7 +543,7 @@ static int write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t c
     srv_buf_put(out, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
     srv_buf_put(out, drc, drc_len);
     free(drc);
-    return out->failed ? -1 : 0;
+    return out->failed ? LUMO_ERR_NOMEM : LUMO_OK;
 }
 
 static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_options *o,
@@ -632,8 +634,9 @@ static void join_split_block(replay *r, bitwriter *w, const bitwriter *fields, u
     free(kinds.b.p);
 }
 
-static int write_batches(replay *r, const srv_pm_stream_options *o, const srv_draco_quant *q,
-                         srv_buf *out, srv_pm_batch_info *bi, uint32_t nb)
+static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
+                                 const srv_draco_quant *q, srv_buf *out, srv_pm_batch_info *bi,
+                                 uint32_t nb)
 {
     const srv_pm *pm = r->pm;
     for (uint32_t i = 0; i < nb; i++) {
@@ -644,7 +647,8 @@ static int write_batches(replay *r, const srv_pm_stream_options *o, const srv_dr
         bitwriter w = {{0}, 0}, fields = {{0}, 0};
         r->faces = r->moves = r->nkinds = 0;
         uint64_t fields_before = field_bits(&r->st);
-        int rc = 0;
+        int rc = 0;   /* write_split: -1 for a level it cannot express */
+        lumo_status st = LUMO_OK;
         if (!i)
             write_base(r, &w);
         /* parents run on across records: a round rarely ends at a record's end */
@@ -656,20 +660,20 @@ static int write_batches(replay *r, const srv_pm_stream_options *o, const srv_dr
             join_split_block(r, &w, &fields, rice);
         free(fields.b.p);
         if (!rc && !w.b.failed)
-            rc = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
-        if (!rc && i)
+            st = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
+        if (!rc && !st && i)
             tally_record(&r->st, fields_before, count, &bi[i]);
         free(w.b.p);
-        if (rc || w.b.failed) {
+        if (rc || st || w.b.failed) {
             fprintf(stderr, "lumo pm stream: cannot write batch %u\n", i);
-            return -1;
+            return rc ? LUMO_ERR_CORRUPT : st ? st : LUMO_ERR_NOMEM;
         }
     }
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
-                        size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
+lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                                size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
 {
     srv_pm_stream_options def;
     if (!o) {
@@ -678,7 +682,7 @@ int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_
     }
     if (!pm->vertices || !o->batch_vertices || o->quant_bits < 1 ||
         o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
-        return -1;
+        return LUMO_ERR_ARG;
     uint32_t rest = pm->vertices - pm->base_vertices;
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
     srv_draco_quant q;
@@ -691,13 +695,16 @@ int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_
     srv_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
     srv_buf_put(&s, header, sizeof header);
-    int rc = -1;
+    lumo_status rc = LUMO_ERR_NOMEM;
     if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
         goto done;
     quantize(pm, &q, r.q);
     r.quant_bits = (unsigned)q.bits;
     memset(r.head, 0xff, 4 * (size_t)pm->vertices);
-    if (write_batches(&r, o, &q, &s, bi, nb) || s.failed)
+    rc = write_batches(&r, o, &q, &s, bi, nb);
+    if (!rc && s.failed)
+        rc = LUMO_ERR_NOMEM;
+    if (rc)
         goto done;
     write_header(s.p, pm, o, &q, nb, bi);
     if (o->stats)
@@ -707,7 +714,7 @@ int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_
         *batches = bi, bi = NULL;
     if (nbatches)
         *nbatches = nb;
-    rc = 0;
+    rc = LUMO_OK;
 done:
     free(r.q);
     free(r.res);

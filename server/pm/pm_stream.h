@@ -45,9 +45,12 @@ typedef struct srv_pm_batch_info {
 
 /* Build the whole stream (header + every batch record) into one malloc'ed
  * buffer. If `batches` is not NULL it receives a malloc'ed array of
- * *nbatches entries. 0, or -1 with a message on stderr. */
-int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
-                        size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches);
+ * *nbatches entries. LUMO_OK; LUMO_ERR_ARG for an empty mesh or bad
+ * options; else, with a message on stderr, LUMO_ERR_NOMEM, a Draco
+ * encoder status (draco_shim.h) or LUMO_ERR_CORRUPT (a level the split
+ * records cannot express: pm was not made by srv_pm_build). */
+lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                                size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches);
 
 
 #endif
@@ -56,8 +59,9 @@ int srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_
  * append it to a package as a PMSH chunk (one chunk per mesh, in mesh
  * order, replacing the raw MESH chunk). albedo: 3 bytes per vertex (0..255)
  * or NULL. o may be NULL for the defaults.
- * 0, or -1 with a one-line reason in err. */
+ * LUMO_OK, or the failing step's status (srv_pm_build_albedo,
+ * srv_pm_stream_build, srv_pkgw_add) with a one-line reason in err. */
 struct srv_pkg_writer;
-int srv_pm_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
-                const uint32_t *tris, uint32_t nf, const srv_pm_stream_options *o, char *err,
-                size_t errlen);
+lumo_status srv_pm_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo,
+                        uint32_t nv, const uint32_t *tris, uint32_t nf,
+                        const srv_pm_stream_options *o, char *err, size_t errlen);

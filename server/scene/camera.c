@@ -6,34 +6,36 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 
-int srv_camera_parse(const char *text, srv_camera *out)
+lumo_status srv_camera_parse(const char *text, srv_camera *out)
 {
     char buf[256], *parts[4], *save = NULL;
     float v[4][3], fovy;
     int n = 0;
 
-    if (!text || strlen(text) >= sizeof buf)
-        return -1;
+    if (!text)
+        return LUMO_ERR_ARG;
+    if (strlen(text) >= sizeof buf)
+        return LUMO_ERR_LIMIT;
     strcpy(buf, text);
     for (char *p = strtok_r(buf, ":", &save); p; p = strtok_r(NULL, ":", &save)) {
         if (n == 4)
-            return -1;
+            return LUMO_ERR_ARG;
         parts[n++] = p;
     }
     if (n != 4)
-        return -1;
+        return LUMO_ERR_ARG;
     for (int i = 0; i < 3; i++)
         if (srv_parse_floats(parts[i], v[i], 3))
-            return -1;
+            return LUMO_ERR_ARG;
     if (srv_parse_floats(parts[3], &fovy, 1) || !(fovy > 0.0f && fovy < 180.0f))
-        return -1;
+        return LUMO_ERR_ARG;
     srv_camera c = {v3(v[0][0], v[0][1], v[0][2]), v3(v[1][0], v[1][1], v[1][2]),
                     v3(v[2][0], v[2][1], v[2][2]), fovy};
     vec3 f = v3_sub(c.target, c.eye);
     if (v3_len(f) <= 0.0f || v3_len(v3_cross(v3_norm(f), v3_norm(c.up))) < 1e-6f)
-        return -1;
+        return LUMO_ERR_ARG;
     *out = c;
-    return 0;
+    return LUMO_OK;
 }
 
 vec3 srv_camera_ray(const srv_camera *c, int w, int h, float px, float py)

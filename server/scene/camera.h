@@ -8,16 +8,18 @@
 #define SRV_CAMERA_H
 
 #include "common/vec3.h"
+#include "lumo/status.h"
 
 typedef struct srv_camera {
     vec3  eye, target, up;
     float fovy_deg;        /* vertical, in (0, 180) */
 } srv_camera;
 
-/* Parse "ex,ey,ez:tx,ty,tz:ux,uy,uz:fovy". 0 on success, -1 on a malformed,
- * non-finite or degenerate camera (eye == target, up parallel to the view,
- * fovy outside (0, 180)). */
-int srv_camera_parse(const char *text, srv_camera *out);
+/* Parse "ex,ey,ez:tx,ty,tz:ux,uy,uz:fovy". LUMO_OK on success,
+ * LUMO_ERR_ARG on a malformed, non-finite or degenerate camera (eye ==
+ * target, up parallel to the view, fovy outside (0, 180)), LUMO_ERR_LIMIT
+ * when the text is longer than 255 characters. */
+lumo_status srv_camera_parse(const char *text, srv_camera *out);
 
 /* Unit direction of the ray through image position (px, py) in pixels
  * (px in [0, w), py in [0, h), row 0 at the top; a pixel's centre is +0.5). */

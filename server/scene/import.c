@@ -60,18 +60,18 @@ static int material_albedo(const struct aiScene *sc, unsigned idx, vec3 *out)
     return 1;
 }
 
-static int import_mesh(srv_scene *s, const struct aiScene *sc, const struct aiMesh *am,
-                       const srv_xform *x, const vec3 *albedo, const char *path)
+static lumo_status import_mesh(srv_scene *s, const struct aiScene *sc, const struct aiMesh *am,
+                               const srv_xform *x, const vec3 *albedo, const char *path)
 {
     uint32_t ntris = 0;
     for (unsigned f = 0; f < am->mNumFaces; f++)
         ntris += am->mFaces[f].mNumIndices == 3;
     if (ntris == 0)
-        return 0;   /* point or line primitives: nothing to shade */
+        return LUMO_OK;   /* point or line primitives: nothing to shade */
     const char *base = strrchr(path, '/');
     srv_mesh *m = srv_scene_add_mesh(s, base ? base + 1 : path, am->mNumVertices, ntris);
     if (!m)
-        return -1;
+        return LUMO_ERR_NOMEM;
     vec3 mat = v3(DEFAULT_ALBEDO, DEFAULT_ALBEDO, DEFAULT_ALBEDO);
     material_albedo(sc, am->mMaterialIndex, &mat);
     for (unsigned v = 0; v < am->mNumVertices; v++) {
@@ -93,7 +93,7 @@ static int import_mesh(srv_scene *s, const struct aiScene *sc, const struct aiMe
             m->tris[3 * t + k] = am->mFaces[f].mIndices[k];
         t++;
     }
-    return 0;
+    return LUMO_OK;
 }
 
 /* The node's transform to world space (the file's own hierarchy). */
@@ -123,8 +123,8 @@ static const struct aiNode *find_node(const struct aiNode *n, const char *name, 
     return NULL;
 }
 
-static int import_light(srv_scene *s, const struct aiScene *sc, const struct aiLight *al,
-                        const srv_xform *x)
+static lumo_status import_light(srv_scene *s, const struct aiScene *sc, const struct aiLight *al,
+                                const srv_xform *x)
 {
     struct aiVector3D p = al->mPosition, d = al->mDirection;
     const struct aiNode *node = find_node(sc->mRootNode, al->mName.data, 0);
@@ -151,21 +151,21 @@ static int import_light(srv_scene *s, const struct aiScene *sc, const struct aiL
         l.cos_half = cosf(al->mAngleOuterCone);
         break;
     case aiLightSource_DIRECTIONAL: l.kind = SRV_LIGHT_DIRECTIONAL; l.power = col; break;
-    default: return 0;   /* ambient / area lights of the file format: not imported */
+    default: return LUMO_OK;   /* ambient / area lights of the file format: not imported */
     }
     if (!v3_finite(l.pos) || !v3_finite(l.dir) || !v3_finite(l.power) ||
         (l.kind != SRV_LIGHT_POINT && v3_len(l.dir) == 0.0f))
-        return 0;   /* a light the file cannot place is skipped, not guessed */
+        return LUMO_OK;   /* a light the file cannot place is skipped, not guessed */
     return srv_scene_add_light(s, &l);
 }
 
-int srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
-                    char *err, size_t errlen)
+lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
+                            char *err, size_t errlen)
 {
     struct stat st;
     if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
         snprintf(err, errlen, "%s: no such file", path);
-        return -1;
+        return LUMO_ERR_IO;
     }
     const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
                                                       aiProcess_SortByPType);
@@ -174,9 +174,9 @@ int srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const ve
         snprintf(err, errlen, "%s: cannot import: %s", path, why && *why ? why : "unknown format");
         if (sc)
             aiReleaseImport(sc);
-        return -1;
+        return LUMO_ERR_CORRUPT;
     }
-    int rc = 0;
+    lumo_status rc = LUMO_OK;
     size_t before = srv_scene_triangle_count(s);
     for (unsigned i = 0; i < sc->mNumMeshes && !rc; i++)
         rc = import_mesh(s, sc, sc->mMeshes[i], x, albedo, path);
@@ -185,11 +185,11 @@ int srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const ve
     aiReleaseImport(sc);
     if (rc) {
         snprintf(err, errlen, "%s: out of memory", path);
-        return -1;
+        return rc;
     }
     if (srv_scene_triangle_count(s) == before) {
         snprintf(err, errlen, "%s: no triangle in the file", path);
-        return -1;
+        return LUMO_ERR_CORRUPT;
     }
-    return 0;
+    return LUMO_OK;
 }

@@ -25,19 +25,19 @@ void srv_scene_free(srv_scene *s)
     srv_scene_init(s);
 }
 
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
+static lumo_status grow(void **p, size_t *cap, size_t need, size_t elem)
 {
     if (need <= *cap)
-        return 0;
+        return LUMO_OK;
     size_t ncap = *cap ? *cap * 2 : 8;
     while (ncap < need)
         ncap *= 2;
     void *q = realloc(*p, ncap * elem);
     if (!q)
-        return -1;
+        return LUMO_ERR_NOMEM;
     *p = q;
     *cap = ncap;
-    return 0;
+    return LUMO_OK;
 }
 
 srv_mesh *srv_scene_add_mesh(srv_scene *s, const char *name, uint32_t nverts, uint32_t ntris)
@@ -62,12 +62,13 @@ srv_mesh *srv_scene_add_mesh(srv_scene *s, const char *name, uint32_t nverts, ui
     return m;
 }
 
-int srv_scene_add_light(srv_scene *s, const srv_light *l)
+lumo_status srv_scene_add_light(srv_scene *s, const srv_light *l)
 {
-    if (grow((void **)&s->lights, &s->cap_lights, s->nlights + 1, sizeof *s->lights))
-        return -1;
+    lumo_status st = grow((void **)&s->lights, &s->cap_lights, s->nlights + 1, sizeof *s->lights);
+    if (st)
+        return st;
     s->lights[s->nlights++] = *l;
-    return 0;
+    return LUMO_OK;
 }
 
 void srv_scene_override_albedo(srv_scene *s, vec3 albedo)
@@ -98,63 +99,65 @@ size_t srv_scene_triangle_count(const srv_scene *s)
     return n;
 }
 
-static int validate_mesh(const srv_mesh *m, float min_area, char *err, size_t errlen)
+static lumo_status validate_mesh(const srv_mesh *m, float min_area, char *err, size_t errlen)
 {
     for (uint32_t v = 0; v < m->nverts; v++)
         if (!v3_finite(m->pos[v])) {
             snprintf(err, errlen, "mesh '%s': vertex %u has a non-finite coordinate", m->name, v);
-            return -1;
+            return LUMO_ERR_NONFINITE;
         }
     for (uint32_t t = 0; t < m->ntris; t++) {
         const uint32_t *ix = &m->tris[3 * t];
         if (ix[0] >= m->nverts || ix[1] >= m->nverts || ix[2] >= m->nverts) {
             snprintf(err, errlen, "mesh '%s': face %u indexes a missing vertex", m->name, t);
-            return -1;
+            return LUMO_ERR_RANGE;
         }
         vec3 a = m->pos[ix[0]];
         float area = 0.5f * v3_len(v3_cross(v3_sub(m->pos[ix[1]], a), v3_sub(m->pos[ix[2]], a)));
         if (!(area > min_area)) {
             snprintf(err, errlen, "mesh '%s': face %u has zero area", m->name, t);
-            return -1;
+            return LUMO_ERR_CORRUPT;
         }
     }
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_scene_validate(const srv_scene *s, char *err, size_t errlen)
+lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen)
 {
     vec3 lo, hi;
     if (srv_scene_triangle_count(s) == 0 || !srv_scene_bounds(s, &lo, &hi)) {
         snprintf(err, errlen, "the scene has no geometry");
-        return -1;
+        return LUMO_ERR_ARG;
     }
     if (s->nlights == 0) {
         snprintf(err, errlen, "the scene has no light (add one with --light)");
-        return -1;
+        return LUMO_ERR_ARG;
     }
     if (s->nlights > SRV_SCENE_MAX_LIGHTS) {
         snprintf(err, errlen, "the scene has %zu lights, at most %d are supported", s->nlights,
                  SRV_SCENE_MAX_LIGHTS);
-        return -1;
+        return LUMO_ERR_LIMIT;
     }
     /* Zero area relative to the scene's size: float cross products of a
      * metre-sized scene cannot resolve less than ~1e-14 of its extent^2. */
     float ext = v3_len(v3_sub(hi, lo));
-    for (size_t i = 0; i < s->nmeshes; i++)
-        if (validate_mesh(&s->meshes[i], 1e-14f * ext * ext, err, errlen))
-            return -1;
+    for (size_t i = 0; i < s->nmeshes; i++) {
+        lumo_status st = validate_mesh(&s->meshes[i], 1e-14f * ext * ext, err, errlen);
+        if (st)
+            return st;
+    }
     for (size_t i = 0; i < s->nlights; i++) {
         const srv_light *l = &s->lights[i];
         if (!v3_finite(l->pos) || !v3_finite(l->dir) || !v3_finite(l->power) ||
             l->power.x < 0 || l->power.y < 0 || l->power.z < 0) {
             snprintf(err, errlen, "light %zu: non-finite or negative value", i);
-            return -1;
+            return LUMO_ERR_RANGE;
         }
     }
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_parse_floats(const char *text, float *out, int n)
+lumo_status srv_parse_floats(const char *text, float *out, int n)
 {
     const char *p = text;
     for (int i = 0; i < n; i++) {
@@ -162,16 +165,16 @@ int srv_parse_floats(const char *text, float *out, int n)
         errno = 0;
         float f = strtof(p, &end);
         if (end == p || errno || !isfinite(f))
-            return -1;
+            return LUMO_ERR_ARG;
         out[i] = f;
         p = end;
         if (i + 1 < n) {
             if (*p != ',')
-                return -1;
+                return LUMO_ERR_ARG;
             p++;
         }
     }
-    return *p ? -1 : 0;
+    return *p ? LUMO_ERR_ARG : LUMO_OK;
 }
 
 /* Split "kind:a:b:..." into at most 6 fields; returns the field count. */
@@ -196,7 +199,7 @@ static int parse_vec(const char *t, vec3 *v)
     return 0;
 }
 
-int srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen)
+lumo_status srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen)
 {
     char buf[512], *f[7];
     srv_light l;
@@ -204,7 +207,7 @@ int srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen)
     memset(&l, 0, sizeof l);
     if (strlen(text) >= sizeof buf) {
         snprintf(err, errlen, "light '%s': too long", text);
-        return -1;
+        return LUMO_ERR_LIMIT;
     }
     strcpy(buf, text);
     int n = split_fields(buf, f, 6);
@@ -227,11 +230,11 @@ int srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen)
     }
     if (!ok || l.power.x < 0 || l.power.y < 0 || l.power.z < 0) {
         snprintf(err, errlen, "bad light '%s' (see docs/scene-format.md)", text);
-        return -1;
+        return LUMO_ERR_ARG;
     }
     l.dir = v3_norm(l.kind == SRV_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
     l.half_angle_deg = ha;
     l.cos_half = cosf(ha * (float)M_PI / 180.0f);
     *out = l;
-    return 0;
+    return LUMO_OK;
 }

@@ -13,6 +13,7 @@
 #include <stdint.h>
 #include "scene/camera.h"
 #include "common/vec3.h"
+#include "lumo/status.h"
 
 /* The package holds at most this many lights (LUMO_PKG_MAX_LIGHTS). */
 #define SRV_SCENE_MAX_LIGHTS 64
@@ -58,7 +59,8 @@ void srv_scene_free(srv_scene *s);
 /* Append an empty mesh with room for nverts/ntris; NULL when out of memory.
  * The returned pointer is valid until the next add. */
 srv_mesh *srv_scene_add_mesh(srv_scene *s, const char *name, uint32_t nverts, uint32_t ntris);
-int srv_scene_add_light(srv_scene *s, const srv_light *l);
+/* Append a copy of l: LUMO_OK or LUMO_ERR_NOMEM. */
+lumo_status srv_scene_add_light(srv_scene *s, const srv_light *l);
 
 /* Replace every albedo (the --albedo option). */
 void srv_scene_override_albedo(srv_scene *s, vec3 albedo);
@@ -70,15 +72,20 @@ size_t srv_scene_triangle_count(const srv_scene *s);
 
 /* Check the scene is bakeable: geometry present, a light present, every
  * coordinate finite, every index in range, no zero-area face. On failure
- * writes a one-line reason into err and returns -1. */
-int srv_scene_validate(const srv_scene *s, char *err, size_t errlen);
+ * writes a one-line reason into err and returns LUMO_ERR_ARG (no geometry,
+ * no light), LUMO_ERR_LIMIT (more than SRV_SCENE_MAX_LIGHTS lights),
+ * LUMO_ERR_NONFINITE (a vertex), LUMO_ERR_RANGE (a face index, a negative
+ * or non-finite light value) or LUMO_ERR_CORRUPT (a zero-area face). */
+lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen);
 
 /* Parse a light in the command-line syntax of docs/scene-format.md
  * ("point:X,Y,Z:R,G,B", "spot:...", "directional:...", "area:...").
- * Returns 0, or -1 with a reason in err. */
-int srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen);
+ * LUMO_OK, or with a reason in err LUMO_ERR_LIMIT (text too long) or
+ * LUMO_ERR_ARG (malformed). */
+lumo_status srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen);
 
-/* Parse "R,G,B" (or N comma-separated floats) strictly: 0 or -1. */
-int srv_parse_floats(const char *text, float *out, int n);
+/* Parse "R,G,B" (or N comma-separated floats) strictly: LUMO_OK, or
+ * LUMO_ERR_ARG for anything else (non-finite values included). */
+lumo_status srv_parse_floats(const char *text, float *out, int n);
 
 #endif

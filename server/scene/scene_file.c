@@ -27,7 +27,7 @@ static int vec_arg(const char *t, vec3 *v)
 
 /* Trailing options "albedo R,G,B", "inward", "segments N"; `from` is the
  * first optional word. Unknown words are errors. */
-static int shape_opts(parser *p, int from, vec3 *albedo, int *inward, int *segments)
+static lumo_status shape_opts(parser *p, int from, vec3 *albedo, int *inward, int *segments)
 {
     for (int i = from; i < p->n; i++) {
         if (!strcmp(p->w[i], "albedo") && i + 1 < p->n && !vec_arg(p->w[i + 1], albedo))
@@ -38,20 +38,20 @@ static int shape_opts(parser *p, int from, vec3 *albedo, int *inward, int *segme
             *segments = atoi(p->w[++i]);
         else {
             snprintf(p->err, sizeof p->err, "unexpected '%s'", p->w[i]);
-            return -1;
+            return LUMO_ERR_CORRUPT;
         }
     }
-    return 0;
+    return LUMO_OK;
 }
 
-static int st_mesh(parser *p)
+static lumo_status st_mesh(parser *p)
 {
     srv_xform x = srv_xform_identity();
     vec3 albedo;
     int has_albedo = 0;
     char path[2048];
     if (p->n < 2)
-        return snprintf(p->err, sizeof p->err, "mesh needs a file"), -1;
+        return snprintf(p->err, sizeof p->err, "mesh needs a file"), LUMO_ERR_CORRUPT;
     for (int i = 2; i < p->n; i++) {
         const char *a = i + 1 < p->n ? p->w[i + 1] : NULL;
         float f[4];
@@ -68,8 +68,10 @@ static int st_mesh(parser *p)
             ok = !vec_arg(a, &albedo) && (has_albedo = 1);
         else
             ok = 0;
-        if (!ok)
-            return snprintf(p->err, sizeof p->err, "bad mesh option '%s'", p->w[i]), -1;
+        if (!ok) {
+            snprintf(p->err, sizeof p->err, "bad mesh option '%s'", p->w[i]);
+            return LUMO_ERR_CORRUPT;
+        }
         i++;
     }
     if (p->w[1][0] == '/')
@@ -79,54 +81,55 @@ static int st_mesh(parser *p)
     return srv_import_file(p->s, path, &x, has_albedo ? &albedo : NULL, p->err, sizeof p->err);
 }
 
-static int st_shape(parser *p)
+static lumo_status st_shape(parser *p)
 {
     vec3 a, b, c, albedo = v3(0.8f, 0.8f, 0.8f);
     int inward = 0, seg = 64;
     const char *k = p->w[0];
     if (!strcmp(k, "quad") && p->n >= 4 && !vec_arg(p->w[1], &a) && !vec_arg(p->w[2], &b) &&
         !vec_arg(p->w[3], &c))
-        return shape_opts(p, 4, &albedo, NULL, NULL) ? -1 : srv_add_quad(p->s, "quad", a, b, c, albedo);
+        return shape_opts(p, 4, &albedo, NULL, NULL) ? LUMO_ERR_CORRUPT
+               : srv_add_quad(p->s, "quad", a, b, c, albedo);
     if (!strcmp(k, "box") && p->n >= 3 && !vec_arg(p->w[1], &a) && !vec_arg(p->w[2], &b) &&
         a.x < b.x && a.y < b.y && a.z < b.z)
-        return shape_opts(p, 3, &albedo, &inward, NULL) ? -1
+        return shape_opts(p, 3, &albedo, &inward, NULL) ? LUMO_ERR_CORRUPT
                : srv_add_box(p->s, "box", a, b, albedo, inward);
     float r;
     if (!strcmp(k, "sphere") && p->n >= 3 && !vec_arg(p->w[1], &a) &&
         !srv_parse_floats(p->w[2], &r, 1) && r > 0.0f) {
         if (shape_opts(p, 3, &albedo, &inward, &seg))
-            return -1;
+            return LUMO_ERR_CORRUPT;
         if (seg < 8 || seg > 4096)
-            return snprintf(p->err, sizeof p->err, "segments must be in [8, 4096]"), -1;
+            return snprintf(p->err, sizeof p->err, "segments must be in [8, 4096]"), LUMO_ERR_RANGE;
         return srv_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
     }
     snprintf(p->err, sizeof p->err, "malformed %s", k);
-    return -1;
+    return LUMO_ERR_CORRUPT;
 }
 
-static int st_other(parser *p)
+static lumo_status st_other(parser *p)
 {
     const char *k = p->w[0];
     vec3 a;
     if (!strcmp(k, "light") && p->n == 2) {
         srv_light l;
         if (srv_light_parse(p->w[1], &l, p->err, sizeof p->err))
-            return -1;
+            return LUMO_ERR_CORRUPT;
         return l.kind == SRV_LIGHT_AREA ? srv_add_area_light(p->s, &l) : srv_scene_add_light(p->s, &l);
     }
     if (!strcmp(k, "albedo") && p->n == 2 && !vec_arg(p->w[1], &a)) {
         srv_scene_override_albedo(p->s, a);
-        return 0;
+        return LUMO_OK;
     }
     if (!strcmp(k, "camera") && p->n == 2 && !srv_camera_parse(p->w[1], &p->s->camera)) {
         p->s->has_camera = 1;
-        return 0;
+        return LUMO_OK;
     }
     snprintf(p->err, sizeof p->err, "unknown or malformed statement '%s'", k);
-    return -1;
+    return LUMO_ERR_CORRUPT;
 }
 
-static int statement(parser *p)
+static lumo_status statement(parser *p)
 {
     if (!strcmp(p->w[0], "mesh"))
         return st_mesh(p);
@@ -135,7 +138,7 @@ static int statement(parser *p)
     return st_other(p);
 }
 
-int srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
+lumo_status srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
     char line[2048], tmp[1024];
@@ -144,7 +147,7 @@ int srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
     p.s = s;
     if (!f) {
         snprintf(err, errlen, "%s: cannot open", path);
-        return -1;
+        return LUMO_ERR_IO;
     }
     snprintf(tmp, sizeof tmp, "%s", path);
     snprintf(p.dir, sizeof p.dir, "%s", dirname(tmp));
@@ -153,7 +156,7 @@ int srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
         if (!strchr(line, '\n') && !feof(f)) {
             snprintf(err, errlen, "%s:%d: line longer than %zu characters", path, lineno, sizeof line - 2);
             fclose(f);
-            return -1;
+            return LUMO_ERR_LIMIT;
         }
         if (hash)
             *hash = 0;
@@ -163,12 +166,13 @@ int srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
                 p.w[p.n++] = t;
         if (p.n == 0)
             continue;
-        if (statement(&p)) {
+        lumo_status st = statement(&p);
+        if (st) {
             snprintf(err, errlen, "%s:%d: %s", path, lineno, p.err);
             fclose(f);
-            return -1;
+            return st;
         }
     }
     fclose(f);
-    return 0;
+    return LUMO_OK;
 }

@@ -9,11 +9,11 @@ static void fill_albedo(srv_mesh *m, vec3 albedo)
         m->albedo[i] = albedo;
 }
 
-int srv_add_quad(srv_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, vec3 albedo)
+lumo_status srv_add_quad(srv_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, vec3 albedo)
 {
     srv_mesh *m = srv_scene_add_mesh(s, name, 4, 2);
     if (!m)
-        return -1;
+        return LUMO_ERR_NOMEM;
     m->pos[0] = corner;
     m->pos[1] = v3_add(corner, u);
     m->pos[2] = v3_add(v3_add(corner, u), v);
@@ -22,10 +22,10 @@ int srv_add_quad(srv_scene *s, const char *name, vec3 corner, vec3 u, vec3 v, ve
     for (int i = 0; i < 6; i++)
         m->tris[i] = t[i];
     fill_albedo(m, albedo);
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_add_box(srv_scene *s, const char *name, vec3 lo, vec3 hi, vec3 albedo, int inward)
+lumo_status srv_add_box(srv_scene *s, const char *name, vec3 lo, vec3 hi, vec3 albedo, int inward)
 {
     vec3 d = v3_sub(hi, lo);
     vec3 ex = v3(d.x, 0, 0), ey = v3(0, d.y, 0), ez = v3(0, 0, d.z);
@@ -37,20 +37,21 @@ int srv_add_box(srv_scene *s, const char *name, vec3 lo, vec3 hi, vec3 albedo, i
     };
     for (int i = 0; i < 6; i++) {
         vec3 u = inward ? f[i][2] : f[i][1], v = inward ? f[i][1] : f[i][2];
-        if (srv_add_quad(s, name, f[i][0], u, v, albedo))
-            return -1;
+        lumo_status st = srv_add_quad(s, name, f[i][0], u, v, albedo);
+        if (st)
+            return st;
     }
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_add_sphere(srv_scene *s, const char *name, vec3 c, float r, int segments, vec3 albedo,
-                   int inward)
+lumo_status srv_add_sphere(srv_scene *s, const char *name, vec3 c, float r, int segments,
+                           vec3 albedo, int inward)
 {
     int nu = segments < 8 ? 8 : segments, nv = nu / 2;
     uint32_t nverts = (uint32_t)((nv - 1) * nu + 2), ntris = (uint32_t)(2 * nu * (nv - 1));
     srv_mesh *m = srv_scene_add_mesh(s, name, nverts, ntris);
     if (!m)
-        return -1;
+        return LUMO_ERR_NOMEM;
     m->pos[0] = v3_add(c, v3(0, r, 0));
     m->pos[nverts - 1] = v3_add(c, v3(0, -r, 0));
     for (int j = 1; j < nv; j++)
@@ -84,13 +85,16 @@ int srv_add_sphere(srv_scene *s, const char *name, vec3 c, float r, int segments
             m->tris[3 * k + 2] = tmp;
         }
     fill_albedo(m, albedo);
-    return 0;
+    return LUMO_OK;
 }
 
-int srv_add_area_light(srv_scene *s, const srv_light *l)
+lumo_status srv_add_area_light(srv_scene *s, const srv_light *l)
 {
-    if (srv_scene_add_light(s, l) || srv_add_quad(s, "area-light", l->pos, l->u, l->v, v3(0, 0, 0)))
-        return -1;
+    lumo_status st = srv_scene_add_light(s, l);
+    if (!st)
+        st = srv_add_quad(s, "area-light", l->pos, l->u, l->v, v3(0, 0, 0));
+    if (st)
+        return st;
     s->meshes[s->nmeshes - 1].emitter = 1;
-    return 0;
+    return LUMO_OK;
 }

@@ -254,18 +254,18 @@ static void test_validate_errors(void **state)
     char err[256];
     srv_light l = {.kind = SRV_LIGHT_POINT, .power = {1, 1, 1}};
     srv_scene_init(&s);
-    assert_int_equal(srv_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_ARG);
     assert_non_null(strstr(err, "no geometry"));
     assert_int_equal(srv_add_quad(&s, "q", v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, 1), v3(0.5f, 0.5f, 0.5f)), 0);
-    assert_int_equal(srv_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_ARG);
     assert_non_null(strstr(err, "no light"));
     srv_scene_add_light(&s, &l);
     assert_int_equal(srv_scene_validate(&s, err, sizeof err), 0);
     s.meshes[0].pos[2] = s.meshes[0].pos[1];          /* zero-area face */
-    assert_int_equal(srv_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_CORRUPT);
     assert_non_null(strstr(err, "zero area"));
     s.meshes[0].pos[2] = v3(NAN, 0, 0);
-    assert_int_equal(srv_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_NONFINITE);
     assert_non_null(strstr(err, "non-finite"));
     srv_scene_free(&s);
 }
@@ -287,11 +287,11 @@ static void test_parsers(void **state)
     const char *bad[] = {"point:0,0,0", "point:0,0:1,1,1", "spot:0,0,0:0,0,0:30:1,1,1", "laser:0,0,0:1,1,1",
                          "point:0,0,0:1,1,-1", "point:nan,0,0:1,1,1", "point:0,0,0:1,1,1:4", ""};
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
-        assert_int_equal(srv_light_parse(bad[i], &l, err, sizeof err), -1);
+        assert_int_equal(srv_light_parse(bad[i], &l, err, sizeof err), LUMO_ERR_ARG);
     assert_int_equal(srv_camera_parse("0,1,3.4:0,1,0:0,1,0:40", &c), 0);
-    assert_int_equal(srv_camera_parse("0,1,0:0,1,0:0,1,0:40", &c), -1);      /* eye == target */
-    assert_int_equal(srv_camera_parse("0,0,0:0,1,0:0,1,0:40", &c), -1);      /* up parallel */
-    assert_int_equal(srv_camera_parse("0,1,3:0,1,0:0,1,0:180", &c), -1);
+    assert_int_equal(srv_camera_parse("0,1,0:0,1,0:0,1,0:40", &c), LUMO_ERR_ARG); /* eye == target */
+    assert_int_equal(srv_camera_parse("0,0,0:0,1,0:0,1,0:40", &c), LUMO_ERR_ARG); /* up parallel */
+    assert_int_equal(srv_camera_parse("0,1,3:0,1,0:0,1,0:180", &c), LUMO_ERR_ARG);
     /* The centre pixel looks at the target; the top row looks up. */
     assert_int_equal(srv_camera_parse("0,0,5:0,0,0:0,1,0:90", &c), 0);
     vec3 d = srv_camera_ray(&c, 100, 100, 50.0f, 50.0f);
@@ -333,7 +333,8 @@ static void test_import_models(void **state)
     assert_close(s.meshes[0].albedo[0].x, 0.98, 1e-6);
     assert_close(s.meshes[0].albedo[0].z, 0.0, 1e-6);
     assert_close(s.meshes[0].albedo[2].z, 0.98, 1e-6);
-    assert_int_equal(srv_import_file(&s, "build/nonexistent.obj", &x, NULL, err, sizeof err), -1);
+    assert_int_equal(srv_import_file(&s, "build/nonexistent.obj", &x, NULL, err, sizeof err),
+                     LUMO_ERR_IO);
     assert_non_null(strstr(err, "no such file"));
     srv_scene_free(&s);
 }

@@ -206,7 +206,7 @@ static int is_description(const char *path)
     return dot && (!strcmp(dot, ".txt") || !strcmp(dot, ".scene"));
 }
 
-static int load_file(const char *path, srv_scene *s, char *err, size_t errlen)
+static lumo_status load_file(const char *path, srv_scene *s, char *err, size_t errlen)
 {
     srv_xform x = srv_xform_identity();
     if (is_description(path))
@@ -214,17 +214,19 @@ static int load_file(const char *path, srv_scene *s, char *err, size_t errlen)
     return srv_import_file(s, path, &x, NULL, err, errlen);
 }
 
-static int load_scene(const options *o, srv_scene *s, char *err, size_t errlen)
+static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t errlen)
 {
     const char *dragon = o->dragon ? o->dragon : getenv("LUMO_DRAGON") ? getenv("LUMO_DRAGON") : DEFAULT_DRAGON;
-    if (o->use_default ? srv_default_scene(s, dragon, err, errlen) : load_file(o->scene, s, err, errlen))
-        return -1;
-    for (int i = 0; i < o->nlights; i++) {
+    lumo_status st = o->use_default ? srv_default_scene(s, dragon, err, errlen)
+                                    : load_file(o->scene, s, err, errlen);
+    for (int i = 0; !st && i < o->nlights; i++) {
         srv_light l;
-        if (srv_light_parse(o->lights[i], &l, err, errlen) ||
-            (l.kind == SRV_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l)))
-            return -1;
+        st = srv_light_parse(o->lights[i], &l, err, errlen);
+        if (!st)
+            st = l.kind == SRV_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l);
     }
+    if (st)
+        return st;
     if (o->has_albedo)
         srv_scene_override_albedo(s, o->albedo);
     if (o->has_camera)
