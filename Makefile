@@ -36,9 +36,9 @@ M3_ARCH           := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 CLIENT_CFLAGS_m3  := $(CLIENT_STD) $(WARN) $(CLIENT_INC) $(M3_ARCH) -Os -g \
                      -ffunction-sections -fdata-sections
 # Desktop code (server/, tools/, GL backends, tests): C11, POSIX.
-HOST_CFLAGS   := -std=c11 -D_GNU_SOURCE $(WARN) -Wno-missing-prototypes $(CLIENT_INC) -Iserver/include -Itools/lib/include -O2 -g -pthread
-HOST_CXXFLAGS := -std=c++17 -Wall -Wextra -Werror -Iserver/include -O2 -g -pthread
-TEST_CFLAGS   := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror $(CLIENT_INC) -Iserver/include -Itools/lib/include -Itests/include \
+HOST_CFLAGS   := -std=c11 -D_GNU_SOURCE $(WARN) -Wno-missing-prototypes $(CLIENT_INC) -Iserver -Itools/lib/include -O2 -g -pthread
+HOST_CXXFLAGS := -std=c++17 -Wall -Wextra -Werror -Iserver -O2 -g -pthread
+TEST_CFLAGS   := -std=c11 -D_GNU_SOURCE -Wall -Wextra -Werror $(CLIENT_INC) -Iserver -Itools/lib/include -Itests/include \
                  -O1 -g $(SAN_FLAGS) -pthread
 TEST_LDLIBS   := -lcmocka -lm
 

@@ -20,7 +20,7 @@
 #include <math.h>
 #include <time.h>
 #include "lumo/ivg.h"
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 
 static uint64_t g_rng = 0x9E3779B97F4A7C15ull;
 
@@ -49,7 +49,7 @@ typedef struct bgrid {
     lumo_ivg *g;
 } bgrid;
 
-static void random_fentry(lumo_ivg_fentry *e)
+static void random_fentry(srv_ivg_fentry *e)
 {
     double v[3], len;
     int k;
@@ -72,31 +72,31 @@ static int make_grid(bgrid *b, unsigned n, unsigned pct)
                        {LUMO_Q16_FROM_INT(8), LUMO_Q16_FROM_INT(8), LUMO_Q16_FROM_INT(8)}};
     size_t need = lumo_ivg_memory_size(&d), cap;
     uint32_t count = n * n * n, v, sent = 0;
-    lumo_ivg_writer w;
+    srv_ivg_writer w;
     lumo_arena a;
     uint8_t *buf;
     lumo_status st;
 
     b->mem = malloc(need);
-    cap = lumo_ivg_bundle_bytes(LUMO_IVG_FORM_QUANTIZED, count, 0);
+    cap = srv_ivg_bundle_bytes(LUMO_IVG_FORM_QUANTIZED, count, 0);
     buf = malloc(cap);
     if (b->mem == NULL || buf == NULL)
         return -1;
     lumo_arena_init(&a, b->mem, need);
     if (lumo_ivg_create(&b->g, &a, &d) != LUMO_OK)
         return -1;
-    lumo_ivg_writer_begin(&w, buf, cap, LUMO_IVG_FORM_QUANTIZED, d.dims);
+    srv_ivg_writer_begin(&w, buf, cap, LUMO_IVG_FORM_QUANTIZED, d.dims);
     for (v = 0; v < count; v++) {
-        lumo_ivg_fentry e[LUMO_IVG_AXES];
+        srv_ivg_fentry e[LUMO_IVG_AXES];
         int k;
         if (rnd() % 1000u >= pct * 10u)
             continue;
         for (k = 0; k < LUMO_IVG_AXES; k++)
             random_fentry(&e[k]);
-        lumo_ivg_writer_add(&w, v, e);
+        srv_ivg_writer_add(&w, v, e);
         sent++;
     }
-    st = lumo_ivg_apply_bundle(b->g, buf, lumo_ivg_writer_finish(&w), NULL);
+    st = lumo_ivg_apply_bundle(b->g, buf, srv_ivg_writer_finish(&w), NULL);
     free(buf);
     if (st != LUMO_OK || sent == 0) {
         fprintf(stderr, "bundle: %s\n", lumo_strerror(st));
@@ -153,7 +153,7 @@ static void make_samples(sample_set *s, int count, int mode)
     s->p = malloc(sizeof *s->p * (size_t)count);
     s->n = malloc(sizeof *s->n * (size_t)count);
     for (i = 0; i < count; i++) {
-        lumo_ivg_fentry e;
+        srv_ivg_fentry e;
         random_fentry(&e);
         for (k = 0; k < 3; k++)
             s->n[i][k] = mode == SAMPLE_RASTER_AXIS ? 0 : (lumo_q1_14)lround(e.d[k] * 16384);

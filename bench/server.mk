@@ -1,9 +1,9 @@
 # bench/server.mk — IVG bake and reference renderer benchmarks (issue 3).
-# Included before server/server.mk and tools/lib/hostlib.mk: name the server
-# library and the desktop library (PNG, tone mapping, Delta E) literally here.
+# The server library and the desktop library (PNG, tone mapping, Delta E)
+# are named literally (server/server.mk, tools/lib/hostlib.mk).
 BENCH_STEPS += bench-bake
 .PHONY: bench-bake
-$(BUILD)/host/bench/lumo-bench-bake: $(BUILD)/host/server/bench_bake.o $(BUILD)/host/libserver.a \
+$(BUILD)/host/bench/lumo-bench-bake: $(BUILD)/host/bench/bench_bake.o $(BUILD)/host/libserver.a \
                                      $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $< $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a \

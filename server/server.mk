@@ -1,39 +1,23 @@
-# server/server.mk — the desktop server: scene import, Embree IVG bake,
-# reference renderer, .lumo packages; tools lumo-bake and lumo-inspect.
+# server/server.mk — the desktop server library build/host/libserver.a,
+# built from every room of server/ (docs/architecture.md): common/ (vectors,
+# random numbers, progress bars, thread pool), scene/ (import, scene files,
+# default scene, shapes, cameras), bake/ (Embree ray queries, path tracer,
+# IVG bake, reference renderer), pm/ (progressive meshes, stream writer,
+# the libdraco shim, the client driver pm_client), package/ (.lumo packages,
+# IVG encoding). Every server/ROOM/*.c and *.cc is in the archive.
 #
-# Hooks for other fragments (server/pm.mk is included before this file):
-#   LUMO_SERVER_EXTRA_OBJS  objects every server tool links (e.g. pm_*.o, draco shim)
-#   LUMO_SERVER_EXTRA_LIBS  libraries for them (e.g. -ldraco -lstdc++)
-# lumo-inspect subcommands: any server/inspect_*.c is linked into lumo-inspect;
-# it registers itself with LUMO_INSPECT_COMMAND (server/include/lumo_server/inspect.h).
-# PNG files, tone mapping, Delta E and whole-file reads come from the desktop
-# library build/host/libhost.a (tools/lib/hostlib.mk, included after this
-# file, so named literally; it needs -lpng -lm from SERVER_LIBS).
-
-SERVER_CORE := camera scene shapes import scene_file default_scene rt pathtrace parallel \
-               progress bake reference package_write pack ivg_encode
-SERVER_OBJS := $(patsubst %,$(BUILD)/host/server/%.o,$(SERVER_CORE))
+# Programs (tools/<program>/<program>.mk), tests and benchmarks link
+#   $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a $(SERVER_LIBS)
+# naming the archives literally in their prerequisites, so no fragment
+# depends on the order the top Makefile includes them in (SERVER_LIB and
+# SERVER_LIBS may be used in recipes, which make expands late).
+SERVER_SRCS := $(sort $(wildcard server/*/*.c server/*/*.cc))
+SERVER_OBJS := $(patsubst %,$(BUILD)/host/%.o,$(basename $(SERVER_SRCS)))
 SERVER_LIB  := $(BUILD)/host/libserver.a
-SERVER_LIBS := -lembree3 -lassimp -lpng -lm -pthread
-INSPECT_SRCS := $(sort $(wildcard server/inspect*.c))
-INSPECT_OBJS := $(patsubst %.c,$(BUILD)/host/%.o,$(INSPECT_SRCS))
+SERVER_LIBS := -lembree3 -lassimp -ldraco -lstdc++ -lpng -lm -pthread
 
-HOST_TOOLS += $(BIN)/lumo-bake $(BIN)/lumo-inspect
-
-$(SERVER_LIB): $(SERVER_OBJS)
+$(BUILD)/host/libserver.a: $(SERVER_OBJS)
 	rm -f $@ && ar rcs $@ $^
 
-$(BIN)/lumo-bake: $(BUILD)/host/server/bake_main.o $(SERVER_LIB) $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a \
-                  $(LUMO_SERVER_EXTRA_OBJS)
-	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $(BUILD)/host/server/bake_main.o $(LUMO_SERVER_EXTRA_OBJS) $(SERVER_LIB) \
-	    $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)
-
-# Inspect objects are linked directly (not from an archive), so their
-# registration constructors are kept. Extra objects come before the server
-# library because they may call into it.
-$(BIN)/lumo-inspect: $(INSPECT_OBJS) $(SERVER_LIB) $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a \
-                     $(LUMO_SERVER_EXTRA_OBJS)
-	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $(INSPECT_OBJS) $(LUMO_SERVER_EXTRA_OBJS) $(SERVER_LIB) \
-	    $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a $(SERVER_LIBS) $(LUMO_SERVER_EXTRA_LIBS)
+# The libdraco shim (C++) returns lumo_status (lumo/status.h).
+$(BUILD)/host/server/pm/draco_shim.o: HOST_CXXFLAGS += -Isdk/include

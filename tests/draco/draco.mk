@@ -22,7 +22,7 @@ $(DRACO_PLYCMP): $(BUILD)/host/tests/draco/ply_compare.o
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lm
 
-$(DRACO_SAN): $(BUILD)/tests/tools/lumo_draco_decode.o $(BUILD)/san/liblumo.a $(BUILD)/host/libhost.a
+$(DRACO_SAN): $(BUILD)/tests/tools/lumo-draco-decode/main.o $(BUILD)/san/liblumo.a $(BUILD)/host/libhost.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 

@@ -1,15 +1,15 @@
 # tests/pm/pm.mk — end-to-end progressive-mesh checks (issue 5): the server
-# build + stream (server/pm.mk's PM_OBJS) and the sanitizer build of the
-# client, on generated meshes and the dragon. Each run prints
+# build + stream (server/pm/, in build/host/libserver.a) and the sanitizer
+# build of the client, on generated meshes and the dragon. Each run prints
 # "RESULT: N passed, M failed"; see tests/pm/pm_check.c for the checks.
 PM_CHECK := $(BUILD)/tests/bin/pm_check
 PM_CHECK_OBJS := $(BUILD)/tests/tests/pm/pm_check.o $(BUILD)/tests/tests/pm/pm_meshes.o
 PM_MODELS := $(BUILD)/data/models
 
-$(PM_CHECK): $(PM_CHECK_OBJS) $(PM_OBJS) $(BUILD)/host/libserver.a $(BUILD)/san/liblumo.a
+$(PM_CHECK): $(PM_CHECK_OBJS) $(BUILD)/host/libserver.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -pthread -o $@ $(PM_CHECK_OBJS) $(PM_OBJS) $(BUILD)/host/libserver.a \
-	    $(BUILD)/san/liblumo.a -lembree3 -lassimp -lpng $(PM_LIBS)
+	$(CC) $(SAN_FLAGS) -pthread -o $@ $(PM_CHECK_OBJS) $(BUILD)/host/libserver.a \
+	    $(BUILD)/san/liblumo.a $(SERVER_LIBS)
 
 TEST_STEPS += test-pm
 .PHONY: test-pm

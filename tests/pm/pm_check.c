@@ -11,12 +11,12 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
-#include "lumo_shared/pmesh_shared.h"
+#include "pm/pm.h"
 #include "lumo/wire.h"
-#include "lumo_server/pm.h"
-#include "lumo_server/pm_client.h"
-#include "lumo_server/pm_load.h"
-#include "lumo_server/pm_stream.h"
+#include "lumo_shared/pmesh_shared.h"
+#include "pm/pm_client.h"
+#include "pm/pm_load.h"
+#include "pm/pm_stream.h"
 #include "pm_meshes.h"
 
 static int g_pass, g_fail;
@@ -71,7 +71,7 @@ static int face_bad(const uint32_t *t, uint32_t k)
     return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || t[0] >= k || t[1] >= k || t[2] >= k;
 }
 
-static void check_all_levels(const lumo_pm *pm)
+static void check_all_levels(const srv_pm *pm)
 {
     size_t nev = 0, cap = 3 * (size_t)pm->faces;
     event *ev = malloc(sizeof *ev * (cap ? cap : 1));
@@ -107,16 +107,16 @@ static void check_all_levels(const lumo_pm *pm)
         }
         for (; nf < pm->faces && pm->level[nf] <= k; nf++) {
             for (int c = 0; c < 3; c++)
-                disp[3 * nf + c] = lumo_pm_resolve(pm, pm->tris[3 * nf + c], k);
+                disp[3 * nf + c] = srv_pm_resolve(pm, pm->tris[3 * nf + c], k);
             uint32_t *cnt = ms_slot(&ms, face_key(disp + 3 * nf));
             dups += ++*cnt > 1;
             if (face_bad(disp + 3 * nf, k) && !bad++)
                 first_bad = k;
         }
-        /* the sweep must agree with lumo_pm_level on sampled levels */
+        /* the sweep must agree with srv_pm_level on sampled levels */
         if (k % 97 == 0 || k == pm->vertices) {
             uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1));
-            uint32_t rn = lumo_pm_level(pm, k, ref);
+            uint32_t rn = srv_pm_level(pm, k, ref);
             if (rn != nf || memcmp(ref, disp, sizeof *ref * 3 * nf))
                 bad++;
             free(ref);
@@ -183,7 +183,7 @@ static int cmp_keyed(const void *a, const void *b)
 }
 
 /* The input's faces minus degenerate ones and later copies of a vertex set
- * (the same rule as server/pm_clean.c, stated on positions here). */
+ * (the same rule as server/pm/pm_clean.c, stated on positions here). */
 static size_t input_faces(const pm_test_mesh *in, ptri *out)
 {
     keyed *k = malloc(sizeof *k * (in->nf + 1));
@@ -208,7 +208,7 @@ static size_t input_faces(const pm_test_mesh *in, ptri *out)
     return n;
 }
 
-static void check_full_level(const pm_test_mesh *in, const lumo_pm *pm, const lumo_pmesh_view *v,
+static void check_full_level(const pm_test_mesh *in, const srv_pm *pm, const lumo_pmesh_view *v,
                              double step)
 {
     ptri *want = malloc(sizeof *want * (in->nf + 1)), *got = malloc(sizeof *got * (v->face_count + 1));
@@ -267,12 +267,12 @@ static int normals_exact(const lumo_pmesh *pm)
     return ok;
 }
 
-static int client_matches(const lumo_pm *pm, const lumo_pmesh *pm_client, uint32_t *ref, double step,
+static int client_matches(const srv_pm *pm, const lumo_pmesh *pm_client, uint32_t *ref, double step,
                           char *why, size_t n)
 {
     lumo_pmesh_view view, *v = &view;
     lumo_pmesh_get_view(pm_client, v);
-    uint32_t k = v->vertex_count, nf = lumo_pm_level(pm, k, ref);
+    uint32_t k = v->vertex_count, nf = srv_pm_level(pm, k, ref);
     if (nf != v->face_count || memcmp(ref, v->triangles, sizeof *ref * 3 * nf)) {
         snprintf(why, n, "level %u: %u faces, server %u, or indices differ", k, v->face_count, nf);
         return 0;
@@ -307,15 +307,15 @@ static int client_matches(const lumo_pm *pm, const lumo_pmesh *pm_client, uint32
 }
 
 /* Returns the client's final view through *cl (left open for the caller). */
-static void check_client(const lumo_pm *pm, const uint8_t *s, size_t len, double step, lumo_pm_client *cl)
+static void check_client(const srv_pm *pm, const uint8_t *s, size_t len, double step, srv_pm_client *cl)
 {
     uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1));
     char why[200] = "";
-    lumo_status st = lumo_pm_client_open(cl, s, len);
+    lumo_status st = srv_pm_client_open(cl, s, len);
     uint32_t levels = 0;
     int ok = !st;
     while (ok && !lumo_pmesh_complete(&cl->pm)) {
-        if ((st = lumo_pm_client_step(cl))) {
+        if ((st = srv_pm_client_step(cl))) {
             snprintf(why, sizeof why, "batch %u: %s", cl->pm.batches_applied, lumo_strerror(st));
             ok = 0;
             break;
@@ -324,7 +324,7 @@ static void check_client(const lumo_pm *pm, const uint8_t *s, size_t len, double
         levels++;
     }
     if (ok)
-        snprintf(why, sizeof why, "%u batches, each level identical to lumo_pm_level, arena %zu bytes",
+        snprintf(why, sizeof why, "%u batches, each level identical to srv_pm_level, arena %zu bytes",
                  levels, cl->arena_bytes);
     check(ok, "client applying batches in order reproduces the server's levels", why);
     free(ref);
@@ -376,7 +376,7 @@ static void fix_crc(uint8_t *r, size_t n)
 }
 
 /* One bad variant of the next record must fail and leave the mesh as it was. */
-static int reject(lumo_pm_client *cl, const uint8_t *r, size_t n, const snapshot *s, int *errs,
+static int reject(srv_pm_client *cl, const uint8_t *r, size_t n, const snapshot *s, int *errs,
                   const char *what, size_t at)
 {
     lumo_status st = lumo_pmesh_apply(&cl->pm, r, n);
@@ -388,7 +388,7 @@ static int reject(lumo_pm_client *cl, const uint8_t *r, size_t n, const snapshot
     return ok;
 }
 
-static int corrupt_variants(lumo_pm_client *cl, const uint8_t *rec, size_t n, const uint8_t *later,
+static int corrupt_variants(srv_pm_client *cl, const uint8_t *rec, size_t n, const uint8_t *later,
                             size_t later_n, int *tried)
 {
     snapshot s;
@@ -420,15 +420,15 @@ static int corrupt_variants(lumo_pm_client *cl, const uint8_t *rec, size_t n, co
     return ok;
 }
 
-static void check_corruption(const lumo_pm *pm, const uint8_t *s, size_t len, double step)
+static void check_corruption(const srv_pm *pm, const uint8_t *s, size_t len, double step)
 {
-    lumo_pm_client cl;
-    int ok = !lumo_pm_client_open(&cl, s, len), tried = 0;
+    srv_pm_client cl;
+    int ok = !srv_pm_client_open(&cl, s, len), tried = 0;
     uint32_t nb = cl.h.batch_count;
     for (uint32_t i = 0; ok && i < nb; i++) {
         const uint8_t *rec, *later = NULL;
         size_t n, later_n = 0;
-        ok = !lumo_pm_client_next(&cl, &rec, &n);
+        ok = !srv_pm_client_next(&cl, &rec, &n);
         if (ok && i + 1 < nb)
             later = rec + n, later_n = len - (size_t)(later - s);
         if (later && lumo_pmesh_record_size(later, later_n, &later_n))
@@ -449,33 +449,33 @@ static void check_corruption(const lumo_pm *pm, const uint8_t *s, size_t len, do
              why[0] ? "; " : "", tried);
     check(ok, "corrupt/truncated/out-of-order batches rejected whole, good ones still apply", why);
     free(ref);
-    lumo_pm_client_close(&cl);
+    srv_pm_client_close(&cl);
 }
 
 /* Every level, not only batch boundaries: decode to the batch holding k,
  * rewind inside it, compare. One fresh client per level, so small meshes. */
-static void check_rewind(const lumo_pm *pm, const uint8_t *s, size_t len, double step)
+static void check_rewind(const srv_pm *pm, const uint8_t *s, size_t len, double step)
 {
     uint32_t *ref = malloc(sizeof *ref * 3 * (size_t)(pm->faces + 1)), levels = 0;
     char why[200] = "";
     int ok = 1;
     for (uint32_t k = pm->base_vertices; ok && k <= pm->vertices; k++, levels++) {
-        lumo_pm_client cl;
-        lumo_status st = lumo_pm_client_open(&cl, s, len);
+        srv_pm_client cl;
+        lumo_status st = srv_pm_client_open(&cl, s, len);
         if (!st)
-            st = lumo_pm_client_until(&cl, k);
+            st = srv_pm_client_until(&cl, k);
         if (!st)
             st = lumo_pmesh_rewind(&cl.pm, k);
         ok = !st && cl.pm.vertex_count == k && client_matches(pm, &cl.pm, ref, step, why, sizeof why);
         if (ok)  /* a rewound mesh is final */
-            ok = lumo_pm_client_step(&cl) == (lumo_pmesh_complete(&cl.pm) ? LUMO_ERR_TRUNCATED : LUMO_ERR_STATE) ||
+            ok = srv_pm_client_step(&cl) == (lumo_pmesh_complete(&cl.pm) ? LUMO_ERR_TRUNCATED : LUMO_ERR_STATE) ||
                  cl.at >= len;
         if (!ok && !why[0])
             snprintf(why, sizeof why, "level %u: %s", k, lumo_strerror(st));
-        lumo_pm_client_close(&cl);
+        srv_pm_client_close(&cl);
     }
     if (ok)
-        snprintf(why, sizeof why, "%u levels, one vertex per step, each identical to lumo_pm_level", levels);
+        snprintf(why, sizeof why, "%u levels, one vertex per step, each identical to srv_pm_level", levels);
     check(ok, "client rewinds to every level (lumo_pmesh_rewind)", why);
     free(ref);
 }
@@ -485,11 +485,11 @@ int main(int argc, char **argv)
 {
     const char *gen = NULL, *file = NULL, *dump = NULL;
     int want_rgb = 0;
-    lumo_pm_stream_options so;
-    lumo_pm_stream_stats st;
-    lumo_pm_options po;
-    lumo_pm_stream_default_options(&so);
-    lumo_pm_default_options(&po);
+    srv_pm_stream_options so;
+    srv_pm_stream_stats st;
+    srv_pm_options po;
+    srv_pm_stream_default_options(&so);
+    srv_pm_default_options(&po);
     so.stats = &st;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--gen") && i + 1 < argc)
@@ -513,7 +513,7 @@ int main(int argc, char **argv)
     }
     pm_test_mesh in = {0};
     char err[256];
-    if (gen ? pm_test_mesh_make(gen, &in) : !file || lumo_pm_load(file, &in.xyz, want_rgb ? &in.rgb : NULL, &in.nv, &in.tris, &in.nf, err, sizeof err)) {
+    if (gen ? pm_test_mesh_make(gen, &in) : !file || srv_pm_load(file, &in.xyz, want_rgb ? &in.rgb : NULL, &in.nv, &in.tris, &in.nf, err, sizeof err)) {
         fprintf(stderr, "pm_check: cannot load %s\n", gen ? gen : file ? file : "(nothing)");
         printf("RESULT: 0 passed, 1 failed\n");
         return 1;
@@ -521,17 +521,17 @@ int main(int argc, char **argv)
     snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s/rounds %g%s", gen ? gen : file, so.batch_vertices,
              so.quant_bits, so.position_coding ? "parent residuals" : "absolute", po.round_fraction,
              so.fan_rank_escape ? "/fans explicit" : "");
-    lumo_pm pm;
+    srv_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;
-    int built = !lumo_pm_build_albedo(in.xyz, in.rgb, in.nv, in.tris, in.nf, &po, &pm);
+    int built = !srv_pm_build_albedo(in.xyz, in.rgb, in.nv, in.tris, in.nf, &po, &pm);
     snprintf(err, sizeof err, "%u -> %u vertices (%u welded), %u faces (%u dropped), base %u/%u",
              in.nv, built ? pm.vertices : 0, built ? pm.welded : 0, built ? pm.faces : 0,
              built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0);
     check(built, "half-edge collapse build", err);
     if (built) {
         check_all_levels(&pm);
-        int streamed = !lumo_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);
+        int streamed = !srv_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);
         snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
         check(streamed, "stream written", err);
         if (streamed && po.round_fraction > 0 && pm.vertices > 1000 && so.batch_vertices >= 100) {
@@ -551,19 +551,19 @@ int main(int argc, char **argv)
             uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
             memcpy(&range, &rb, 4);
             double step = range / ((1 << so.quant_bits) - 1) + 2.0 / 65536;
-            lumo_pm_client cl;
+            srv_pm_client cl;
             check_client(&pm, s, len, step, &cl);
             lumo_pmesh_view v;
             lumo_pmesh_get_view(&cl.pm, &v);
             check_full_level(&in, &pm, &v, step);
-            lumo_pm_client_close(&cl);
+            srv_pm_client_close(&cl);
             check_corruption(&pm, s, len, step);
             if (pm.vertices <= 2500)
                 check_rewind(&pm, s, len, step);
         }
     }
     free(s);
-    lumo_pm_free(&pm);
+    srv_pm_free(&pm);
     pm_test_mesh_free(&in);
     printf("RESULT: %d passed, %d failed\n", g_pass, g_fail);
     return g_fail != 0;

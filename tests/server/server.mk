@@ -5,7 +5,7 @@ SERVER_TEST_SRCS := $(sort $(wildcard tests/server/test_*.c))
 SERVER_TESTS     := $(patsubst tests/server/%.c,$(BUILD)/tests/bin/%,$(SERVER_TEST_SRCS))
 UNIT_TESTS       += $(SERVER_TESTS)
 
-$(SERVER_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/server/%.o $(SERVER_LIB) $(BUILD)/san/liblumo.a
+$(SERVER_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/server/%.o $(BUILD)/host/libserver.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -pthread -o $@ $< $(SERVER_LIB) $(BUILD)/san/liblumo.a $(SERVER_LIBS) $(TEST_LDLIBS)
 

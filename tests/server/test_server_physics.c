@@ -23,13 +23,13 @@ static void sphere_case(double rho, double power)
 {
     bake_fixture f;
     memset(&f, 0, sizeof f);
-    lumo_scene_init(&f.scene);
+    srv_scene_init(&f.scene);
     vec3 a = v3((float)rho, (float)rho, (float)rho);
-    assert_int_equal(lumo_add_sphere(&f.scene, "room", v3(0, 0, 0), 1.0f, 96, a, 1), 0);
-    lumo_light l = {.kind = LUMO_LIGHT_POINT, .power = v3((float)power, (float)power, (float)power)};
-    assert_int_equal(lumo_scene_add_light(&f.scene, &l), 0);
+    assert_int_equal(srv_add_sphere(&f.scene, "room", v3(0, 0, 0), 1.0f, 96, a, 1), 0);
+    srv_light l = {.kind = SRV_LIGHT_POINT, .power = v3((float)power, (float)power, (float)power)};
+    assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
     /* 3^3 vertices over [-0.5, 0.5]^3: all inside the sphere (corners at 0.87 R). */
-    lumo_grid g = fixture_grid(v3(-0.5f, -0.5f, -0.5f), v3(0.5f, 0.5f, 0.5f), 3);
+    srv_grid g = fixture_grid(v3(-0.5f, -0.5f, -0.5f), v3(0.5f, 0.5f, 0.5f), 3);
     fixture_bake(&f, &g, 4096, 7, 2);
     double want = rho / (1.0 - rho) * power / (4.0 * M_PI);
     double sum = 0.0, sum_var = 0.0;
@@ -62,18 +62,18 @@ static void test_sphere_tangential(void **state)
     (void)state;
     bake_fixture f;
     memset(&f, 0, sizeof f);
-    lumo_scene_init(&f.scene);
-    assert_int_equal(lumo_add_sphere(&f.scene, "room", v3(0, 0, 0), 1.0f, 96, v3(0.5f, 0.5f, 0.5f), 1), 0);
-    lumo_light l = {.kind = LUMO_LIGHT_POINT, .power = v3(10, 10, 10)};
-    assert_int_equal(lumo_scene_add_light(&f.scene, &l), 0);
-    lumo_grid g = fixture_grid(v3(-0.5f, -0.5f, -0.5f), v3(0.5f, 0.5f, 0.5f), 3);
+    srv_scene_init(&f.scene);
+    assert_int_equal(srv_add_sphere(&f.scene, "room", v3(0, 0, 0), 1.0f, 96, v3(0.5f, 0.5f, 0.5f), 1), 0);
+    srv_light l = {.kind = SRV_LIGHT_POINT, .power = v3(10, 10, 10)};
+    assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
+    srv_grid g = fixture_grid(v3(-0.5f, -0.5f, -0.5f), v3(0.5f, 0.5f, 0.5f), 3);
     fixture_bake(&f, &g, 1024, 3, 2);
     size_t centre = 13;
     for (int h = 0; h < 6; h++) {
         double nrm = fixture_normal_component(&f, centre, h, 0), se = fixture_se(&f, centre, h, 0);
         for (int c = 0; c < 3; c++)
             if (c != h / 2)   /* tangential: zero mean, spread comparable to the normal part's */
-                assert_close(f.res.I[LUMO_BAKE_I(centre, h, 0) + (size_t)c], 0.0,
+                assert_close(f.res.I[SRV_BAKE_I(centre, h, 0) + (size_t)c], 0.0,
                              K_SIGMA * 1.5 * se + 0.01 * nrm);
     }
     fixture_free(&f);
@@ -115,20 +115,20 @@ static void test_lit_floor(void **state)
     (void)state;
     bake_fixture f;
     memset(&f, 0, sizeof f);
-    lumo_scene_init(&f.scene);
+    srv_scene_init(&f.scene);
     vec3 a = v3(FLOOR_RHO, FLOOR_RHO, FLOOR_RHO);
-    assert_int_equal(lumo_add_quad(&f.scene, "floor", v3(-FLOOR_HALF, 0, -FLOOR_HALF), v3(0, 0, 2 * FLOOR_HALF),
-                                   v3(2 * FLOOR_HALF, 0, 0), a), 0);
-    lumo_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, LIGHT_H, 0},
-                    .power = v3(FLOOR_PHI, FLOOR_PHI, FLOOR_PHI)};
-    assert_int_equal(lumo_scene_add_light(&f.scene, &l), 0);
-    lumo_grid g = fixture_grid(v3(-0.8f, 0.2f, -0.8f), v3(0.8f, 0.8f, 0.8f), 3);
+    assert_int_equal(srv_add_quad(&f.scene, "floor", v3(-FLOOR_HALF, 0, -FLOOR_HALF), v3(0, 0, 2 * FLOOR_HALF),
+                                  v3(2 * FLOOR_HALF, 0, 0), a), 0);
+    srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, LIGHT_H, 0},
+                   .power = v3(FLOOR_PHI, FLOOR_PHI, FLOOR_PHI)};
+    assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
+    srv_grid g = fixture_grid(v3(-0.8f, 0.2f, -0.8f), v3(0.8f, 0.8f, 0.8f), 3);
     fixture_bake(&f, &g, 4096, 11, 2);
     int checked = 0;
     for (size_t v = 0; v < f.res.nverts; v++) {
         int i = (int)(v % 3), j = (int)(v / 3 % 3), k = (int)(v / 9);
         double want[6];
-        floor_integral(lumo_grid_vertex(&g, i, j, k), want);
+        floor_integral(srv_grid_vertex(&g, i, j, k), want);
         assert_true(f.res.valid[v]);
         for (int h = 0; h < 6; h++) {
             double got = fixture_normal_component(&f, v, h, 1), se = fixture_se(&f, v, h, 1);

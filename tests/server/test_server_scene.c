@@ -9,18 +9,18 @@
 #include <stdlib.h>
 #include "bake_fixture.h"
 #include "lumo/package.h"
-#include "lumo_server/import.h"
-#include "lumo_server/ivg_encode.h"
-#include "lumo_server/package_write.h"
+#include "scene/import.h"
+#include "package/ivg_encode.h"
+#include "package/package_write.h"
 
 static void cornell(bake_fixture *f, int n, int spp, uint64_t seed, int threads)
 {
     char err[256];
     memset(f, 0, sizeof *f);
-    lumo_scene_init(&f->scene);
-    assert_int_equal(lumo_default_scene(&f->scene, NULL, err, sizeof err), 0);   /* sphere inside */
+    srv_scene_init(&f->scene);
+    assert_int_equal(srv_default_scene(&f->scene, NULL, err, sizeof err), 0);    /* sphere inside */
     int dims[3] = {n, n, n};
-    lumo_grid g = lumo_grid_over(&f->scene, dims);
+    srv_grid g = srv_grid_over(&f->scene, dims);
     fixture_bake(f, &g, spp, seed, threads);
 }
 
@@ -53,18 +53,18 @@ static void test_solid_vertices(void **state)
     (void)state;
     bake_fixture f;
     memset(&f, 0, sizeof f);
-    lumo_scene_init(&f.scene);
+    srv_scene_init(&f.scene);
     vec3 w = v3(0.7f, 0.7f, 0.7f);
-    assert_int_equal(lumo_add_box(&f.scene, "room", v3(-1, -1, -1), v3(1, 1, 1), w, 1), 0);
-    assert_int_equal(lumo_add_box(&f.scene, "cube", v3(-0.45f, -0.45f, -0.45f), v3(0.45f, 0.45f, 0.45f), w, 0), 0);
-    lumo_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, 0.8f, 0}, .power = v3(10, 10, 10)};
-    assert_int_equal(lumo_scene_add_light(&f.scene, &l), 0);
+    assert_int_equal(srv_add_box(&f.scene, "room", v3(-1, -1, -1), v3(1, 1, 1), w, 1), 0);
+    assert_int_equal(srv_add_box(&f.scene, "cube", v3(-0.45f, -0.45f, -0.45f), v3(0.45f, 0.45f, 0.45f), w, 0), 0);
+    srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, 0.8f, 0}, .power = v3(10, 10, 10)};
+    assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
     int dims[3] = {9, 9, 9};   /* spacing 0.25: 3^3 vertices inside the cube */
-    lumo_grid g = lumo_grid_over(&f.scene, dims);
+    srv_grid g = srv_grid_over(&f.scene, dims);
     fixture_bake(&f, &g, 64, 1, 2);
     int invalid = 0;
     for (size_t v = 0; v < f.res.nverts; v++) {
-        vec3 p = lumo_grid_vertex(&g, (int)(v % 9), (int)(v / 9 % 9), (int)(v / 81));
+        vec3 p = srv_grid_vertex(&g, (int)(v % 9), (int)(v / 9 % 9), (int)(v / 81));
         int inside = fabsf(p.x) < 0.45f && fabsf(p.y) < 0.45f && fabsf(p.z) < 0.45f;
         assert_int_equal(f.res.valid[v], !inside);
         invalid += !f.res.valid[v];
@@ -83,25 +83,25 @@ static void test_dragon_solid_only_inside(void **state)
     char err[256];
     const char *path = "build/data/models/dragon_48k.ply";
     memset(&f, 0, sizeof f);
-    lumo_scene_init(&f.scene);
-    assert_int_equal(lumo_default_scene(&f.scene, path, err, sizeof err), 0);
-    const lumo_mesh *d = &f.scene.meshes[f.scene.nmeshes - 1];
+    srv_scene_init(&f.scene);
+    assert_int_equal(srv_default_scene(&f.scene, path, err, sizeof err), 0);
+    const srv_mesh *d = &f.scene.meshes[f.scene.nmeshes - 1];
     if (strcmp(d->name, "dragon")) {
         print_message("%s not present (run tools/setup.sh): skipped\n", path);
-        lumo_scene_free(&f.scene);
+        srv_scene_free(&f.scene);
         skip();
     }
     vec3 lo = d->pos[0], hi = d->pos[0];
     for (uint32_t v = 1; v < d->nverts; v++)
         lo = v3_min(lo, d->pos[v]), hi = v3_max(hi, d->pos[v]);
     int dims[3] = {21, 21, 21};
-    lumo_grid g = lumo_grid_over(&f.scene, dims);
+    srv_grid g = srv_grid_over(&f.scene, dims);
     fixture_bake(&f, &g, 32, 1, 2);
     int solid = 0;
     for (size_t v = 0; v < f.res.nverts; v++) {
         if (f.res.valid[v])
             continue;
-        vec3 p = lumo_grid_vertex(&g, (int)(v % 21), (int)(v / 21 % 21), (int)(v / 441));
+        vec3 p = srv_grid_vertex(&g, (int)(v % 21), (int)(v / 21 % 21), (int)(v / 441));
         assert_true(p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z);
         solid++;
     }
@@ -130,14 +130,14 @@ static void test_same_seed_same_bytes(void **state)
 
 static uint8_t *bake_package(bake_fixture *f, size_t *len)
 {
-    lumo_pkg_writer w;
+    srv_pkg_writer w;
     uint8_t *data = NULL;
     char err[256];
-    lumo_pkgw_init(&w);
-    assert_int_equal(lumo_pack_scene(&w, &f->scene, 1), 0);
-    assert_int_equal(lumo_pack_ivg(&w, &f->res, 32, 9, err, sizeof err), 0);
-    assert_int_equal(lumo_pkgw_serialize(&w, &data, len), 0);
-    lumo_pkgw_free(&w);
+    srv_pkgw_init(&w);
+    assert_int_equal(srv_pack_scene(&w, &f->scene, 1), 0);
+    assert_int_equal(srv_pack_ivg(&w, &f->res, 32, 9, err, sizeof err), 0);
+    assert_int_equal(srv_pkgw_serialize(&w, &data, len), 0);
+    srv_pkgw_free(&w);
     return data;
 }
 
@@ -176,8 +176,8 @@ static void test_quantized_vs_float(void **state)
         if (!f.res.valid[v])
             continue;
         for (int h = 0; h < 6; h++) {
-            lumo_ivg_fentry e;
-            lumo_ivg_compress((const float(*)[3]) & f.res.I[LUMO_BAKE_I(v, h, 0)], (lumo_ivg_axis)h, &e);
+            srv_ivg_fentry e;
+            srv_ivg_compress((const float(*)[3]) & f.res.I[SRV_BAKE_I(v, h, 0)], (lumo_ivg_axis)h, &e);
             const lumo_ivg_entry *ef = lumo_ivg_entry_at(gf, v, (lumo_ivg_axis)h);
             const lumo_ivg_entry *eq = lumo_ivg_entry_at(gq, v, (lumo_ivg_axis)h);
             double cmax = fmax(e.c[0], fmax(e.c[1], e.c[2]));
@@ -209,7 +209,7 @@ static void test_package_round_trip(void **state)
     assert_int_equal(lumo_package_info(&pkg, &in), LUMO_OK);
     assert_int_equal(in.mesh_count, f.scene.nmeshes);
     assert_int_equal(in.light_count, 1);
-    assert_int_equal(in.triangle_count, lumo_scene_triangle_count(&f.scene));
+    assert_int_equal(in.triangle_count, srv_scene_triangle_count(&f.scene));
     assert_int_equal(in.bmax[1], 2 * 65536);
     assert_int_equal(lumo_package_light(&pkg, 0, &l), LUMO_OK);
     assert_int_equal(l.kind, LUMO_PKG_LIGHT_SPOT);
@@ -218,7 +218,7 @@ static void test_package_round_trip(void **state)
     assert_int_equal(l.power[0], 40u * 65536u);
     for (uint32_t m = 0; m < in.mesh_count; m++) {
         lumo_pkg_mesh_info mi;
-        const lumo_mesh *sm = &f.scene.meshes[m];
+        const srv_mesh *sm = &f.scene.meshes[m];
         assert_int_equal(lumo_package_mesh_info(&pkg, m, &mi), LUMO_OK);
         assert_int_equal(mi.nverts, sm->nverts);
         lumo_q16_16 *pos = calloc(3 * mi.nverts, sizeof *pos);
@@ -250,101 +250,102 @@ static void test_package_round_trip(void **state)
 static void test_validate_errors(void **state)
 {
     (void)state;
-    lumo_scene s;
+    srv_scene s;
     char err[256];
-    lumo_light l = {.kind = LUMO_LIGHT_POINT, .power = {1, 1, 1}};
-    lumo_scene_init(&s);
-    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), -1);
+    srv_light l = {.kind = SRV_LIGHT_POINT, .power = {1, 1, 1}};
+    srv_scene_init(&s);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_ARG);
     assert_non_null(strstr(err, "no geometry"));
-    assert_int_equal(lumo_add_quad(&s, "q", v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, 1), v3(0.5f, 0.5f, 0.5f)), 0);
-    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_add_quad(&s, "q", v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, 1), v3(0.5f, 0.5f, 0.5f)), 0);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_ARG);
     assert_non_null(strstr(err, "no light"));
-    lumo_scene_add_light(&s, &l);
-    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), 0);
+    srv_scene_add_light(&s, &l);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), 0);
     s.meshes[0].pos[2] = s.meshes[0].pos[1];          /* zero-area face */
-    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_CORRUPT);
     assert_non_null(strstr(err, "zero area"));
     s.meshes[0].pos[2] = v3(NAN, 0, 0);
-    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), -1);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_NONFINITE);
     assert_non_null(strstr(err, "non-finite"));
-    lumo_scene_free(&s);
+    srv_scene_free(&s);
 }
 
 static void test_parsers(void **state)
 {
     (void)state;
-    lumo_light l;
-    lumo_camera c;
+    srv_light l;
+    srv_camera c;
     char err[256];
-    assert_int_equal(lumo_light_parse("spot:0,2,0:0,-2,0:30:5,6,7", &l, err, sizeof err), 0);
-    assert_int_equal(l.kind, LUMO_LIGHT_SPOT);
+    assert_int_equal(srv_light_parse("spot:0,2,0:0,-2,0:30:5,6,7", &l, err, sizeof err), 0);
+    assert_int_equal(l.kind, SRV_LIGHT_SPOT);
     assert_close(l.dir.y, -1.0, 1e-6);
     assert_close(l.cos_half, cos(M_PI / 6), 1e-6);
     assert_close(l.power.z, 7.0, 0.0);
-    assert_int_equal(lumo_light_parse("directional:0,-1,0:3,3,3", &l, err, sizeof err), 0);
-    assert_int_equal(lumo_light_parse("area:0,2,0:1,0,0:0,0,1:9,9,9", &l, err, sizeof err), 0);
+    assert_int_equal(srv_light_parse("directional:0,-1,0:3,3,3", &l, err, sizeof err), 0);
+    assert_int_equal(srv_light_parse("area:0,2,0:1,0,0:0,0,1:9,9,9", &l, err, sizeof err), 0);
     assert_close(l.dir.y, -1.0, 1e-6);   /* u x v: shines down */
     const char *bad[] = {"point:0,0,0", "point:0,0:1,1,1", "spot:0,0,0:0,0,0:30:1,1,1", "laser:0,0,0:1,1,1",
                          "point:0,0,0:1,1,-1", "point:nan,0,0:1,1,1", "point:0,0,0:1,1,1:4", ""};
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
-        assert_int_equal(lumo_light_parse(bad[i], &l, err, sizeof err), -1);
-    assert_int_equal(lumo_camera_parse("0,1,3.4:0,1,0:0,1,0:40", &c), 0);
-    assert_int_equal(lumo_camera_parse("0,1,0:0,1,0:0,1,0:40", &c), -1);     /* eye == target */
-    assert_int_equal(lumo_camera_parse("0,0,0:0,1,0:0,1,0:40", &c), -1);     /* up parallel */
-    assert_int_equal(lumo_camera_parse("0,1,3:0,1,0:0,1,0:180", &c), -1);
+        assert_int_equal(srv_light_parse(bad[i], &l, err, sizeof err), LUMO_ERR_ARG);
+    assert_int_equal(srv_camera_parse("0,1,3.4:0,1,0:0,1,0:40", &c), 0);
+    assert_int_equal(srv_camera_parse("0,1,0:0,1,0:0,1,0:40", &c), LUMO_ERR_ARG); /* eye == target */
+    assert_int_equal(srv_camera_parse("0,0,0:0,1,0:0,1,0:40", &c), LUMO_ERR_ARG); /* up parallel */
+    assert_int_equal(srv_camera_parse("0,1,3:0,1,0:0,1,0:180", &c), LUMO_ERR_ARG);
     /* The centre pixel looks at the target; the top row looks up. */
-    assert_int_equal(lumo_camera_parse("0,0,5:0,0,0:0,1,0:90", &c), 0);
-    vec3 d = lumo_camera_ray(&c, 100, 100, 50.0f, 50.0f);
+    assert_int_equal(srv_camera_parse("0,0,5:0,0,0:0,1,0:90", &c), 0);
+    vec3 d = srv_camera_ray(&c, 100, 100, 50.0f, 50.0f);
     assert_close(d.z, -1.0, 1e-6);
-    d = lumo_camera_ray(&c, 100, 100, 50.0f, 0.0f);
+    d = srv_camera_ray(&c, 100, 100, 50.0f, 0.0f);
     assert_close(d.y, sqrt(0.5), 1e-6);
-    d = lumo_camera_ray(&c, 200, 100, 200.0f, 50.0f);   /* right edge at aspect 2 */
+    d = srv_camera_ray(&c, 200, 100, 200.0f, 50.0f);    /* right edge at aspect 2 */
     assert_close(d.x / -d.z, 2.0, 1e-5);
 }
 
 static void test_import_models(void **state)
 {
     (void)state;
-    lumo_scene s;
+    srv_scene s;
     char err[512];
-    lumo_xform x = lumo_xform_identity();
-    lumo_scene_init(&s);
-    if (lumo_import_file(&s, "build/data/models/bunny.obj", &x, NULL, err, sizeof err) == 0) {
-        assert_true(lumo_scene_triangle_count(&s) > 1000);
+    srv_xform x = srv_xform_identity();
+    srv_scene_init(&s);
+    if (srv_import_file(&s, "build/data/models/bunny.obj", &x, NULL, err, sizeof err) == 0) {
+        assert_true(srv_scene_triangle_count(&s) > 1000);
         assert_close(s.meshes[0].albedo[0].x, 0.8, 1e-6);   /* no material: lumo's default */
     } else {
         print_message("bunny.obj not present (run tools/setup.sh): %s\n", err);
     }
     /* glTF: base colour as albedo, a KHR_lights_punctual point light of
      * intensity 2 W/sr (Phi = 8 pi), placed by its node. */
-    lumo_scene_free(&s);
-    assert_int_equal(lumo_import_file(&s, "tests/server/data/tri_light.gltf", &x, NULL, err, sizeof err), 0);
-    assert_int_equal(lumo_scene_triangle_count(&s), 1);
+    srv_scene_free(&s);
+    assert_int_equal(srv_import_file(&s, "tests/server/data/tri_light.gltf", &x, NULL, err, sizeof err), 0);
+    assert_int_equal(srv_scene_triangle_count(&s), 1);
     assert_close(s.meshes[0].albedo[0].y, 0.4, 1e-6);
     assert_close(s.meshes[0].albedo[2].z, 0.6, 1e-6);
     assert_int_equal(s.nlights, 1);
-    assert_int_equal(s.lights[0].kind, LUMO_LIGHT_POINT);
+    assert_int_equal(s.lights[0].kind, SRV_LIGHT_POINT);
     assert_close(s.lights[0].power.x, 8 * M_PI, 1e-4);
     assert_close(s.lights[0].pos.y, 1.0, 1e-6);
     assert_close(s.lights[0].pos.x, 0.3, 1e-6);
     /* PLY vertex colours become per-vertex albedo (clamped to 0.98). */
-    lumo_scene_free(&s);
-    assert_int_equal(lumo_import_file(&s, "tests/server/data/colours.ply", &x, NULL, err, sizeof err), 0);
+    srv_scene_free(&s);
+    assert_int_equal(srv_import_file(&s, "tests/server/data/colours.ply", &x, NULL, err, sizeof err), 0);
     assert_close(s.meshes[0].albedo[0].x, 0.98, 1e-6);
     assert_close(s.meshes[0].albedo[0].z, 0.0, 1e-6);
     assert_close(s.meshes[0].albedo[2].z, 0.98, 1e-6);
-    assert_int_equal(lumo_import_file(&s, "build/nonexistent.obj", &x, NULL, err, sizeof err), -1);
+    assert_int_equal(srv_import_file(&s, "build/nonexistent.obj", &x, NULL, err, sizeof err),
+                     LUMO_ERR_IO);
     assert_non_null(strstr(err, "no such file"));
-    lumo_scene_free(&s);
+    srv_scene_free(&s);
 }
 
 static void test_scene_file(void **state)
 {
     (void)state;
-    lumo_scene s;
+    srv_scene s;
     char err[512];
-    lumo_scene_init(&s);
-    assert_int_equal(lumo_scene_load(&s, "tests/server/data/scene.txt", err, sizeof err), 0);
+    srv_scene_init(&s);
+    assert_int_equal(srv_scene_load(&s, "tests/server/data/scene.txt", err, sizeof err), 0);
     /* 2 meshes + quad + 6 box faces + sphere + the area light's emitter */
     assert_int_equal(s.nmeshes, 11);
     assert_int_equal(s.nlights, 2);
@@ -357,8 +358,8 @@ static void test_scene_file(void **state)
     assert_close(s.meshes[1].pos[1].y, 5.0, 1e-6);
     assert_close(s.meshes[1].albedo[0].z, 0.3, 1e-6);       /* line override */
     assert_int_equal(s.meshes[10].emitter, 1);
-    assert_int_equal(lumo_scene_validate(&s, err, sizeof err), 0);
-    lumo_scene_free(&s);
+    assert_int_equal(srv_scene_validate(&s, err, sizeof err), 0);
+    srv_scene_free(&s);
 }
 
 int main(void)

@@ -62,14 +62,14 @@ static void test_memory_large(void **state)
 
 /* Every stored entry against the float the server meant, within the Q1.14 /
  * UQ16.16 rounding (1/2 ulp); quantized: against q/127 and the RGB9E5 value. */
-static void check_entries(const lumo_ivg *g, uint32_t v, const lumo_ivg_fentry *want, lumo_ivg_form form)
+static void check_entries(const lumo_ivg *g, uint32_t v, const srv_ivg_fentry *want, lumo_ivg_form form)
 {
     int a, k;
     for (a = 0; a < LUMO_IVG_AXES; a++) {
         const lumo_ivg_entry *e = lumo_ivg_entry_at(g, v, (lumo_ivg_axis)a);
-        lumo_ivg_fentry ref = want[a];
+        srv_ivg_fentry ref = want[a];
         if (form == LUMO_IVG_FORM_QUANTIZED)
-            lumo_ivg_dequantize(&want[a], &ref);
+            srv_ivg_dequantize(&want[a], &ref);
         for (k = 0; k < 3; k++) {
             assert_close(e->d[k] / Q14, (double)ref.d[k], 0.5 / Q14 + 1e-9);
             assert_close(e->c[k] / Q16, (double)ref.c[k], 0.5 / Q16 + 1e-9);
@@ -84,7 +84,7 @@ static void decode_random(lumo_ivg_form form)
     tgrid t;
     lumo_ivg *g = tgrid_make(&t, 7, 5, 6, 4);
     uint32_t count = lumo_ivg_vertex_count(g), *verts = malloc(count * sizeof *verts), n, i, v;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 300.0);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 300.0);
 
     /* a wide range of magnitudes, including the RGB9E5 extremes */
     f[0][0].c[0] = 65408.0f; f[0][0].c[1] = 1e-7f; f[0][0].c[2] = 0;
@@ -154,20 +154,20 @@ static void test_solid_and_update(void **state)
     test_rng r = {77};
     tgrid t;
     lumo_ivg *g = tgrid_make(&t, 3, 3, 3, 2);
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, 27, 10.0);
-    lumo_ivg_fentry (*f2)[LUMO_IVG_AXES] = random_field(&r, 27, 10.0);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, 27, 10.0);
+    srv_ivg_fentry (*f2)[LUMO_IVG_AXES] = random_field(&r, 27, 10.0);
     uint8_t buf[512];
-    lumo_ivg_writer w;
+    srv_ivg_writer w;
     uint32_t verts[3] = {4, 5, 6};
     size_t len;
     (void)state;
     send(g, LUMO_IVG_FORM_QUANTIZED, verts, 3, f);
     /* vertex 5 becomes solid, 9 is solid from the start */
-    lumo_ivg_writer_begin(&w, buf, sizeof buf, LUMO_IVG_FORM_QUANTIZED, t.desc.dims);
-    lumo_ivg_writer_add_solid(&w, 5);
-    lumo_ivg_writer_add_solid(&w, 9);
-    lumo_ivg_writer_add(&w, 4, f2[4]);          /* a lighting update */
-    len = lumo_ivg_writer_finish(&w);
+    srv_ivg_writer_begin(&w, buf, sizeof buf, LUMO_IVG_FORM_QUANTIZED, t.desc.dims);
+    srv_ivg_writer_add_solid(&w, 5);
+    srv_ivg_writer_add_solid(&w, 9);
+    srv_ivg_writer_add(&w, 4, f2[4]);           /* a lighting update */
+    len = srv_ivg_writer_finish(&w);
     assert_int_equal(len, 16 + 4 + 4 + LUMO_IVG_QUANT_RECORD);
     assert_int_equal(lumo_ivg_apply_bundle(g, buf, len, NULL), LUMO_OK);
     assert_int_equal(lumo_ivg_received_count(g), 2);
@@ -199,7 +199,7 @@ typedef struct reject_fixture {
     tgrid            t;
     lumo_ivg        *g;
     uint8_t         *before;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES];
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES];
 } reject_fixture;
 
 /* A grid with some data already (so "unchanged" is not just "all zero"). */
@@ -421,14 +421,14 @@ static void test_encoder(void **state)
     (void)state;
     for (i = 0; i < 20000; i++) {
         float I[3][3];
-        lumo_ivg_fentry e;
+        srv_ivg_fentry e;
         a = (int)(test_rng_next(&r) % 6);
         /* irradiance vectors of a hemisphere point into it */
         for (k = 0; k < 9; k++)
             I[k / 3][k % 3] = (float)test_rng_uniform(&r, -5, 5);
         for (k = 0; k < 3; k++)
             I[k][a / 2] = (float)(fabs(I[k][a / 2]) + 0.1) * (a & 1 ? -1.0f : 1.0f);
-        lumo_ivg_compress((const float (*)[3])I, (lumo_ivg_axis)a, &e);
+        srv_ivg_compress((const float (*)[3])I, (lumo_ivg_axis)a, &e);
         /* M delta = c (d . delta) per channel (§3.3) */
         for (k = 0; k < 3; k++) {
             double md = I[k][a / 2] * (a & 1 ? -1.0 : 1.0);
@@ -447,17 +447,17 @@ static void test_encoder(void **state)
             if (c[k] > mx) mx = c[k];
         }
         if (mx > 65408) continue;
-        p = lumo_ivg_rgb9e5_pack(c);
-        lumo_ivg_rgb9e5_unpack(p, u);
+        p = srv_ivg_rgb9e5_pack(c);
+        srv_ivg_rgb9e5_unpack(p, u);
         step = ldexp(1.0, (int)(p >> 27) - 24);
         for (k = 0; k < 3; k++)
             assert_close(u[k], c[k], step * 0.5 + 1e-30);
     }
     {
         float one[3] = {1.0f, 0.5f, 0.0f}, big[3] = {1e9f, -3.0f, NAN};
-        uint32_t p = lumo_ivg_rgb9e5_pack(one);
+        uint32_t p = srv_ivg_rgb9e5_pack(one);
         assert_int_equal(p, (16u << 27) | (128u << 9) | 256u);
-        p = lumo_ivg_rgb9e5_pack(big);
+        p = srv_ivg_rgb9e5_pack(big);
         assert_int_equal(p, 0xF80001FFu);
     }
 }

@@ -206,7 +206,7 @@ static lumo_ivg *random_grid(tgrid *t, test_rng *r, unsigned nx, unsigned ny, un
 {
     lumo_ivg *g = tgrid_make(t, nx, ny, nz, 3);
     uint32_t count = lumo_ivg_vertex_count(g), *verts = malloc(count * sizeof *verts), n;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(r, count, 200.0);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(r, count, 200.0);
     n = random_subset(r, count, percent, verts);
     send(g, LUMO_IVG_FORM_QUANTIZED, verts, n, f);
     free(verts);
@@ -290,7 +290,7 @@ static void test_constant_field(void **state)
             tgrid t;
             lumo_ivg *g = tgrid_make(&t, dims[i][0], dims[i][1], dims[i][2], 2);
             uint32_t count = lumo_ivg_vertex_count(g), *verts = malloc(count * sizeof *verts), n, v;
-            lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 100.0);
+            srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 100.0);
             const lumo_ivg_entry *ref;
             for (v = 1; v < count; v++)
                 memcpy(f[v], f[0], sizeof f[0]);
@@ -312,7 +312,7 @@ static void test_midpoint(void **state)
 {
     tgrid t;
     lumo_ivg *g = tgrid_make(&t, 3, 2, 2, 1);
-    lumo_ivg_fentry f[12][LUMO_IVG_AXES];
+    srv_ivg_fentry f[12][LUMO_IVG_AXES];
     uint32_t verts[8], n = 0, v;
     int a;
     (void)state;
@@ -326,7 +326,7 @@ static void test_midpoint(void **state)
     for (v = 0; v < 12; v++)
         if (v % 3 != 1)
             verts[n++] = v;
-    send(g, LUMO_IVG_FORM_FLOAT, verts, n, (const lumo_ivg_fentry (*)[LUMO_IVG_AXES])f);
+    send(g, LUMO_IVG_FORM_FLOAT, verts, n, (const srv_ivg_fentry (*)[LUMO_IVG_AXES])f);
     assert_int_equal(lumo_ivg_pushpull(g, 0), LUMO_OK);
     for (v = 1; v < 12; v += 3) {
         const lumo_ivg_entry *e = lumo_ivg_entry_at(g, v, LUMO_IVG_PY);
@@ -343,7 +343,7 @@ static void test_single_sample(void **state)
     test_rng r = {3};
     tgrid t;
     lumo_ivg *g = tgrid_make(&t, 9, 4, 6, 1);
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, 216, 30.0);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, 216, 30.0);
     uint32_t one = 77, v;
     (void)state;
     send(g, LUMO_IVG_FORM_QUANTIZED, &one, 1, f);
@@ -382,7 +382,7 @@ static void test_rerun(void **state)
     lumo_ivg *g1 = tgrid_make(&t1, 12, 10, 7, 2), *g2 = tgrid_make(&t2, 12, 10, 7, 2);
     uint32_t count = 840, *a = malloc(count * 4), *b = malloc(count * 4), *all = malloc(count * 4);
     uint32_t na = 0, nb = 0, v;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 80.0);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 80.0);
     (void)state;
     for (v = 0; v < count; v++) {
         uint64_t x = test_rng_next(&r) % 10;

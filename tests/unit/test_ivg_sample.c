@@ -100,7 +100,7 @@ static void test_random_full(void **state)
     tgrid t;
     lumo_ivg *g = tgrid_make(&t, 9, 7, 5, 6);
     uint32_t count = lumo_ivg_vertex_count(g), *all = malloc(count * 4), v;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 500.0);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 500.0);
     (void)state;
     for (v = 0; v < count; v++) all[v] = v;
     send(g, LUMO_IVG_FORM_QUANTIZED, all, count, f);
@@ -117,7 +117,7 @@ static void test_random_after_pushpull(void **state)
     tgrid t;
     lumo_ivg *g;
     uint32_t count, *verts, n;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES];
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES];
     lumo_ivg_desc d = {{16, 5, 11}, {LUMO_Q16_FROM_INT(-20), LUMO_Q16_FRAC(1, 3), 7}, {LUMO_Q16_FROM_INT(13), LUMO_Q16_FROM_INT(2), 7 + 1000}};
     (void)state;
     t.desc = d;
@@ -138,13 +138,13 @@ static void test_random_after_pushpull(void **state)
 }
 
 /* Fill every vertex from a function of (i, j, k, axis). */
-typedef void (*field_fn)(unsigned i, unsigned j, unsigned k, int axis, lumo_ivg_fentry *e);
+typedef void (*field_fn)(unsigned i, unsigned j, unsigned k, int axis, srv_ivg_fentry *e);
 
 static void fill(lumo_ivg *g, lumo_ivg_form form, field_fn fn)
 {
     const lumo_ivg_desc *d = lumo_ivg_get_desc(g);
     uint32_t count = lumo_ivg_vertex_count(g), *all = malloc(count * 4), v;
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = malloc(count * sizeof *f);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = malloc(count * sizeof *f);
     int a;
     for (v = 0; v < count; v++) {
         all[v] = v;
@@ -158,7 +158,7 @@ static void fill(lumo_ivg *g, lumo_ivg_form form, field_fn fn)
 
 /* d along the hemisphere's own axis, colour linear in the vertex position
  * (values with few bits, exact in binary32 and in UQ16.16). */
-static void linear_fn(unsigned i, unsigned j, unsigned k, int axis, lumo_ivg_fentry *e)
+static void linear_fn(unsigned i, unsigned j, unsigned k, int axis, srv_ivg_fentry *e)
 {
     memset(e, 0, sizeof *e);
     e->d[axis / 2] = axis & 1 ? -1.0f : 1.0f;
@@ -182,7 +182,7 @@ static void test_linear_field(void **state)
         lumo_q1_14 n[3] = {0, 0, 0};
         lumo_uq16_16 got[3];
         double u[3], want[3];
-        lumo_ivg_fentry e;
+        srv_ivg_fentry e;
         int axis = (int)(test_rng_next(&r) % 6);
         for (a = 0; a < 3; a++) {
             p[a] = (lumo_q16_16)(test_rng_next(&r) % (3u << 16));
@@ -201,7 +201,7 @@ static void test_linear_field(void **state)
     tgrid_free(&t);
 }
 
-static void random_entry_fn(unsigned i, unsigned j, unsigned k, int axis, lumo_ivg_fentry *e)
+static void random_entry_fn(unsigned i, unsigned j, unsigned k, int axis, srv_ivg_fentry *e)
 {
     test_rng r = {1 + i * 7919u + j * 104729u + k * 1299709u + (unsigned)axis * 15485863u};
     random_fentry(&r, e, 1000.0);
@@ -243,7 +243,7 @@ static void test_n_along_delta_exact(void **state)
     tgrid_free(&t);
 }
 
-static void constant_fn(unsigned i, unsigned j, unsigned k, int axis, lumo_ivg_fentry *e)
+static void constant_fn(unsigned i, unsigned j, unsigned k, int axis, srv_ivg_fentry *e)
 {
     (void)i; (void)j; (void)k;
     memset(e, 0, sizeof *e);

@@ -1,7 +1,7 @@
 /*
  * test_ivg_util.h — helpers shared by the IVG unit tests (test_ivg*.c):
  * grids on a heap buffer, random irradiance fields in float, bundles built
- * with the server's writer (server/ivg_encode.c) as the server would.
+ * with the server's writer (server/package/ivg_encode.c) as the server would.
  */
 #ifndef LUMO_TEST_IVG_UTIL_H
 #define LUMO_TEST_IVG_UTIL_H
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include "test_common.h"
 #include "lumo/ivg.h"
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 
 #define Q16 65536.0
 #define Q14 16384.0
@@ -62,7 +62,7 @@ static inline void random_unit3(test_rng *r, double v[3])
 }
 
 /* A random entry: unit d, colour in [0, cmax) per channel. */
-static inline void random_fentry(test_rng *r, lumo_ivg_fentry *e, double cmax)
+static inline void random_fentry(test_rng *r, srv_ivg_fentry *e, double cmax)
 {
     double v[3];
     int k;
@@ -74,9 +74,9 @@ static inline void random_fentry(test_rng *r, lumo_ivg_fentry *e, double cmax)
 }
 
 /* A whole field: count vertices x 6 entries. */
-static inline lumo_ivg_fentry (*random_field(test_rng *r, uint32_t count, double cmax))[LUMO_IVG_AXES]
+static inline srv_ivg_fentry (*random_field(test_rng *r, uint32_t count, double cmax))[LUMO_IVG_AXES]
 {
-    lumo_ivg_fentry (*f)[LUMO_IVG_AXES] = malloc(sizeof *f * count);
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = malloc(sizeof *f * count);
     uint32_t v;
     int a;
     assert_non_null(f);
@@ -88,24 +88,24 @@ static inline lumo_ivg_fentry (*random_field(test_rng *r, uint32_t count, double
 
 /* Bundle of the listed vertices of `field` (malloc'd; *len its size). */
 static inline uint8_t *make_bundle(const lumo_ivg_desc *d, lumo_ivg_form form, const uint32_t *verts,
-                                   uint32_t n, const lumo_ivg_fentry (*field)[LUMO_IVG_AXES], size_t *len)
+                                   uint32_t n, const srv_ivg_fentry (*field)[LUMO_IVG_AXES], size_t *len)
 {
-    size_t cap = lumo_ivg_bundle_bytes(form, n, 0);
+    size_t cap = srv_ivg_bundle_bytes(form, n, 0);
     uint8_t *buf = malloc(cap + 1);
-    lumo_ivg_writer w;
+    srv_ivg_writer w;
     uint32_t i;
     assert_non_null(buf);
-    assert_int_equal(lumo_ivg_writer_begin(&w, buf, cap, form, d->dims), LUMO_OK);
+    assert_int_equal(srv_ivg_writer_begin(&w, buf, cap, form, d->dims), LUMO_OK);
     for (i = 0; i < n; i++)
-        assert_int_equal(lumo_ivg_writer_add(&w, verts[i], field[verts[i]]), LUMO_OK);
-    *len = lumo_ivg_writer_finish(&w);
+        assert_int_equal(srv_ivg_writer_add(&w, verts[i], field[verts[i]]), LUMO_OK);
+    *len = srv_ivg_writer_finish(&w);
     assert_int_equal(*len, cap);
     return buf;
 }
 
 /* Apply the listed vertices of `field` to g; asserts success. */
 static inline void send(lumo_ivg *g, lumo_ivg_form form, const uint32_t *verts, uint32_t n,
-                        const lumo_ivg_fentry (*field)[LUMO_IVG_AXES])
+                        const srv_ivg_fentry (*field)[LUMO_IVG_AXES])
 {
     size_t len;
     uint32_t applied = 0;

@@ -12,7 +12,7 @@
 #include "lumo/arena.h"
 #include "lumo/ivg.h"
 #include "lumo/raster.h"
-#include "lumo_server/ivg_encode.h"
+#include "package/ivg_encode.h"
 #include "../../tools/lumo-render/mesh_build.h"
 
 #define W 128
@@ -20,12 +20,12 @@
 
 static const uint16_t dims[3] = {5, 4, 6};
 static const double bmin[3] = {-2, -1, -3}, bmax[3] = {2, 2, 1};
-static lumo_ivg_fentry deq[5 * 4 * 6][LUMO_IVG_AXES];
+static srv_ivg_fentry deq[5 * 4 * 6][LUMO_IVG_AXES];
 static uint32_t color[W * H], depth[W * H];
 static uint8_t arena_buf[1 << 20];
 static uint8_t bundle[1 << 16];
 
-static void make_entry(int i, int j, int k, int a, lumo_ivg_fentry *e)
+static void make_entry(int i, int j, int k, int a, srv_ivg_fentry *e)
 {
     double d[3] = {0.3 * sin(i + a), 0.3 * cos(j * 1.7 + a), 0.3 * sin(k * 0.9 - a)}, l;
     int m;
@@ -42,7 +42,7 @@ static lumo_ivg *build_grid(void)
 {
     lumo_ivg_desc desc;
     lumo_arena arena;
-    lumo_ivg_writer w;
+    srv_ivg_writer w;
     lumo_ivg *g = NULL;
     uint32_t applied = 0, v = 0;
     size_t len;
@@ -56,18 +56,18 @@ static lumo_ivg *build_grid(void)
     }
     assert_int_equal(lumo_arena_init(&arena, arena_buf, sizeof arena_buf), LUMO_OK);
     assert_int_equal(lumo_ivg_create(&g, &arena, &desc), LUMO_OK);
-    assert_int_equal(lumo_ivg_writer_begin(&w, bundle, sizeof bundle, LUMO_IVG_FORM_QUANTIZED, dims), LUMO_OK);
+    assert_int_equal(srv_ivg_writer_begin(&w, bundle, sizeof bundle, LUMO_IVG_FORM_QUANTIZED, dims), LUMO_OK);
     for (k = 0; k < dims[2]; k++)
         for (j = 0; j < dims[1]; j++)
             for (i = 0; i < dims[0]; i++, v++) {
-                lumo_ivg_fentry e[LUMO_IVG_AXES];
+                srv_ivg_fentry e[LUMO_IVG_AXES];
                 for (a = 0; a < LUMO_IVG_AXES; a++) {
                     make_entry(i, j, k, a, &e[a]);
-                    lumo_ivg_dequantize(&e[a], &deq[v][a]);
+                    srv_ivg_dequantize(&e[a], &deq[v][a]);
                 }
-                assert_int_equal(lumo_ivg_writer_add(&w, v, e), LUMO_OK);
+                assert_int_equal(srv_ivg_writer_add(&w, v, e), LUMO_OK);
             }
-    len = lumo_ivg_writer_finish(&w);
+    len = srv_ivg_writer_finish(&w);
     assert_true(len > 0);
     assert_int_equal(lumo_ivg_apply_bundle(g, bundle, len, &applied), LUMO_OK);
     assert_int_equal(applied, v);
@@ -96,7 +96,7 @@ static void ref_irradiance(const double p[3], const double n[3], double e[3])
             int ix = cell[0] + (corner & 1), iy = cell[1] + ((corner >> 1) & 1), iz = cell[2] + (corner >> 2);
             double wgt = ((corner & 1) ? t[0] : 1 - t[0]) * (((corner >> 1) & 1) ? t[1] : 1 - t[1])
                        * ((corner >> 2) ? t[2] : 1 - t[2]);
-            const lumo_ivg_fentry *f = &deq[ix + dims[0] * (iy + dims[1] * iz)][axis];
+            const srv_ivg_fentry *f = &deq[ix + dims[0] * (iy + dims[1] * iz)][axis];
             for (m = 0; m < 3; m++) {
                 c[m] += wgt * f->c[m];
                 d[m] += wgt * f->d[m];

@@ -18,7 +18,7 @@ static long file_length(FILE *f)
     return (long)st.st_size;
 }
 
-uint8_t *lumo_read_file(const char *path, size_t *size)
+uint8_t *host_read_file(const char *path, size_t *size)
 {
     FILE *f = fopen(path, "rb");
     uint8_t *buf = NULL;

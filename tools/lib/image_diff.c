@@ -22,7 +22,7 @@ static double lab_f(double t)
     return t > 216.0 / 24389.0 ? cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0;
 }
 
-void lumo_srgb8_to_lab(const uint8_t rgb[3], double lab[3])
+void host_srgb8_to_lab(const uint8_t rgb[3], double lab[3])
 {
     double r = srgb_to_linear(rgb[0] / 255.0), g = srgb_to_linear(rgb[1] / 255.0),
            b = srgb_to_linear(rgb[2] / 255.0);
@@ -37,12 +37,12 @@ void lumo_srgb8_to_lab(const uint8_t rgb[3], double lab[3])
     lab[2] = 200 * (fy - fz);
 }
 
-double lumo_delta_e76(const uint8_t a[3], const uint8_t b[3])
+double host_delta_e76(const uint8_t a[3], const uint8_t b[3])
 {
     double la[3], lb[3];
 
-    lumo_srgb8_to_lab(a, la);
-    lumo_srgb8_to_lab(b, lb);
+    host_srgb8_to_lab(a, la);
+    host_srgb8_to_lab(b, lb);
     return sqrt((la[0] - lb[0]) * (la[0] - lb[0]) + (la[1] - lb[1]) * (la[1] - lb[1])
                 + (la[2] - lb[2]) * (la[2] - lb[2]));
 }
@@ -61,7 +61,7 @@ static double percentile99(const uint32_t *hist, size_t n)
     return 0;
 }
 
-void lumo_image_diff_rgb8(const uint8_t *a, const uint8_t *b, size_t n, lumo_image_diff *out)
+void host_image_diff_rgb8(const uint8_t *a, const uint8_t *b, size_t n, host_image_diff *out)
 {
     /* Without memory for the histogram only p99 is lost (reported 0). */
     uint32_t *hist = calloc(DE_BINS, sizeof *hist);
@@ -69,7 +69,7 @@ void lumo_image_diff_rgb8(const uint8_t *a, const uint8_t *b, size_t n, lumo_ima
 
     memset(out, 0, sizeof *out);
     for (size_t i = 0; i < n; i++) {
-        double de = lumo_delta_e76(a + 3 * i, b + 3 * i);
+        double de = host_delta_e76(a + 3 * i, b + 3 * i);
         sum += de;
         if (de > maxde)
             maxde = de;

@@ -16,7 +16,7 @@ static void set_error(char *err, size_t errlen, const char *path, const char *wh
         snprintf(err, errlen, "%s: %s", path, what);
 }
 
-int lumo_png_write_rgb8(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t errlen)
+int host_png_write_rgb8(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t errlen)
 {
     png_image pi;
     char msg[128];
@@ -33,22 +33,22 @@ int lumo_png_write_rgb8(const char *path, const uint8_t *rgb, int w, int h, char
     return -1;
 }
 
-int lumo_png_write_radiance(const char *path, const float *rgb, int w, int h, float exposure, char *err,
+int host_png_write_radiance(const char *path, const float *rgb, int w, int h, float exposure, char *err,
                             size_t errlen)
 {
-    uint8_t *px = lumo_tonemap_rgb8(rgb, (size_t)w * (size_t)h * 3, exposure);
+    uint8_t *px = host_tonemap_rgb8(rgb, (size_t)w * (size_t)h * 3, exposure);
     int rc;
 
     if (!px) {
         set_error(err, errlen, path, "out of memory");
         return -1;
     }
-    rc = lumo_png_write_rgb8(path, px, w, h, err, errlen);
+    rc = host_png_write_rgb8(path, px, w, h, err, errlen);
     free(px);
     return rc;
 }
 
-int lumo_png_read_rgb8(const char *path, uint8_t **rgb, int *w, int *h)
+int host_png_read_rgb8(const char *path, uint8_t **rgb, int *w, int *h)
 {
     png_image pi;
     uint8_t *buf;

@@ -124,7 +124,7 @@ int main(int argc, char **argv)
         return 2;
     }
     for (i = 0; i < n; i++) {
-        if (lumo_png_read_rgb8(in[i], &img[i], &w[i], &h[i])) {
+        if (host_png_read_rgb8(in[i], &img[i], &w[i], &h[i])) {
             fprintf(stderr, "lumo-compare: error: cannot read %s\n", in[i]);
             return 1;
         }
@@ -140,12 +140,12 @@ int main(int argc, char **argv)
     }
     for (i = 0; i < n; i++)
         for (j = i + 1; j < n; j++) {
-            lumo_image_diff d;
+            host_image_diff d;
             if (w[i] != w[j] || h[i] != h[j]) {
                 fprintf(stderr, "lumo-compare: error: %s and %s differ in size\n", in[i], in[j]);
                 return 1;
             }
-            lumo_image_diff_rgb8(img[i], img[j], (size_t)w[i] * h[i], &d);
+            host_image_diff_rgb8(img[i], img[j], (size_t)w[i] * h[i], &d);
             printf("%s vs %s: mean dE76 %.3f, p99 dE %.2f, max dE %.2f, PSNR %.2f dB\n", label[i],
                    label[j], d.mean_de, d.p99_de, d.max_de, d.psnr_db);
             if (i == 0 && ((max_de >= 0 && d.mean_de > max_de) || (min_psnr >= 0 && d.psnr_db < min_psnr)))
@@ -161,7 +161,7 @@ int main(int argc, char **argv)
                 memcpy(side + ((size_t)y * sw + x0) * 3, img[i] + (size_t)y * w[0] * 3, (size_t)w[0] * 3);
             draw_text(side, sw, sh, x0 + 4, h[0] + 4, label[i]);
         }
-        if (!side || lumo_png_write_rgb8(out, side, sw, sh, NULL, 0)) {
+        if (!side || host_png_write_rgb8(out, side, sw, sh, NULL, 0)) {
             fprintf(stderr, "lumo-compare: error: cannot write %s\n", out);
             return 1;
         }

@@ -296,7 +296,7 @@ int main(int argc, char **argv)
         total += dt;
         if (dt < best) best = dt;
         frame_name(o.output, i, o.frames, name, sizeof name);
-        if (lumo_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, NULL, 0)) {
+        if (host_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, NULL, 0)) {
             fprintf(stderr, "lumo-render: error: cannot write %s\n", name);
             rc = 1;
             break;

@@ -184,7 +184,7 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
     host_load_stats local;
     char why[200];
     size_t size = 0;
-    uint8_t *data = lumo_read_file(path, &size);
+    uint8_t *data = host_read_file(path, &size);
     const lumo_pkg_light *lights;
     lumo_package pkg;
     lumo_status st;

@@ -3,8 +3,8 @@
  * host board, test helpers). Packages, Draco and PM streams are parsed from
  * one buffer, so every tool used to carry its own fopen/ftell/fread loop.
  */
-#ifndef LUMO_HOST_FILE_IO_H
-#define LUMO_HOST_FILE_IO_H
+#ifndef HOST_FILE_IO_H
+#define HOST_FILE_IO_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -15,6 +15,6 @@
  * empty file gives a valid buffer with *size 0. NULL when the file cannot
  * be opened or read, is not a regular file (directory, pipe), or memory
  * runs out; *size is then untouched. */
-uint8_t *lumo_read_file(const char *path, size_t *size);
+uint8_t *host_read_file(const char *path, size_t *size);
 
 #endif

@@ -4,23 +4,23 @@
  * written with an sRGB chunk; the bytes do not depend on which tool wrote
  * them.
  */
-#ifndef LUMO_HOST_PNG_IO_H
-#define LUMO_HOST_PNG_IO_H
+#ifndef HOST_PNG_IO_H
+#define HOST_PNG_IO_H
 
 #include <stddef.h>
 #include <stdint.h>
 
 /* Write w x h RGB8 pixels (rows from the top). 0 on success; else -1 and,
  * when err is not NULL, a message naming path in err. */
-int lumo_png_write_rgb8(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t errlen);
+int host_png_write_rgb8(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t errlen);
 
-/* Tone map w x h x 3 linear radiance values (lumo_tonemap, tonemap.h) and
+/* Tone map w x h x 3 linear radiance values (host_tonemap, tonemap.h) and
  * write them as above. 0, or -1 with a message in err (may be NULL). */
-int lumo_png_write_radiance(const char *path, const float *rgb, int w, int h, float exposure, char *err,
+int host_png_write_radiance(const char *path, const float *rgb, int w, int h, float exposure, char *err,
                             size_t errlen);
 
 /* Read any 8-bit PNG (grey, RGB, alpha dropped) as RGB8 into *rgb
  * (malloc'ed, w*h*3, caller frees). 0 on success, -1 otherwise. */
-int lumo_png_read_rgb8(const char *path, uint8_t **rgb, int *w, int *h);
+int host_png_read_rgb8(const char *path, uint8_t **rgb, int *w, int *h);
 
 #endif

@@ -5,17 +5,17 @@
  * bits. The reference renderer's PNGs and the benchmarks' Delta E images
  * both go through it, so they stay comparable with each other.
  */
-#ifndef LUMO_HOST_TONEMAP_H
-#define LUMO_HOST_TONEMAP_H
+#ifndef HOST_TONEMAP_H
+#define HOST_TONEMAP_H
 
 #include <stddef.h>
 #include <stdint.h>
 
 /* One linear value (any channel). */
-uint8_t lumo_tonemap(float v, float exposure);
+uint8_t host_tonemap(float v, float exposure);
 
 /* n values (w*h*3 for an RGB image) into a malloc'ed 8-bit buffer (caller
  * frees); NULL when out of memory. */
-uint8_t *lumo_tonemap_rgb8(const float *rgb, size_t n, float exposure);
+uint8_t *host_tonemap_rgb8(const float *rgb, size_t n, float exposure);
 
 #endif

@@ -1,0 +1,623 @@
+/* pm_simplify.c — half-edge collapse ordered by the quadric error metric
+ * (Garland & Heckbert 1997), seed 000 §4.2: "we simply collapse the edge
+ * onto one of its end vertices". A collapse u -> v removes u and the faces
+ * on edge (u, v); u's other faces take v. Guards keep every level a valid
+ * manifold-where-it-was mesh: the link condition, no face flip, no
+ * duplicate face, no orphaned vertex; boundary vertices only slide along
+ * the boundary, vertices on non-manifold edges never move.
+ *
+ * Collapses run in independent-set rounds (Pajarola & Rossignac's CPM,
+ * Hoppe's independent splits): each round takes the cheapest valid
+ * candidates whose neighbourhoods do not interact, so the splits of one
+ * round commute and the stream may send them sorted by parent, which makes
+ * the lookup-table entries an increasing, cheaply coded sequence. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "pm/pm_internal.h"
+
+typedef struct { uint32_t *f; uint32_t n, cap; } flist;
+
+typedef struct { double cost; uint32_t u, v, su, sv; } cand;
+
+typedef struct {
+    const float *xyz;
+    uint32_t     nv, nf;
+    uint32_t    *tri;        /* current corners */
+    uint8_t     *face_alive, *vert_alive;
+    flist       *vf;         /* alive faces around each vertex */
+    double      *q;          /* 10 per vertex: symmetric 4x4 quadric */
+    uint32_t    *stamp;
+    uint32_t    *core, *ring; /* round locks: u or v of a collapse, their neighbours */
+    cand        *heap;
+    size_t       hn, hcap;
+    uint32_t    *nb_u, *nb_v; /* neighbour scratch */
+    uint32_t     nb_cap;
+    const srv_pm_options *opt;
+} simp;
+
+/* ---- small vector helpers ------------------------------------------------ */
+static void sub3(const float *a, const float *b, double r[3])
+{
+    r[0] = (double)a[0] - b[0], r[1] = (double)a[1] - b[1], r[2] = (double)a[2] - b[2];
+}
+static void cross3(const double a[3], const double b[3], double r[3])
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void normal_of(const float *a, const float *b, const float *c, double n[3])
+{
+    double e1[3], e2[3];
+    sub3(b, a, e1);
+    sub3(c, a, e2);
+    cross3(e1, e2, n);
+}
+
+static int flist_push(flist *l, uint32_t f)
+{
+    if (l->n == l->cap) {
+        uint32_t cap = l->cap ? 2 * l->cap : 8;
+        uint32_t *p = realloc(l->f, sizeof *p * cap);
+        if (!p)
+            return -1;
+        l->f = p, l->cap = cap;
+    }
+    l->f[l->n++] = f;
+    return 0;
+}
+
+static void flist_remove(flist *l, uint32_t f)
+{
+    for (uint32_t i = 0; i < l->n; i++)
+        if (l->f[i] == f) {
+            l->f[i] = l->f[--l->n];
+            return;
+        }
+}
+
+static int has_vertex(const simp *s, uint32_t f, uint32_t v)
+{
+    const uint32_t *t = s->tri + 3 * (size_t)f;
+    return t[0] == v || t[1] == v || t[2] == v;
+}
+
+/* ---- quadrics ----------------------------------------------------------- */
+/* Add w * (n.p + d)^2 for the plane through p0 with unit normal n. */
+static void quadric_add(double *q, const double n[3], const float *p0, double w)
+{
+    double d = -(n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2]);
+    double a = n[0], b = n[1], c = n[2];
+    q[0] += w * a * a, q[1] += w * a * b, q[2] += w * a * c, q[3] += w * a * d;
+    q[4] += w * b * b, q[5] += w * b * c, q[6] += w * b * d;
+    q[7] += w * c * c, q[8] += w * c * d, q[9] += w * d * d;
+}
+
+static double quadric_eval(const double *q, const double *r, const float *p)
+{
+    double x = p[0], y = p[1], z = p[2], e[10];
+    for (int i = 0; i < 10; i++)
+        e[i] = q[i] + r[i];
+    return e[0] * x * x + 2 * e[1] * x * y + 2 * e[2] * x * z + 2 * e[3] * x
+         + e[4] * y * y + 2 * e[5] * y * z + 2 * e[6] * y + e[7] * z * z + 2 * e[8] * z + e[9];
+}
+
+/* Faces alive around both u and v. */
+#define MAX_EDGE_FACES 8  /* faces on one (non-manifold) edge a collapse may remove */
+
+static uint32_t edge_faces(const simp *s, uint32_t u, uint32_t v, uint32_t out[MAX_EDGE_FACES])
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        uint32_t f = s->vf[u].f[i];
+        if (has_vertex(s, f, v)) {
+            if (n < MAX_EDGE_FACES)
+                out[n] = f;
+            n++;
+        }
+    }
+    return n;
+}
+
+/* Plane quadrics of every face (area weighted) plus, for boundary edges, a
+ * perpendicular plane weighted by boundary_weight * |e|^2: boundaries are
+ * penalised rather than frozen. */
+static void init_quadrics(simp *s)
+{
+    for (uint32_t f = 0; f < s->nf; f++) {
+        const uint32_t *t = s->tri + 3 * (size_t)f;
+        const float *p[3] = {s->xyz + 3 * (size_t)t[0], s->xyz + 3 * (size_t)t[1], s->xyz + 3 * (size_t)t[2]};
+        double n[3], len;
+        normal_of(p[0], p[1], p[2], n);
+        len = sqrt(dot3(n, n));
+        if (len <= 0)
+            continue;
+        double un[3] = {n[0] / len, n[1] / len, n[2] / len};
+        for (int c = 0; c < 3; c++)
+            quadric_add(s->q + 10 * (size_t)t[c], un, p[0], 0.5 * len);
+        for (int c = 0; c < 3; c++) {
+            uint32_t a = t[c], b = t[(c + 1) % 3], ef[MAX_EDGE_FACES];
+            if (edge_faces(s, a, b, ef) != 1)
+                continue;
+            double e[3], bn[3];
+            sub3(p[(c + 1) % 3], p[c], e);
+            cross3(e, un, bn);
+            double bl = sqrt(dot3(bn, bn));
+            if (bl <= 0)
+                continue;
+            double ub[3] = {bn[0] / bl, bn[1] / bl, bn[2] / bl};
+            quadric_add(s->q + 10 * (size_t)a, ub, p[c], s->opt->boundary_weight * dot3(e, e));
+            quadric_add(s->q + 10 * (size_t)b, ub, p[c], s->opt->boundary_weight * dot3(e, e));
+        }
+    }
+}
+
+/* ---- neighbourhoods ------------------------------------------------------ */
+static int grow_nb(simp *s, uint32_t need)
+{
+    if (need <= s->nb_cap)
+        return 0;
+    uint32_t cap = need * 2;
+    uint32_t *a = realloc(s->nb_u, sizeof *a * cap);
+    if (a)
+        s->nb_u = a;
+    uint32_t *b = realloc(s->nb_v, sizeof *b * cap);
+    if (b)
+        s->nb_v = b;
+    if (!a || !b)
+        return -1;
+    s->nb_cap = cap;
+    return 0;
+}
+
+/* Distinct neighbours of v, in first-seen order. */
+static uint32_t neighbours(const simp *s, uint32_t v, uint32_t *out)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->vf[v].n; i++) {
+        const uint32_t *t = s->tri + 3 * (size_t)s->vf[v].f[i];
+        for (int c = 0; c < 3; c++) {
+            uint32_t w = t[c], j = 0;
+            if (w == v)
+                continue;
+            while (j < n && out[j] != w)
+                j++;
+            if (j == n)
+                out[n++] = w;
+        }
+    }
+    return n;
+}
+
+/* u's edges: how many have one face (border) and how many more than two
+ * (non-manifold), and the last non-manifold neighbour. */
+typedef struct { uint32_t border, nonmanifold, nm_neighbour; } edge_stats;
+
+static edge_stats vertex_edges(const simp *s, uint32_t u, uint32_t *nb)
+{
+    edge_stats e = {0, 0, UINT32_MAX};
+    uint32_t n = neighbours(s, u, nb), ef[MAX_EDGE_FACES];
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t k = edge_faces(s, u, nb[i], ef);
+        e.border += k == 1;
+        if (k > 2)
+            e.nonmanifold++, e.nm_neighbour = nb[i];
+    }
+    return e;
+}
+
+/* ---- the guards ----------------------------------------------------------- */
+static int in_list(const uint32_t *l, uint32_t n, uint32_t x)
+{
+    for (uint32_t i = 0; i < n; i++)
+        if (l[i] == x)
+            return 1;
+    return 0;
+}
+
+static uint32_t opposite(const simp *s, uint32_t f, uint32_t u, uint32_t v)
+{
+    const uint32_t *t = s->tri + 3 * (size_t)f;
+    for (int c = 0; c < 3; c++)
+        if (t[c] != u && t[c] != v)
+            return t[c];
+    return UINT32_MAX;
+}
+
+/* Link condition: the common neighbours of u and v are exactly the
+ * vertices opposite the edge, so the collapse keeps the surface's topology. */
+static int link_ok(simp *s, uint32_t u, uint32_t v, const uint32_t *ef, uint32_t ne)
+{
+    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v), common = 0;
+    for (uint32_t i = 0; i < nu; i++)
+        common += in_list(s->nb_v, nv, s->nb_u[i]);
+    if (common != ne)
+        return 0;
+    for (uint32_t i = 0; i < ne; i++) {
+        uint32_t w = opposite(s, ef[i], u, v);
+        if (!in_list(s->nb_v, nv, w) || s->vf[w].n <= 1)
+            return 0;  /* w would lose its last face */
+    }
+    return 1;
+}
+
+/* u's surviving faces must not flip, degenerate, or duplicate a face of v. */
+static int faces_ok(const simp *s, uint32_t u, uint32_t v)
+{
+    const float *pv = s->xyz + 3 * (size_t)v;
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        uint32_t f = s->vf[u].f[i];
+        if (has_vertex(s, f, v))
+            continue;
+        const uint32_t *t = s->tri + 3 * (size_t)f;
+        const float *p[3], *q[3];
+        uint32_t other[2], no = 0;
+        for (int c = 0; c < 3; c++) {
+            p[c] = s->xyz + 3 * (size_t)t[c];
+            q[c] = t[c] == u ? pv : p[c];
+            if (t[c] != u)
+                other[no++] = t[c];
+        }
+        double n0[3], n1[3];
+        normal_of(p[0], p[1], p[2], n0);
+        normal_of(q[0], q[1], q[2], n1);
+        double l0 = sqrt(dot3(n0, n0)), l1 = sqrt(dot3(n1, n1));
+        if (l1 <= 1e-12 * (l0 + 1e-30) || dot3(n0, n1) < s->opt->flip_cos * l0 * l1)
+            return 0;
+        for (uint32_t j = 0; j < s->vf[v].n; j++) {
+            uint32_t g = s->vf[v].f[j];
+            if (has_vertex(s, g, other[0]) && has_vertex(s, g, other[1]))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Where u may go: a vertex on one non-manifold edge only along that edge
+ * (all its faces vanish, which is how scans with fins and folds simplify);
+ * a border vertex only along its border; a vertex with a tangled
+ * neighbourhood (several non-manifold edges, or borders that are not one
+ * simple fan) nowhere. */
+static int direction_ok(simp *s, uint32_t u, uint32_t v, uint32_t ne)
+{
+    edge_stats e = vertex_edges(s, u, s->nb_u);
+    if (e.nonmanifold > 1)
+        return 0;
+    if (e.nonmanifold == 1)
+        return e.nm_neighbour == v && ne > 2;
+    if (e.border != 0 && e.border != 2)
+        return 0;
+    return e.border == 0 || ne == 1;
+}
+
+static int collapse_ok(simp *s, uint32_t u, uint32_t v)
+{
+    uint32_t ef[MAX_EDGE_FACES];
+    if (!s->vert_alive[u] || !s->vert_alive[v])
+        return 0;
+    uint32_t ne = edge_faces(s, u, v, ef);
+    if (ne < 1 || ne > MAX_EDGE_FACES)
+        return 0;
+    if (grow_nb(s, 2 * (s->vf[u].n + s->vf[v].n) + 4))
+        return 0;
+    if (!direction_ok(s, u, v, ne))
+        return 0;
+    if (s->vf[u].n + s->vf[v].n <= 2 * ne)
+        return 0;  /* v would be left without faces */
+    return link_ok(s, u, v, ef, ne) && faces_ok(s, u, v);
+}
+
+/* ---- candidate heap (min on cost, then u, then v: deterministic) -------- */
+static int cand_less(const cand *a, const cand *b)
+{
+    if (a->cost != b->cost)
+        return a->cost < b->cost;
+    if (a->u != b->u)
+        return a->u < b->u;
+    return a->v < b->v;
+}
+
+static int cand_cmp(const void *a, const void *b)
+{
+    return cand_less(a, b) ? -1 : cand_less(b, a);
+}
+
+/* Room for one more candidate; the candidate u -> v at today's cost. */
+static int heap_room(simp *s)
+{
+    if (s->hn == s->hcap) {
+        size_t cap = s->hcap ? 2 * s->hcap : 1024;
+        cand *h = realloc(s->heap, sizeof *h * cap);
+        if (!h)
+            return -1;
+        s->heap = h, s->hcap = cap;
+    }
+    return 0;
+}
+
+static cand cand_make(const simp *s, uint32_t u, uint32_t v)
+{
+    cand c = {quadric_eval(s->q + 10 * (size_t)u, s->q + 10 * (size_t)v, s->xyz + 3 * (size_t)v),
+              u, v, s->stamp[u], s->stamp[v]};
+    return c;
+}
+
+/* A round's list: appended unordered, sorted once (collect_round). */
+static int list_append(simp *s, uint32_t u, uint32_t v)
+{
+    if (heap_room(s))
+        return -1;
+    s->heap[s->hn++] = cand_make(s, u, v);
+    return 0;
+}
+
+static int heap_push(simp *s, uint32_t u, uint32_t v)
+{
+    if (heap_room(s))
+        return -1;
+    cand c = cand_make(s, u, v);
+    size_t i = s->hn++;
+    while (i > 0 && cand_less(&c, &s->heap[(i - 1) / 2])) {
+        s->heap[i] = s->heap[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    s->heap[i] = c;
+    return 0;
+}
+
+static cand heap_pop(simp *s)
+{
+    cand top = s->heap[0], last = s->heap[--s->hn];
+    size_t i = 0;
+    for (;;) {
+        size_t l = 2 * i + 1, m = i;
+        const cand *best = &last;
+        if (l < s->hn && cand_less(&s->heap[l], best))
+            m = l, best = &s->heap[l];
+        if (l + 1 < s->hn && cand_less(&s->heap[l + 1], best))
+            m = l + 1;
+        if (m == i)
+            break;
+        s->heap[i] = s->heap[m];
+        i = m;
+    }
+    if (s->hn)
+        s->heap[i] = last;
+    return top;
+}
+
+static int push_vertex_edges(simp *s, uint32_t v)
+{
+    if (grow_nb(s, 2 * s->vf[v].n + 2))
+        return -1;
+    uint32_t n = neighbours(s, v, s->nb_u);
+    for (uint32_t i = 0; i < n; i++)
+        if (heap_push(s, v, s->nb_u[i]) || heap_push(s, s->nb_u[i], v))
+            return -1;
+    return 0;
+}
+
+/* Every directed edge u -> w of the current mesh once (from u's side). */
+static int append_vertex_edges(simp *s, uint32_t u)
+{
+    if (grow_nb(s, 2 * s->vf[u].n + 2))
+        return -1;
+    uint32_t n = neighbours(s, u, s->nb_u);
+    for (uint32_t i = 0; i < n; i++)
+        if (list_append(s, u, s->nb_u[i]))
+            return -1;
+    return 0;
+}
+
+/* ---- the collapse --------------------------------------------------------- */
+static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm_collapses *out)
+{
+    for (uint32_t i = s->vf[u].n; i-- > 0;) {
+        uint32_t f = s->vf[u].f[i];
+        uint32_t *t = s->tri + 3 * (size_t)f;
+        if (has_vertex(s, f, v)) {
+            s->face_alive[f] = 0;
+            out->face_die[f] = step;
+            for (int c = 0; c < 3; c++)
+                if (t[c] != u)
+                    flist_remove(&s->vf[t[c]], f);
+            continue;
+        }
+        for (int c = 0; c < 3; c++)
+            if (t[c] == u)
+                t[c] = v;
+        if (flist_push(&s->vf[v], f))
+            return -1;
+    }
+    s->vf[u].n = 0;
+    s->vert_alive[u] = 0;
+    for (int i = 0; i < 10; i++)
+        s->q[10 * (size_t)v + i] += s->q[10 * (size_t)u + i];
+    s->stamp[v]++;
+    out->removed[step] = u;
+    out->target[step] = v;
+    return 0;
+}
+
+static int push_all(simp *s)
+{
+    for (uint32_t v = 0; v < s->nv; v++)
+        if (s->vert_alive[v] && push_vertex_edges(s, v))
+            return -1;
+    return 0;
+}
+
+/* One collapse at a time (round_fraction 0): pop candidates until none is
+ * valid; a rejected candidate can become valid after its neighbourhood
+ * changes, so the heap is refilled from every edge once it runs dry, until
+ * a whole pass makes no progress. Every collapse is a round of its own. */
+static int run_single(simp *s, srv_pm_collapses *out)
+{
+    uint32_t alive = s->nv, target = s->opt->min_vertices;
+    for (int pass = 0; pass < 16 && alive > target; pass++) {
+        uint32_t before = out->count;
+        s->hn = 0;
+        if (push_all(s))
+            return -1;
+        while (s->hn && alive > target) {
+            cand c = heap_pop(s);
+            if (!s->vert_alive[c.u] || !s->vert_alive[c.v] || s->stamp[c.u] != c.su ||
+                s->stamp[c.v] != c.sv || !collapse_ok(s, c.u, c.v))
+                continue;
+            if (apply_collapse(s, c.u, c.v, out->count, out) || push_vertex_edges(s, c.v))
+                return -1;
+            out->round[out->count] = out->count;
+            out->count++;
+            alive--;
+        }
+        if (out->count == before)
+            break;
+    }
+    return 0;
+}
+
+/* May u -> v join round r? Neither end is a collapse end or a neighbour of
+ * one already in the round, and no neighbour of u or v is a collapse end.
+ * The round's collapses then touch disjoint faces, every guard of one reads
+ * nothing another changes (a shared neighbour's faces only shrink, and
+ * collapse_ok saw that in this order), so they commute: any order of any
+ * subset is valid and gives the same faces. */
+static int round_free(simp *s, uint32_t u, uint32_t v, uint32_t r)
+{
+    if (s->core[u] == r || s->core[v] == r || s->ring[u] == r || s->ring[v] == r)
+        return 0;
+    if (grow_nb(s, 2 * (s->vf[u].n + s->vf[v].n) + 4))
+        return 0;
+    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v);
+    for (uint32_t i = 0; i < nu; i++)
+        if (s->core[s->nb_u[i]] == r)
+            return 0;
+    for (uint32_t i = 0; i < nv; i++)
+        if (s->core[s->nb_v[i]] == r)
+            return 0;
+    return 1;
+}
+
+static void round_lock(simp *s, uint32_t u, uint32_t v, uint32_t r)
+{
+    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v);
+    for (uint32_t i = 0; i < nu; i++)
+        s->ring[s->nb_u[i]] = r;
+    for (uint32_t i = 0; i < nv; i++)
+        s->ring[s->nb_v[i]] = r;
+    s->core[u] = s->core[v] = r;
+}
+
+/* The candidates of a round: every directed edge, cheapest first. */
+static int collect_round(simp *s)
+{
+    s->hn = 0;
+    for (uint32_t v = 0; v < s->nv; v++)
+        if (s->vert_alive[v] && append_vertex_edges(s, v))
+            return -1;
+    qsort(s->heap, s->hn, sizeof *s->heap, cand_cmp);
+    return 0;
+}
+
+/* Independent-set rounds: each round walks the cheapest round_fraction of
+ * the candidates (further only until one collapse is taken) and keeps
+ * those that are valid and free of the round's locks. Ends when a whole
+ * candidate list gives nothing. */
+static int run_rounds(simp *s, srv_pm_collapses *out)
+{
+    uint32_t alive = s->nv, target = s->opt->min_vertices;
+    for (uint32_t r = 1; alive > target; r++) {
+        if (collect_round(s))
+            return -1;
+        size_t limit = (size_t)(s->opt->round_fraction * (double)s->hn), taken = 0;
+        for (size_t i = 0; i < s->hn && alive > target && (i < limit || !taken); i++) {
+            uint32_t u = s->heap[i].u, v = s->heap[i].v;
+            if (!round_free(s, u, v, r) || !collapse_ok(s, u, v))
+                continue;
+            round_lock(s, u, v, r);
+            if (apply_collapse(s, u, v, out->count, out))
+                return -1;
+            out->round[out->count++] = r;
+            alive--, taken++;
+        }
+        if (!taken)
+            break;
+    }
+    return 0;
+}
+
+static int run(simp *s, srv_pm_collapses *out)
+{
+    return s->opt->round_fraction > 0 ? run_rounds(s, out) : run_single(s, out);
+}
+
+static void simp_free(simp *s)
+{
+    if (s->vf)
+        for (uint32_t v = 0; v < s->nv; v++)
+            free(s->vf[v].f);
+    free(s->vf);
+    free(s->tri);
+    free(s->face_alive);
+    free(s->vert_alive);
+    free(s->q);
+    free(s->stamp);
+    free(s->core);
+    free(s->ring);
+    free(s->heap);
+    free(s->nb_u);
+    free(s->nb_v);
+}
+
+lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt,
+                            srv_pm_collapses *out)
+{
+    simp s;
+    memset(&s, 0, sizeof s);
+    memset(out, 0, sizeof *out);
+    size_t nv = m->nv ? m->nv : 1, nf = m->nf ? m->nf : 1;
+    s.xyz = m->xyz, s.nv = m->nv, s.nf = m->nf, s.opt = opt;
+    s.tri = malloc(sizeof *s.tri * 3 * nf);
+    s.face_alive = malloc(nf);
+    s.vert_alive = malloc(nv);
+    s.vf = calloc(nv, sizeof *s.vf);
+    s.q = calloc(10 * nv, sizeof *s.q);
+    s.stamp = calloc(nv, sizeof *s.stamp);
+    s.core = calloc(nv, sizeof *s.core);
+    s.ring = calloc(nv, sizeof *s.ring);
+    out->round = malloc(sizeof *out->round * nv);
+    out->removed = malloc(sizeof *out->removed * nv);
+    out->target = malloc(sizeof *out->target * nv);
+    out->face_die = malloc(sizeof *out->face_die * nf);
+    lumo_status rc = LUMO_ERR_NOMEM;
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring ||
+        !out->round || !out->removed || !out->target || !out->face_die)
+        goto done;
+    memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
+    memset(s.face_alive, 1, nf);
+    memset(s.vert_alive, 1, nv);
+    memset(out->face_die, 0xff, sizeof *out->face_die * nf);
+    for (uint32_t f = 0; f < m->nf; f++)
+        for (int c = 0; c < 3; c++)
+            if (flist_push(&s.vf[s.tri[3 * (size_t)f + c]], f))
+                goto done;
+    init_quadrics(&s);
+    rc = run(&s, out) ? LUMO_ERR_NOMEM : LUMO_OK;   /* its helpers fail only to allocate */
+done:
+    simp_free(&s);
+    if (rc)
+        srv_pm_collapses_free(out);
+    return rc;
+}
+
+void srv_pm_collapses_free(srv_pm_collapses *c)
+{
+    free(c->removed);
+    free(c->target);
+    free(c->round);
+    free(c->face_die);
+    memset(c, 0, sizeof *c);
+}

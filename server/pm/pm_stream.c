@@ -1,0 +1,730 @@
+/* pm_stream.c — the progressive-mesh stream writer (docs/progressive-mesh.md).
+ *
+ * The writer replays exactly what the client (sdk/src/pmesh_batch.c) will
+ * do: the same per-vertex corner lists, updated in the same order, so each
+ * vertex split can be told cheaply: for an interior split, which of p's
+ * fans moves to k (its rank among the fans the geometry of p's ring
+ * makes likely, or its first wing and length); otherwise
+ * which of p's corners move (one bit each) and which neighbour closes each
+ * reappearing face (a short index into the corners around k and p). Seed
+ * 000 §4.2 sends vertices, faces and lookup tables; here the lookup-table
+ * entry of k is its parent p, Rice coded as the gap from the previous
+ * split's parent (the splits of one collapse round are numbered by
+ * increasing parent, pm_build.c), and the split kinds ride in a per-record
+ * section of fan-split runs. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo/package.h"
+#include "lumo/wire.h"
+#include "lumo/pmesh.h"
+#include "package/package_write.h"
+#include "lumo_shared/pmesh_shared.h"
+#include "pm/pm_stream.h"
+
+#define NIL LUMO_PMESH_NIL
+
+/* ---- bytes (srv_buf, package_write.h) and bits ----------------------------- */
+typedef struct { srv_buf b; size_t nbits; } bitwriter;
+
+static void put_bits(bitwriter *w, uint32_t v, unsigned n)
+{
+    for (unsigned i = 0; i < n; i++, w->nbits++) {
+        if ((w->nbits & 7) == 0) {
+            uint8_t z = 0;
+            srv_buf_put(&w->b, &z, 1);
+        }
+        if (!w->b.failed)
+            w->b.p[w->nbits >> 3] |= (uint8_t)((v >> i & 1u) << (w->nbits & 7));
+    }
+}
+
+/* tb(c) (docs/progressive-mesh.md §2.3): v in [0, c) in truncated binary.
+ * With n = w(c) and u = 2^n - c, the first u values take n - 1 bits, the
+ * others (v + u) >> 1 in n - 1 bits then (v + u) & 1. Mirrors read_trunc. */
+static unsigned trunc_bits(uint32_t v, uint32_t c)
+{
+    unsigned n = lumo_pmesh_field_bits(c);
+    return n == 0 ? 0 : v < (uint32_t)(((uint64_t)1 << n) - c) ? n - 1 : n;
+}
+
+static void put_trunc(bitwriter *w, uint32_t v, uint32_t c)
+{
+    unsigned n = lumo_pmesh_field_bits(c);
+    uint32_t u = n ? (uint32_t)(((uint64_t)1 << n) - c) : 0;
+    if (n == 0)
+        return;
+    if (v < u) {
+        put_bits(w, v, n - 1);
+        return;
+    }
+    put_bits(w, (v + u) >> 1, n - 1);
+    put_bits(w, (v + u) & 1u, 1);
+}
+
+/* Append the first `nbits` bits of src (the kind section joins the block). */
+static void put_writer(bitwriter *w, const bitwriter *src)
+{
+    for (size_t i = 0; i < src->nbits; i++)
+        put_bits(w, src->b.p[i >> 3] >> (i & 7) & 1u, 1);
+}
+
+/* ---- the client's state, replayed --------------------------------------------- */
+typedef struct {
+    const srv_pm *pm;
+    int32_t  *q;              /* grid integers, 3 per vertex */
+    int32_t  *res;            /* their residuals from the client's prediction */
+    uint32_t *disp, *next, *head;
+    uint32_t  face_count;
+    uint32_t  faces, moves;   /* of the batch being written */
+    srv_pm_stream_stats st;   /* where the bits go (options->stats gets a copy) */
+    uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
+    unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
+    int       rank_escape;    /* options->fan_rank_escape */
+} replay;
+
+/* Split kinds as the writer records them: a fan split, a pair (mask
+ * split), or 1 ... 15 faces (mask split, flips coded). */
+#define KIND_FAN  0u
+#define KIND_PAIR 16u
+
+/* Bits written since *mark go to *field of the stats. */
+static void count_bits(const bitwriter *w, size_t *mark, uint64_t *field)
+{
+    *field += w->nbits - *mark;
+    *mark = w->nbits;
+}
+
+static void list_push(replay *r, uint32_t v, uint32_t c)
+{
+    r->next[c] = r->head[v];
+    r->head[v] = c;
+}
+
+static void add_face(replay *r, const uint32_t t[3])
+{
+    uint32_t f = r->face_count++;
+    for (uint32_t i = 0; i < 3; i++) {
+        r->disp[3 * f + i] = t[i];
+        list_push(r, t[i], 3 * f + i);
+    }
+    r->faces++;
+}
+
+static void write_base(replay *r, bitwriter *w)
+{
+    const srv_pm *pm = r->pm;
+    for (uint32_t f = 0; f < pm->base_faces; f++) {
+        uint32_t t[3];
+        for (int i = 0; i < 3; i++) {
+            t[i] = srv_pm_resolve(pm, pm->tris[3 * (size_t)f + i], pm->base_vertices);
+            put_trunc(w, t[i], pm->base_vertices);
+        }
+        add_face(r, t);
+    }
+    for (uint32_t v = 0; v < pm->base_vertices; v++)
+        for (int c = 0; c < 3; c++)
+            r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
+}
+
+/* The residual of k from the decoder's own prediction
+ * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c). */
+static void predict(replay *r, uint32_t k)
+{
+    int32_t pred[3];
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, r->pm->parent[k], pred);
+    for (int d = 0; d < 3; d++)
+        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - pred[d];
+}
+
+static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
+{
+    uint32_t prev = NIL, c = r->head[p], lenp = 0;
+    while (c != NIL) {
+        uint32_t nextc = r->next[c];
+        int move = srv_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
+        put_bits(w, (uint32_t)move, 1);
+        if (!move) {
+            prev = c, c = nextc, lenp++;
+            continue;
+        }
+        if (prev == NIL)
+            r->head[p] = nextc;
+        else
+            r->next[prev] = nextc;
+        list_push(r, k, c);
+        r->disp[c] = k;
+        r->moves++;
+        c = nextc;
+    }
+    return lenp;
+}
+
+/* Index of x among the neighbours of v's list (corner j/2, next vertex
+ * for even j, previous for odd), or 2 * len for the escape. */
+static uint32_t find_neighbour(const replay *r, uint32_t v, uint32_t len, uint32_t x)
+{
+    uint32_t j = 0;
+    for (uint32_t c = r->head[v]; c != NIL && j < 2 * len; c = r->next[c], j += 2) {
+        uint32_t f = c / 3, q = c % 3;
+        if (r->disp[3 * f + (q + 1) % 3] == x)
+            return j;
+        if (r->disp[3 * f + (q + 2) % 3] == x)
+            return j + 1;
+    }
+    return 2 * len;
+}
+
+/* Mirrors read_vertex() in pmesh_batch.c: a neighbour of each list in
+ * turn (index or escape), else explicit. */
+static void write_vertex(const replay *r, bitwriter *w, const uint32_t *lists, const uint32_t *lens,
+                         int nlists, uint32_t k, uint32_t x)
+{
+    for (int l = 0; l < nlists; l++) {
+        uint32_t j = find_neighbour(r, lists[l], lens[l], x);
+        put_trunc(w, j, 2 * lens[l] + 1);
+        if (j < 2 * lens[l])
+            return;
+    }
+    put_trunc(w, x, k);
+}
+
+/* Mirrors read_third(): among k's neighbours, else p's, else explicit. */
+static void write_third(const replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t lp,
+                        uint32_t lk, uint32_t x)
+{
+    uint32_t lists[2] = {k, p}, lens[2] = {lk, lp};
+    write_vertex(r, w, lists, lens, 2, k, x);
+}
+
+/* Face f at level k + 1 is (k, p, x) (flip 0) or (k, x, p) (flip 1):
+ * its flip, or -1 when it is neither. */
+static int face_flip(const replay *r, uint32_t f, uint32_t p, uint32_t k)
+{
+    uint32_t t[3];
+    for (int i = 0; i < 3; i++)
+        t[i] = srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+    if (t[0] != k)
+        return -1;  /* pm_build.c rotates k to corner 0 */
+    return t[1] == p ? 0 : t[2] == p ? 1 : -1;
+}
+
+static int write_new_face(replay *r, bitwriter *w, uint32_t f, uint32_t p, uint32_t k, uint32_t lp,
+                          uint32_t lk, int flip_implied)
+{
+    int flip = face_flip(r, f, p, k);
+    if (flip < 0)
+        return -1;  /* a reappearing face always holds edge (k, p), k first */
+    uint32_t t[3];
+    for (int i = 0; i < 3; i++)
+        t[i] = srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+    if (!flip_implied)
+        put_bits(w, (uint32_t)flip, 1);
+    write_third(r, w, p, k, lp, lk, flip ? t[1] : t[2]);
+    add_face(r, t);
+    return 0;
+}
+
+#define FAN_MAX_CORNERS 255u  /* as in pmesh_batch.c */
+
+static void put_gamma(bitwriter *w, uint32_t v)
+{
+    unsigned z = 0;
+    while (v >> (z + 1))
+        z++;
+    put_bits(w, 0, z);
+    put_bits(w, 1, 1);
+    put_bits(w, v & (((uint32_t)1 << z) - 1), z);
+}
+
+/* Mirrors read_fan_length() in pmesh_batch.c. */
+static void put_fan_length(bitwriter *w, uint32_t m)
+{
+    if (m >= 2 && m <= 4)
+        put_bits(w, m == 3 ? 0 : m == 4 ? 1 : 2, 2);  /* first bit in bit 0 */
+    else if (m == 1 || m == 5)
+        put_bits(w, 3, 2), put_bits(w, 0, 1), put_bits(w, m == 5, 1);
+    else
+        put_bits(w, 7, 3), put_gamma(w, m + 1);
+}
+
+static int moves_to_k(const replay *r, uint32_t c, uint32_t k)
+{
+    return srv_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
+}
+
+/* The corner fan_step() in pmesh_batch.c takes: the first of p's list,
+ * not yet taken, whose face continues p with a. */
+static uint32_t fan_corner(const replay *r, uint32_t p, uint32_t a, const uint32_t *taken, uint32_t nt)
+{
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c]) {
+        int used = 0;
+        for (uint32_t i = 0; i < nt && !used; i++)
+            used = taken[i] == c;
+        if (!used && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] == a)
+            return c;
+    }
+    return NIL;
+}
+
+/* Can the client derive the moves by walking p's fan from xa (the third
+ * vertex of the flip-0 face) to xb (of the flip-1 face)? Then *m is the
+ * number of moves. */
+static int fan_plan(const replay *r, uint32_t p, uint32_t k, uint32_t xa, uint32_t xb, uint32_t *m)
+{
+    uint32_t lp = 0, want = 0, taken[FAN_MAX_CORNERS + 1], a = xa;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c], lp++)
+        want += (uint32_t)moves_to_k(r, c, k);
+    if (lp > FAN_MAX_CORNERS)
+        return 0;
+    for (*m = 0; *m < want; (*m)++) {
+        uint32_t c = fan_corner(r, p, a, taken, *m);
+        if (c == NIL || !moves_to_k(r, c, k))
+            return 0;
+        taken[*m] = c;
+        a = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
+    }
+    return a == xb;
+}
+
+/* ---- fans ranked by geometry: the decoder's own ranking
+ * (lumo_pmesh_fan_keys, sdk/src/pmesh_predict.c), so both order the
+ * candidates identically ---- */
+
+static void arc_gather(const replay *r, uint32_t p, uint32_t n, lumo_pmesh_fan *g)
+{
+    uint32_t nx[LUMO_PMESH_ARC_MAX_CORNERS], pv[LUMO_PMESH_ARC_MAX_CORNERS], i = 0;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c], i++) {
+        nx[i] = r->disp[3 * (c / 3) + (c % 3 + 1) % 3];
+        pv[i] = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
+    }
+    lumo_pmesh_fan_init(g, r->q, r->quant_bits, p, nx, pv, n);
+}
+
+/* Rank of the fan (xa, m) among the candidates (the keys above its own),
+ * or their count when it is not one of them (the escape). */
+static uint32_t arc_rank(const lumo_pmesh_fan *g, uint32_t xa, uint32_t m)
+{
+    int64_t keys[LUMO_PMESH_ARC_MAX_CORNERS * LUMO_PMESH_ARC_MAX_CORNERS], want = 0;
+    uint32_t it = 0, above = 0, found = 0, count = lumo_pmesh_fan_keys(g, keys);
+    while (it < g->n && g->nx[it] != xa)
+        it++;
+    for (uint32_t c = 0; c < count; c++)
+        if (lumo_pmesh_fan_key_id(keys[c]) == (it << 8 | m))
+            want = keys[c], found = 1;
+    for (uint32_t c = 0; c < count; c++)
+        above += keys[c] > want;
+    return found ? above : count;
+}
+
+static void put_eg1(bitwriter *w, uint32_t v)
+{
+    put_gamma(w, (v >> 1) + 1);
+    put_bits(w, v & 1u, 1);
+}
+
+/* The explicit fan (read_wing, read_fan_length): the first corner of
+ * L(p) whose next vertex is xa (or the escape, then xa), then m. */
+static void write_wing_length(const replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t lp,
+                              uint32_t xa, uint32_t m)
+{
+    uint32_t wing = 0;
+    for (uint32_t c = r->head[p]; c != NIL && r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != xa; c = r->next[c])
+        wing++;
+    put_trunc(w, wing, lp + 1);
+    if (wing == lp)
+        put_trunc(w, xa, k);
+    put_fan_length(w, m);
+}
+
+/* Mirrors fan_split() in pmesh_batch.c: the fan's rank, or the escape
+ * then the explicit first wing and length. */
+static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t f0,
+                      uint32_t xa, uint32_t m)
+{
+    uint32_t lp = 0, a = xa;
+    for (uint32_t c = r->head[p]; c != NIL; c = r->next[c])
+        lp++;
+    uint32_t rank = 1, count = 0;
+    if (lp >= 1 && lp <= LUMO_PMESH_ARC_MAX_CORNERS) {
+        lumo_pmesh_fan g;
+        arc_gather(r, p, lp, &g);
+        count = arc_rank(&g, NIL, 0);
+        rank = r->rank_escape ? count : arc_rank(&g, xa, m);
+        put_eg1(w, rank);
+    }
+    if (rank < count)
+        r->st.arc_ranked++;
+    else
+        write_wing_length(r, w, p, k, lp, xa, m);
+    for (uint32_t i = 0; i < m; i++) {
+        uint32_t prev = NIL, c = r->head[p];
+        while (r->disp[3 * (c / 3) + (c % 3 + 1) % 3] != a)
+            prev = c, c = r->next[c];
+        a = r->disp[3 * (c / 3) + (c % 3 + 2) % 3];
+        if (prev == NIL)
+            r->head[p] = r->next[c];
+        else
+            r->next[prev] = r->next[c];
+        list_push(r, k, c);
+        r->disp[c] = k;
+        r->moves++;
+    }
+    for (uint32_t f = f0; f < f0 + 2; f++) {
+        uint32_t t[3];
+        for (int i = 0; i < 3; i++)
+            t[i] = srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + i], k + 1);
+        add_face(r, t);
+    }
+}
+
+/* The third vertex of face f at level k + 1. */
+static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
+{
+    return srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + (flip ? 1 : 2)], k + 1);
+}
+
+/* ---- parents: increasing runs, Rice-coded gaps (mirrors read_parent) ---- */
+/* Bits of parent p after prev (NIL at the start of a batch): the gap
+ * d = p - prev - 1 as q = d >> rice zero bits, a one, the rice low bits of
+ * d; or, when p does not follow prev or q would reach the escape, the
+ * escape (LUMO_PMESH_PARENT_ESCAPE zero bits) and p as tb(k). */
+static int parent_follows(uint32_t p, uint32_t prev, unsigned rice)
+{
+    return prev != NIL && p > prev && (p - prev - 1) >> rice < LUMO_PMESH_PARENT_ESCAPE;
+}
+
+static unsigned parent_bits(uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
+{
+    if (parent_follows(p, prev, rice))
+        return ((p - prev - 1) >> rice) + 1 + rice;
+    return LUMO_PMESH_PARENT_ESCAPE + trunc_bits(p, k);
+}
+
+static void put_parent(bitwriter *w, uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
+{
+    if (!parent_follows(p, prev, rice)) {
+        put_bits(w, 0, LUMO_PMESH_PARENT_ESCAPE);
+        put_trunc(w, p, k);
+        return;
+    }
+    uint32_t d = p - prev - 1;
+    put_bits(w, 0, d >> rice);
+    put_bits(w, 1, 1);
+    put_bits(w, d & (((uint32_t)1 << rice) - 1), rice);
+}
+
+/* The batch's Rice parameter: the one that codes its parents shortest. */
+static unsigned choose_rice(const srv_pm *pm, uint32_t first, uint32_t count, uint32_t prev0)
+{
+    unsigned best = 0;
+    uint64_t best_bits = UINT64_MAX;
+    for (unsigned rice = 0; rice <= LUMO_PMESH_MAX_RICE; rice++) {
+        uint64_t bits = 0;
+        for (uint32_t k = first, prev = prev0; k < first + count; prev = pm->parent[k++])
+            bits += parent_bits(pm->parent[k], prev, k, rice);
+        if (bits < best_bits)
+            best_bits = bits, best = rice;
+    }
+    return best;
+}
+
+static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsigned rice)
+{
+    const srv_pm *pm = r->pm;
+    uint32_t p = pm->parent[k], moves0 = r->moves;
+    size_t mark = w->nbits;
+    put_parent(w, p, prev, k, rice);
+    count_bits(w, &mark, &r->st.parent_bits);
+    uint32_t f0 = r->face_count, n = 0;
+    while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
+        n++;
+    /* the kind code of read_split_kind() in pmesh_batch.c */
+    int paired = n == 2 && face_flip(r, f0, p, k) == 0 && face_flip(r, f0 + 1, p, k) == 1;
+    uint32_t m = 0, xa = paired ? third(r, f0, k, 0) : 0;
+    int fan = paired && fan_plan(r, p, k, xa, third(r, f0 + 1, k, 1), &m);
+    if (fan) {
+        r->kinds[r->nkinds++] = KIND_FAN;
+        r->st.fans++;
+        write_fan(r, w, p, k, f0, xa, m);
+        count_bits(w, &mark, &r->st.fan_bits);
+        predict(r, k);
+        return 0;
+    }
+    if (!paired && (n < 1 || n > 15))
+        return -1;
+    r->kinds[r->nkinds++] = paired ? KIND_PAIR : n;
+    uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
+    for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
+        if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
+            return -1;
+    count_bits(w, &mark, &r->st.mask_bits);
+    predict(r, k);
+    return 0;
+}
+
+/* ---- records -------------------------------------------------------------------- */
+static void grid_of(const srv_pm *pm, int bits, srv_draco_quant *q)
+{
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    for (uint32_t v = 0; v < pm->vertices; v++)
+        for (int c = 0; c < 3; c++) {
+            float x = pm->xyz[3 * (size_t)v + c];
+            lo[c] = x < lo[c] ? x : lo[c];
+            hi[c] = x > hi[c] ? x : hi[c];
+        }
+    srv_draco_grid(lo, hi, bits, q);
+}
+
+static uint32_t f32bits(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, 4);
+    return u;
+}
+
+/* Grid integer of x: round((x - origin) / range * (2^bits - 1)), clamped;
+ * the client turns it back into metres (pmesh_batch.c store_positions). */
+static void quantize(const srv_pm *pm, const srv_draco_quant *q, int32_t *out)
+{
+    double qmax = (double)((1u << q->bits) - 1u);
+    for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
+        double t = ((double)pm->xyz[i] - q->origin[i % 3]) / q->range * qmax;
+        int32_t v = (int32_t)floor(t + 0.5);
+        out[i] = v < 0 ? 0 : v > (int32_t)qmax ? (int32_t)qmax : v;
+    }
+}
+
+/* The batch's Draco payload: the residuals the replay recorded (split
+ * vertices from their neighbours' mean, base vertices from the previous
+ * one), or absolute positions on the shared grid. */
+static lumo_status encode_payload(const replay *r, uint32_t first, uint32_t count,
+                                  const srv_pm_stream_options *o, const srv_draco_quant *q,
+                                  uint8_t **drc, size_t *len)
+{
+    const uint8_t *rgb = r->pm->albedo ? r->pm->albedo + 3 * (size_t)first : NULL;
+    if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
+        return srv_draco_encode_points(r->pm->xyz + 3 * (size_t)first, rgb, count, q, o->draco, drc, len);
+    return srv_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
+}
+
+/* LEB128, minimal (mirrors read_varint() in pmesh.c): 7 bits per byte,
+ * low group first, high bit = more follows. */
+static size_t put_varint(uint8_t *d, uint32_t v)
+{
+    size_t n = 0;
+    for (; v >= 0x80u; v >>= 7)
+        d[n++] = (uint8_t)(v | 0x80u);
+    d[n++] = (uint8_t)v;
+    return n;
+}
+
+/* The record: index, side bytes and Draco bytes as varints, the CRC-32 of
+ * those varints followed by the block and the payload, then the two. */
+static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t count,
+                                const replay *r, const bitwriter *w, const srv_pm_stream_options *o,
+                                const srv_draco_quant *q, srv_pm_batch_info *info)
+{
+    uint8_t *drc = NULL, head[LUMO_PMESH_BATCH_HEAD_MAX];
+    size_t drc_len = 0;
+    lumo_status st = encode_payload(r, first, count, o, q, &drc, &drc_len);
+    if (st)
+        return st;
+    size_t hn = put_varint(head, index);
+    hn += put_varint(head + hn, (uint32_t)w->b.len);
+    hn += put_varint(head + hn, (uint32_t)drc_len);
+    uint32_t crc = lumo_wire_crc32(0, head, hn);
+    crc = lumo_wire_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    crc = lumo_wire_crc32(crc, drc, drc_len);
+    *info = (srv_pm_batch_info){first, count, r->faces, r->moves, out->len,
+                                hn + 4 + w->b.len + drc_len, w->b.len, drc_len};
+    srv_buf_put(out, head, hn);
+    srv_buf_u32(out, crc);
+    srv_buf_put(out, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
+    srv_buf_put(out, drc, drc_len);
+    free(drc);
+    return out->failed ? LUMO_ERR_NOMEM : LUMO_OK;
+}
+
+static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_options *o,
+                         const srv_draco_quant *q, uint32_t nb, const srv_pm_batch_info *bi)
+{
+    uint32_t maxf = 0, maxm = 0, maxb = 0;
+    for (uint32_t i = 0; i < nb; i++) {
+        maxf = bi[i].face_count > maxf ? bi[i].face_count : maxf;
+        maxm = bi[i].move_count > maxm ? bi[i].move_count : maxm;
+        maxb = bi[i].bytes > maxb ? (uint32_t)bi[i].bytes : maxb;
+    }
+    uint32_t f[16] = {LUMO_PMESH_MAGIC, LUMO_PMESH_VERSION | LUMO_PMESH_HEADER_SIZE << 16,
+                      pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
+                      o->batch_vertices, nb, maxf, maxm, maxb,
+                      (uint32_t)q->bits | (uint32_t)o->position_coding << 8 |
+                          (uint32_t)(pm->albedo != NULL) << 16,
+                      f32bits(q->origin[0]), f32bits(q->origin[1]), f32bits(q->origin[2]),
+                      f32bits(q->range)};
+    for (int i = 0; i < 16; i++)
+        for (int k = 0; k < 4; k++)
+            d[4 * i + k] = (uint8_t)(f[i] >> (8 * k));
+    uint32_t crc = lumo_wire_crc32(0, d, 64);
+    for (int k = 0; k < 4; k++)
+        d[64 + k] = (uint8_t)(crc >> (8 * k));
+}
+
+void srv_pm_stream_default_options(srv_pm_stream_options *o)
+{
+    o->batch_vertices = 250;
+    o->quant_bits = 12;
+    o->draco = srv_draco_default_settings();
+    o->position_coding = LUMO_PMESH_POS_PREDICTED;
+    o->stats = NULL;
+    o->fan_rank_escape = 0;
+}
+
+static uint64_t field_bits(const srv_pm_stream_stats *st)
+{
+    return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits;
+}
+
+/* A written split record's share of the stats: fields_before is
+ * field_bits() before its splits. */
+static void tally_record(srv_pm_stream_stats *st, uint64_t fields_before, uint32_t count,
+                         const srv_pm_batch_info *bi)
+{
+    st->splits += count;
+    st->other_bits += 8 * (uint64_t)bi->side_bytes - (field_bits(st) - fields_before);
+    st->draco_bytes += bi->draco_bytes;
+    st->frame_bytes += bi->bytes - bi->side_bytes - bi->draco_bytes;
+}
+
+/* The record's kind section (mirrors read_split_kind): runs of fan
+ * splits, each gamma(run + 1), each run but one reaching the record's end
+ * followed by the code of the non-fan split that ends it. */
+static void write_kinds(const replay *r, bitwriter *w)
+{
+    for (uint32_t i = 0; i < r->nkinds;) {
+        uint32_t run = 0;
+        while (i + run < r->nkinds && r->kinds[i + run] == KIND_FAN)
+            run++;
+        put_gamma(w, run + 1);
+        i += run;
+        if (i == r->nkinds)
+            break;
+        uint32_t kind = r->kinds[i++];
+        if (kind == KIND_PAIR)
+            put_bits(w, 1, 1);
+        else if (kind == 1)
+            put_bits(w, 2, 2);
+        else
+            put_bits(w, 0, 2), put_bits(w, kind, 4);
+    }
+}
+
+/* A split record's block: Rice parameter, kind section length and
+ * section, then the per-vertex fields (docs/progressive-mesh.md §2.3). */
+static void join_split_block(replay *r, bitwriter *w, const bitwriter *fields, unsigned rice)
+{
+    bitwriter kinds = {{0}, 0};
+    write_kinds(r, &kinds);
+    put_bits(w, rice, LUMO_PMESH_RICE_BITS);
+    put_gamma(w, (uint32_t)kinds.nbits + 1);
+    put_writer(w, &kinds);
+    r->st.kind_bits += w->nbits - LUMO_PMESH_RICE_BITS;
+    put_writer(w, fields);
+    w->b.failed |= kinds.b.failed | fields->b.failed;
+    free(kinds.b.p);
+}
+
+static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
+                                 const srv_draco_quant *q, srv_buf *out, srv_pm_batch_info *bi,
+                                 uint32_t nb)
+{
+    const srv_pm *pm = r->pm;
+    for (uint32_t i = 0; i < nb; i++) {
+        uint32_t first = i ? pm->base_vertices + (i - 1) * o->batch_vertices : 0;
+        uint32_t count = i ? pm->vertices - first : pm->base_vertices;
+        if (i && count > o->batch_vertices)
+            count = o->batch_vertices;
+        bitwriter w = {{0}, 0}, fields = {{0}, 0};
+        r->faces = r->moves = r->nkinds = 0;
+        uint64_t fields_before = field_bits(&r->st);
+        int rc = 0;   /* write_split: -1 for a level it cannot express */
+        lumo_status st = LUMO_OK;
+        if (!i)
+            write_base(r, &w);
+        /* parents run on across records: a round rarely ends at a record's end */
+        uint32_t prev0 = i > 1 ? pm->parent[first - 1] : NIL;
+        unsigned rice = i ? choose_rice(pm, first, count, prev0) : 0;
+        for (uint32_t k = first, prev = prev0; i && k < first + count && !rc; prev = pm->parent[k++])
+            rc = write_split(r, &fields, k, prev, rice);
+        if (i && !rc)
+            join_split_block(r, &w, &fields, rice);
+        free(fields.b.p);
+        if (!rc && !w.b.failed)
+            st = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
+        if (!rc && !st && i)
+            tally_record(&r->st, fields_before, count, &bi[i]);
+        free(w.b.p);
+        if (rc || st || w.b.failed) {
+            fprintf(stderr, "lumo pm stream: cannot write batch %u\n", i);
+            return rc ? LUMO_ERR_CORRUPT : st ? st : LUMO_ERR_NOMEM;
+        }
+    }
+    return LUMO_OK;
+}
+
+lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                                size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
+{
+    srv_pm_stream_options def;
+    if (!o) {
+        srv_pm_stream_default_options(&def);
+        o = &def;
+    }
+    if (!pm->vertices || !o->batch_vertices || o->quant_bits < 1 ||
+        o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
+        return LUMO_ERR_ARG;
+    uint32_t rest = pm->vertices - pm->base_vertices;
+    uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
+    srv_draco_quant q;
+    grid_of(pm, o->quant_bits, &q);
+    replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
+                malloc(12 * (size_t)pm->faces + 4),
+                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, {0},
+                malloc(4 * (size_t)o->batch_vertices), 0, 0, o->fan_rank_escape};
+    srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
+    srv_buf s = {0};
+    uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
+    srv_buf_put(&s, header, sizeof header);
+    lumo_status rc = LUMO_ERR_NOMEM;
+    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
+        goto done;
+    quantize(pm, &q, r.q);
+    r.quant_bits = (unsigned)q.bits;
+    memset(r.head, 0xff, 4 * (size_t)pm->vertices);
+    rc = write_batches(&r, o, &q, &s, bi, nb);
+    if (!rc && s.failed)
+        rc = LUMO_ERR_NOMEM;
+    if (rc)
+        goto done;
+    write_header(s.p, pm, o, &q, nb, bi);
+    if (o->stats)
+        *o->stats = r.st;
+    *out = s.p, *len = s.len, s.p = NULL;
+    if (batches)
+        *batches = bi, bi = NULL;
+    if (nbatches)
+        *nbatches = nb;
+    rc = LUMO_OK;
+done:
+    free(r.q);
+    free(r.res);
+    free(r.disp);
+    free(r.next);
+    free(r.head);
+    free(r.kinds);
+    free(bi);
+    free(s.p);
+    return rc;
+}

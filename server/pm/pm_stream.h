@@ -1,0 +1,67 @@
+/*
+ * pm/pm_stream.h — writing the progressive-mesh stream of
+ * docs/progressive-mesh.md from a srv_pm (server/pm/pm_build.c). The client
+ * reads it with lumo/pmesh.h.
+ */
+#ifndef SRV_PM_STREAM_H
+#define SRV_PM_STREAM_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "pm/draco_shim.h"
+#include "pm/pm.h"
+
+/* Where the bits go (split records only), filled when options->stats is
+ * set: bits of each split-block field summed over the split vertices, and
+ * the bytes of their Draco payloads and record framing. */
+typedef struct srv_pm_stream_stats {
+    uint64_t splits;                    /* split vertices */
+    uint64_t parent_bits, kind_bits;    /* lookup-table parents, kind codes */
+    uint64_t fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
+    uint64_t arc_ranked, fans;          /* fan splits coded by rank; all fan splits */
+    uint64_t mask_bits;                 /* mask splits: masks, flips, third vertices */
+    uint64_t other_bits;                /* Rice parameters and padding */
+    uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
+} srv_pm_stream_stats;
+
+typedef struct srv_pm_stream_options {
+    uint32_t            batch_vertices;  /* vertices per batch (paper: 250) */
+    int                 quant_bits;      /* position grid bits (12) */
+    srv_draco_settings  draco;           /* the payload encoder choice */
+    int                 position_coding; /* LUMO_PMESH_POS_PREDICTED (default) or _ABSOLUTE */
+    srv_pm_stream_stats *stats;          /* NULL (default), or filled by the build */
+    int                 fan_rank_escape; /* 1: every fan takes the rank's escape and is
+                                            coded explicitly (tests the decoder's escape
+                                            path; larger streams), 0 (default) */
+} srv_pm_stream_options;
+
+void srv_pm_stream_default_options(srv_pm_stream_options *o);
+
+/* One record's place in the stream, for listings and benchmarks. */
+typedef struct srv_pm_batch_info {
+    uint32_t first_vertex, vertex_count, face_count, move_count;
+    size_t   offset, bytes, side_bytes, draco_bytes;
+} srv_pm_batch_info;
+
+/* Build the whole stream (header + every batch record) into one malloc'ed
+ * buffer. If `batches` is not NULL it receives a malloc'ed array of
+ * *nbatches entries. LUMO_OK; LUMO_ERR_ARG for an empty mesh or bad
+ * options; else, with a message on stderr, LUMO_ERR_NOMEM, a Draco
+ * encoder status (draco_shim.h) or LUMO_ERR_CORRUPT (a level the split
+ * records cannot express: pm was not made by srv_pm_build). */
+lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                                size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches);
+
+
+#endif
+
+/* For lumo-bake (server/pm/pm_pack.c): simplify one mesh, build its stream and
+ * append it to a package as a PMSH chunk (one chunk per mesh, in mesh
+ * order, replacing the raw MESH chunk). albedo: 3 bytes per vertex (0..255)
+ * or NULL. o may be NULL for the defaults.
+ * LUMO_OK, or the failing step's status (srv_pm_build_albedo,
+ * srv_pm_stream_build, srv_pkgw_add) with a one-line reason in err. */
+struct srv_pkg_writer;
+lumo_status srv_pm_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo,
+                        uint32_t nv, const uint32_t *tris, uint32_t nf,
+                        const srv_pm_stream_options *o, char *err, size_t errlen);

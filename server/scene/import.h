@@ -1,0 +1,37 @@
+/*
+ * import.h — meshes and lights from files through assimp (OBJ, PLY, OFF,
+ * glTF, ...), and the scene description format (docs/scene-format.md).
+ */
+#ifndef SRV_IMPORT_H
+#define SRV_IMPORT_H
+
+#include <stddef.h>
+#include "lumo/status.h"
+#include "scene/scene.h"
+
+/* Scale, then rotate about an axis, then translate. */
+typedef struct srv_xform {
+    vec3  scale;
+    vec3  axis;
+    float angle_deg;
+    vec3  translate;
+} srv_xform;
+
+srv_xform srv_xform_identity(void);
+vec3 srv_xform_apply(const srv_xform *x, vec3 p);
+
+/* Load every mesh (and light) of a file into the scene, transformed.
+ * albedo: NULL to use the file's materials / vertex colours. LUMO_OK, or
+ * with a one-line reason in err: LUMO_ERR_IO (no such file),
+ * LUMO_ERR_CORRUPT (assimp cannot read it, or it holds no triangle),
+ * LUMO_ERR_NOMEM. */
+lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
+                            char *err, size_t errlen);
+
+/* Read a scene description file. LUMO_OK, or with "FILE:LINE: reason" in
+ * err: LUMO_ERR_IO (cannot open), LUMO_ERR_LIMIT (a line too long),
+ * LUMO_ERR_CORRUPT (a malformed statement), LUMO_ERR_RANGE (sphere
+ * segments), or the status of a mesh's srv_import_file / of memory. */
+lumo_status srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,356 @@
+/* tools/lumo-bake/main.c — lumo-bake: scene in, .lumo package (or reference PNG) out.
+ * Usage in docs/server.md; every failure is one line on stderr, exit 1. */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "lumo_host/png_io.h"
+#include "bake/bake.h"
+#include "scene/import.h"
+#include "package/package_write.h"
+#include "pm/pm_stream.h"
+#include "common/progress.h"
+#include "bake/reference.h"
+#include "scene/shapes.h"
+
+#define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
+
+/* How meshes go into the package: progressive PMSH streams (the default:
+ * "the progressive stream replaces the raw mesh", seed 000 §4.2,
+ * docs/progressive-mesh.md), raw MESH chunks, or both. */
+enum { MESH_RAW = 1, MESH_PM = 2, MESH_BOTH = 3 };
+/* A bake vertex is cheap (one per grid point): 256 paths keep the IVG's
+ * noise low; a reference pixel needs far fewer for a preview. */
+#define DEFAULT_BAKE_SPP 256
+#define DEFAULT_REF_SPP 64
+
+typedef struct {
+    const char *scene, *out, *dragon;
+    int   use_default, dims[3], spp, threads, ref_w, ref_h, indirect_only, progress;
+    float cell, exposure;
+    uint64_t seed;
+    vec3  albedo;
+    int   has_albedo, has_camera;
+    int   mesh_mode;          /* MESH_RAW, MESH_PM or MESH_BOTH */
+    srv_camera camera;
+    const char *lights[64];
+    int   nlights;
+} options;
+
+static const char usage[] =
+    "usage: lumo-bake SCENE|--default -o OUT.lumo [options]\n"
+    "       lumo-bake SCENE|--default --reference WxH [--camera EYE:TARGET:UP:FOVY] -o OUT.png\n"
+    "Bakes the indirect-light Irradiance Vector Grid of a scene (path tracing\n"
+    "with Embree) into a .lumo package, or renders a path-traced reference image.\n"
+    "  --default              the built-in Cornell box (dragon when available)\n"
+    "  -o, --output FILE      package (.lumo) or, with --reference, PNG\n"
+    "  --grid N|NX,NY,NZ      grid vertices per axis, 2..256 (default 16)\n"
+    "  --cell SIZE            or: grid spacing in metres\n"
+    "  --spp N                paths per grid vertex (default 256) / per pixel (default 64)\n"
+    "  --seed S               random seed; same seed, same bytes (default 1)\n"
+    "  --threads N            worker threads (default: all cores)\n"
+    "  --light SPEC           add a light (repeatable): point:X,Y,Z:R,G,B |\n"
+    "                         spot:X,Y,Z:DX,DY,DZ:HALF_DEG:R,G,B |\n"
+    "                         directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
+    "  --albedo R,G,B         override every material's albedo\n"
+    "  --mesh pm|raw|both     mesh chunks: progressive PMSH (default), raw MESH, or both\n"
+    "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ")\n"
+    "  --reference WxH        render a reference image instead of baking\n"
+    "  --camera E:T:U:FOVY    camera (default: the scene's)\n"
+    "  --indirect-only        reference image of the indirect light only\n"
+    "  --exposure E           PNG exposure (default 1.0)\n"
+    "  --no-progress          never draw the progress bar\n"
+    "  -h, --help             this text\n"
+    "Conventions (units, lights, camera, tone mapping): docs/scene-format.md\n";
+
+static int fail(const char *msg)
+{
+    fprintf(stderr, "lumo-bake: error: %s\n", msg);
+    return 1;
+}
+
+static int parse_int(const char *t, int lo, int hi, int *out)
+{
+    char *end;
+    long v = strtol(t, &end, 10);
+    if (end == t || *end || v < lo || v > hi)
+        return -1;
+    *out = (int)v;
+    return 0;
+}
+
+static int parse_grid(const char *t, int dims[3])
+{
+    char buf[64], *save = NULL;
+    int n = 0;
+    snprintf(buf, sizeof buf, "%s", t);
+    for (char *p = strtok_r(buf, ",", &save); p; p = strtok_r(NULL, ",", &save))
+        if (n == 3 || parse_int(p, 2, 256, &dims[n++]))
+            return -1;
+    if (n == 1)
+        dims[1] = dims[2] = dims[0];
+    return n == 1 || n == 3 ? 0 : -1;
+}
+
+enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
+       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH };
+
+static const struct option k_long[] = {
+    {"default", no_argument, 0, O_DEFAULT}, {"output", required_argument, 0, 'o'},
+    {"grid", required_argument, 0, O_GRID}, {"cell", required_argument, 0, O_CELL},
+    {"spp", required_argument, 0, O_SPP}, {"seed", required_argument, 0, O_SEED},
+    {"threads", required_argument, 0, O_THREADS}, {"light", required_argument, 0, O_LIGHT},
+    {"albedo", required_argument, 0, O_ALBEDO}, {"dragon", required_argument, 0, O_DRAGON},
+    {"reference", required_argument, 0, O_REF}, {"camera", required_argument, 0, O_CAMERA},
+    {"indirect-only", no_argument, 0, O_INDIRECT}, {"exposure", required_argument, 0, O_EXPOSURE},
+    {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH},
+    {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+
+/* One option; returns 0, 1 for --help, or -1 with a message in err. */
+static int take_option(options *o, int c, const char *arg, char *err, size_t errlen)
+{
+    char *end;
+    switch (c) {
+    case O_DEFAULT: o->use_default = 1; return 0;
+    case 'o': o->out = arg; return 0;
+    case O_GRID: if (!parse_grid(arg, o->dims)) return 0; break;
+    case O_CELL: if (!srv_parse_floats(arg, &o->cell, 1) && o->cell > 0) return 0; break;
+    case O_SPP: if (!parse_int(arg, 1, 1 << 24, &o->spp)) return 0; break;
+    case O_SEED:
+        o->seed = strtoull(arg, &end, 0);
+        if (end != arg && !*end) return 0;
+        break;
+    case O_THREADS: if (!parse_int(arg, 1, 256, &o->threads)) return 0; break;
+    case O_LIGHT:
+        if (o->nlights < 64) { o->lights[o->nlights++] = arg; return 0; }
+        break;
+    case O_ALBEDO: {
+        float f[3];
+        if (!srv_parse_floats(arg, f, 3) && f[0] >= 0 && f[1] >= 0 && f[2] >= 0 &&
+            f[0] <= 1 && f[1] <= 1 && f[2] <= 1) {
+            o->albedo = v3(fminf(f[0], 0.98f), fminf(f[1], 0.98f), fminf(f[2], 0.98f));
+            o->has_albedo = 1;
+            return 0;
+        }
+        break;
+    }
+    case O_DRAGON: o->dragon = arg; return 0;
+    case O_REF:
+        if (sscanf(arg, "%dx%d%c", &o->ref_w, &o->ref_h, &(char){0}) == 2 && o->ref_w > 0 &&
+            o->ref_h > 0 && o->ref_w <= 16384 && o->ref_h <= 16384)
+            return 0;
+        break;
+    case O_CAMERA: if (!srv_camera_parse(arg, &o->camera)) { o->has_camera = 1; return 0; } break;
+    case O_INDIRECT: o->indirect_only = 1; return 0;
+    case O_EXPOSURE: if (!srv_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
+    case O_NOPROGRESS: o->progress = 0; return 0;
+    case O_MESH:
+        o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM
+                     : !strcmp(arg, "both") ? MESH_BOTH : 0;
+        if (o->mesh_mode) return 0;
+        break;
+    case 'h': return 1;
+    default: snprintf(err, errlen, "unknown option (try --help)"); return -1;
+    }
+    snprintf(err, errlen, "bad value '%s' for an option (try --help)", arg);
+    return -1;
+}
+
+static int parse_args(options *o, int argc, char **argv, char *err, size_t errlen)
+{
+    int c;
+    memset(o, 0, sizeof *o);
+    o->dims[0] = o->dims[1] = o->dims[2] = 16;
+    o->spp = 0;   /* 0: the default of the mode, set after parsing */
+    o->seed = 1;
+    o->exposure = 1.0f;
+    o->progress = 1;
+    o->mesh_mode = MESH_PM;
+    o->threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
+    o->threads = o->threads < 1 ? 1 : o->threads > 256 ? 256 : o->threads;
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, "o:h", k_long, NULL)) != -1) {
+        if (c == '?' || c == ':') {
+            snprintf(err, errlen, "unknown option or missing value '%s' (try --help)", argv[optind - 1]);
+            return -1;
+        }
+        int rc = take_option(o, c, optarg, err, errlen);
+        if (rc)
+            return rc;
+    }
+    if (optind < argc)
+        o->scene = argv[optind++];
+    if (optind < argc) {
+        snprintf(err, errlen, "unexpected argument '%s'", argv[optind]);
+        return -1;
+    }
+    if (!o->scene == !o->use_default) {
+        snprintf(err, errlen, "give exactly one of SCENE or --default (try --help)");
+        return -1;
+    }
+    if (!o->out) {
+        snprintf(err, errlen, "no output file (-o)");
+        return -1;
+    }
+    if (o->spp == 0)
+        o->spp = o->ref_w ? DEFAULT_REF_SPP : DEFAULT_BAKE_SPP;
+    return 0;
+}
+
+/* A scene description ends in .txt or .scene; any other file is a mesh
+ * for assimp (docs/server.md). */
+static int is_description(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && (!strcmp(dot, ".txt") || !strcmp(dot, ".scene"));
+}
+
+static lumo_status load_file(const char *path, srv_scene *s, char *err, size_t errlen)
+{
+    srv_xform x = srv_xform_identity();
+    if (is_description(path))
+        return srv_scene_load(s, path, err, errlen);
+    return srv_import_file(s, path, &x, NULL, err, errlen);
+}
+
+static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t errlen)
+{
+    const char *dragon = o->dragon ? o->dragon : getenv("LUMO_DRAGON") ? getenv("LUMO_DRAGON") : DEFAULT_DRAGON;
+    lumo_status st = o->use_default ? srv_default_scene(s, dragon, err, errlen)
+                                    : load_file(o->scene, s, err, errlen);
+    for (int i = 0; !st && i < o->nlights; i++) {
+        srv_light l;
+        st = srv_light_parse(o->lights[i], &l, err, errlen);
+        if (!st)
+            st = l.kind == SRV_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l);
+    }
+    if (st)
+        return st;
+    if (o->has_albedo)
+        srv_scene_override_albedo(s, o->albedo);
+    if (o->has_camera)
+        s->camera = o->camera;
+    return srv_scene_validate(s, err, errlen);
+}
+
+static int run_reference(const options *o, const srv_scene *s, const srv_tracer *t)
+{
+    char err[512];
+    srv_image img;
+    uint64_t rays = 0;
+    srv_render_opts ro = {o->spp, o->seed, o->threads, o->indirect_only, o->progress};
+    double t0 = srv_now();
+    if (srv_render_reference(t, &s->camera, o->ref_w, o->ref_h, &ro, &img, &rays))
+        return fail("cannot render (out of memory or threads)");
+    double dt = srv_now() - t0;
+    if (host_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err)) {
+        srv_image_free(&img);
+        return fail(err);
+    }
+    srv_image_free(&img);
+    fprintf(stderr, "lumo-bake: %dx%d %s reference, %d spp, %.2f M rays in %.2f s (%.2f M rays/s, %d threads) -> %s\n",
+            o->ref_w, o->ref_h, o->indirect_only ? "indirect-only" : "full", o->spp, (double)rays * 1e-6,
+            dt, (double)rays * 1e-6 / (dt > 0 ? dt : 1e-9), o->threads, o->out);
+    return 0;
+}
+
+/* Grid dims from --cell: spacing over the bounds, clamped to [2, 256]. */
+static void cell_dims(const srv_scene *s, float cell, int dims[3])
+{
+    vec3 lo, hi;
+    srv_scene_bounds(s, &lo, &hi);
+    for (int a = 0; a < 3; a++) {
+        float n = ceilf((v3_get(hi, a) - v3_get(lo, a)) / cell) + 1.0f;
+        dims[a] = n < 2.0f ? 2 : n > 256.0f ? 256 : (int)n;
+    }
+}
+
+/* INFO, then the meshes as --mesh asks: raw chunks and/or one progressive
+ * stream per mesh (srv_pm_pack, server/pm/pm_pack.c), in mesh order. */
+_Static_assert(sizeof(vec3) == 3 * sizeof(float), "positions are passed as a float xyz array");
+
+static int pack_meshes(const options *o, srv_pkg_writer *w, const srv_scene *s, char *err, size_t errlen)
+{
+    if (srv_pack_scene(w, s, o->mesh_mode & MESH_RAW)) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    for (size_t i = 0; (o->mesh_mode & MESH_PM) && i < s->nmeshes; i++) {
+        const srv_mesh *m = &s->meshes[i];
+        uint8_t *albedo = malloc(3u * (m->nverts ? m->nverts : 1));
+        if (!albedo) {
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
+        for (uint32_t v = 0; v < m->nverts; v++)   /* the stream's albedo is 8-bit linear */
+            for (int c = 0; c < 3; c++)
+                albedo[3 * v + (uint32_t)c] = (uint8_t)lrintf(255.0f * v3_get(m->albedo[v], c));
+        int rc = srv_pm_pack(w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, NULL, err, errlen);
+        free(albedo);
+        if (rc)
+            return -1;
+    }
+    return 0;
+}
+
+static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
+{
+    char err[512];
+    srv_bake_result res;
+    srv_pkg_writer w;
+    if (o->cell > 0)
+        cell_dims(s, o->cell, o->dims);
+    srv_grid g = srv_grid_over(s, o->dims);
+    srv_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
+    if (srv_bake(t, &g, &bo, &res, err, sizeof err))
+        return fail(err);
+    srv_pkgw_init(&w);
+    int rc = pack_meshes(o, &w, s, err, sizeof err);
+    if (!rc)
+        rc = srv_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
+    if (!rc)
+        rc = srv_pkgw_write_file(&w, o->out, err, sizeof err);
+    srv_pkgw_free(&w);
+    size_t solid = 0;
+    for (size_t v = 0; v < res.nverts; v++)
+        solid += !res.valid[v];
+    if (!rc)
+        fprintf(stderr, "lumo-bake: %dx%dx%d grid, %zu vertices (%zu solid), %d spp, %.2f M rays in %.2f s "
+                        "(%.2f M rays/s, %d threads) -> %s\n",
+                g.dims[0], g.dims[1], g.dims[2], res.nverts, solid, o->spp, (double)res.rays * 1e-6,
+                res.seconds, (double)res.rays * 1e-6 / (res.seconds > 0 ? res.seconds : 1e-9), o->threads,
+                o->out);
+    srv_bake_result_free(&res);
+    return rc ? fail(err) : 0;
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    srv_scene s;
+    char err[512];
+    int rc = parse_args(&o, argc, argv, err, sizeof err);
+    if (rc == 1) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (rc)
+        return fail(err);
+    srv_scene_init(&s);
+    if (load_scene(&o, &s, err, sizeof err)) {
+        srv_scene_free(&s);
+        return fail(err);
+    }
+    srv_rt *rt = srv_rt_create(&s, o.threads, err, sizeof err);
+    if (!rt) {
+        srv_scene_free(&s);
+        return fail(err);
+    }
+    srv_tracer t;
+    srv_tracer_init(&t, &s, rt);
+    rc = o.ref_w ? run_reference(&o, &s, &t) : run_bake(&o, &s, &t);
+    srv_rt_free(rt);
+    srv_scene_free(&s);
+    return rc;
+}

@@ -1,0 +1,164 @@
+/* tools/lumo-inspect/pm.c — lumo-inspect subcommands for the progressive-mesh stream
+ * (docs/progressive-mesh.md), decoded by the real client (lumo/pmesh.h):
+ *
+ *   lumo-inspect --stream FILE           the header and every batch record
+ *   lumo-inspect --lod N --ply OUT FILE  the level with N vertices (N = all)
+ *   --mesh I                             the I-th mesh's stream (default 0)
+ *
+ * FILE is a .lumo package with a PMSH chunk or a raw stream (lumo-pm --raw). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo_host/file_io.h"
+#include "inspect.h"
+#include "pm/pm_client.h"
+
+static int load(const char *path, uint8_t **data, size_t *len)
+{
+    *data = path ? host_read_file(path, len) : NULL;
+    if (*data == NULL) {
+        fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path ? path : "(no file)");
+        return -1;
+    }
+    return 0;
+}
+
+/* --mesh I: which PMSH chunk (one per mesh of the scene). */
+static uint32_t mesh_arg(int argc, char **argv)
+{
+    for (int i = 1; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--mesh"))
+            return (uint32_t)strtoul(argv[i + 1], NULL, 10);
+    return 0;
+}
+
+static int open_stream(const char *path, uint32_t mesh, uint8_t **file, srv_pm_client *c)
+{
+    size_t len, slen;
+    const uint8_t *s;
+    if (load(path, file, &len))
+        return -1;
+    lumo_status st = srv_pm_find_stream(*file, len, mesh, &s, &slen);
+    if (!st)
+        st = srv_pm_client_open(c, s, slen);
+    if (st) {
+        fprintf(stderr, "lumo-inspect: error: %s: no progressive mesh stream %u: %s\n", path, mesh,
+                lumo_strerror(st));
+        free(*file);
+        return -1;
+    }
+    return 0;
+}
+
+static int run_stream(int argc, char **argv)
+{
+    uint8_t *file;
+    srv_pm_client c;
+    if (open_stream(inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
+        return 1;
+    const lumo_pmesh_header *h = &c.h;
+    printf("progressive mesh: %u vertices, %u faces; base %u vertices, %u faces; %u batches of %u "
+           "vertices; positions %u bits; stream %zu bytes (%.2f bits/triangle); client arena %zu bytes\n",
+           h->vertices, h->faces, h->base_vertices, h->base_faces, h->batch_count, h->batch_vertices,
+           h->quant_bits, c.len, h->faces ? 8.0 * c.len / h->faces : 0.0, c.arena_bytes);
+    printf("%6s %9s %8s %8s %8s %8s %8s %9s %10s\n", "batch", "first", "verts", "faces", "moves",
+           "side B", "draco B", "record B", "offset");
+    int rc = 0;
+    while (!lumo_pmesh_complete(&c.pm)) {
+        const uint8_t *r;
+        size_t n;
+        lumo_status st = srv_pm_client_next(&c, &r, &n);
+        if (!st) {
+            uint32_t f[8];
+            for (int i = 0; i < 8; i++)
+                f[i] = r[4 * i] | r[4 * i + 1] << 8 | r[4 * i + 2] << 16 | (uint32_t)r[4 * i + 3] << 24;
+            printf("%6u %9u %8u %8u %8u %8u %8u %9zu %10zu\n", f[1], f[2], f[3], f[4], f[5], f[6], f[7], n, c.at);
+            st = srv_pm_client_step(&c);
+        }
+        if (st) {
+            fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", c.pm.batches_applied, lumo_strerror(st));
+            rc = 1;
+            break;
+        }
+    }
+    srv_pm_client_close(&c);
+    free(file);
+    return rc;
+}
+
+static int write_ply(const char *path, const lumo_pmesh_view *v)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return -1;
+    fprintf(f, "ply\nformat ascii 1.0\ncomment lumo progressive mesh level\nelement vertex %u\n"
+               "property float x\nproperty float y\nproperty float z\n"
+               "property float nx\nproperty float ny\nproperty float nz\n%s"
+               "element face %u\nproperty list uchar int vertex_indices\nend_header\n", v->vertex_count,
+            v->albedo ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "", v->face_count);
+    for (uint32_t i = 0; i < v->vertex_count; i++) {
+        const lumo_q16_16 *p = v->positions + 3 * i;
+        const lumo_q1_14 *n = v->normals + 3 * i;
+        fprintf(f, "%.7g %.7g %.7g %.5f %.5f %.5f", p[0] / 65536.0, p[1] / 65536.0, p[2] / 65536.0,
+                n[0] / 16384.0, n[1] / 16384.0, n[2] / 16384.0);
+        if (v->albedo)
+            fprintf(f, " %d %d %d", (v->albedo[3 * i] * 255 + 8192) / 16384,
+                    (v->albedo[3 * i + 1] * 255 + 8192) / 16384, (v->albedo[3 * i + 2] * 255 + 8192) / 16384);
+        fputc('\n', f);
+    }
+    for (uint32_t i = 0; i < v->face_count; i++)
+        fprintf(f, "3 %u %u %u\n", v->triangles[3 * i], v->triangles[3 * i + 1], v->triangles[3 * i + 2]);
+    return fclose(f) ? -1 : 0;
+}
+
+static int run_lod(int argc, char **argv)
+{
+    const char *lod = NULL, *out = NULL;
+    for (int i = 1; i + 1 < argc; i++) {
+        if (!strcmp(argv[i], "--lod"))
+            lod = argv[++i];
+        else if (!strcmp(argv[i], "--ply"))
+            out = argv[++i];
+    }
+    if (!lod || !out) {
+        fprintf(stderr, "lumo-inspect: error: usage: --lod N|all --ply OUT.ply FILE\n");
+        return 1;
+    }
+    uint8_t *file;
+    srv_pm_client c;
+    if (open_stream(inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
+        return 1;
+    char *end;
+    unsigned long n = strcmp(lod, "all") ? strtoul(lod, &end, 10) : c.h.vertices;
+    int rc = 1;
+    if (!strcmp(lod, "all") ? 0 : (*end || n < c.h.base_vertices || n > c.h.vertices)) {
+        fprintf(stderr, "lumo-inspect: error: --lod %s: levels go from %u to %u vertices\n", lod,
+                c.h.base_vertices, c.h.vertices);
+        goto done;
+    }
+    lumo_status st = srv_pm_client_until(&c, (uint32_t)n);
+    if (!st)
+        st = lumo_pmesh_rewind(&c.pm, (uint32_t)n);
+    if (st) {
+        fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", c.pm.batches_applied, lumo_strerror(st));
+        goto done;
+    }
+    lumo_pmesh_view v;
+    lumo_pmesh_get_view(&c.pm, &v);
+    if (write_ply(out, &v)) {
+        fprintf(stderr, "lumo-inspect: error: %s: cannot write\n", out);
+        goto done;
+    }
+    printf("%s: level %u: %u vertices, %u triangles\n", out, v.vertex_count, v.vertex_count, v.face_count);
+    rc = 0;
+done:
+    srv_pm_client_close(&c);
+    free(file);
+    return rc;
+}
+
+INSPECT_COMMAND(pm_stream_cmd, "--stream",
+                "--stream [--mesh I] FILE.lumo      list the progressive-mesh batches", run_stream)
+INSPECT_COMMAND(pm_lod_cmd, "--lod",
+                "--lod N|all --ply OUT.ply [--mesh I] FILE.lumo  write the level with N vertices",
+                run_lod)

@@ -1,0 +1,173 @@
+/* tools/lumo-pm/main.c — lumo-pm: build a progressive-mesh stream from a mesh file
+ * (docs/progressive-mesh.md), and the pm benchmark driver (bench.c).
+ *
+ *   lumo-pm build IN.ply -o OUT.lumo [--batch N] [--bits B] [--raw]
+ *   lumo-pm clean IN.ply -o OUT.ply      the welded, cleaned input mesh
+ *   lumo-pm apply STREAM [N]             apply the first N records with the
+ *                                        client (for callgrind in the bench)
+ *   lumo-pm bench ...                    see bench.c
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo/package.h"
+#include "lumo_host/file_io.h"
+#include "package/package_write.h"
+#include "pm/pm_client.h"
+#include "pm/pm_load.h"
+#include "pm/pm_stream.h"
+
+int bench_main(int argc, char **argv);
+
+typedef struct {
+    const char *in, *out;
+    srv_pm_stream_options so;
+    srv_pm_options po;
+    int raw, albedo;
+} args;
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--albedo] [--raw]\n"
+                    "       lumo-pm clean IN -o OUT.ply\n"
+                    "       lumo-pm apply STREAM [RECORDS]\n"
+                    "       lumo-pm bench --out SECTION.md MODEL...\n");
+    return 2;
+}
+
+static int parse(int argc, char **argv, args *a)
+{
+    memset(a, 0, sizeof *a);
+    srv_pm_stream_default_options(&a->so);
+    srv_pm_default_options(&a->po);
+    for (int i = 2; i < argc; i++) {
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(argv[i], "-o") && v)
+            a->out = v, i++;
+        else if (!strcmp(argv[i], "--batch") && v)
+            a->so.batch_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
+        else if (!strcmp(argv[i], "--bits") && v)
+            a->so.quant_bits = atoi(v), i++;
+        else if (!strcmp(argv[i], "--min-vertices") && v)
+            a->po.min_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
+        else if (!strcmp(argv[i], "--rounds") && v)
+            a->po.round_fraction = strtod(v, NULL), i++;
+        else if (!strcmp(argv[i], "--raw"))
+            a->raw = 1;
+        else if (!strcmp(argv[i], "--albedo"))
+            a->albedo = 1;  /* stream the per-vertex albedo too */
+        else if (argv[i][0] != '-' && !a->in)
+            a->in = argv[i];
+        else
+            return -1;
+    }
+    return a->in && a->out && a->so.batch_vertices ? 0 : -1;
+}
+
+static int write_file(const char *path, const uint8_t *d, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(d, 1, n, f) == n;
+    if (f && fclose(f))
+        ok = 0;
+    return ok ? 0 : -1;
+}
+
+static int write_output(const args *a, const uint8_t *s, size_t n)
+{
+    if (a->raw)
+        return write_file(a->out, s, n);
+    srv_pkg_writer w;
+    char err[256];
+    srv_pkgw_init(&w);
+    int rc = srv_pkgw_add(&w, LUMO_PKG_PMSH, s, n) || srv_pkgw_write_file(&w, a->out, err, sizeof err);
+    if (rc)
+        fprintf(stderr, "lumo-pm: error: %s\n", err);
+    srv_pkgw_free(&w);
+    return rc ? -1 : 0;
+}
+
+static int cmd_build(const args *a, int clean_only)
+{
+    float *xyz;
+    uint8_t *rgb = NULL;
+    uint32_t *tris, nv, nf, nb;
+    char err[256];
+    srv_pm pm;
+    uint8_t *s = NULL;
+    size_t n = 0;
+    if (srv_pm_load(a->in, &xyz, a->albedo ? &rgb : NULL, &nv, &tris, &nf, err, sizeof err)) {
+        fprintf(stderr, "lumo-pm: error: %s\n", err);
+        return 1;
+    }
+    int rc = 1;
+    if (srv_pm_build_albedo(xyz, rgb, nv, tris, nf, &a->po, &pm)) {
+        fprintf(stderr, "lumo-pm: error: %s: cannot simplify (bad indices or out of memory)\n", a->in);
+        goto done;
+    }
+    if (clean_only) {
+        rc = srv_pm_write_ply(a->out, pm.xyz, pm.vertices, pm.tris, pm.faces) ? 1 : 0;
+        goto done;
+    }
+    srv_pm_stream_stats st;
+    srv_pm_stream_options so = a->so;
+    so.stats = &st;
+    if (srv_pm_stream_build(&pm, &so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
+        fprintf(stderr, "lumo-pm: error: %s: cannot write the stream\n", a->out);
+        goto done;
+    }
+    printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
+           "%u batches of %u, %zu bytes, %.2f bits/triangle\n",
+           a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
+           pm.base_faces, nb, a->so.batch_vertices, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
+    double sv = st.splits ? (double)st.splits : 1.0;
+    printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, other %.2f, "
+           "draco payload %.2f, record heads %.2f\n",
+           st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv, st.mask_bits / sv,
+           st.other_bits / sv, 8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv);
+    printf("fan splits: %llu (%.1f%% of splits), %.1f%% of them coded by rank\n",
+           (unsigned long long)st.fans, 100.0 * st.fans / sv,
+           st.fans ? 100.0 * st.arc_ranked / st.fans : 0.0);
+    rc = 0;
+done:
+    free(s);
+    srv_pm_free(&pm);
+    free(xyz);
+    free(rgb);
+    free(tris);
+    return rc;
+}
+
+static int cmd_apply(int argc, char **argv)
+{
+    size_t len = 0;
+    uint8_t *d = argc > 2 ? host_read_file(argv[2], &len) : NULL;
+    if (d == NULL)
+        return usage();
+    srv_pm_client c;
+    unsigned long records = argc > 3 ? strtoul(argv[3], NULL, 10) : (unsigned long)-1, done = 0;
+    lumo_status st = srv_pm_client_open(&c, d, len);
+    while (!st && done < records && !lumo_pmesh_complete(&c.pm))
+        st = srv_pm_client_step(&c), done++;
+    printf("%lu records, %u vertices, %u faces: %s\n", done, c.pm.vertex_count, c.pm.face_count,
+           lumo_strerror(st));
+    srv_pm_client_close(&c);
+    free(d);
+    return st ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    args a;
+    if (argc >= 2 && !strcmp(argv[1], "apply"))
+        return cmd_apply(argc, argv);
+    if (argc >= 2 && !strcmp(argv[1], "bench"))
+        return bench_main(argc - 1, argv + 1);
+    if (argc < 2 || parse(argc, argv, &a))
+        return usage();
+    if (!strcmp(argv[1], "build"))
+        return cmd_build(&a, 0);
+    if (!strcmp(argv[1], "clean"))
+        return cmd_build(&a, 1);
+    return usage();
+}
