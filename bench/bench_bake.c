@@ -28,7 +28,7 @@ static int make_scene(bench_scene *b, const char *name, int dragon_only)
     int rc = dragon_only ? srv_import_file(&b->s, DRAGON203, &x, NULL, err, sizeof err)
                          : srv_default_scene(&b->s, DRAGON48, err, sizeof err);
     if (!rc && dragon_only) {
-        srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, 0.35f, 0.2f}, .power = {1, 1, 1}};
+        srv_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, 0.35f, 0.2f}, .power = {1, 1, 1}};
         rc = srv_scene_add_light(&b->s, &l);
     }
     if (rc || srv_scene_validate(&b->s, err, sizeof err) || !(b->rt = srv_rt_create(&b->s, 2, err, sizeof err))) {

@@ -120,9 +120,9 @@ lumo_status lumo_scene_light_decode(const uint8_t *p, size_t len, uint32_t index
         return LUMO_ERR_RANGE;
     p += INFO_FIXED + (size_t)index * LIGHT_SIZE;
     kind = lumo_wire_le32(p);
-    if (kind > LUMO_PKG_LIGHT_AREA)
+    if (kind > LUMO_LIGHT_AREA)
         return LUMO_ERR_UNSUPPORTED;
-    l.kind = (lumo_pkg_light_kind)kind;
+    l.kind = (lumo_light_kind)kind;
     st = rd_q16_3(p + 4, l.pos);
     if (!st) st = rd_q14_3(p + 16, -LUMO_Q14_ONE, l.dir);
     if (!st) st = rd_q16_3(p + 28, l.u);

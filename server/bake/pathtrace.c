@@ -26,7 +26,7 @@ static vec3 light_irradiance(const srv_tracer *t, const srv_light *l, vec3 x, ve
                              srv_trace_stats *st)
 {
     vec3 zero = v3(0, 0, 0);
-    if (l->kind == SRV_LIGHT_DIRECTIONAL) {
+    if (l->kind == LUMO_LIGHT_DIRECTIONAL) {
         vec3 w = v3_scale(l->dir, -1.0f);
         float c = v3_dot(n, w);
         if (c <= 0.0f || !visible(t, x, n, w, INFINITY, st))
@@ -34,7 +34,7 @@ static vec3 light_irradiance(const srv_tracer *t, const srv_light *l, vec3 x, ve
         return v3_scale(l->power, c);
     }
     vec3 lp = l->pos;
-    if (l->kind == SRV_LIGHT_AREA)
+    if (l->kind == LUMO_LIGHT_AREA)
         lp = v3_add(lp, v3_add(v3_scale(l->u, srv_rng_float(r)), v3_scale(l->v, srv_rng_float(r))));
     vec3 to = v3_sub(lp, x);
     float d2 = v3_dot(to, to), d = sqrtf(d2);
@@ -45,13 +45,13 @@ static vec3 light_irradiance(const srv_tracer *t, const srv_light *l, vec3 x, ve
     if (c <= 0.0f)
         return zero;
     float g;   /* intensity-like factor towards x, per unit power */
-    if (l->kind == SRV_LIGHT_AREA) {
+    if (l->kind == LUMO_LIGHT_AREA) {
         float cl = -v3_dot(l->dir, w);
         if (cl <= 0.0f)
             return zero;
         g = cl / (float)M_PI;          /* Le * A * cos_l with Le = P/(pi A) */
     } else {
-        if (l->kind == SRV_LIGHT_SPOT && -v3_dot(w, l->dir) < l->cos_half)
+        if (l->kind == LUMO_LIGHT_SPOT && -v3_dot(w, l->dir) < l->cos_half)
             return zero;
         g = 1.0f / (4.0f * (float)M_PI);
     }

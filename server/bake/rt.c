@@ -52,7 +52,7 @@ static void map_emitters(srv_rt *rt)
         rt->emit_light[i] = -1;
         if (!rt->s->meshes[i].emitter)
             continue;
-        while (next < rt->s->nlights && rt->s->lights[next].kind != SRV_LIGHT_AREA)
+        while (next < rt->s->nlights && rt->s->lights[next].kind != LUMO_LIGHT_AREA)
             next++;
         if (next < rt->s->nlights)
             rt->emit_light[i] = (int)next++;

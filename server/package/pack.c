@@ -15,7 +15,7 @@ static void put_light(srv_buf *b, const srv_light *l)
     srv_buf_vec3(b, l->u);
     srv_buf_vec3(b, l->v);
     srv_buf_f32(b, l->half_angle_deg);
-    srv_buf_f32(b, l->kind == SRV_LIGHT_SPOT ? l->cos_half : -1.0f);
+    srv_buf_f32(b, l->kind == LUMO_LIGHT_SPOT ? l->cos_half : -1.0f);
     srv_buf_vec3(b, l->power);
 }
 

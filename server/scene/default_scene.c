@@ -62,7 +62,7 @@ lumo_status srv_default_scene(srv_scene *s, const char *dragon, char *err, size_
 {
     vec3 gold = v3(0.72f, 0.62f, 0.45f);
     struct stat st;
-    srv_light spot = {.kind = SRV_LIGHT_SPOT, .pos = {0, 1.95f, 0}, .dir = {0, -1, 0},
+    srv_light spot = {.kind = LUMO_LIGHT_SPOT, .pos = {0, 1.95f, 0}, .dir = {0, -1, 0},
                       .half_angle_deg = 60.0f, .cos_half = 0.5f, .power = {40, 40, 40}};
     if (add_room(s) || srv_scene_add_light(s, &spot)) {
         snprintf(err, errlen, "out of memory");

@@ -144,17 +144,17 @@ static lumo_status import_light(srv_scene *s, const struct aiScene *sc, const st
     l.dir = v3_norm(srv_xform_apply(&rot, v3(d.x, d.y, d.z)));
     l.power = v3_scale(col, 4.0f * (float)M_PI);   /* assimp colour as intensity W/sr */
     switch (al->mType) {
-    case aiLightSource_POINT: l.kind = SRV_LIGHT_POINT; break;
+    case aiLightSource_POINT: l.kind = LUMO_LIGHT_POINT; break;
     case aiLightSource_SPOT:
-        l.kind = SRV_LIGHT_SPOT;
+        l.kind = LUMO_LIGHT_SPOT;
         l.half_angle_deg = al->mAngleOuterCone * 180.0f / (float)M_PI;
         l.cos_half = cosf(al->mAngleOuterCone);
         break;
-    case aiLightSource_DIRECTIONAL: l.kind = SRV_LIGHT_DIRECTIONAL; l.power = col; break;
+    case aiLightSource_DIRECTIONAL: l.kind = LUMO_LIGHT_DIRECTIONAL; l.power = col; break;
     default: return LUMO_OK;   /* ambient / area lights of the file format: not imported */
     }
     if (!v3_finite(l.pos) || !v3_finite(l.dir) || !v3_finite(l.power) ||
-        (l.kind != SRV_LIGHT_POINT && v3_len(l.dir) == 0.0f))
+        (l.kind != LUMO_LIGHT_POINT && v3_len(l.dir) == 0.0f))
         return LUMO_OK;   /* a light the file cannot place is skipped, not guessed */
     return srv_scene_add_light(s, &l);
 }

@@ -133,9 +133,9 @@ lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen)
         snprintf(err, errlen, "the scene has no light (add one with --light)");
         return LUMO_ERR_ARG;
     }
-    if (s->nlights > SRV_SCENE_MAX_LIGHTS) {
+    if (s->nlights > LUMO_MAX_LIGHTS) {
         snprintf(err, errlen, "the scene has %zu lights, at most %d are supported", s->nlights,
-                 SRV_SCENE_MAX_LIGHTS);
+                 LUMO_MAX_LIGHTS);
         return LUMO_ERR_LIMIT;
     }
     /* Zero area relative to the scene's size: float cross products of a
@@ -213,18 +213,18 @@ lumo_status srv_light_parse(const char *text, srv_light *out, char *err, size_t 
     int n = split_fields(buf, f, 6);
     int ok = 0;
     if (n == 3 && !strcmp(f[0], "point")) {
-        l.kind = SRV_LIGHT_POINT;
+        l.kind = LUMO_LIGHT_POINT;
         ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.power);
     } else if (n == 5 && !strcmp(f[0], "spot")) {
-        l.kind = SRV_LIGHT_SPOT;
+        l.kind = LUMO_LIGHT_SPOT;
         ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.dir) &&
              !srv_parse_floats(f[3], &ha, 1) && !parse_vec(f[4], &l.power) &&
              ha > 0.0f && ha <= 180.0f && v3_len(l.dir) > 0.0f;
     } else if (n == 3 && !strcmp(f[0], "directional")) {
-        l.kind = SRV_LIGHT_DIRECTIONAL;
+        l.kind = LUMO_LIGHT_DIRECTIONAL;
         ok = !parse_vec(f[1], &l.dir) && !parse_vec(f[2], &l.power) && v3_len(l.dir) > 0.0f;
     } else if (n == 5 && !strcmp(f[0], "area")) {
-        l.kind = SRV_LIGHT_AREA;
+        l.kind = LUMO_LIGHT_AREA;
         ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.u) && !parse_vec(f[3], &l.v) &&
              !parse_vec(f[4], &l.power) && v3_len(v3_cross(l.u, l.v)) > 0.0f;
     }
@@ -232,7 +232,7 @@ lumo_status srv_light_parse(const char *text, srv_light *out, char *err, size_t 
         snprintf(err, errlen, "bad light '%s' (see docs/scene-format.md)", text);
         return LUMO_ERR_ARG;
     }
-    l.dir = v3_norm(l.kind == SRV_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
+    l.dir = v3_norm(l.kind == LUMO_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
     l.half_angle_deg = ha;
     l.cos_half = cosf(ha * (float)M_PI / 180.0f);
     *out = l;

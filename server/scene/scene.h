@@ -13,20 +13,16 @@
 #include <stdint.h>
 #include "scene/camera.h"
 #include "common/vec3.h"
+#include "lumo/config.h"
+#include "lumo/scene.h"
 #include "lumo/status.h"
 
-/* The package holds at most this many lights (LUMO_PKG_MAX_LIGHTS). */
-#define SRV_SCENE_MAX_LIGHTS 64
-
-typedef enum srv_light_kind {
-    SRV_LIGHT_POINT = 0, SRV_LIGHT_SPOT = 1, SRV_LIGHT_DIRECTIONAL = 2, SRV_LIGHT_AREA = 3
-} srv_light_kind;
 
 /* One light. power: W per channel (point, spot, area) or irradiance in W/m^2
  * (directional). dir: unit spot axis / direction of travel. For an area
  * light pos is a corner and u, v its edges (emits towards u x v). */
 typedef struct srv_light {
-    srv_light_kind kind;
+    lumo_light_kind kind;
     vec3  pos, dir, u, v;
     float half_angle_deg;   /* spot only */
     float cos_half;         /* spot only: cos(half_angle) */
@@ -73,7 +69,7 @@ size_t srv_scene_triangle_count(const srv_scene *s);
 /* Check the scene is bakeable: geometry present, a light present, every
  * coordinate finite, every index in range, no zero-area face. On failure
  * writes a one-line reason into err and returns LUMO_ERR_ARG (no geometry,
- * no light), LUMO_ERR_LIMIT (more than SRV_SCENE_MAX_LIGHTS lights),
+ * no light), LUMO_ERR_LIMIT (more than LUMO_MAX_LIGHTS lights),
  * LUMO_ERR_NONFINITE (a vertex), LUMO_ERR_RANGE (a face index, a negative
  * or non-finite light value) or LUMO_ERR_CORRUPT (a zero-area face). */
 lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen);

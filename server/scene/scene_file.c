@@ -115,7 +115,7 @@ static lumo_status st_other(parser *p)
         srv_light l;
         if (srv_light_parse(p->w[1], &l, p->err, sizeof p->err))
             return LUMO_ERR_CORRUPT;
-        return l.kind == SRV_LIGHT_AREA ? srv_add_area_light(p->s, &l) : srv_scene_add_light(p->s, &l);
+        return l.kind == LUMO_LIGHT_AREA ? srv_add_area_light(p->s, &l) : srv_scene_add_light(p->s, &l);
     }
     if (!strcmp(k, "albedo") && p->n == 2 && !vec_arg(p->w[1], &a)) {
         srv_scene_override_albedo(p->s, a);

@@ -106,7 +106,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(lights, 0, sizeof lights);
     for (i = 0; i < 2; i++) {
         int k;
-        lights[i].kind = (lumo_raster_light_kind)(take(&r, 1) % 3);
+        lights[i].kind = (lumo_light_kind)(take(&r, 1) % 3);
         for (k = 0; k < 3; k++) {
             lights[i].pos[k] = coord(&r);
             lights[i].dir[k] = (lumo_q1_14)take(&r, 2);

@@ -73,7 +73,7 @@ static inline void info_chunk(chunk *c)
     put32(o, 1), put32(o, 1), put32(o, 1), put32(o, 0);
     put3(o, -1, 0, -1), put3(o, 1, 2, 1);
     put3(o, 0, 1, 3.5f), put3(o, 0, 1, 0), put3(o, 0, 1, 0), putf(o, 40);
-    put32(o, LUMO_PKG_LIGHT_SPOT);
+    put32(o, LUMO_LIGHT_SPOT);
     put3(o, 0, 1.95f, 0), put3(o, 0, -1, 0), put3(o, 0, 0, 0), put3(o, 0, 0, 0);
     putf(o, 60), putf(o, 0.5f), put3(o, 40, 20, 10);
 }

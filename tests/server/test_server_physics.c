@@ -26,7 +26,7 @@ static void sphere_case(double rho, double power)
     srv_scene_init(&f.scene);
     vec3 a = v3((float)rho, (float)rho, (float)rho);
     assert_int_equal(srv_add_sphere(&f.scene, "room", v3(0, 0, 0), 1.0f, 96, a, 1), 0);
-    srv_light l = {.kind = SRV_LIGHT_POINT, .power = v3((float)power, (float)power, (float)power)};
+    srv_light l = {.kind = LUMO_LIGHT_POINT, .power = v3((float)power, (float)power, (float)power)};
     assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
     /* 3^3 vertices over [-0.5, 0.5]^3: all inside the sphere (corners at 0.87 R). */
     srv_grid g = fixture_grid(v3(-0.5f, -0.5f, -0.5f), v3(0.5f, 0.5f, 0.5f), 3);
@@ -64,7 +64,7 @@ static void test_sphere_tangential(void **state)
     memset(&f, 0, sizeof f);
     srv_scene_init(&f.scene);
     assert_int_equal(srv_add_sphere(&f.scene, "room", v3(0, 0, 0), 1.0f, 96, v3(0.5f, 0.5f, 0.5f), 1), 0);
-    srv_light l = {.kind = SRV_LIGHT_POINT, .power = v3(10, 10, 10)};
+    srv_light l = {.kind = LUMO_LIGHT_POINT, .power = v3(10, 10, 10)};
     assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
     srv_grid g = fixture_grid(v3(-0.5f, -0.5f, -0.5f), v3(0.5f, 0.5f, 0.5f), 3);
     fixture_bake(&f, &g, 1024, 3, 2);
@@ -119,7 +119,7 @@ static void test_lit_floor(void **state)
     vec3 a = v3(FLOOR_RHO, FLOOR_RHO, FLOOR_RHO);
     assert_int_equal(srv_add_quad(&f.scene, "floor", v3(-FLOOR_HALF, 0, -FLOOR_HALF), v3(0, 0, 2 * FLOOR_HALF),
                                   v3(2 * FLOOR_HALF, 0, 0), a), 0);
-    srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, LIGHT_H, 0},
+    srv_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, LIGHT_H, 0},
                    .power = v3(FLOOR_PHI, FLOOR_PHI, FLOOR_PHI)};
     assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
     srv_grid g = fixture_grid(v3(-0.8f, 0.2f, -0.8f), v3(0.8f, 0.8f, 0.8f), 3);

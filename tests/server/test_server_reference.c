@@ -68,7 +68,7 @@ static void test_point_light(void **state)
     (void)state;
     srv_scene s;
     floor_scene(&s);
-    srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, 1.5f, 0}, .power = {20, 20, 20}};
+    srv_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, 1.5f, 0}, .power = {20, 20, 20}};
     srv_scene_add_light(&s, &l);
     stat st = render_floor(&s, 0.0f, 4, 0);
     assert_close(st.mean, RHO / M_PI * 20.0 / (4 * M_PI) / (1.5 * 1.5), FOOTPRINT * st.mean);

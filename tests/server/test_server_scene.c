@@ -57,7 +57,7 @@ static void test_solid_vertices(void **state)
     vec3 w = v3(0.7f, 0.7f, 0.7f);
     assert_int_equal(srv_add_box(&f.scene, "room", v3(-1, -1, -1), v3(1, 1, 1), w, 1), 0);
     assert_int_equal(srv_add_box(&f.scene, "cube", v3(-0.45f, -0.45f, -0.45f), v3(0.45f, 0.45f, 0.45f), w, 0), 0);
-    srv_light l = {.kind = SRV_LIGHT_POINT, .pos = {0, 0.8f, 0}, .power = v3(10, 10, 10)};
+    srv_light l = {.kind = LUMO_LIGHT_POINT, .pos = {0, 0.8f, 0}, .power = v3(10, 10, 10)};
     assert_int_equal(srv_scene_add_light(&f.scene, &l), 0);
     int dims[3] = {9, 9, 9};   /* spacing 0.25: 3^3 vertices inside the cube */
     srv_grid g = srv_grid_over(&f.scene, dims);
@@ -212,7 +212,7 @@ static void test_package_round_trip(void **state)
     assert_int_equal(in.triangle_count, srv_scene_triangle_count(&f.scene));
     assert_int_equal(in.bmax[1], 2 * 65536);
     assert_int_equal(lumo_package_light(&pkg, 0, &l), LUMO_OK);
-    assert_int_equal(l.kind, LUMO_PKG_LIGHT_SPOT);
+    assert_int_equal(l.kind, LUMO_LIGHT_SPOT);
     assert_int_equal(l.dir[1], -16384);
     assert_int_equal(l.cos_half, 8192);
     assert_int_equal(l.power[0], 40u * 65536u);
@@ -252,7 +252,7 @@ static void test_validate_errors(void **state)
     (void)state;
     srv_scene s;
     char err[256];
-    srv_light l = {.kind = SRV_LIGHT_POINT, .power = {1, 1, 1}};
+    srv_light l = {.kind = LUMO_LIGHT_POINT, .power = {1, 1, 1}};
     srv_scene_init(&s);
     assert_int_equal(srv_scene_validate(&s, err, sizeof err), LUMO_ERR_ARG);
     assert_non_null(strstr(err, "no geometry"));
@@ -277,7 +277,7 @@ static void test_parsers(void **state)
     srv_camera c;
     char err[256];
     assert_int_equal(srv_light_parse("spot:0,2,0:0,-2,0:30:5,6,7", &l, err, sizeof err), 0);
-    assert_int_equal(l.kind, SRV_LIGHT_SPOT);
+    assert_int_equal(l.kind, LUMO_LIGHT_SPOT);
     assert_close(l.dir.y, -1.0, 1e-6);
     assert_close(l.cos_half, cos(M_PI / 6), 1e-6);
     assert_close(l.power.z, 7.0, 0.0);
@@ -323,7 +323,7 @@ static void test_import_models(void **state)
     assert_close(s.meshes[0].albedo[0].y, 0.4, 1e-6);
     assert_close(s.meshes[0].albedo[2].z, 0.6, 1e-6);
     assert_int_equal(s.nlights, 1);
-    assert_int_equal(s.lights[0].kind, SRV_LIGHT_POINT);
+    assert_int_equal(s.lights[0].kind, LUMO_LIGHT_POINT);
     assert_close(s.lights[0].power.x, 8 * M_PI, 1e-4);
     assert_close(s.lights[0].pos.y, 1.0, 1e-6);
     assert_close(s.lights[0].pos.x, 0.3, 1e-6);

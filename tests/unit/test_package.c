@@ -37,7 +37,7 @@ static void test_open_and_read(void **state)
     assert_int_equal(in.eye[2], 7 * 32768);
     assert_int_equal(in.fovy_deg, 40 * 65536);
     assert_int_equal(lumo_package_light(&pkg, 0, &l), LUMO_OK);
-    assert_int_equal(l.kind, LUMO_PKG_LIGHT_SPOT);
+    assert_int_equal(l.kind, LUMO_LIGHT_SPOT);
     assert_int_equal(l.dir[1], -16384);
     assert_int_equal(l.cos_half, 8192);
     assert_int_equal(l.power[1], 20u * 65536u);

@@ -80,7 +80,7 @@ static void test_raw_package(void **state)
     assert_memory_equal(v.triangles, tris, sizeof tris);
     assert_non_null(lumo_session_lights(&g_s, &nl));
     assert_int_equal(nl, 1);
-    assert_int_equal(lumo_session_lights(&g_s, &nl)[0].kind, LUMO_PKG_LIGHT_SPOT);
+    assert_int_equal(lumo_session_lights(&g_s, &nl)[0].kind, LUMO_LIGHT_SPOT);
     assert_non_null(lumo_session_ivg(&g_s));
     assert_int_equal(lumo_session_update(&g_s), 0);   /* no bundle: nothing to fill */
     assert_int_equal(lumo_session_mesh(&g_s, 1, &v), LUMO_ERR_RANGE);

@@ -223,7 +223,7 @@ static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t 
         srv_light l;
         st = srv_light_parse(o->lights[i], &l, err, errlen);
         if (!st)
-            st = l.kind == SRV_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l);
+            st = l.kind == LUMO_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l);
     }
     if (st)
         return st;

@@ -53,7 +53,7 @@ static int print_scene(const lumo_package *pkg)
                k_kinds[l.kind], q16(l.pos[0]), q16(l.pos[1]), q16(l.pos[2]), l.dir[0] / 16384.0,
                l.dir[1] / 16384.0, l.dir[2] / 16384.0, q16((int32_t)l.power[0]), q16((int32_t)l.power[1]),
                q16((int32_t)l.power[2]));
-        if (l.kind == LUMO_PKG_LIGHT_SPOT)
+        if (l.kind == LUMO_LIGHT_SPOT)
             printf(" half-angle %.2f deg", q16(l.half_angle_deg));
         putchar('\n');
     }

@@ -32,9 +32,9 @@ static void convert_light(const lumo_pkg_light *p, lumo_raster_light *l)
     }
     l->cos_cutoff = p->cos_half;
     switch (p->kind) {
-    case LUMO_PKG_LIGHT_POINT: l->kind = LUMO_LIGHT_POINT; break;
-    case LUMO_PKG_LIGHT_SPOT: l->kind = LUMO_LIGHT_SPOT; break;
-    case LUMO_PKG_LIGHT_DIRECTIONAL: l->kind = LUMO_LIGHT_DIRECTIONAL; break;
+    case LUMO_LIGHT_POINT: l->kind = LUMO_LIGHT_POINT; break;
+    case LUMO_LIGHT_SPOT: l->kind = LUMO_LIGHT_SPOT; break;
+    case LUMO_LIGHT_DIRECTIONAL: l->kind = LUMO_LIGHT_DIRECTIONAL; break;
     default:
         l->kind = LUMO_LIGHT_SPOT;
         l->cos_cutoff = 0;

@@ -35,6 +35,7 @@
 #include <stdint.h>
 #include "lumo/config.h"
 #include "lumo/fixed.h"
+#include "lumo/scene.h"
 #include "lumo/status.h"
 
 /* Limits (lumo/config.h): frames up to LUMO_MAX_FRAME_DIM pixels per axis
@@ -53,14 +54,9 @@ typedef struct lumo_raster_camera {
 
 /* ---- lights ------------------------------------------------------------- */
 
-typedef enum lumo_raster_light_kind {
-    LUMO_LIGHT_POINT = 0,
-    LUMO_LIGHT_SPOT,
-    LUMO_LIGHT_DIRECTIONAL
-} lumo_raster_light_kind;
 
 typedef struct lumo_raster_light {
-    lumo_raster_light_kind kind;
+    lumo_light_kind kind;
     lumo_q16_16  pos[3];       /* point, spot: position */
     lumo_q1_14   dir[3];       /* spot: cone axis; directional: the direction
                                 * the light travels. Unit length. */

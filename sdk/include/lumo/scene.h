@@ -18,18 +18,19 @@
 #include "lumo/ivg.h"
 #include "lumo/status.h"
 
-/* Light kinds, as in docs/scene-format.md. */
-typedef enum lumo_pkg_light_kind {
-    LUMO_PKG_LIGHT_POINT = 0, LUMO_PKG_LIGHT_SPOT = 1,
-    LUMO_PKG_LIGHT_DIRECTIONAL = 2, LUMO_PKG_LIGHT_AREA = 3
-} lumo_pkg_light_kind;
+/* Light kinds, as in docs/scene-format.md: the one enum of every layer (the
+ * server's scene model, the package, the session, the rasterizer). */
+typedef enum lumo_light_kind {
+    LUMO_LIGHT_POINT = 0, LUMO_LIGHT_SPOT = 1,
+    LUMO_LIGHT_DIRECTIONAL = 2, LUMO_LIGHT_AREA = 3
+} lumo_light_kind;
 
 /* One light in fixed point. power: W per channel (point/spot/area) or
  * irradiance W/m^2 (directional), UQ16.16. pos, u, v in metres (Q16.16);
  * dir unit (Q1.14): spot axis, direction of travel, or area normal u x v.
  * cos_half: cosine of the spot's half angle (Q1.14). */
 typedef struct lumo_pkg_light {
-    lumo_pkg_light_kind kind;
+    lumo_light_kind kind;
     lumo_q16_16  pos[3], u[3], v[3];
     lumo_q1_14   dir[3];
     lumo_q1_14   cos_half;
