@@ -26,13 +26,9 @@ lumo_status srv_pm_client_open(srv_pm_client *c, const uint8_t *stream, size_t l
 
 lumo_status srv_pm_client_next(const srv_pm_client *c, const uint8_t **rec, size_t *bytes)
 {
-    lumo_status st = lumo_pmesh_record_size(c->stream + c->at, c->len - c->at, bytes);
-    if (st)
-        return st;
-    if (*bytes > c->len - c->at)
-        return LUMO_ERR_TRUNCATED;
-    *rec = c->stream + c->at;
-    return LUMO_OK;
+    size_t at = c->at;
+    lumo_status st = lumo_pmesh_next_record(c->stream, c->len, &at, rec, bytes);
+    return st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st;   /* past the end: a stream cut short */
 }
 
 lumo_status srv_pm_client_step(srv_pm_client *c)
@@ -48,8 +44,12 @@ lumo_status srv_pm_client_step(srv_pm_client *c)
 lumo_status srv_pm_client_until(srv_pm_client *c, uint32_t vertices)
 {
     lumo_status st = LUMO_OK;
-    while (!st && c->pm.vertex_count < vertices && !lumo_pmesh_complete(&c->pm))
+    lumo_pmesh_view v;
+    lumo_pmesh_get_view(&c->pm, &v);
+    while (!st && v.vertex_count < vertices && !lumo_pmesh_complete(&c->pm)) {
         st = srv_pm_client_step(c);
+        lumo_pmesh_get_view(&c->pm, &v);
+    }
     return st;
 }
 

@@ -316,7 +316,7 @@ static void check_client(const srv_pm *pm, const uint8_t *s, size_t len, double 
     int ok = !st;
     while (ok && !lumo_pmesh_complete(&cl->pm)) {
         if ((st = srv_pm_client_step(cl))) {
-            snprintf(why, sizeof why, "batch %u: %s", cl->pm.batches_applied, lumo_strerror(st));
+            snprintf(why, sizeof why, "batch %u: %s", lumo_pmesh_batches(&cl->pm), lumo_strerror(st));
             ok = 0;
             break;
         }
@@ -383,7 +383,7 @@ static int reject(srv_pm_client *cl, const uint8_t *r, size_t n, const snapshot 
     *errs += st != LUMO_OK;
     int ok = st != LUMO_OK && same_as(&cl->pm, s);
     if (!ok)
-        fprintf(stderr, "batch %u, %s at %zu: %s, mesh %s\n", cl->pm.batches_applied, what, at,
+        fprintf(stderr, "batch %u, %s at %zu: %s, mesh %s\n", lumo_pmesh_batches(&cl->pm), what, at,
                 st ? lumo_strerror(st) : "accepted", same_as(&cl->pm, s) ? "unchanged" : "CHANGED");
     return ok;
 }

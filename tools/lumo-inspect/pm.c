@@ -1,7 +1,10 @@
 /* tools/lumo-inspect/pm.c — lumo-inspect subcommands for the progressive-mesh stream
  * (docs/progressive-mesh.md), decoded by the real client (lumo/pmesh.h):
  *
- *   lumo-inspect --stream FILE           the header and every batch record
+ *   lumo-inspect --stream FILE           the header and every batch record: its
+ *                                        index, first vertex, vertices added, faces
+ *                                        after it, head / side / Draco / record bytes
+ *                                        and offset in the stream
  *   lumo-inspect --lod N --ply OUT FILE  the level with N vertices (N = all)
  *   --mesh I                             the I-th mesh's stream (default 0)
  *
@@ -61,25 +64,31 @@ static int run_stream(int argc, char **argv)
            "vertices; positions %u bits; stream %zu bytes (%.2f bits/triangle); client arena %zu bytes\n",
            h->vertices, h->faces, h->base_vertices, h->base_faces, h->batch_count, h->batch_vertices,
            h->quant_bits, c.len, h->faces ? 8.0 * c.len / h->faces : 0.0, c.arena_bytes);
-    printf("%6s %9s %8s %8s %8s %8s %8s %9s %10s\n", "batch", "first", "verts", "faces", "moves",
+    printf("%6s %9s %8s %8s %6s %8s %8s %9s %10s\n", "batch", "first", "verts", "faces", "head B",
            "side B", "draco B", "record B", "offset");
     int rc = 0;
     while (!lumo_pmesh_complete(&c.pm)) {
         const uint8_t *r;
-        size_t n;
+        size_t n, at = c.at;
+        lumo_pmesh_record_head rh;
+        lumo_pmesh_view before, after;
         lumo_status st = srv_pm_client_next(&c, &r, &n);
-        if (!st) {
-            uint32_t f[8];
-            for (int i = 0; i < 8; i++)
-                f[i] = r[4 * i] | r[4 * i + 1] << 8 | r[4 * i + 2] << 16 | (uint32_t)r[4 * i + 3] << 24;
-            printf("%6u %9u %8u %8u %8u %8u %8u %9zu %10zu\n", f[1], f[2], f[3], f[4], f[5], f[6], f[7], n, c.at);
+        /* The head as the SDK reads it (docs/progressive-mesh.md §2.2); the
+         * counts from the level before and after the batch. */
+        if (!st)
+            st = lumo_pmesh_read_record_head(r, n, &rh);
+        lumo_pmesh_get_view(&c.pm, &before);
+        if (!st)
             st = srv_pm_client_step(&c);
-        }
         if (st) {
-            fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", c.pm.batches_applied, lumo_strerror(st));
+            fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", lumo_pmesh_batches(&c.pm), lumo_strerror(st));
             rc = 1;
             break;
         }
+        lumo_pmesh_get_view(&c.pm, &after);
+        printf("%6u %9u %8u %8u %6u %8u %8u %9zu %10zu\n", rh.index, before.vertex_count,
+               after.vertex_count - before.vertex_count, after.face_count, rh.head_bytes, rh.side_bytes,
+               rh.draco_bytes, n, at);
     }
     srv_pm_client_close(&c);
     free(file);
@@ -140,7 +149,7 @@ static int run_lod(int argc, char **argv)
     if (!st)
         st = lumo_pmesh_rewind(&c.pm, (uint32_t)n);
     if (st) {
-        fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", c.pm.batches_applied, lumo_strerror(st));
+        fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", lumo_pmesh_batches(&c.pm), lumo_strerror(st));
         goto done;
     }
     lumo_pmesh_view v;

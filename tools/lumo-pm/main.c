@@ -149,7 +149,9 @@ static int cmd_apply(int argc, char **argv)
     lumo_status st = srv_pm_client_open(&c, d, len);
     while (!st && done < records && !lumo_pmesh_complete(&c.pm))
         st = srv_pm_client_step(&c), done++;
-    printf("%lu records, %u vertices, %u faces: %s\n", done, c.pm.vertex_count, c.pm.face_count,
+    lumo_pmesh_view v;
+    lumo_pmesh_get_view(&c.pm, &v);
+    printf("%lu records, %u vertices, %u faces: %s\n", done, v.vertex_count, v.face_count,
            lumo_strerror(st));
     srv_pm_client_close(&c);
     free(d);
