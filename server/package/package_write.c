@@ -31,13 +31,15 @@ void srv_buf_put(srv_buf *b, const void *data, size_t n)
 
 void srv_buf_u16(srv_buf *b, uint32_t v)
 {
-    uint8_t x[2] = {(uint8_t)v, (uint8_t)(v >> 8)};
+    uint8_t x[2];
+    lumo_wire_put_le16(x, (uint16_t)v);
     srv_buf_put(b, x, 2);
 }
 
 void srv_buf_u32(srv_buf *b, uint32_t v)
 {
-    uint8_t x[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
+    uint8_t x[4];
+    lumo_wire_put_le32(x, v);
     srv_buf_put(b, x, 4);
 }
 

@@ -29,16 +29,17 @@
 /* ---- bytes (srv_buf, package_write.h) and bits ----------------------------- */
 typedef struct { srv_buf b; size_t nbits; } bitwriter;
 
+/* Grow the buffer by the zero bytes the field reaches into, then write it
+ * with the wire layer's bit writer (lumo/wire.h: the reader's inverse). */
 static void put_bits(bitwriter *w, uint32_t v, unsigned n)
 {
-    for (unsigned i = 0; i < n; i++, w->nbits++) {
-        if ((w->nbits & 7) == 0) {
-            uint8_t z = 0;
-            srv_buf_put(&w->b, &z, 1);
-        }
-        if (!w->b.failed)
-            w->b.p[w->nbits >> 3] |= (uint8_t)((v >> i & 1u) << (w->nbits & 7));
-    }
+    static const uint8_t zero[5];
+    size_t bytes = (w->nbits + n + 7) >> 3;
+    if (bytes > w->b.len)
+        srv_buf_put(&w->b, zero, bytes - w->b.len);
+    if (!w->b.failed)
+        lumo_wire_put_bits(w->b.p, w->nbits, v, n);
+    w->nbits += n;
 }
 
 /* tb(c) (docs/progressive-mesh.md §2.3): v in [0, c) in truncated binary.
@@ -510,17 +511,6 @@ static lumo_status encode_payload(const replay *r, uint32_t first, uint32_t coun
     return srv_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
 }
 
-/* LEB128, minimal (mirrors read_varint() in pmesh.c): 7 bits per byte,
- * low group first, high bit = more follows. */
-static size_t put_varint(uint8_t *d, uint32_t v)
-{
-    size_t n = 0;
-    for (; v >= 0x80u; v >>= 7)
-        d[n++] = (uint8_t)(v | 0x80u);
-    d[n++] = (uint8_t)v;
-    return n;
-}
-
 /* The record: index, side bytes and Draco bytes as varints, the CRC-32 of
  * those varints followed by the block and the payload, then the two. */
 static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t count,
@@ -532,9 +522,9 @@ static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, ui
     lumo_status st = encode_payload(r, first, count, o, q, &drc, &drc_len);
     if (st)
         return st;
-    size_t hn = put_varint(head, index);
-    hn += put_varint(head + hn, (uint32_t)w->b.len);
-    hn += put_varint(head + hn, (uint32_t)drc_len);
+    size_t hn = lumo_wire_put_varint(head, index);
+    hn += lumo_wire_put_varint(head + hn, (uint32_t)w->b.len);
+    hn += lumo_wire_put_varint(head + hn, (uint32_t)drc_len);
     uint32_t crc = lumo_wire_crc32(0, head, hn);
     crc = lumo_wire_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
     crc = lumo_wire_crc32(crc, drc, drc_len);
