@@ -1,0 +1,169 @@
+/*
+ * lumo/net.h — the stream protocol's codec (docs/protocol.md): frames and
+ * the payload of every message type, encoded and decoded on both sides.
+ *
+ * Client rules (docs/architecture.md): C99, no heap, no float. Encoders
+ * write into the caller's buffer and say how many bytes they wrote (NOMEM
+ * when it is too small, nothing written); decoders read the caller's bytes,
+ * check every length against the limits of docs/protocol.md §5, and write
+ * their outputs only on success. Decoded messages point into the caller's
+ * buffer (never copied), which must outlive them.
+ */
+#ifndef LUMO_NET_H
+#define LUMO_NET_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/config.h"
+#include "lumo/status.h"
+
+#define LUMO_NET_VERSION      1u
+#define LUMO_NET_MAGIC0       0x4Cu   /* 'L' */
+#define LUMO_NET_MAGIC1       0x53u   /* 'S' */
+#define LUMO_NET_HEADER       8u      /* magic, version, type, length */
+#define LUMO_NET_TRAILER      4u      /* CRC-32 */
+#define LUMO_NET_OVERHEAD     (LUMO_NET_HEADER + LUMO_NET_TRAILER)
+#define LUMO_NET_MAX_PAYLOAD  (16u << 20)
+#define LUMO_NET_MIN_PAYLOAD  4096u   /* the smallest max payload a client may state */
+#define LUMO_NET_MAX_TEXT     256u    /* ERROR text bytes */
+#define LUMO_NET_MAX_WELCOME_MSGS (1u + 2u * LUMO_MAX_MESHES + 3u)
+
+typedef enum lumo_net_type {
+    LUMO_NET_HELLO = 1, LUMO_NET_WELCOME = 2, LUMO_NET_REQUEST = 3, LUMO_NET_DATA = 4,
+    LUMO_NET_END = 5, LUMO_NET_ERROR = 6, LUMO_NET_BYE = 7
+} lumo_net_type;
+
+typedef enum lumo_net_channel { LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1 } lumo_net_channel;
+
+#define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */
+#define LUMO_NET_FLAG_SMOOTHING 1u
+
+/* ---- frames ------------------------------------------------------------------ */
+
+typedef struct lumo_net_frame {
+    uint8_t        type;
+    uint32_t       len;        /* payload bytes */
+    const uint8_t *payload;    /* into the caller's buffer */
+} lumo_net_frame;
+
+/* Decode the frame at buf[0..avail): checks of docs/protocol.md §1 in
+ * order (max_payload: the receiver's limit, at most LUMO_NET_MAX_PAYLOAD).
+ * On success *consumed = its size. TRUNCATED when more bytes are needed:
+ * *consumed is then the frame's full size when the header is known (so the
+ * caller can tell how much to wait for), else LUMO_NET_HEADER. Unknown types
+ * are UNSUPPORTED (after the CRC check). */
+lumo_status lumo_net_frame_decode(const uint8_t *buf, size_t avail, uint32_t max_payload,
+                                  lumo_net_frame *out, size_t *consumed);
+
+/* Write header and CRC around a payload the caller has already written at
+ * frame + LUMO_NET_HEADER (len bytes): zero-copy framing. frame must hold
+ * len + LUMO_NET_OVERHEAD bytes. */
+void lumo_net_frame_seal(uint8_t *frame, uint8_t type, uint32_t len);
+
+/* Header of a frame whose payload the caller sends from elsewhere (a package
+ * mapping): writes the 8 header bytes and returns the CRC state to continue
+ * over the payload with lumo_wire_crc32; the final CRC goes after it. */
+uint32_t lumo_net_frame_head(uint8_t head[LUMO_NET_HEADER], uint8_t type, uint32_t len);
+
+/* Serial resynchronisation: the offset of the first possible frame start
+ * (magic) in buf[from..avail), or avail when there is none (a lone 0x4C at
+ * the end is kept: avail - 1). */
+size_t lumo_net_resync(const uint8_t *buf, size_t avail, size_t from);
+
+/* ---- messages ------------------------------------------------------------------ */
+
+typedef struct lumo_net_hello {
+    uint32_t package;
+    uint32_t arena_bytes;
+    uint32_t max_payload;
+    uint16_t width, height;
+    uint8_t  ivg_form;         /* LUMO_IVG_FORM_* or LUMO_NET_FORM_NONE */
+    uint8_t  flags;            /* LUMO_NET_FLAG_SMOOTHING */
+    uint32_t resume_id;        /* 0: fresh */
+    uint32_t mesh_count;       /* cursors that follow, <= LUMO_MAX_MESHES */
+    const uint8_t *cursors;    /* mesh_count u32 (decode: into the frame) */
+} lumo_net_hello;
+
+/* One descriptor of a WELCOME (a session message, docs/client-session.md). */
+typedef struct lumo_net_msg {
+    uint32_t type, index, len;
+    const uint8_t *data;
+} lumo_net_msg;
+
+typedef struct lumo_net_welcome {
+    uint32_t package_id;
+    uint32_t arena_need;
+    uint32_t count;            /* messages */
+    const uint8_t *msgs;       /* decode: the packed messages, walk with lumo_net_welcome_next */
+    size_t msgs_len;
+} lumo_net_welcome;
+
+typedef struct lumo_net_request {
+    uint8_t  channel;          /* lumo_net_channel */
+    uint32_t mesh;
+    uint32_t cursor;
+    uint32_t amount;
+} lumo_net_request;
+
+typedef struct lumo_net_data {
+    uint8_t  channel;
+    uint8_t  form;             /* lighting: the records' IVG form */
+    uint32_t mesh;
+    uint32_t first, count, records;
+    const uint8_t *bytes;      /* decode: into the frame */
+    uint32_t len;
+} lumo_net_data;
+#define LUMO_NET_DATA_HEAD 20u
+
+typedef struct lumo_net_end {
+    uint8_t  channel;
+    uint32_t mesh;
+} lumo_net_end;
+
+typedef struct lumo_net_error {
+    uint32_t status;           /* a lumo_status */
+    uint32_t len;
+    const uint8_t *text;       /* not NUL-terminated */
+} lumo_net_error;
+
+/* Each encoder writes a whole frame (header, payload, CRC) at out[0..cap)
+ * and sets *written; NOMEM when cap is too small; ARG for values outside the
+ * protocol (e.g. mesh_count > LUMO_MAX_MESHES, text longer than
+ * LUMO_NET_MAX_TEXT). Each decoder takes a frame decoded by
+ * lumo_net_frame_decode of its type (STATE for another type) and checks its
+ * payload's exact layout (CORRUPT / TRUNCATED / LIMIT). */
+lumo_status lumo_net_hello_encode(const lumo_net_hello *m, const uint32_t *cursors, uint8_t *out,
+                                  size_t cap, size_t *written);
+lumo_status lumo_net_hello_decode(const lumo_net_frame *f, lumo_net_hello *m);
+/* Cursor i of a decoded HELLO. */
+uint32_t lumo_net_hello_cursor(const lumo_net_hello *m, uint32_t i);
+
+/* WELCOME: encoded from a list of messages. */
+lumo_status lumo_net_welcome_encode(uint32_t package_id, uint32_t arena_need, const lumo_net_msg *msgs,
+                                    uint32_t count, uint8_t *out, size_t cap, size_t *written);
+lumo_status lumo_net_welcome_decode(const lumo_net_frame *f, lumo_net_welcome *m);
+/* The next message of a decoded WELCOME: *at starts at 0; RANGE after the
+ * last. (decode has checked the whole list already.) */
+lumo_status lumo_net_welcome_next(const lumo_net_welcome *m, size_t *at, lumo_net_msg *out);
+
+lumo_status lumo_net_request_encode(const lumo_net_request *m, uint8_t *out, size_t cap, size_t *written);
+lumo_status lumo_net_request_decode(const lumo_net_frame *f, lumo_net_request *m);
+
+/* DATA: the 20-byte head into out[LUMO_NET_HEADER..], then the bytes; or
+ * only the head, for a sender that sends the bytes from a mapping
+ * (lumo_net_data_head: writes LUMO_NET_HEADER + LUMO_NET_DATA_HEAD bytes
+ * and returns the CRC state to continue over the bytes). */
+lumo_status lumo_net_data_encode(const lumo_net_data *m, uint8_t *out, size_t cap, size_t *written);
+uint32_t lumo_net_data_head(const lumo_net_data *m, uint8_t out[LUMO_NET_HEADER + LUMO_NET_DATA_HEAD]);
+lumo_status lumo_net_data_decode(const lumo_net_frame *f, lumo_net_data *m);
+
+lumo_status lumo_net_end_encode(const lumo_net_end *m, uint8_t *out, size_t cap, size_t *written);
+lumo_status lumo_net_end_decode(const lumo_net_frame *f, lumo_net_end *m);
+
+lumo_status lumo_net_error_encode(uint32_t status, const char *text, uint8_t *out, size_t cap,
+                                  size_t *written);
+lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m);
+
+lumo_status lumo_net_bye_encode(uint8_t *out, size_t cap, size_t *written);
+
+#endif /* LUMO_NET_H */
