@@ -380,3 +380,13 @@ lumo_status lumo_session_mesh_progress(const lumo_session *s, uint32_t index, lu
     out->batches = out->progressive ? lumo_pmesh_batches(&slot->pm) : 0;
     return LUMO_OK;
 }
+
+lumo_status lumo_session_stream_header(const lumo_session *s, uint32_t index, lumo_pmesh_header *out)
+{
+    if (!s || !out)
+        return LUMO_ERR_ARG;
+    if (index >= LUMO_MAX_MESHES || s->mesh[index].kind != SLOT_PM)
+        return LUMO_ERR_RANGE;
+    *out = s->mesh[index].pm.h;
+    return LUMO_OK;
+}

@@ -156,4 +156,8 @@ typedef struct lumo_session_progress {
 } lumo_session_progress;
 lumo_status lumo_session_mesh_progress(const lumo_session *s, uint32_t index, lumo_session_progress *out);
 
+/* The stream header of progressive mesh `index` (batch sizes and counts, for
+ * a client that sizes its requests); RANGE when no such stream arrived. */
+lumo_status lumo_session_stream_header(const lumo_session *s, uint32_t index, lumo_pmesh_header *out);
+
 #endif /* LUMO_SESSION_H */
