@@ -113,7 +113,10 @@ typedef struct lumo_net_data {
     const uint8_t *bytes;      /* decode: into the frame */
     uint32_t len;
 } lumo_net_data;
-#define LUMO_NET_DATA_HEAD 20u
+#define LUMO_NET_DATA_HEAD 24u
+/* The last 8 bytes of DATA's head (form, records) are the head of the
+ * session's IVGR message, so the records feed the session in place. */
+#define LUMO_NET_IVGR_HEAD 8u
 
 typedef struct lumo_net_end {
     uint8_t  channel;
@@ -149,7 +152,7 @@ lumo_status lumo_net_welcome_next(const lumo_net_welcome *m, size_t *at, lumo_ne
 lumo_status lumo_net_request_encode(const lumo_net_request *m, uint8_t *out, size_t cap, size_t *written);
 lumo_status lumo_net_request_decode(const lumo_net_frame *f, lumo_net_request *m);
 
-/* DATA: the 20-byte head into out[LUMO_NET_HEADER..], then the bytes; or
+/* DATA: the 24-byte head into out[LUMO_NET_HEADER..], then the bytes; or
  * only the head, for a sender that sends the bytes from a mapping
  * (lumo_net_data_head: writes LUMO_NET_HEADER + LUMO_NET_DATA_HEAD bytes
  * and returns the CRC state to continue over the bytes). */

@@ -1,0 +1,138 @@
+/*
+ * lumo/net_client.h — the client's side of the stream protocol
+ * (docs/protocol.md §3): from HELLO to the full scene, feeding what arrives
+ * to a client session (lumo/session.h) and deciding what to ask for next.
+ *
+ * Transport-free: the caller moves bytes (TCP, serial, USB, a replay file)
+ * and hands every decoded frame to lumo_net_client_on_frame; the driver
+ * writes the frames to send into the caller's buffer. Client rules: no
+ * heap, no float; its whole state is this struct.
+ *
+ * Requests (seed 000 §5.2): every request states its cursor, so the server
+ * keeps no state and a request can be repeated. Their sizes are fixed by the
+ * policy or adapt to what the driver measures on this client: the time from
+ * a request to its last byte (link throughput and latency together) and the
+ * time the session takes to apply it (decoding, push-pull), aiming each
+ * response at policy.target_ms. Geometry and lighting are interleaved in the
+ * policy's order; every order starts with the base meshes and the grid's
+ * corners (the first picture).
+ */
+#ifndef LUMO_NET_CLIENT_H
+#define LUMO_NET_CLIENT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/config.h"
+#include "lumo/net.h"
+#include "lumo/session.h"
+#include "lumo/status.h"
+
+typedef enum lumo_net_order {
+    LUMO_NET_ORDER_INTERLEAVED = 0,  /* a batch of each mesh, then a lighting request, in turn */
+    LUMO_NET_ORDER_GEOMETRY_FIRST,   /* every batch, then the lighting */
+    LUMO_NET_ORDER_LIGHTING_FIRST    /* every lighting round, then the batches */
+} lumo_net_order;
+
+typedef struct lumo_net_policy {
+    lumo_net_order order;
+    uint32_t vertices;     /* geometry request size; 0: adaptive */
+    uint32_t rounds;       /* lighting request size (rounds); 0: adaptive */
+    uint32_t target_ms;    /* adaptive: aim each response at this long (0: 250) */
+    uint32_t pipeline;     /* requests in flight (0: 2); hides the link's latency */
+} lumo_net_policy;
+
+/* A clock in milliseconds (wrapping u32), for the adaptive sizes; NULL: the
+ * sizes stay at their starting values (one batch, one round). */
+typedef uint32_t (*lumo_net_clock)(void *ctx);
+
+typedef struct lumo_net_client_config {
+    uint32_t package;        /* which of the server's packages */
+    uint32_t arena_bytes;    /* stated in HELLO */
+    uint32_t max_payload;    /* largest frame payload this client takes */
+    uint16_t width, height;
+    uint8_t  ivg_form;       /* LUMO_IVG_FORM_QUANTIZED, _FLOAT or LUMO_NET_FORM_NONE */
+    uint8_t  smoothing;      /* push-pull smoothing (stated; the session's config decides) */
+    lumo_net_policy policy;
+    lumo_net_clock clock;
+    void *clock_ctx;
+} lumo_net_client_config;
+
+/* One outstanding request, as the driver predicts its answer. */
+typedef struct lumo_net_pending {
+    uint8_t  channel;
+    uint32_t mesh, cursor, end;    /* batches / rounds [cursor, end) */
+    uint32_t sent_ms;
+} lumo_net_pending;
+
+/* Per-unit costs the adaptive policy learns (fixed point: ms * 1024). */
+typedef struct lumo_net_costs {
+    uint32_t ms_per_kib_q10;       /* link: ms per KiB, latency included */
+    uint32_t bytes_per_vertex;     /* geometry bytes per vertex seen so far */
+    uint32_t bytes_per_round;      /* lighting bytes per round */
+    uint32_t apply_ms_per_kib_q10; /* session: ms to apply a KiB */
+    uint32_t update_ms;            /* session: one push-pull */
+} lumo_net_costs;
+
+typedef enum lumo_net_state {
+    LUMO_NET_START = 0, LUMO_NET_HELLO_SENT, LUMO_NET_READY, LUMO_NET_DONE, LUMO_NET_FAILED
+} lumo_net_state;
+
+/* The driver. Fields are private; read progress with the functions below. */
+typedef struct lumo_net_client {
+    lumo_net_client_config cfg;
+    lumo_session *session;
+    lumo_net_state state;
+    uint32_t package_id;              /* from WELCOME; kept for resume */
+    uint32_t mesh_count;
+    uint32_t held[LUMO_MAX_MESHES];   /* batch records applied per mesh */
+    uint32_t asked[LUMO_MAX_MESHES];  /* batch records asked for (held + pending) */
+    uint32_t batches[LUMO_MAX_MESHES];/* batch records of each stream */
+    uint8_t  mesh_ended[LUMO_MAX_MESHES];
+    uint32_t rounds_held, rounds_asked, rounds_total;
+    uint8_t  has_ivg, ivg_ended;
+    uint32_t turn;                    /* interleaving position */
+    lumo_net_pending pending[8];
+    uint32_t npending;
+    uint32_t partial_records;         /* records of a round split over frames */
+    uint64_t bytes_in;                /* payload bytes of DATA applied */
+    lumo_net_costs costs;
+    uint32_t data_ms;                 /* last DATA's arrival, for the link estimate */
+    uint32_t data_bytes;              /* bytes since the oldest pending request was sent */
+    lumo_status error;                /* why FAILED */
+} lumo_net_client;
+
+/* Set up a driver for `session` (initialised, empty or holding a scene
+ * being resumed). ARG for a NULL or a config outside the protocol. */
+lumo_status lumo_net_client_init(lumo_net_client *c, lumo_session *session, const lumo_net_client_config *cfg);
+
+/* The HELLO frame to send (fresh, or resuming what the session holds after
+ * a cut: then every cursor continues where it was). */
+lumo_status lumo_net_client_hello(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written);
+
+/* Feed one frame received. WELCOME: the descriptors go to the session
+ * (NOMEM when the scene needs more arena than the session has); DATA: its
+ * records are applied (whole frame or nothing) and the session updated
+ * (push-pull) after lighting; END: that channel is done; ERROR: the
+ * server's status is returned and the driver is FAILED. A frame that does
+ * not fit the conversation is STATE. On an error the session keeps its last
+ * good state. */
+lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f);
+
+/* The next frame to send: a REQUEST while fewer than policy.pipeline are in
+ * flight and something is left, BYE once everything has arrived. *written
+ * is 0 when there is nothing to send now (wait for a frame). */
+lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written);
+
+/* After a cut: forget the requests in flight (they will be asked again from
+ * the cursors held) so that lumo_net_client_hello resumes. */
+void lumo_net_client_reset_link(lumo_net_client *c);
+
+typedef struct lumo_net_progress {
+    uint32_t vertices, full_vertices;   /* all meshes */
+    uint32_t rounds, full_rounds;       /* IVG rounds held / total */
+    uint64_t bytes;                     /* DATA payload bytes applied */
+    int      done;
+} lumo_net_progress;
+void lumo_net_client_progress(const lumo_net_client *c, lumo_net_progress *out);
+
+#endif /* LUMO_NET_CLIENT_H */
