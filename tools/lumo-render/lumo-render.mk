@@ -10,7 +10,7 @@ RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o \
                   $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
                   $(BUILD)/host/rasterizer/egl/raster_egl.o
 RASTER_GL_LIBS := -lOSMesa -lEGL
-RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load render_backend)
+RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load session_scene render_backend)
 
 $(BUILD)/host/rasterizer/gl/raster_gl.o: HOST_CFLAGS += -Irasterizer/gl
 

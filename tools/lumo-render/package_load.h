@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include "lumo/ivg.h"
 #include "mesh_build.h"
+#include "session_scene.h"
 
 typedef struct host_ivg {
     const lumo_ivg *grid; /* NULL when the package has none */
@@ -29,13 +30,6 @@ typedef struct host_lod {
     uint32_t vertices;
     double   fraction;
 } host_lod;
-
-/* What host_package_load took. */
-typedef struct host_load_stats {
-    uint32_t progressive;     /* meshes from PMSH streams (0: raw MESH chunks) */
-    uint32_t vertices;        /* vertices of the level loaded, all meshes */
-    uint32_t full_vertices;   /* vertices of the full meshes */
-} host_load_stats;
 
 /* Parse "all", a vertex count "N" (>= 1) or a percentage "P%" (0..100).
  * 0 on success. */
