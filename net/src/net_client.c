@@ -228,8 +228,8 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
 
     if ((st = lumo_net_data_decode(f, &d)))
         return st;
-    if (c->npending == 0 || d.channel != c->pending[0].channel ||
-        (d.channel == LUMO_NET_GEOMETRY && d.mesh != c->pending[0].mesh))
+    if (!c->cfg.replay && (c->npending == 0 || d.channel != c->pending[0].channel ||
+                           (d.channel == LUMO_NET_GEOMETRY && d.mesh != c->pending[0].mesh)))
         return LUMO_ERR_STATE;
     t0 = now_ms(c);
     before = d.channel == LUMO_NET_GEOMETRY ? c->held[d.mesh] : c->rounds_held;
@@ -248,7 +248,8 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
     t1 = now_ms(c);
     c->costs.apply_ms_per_kib_q10 = blend_rate(c->costs.apply_ms_per_kib_q10, t1 - t0, d.len);
     c->bytes_in += d.len;
-    retire(c, t1, d.len);
+    if (c->npending)
+        retire(c, t1, d.len);
     return LUMO_OK;
 }
 
@@ -259,7 +260,7 @@ static lumo_status on_end(lumo_net_client *c, const lumo_net_frame *f)
 
     if ((st = lumo_net_end_decode(f, &e)))
         return st;
-    if (c->npending == 0 || e.channel != c->pending[0].channel)
+    if (!c->cfg.replay && (c->npending == 0 || e.channel != c->pending[0].channel))
         return LUMO_ERR_STATE;
     if (e.channel == LUMO_NET_GEOMETRY) {
         if (e.mesh >= c->mesh_count)
@@ -268,7 +269,8 @@ static lumo_status on_end(lumo_net_client *c, const lumo_net_frame *f)
     } else {
         c->ivg_ended = 1;
     }
-    memmove(c->pending, c->pending + 1, --c->npending * sizeof *c->pending);
+    if (c->npending)
+        memmove(c->pending, c->pending + 1, --c->npending * sizeof *c->pending);
     return LUMO_OK;
 }
 
@@ -458,11 +460,13 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
     if (c->state != LUMO_NET_READY)
         return c->state == LUMO_NET_DONE ? LUMO_OK : LUMO_ERR_STATE;
     if (c->npending == 0 && all_held(c)) {
-        if ((st = lumo_net_bye_encode(out, cap, written)))
+        if (!c->cfg.replay && (st = lumo_net_bye_encode(out, cap, written)))
             return st;
         c->state = LUMO_NET_DONE;
         return LUMO_OK;
     }
+    if (c->cfg.replay)
+        return LUMO_OK;   /* a recording answers what was asked when it was made */
     if (c->npending >= c->cfg.policy.pipeline || (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
     return send_request(c, channel, mesh, out, cap, written);

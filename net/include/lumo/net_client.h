@@ -53,6 +53,8 @@ typedef struct lumo_net_client_config {
     uint8_t  ivg_form;       /* LUMO_IVG_FORM_QUANTIZED, _FLOAT or LUMO_NET_FORM_NONE */
     uint8_t  smoothing;      /* push-pull smoothing (stated; the session's config decides) */
     lumo_net_policy policy;
+    uint8_t  replay;         /* frames come from a recording: apply them in the
+                                order they come, send nothing but HELLO */
     lumo_net_clock clock;
     void *clock_ctx;
 } lumo_net_client_config;
