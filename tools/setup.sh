@@ -30,6 +30,9 @@ libgles-dev
 libgl-dev
 libusb-1.0-0-dev
 liblapacke-dev
+gnuplot-nox
+nginx-light
+libcurl4-openssl-dev
 "
 
 missing=""
