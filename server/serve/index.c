@@ -1,0 +1,231 @@
+/*
+ * index.c — a package mapped once and indexed for serving (serve/index.h).
+ */
+#include "serve/index.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include "lumo/arena.h"
+#include "lumo/net.h"
+#include "lumo/session.h"
+#include "lumo/wire.h"
+
+static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fmt, ...)
+{
+    va_list ap;
+
+    if (err && errlen) {
+        va_start(ap, fmt);
+        vsnprintf(err, errlen, fmt, ap);
+        va_end(ap);
+    }
+    return st;
+}
+
+uint32_t srv_mesh_vertices_before(const srv_mesh_index *m, uint32_t b)
+{
+    uint64_t v;
+
+    if (b == 0)
+        return 0;
+    v = (uint64_t)m->h.base_vertices + (uint64_t)(b - 1) * m->h.batch_vertices;
+    return v > m->h.vertices ? m->h.vertices : (uint32_t)v;
+}
+
+/* Offsets of every batch record of mesh i, walked with the SDK's one walk
+ * over a stream; the walk must end exactly at the chunk's end with
+ * batch_count records, each holding its index. */
+static lumo_status index_mesh(srv_pkg *p, uint32_t i, char *err, size_t errlen)
+{
+    srv_mesh_index *m = &p->mesh[i];
+    const uint8_t *rec;
+    size_t at = LUMO_PMESH_HEADER_SIZE, n;
+    uint32_t b;
+    lumo_status st;
+
+    if ((st = lumo_package_find(&p->pkg, LUMO_PKG_PMSH, i, &m->stream, &m->len)))
+        return fail(err, errlen, LUMO_ERR_UNSUPPORTED, "%s: mesh %u has no progressive stream (PMSH): "
+                    "lumo-server streams progressive meshes only (bake with --mesh pm)", p->path, i);
+    if ((st = lumo_pmesh_read_header(m->stream, m->len, &m->h)))
+        return fail(err, errlen, st, "%s: mesh %u: stream header: %s", p->path, i, lumo_strerror(st));
+    m->rec = malloc(((size_t)m->h.batch_count + 1) * sizeof *m->rec);
+    if (!m->rec)
+        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
+    for (b = 0; b < m->h.batch_count; b++) {
+        lumo_pmesh_record_head rh;
+        m->rec[b] = (uint32_t)at;
+        if ((st = lumo_pmesh_next_record(m->stream, m->len, &at, &rec, &n)))
+            return fail(err, errlen, st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st,
+                        "%s: mesh %u: batch record %u: %s", p->path, i, b,
+                        lumo_strerror(st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st));
+        if ((st = lumo_pmesh_read_record_head(rec, n, &rh)) || rh.index != b)
+            return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: batch record %u has index %u",
+                        p->path, i, b, st ? 0u : rh.index);
+        if (n > m->max_record)
+            m->max_record = (uint32_t)n;
+    }
+    m->rec[b] = (uint32_t)at;
+    if (at != m->len)
+        return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: %zu bytes after the last batch record",
+                    p->path, i, (size_t)m->len - at);
+    return LUMO_OK;
+}
+
+/* The IVG's round table and records areas. */
+static lumo_status index_ivg(srv_pkg *p, char *err, size_t errlen)
+{
+    const uint8_t *s;
+    uint32_t n;
+
+    if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &s, &n) != LUMO_OK)
+        return LUMO_OK;   /* no IVG: the lighting channel is RANGE */
+    if (lumo_package_find(&p->pkg, SRV_PKG_IVGS, 0, &s, &n) != LUMO_OK)
+        return LUMO_OK;   /* TODO(package-v2): required once version 2 lands */
+    (void)err, (void)errlen;
+    return LUMO_OK;
+}
+
+/* The descriptors of WELCOME (docs/protocol.md §2): INFO, each stream's
+ * header, IVGD and IVGS, then ORDR when present; and the arena they need. */
+static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
+{
+    lumo_net_msg msgs[LUMO_NET_MAX_WELCOME_MSGS];
+    uint32_t count = 0, i;
+    size_t need = LUMO_ARENA_SLACK, cap = LUMO_NET_OVERHEAD + 12;
+    const uint8_t *d;
+    uint32_t n;
+    lumo_status st;
+
+    if ((st = lumo_package_find(&p->pkg, LUMO_PKG_INFO, 0, &d, &n)))
+        return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no INFO chunk", p->path);
+    msgs[count++] = (lumo_net_msg){LUMO_PKG_INFO, 0, n, d};
+    for (i = 0; i < p->mesh_count; i++)
+        msgs[count++] = (lumo_net_msg){LUMO_PKG_PMSH, i, LUMO_PMESH_HEADER_SIZE, p->mesh[i].stream};
+    if (p->ivg.present) {
+        if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &d, &n) == LUMO_OK)
+            msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGD, 0, n, d};
+        if (lumo_package_find(&p->pkg, SRV_PKG_IVGS, 0, &d, &n) == LUMO_OK)
+            msgs[count++] = (lumo_net_msg){SRV_PKG_IVGS, 0, n, d};
+    }
+    if (lumo_package_find(&p->pkg, SRV_PKG_ORDR, 0, &d, &n) == LUMO_OK)
+        msgs[count++] = (lumo_net_msg){SRV_PKG_ORDR, 0, n, d};
+    for (i = 0; i < count; i++) {
+        size_t b;
+        if ((st = lumo_session_message_need(msgs[i].type, msgs[i].data, msgs[i].len, &b)))
+            return fail(err, errlen, st, "%s: descriptor %u: %s", p->path, i, lumo_strerror(st));
+        need += b;
+        cap += 12 + ((msgs[i].len + 3u) & ~(size_t)3);
+    }
+    if (need > UINT32_MAX || cap > LUMO_NET_OVERHEAD + (size_t)LUMO_NET_MAX_PAYLOAD)
+        return fail(err, errlen, LUMO_ERR_LIMIT, "%s: the scene's descriptors are too large to send", p->path);
+    p->arena_need = (uint32_t)need;
+    if (!(p->welcome = malloc(cap)))
+        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
+    if ((st = lumo_net_welcome_encode(p->id, p->arena_need, msgs, count, p->welcome, cap, &p->welcome_len)))
+        return fail(err, errlen, st, "%s: WELCOME: %s", p->path, lumo_strerror(st));
+    return LUMO_OK;
+}
+
+/* The SDK's reader refuses other majors with VERSION; say which and why. */
+static lumo_status version_error(const uint8_t *map, size_t size, const char *path, char *err, size_t errlen)
+{
+    unsigned major = size >= 6 ? (unsigned)(map[4] | map[5] << 8) : 0;
+
+    if (major && major < LUMO_PKG_VERSION_MAJOR)
+        return fail(err, errlen, LUMO_ERR_VERSION,
+                    "%s: package format version %u; lumo-server needs version %u (the stratified "
+                    "lighting order): re-bake it with this lumo-bake", path, major, LUMO_PKG_VERSION_MAJOR);
+    return fail(err, errlen, LUMO_ERR_VERSION, "%s: package format version %u is newer than this "
+                "server reads (%u)", path, major, LUMO_PKG_VERSION_MAJOR);
+}
+
+lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
+{
+    struct stat sb;
+    lumo_pkg_info info;
+    const char *slash;
+    void *map;
+    uint32_t i;
+    int fd;
+    lumo_status st;
+
+    memset(p, 0, sizeof *p);
+    if ((fd = open(path, O_RDONLY | O_CLOEXEC)) < 0)
+        return fail(err, errlen, LUMO_ERR_IO, "%s: %s", path, strerror(errno));
+    if (fstat(fd, &sb) < 0 || !S_ISREG(sb.st_mode) || sb.st_size <= 0) {
+        int e = errno;
+        close(fd);
+        return fail(err, errlen, LUMO_ERR_IO, "%s: %s", path,
+                    sb.st_size <= 0 && !e ? "empty or not a regular file" : strerror(e));
+    }
+    map = mmap(NULL, (size_t)sb.st_size, PROT_READ, MAP_SHARED, fd, 0);
+    close(fd);
+    if (map == MAP_FAILED)
+        return fail(err, errlen, LUMO_ERR_IO, "%s: mmap: %s", path, strerror(errno));
+    p->map = map;
+    p->size = (size_t)sb.st_size;
+    if (!(p->path = strdup(path))) {
+        srv_pkg_close(p);
+        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", path);
+    }
+    slash = strrchr(p->path, '/');
+    p->name = slash ? slash + 1 : p->path;
+
+    if ((st = lumo_package_open(&p->pkg, p->map, p->size))) {
+        if (st == LUMO_ERR_VERSION)
+            st = version_error(p->map, p->size, path, err, errlen);
+        else
+            fail(err, errlen, st, "%s: not a valid .lumo package: %s", path, lumo_strerror(st));
+        srv_pkg_close(p);
+        return st;
+    }
+    p->id = lumo_wire_le32(p->map + 20);
+    if ((st = lumo_package_info(&p->pkg, &info))) {
+        fail(err, errlen, st, "%s: INFO: %s", path, lumo_strerror(st));
+        goto failed;
+    }
+    p->mesh_count = info.mesh_count;
+    if (p->mesh_count > LUMO_MAX_MESHES) {
+        st = fail(err, errlen, LUMO_ERR_LIMIT, "%s: %u meshes, more than LUMO_MAX_MESHES (%u)", path,
+                  p->mesh_count, (unsigned)LUMO_MAX_MESHES);
+        goto failed;
+    }
+    if (p->mesh_count && !(p->mesh = calloc(p->mesh_count, sizeof *p->mesh))) {
+        st = fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", path);
+        goto failed;
+    }
+    for (i = 0; i < p->mesh_count; i++)
+        if ((st = index_mesh(p, i, err, errlen)))
+            goto failed;
+    if ((st = index_ivg(p, err, errlen)) || (st = build_welcome(p, err, errlen)))
+        goto failed;
+    return LUMO_OK;
+failed:
+    srv_pkg_close(p);
+    return st;
+}
+
+void srv_pkg_close(srv_pkg *p)
+{
+    uint32_t i;
+
+    if (p->mesh)
+        for (i = 0; i < p->mesh_count; i++)
+            free(p->mesh[i].rec);
+    free(p->mesh);
+    free(p->ivg.first);
+    free(p->ivg.off[0]);
+    free(p->ivg.off[1]);
+    free(p->welcome);
+    if (p->map)
+        munmap((void *)p->map, p->size);
+    free(p->path);
+    memset(p, 0, sizeof *p);
+}

@@ -1,0 +1,82 @@
+/*
+ * serve/index.h — a .lumo package as lumo-server serves it
+ * (docs/protocol.md, docs/server.md "lumo-server").
+ *
+ * The file is mapped once, read-only, and shared by every client: every
+ * DATA frame's bytes are sent straight from the mapping (zero copy). Opening
+ * validates the whole package with lumo_package_open (every chunk's CRC),
+ * every progressive stream's header and record walk, and the IVG's round
+ * table, then builds what a request needs in O(1) or O(log n):
+ *
+ *  - per mesh: its PMSH chunk, the stream header (base and batch vertex
+ *    counts) and the byte offset of every batch record;
+ *  - the IVG: the round table (first record and byte offset of every round
+ *    in each form's records area) and the records areas of IVGQ and IVGF;
+ *  - the WELCOME frame (docs/protocol.md §2), encoded once and sent to every
+ *    client of the package as it is.
+ */
+#ifndef SRV_SERVE_INDEX_H
+#define SRV_SERVE_INDEX_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/package.h"
+#include "lumo/pmesh.h"
+#include "lumo/status.h"
+
+/* Chunk types the server looks for beside lumo/package.h's. */
+#define SRV_PKG_IVGS LUMO_PKG_FOURCC('I', 'V', 'G', 'S')  /* stratified round table */
+#define SRV_PKG_ORDR LUMO_PKG_FOURCC('O', 'R', 'D', 'R')  /* streaming order (sent as is) */
+
+/* Bytes of a bundle's header before its records (docs/ivg-format.md §2.1). */
+#define SRV_IVG_BUNDLE_HEAD 16u
+
+typedef struct srv_mesh_index {
+    const uint8_t    *stream;   /* the PMSH chunk's payload, in the mapping */
+    uint32_t          len;
+    lumo_pmesh_header h;
+    uint32_t         *rec;      /* batch_count + 1 offsets into stream: record b
+                                   is stream[rec[b] .. rec[b + 1]) */
+    uint32_t          max_record;
+} srv_mesh_index;
+
+/* The stratified lighting order (docs/protocol.md §4): round r holds records
+ * first[r] .. first[r + 1] - 1 of both bundles, bytes off[f][r] ..
+ * off[f][r + 1] - 1 of form f's records area (form: LUMO_IVG_FORM_FLOAT = 0
+ * is IVGF, LUMO_IVG_FORM_QUANTIZED = 1 is IVGQ). */
+typedef struct srv_ivg_index {
+    int            present;
+    uint32_t       rounds, records;
+    uint32_t      *first;       /* rounds + 1 */
+    uint32_t      *off[2];      /* rounds + 1 each, relative to area[f] */
+    const uint8_t *area[2];     /* records area: the bundle payload after its header */
+    uint32_t       area_len[2];
+} srv_ivg_index;
+
+typedef struct srv_pkg {
+    char           *path;
+    const char     *name;       /* the path's last component, for logs */
+    const uint8_t  *map;        /* the whole file, PROT_READ */
+    size_t          size;
+    lumo_package    pkg;
+    uint32_t        id;         /* the package header's CRC field (bytes 20..23) */
+    uint32_t        mesh_count;
+    srv_mesh_index *mesh;
+    srv_ivg_index   ivg;
+    uint32_t        arena_need; /* what WELCOME states */
+    uint8_t        *welcome;    /* the whole WELCOME frame */
+    size_t          welcome_len;
+} srv_pkg;
+
+/* Map, validate and index the package at path. LUMO_ERR_IO (cannot open or
+ * map), the SDK reader's status for a damaged or foreign file (a version-1
+ * package is LUMO_ERR_VERSION, "re-bake it"), LUMO_ERR_UNSUPPORTED (raw
+ * meshes only: nothing to stream), LUMO_ERR_NOMEM; a message naming the
+ * path in err. *p is zeroed on failure. */
+lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen);
+void srv_pkg_close(srv_pkg *p);
+
+/* Vertices held after the first b batches of a stream (0 for b = 0). */
+uint32_t srv_mesh_vertices_before(const srv_mesh_index *m, uint32_t b);
+
+#endif

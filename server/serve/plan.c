@@ -1,0 +1,184 @@
+/*
+ * plan.c — requests to byte ranges of the mapping (serve/plan.h).
+ */
+#include "serve/plan.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include "lumo/ivg.h"
+#include "lumo/wire.h"
+
+static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fmt, ...)
+{
+    va_list ap;
+
+    if (err && errlen) {
+        va_start(ap, fmt);
+        vsnprintf(err, errlen, fmt, ap);
+        va_end(ap);
+    }
+    return st;
+}
+
+uint32_t srv_plan_geometry_end(const srv_mesh_index *m, uint32_t c, uint32_t amount)
+{
+    uint64_t target = (uint64_t)srv_mesh_vertices_before(m, c) + amount;
+    uint64_t e;
+
+    /* The largest e with vertices_before(e) <= target: every batch when the
+     * target reaches the full mesh, else base + (e - 1) * B <= target. */
+    if (target >= m->h.vertices)
+        e = m->h.batch_count;
+    else if (target < m->h.base_vertices)
+        e = 0;
+    else
+        e = 1 + (target - m->h.base_vertices) / m->h.batch_vertices;
+    if (e < (uint64_t)c + 1)
+        e = (uint64_t)c + 1;   /* at least one batch */
+    if (e > m->h.batch_count)
+        e = m->h.batch_count;
+    return (uint32_t)e;
+}
+
+lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t form, uint32_t max_payload,
+                           srv_answer *a, int *end_of_channel, char *err, size_t errlen)
+{
+    memset(a, 0, sizeof *a);
+    *end_of_channel = 0;
+    if (max_payload <= LUMO_NET_DATA_HEAD)
+        return fail(err, errlen, LUMO_ERR_LIMIT, "max payload %u holds no record", max_payload);
+    a->channel = r->channel;
+    a->max_data = max_payload - LUMO_NET_DATA_HEAD;
+    if (r->amount == 0)
+        return fail(err, errlen, LUMO_ERR_RANGE, "request for 0 %s", r->channel ? "rounds" : "vertices");
+    if (r->channel == LUMO_NET_GEOMETRY) {
+        const srv_mesh_index *m;
+        uint32_t b;
+        if (r->mesh >= p->mesh_count)
+            return fail(err, errlen, LUMO_ERR_RANGE, "mesh %u past the mesh count %u", r->mesh, p->mesh_count);
+        m = &p->mesh[r->mesh];
+        if (r->cursor > m->h.batch_count)
+            return fail(err, errlen, LUMO_ERR_RANGE, "mesh %u: cursor %u past its %u batches", r->mesh,
+                        r->cursor, m->h.batch_count);
+        a->mesh = r->mesh;
+        if (r->cursor == m->h.batch_count)
+            return *end_of_channel = 1, LUMO_OK;
+        a->next = r->cursor;
+        a->end = srv_plan_geometry_end(m, r->cursor, r->amount);
+        if (m->max_record > a->max_data)   /* only then can a record of the range be too large */
+            for (b = a->next; b < a->end; b++)
+                if (m->rec[b + 1] - m->rec[b] > a->max_data)
+                    return fail(err, errlen, LUMO_ERR_LIMIT,
+                                "mesh %u: batch record %u is %u bytes, more than max payload %u allows",
+                                r->mesh, b, m->rec[b + 1] - m->rec[b], max_payload);
+        return LUMO_OK;
+    }
+    if (r->channel == LUMO_NET_LIGHTING) {
+        const srv_ivg_index *g = &p->ivg;
+        if (!g->present)
+            return fail(err, errlen, LUMO_ERR_RANGE, "lighting request: the package has no IVG");
+        if (form != LUMO_IVG_FORM_FLOAT && form != LUMO_IVG_FORM_QUANTIZED)
+            return fail(err, errlen, LUMO_ERR_RANGE, "lighting request: no IVG form chosen in HELLO");
+        if (r->cursor > g->rounds)
+            return fail(err, errlen, LUMO_ERR_RANGE, "lighting cursor %u past the %u rounds", r->cursor,
+                        g->rounds);
+        if (r->cursor == g->rounds)
+            return *end_of_channel = 1, LUMO_OK;
+        a->form = form;
+        a->next = r->cursor;
+        a->end = r->amount > g->rounds - r->cursor ? g->rounds : r->cursor + r->amount;
+        a->rec = g->first[a->next];
+        a->pos = g->off[form][a->next];
+        return LUMO_OK;
+    }
+    return fail(err, errlen, LUMO_ERR_RANGE, "unknown channel %u", r->channel);
+}
+
+static int next_geometry(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
+{
+    const srv_mesh_index *m = &p->mesh[a->mesh];
+    uint32_t e = a->next + 1;   /* a record fits: checked by srv_plan_start */
+
+    while (e < a->end && m->rec[e + 1] - m->rec[a->next] <= a->max_data)
+        e++;
+    d->channel = LUMO_NET_GEOMETRY;
+    d->mesh = a->mesh;
+    d->first = a->next;
+    d->count = d->records = e - a->next;
+    d->form = 0;
+    d->bytes = m->stream + m->rec[a->next];
+    d->len = m->rec[e] - m->rec[a->next];
+    a->next = e;
+    return 1;
+}
+
+/* Bytes of the record at area[pos] (docs/ivg-format.md §2.2). */
+static uint32_t record_bytes(const uint8_t *area, uint32_t pos, uint8_t form)
+{
+    if (lumo_wire_le32(area + pos) & 0x80000000u)
+        return 4;
+    return 4 + 6 * (form == LUMO_IVG_FORM_QUANTIZED ? 7u : 24u);
+}
+
+static int next_lighting(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
+{
+    const srv_ivg_index *g = &p->ivg;
+    const uint32_t *off = g->off[a->form];
+    const uint8_t *area = g->area[a->form];
+    uint32_t r = a->next, start = a->pos;
+
+    d->channel = LUMO_NET_LIGHTING;
+    d->mesh = 0;
+    d->form = a->form;
+    d->first = r;
+    d->bytes = area + start;
+    if (a->rec == g->first[r] && off[r + 1] - off[r] <= a->max_data) {
+        uint32_t e = r + 1;   /* whole rounds */
+        while (e < a->end && off[e + 1] - off[r] <= a->max_data)
+            e++;
+        d->count = e - r;
+        d->records = g->first[e] - g->first[r];
+        d->len = off[e] - off[r];
+        a->next = e;
+        a->rec = g->first[e];
+        a->pos = off[e];
+    } else {
+        /* A round larger than a frame, split at record boundaries (at least
+         * one record per frame: a record is at most 148 bytes, a frame at
+         * least LUMO_NET_MIN_PAYLOAD). */
+        uint32_t k = a->rec, pos = a->pos, end = g->first[r + 1];
+        while (k < end) {
+            uint32_t b = record_bytes(area, pos, a->form);
+            if ((pos + b - start > a->max_data && k > a->rec) || pos + b > off[r + 1])
+                break;
+            pos += b, k++;
+        }
+        if (k == a->rec) {   /* cannot happen in an indexed package (its rounds
+                                are checked at open); never loop on it */
+            a->next = a->end;
+            return 0;
+        }
+        d->records = k - a->rec;
+        d->len = pos - start;
+        if (k == end || pos >= off[r + 1]) {   /* this frame ends the round */
+            d->count = 1;
+            a->next = r + 1;
+            a->rec = end;
+            a->pos = off[r + 1];
+        } else {
+            d->count = 0;
+            a->rec = k;
+            a->pos = pos;
+        }
+    }
+    return 1;
+}
+
+int srv_plan_next(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
+{
+    if (a->next >= a->end)
+        return 0;
+    memset(d, 0, sizeof *d);
+    return a->channel == LUMO_NET_GEOMETRY ? next_geometry(p, a, d) : next_lighting(p, a, d);
+}
