@@ -1,0 +1,10 @@
+# tools/lumo-server/lumo-server.mk — lumo-server: streams .lumo packages to
+# thin clients (docs/protocol.md, docs/server.md "lumo-server"). Its code is
+# server/serve/ (in libserver.a); it links the net codec and the SDK only
+# (no Embree, assimp or Draco). Archives are named literally.
+HOST_TOOLS += $(BIN)/lumo-server
+
+$(BIN)/lumo-server: $(BUILD)/host/tools/lumo-server/main.o $(BUILD)/host/libserver.a \
+                    $(BUILD)/rel/liblumo_net.a $(BUILD)/rel/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) -pthread -o $@ $^ -lm
