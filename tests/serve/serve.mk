@@ -1,0 +1,23 @@
+# tests/serve/serve.mk — lumo-server end to end (tests/serve/serve_test.sh):
+# whole fetches checked byte for byte, resume after cuts, hostile frames,
+# idle and slow clients, the serial listener with loss, --max-clients, link
+# emulation timing, 1000 clients at once with the server's memory per
+# client, SIGTERM drain. The client (serve_client.c) is the codec as a
+# minimal client; the servers are a sanitizer build of server/serve/ and
+# tools/lumo-server/ (lumo-server-san) and, for the memory figures, the
+# release build. Libraries are named literally.
+SERVE_CLIENT   := $(BUILD)/tests/bin/serve_client
+SERVE_SAN      := $(BUILD)/tests/bin/lumo-server-san
+SERVE_SAN_OBJS := $(patsubst %.c,$(BUILD)/tests/%.o,$(sort $(wildcard server/serve/*.c)) tools/lumo-server/main.c)
+
+$(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^
+$(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
+
+TEST_STEPS += test-serve
+.PHONY: test-serve
+test-serve: $(BIN)/lumo-server $(BIN)/lumo-bake $(SERVE_SAN) $(SERVE_CLIENT)
+	@sh tests/serve/serve_test.sh $(BIN) $(BUILD)/tests/bin $(BUILD)/tests/serve $(BUILD)/data/models
