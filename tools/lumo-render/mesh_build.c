@@ -32,10 +32,16 @@ void host_mesh_free(host_mesh *m)
     memset(m, 0, sizeof *m);
 }
 
+/* Room for more_v vertices and more_t triangles; counts stay below
+ * UINT32_MAX / 3 so that 3 * count never wraps. */
 static int reserve(host_mesh *m, uint32_t more_v, uint32_t more_t)
 {
-    if (m->vertex_count + more_v > m->vertex_cap) {
-        uint32_t cap = (m->vertex_count + more_v) * 2;
+    uint64_t need_v = (uint64_t)m->vertex_count + more_v, need_t = (uint64_t)m->tri_count + more_t;
+
+    if (need_v > UINT32_MAX / 3 || need_t > UINT32_MAX / 3)
+        return -1;
+    if (need_v > m->vertex_cap) {
+        uint32_t cap = (uint32_t)(need_v * 2 > UINT32_MAX / 3 ? need_v : need_v * 2);
         void *p = realloc(m->pos, (size_t)cap * 3 * sizeof *m->pos);
         void *n = p ? realloc(m->normal, (size_t)cap * 3 * sizeof *m->normal) : NULL;
         void *a = n ? realloc(m->albedo, (size_t)cap * 3 * sizeof *m->albedo) : NULL;
@@ -45,13 +51,36 @@ static int reserve(host_mesh *m, uint32_t more_v, uint32_t more_t)
         if (!a) return -1;
         m->vertex_cap = cap;
     }
-    if (m->tri_count + more_t > m->tri_cap) {
-        uint32_t cap = (m->tri_count + more_t) * 2;
+    if (need_t > m->tri_cap) {
+        uint32_t cap = (uint32_t)(need_t * 2 > UINT32_MAX / 3 ? need_t : need_t * 2);
         void *t = realloc(m->tris, (size_t)cap * 3 * sizeof *m->tris);
         if (!t) return -1;
         m->tris = t;
         m->tri_cap = cap;
     }
+    return 0;
+}
+
+int host_mesh_append(host_mesh *m, const lumo_q16_16 *pos, const lumo_q1_14 *normal,
+                     const lumo_q1_14 *albedo, uint32_t nv, const uint32_t *tris, uint32_t nt)
+{
+    uint32_t base = m->vertex_count, t;
+
+    if (nv == 0 && nt == 0)
+        return 0;
+    if (reserve(m, nv, nt))
+        return -1;
+    memcpy(m->pos + 3 * (size_t)base, pos, (size_t)nv * 3 * sizeof *pos);
+    memcpy(m->normal + 3 * (size_t)base, normal, (size_t)nv * 3 * sizeof *normal);
+    if (albedo)
+        memcpy(m->albedo + 3 * (size_t)base, albedo, (size_t)nv * 3 * sizeof *albedo);
+    else   /* no colours: neutral grey (docs/progressive-mesh.md) */
+        for (t = 0; t < 3 * nv; t++)
+            m->albedo[3 * (size_t)base + t] = HOST_DEFAULT_ALBEDO;
+    for (t = 0; t < 3 * nt; t++)
+        m->tris[3 * (size_t)m->tri_count + t] = tris[t] + base;
+    m->vertex_count += nv;
+    m->tri_count += nt;
     return 0;
 }
 

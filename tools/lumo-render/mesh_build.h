@@ -46,6 +46,14 @@ int host_mesh_add_sphere(host_mesh *m, const double c[3], double r, int seg, int
 int host_mesh_load_model(host_mesh *m, const char *path, double size, double y0,
                          const double albedo[3]);
 
+/* Append nv vertices (pos, normal: 3 per vertex; albedo 3 per vertex, or
+ * NULL for HOST_DEFAULT_ALBEDO) and nt triangles whose indices are local
+ * to the part (0..nv-1). 0 on success; -1 when out of memory or past
+ * UINT32_MAX / 3 vertices or triangles. */
+#define HOST_DEFAULT_ALBEDO ((lumo_q1_14)(3 * LUMO_Q14_ONE / 4))   /* 0.75 */
+int host_mesh_append(host_mesh *m, const lumo_q16_16 *pos, const lumo_q1_14 *normal,
+                     const lumo_q1_14 *albedo, uint32_t nv, const uint32_t *tris, uint32_t nt);
+
 /* The rasterizer view of a host mesh. */
 lumo_raster_mesh host_mesh_raster(const host_mesh *m);
 
