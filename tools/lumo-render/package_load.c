@@ -11,35 +11,7 @@
 #include "lumo/session.h"
 #include "lumo_host/file_io.h"
 #include "package_load.h"
-
-/* Package lights to rasterizer lights. An area light becomes a spot with a
- * 90-degree half angle at its centre facing its normal, with the power of a
- * uniform hemisphere emitter (2 Phi as the point-equivalent power): the
- * client has no area lights (docs/rasterizer.md). */
-static void convert_light(const lumo_pkg_light *p, lumo_raster_light *l)
-{
-    int k;
-
-    memset(l, 0, sizeof *l);
-    for (k = 0; k < 3; k++) {
-        l->pos[k] = p->pos[k];
-        l->dir[k] = p->dir[k];
-        l->value[k] = p->power[k];
-    }
-    l->cos_cutoff = p->cos_half;
-    switch (p->kind) {
-    case LUMO_LIGHT_POINT: l->kind = LUMO_LIGHT_POINT; break;
-    case LUMO_LIGHT_SPOT: l->kind = LUMO_LIGHT_SPOT; break;
-    case LUMO_LIGHT_DIRECTIONAL: l->kind = LUMO_LIGHT_DIRECTIONAL; break;
-    default:
-        l->kind = LUMO_LIGHT_SPOT;
-        l->cos_cutoff = 0;
-        for (k = 0; k < 3; k++) {
-            l->pos[k] = p->pos[k] + p->u[k] / 2 + p->v[k] / 2;
-            l->value[k] = p->power[k] > UINT32_MAX / 2 ? UINT32_MAX : p->power[k] * 2;
-        }
-    }
-}
+#include "scene_convert.h"
 
 /* The session's meshes, one after the other, into m. */
 static int take_meshes(const lumo_session *ses, host_mesh *m, host_load_stats *stats)
@@ -182,7 +154,7 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
     }
     lights = lumo_session_lights(&ses, &nl);
     for (i = 0; i < nl; i++)
-        convert_light(&lights[i], &s->lights[s->light_count++]);
+        host_light_from_pkg(&lights[i], &s->lights[s->light_count++]);
     for (k = 0; k < 3; k++) {
         s->camera.eye[k] = lumo_session_info(&ses)->eye[k];
         s->camera.target[k] = lumo_session_info(&ses)->target[k];
