@@ -26,6 +26,9 @@ RASTER_UNIT_LIBS  := $(BUILD)/tests/libmesh_build.a $(BUILD)/host/libserver.a $(
 # and the encoder back under ASan/UBSan here, as the single test-flag object
 # did. Wherever the server branch moves them, this archive link stays as it is.
 
+# test_raster_scene builds the server's default scene and imports an OBJ.
+RASTER_UNIT_LDLIBS_test_raster_scene = $(SERVER_LIBS)
+
 $(RASTER_UNIT_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/unit/%.o $(RASTER_UNIT_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -pthread -o $@ $< $(RASTER_UNIT_LIBS) $(RASTER_UNIT_LDLIBS_$*) $(TEST_LDLIBS)
