@@ -221,7 +221,8 @@ lumo_status lumo_net_error_encode(uint32_t status, const char *text, uint8_t *ou
     return net_sealed(out, LUMO_NET_ERROR, ERROR_FIXED + n, written);
 }
 
-/* §2 ERROR, §5: a text of at most 256 bytes (CORRUPT), filling the payload. */
+/* §2 ERROR, §5: a text of at most 256 bytes without NUL (CORRUPT: what the
+ * encoder's C string cannot carry), filling the payload. */
 lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m)
 {
     uint32_t n;
@@ -235,6 +236,8 @@ lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m)
     st = net_exact(f->len, ERROR_FIXED + n);
     if (st)
         return st;
+    if (n && memchr(f->payload + ERROR_FIXED, 0, n))
+        return LUMO_ERR_CORRUPT;
     m->status = lumo_wire_le32(f->payload);
     m->len = n;
     m->text = f->payload + ERROR_FIXED;

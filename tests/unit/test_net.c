@@ -904,6 +904,9 @@ static void test_end_error_bye_checks(void **state)
     assert_int_equal(payload_status(LUMO_NET_ERROR, p, 265), LUMO_ERR_CORRUPT);
     lumo_wire_put_le32(p + 4, 0xFFFFFFFFu);
     assert_int_equal(payload_status(LUMO_NET_ERROR, p, 20), LUMO_ERR_CORRUPT);
+    lumo_wire_put_le32(p + 4, 3);
+    p[9] = 0;   /* a NUL the encoder's C string could not carry */
+    assert_int_equal(payload_status(LUMO_NET_ERROR, p, 11), LUMO_ERR_CORRUPT);
     /* BYE: nothing. */
     assert_int_equal(payload_status(LUMO_NET_BYE, p, 0), LUMO_OK);
     assert_int_equal(payload_status(LUMO_NET_BYE, p, 1), LUMO_ERR_CORRUPT);

@@ -128,7 +128,7 @@ typedef struct lumo_net_end {
 typedef struct lumo_net_error {
     uint32_t status;           /* a lumo_status */
     uint32_t len;
-    const uint8_t *text;       /* not NUL-terminated */
+    const uint8_t *text;       /* len bytes without NUL, not NUL-terminated */
 } lumo_net_error;
 
 /* Each encoder writes a whole frame (header, payload, CRC) at out[0..cap)
