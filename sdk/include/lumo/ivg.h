@@ -128,6 +128,18 @@ const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo
  * the number of records stored. */
 lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, uint32_t *applied);
 
+/* Decode a run of `count` records without the bundle header — the records
+ * of some rounds of a package's bundle, as the server streams them
+ * (docs/protocol.md, DATA lighting) — in the given form and store them as
+ * received. Same rules and the same loop as lumo_ivg_apply_bundle: the
+ * whole run is validated first (UNSUPPORTED for an unknown form, CORRUPT
+ * for more records than grid vertices or bytes after the last record,
+ * TRUNCATED, RANGE, NONFINITE as for a bundle), and on any error the grid
+ * is unchanged. `records` may be NULL when len is 0. *applied (may be NULL)
+ * gets the number of records stored. */
+lumo_status lumo_ivg_apply_records(lumo_ivg *g, lumo_ivg_form form, uint32_t count, const uint8_t *records,
+                                   size_t len, uint32_t *applied);
+
 /* Fill every not-received vertex from the received ones by 3D push-pull;
  * received vertices keep their exact values. flags: LUMO_IVG_SMOOTH.
  * Only received values are inputs, so a re-run after more bundles arrived
