@@ -105,9 +105,20 @@ static void test_version_and_limits(void **state)
     static bytes p;
     lumo_package pkg;
     sample_package(&p);
-    p.b[4] = 2;   /* major 2, header CRC fixed up: a well-formed newer package */
+    assert_int_equal(LUMO_PKG_VERSION_MAJOR, 2);
+    p.b[4] = 3;   /* major 3, header CRC fixed up: a well-formed newer package */
     wr32(p.b + 20, lumo_wire_crc32(0, p.b, 20));
     assert_int_equal(lumo_package_open(&pkg, p.b, p.n), LUMO_ERR_VERSION);
+    p.b[4] = 1;   /* major 1: the IVG in index order, no IVGS; re-bake */
+    wr32(p.b + 20, lumo_wire_crc32(0, p.b, 20));
+    assert_int_equal(lumo_package_open(&pkg, p.b, p.n), LUMO_ERR_VERSION);
+    uint16_t major = 0, minor = 9;
+    assert_int_equal(lumo_package_peek_version(p.b, p.n, &major, &minor), LUMO_OK);
+    assert_int_equal(major, 1);
+    assert_int_equal(minor, 0);
+    assert_int_equal(lumo_package_peek_version(p.b, 7, &major, &minor), LUMO_ERR_TRUNCATED);
+    p.b[0] = 'X';
+    assert_int_equal(lumo_package_peek_version(p.b, p.n, &major, &minor), LUMO_ERR_CORRUPT);
     sample_package(&p);
     p.b[6] = 9;   /* a newer minor version still opens */
     wr32(p.b + 20, lumo_wire_crc32(0, p.b, 20));
