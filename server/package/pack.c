@@ -224,8 +224,9 @@ static void add_step(order_list *l, uint32_t channel, uint32_t mesh, uint32_t am
 
 /* lumo-bake's default order (docs/package-format.md "ORDR"): the prefix is
  * every base mesh, then the corners (lighting round 0); the cycle is one
- * batch of every mesh that has more, then as many lighting rounds as make
- * the lighting end with the longest stream (at least 1). */
+ * batch of every mesh that has more, then ceil((R - 1) / B) lighting rounds
+ * (at least 1; B the most batches after a base mesh), so that the lighting
+ * ends no later than the longest stream. */
 static void default_order(const lumo_pmesh_header *h, uint32_t meshes, uint32_t rounds, order_list *prefix,
                           order_list *cycle)
 {

@@ -61,8 +61,9 @@ lumo_status srv_pack_ivg(srv_pkg_writer *w, const srv_bake_result *r, uint32_t s
 /* ORDR, the recommended interleaving of geometry and lighting, from the
  * PMSH and IVGS chunks already in w (call it last): every base mesh and
  * the IVG's corners first, then a cycle of one batch of every mesh that has
- * more and a lighting step paced so that both channels end together
- * (docs/package-format.md "ORDR"). LUMO_OK, LUMO_ERR_LIMIT, LUMO_ERR_NOMEM
+ * more and a lighting step of ceil((R - 1) / B) rounds (B: the most batches
+ * a stream has after its base), so that the lighting ends no later than the
+ * geometry (docs/package-format.md "ORDR"). LUMO_OK, LUMO_ERR_LIMIT, LUMO_ERR_NOMEM
  * or a stream header's error. */
 lumo_status srv_pack_order(srv_pkg_writer *w);
 
