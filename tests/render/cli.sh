@@ -73,6 +73,10 @@ expect_status 1 "$bin/lumo-render" "$pkg" -o "$out/x.png" --backend vulkan
 expect_status 1 "$bin/lumo-render" "$out/missing.lumo" -o "$out/x.png"
 head -c 1000 "$pkg" > "$out/truncated.lumo"
 expect_status 1 "$bin/lumo-render" "$out/truncated.lumo" -o "$out/x.png"
+# a version-1 package (before the IVG streaming order): one line that says to re-bake
+expect_status 1 "$bin/lumo-render" tests/server/data/v1_tiny.lumo -o "$out/x.png"
+if [ "$(wc -l <"$out/last.log")" -eq 1 ] && grep -q "package version 1: re-bake it with this lumo-bake" "$out/last.log"
+then ok; else bad "version-1 package: $(cat "$out/last.log")"; fi
 expect_status 2 "$bin/lumo-compare" "$out/a.png"
 expect_status 1 "$bin/lumo-compare" "$out/a.png" "$out/full.png"
 expect_status 0 "$bin/lumo-compare" "$out/full.png" "$out/band.png" --max-mean-de 0 -o "$out/side.png"
