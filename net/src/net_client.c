@@ -1,0 +1,481 @@
+/*
+ * net_client.c — the client's side of the stream protocol (lumo/net_client.h,
+ * docs/protocol.md §3): WELCOME into the session, requests sized and
+ * interleaved (seed 000 §5.1–5.2), DATA applied whole or not at all.
+ */
+#include <string.h>
+#include "lumo/net_client.h"
+#include "lumo/wire.h"
+
+#define DEFAULT_TARGET_MS 250u
+#define DEFAULT_PIPELINE  2u
+#define MAX_PIPELINE      8u
+/* Adaptive sizes stay within these (a request smaller than one batch still
+ * gets one; more than this many vertices or rounds per request buys no
+ * throughput and delays the next picture). */
+#define MAX_VERTICES      (1u << 20)
+#define MAX_ROUNDS        4096u
+
+lumo_status lumo_net_client_init(lumo_net_client *c, lumo_session *session, const lumo_net_client_config *cfg)
+{
+    if (!c || !session || !cfg || cfg->max_payload < LUMO_NET_MIN_PAYLOAD ||
+        cfg->max_payload > LUMO_NET_MAX_PAYLOAD || cfg->policy.order > LUMO_NET_ORDER_LIGHTING_FIRST ||
+        cfg->policy.pipeline > MAX_PIPELINE)
+        return LUMO_ERR_ARG;
+    memset(c, 0, sizeof *c);
+    c->cfg = *cfg;
+    if (!c->cfg.policy.target_ms)
+        c->cfg.policy.target_ms = DEFAULT_TARGET_MS;
+    if (!c->cfg.policy.pipeline)
+        c->cfg.policy.pipeline = DEFAULT_PIPELINE;
+    c->session = session;
+    return LUMO_OK;
+}
+
+static uint32_t now_ms(const lumo_net_client *c)
+{
+    return c->cfg.clock ? c->cfg.clock(c->cfg.clock_ctx) : 0;
+}
+
+static lumo_status fail(lumo_net_client *c, lumo_status st)
+{
+    c->state = LUMO_NET_FAILED;
+    c->error = st;
+    return st;
+}
+
+lumo_status lumo_net_client_hello(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written)
+{
+    lumo_net_hello h;
+    lumo_status st;
+
+    if (!c || (c->state != LUMO_NET_START && c->state != LUMO_NET_READY))
+        return LUMO_ERR_STATE;
+    memset(&h, 0, sizeof h);
+    h.package = c->cfg.package;
+    h.arena_bytes = c->cfg.arena_bytes;
+    h.max_payload = c->cfg.max_payload;
+    h.width = c->cfg.width, h.height = c->cfg.height;
+    h.ivg_form = c->cfg.ivg_form;
+    h.flags = c->cfg.smoothing ? LUMO_NET_FLAG_SMOOTHING : 0;
+    h.resume_id = c->package_id;
+    h.mesh_count = c->package_id ? c->mesh_count : 0;
+    if ((st = lumo_net_hello_encode(&h, c->held, out, cap, written)))
+        return st;
+    c->state = LUMO_NET_HELLO_SENT;
+    return LUMO_OK;
+}
+
+void lumo_net_client_reset_link(lumo_net_client *c)
+{
+    uint32_t m;
+
+    c->npending = 0;
+    c->partial_records = 0;
+    for (m = 0; m < c->mesh_count; m++)
+        c->asked[m] = c->held[m];
+    c->rounds_asked = c->rounds_held;
+    if (c->state == LUMO_NET_HELLO_SENT)
+        c->state = c->package_id ? LUMO_NET_READY : LUMO_NET_START;
+}
+
+static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t from, uint32_t to);
+
+/* ---- WELCOME ------------------------------------------------------------------ */
+
+/* Descriptors into the session, in the order WELCOME carries them. */
+static lumo_status feed_welcome(lumo_net_client *c, const lumo_net_welcome *w)
+{
+    lumo_net_msg m;
+    size_t at = 0;
+    lumo_status st;
+
+    while ((st = lumo_net_welcome_next(w, &at, &m)) == LUMO_OK) {
+        if ((st = lumo_session_feed(c->session, m.type, m.index, m.data, m.len)))
+            return st;
+    }
+    return st == LUMO_ERR_RANGE ? LUMO_OK : st;
+}
+
+/* What the session now holds: the streams' sizes, and (resuming) where each
+ * cursor stands. */
+static lumo_status take_scene(lumo_net_client *c)
+{
+    const lumo_pkg_info *info = lumo_session_info(c->session);
+    lumo_pmesh_header h;
+    uint32_t m;
+
+    if (!info)
+        return LUMO_ERR_CORRUPT;
+    c->mesh_count = info->mesh_count;
+    for (m = 0; m < c->mesh_count; m++) {
+        if (lumo_session_stream_header(c->session, m, &h))
+            return LUMO_ERR_UNSUPPORTED;   /* raw meshes are not streamed */
+        c->batches[m] = h.batch_count;
+    }
+    /* Lighting streams only with its order (the package's IVGS). */
+    c->has_ivg = lumo_session_ivg(c->session) != NULL && lumo_session_ivg_order(c->session) != NULL &&
+                 c->cfg.ivg_form != LUMO_NET_FORM_NONE;
+    c->rounds_total = c->has_ivg ? lumo_session_ivg_order(c->session)->rounds : 0;
+    c->ivg_ended = !c->has_ivg;
+    return LUMO_OK;
+}
+
+static lumo_status on_welcome(lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_welcome w;
+    lumo_status st;
+
+    if ((st = lumo_net_welcome_decode(f, &w)))
+        return st;
+    if (c->package_id) {   /* resuming: the scene is the one we hold */
+        if (w.package_id != c->package_id)
+            return LUMO_ERR_STATE;
+        c->state = LUMO_NET_READY;
+        return LUMO_OK;
+    }
+    if (w.arena_need > c->cfg.arena_bytes)
+        return LUMO_ERR_NOMEM;
+    if ((st = feed_welcome(c, &w)) || (st = take_scene(c)))
+        return st;
+    c->package_id = w.package_id;
+    c->state = LUMO_NET_READY;
+    return LUMO_OK;
+}
+
+/* ---- DATA ----------------------------------------------------------------------- */
+
+/* Ms * 1024 per KiB of `bytes` taking `ms`, blended into `avg` (3/4 old). */
+static uint32_t blend_rate(uint32_t avg, uint32_t ms, uint32_t bytes)
+{
+    uint64_t r;
+
+    if (bytes == 0)
+        return avg;
+    r = ((uint64_t)ms << 20) / bytes;   /* ms * 1024 per 1024 bytes */
+    if (r > 0xffffffffu)
+        r = 0xffffffffu;
+    return avg ? (uint32_t)(((uint64_t)avg * 3 + r) / 4) : (uint32_t)r;
+}
+
+static lumo_status apply_geometry(lumo_net_client *c, const lumo_net_data *d)
+{
+    size_t at = 0, n;
+    const uint8_t *rec;
+    uint32_t k;
+    lumo_status st;
+
+    if (d->mesh >= c->mesh_count || d->first != c->held[d->mesh] || d->count != d->records ||
+        d->first + d->count > c->batches[d->mesh])
+        return LUMO_ERR_STATE;
+    for (k = 0; k < d->count; k++) {
+        if ((st = lumo_pmesh_next_record(d->bytes, d->len, &at, &rec, &n)))
+            return st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st;
+        /* A refused record leaves the mesh at the last good batch: the
+         * records before it stay applied, and so do their cursors. */
+        if ((st = lumo_session_feed(c->session, LUMO_MSG_PMSB, d->mesh, rec, n)))
+            return st;
+        c->held[d->mesh]++;
+    }
+    return at == d->len ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
+/* The records of a lighting DATA go to the session as one IVGR message: the
+ * eight bytes before them in the frame are its head (form, records). */
+static lumo_status apply_lighting(lumo_net_client *c, const lumo_net_data *d)
+{
+    lumo_status st;
+
+    if (!c->has_ivg || d->form != c->cfg.ivg_form || d->first != c->rounds_held ||
+        d->first + d->count > c->rounds_total)
+        return LUMO_ERR_STATE;
+    st = lumo_session_feed(c->session, LUMO_MSG_IVGR, 0, d->bytes - LUMO_NET_IVGR_HEAD,
+                           d->len + LUMO_NET_IVGR_HEAD);
+    if (st)
+        return st;
+    c->rounds_held += d->count;   /* 0 for a frame that continues a round */
+    return LUMO_OK;
+}
+
+/* The oldest pending request is answered once its cursor reaches its end. */
+static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
+{
+    lumo_net_pending *p = &c->pending[0];
+    uint32_t held = p->channel == LUMO_NET_GEOMETRY ? c->held[p->mesh] : c->rounds_held;
+
+    c->data_bytes += bytes;
+    if (held < p->end)
+        return;
+    c->costs.ms_per_kib_q10 = blend_rate(c->costs.ms_per_kib_q10, t - p->sent_ms, c->data_bytes);
+    c->data_bytes = 0;
+    memmove(c->pending, c->pending + 1, --c->npending * sizeof *c->pending);
+}
+
+static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_data d;
+    uint32_t t0, t1, before;
+    lumo_status st;
+
+    if ((st = lumo_net_data_decode(f, &d)))
+        return st;
+    if (!c->cfg.replay && (c->npending == 0 || d.channel != c->pending[0].channel ||
+                           (d.channel == LUMO_NET_GEOMETRY && d.mesh != c->pending[0].mesh)))
+        return LUMO_ERR_STATE;
+    t0 = now_ms(c);
+    before = d.channel == LUMO_NET_GEOMETRY ? c->held[d.mesh] : c->rounds_held;
+    st = d.channel == LUMO_NET_GEOMETRY ? apply_geometry(c, &d) : apply_lighting(c, &d);
+    if (st)
+        return st;
+    if (d.channel == LUMO_NET_GEOMETRY) {
+        uint32_t v = batch_vertices(c, d.mesh, before, c->held[d.mesh]);
+        c->costs.bytes_per_vertex = v ? d.len / v + 1 : c->costs.bytes_per_vertex;
+    } else {
+        uint32_t u = now_ms(c);
+        lumo_session_update(c->session);   /* push-pull after lighting (§4.1) */
+        c->costs.update_ms = now_ms(c) - u;
+        c->costs.bytes_per_round = d.count ? d.len / d.count : c->costs.bytes_per_round;
+    }
+    t1 = now_ms(c);
+    c->costs.apply_ms_per_kib_q10 = blend_rate(c->costs.apply_ms_per_kib_q10, t1 - t0, d.len);
+    c->bytes_in += d.len;
+    if (c->npending)
+        retire(c, t1, d.len);
+    return LUMO_OK;
+}
+
+static lumo_status on_end(lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_end e;
+    lumo_status st;
+
+    if ((st = lumo_net_end_decode(f, &e)))
+        return st;
+    if (!c->cfg.replay && (c->npending == 0 || e.channel != c->pending[0].channel))
+        return LUMO_ERR_STATE;
+    if (e.channel == LUMO_NET_GEOMETRY) {
+        if (e.mesh >= c->mesh_count)
+            return LUMO_ERR_STATE;
+        c->mesh_ended[e.mesh] = 1;
+    } else {
+        c->ivg_ended = 1;
+    }
+    if (c->npending)
+        memmove(c->pending, c->pending + 1, --c->npending * sizeof *c->pending);
+    return LUMO_OK;
+}
+
+static lumo_status on_error(const lumo_net_frame *f)
+{
+    lumo_net_error e;
+    lumo_status st = lumo_net_error_decode(f, &e);
+
+    if (st)
+        return st;
+    return e.status > LUMO_OK && e.status < LUMO_STATUS_COUNT ? (lumo_status)e.status : LUMO_ERR_CORRUPT;
+}
+
+lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_status st;
+
+    if (!c || !f)
+        return LUMO_ERR_ARG;
+    if (c->state == LUMO_NET_FAILED)
+        return c->error;
+    if (f->type == LUMO_NET_ERROR)
+        return fail(c, on_error(f));
+    if (c->state == LUMO_NET_HELLO_SENT && f->type == LUMO_NET_WELCOME)
+        st = on_welcome(c, f);
+    else if (c->state == LUMO_NET_READY && f->type == LUMO_NET_DATA)
+        st = on_data(c, f);
+    else if (c->state == LUMO_NET_READY && f->type == LUMO_NET_END)
+        st = on_end(c, f);
+    else
+        st = LUMO_ERR_STATE;
+    return st ? fail(c, st) : LUMO_OK;
+}
+
+/* ---- requests --------------------------------------------------------------------- */
+
+static int mesh_open(const lumo_net_client *c, uint32_t m)
+{
+    return !c->mesh_ended[m] && c->asked[m] < c->batches[m];
+}
+
+static int ivg_open(const lumo_net_client *c)
+{
+    return c->has_ivg && !c->ivg_ended && c->rounds_asked < c->rounds_total;
+}
+
+/* Vertices in batches [from, to) of mesh m. */
+static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t from, uint32_t to)
+{
+    lumo_pmesh_header h;
+    uint64_t v = 0;
+
+    if (lumo_session_stream_header(c->session, m, &h) || from >= to)
+        return 0;
+    if (from == 0)
+        v = h.base_vertices, from = 1;
+    v += (uint64_t)(to - from) * h.batch_vertices;
+    return v > h.vertices ? h.vertices : (uint32_t)v;
+}
+
+/* The batches the server sends for `amount` vertices from cursor `from`:
+ * whole batches holding at most amount vertices, at least one
+ * (docs/protocol.md §2 DATA). */
+static uint32_t geometry_end(const lumo_net_client *c, uint32_t m, uint32_t from, uint32_t amount)
+{
+    uint32_t to = from + 1;
+
+    while (to < c->batches[m] && batch_vertices(c, m, from, to + 1) <= amount)
+        to++;
+    return to;
+}
+
+/* How much one request should ask (seed 000 §5.2): fixed by the policy, or
+ * what the measured link and apply costs fit into the target time. */
+static uint32_t adaptive(const lumo_net_client *c, uint32_t bytes_per_unit, uint32_t fixed_ms,
+                         uint32_t unit, uint32_t limit)
+{
+    uint64_t ms_per_unit_q10 = ((uint64_t)c->costs.ms_per_kib_q10 + c->costs.apply_ms_per_kib_q10) *
+                               bytes_per_unit / 1024u;
+    uint32_t budget = c->cfg.policy.target_ms > fixed_ms ? c->cfg.policy.target_ms - fixed_ms : 0;
+    uint64_t n;
+
+    if (!c->cfg.clock || !bytes_per_unit || !ms_per_unit_q10)
+        return unit;   /* nothing measured yet: one batch, one round */
+    n = ((uint64_t)budget << 10) / ms_per_unit_q10;
+    return n < unit ? unit : n > limit ? limit : (uint32_t)n;
+}
+
+static uint32_t geometry_amount(const lumo_net_client *c, uint32_t m)
+{
+    lumo_pmesh_header h;
+
+    if (c->asked[m] == 0)   /* the base mesh first, whole */
+        return batch_vertices(c, m, 0, 1);
+    if (c->cfg.policy.vertices)
+        return c->cfg.policy.vertices;
+    if (lumo_session_stream_header(c->session, m, &h))
+        return 1;
+    return adaptive(c, c->costs.bytes_per_vertex, 0, h.batch_vertices, MAX_VERTICES);
+}
+
+static uint32_t lighting_amount(const lumo_net_client *c)
+{
+    if (c->rounds_asked == 0)   /* the corners first */
+        return 1;
+    if (c->cfg.policy.rounds)
+        return c->cfg.policy.rounds;
+    return adaptive(c, c->costs.bytes_per_round, c->costs.update_ms, 1, MAX_ROUNDS);
+}
+
+/* The first picture needs every base mesh and the corners, whatever the
+ * order; then the policy's order (seed 000 §5.1). Returns the channel
+ * (and mesh) to ask next, or -1 when nothing is left. */
+static int pick(lumo_net_client *c, uint32_t *mesh)
+{
+    uint32_t m, k, n = c->mesh_count + 1;
+
+    for (m = 0; m < c->mesh_count; m++)
+        if (c->asked[m] == 0 && mesh_open(c, m))
+            return *mesh = m, LUMO_NET_GEOMETRY;
+    if (c->rounds_asked == 0 && ivg_open(c))
+        return LUMO_NET_LIGHTING;
+    if (c->cfg.policy.order == LUMO_NET_ORDER_LIGHTING_FIRST && ivg_open(c))
+        return LUMO_NET_LIGHTING;
+    for (k = 0; k < n; k++) {
+        uint32_t slot = (c->turn + k) % n;
+        if (c->cfg.policy.order == LUMO_NET_ORDER_GEOMETRY_FIRST && slot == c->mesh_count)
+            continue;
+        if (slot < c->mesh_count ? mesh_open(c, slot) : ivg_open(c)) {
+            c->turn = slot + 1;
+            *mesh = slot;
+            return slot < c->mesh_count ? LUMO_NET_GEOMETRY : LUMO_NET_LIGHTING;
+        }
+    }
+    return ivg_open(c) ? LUMO_NET_LIGHTING : -1;
+}
+
+static lumo_status send_request(lumo_net_client *c, int channel, uint32_t mesh, uint8_t *out, size_t cap,
+                                size_t *written)
+{
+    lumo_net_request r;
+    lumo_net_pending *p = &c->pending[c->npending];
+    lumo_status st;
+
+    memset(&r, 0, sizeof r);
+    r.channel = (uint8_t)channel;
+    r.mesh = channel == LUMO_NET_GEOMETRY ? mesh : 0;
+    r.cursor = channel == LUMO_NET_GEOMETRY ? c->asked[mesh] : c->rounds_asked;
+    r.amount = channel == LUMO_NET_GEOMETRY ? geometry_amount(c, mesh) : lighting_amount(c);
+    if ((st = lumo_net_request_encode(&r, out, cap, written)))
+        return st;
+    p->channel = r.channel, p->mesh = r.mesh, p->cursor = r.cursor, p->sent_ms = now_ms(c);
+    if (channel == LUMO_NET_GEOMETRY) {
+        p->end = geometry_end(c, mesh, r.cursor, r.amount);
+        c->asked[mesh] = p->end;
+    } else {
+        p->end = r.cursor + r.amount > c->rounds_total ? c->rounds_total : r.cursor + r.amount;
+        c->rounds_asked = p->end;
+    }
+    if (c->npending == 0)
+        c->data_bytes = 0;
+    c->npending++;
+    return LUMO_OK;
+}
+
+static int all_held(const lumo_net_client *c)
+{
+    uint32_t m;
+
+    for (m = 0; m < c->mesh_count; m++)
+        if (!c->mesh_ended[m] && c->held[m] < c->batches[m])
+            return 0;
+    return !c->has_ivg || c->ivg_ended || c->rounds_held >= c->rounds_total;
+}
+
+lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written)
+{
+    uint32_t mesh = 0;
+    int channel;
+    lumo_status st;
+
+    if (!c || !out || !written)
+        return LUMO_ERR_ARG;
+    *written = 0;
+    if (c->state == LUMO_NET_FAILED)
+        return c->error;
+    if (c->state != LUMO_NET_READY)
+        return c->state == LUMO_NET_DONE ? LUMO_OK : LUMO_ERR_STATE;
+    if (c->npending == 0 && all_held(c)) {
+        if (!c->cfg.replay && (st = lumo_net_bye_encode(out, cap, written)))
+            return st;
+        c->state = LUMO_NET_DONE;
+        return LUMO_OK;
+    }
+    if (c->cfg.replay)
+        return LUMO_OK;   /* a recording answers what was asked when it was made */
+    if (c->npending >= c->cfg.policy.pipeline || (channel = pick(c, &mesh)) < 0)
+        return LUMO_OK;
+    return send_request(c, channel, mesh, out, cap, written);
+}
+
+void lumo_net_client_progress(const lumo_net_client *c, lumo_net_progress *out)
+{
+    lumo_session_progress p;
+    uint32_t m;
+
+    memset(out, 0, sizeof *out);
+    for (m = 0; m < c->mesh_count; m++)
+        if (lumo_session_mesh_progress(c->session, m, &p) == LUMO_OK) {
+            out->vertices += p.vertices;
+            out->full_vertices += p.full_vertices;
+        }
+    out->rounds = c->rounds_held;
+    out->full_rounds = c->rounds_total;
+    out->bytes = c->bytes_in;
+    out->done = c->state == LUMO_NET_DONE;
+}
