@@ -61,10 +61,13 @@ include $(sort $(filter-out sdk/sdk.mk,$(wildcard sdk/*.mk rasterizer/*.mk raste
 # liblumo.a: the SDK (sdk/), every client; decode-only builds link only it.
 # liblumo_raster.a: the soft rasterizer (rasterizer/soft/), linked before
 # liblumo.a by clients that draw.
+# liblumo_net.a: the protocol codec (net/src/), linked before liblumo.a by
+# clients that stream.
 # rel: host -O2 (tools, benchmarks); san: host ASan/UBSan (tests);
 # m3: Cortex-M3 soft-float (check-embedded, the QEMU board).
 LUMO_SRCS   := $(filter sdk/%,$(CLIENT_SRCS))
 RASTER_SRCS := $(filter rasterizer/soft/%,$(CLIENT_SRCS))
+NET_SRCS    := $(filter net/src/%,$(CLIENT_SRCS))
 CLIENT_OBJS_rel := $(patsubst %.c,$(BUILD)/rel/%.o,$(CLIENT_SRCS))
 CLIENT_OBJS_san := $(patsubst %.c,$(BUILD)/san/%.o,$(CLIENT_SRCS))
 CLIENT_OBJS_m3  := $(patsubst %.c,$(BUILD)/m3/%.o,$(CLIENT_SRCS))
@@ -90,6 +93,12 @@ $(BUILD)/rel/liblumo_raster.a: $(patsubst %.c,$(BUILD)/rel/%.o,$(RASTER_SRCS))
 $(BUILD)/san/liblumo_raster.a: $(patsubst %.c,$(BUILD)/san/%.o,$(RASTER_SRCS))
 	rm -f $@ && ar rcs $@ $^
 $(BUILD)/m3/liblumo_raster.a: $(patsubst %.c,$(BUILD)/m3/%.o,$(RASTER_SRCS))
+	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+$(BUILD)/rel/liblumo_net.a: $(patsubst %.c,$(BUILD)/rel/%.o,$(NET_SRCS))
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/san/liblumo_net.a: $(patsubst %.c,$(BUILD)/san/%.o,$(NET_SRCS))
+	rm -f $@ && ar rcs $@ $^
+$(BUILD)/m3/liblumo_net.a: $(patsubst %.c,$(BUILD)/m3/%.o,$(NET_SRCS))
 	rm -f $@ && arm-none-eabi-ar rcs $@ $^
 
 # Desktop objects (server, host board, tests) keep their own trees.
@@ -137,10 +146,12 @@ $(SETUP_STAMP): tools/setup.sh
 	sh tools/setup.sh
 	@touch $@
 
-all: $(SETUP_STAMP) $(BUILD)/rel/liblumo.a $(BUILD)/rel/liblumo_raster.a $(ALL_TARGETS) $(HOST_TOOLS)
+all: $(SETUP_STAMP) $(BUILD)/rel/liblumo.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo_net.a \
+     $(ALL_TARGETS) $(HOST_TOOLS)
 
 test: $(SETUP_STAMP)
-	@$(MAKE) --no-print-directory all $(UNIT_TESTS) $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a
+	@$(MAKE) --no-print-directory all $(UNIT_TESTS) $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a \
+	    $(BUILD)/m3/liblumo_net.a
 	+@sh tests/run.sh $(BUILD) "$(UNIT_TESTS)" "$(TEST_STEPS)"
 
 bench: $(SETUP_STAMP) all

@@ -10,21 +10,25 @@ raster-tables:
 	python3 rasterizer/soft/gen_tables.py > rasterizer/soft/raster_tables.c
 
 # Unit tests of the soft rasterizer (tests/unit/test_raster*.c) build their
-# scenes with lumo-render's scene builder, in its test build (floats are fine
-# in tests: tools/lumo-render/lumo-render.mk); test_raster_ivg encodes its
-# bundles with the server's IVG encoder (server library). Libraries are named
-# literally: fragments are included in any order.
+# scenes with lumo-render's scene builder and read camera and light strings
+# through its scene conversion, in their test build (floats are fine in
+# tests: tools/lumo-render/lumo-render.mk). The conversion parses with the
+# server's scene room and test_raster_ivg encodes its bundles with the
+# server's IVG encoder: both come from the server library. A test that
+# builds server scenes from files (assimp) adds $(SERVER_LIBS) through
+# RASTER_UNIT_LDLIBS_<test>. Libraries are named literally: fragments are
+# included in any order.
 RASTER_UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/bin/%,$(wildcard tests/unit/test_raster*.c))
-RASTER_UNIT_LIBS   = $(RASTER_UNIT_LIBS_$*) $(BUILD)/tests/libmesh_build.a $(BUILD)/san/liblumo_raster.a \
+RASTER_UNIT_LIBS  := $(BUILD)/tests/libmesh_build.a $(BUILD)/host/libserver.a $(BUILD)/san/liblumo_raster.a \
                      $(BUILD)/san/liblumo.a
 # TODO(merge): the server library is its desktop build (-O2, no sanitizers);
-# a test build of it (server/ fragment, server branch) would put the encoder
-# back under ASan/UBSan here, as the single test-flag object did. Wherever
-# the server branch moves ivg_encode.c, this archive link stays as it is.
-RASTER_UNIT_LIBS_test_raster_ivg := $(BUILD)/host/libserver.a
+# a test build of it (server/ fragment, server branch) would put the parsers
+# and the encoder back under ASan/UBSan here, as the single test-flag object
+# did. Wherever the server branch moves them, this archive link stays as it is.
 
-$(RASTER_UNIT_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/unit/%.o $(BUILD)/tests/libmesh_build.a \
-                      $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
+# test_raster_scene builds the server's default scene and imports an OBJ.
+RASTER_UNIT_LDLIBS_test_raster_scene = $(SERVER_LIBS)
+
+$(RASTER_UNIT_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/unit/%.o $(RASTER_UNIT_LIBS)
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -o $@ $< $(RASTER_UNIT_LIBS) $(TEST_LDLIBS)
-$(BUILD)/tests/bin/test_raster_ivg: $(BUILD)/host/libserver.a
+	$(CC) $(SAN_FLAGS) -pthread -o $@ $< $(RASTER_UNIT_LIBS) $(RASTER_UNIT_LDLIBS_$*) $(TEST_LDLIBS)

@@ -3,7 +3,8 @@
 # Cortex-M3 build of the client libraries (docs/porting.md).
 #
 #   make check-embedded           nm + source rules on the objects of
-#                                 build/m3/liblumo.a and build/m3/liblumo_raster.a
+#                                 build/m3/liblumo.a, liblumo_raster.a and
+#                                 liblumo_net.a
 #   make check-embedded-selftest  feeds the check deliberately bad objects
 #
 # A board of the family links the family code — startup.c (vector table,
@@ -28,7 +29,7 @@ CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(
     $(wildcard sdk/include/lumo/*.h))
 
 .PHONY: check-embedded check-embedded-selftest
-check-embedded: $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a
+check-embedded: $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo_net.a
 	@deps=$$(cat $(CLIENT_OBJS_m3:.o=.d) 2>/dev/null | tr ' \\' '\n\n' | sed 's/:$$//' \
 	        | grep '\.h$$' | grep -v '^/' | sort -u); \
 	srcs=$$({ for f in $(CHECK_EMBEDDED_SRCS); do echo $$f; done; \

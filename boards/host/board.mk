@@ -7,7 +7,7 @@
 # test harness (harness.c, golden.c, ivg_wire.c) and the client libraries.
 HOST_BOARD_OBJS := $(patsubst %.c,$(BUILD)/board/obj-host/%.o,boards/host/board.c boards/common/console.c)
 HOST_BOARD_TEST_OBJS := $(patsubst %,$(BUILD)/board/obj-host/tests/board/%.o,harness golden ivg_wire)
-HOST_BOARD_LIBS := $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
+HOST_BOARD_LIBS := $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
 
 $(BUILD)/board/obj-host/%.o: %.c
 	@mkdir -p $(@D)

@@ -38,7 +38,7 @@ BOARD_PROGS := $(basename $(notdir $(BOARD_TEST_SRCS) $(BOARD_GOLDEN_SRCS)))
 
 MPS2_ELFS  := $(patsubst %,$(MPS2_OUT)/%.elf,$(BOARD_PROGS))
 BHOST_BINS := $(patsubst %,$(BHOST_OUT)/%,$(BOARD_PROGS))
-MPS2_LIBS  := $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo.a
+MPS2_LIBS  := $(BUILD)/m3/liblumo_net.a $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo.a
 
 MPS2_LDFLAGS := $(M3_ARCH) -nostartfiles -specs=nano.specs -T $(MPS2_DIR)/mps2-an385.ld \
                 -Wl,--gc-sections -Wl,--no-warn-rwx-segments

@@ -83,16 +83,6 @@ static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t fr
 
 /* ---- WELCOME ------------------------------------------------------------------ */
 
-/* The round count of an IVGS payload (docs/package-format.md "IVGS"). */
-static lumo_status strat_rounds(const uint8_t *p, size_t len, uint32_t *rounds)
-{
-    lumo_ivg_strat s;
-    lumo_status st = lumo_ivg_strat_decode(p, len, &s);
-    if (!st)
-        *rounds = s.rounds;
-    return st;
-}
-
 /* Descriptors into the session, in the order WELCOME carries them. */
 static lumo_status feed_welcome(lumo_net_client *c, const lumo_net_welcome *w)
 {
@@ -102,8 +92,6 @@ static lumo_status feed_welcome(lumo_net_client *c, const lumo_net_welcome *w)
 
     while ((st = lumo_net_welcome_next(w, &at, &m)) == LUMO_OK) {
         if ((st = lumo_session_feed(c->session, m.type, m.index, m.data, m.len)))
-            return st;
-        if (m.type == LUMO_MSG_IVGS && (st = strat_rounds(m.data, m.len, &c->rounds_total)))
             return st;
     }
     return st == LUMO_ERR_RANGE ? LUMO_OK : st;
@@ -125,7 +113,10 @@ static lumo_status take_scene(lumo_net_client *c)
             return LUMO_ERR_UNSUPPORTED;   /* raw meshes are not streamed */
         c->batches[m] = h.batch_count;
     }
-    c->has_ivg = lumo_session_ivg(c->session) != NULL && c->cfg.ivg_form != LUMO_NET_FORM_NONE;
+    /* Lighting streams only with its order (the package's IVGS). */
+    c->has_ivg = lumo_session_ivg(c->session) != NULL && lumo_session_ivg_order(c->session) != NULL &&
+                 c->cfg.ivg_form != LUMO_NET_FORM_NONE;
+    c->rounds_total = c->has_ivg ? lumo_session_ivg_order(c->session)->rounds : 0;
     c->ivg_ended = !c->has_ivg;
     return LUMO_OK;
 }
@@ -202,7 +193,7 @@ static lumo_status apply_lighting(lumo_net_client *c, const lumo_net_data *d)
                            d->len + LUMO_NET_IVGR_HEAD);
     if (st)
         return st;
-    c->rounds_held += d->count;
+    c->rounds_held += d->count;   /* 0 for a frame that continues a round */
     return LUMO_OK;
 }
 
@@ -274,7 +265,7 @@ static lumo_status on_end(lumo_net_client *c, const lumo_net_frame *f)
     return LUMO_OK;
 }
 
-static lumo_status on_error(lumo_net_client *c, const lumo_net_frame *f)
+static lumo_status on_error(const lumo_net_frame *f)
 {
     lumo_net_error e;
     lumo_status st = lumo_net_error_decode(f, &e);
@@ -293,7 +284,7 @@ lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f
     if (c->state == LUMO_NET_FAILED)
         return c->error;
     if (f->type == LUMO_NET_ERROR)
-        return fail(c, on_error(c, f));
+        return fail(c, on_error(f));
     if (c->state == LUMO_NET_HELLO_SENT && f->type == LUMO_NET_WELCOME)
         st = on_welcome(c, f);
     else if (c->state == LUMO_NET_READY && f->type == LUMO_NET_DATA)

@@ -1,12 +1,15 @@
 /*
- * ivg_bundle.c — decoder of IVG sample bundles (seed 000 §3.3 and §4.1;
- * wire format in lumo/ivg.h and docs/ivg-format.md).
+ * ivg_bundle.c — decoder of IVG sample records (seed 000 §3.3 and §4.1;
+ * wire format in lumo/ivg.h and docs/ivg-format.md): whole bundles (a
+ * header, then records) and runs of records without the header (a slice of
+ * a package's bundle as the server streams it, docs/protocol.md).
  *
- * Every byte is hostile. The decoder walks the bundle twice: the first walk
- * checks every record (and marks each vertex in seen_bits to catch
- * duplicates), the second stores them. Nothing touches the grid's data until
- * the whole bundle has passed, so a bad bundle leaves the grid as it was.
- * Work is linear in the bundle's length.
+ * Every byte is hostile. Both entry points open a `run` (form, count and the
+ * record bytes) and hand it to the one loop below: the first walk checks
+ * every record (and marks each vertex in seen_bits to catch duplicates), the
+ * second stores them. Nothing touches the grid's data until the whole run
+ * has passed, so a bad one leaves the grid as it was. Work is linear in the
+ * run's length.
  */
 #include <string.h>
 #include "ivg_internal.h"
@@ -19,15 +22,43 @@ static const uint8_t k_magic[4] = {0x49, 0x56, 0x47, 0x42};   /* "IVGB" */
 #define D_TOL_LO 15
 #define D_TOL_HI 17
 
-typedef struct bundle {
+/* A run of records: the bytes right after a bundle header, or what
+ * lumo_ivg_apply_records was given. */
+typedef struct run {
     const uint8_t *p;
     size_t         len;
     unsigned       form;
     uint32_t       records;
     size_t         entry_bytes;
-} bundle;
+} run;
 
-static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t len, bundle *b)
+static int form_known(unsigned form)
+{
+    return form == LUMO_IVG_FORM_FLOAT || form == LUMO_IVG_FORM_QUANTIZED;
+}
+
+/* The checks every run passes before its records are read. */
+static lumo_status open_run(const lumo_ivg *g, unsigned form, uint32_t count, const uint8_t *p, size_t len,
+                            run *b)
+{
+    if (!form_known(form))
+        return LUMO_ERR_UNSUPPORTED;
+    /* Each record is at least its 4-byte index word; with duplicates
+     * rejected no valid run has more records than the grid vertices. */
+    if (count > g->count)
+        return LUMO_ERR_CORRUPT;
+    if (count > len / 4u)
+        return LUMO_ERR_TRUNCATED;
+    b->p = p;
+    b->len = len;
+    b->form = form;
+    b->records = count;
+    b->entry_bytes = form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_ENTRY : LUMO_IVG_QUANT_ENTRY;
+    return LUMO_OK;
+}
+
+/* The 16-byte bundle header, then the run after it. */
+static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t len, run *b)
 {
     int a;
 
@@ -37,23 +68,13 @@ static lumo_status parse_header(const lumo_ivg *g, const uint8_t *buf, size_t le
         return LUMO_ERR_CORRUPT;
     if (buf[4] != LUMO_IVG_BUNDLE_VERSION)
         return LUMO_ERR_VERSION;
-    if (buf[5] != LUMO_IVG_FORM_FLOAT && buf[5] != LUMO_IVG_FORM_QUANTIZED)
+    if (!form_known(buf[5]))
         return LUMO_ERR_UNSUPPORTED;
     for (a = 0; a < 3; a++)
         if (lumo_wire_le16(buf + 6 + 2 * a) != g->desc.dims[a])
             return LUMO_ERR_RANGE;
-    b->p = buf;
-    b->len = len;
-    b->form = buf[5];
-    b->records = lumo_wire_le32(buf + 12);
-    b->entry_bytes = b->form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_ENTRY : LUMO_IVG_QUANT_ENTRY;
-    /* Each record is at least its 4-byte index word; with duplicates
-     * rejected no valid bundle has more records than the grid vertices. */
-    if (b->records > g->count)
-        return LUMO_ERR_CORRUPT;
-    if (b->records > (len - LUMO_IVG_BUNDLE_HEADER) / 4u)
-        return LUMO_ERR_TRUNCATED;
-    return LUMO_OK;
+    return open_run(g, buf[5], lumo_wire_le32(buf + 12), buf + LUMO_IVG_BUNDLE_HEADER,
+                    len - LUMO_IVG_BUNDLE_HEADER, b);
 }
 
 /* Length check of a direction given as integers at scale `one` (127 for
@@ -162,9 +183,9 @@ static lumo_status decode_entry(unsigned form, const uint8_t *p, lumo_ivg_entry 
 
 /* Check record by record; on success every record's vertex is marked in
  * seen_bits. *done gets the number of records fully checked (and marked). */
-static lumo_status validate(lumo_ivg *g, const bundle *b, uint32_t *done)
+static lumo_status validate(lumo_ivg *g, const run *b, uint32_t *done)
 {
-    size_t pos = LUMO_IVG_BUNDLE_HEADER;
+    size_t pos = 0;
     lumo_ivg_entry tmp[LUMO_IVG_AXES];
     uint32_t r;
     lumo_status st;
@@ -216,9 +237,9 @@ static void mark_vertex(lumo_ivg *g, uint32_t v, int solid)
 
 /* Walk the first `records` records (already validated); store them when
  * `store`, and clear their seen bits either way. */
-static void walk(lumo_ivg *g, const bundle *b, uint32_t records, int store)
+static void walk(lumo_ivg *g, const run *b, uint32_t records, int store)
 {
-    size_t pos = LUMO_IVG_BUNDLE_HEADER;
+    size_t pos = 0;
     uint32_t r;
     int a;
 
@@ -240,22 +261,39 @@ static void walk(lumo_ivg *g, const bundle *b, uint32_t records, int store)
     }
 }
 
+/* The one validate-then-apply loop of both entry points. */
+static lumo_status apply_run(lumo_ivg *g, const run *b, uint32_t *applied)
+{
+    uint32_t done = 0;
+    lumo_status st = validate(g, b, &done);
+
+    walk(g, b, done, st == LUMO_OK);
+    if (st)
+        return st;
+    if (applied != NULL)
+        *applied = b->records;
+    return LUMO_OK;
+}
+
 lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, uint32_t *applied)
 {
-    bundle b;
-    uint32_t done = 0;
+    run b;
     lumo_status st;
 
     if (g == NULL || (buf == NULL && len != 0))
         return LUMO_ERR_ARG;
     st = parse_header(g, buf, len, &b);
-    if (st)
-        return st;
-    st = validate(g, &b, &done);
-    walk(g, &b, done, st == LUMO_OK);
-    if (st)
-        return st;
-    if (applied != NULL)
-        *applied = b.records;
-    return LUMO_OK;
+    return st ? st : apply_run(g, &b, applied);
+}
+
+lumo_status lumo_ivg_apply_records(lumo_ivg *g, lumo_ivg_form form, uint32_t count, const uint8_t *records,
+                                   size_t len, uint32_t *applied)
+{
+    run b;
+    lumo_status st;
+
+    if (g == NULL || (records == NULL && len != 0))
+        return LUMO_ERR_ARG;
+    st = open_run(g, (unsigned)form, count, records, len, &b);
+    return st ? st : apply_run(g, &b, applied);
 }

@@ -79,6 +79,19 @@ lumo_status lumo_package_open(lumo_package *pkg, const uint8_t *data, size_t siz
     return LUMO_OK;
 }
 
+lumo_status lumo_package_peek_version(const uint8_t *data, size_t size, uint16_t *major, uint16_t *minor)
+{
+    if (!data || !major || !minor)
+        return LUMO_ERR_ARG;
+    if (size < 8)
+        return LUMO_ERR_TRUNCATED;
+    if (memcmp(data, "LUMO", 4) != 0)
+        return LUMO_ERR_CORRUPT;
+    *major = lumo_wire_le16(data + 4);
+    *minor = lumo_wire_le16(data + 6);
+    return LUMO_OK;
+}
+
 lumo_status lumo_package_chunk(const lumo_package *pkg, uint32_t index, lumo_pkg_chunk *out)
 {
     const uint8_t *e;
@@ -172,4 +185,37 @@ lumo_status lumo_package_load_ivg(const lumo_package *pkg, lumo_ivg *g, lumo_ivg
     if (st)
         return st;
     return lumo_ivg_apply_bundle(g, p, len, applied);
+}
+
+lumo_status lumo_package_ivg_order(const lumo_package *pkg, lumo_ivg_order *out)
+{
+    static const uint32_t types[2] = {LUMO_PKG_IVGQ, LUMO_PKG_IVGF};
+    static const lumo_ivg_form forms[2] = {LUMO_IVG_FORM_QUANTIZED, LUMO_IVG_FORM_FLOAT};
+    const uint8_t *p, *b;
+    uint32_t len, blen, i;
+    lumo_ivg_desc d;
+    lumo_ivg_order o;
+    lumo_status st;
+    if (!out)
+        return LUMO_ERR_ARG;
+    if ((st = lumo_package_ivg_desc(pkg, &d)) || (st = lumo_package_find(pkg, LUMO_PKG_IVGS, 0, &p, &len)) ||
+        (st = lumo_ivg_order_decode(p, len, &d, &o)))
+        return st;
+    for (i = 0; i < 2; i++)
+        if (lumo_package_find(pkg, types[i], 0, &b, &blen) == LUMO_OK &&
+            (st = lumo_ivg_order_check_bundle(&o, forms[i], b, blen)))
+            return st;
+    *out = o;
+    return LUMO_OK;
+}
+
+lumo_status lumo_package_order(const lumo_package *pkg, lumo_scene_order *out)
+{
+    const uint8_t *p;
+    uint32_t len;
+    lumo_pkg_info info;
+    lumo_status st;
+    if ((st = lumo_package_info(pkg, &info)) || (st = lumo_package_find(pkg, LUMO_PKG_ORDR, 0, &p, &len)))
+        return st;
+    return lumo_scene_order_decode(p, len, info.mesh_count, out);
 }

@@ -14,6 +14,8 @@
 #define MESH_VERTEX  36u
 #define MESH_TRI     12u
 #define IVGD_SIZE    48u
+#define ORDR_HEAD    8u
+#define ORDR_STEP    12u
 
 /* ---- binary32 fields to fixed point --------------------------------------- */
 
@@ -246,3 +248,48 @@ lumo_status lumo_scene_ivg_desc_decode(const uint8_t *p, size_t len, lumo_ivg_de
     return LUMO_OK;
 }
 
+
+/* ---- ORDR ---------------------------------------------------------------------- */
+
+lumo_status lumo_scene_order_decode(const uint8_t *p, size_t len, uint32_t mesh_count, lumo_scene_order *out)
+{
+    lumo_scene_order o;
+    uint64_t need;
+    uint32_t i;
+    if (!out || !p)
+        return LUMO_ERR_ARG;
+    if (len < ORDR_HEAD)
+        return LUMO_ERR_TRUNCATED;
+    o.prefix = lumo_wire_le32(p);
+    o.cycle = lumo_wire_le32(p + 4);
+    o.steps = p + ORDR_HEAD;
+    need = ORDR_HEAD + ORDR_STEP * ((uint64_t)o.prefix + o.cycle);
+    if ((uint64_t)len != need)
+        return (uint64_t)len < need ? LUMO_ERR_TRUNCATED : LUMO_ERR_CORRUPT;
+    for (i = 0; i < o.prefix + o.cycle; i++) {
+        const uint8_t *s = o.steps + (size_t)i * ORDR_STEP;
+        uint32_t mesh = lumo_wire_le32(s + 4);
+        if (s[0] > LUMO_CHANNEL_LIGHTING)
+            return LUMO_ERR_UNSUPPORTED;
+        if (lumo_wire_le32(s + 8) == 0 || (s[0] == LUMO_CHANNEL_LIGHTING && mesh != 0))
+            return LUMO_ERR_CORRUPT;
+        if (s[0] == LUMO_CHANNEL_GEOMETRY && mesh >= mesh_count)
+            return LUMO_ERR_RANGE;
+    }
+    *out = o;
+    return LUMO_OK;
+}
+
+lumo_status lumo_scene_order_step(const lumo_scene_order *o, uint32_t i, lumo_scene_step *out)
+{
+    const uint8_t *s;
+    if (!o || !out)
+        return LUMO_ERR_ARG;
+    if (i >= o->prefix + o->cycle)
+        return LUMO_ERR_RANGE;
+    s = o->steps + (size_t)i * ORDR_STEP;
+    out->channel = s[0];
+    out->mesh = lumo_wire_le32(s + 4);
+    out->amount = lumo_wire_le32(s + 8);
+    return LUMO_OK;
+}

@@ -5,6 +5,7 @@
  */
 #include <string.h>
 #include "lumo/session.h"
+#include "lumo/wire.h"
 
 enum { SLOT_EMPTY = 0, SLOT_RAW = 1, SLOT_PM = 2 };
 
@@ -37,6 +38,8 @@ lumo_status lumo_session_message_need(uint32_t type, const uint8_t *p, size_t le
     lumo_pkg_mesh_info mi;
     lumo_pmesh_header h;
     lumo_ivg_desc d;
+    lumo_ivg_order io;
+    lumo_scene_order so;
     lumo_status st = LUMO_OK;
 
     if (!bytes)
@@ -48,6 +51,10 @@ lumo_status lumo_session_message_need(uint32_t type, const uint8_t *p, size_t le
         *bytes = lumo_pmesh_arena_bytes(&h);
     else if (type == LUMO_MSG_IVGD && !(st = lumo_scene_ivg_desc_decode(p, len, &d)))
         *bytes = lumo_ivg_memory_size(&d);
+    else if (type == LUMO_MSG_IVGS && !(st = lumo_ivg_order_decode(p, len, NULL, &io)))
+        *bytes = lumo_arena_round(len);
+    else if (type == LUMO_MSG_ORDR && !(st = lumo_scene_order_decode(p, len, UINT32_MAX, &so)))
+        *bytes = lumo_arena_round(len);
     return st;
 }
 
@@ -87,7 +94,8 @@ lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes)
 
     if (!pkg || !bytes)
         return LUMO_ERR_ARG;
-    if ((st = lumo_package_info(pkg, &info)) || (st = add_chunk_need(pkg, LUMO_PKG_IVGD, 0, &sum)))
+    if ((st = lumo_package_info(pkg, &info)) || (st = add_chunk_need(pkg, LUMO_PKG_IVGD, 0, &sum)) ||
+        (st = add_chunk_need(pkg, LUMO_PKG_IVGS, 0, &sum)) || (st = add_chunk_need(pkg, LUMO_PKG_ORDR, 0, &sum)))
         return st;
     streams = stream_count(pkg);
     for (i = 0; i < info.mesh_count; i++)
@@ -247,6 +255,72 @@ static lumo_status feed_ivg_bundle(lumo_session *s, const uint8_t *p, size_t len
     if ((st = lumo_ivg_apply_bundle(s->ivg, p, len, &applied)))
         return st;
     s->ivg_dirty = 1;
+    s->ivg_records += applied;
+    return LUMO_OK;
+}
+
+/* IVGR: form, 3 reserved bytes, record count, then the records. */
+static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t len)
+{
+    uint32_t applied;
+    lumo_status st;
+
+    if (!s->ivg)
+        return LUMO_ERR_STATE;
+    if (len < LUMO_MSG_IVGR_HEADER)
+        return LUMO_ERR_TRUNCATED;
+    st = lumo_ivg_apply_records(s->ivg, (lumo_ivg_form)p[0], lumo_wire_le32(p + 4), p + LUMO_MSG_IVGR_HEADER,
+                                len - LUMO_MSG_IVGR_HEADER, &applied);
+    if (st)
+        return st;
+    s->ivg_dirty = 1;
+    s->ivg_records += applied;
+    return LUMO_OK;
+}
+
+/* A copy of a checked payload in the arena (messages may live in a
+ * transport's buffer that is reused); NULL when the arena is full. */
+static uint8_t *keep(lumo_session *s, const uint8_t *p, size_t len)
+{
+    uint8_t *copy = lumo_arena_alloc(s->arena, len ? len : 1);
+    if (copy && len)
+        memcpy(copy, p, len);
+    return copy;
+}
+
+static lumo_status feed_ivg_order(lumo_session *s, const uint8_t *p, size_t len)
+{
+    lumo_ivg_order o;
+    uint8_t *copy;
+    lumo_status st;
+
+    if (!s->ivg || s->have_ivg_order)
+        return LUMO_ERR_STATE;
+    if ((st = lumo_ivg_order_decode(p, len, lumo_ivg_get_desc(s->ivg), &o)))
+        return st;
+    if (!(copy = keep(s, p, len)))
+        return LUMO_ERR_NOMEM;
+    o.table = copy + (o.table - p);
+    s->ivg_order = o;
+    s->have_ivg_order = 1;
+    return LUMO_OK;
+}
+
+static lumo_status feed_order(lumo_session *s, const uint8_t *p, size_t len)
+{
+    lumo_scene_order o;
+    uint8_t *copy;
+    lumo_status st;
+
+    if (s->have_order)
+        return LUMO_ERR_STATE;
+    if ((st = lumo_scene_order_decode(p, len, s->info.mesh_count, &o)))
+        return st;
+    if (!(copy = keep(s, p, len)))
+        return LUMO_ERR_NOMEM;
+    o.steps = copy + (o.steps - p);
+    s->order = o;
+    s->have_order = 1;
     return LUMO_OK;
 }
 
@@ -265,6 +339,9 @@ lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, co
     case LUMO_MSG_IVGD: return feed_ivg_desc(s, p, len);
     case LUMO_MSG_IVGQ:
     case LUMO_MSG_IVGF: return feed_ivg_bundle(s, p, len);
+    case LUMO_MSG_IVGR: return feed_ivg_records(s, p, len);
+    case LUMO_MSG_IVGS: return feed_ivg_order(s, p, len);
+    case LUMO_MSG_ORDR: return feed_order(s, p, len);
     default:            return LUMO_ERR_UNSUPPORTED;
     }
 }
@@ -302,7 +379,8 @@ lumo_status lumo_session_feed_package(lumo_session *s, const lumo_package *pkg, 
 
     if (!s || !pkg)
         return LUMO_ERR_ARG;
-    if ((st = feed_chunk(s, pkg, LUMO_PKG_INFO, 0, 1, w)) || (st = feed_chunk(s, pkg, LUMO_PKG_IVGD, 0, 0, w)))
+    if ((st = feed_chunk(s, pkg, LUMO_PKG_INFO, 0, 1, w)) || (st = feed_chunk(s, pkg, LUMO_PKG_IVGD, 0, 0, w)) ||
+        (st = feed_chunk(s, pkg, LUMO_PKG_IVGS, 0, 0, w)) || (st = feed_chunk(s, pkg, LUMO_PKG_ORDR, 0, 0, w)))
         return st;
     /* The quantized bundle is what a client receives; binary32 if only that. */
     if ((st = feed_chunk(s, pkg, has_chunk(pkg, LUMO_PKG_IVGQ) ? LUMO_PKG_IVGQ : LUMO_PKG_IVGF, 0, 0, w)))
@@ -350,6 +428,30 @@ const lumo_pkg_light *lumo_session_lights(const lumo_session *s, uint32_t *count
 const lumo_ivg *lumo_session_ivg(const lumo_session *s)
 {
     return s ? s->ivg : NULL;
+}
+
+const lumo_ivg_order *lumo_session_ivg_order(const lumo_session *s)
+{
+    return s && s->have_ivg_order ? &s->ivg_order : NULL;
+}
+
+const lumo_scene_order *lumo_session_order(const lumo_session *s)
+{
+    return s && s->have_order ? &s->order : NULL;
+}
+
+void lumo_session_lighting_progress(const lumo_session *s, lumo_session_lighting *out)
+{
+    if (!out)
+        return;
+    memset(out, 0, sizeof *out);
+    if (!s)
+        return;
+    out->records = s->ivg_records;
+    if (s->have_ivg_order) {
+        out->rounds = s->ivg_order.rounds;
+        out->rounds_held = lumo_ivg_order_rounds_in(&s->ivg_order, s->ivg_records);
+    }
 }
 
 lumo_status lumo_session_mesh(const lumo_session *s, uint32_t index, lumo_pmesh_view *out)

@@ -15,6 +15,16 @@ static inline uint64_t srv_splitmix64(uint64_t x)
     return x ^ (x >> 31);
 }
 
+/* The SplitMix64 generator (Steele, Lea, Flood 2014; Vigna's reference
+ * splitmix64.c): advance the state by the golden gamma, return its mix.
+ * The IVG streaming order draws with it (docs/package-format.md "IVGS"). */
+static inline uint64_t srv_splitmix64_next(uint64_t *state)
+{
+    uint64_t z = srv_splitmix64(*state);
+    *state += 0x9E3779B97F4A7C15ull;
+    return z;
+}
+
 static inline uint32_t srv_rng_u32(srv_rng *r)
 {
     uint64_t old = r->state;

@@ -51,9 +51,20 @@ lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char 
  * or srv_pkgw_add's limits) or LUMO_ERR_NOMEM. */
 lumo_status srv_pack_scene(srv_pkg_writer *w, const srv_scene *s, int raw_meshes);
 /* IVG chunks: IVGD, then the bundle in both wire forms (IVGQ, IVGF) made by
- * the IVG encoder (server/package/ivg_encode.c). LUMO_OK, or with err
- * srv_pkgw_add's status or the encoder's (LUMO_ERR_NOMEM, LUMO_ERR_RANGE). */
+ * the IVG encoder (server/package/ivg_encode.c), their records in the
+ * stratified streaming order drawn from `seed` (package/ivg_order.h), then
+ * IVGS, where each round starts in both. LUMO_OK, or with err srv_pkgw_add's
+ * status or the encoder's (LUMO_ERR_NOMEM, LUMO_ERR_RANGE). */
 lumo_status srv_pack_ivg(srv_pkg_writer *w, const srv_bake_result *r, uint32_t spp, uint64_t seed,
                          char *err, size_t errlen);
+
+/* ORDR, the recommended interleaving of geometry and lighting, from the
+ * PMSH and IVGS chunks already in w (call it last): every base mesh and
+ * the IVG's corners first, then a cycle of one batch of every mesh that has
+ * more and a lighting step of ceil((R - 1) / B) rounds (B: the most batches
+ * a stream has after its base), so that the lighting ends no later than the
+ * geometry (docs/package-format.md "ORDR"). LUMO_OK, LUMO_ERR_LIMIT, LUMO_ERR_NOMEM
+ * or a stream header's error. */
+lumo_status srv_pack_order(srv_pkg_writer *w);
 
 #endif

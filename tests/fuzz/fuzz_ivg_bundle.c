@@ -7,6 +7,10 @@
  * outside 2..12 are folded into that range) so the fuzzer also explores odd
  * pyramid shapes; inputs whose first byte is a multiple of 4 get a fixed
  * 5x4x3 grid instead, so the dims check is fuzzed too.
+ *
+ * Each input is also read as a run of records without the header
+ * (lumo_ivg_apply_records, the session's IVGR): form from byte 5, count
+ * from bytes 12-15, the records from byte 16 on, on a fresh grid.
  */
 #include <stdint.h>
 #include <stddef.h>
@@ -36,31 +40,39 @@ static void pick_desc(const uint8_t *data, size_t size, lumo_ivg_desc *d)
     }
 }
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+static void run_one(const uint8_t *data, size_t size, int as_run)
 {
     lumo_arena arena;
     lumo_ivg *g;
     lumo_ivg_desc d;
     size_t need;
     lumo_uq16_16 out[3];
+    lumo_status st;
     int s;
 
     pick_desc(data, size, &d);
     need = lumo_ivg_memory_size(&d);
     if (need == 0 || need > sizeof g_mem)
-        return 0;
+        return;
     lumo_arena_init(&arena, g_mem, need);
     if (lumo_ivg_create(&g, &arena, &d) != LUMO_OK)
         __builtin_trap();
     memcpy(g_copy, g_mem, need);
-    if (lumo_ivg_apply_bundle(g, data, size, NULL) != LUMO_OK) {
+    if (as_run)
+        st = lumo_ivg_apply_records(g, (lumo_ivg_form)data[5],
+                                    (uint32_t)data[12] | (uint32_t)data[13] << 8 | (uint32_t)data[14] << 16 |
+                                        (uint32_t)data[15] << 24,
+                                    data + 16, size - 16, NULL);
+    else
+        st = lumo_ivg_apply_bundle(g, data, size, NULL);
+    if (st != LUMO_OK) {
         if (memcmp(g_copy, g_mem, need) != 0)
             __builtin_trap();   /* a rejected bundle changed the grid */
-        return 0;
+        return;
     }
     if (lumo_ivg_pushpull(g, size & 1 ? LUMO_IVG_SMOOTH : 0) != LUMO_OK)
         __builtin_trap();
-    for (s = 0; s < 4; s++) {
+    for (s = 0; s < 4 && size > 0; s++) {
         /* points and normals from the input itself, in and out of the box */
         size_t o = (size / 4) * (size_t)s;
         lumo_q16_16 p[3];
@@ -73,5 +85,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         lumo_ivg_irradiance(g, p, n, out);
         lumo_ivg_radiance(g, p, n, albedo, out);
     }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    run_one(data, size, 0);
+    if (size >= 16)
+        run_one(data, size, 1);
     return 0;
 }

@@ -1,6 +1,8 @@
 /* fuzz_package.c — hostile bytes into the .lumo reader: open, then every
  * getter (info, lights, meshes into fixed buffers, IVG descriptor and both
- * bundles into a grid), then the whole package through the client session. Nothing may read or write out of bounds. The CRCs
+ * bundles into a grid; the IVG streaming order (IVGS), its rounds applied
+ * one run of records at a time, and the interleaving (ORDR)), then the
+ * whole package through the client session. Nothing may read or write out of bounds. The CRCs
  * would stop almost every mutation at open(), so each input is also tried
  * with its checksums recomputed: the content checks get fuzzed too. Seeds
  * in tests/fuzz/seeds/fuzz_package/ are real packages from lumo-bake. */
@@ -29,6 +31,48 @@ static void read_meshes(const lumo_package *pkg)
             lumo_package_mesh_read(pkg, i, g_pos, g_nrm, g_alb, g_tris);
 }
 
+/* IVGS: the decoder alone (no descriptor), then the checked order; each
+ * round of each bundle as the server would stream it, through
+ * lumo_ivg_apply_records. */
+static void read_ivg_order(const lumo_package *pkg, lumo_ivg *g)
+{
+    static const uint32_t types[2] = {LUMO_PKG_IVGF, LUMO_PKG_IVGQ};
+    lumo_ivg_order o;
+    const uint8_t *p, *b;
+    uint32_t len, blen, r;
+    int f;
+    if (lumo_package_find(pkg, LUMO_PKG_IVGS, 0, &p, &len) != LUMO_OK)
+        return;
+    lumo_ivg_order_decode(p, len, NULL, &o);
+    if (lumo_package_ivg_order(pkg, &o) != LUMO_OK)
+        return;
+    for (f = 0; f < 2; f++) {
+        if (lumo_package_find(pkg, types[f], 0, &b, &blen) != LUMO_OK)
+            continue;
+        for (r = 0; r < o.rounds; r++) {
+            uint32_t from = lumo_ivg_order_offset(&o, (lumo_ivg_form)f, r);
+            uint32_t to = lumo_ivg_order_offset(&o, (lumo_ivg_form)f, r + 1);
+            if (from > to || to > blen)
+                __builtin_trap();   /* a checked order must stay inside its bundle */
+            lumo_ivg_apply_records(g, (lumo_ivg_form)f, lumo_ivg_order_first(&o, r + 1) - lumo_ivg_order_first(&o, r),
+                                   b + from, to - from, NULL);
+        }
+    }
+    (void)lumo_ivg_order_rounds_in(&o, o.records / 2);
+}
+
+static void read_order(const lumo_package *pkg)
+{
+    lumo_scene_order o;
+    lumo_scene_step st;
+    uint32_t i;
+    if (lumo_package_order(pkg, &o) != LUMO_OK)
+        return;
+    for (i = 0; i < o.prefix + o.cycle && i < 4096; i++)
+        if (lumo_scene_order_step(&o, i, &st) != LUMO_OK)
+            __builtin_trap();
+}
+
 static void read_ivg(const lumo_package *pkg)
 {
     lumo_ivg_desc d;
@@ -41,6 +85,7 @@ static void read_ivg(const lumo_package *pkg)
         return;
     lumo_package_load_ivg(pkg, g, LUMO_IVG_FORM_QUANTIZED, NULL);
     lumo_package_load_ivg(pkg, g, LUMO_IVG_FORM_FLOAT, NULL);
+    read_ivg_order(pkg, g);
 }
 
 static uint8_t g_copy[1u << 20];
@@ -130,5 +175,6 @@ static void exercise(const uint8_t *data, size_t size)
             lumo_package_light(&pkg, i, &l);
     read_meshes(&pkg);
     read_ivg(&pkg);
+    read_order(&pkg);
     run_session(&pkg);
 }

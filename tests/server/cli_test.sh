@@ -2,7 +2,9 @@
 # tests/server/cli_test.sh BIN WORKDIR — lumo-bake / lumo-inspect from the
 # outside: --help, bad input gives exactly one error line and exit 1, the
 # same seed gives a byte-identical package for 1 and 2 threads, a damaged
-# package is refused. Prints "RESULT: N passed, M failed".
+# or version-1 package is refused, the summary lists the IVG streaming order
+# (IVGS) and the interleaving (ORDR) and --order every round, consistent
+# with the chunk table. Prints "RESULT: N passed, M failed".
 bin=$1; dir=$2
 mkdir -p "$dir"
 pass=0; fail=0
@@ -97,6 +99,35 @@ printf '\377' | dd of="$dir/flip.lumo" bs=1 seek=$((size - 100)) conv=notrunc 2>
 expect_error "inspect flipped byte" "$inspect" "$dir/flip.lumo"
 head -c $((size - 1)) "$dir/a.lumo" >"$dir/trunc.lumo"
 expect_error "inspect truncated"    "$inspect" "$dir/trunc.lumo"
+
+# A version-1 package (IVG in index order, no IVGS): one line that says to re-bake.
+expect_error "inspect version-1 package" "$inspect" tests/server/data/v1_tiny.lumo
+grep -q "package version 1: re-bake it with this lumo-bake" "$dir/err" && ok "version 1: says to re-bake" \
+    || bad "version 1 message: $(cat "$dir/err")"
+expect_error "inspect --stream version-1" "$inspect" --stream tests/server/data/v1_tiny.lumo
+grep -q "package version 1: re-bake" "$dir/err" && ok "--stream version 1: says to re-bake" || bad "--stream version 1"
+
+# The IVG streaming order and the interleaving in the summary (a.lumo: 6x6x6,
+# 6 slices along x of 36 vertices: round 0 the 8 corners, rounds 1..32 one
+# vertex per slice, 33..36 the 4 interior slices).
+grep -q "^package   version 2.0, " "$dir/sum.txt" && ok "summary: version 2.0" || bad "summary version"
+grep -q "^ivg order 37 rounds over 6 slices along x, 216 records, seed 7$" "$dir/sum.txt" \
+    && ok "summary: IVGS line" || bad "summary: IVGS line"
+awk '/^  rounds /{ sub(/\.\./, " "); n += ($3 - $2 + 1) * $4 } END { exit n != 216 }' "$dir/sum.txt" \
+    && ok "summary: the rounds' records add up to the grid" || bad "summary: rounds do not add up"
+grep -q "^  rounds     1\.\.32 *6 records each" "$dir/sum.txt" && grep -q "^  rounds    33\.\.36 *4 records each" "$dir/sum.txt" \
+    && ok "summary: 6 records per round, then 4" || bad "summary: round runs"
+grep -q "^order     7 prefix steps, then a cycle of " "$dir/sum.txt" && grep -q "^  prefix  lighting, 1 round$" "$dir/sum.txt" \
+    && grep -q "^  cycle   lighting, " "$dir/sum.txt" && ok "summary: ORDR prefix and cycle" || bad "summary: ORDR"
+# --order: one line per round; records and both byte ranges contiguous from
+# 16 to the end of IVGQ / IVGF (their lengths from the chunk table).
+"$inspect" --order "$dir/a.lumo" >"$dir/order.txt" 2>&1
+qlen=$(awk '$3 == "IVGQ" { print $7 }' "$dir/sum.txt"); flen=$(awk '$3 == "IVGF" { print $7 }' "$dir/sum.txt")
+awk -v q="$qlen" -v f="$flen" '!/^#/ { if ($1 != r || $2 != rec || $4 != qo || $6 != fo) bad = 1
+        r++; rec += $3; qo = $4 + $5; fo = $6 + $7 }
+    BEGIN { qo = 16; fo = 16 } END { exit bad || r != 37 || rec != 216 || qo != q || fo != f }' "$dir/order.txt" \
+    && ok "--order: 37 contiguous rounds ending at the bundles' ends" || bad "--order"
+"$inspect" --help | grep -q -- "--order" && ok "lumo-inspect --help lists --order" || bad "--help --order"
 
 # Reference images: full and indirect-only, PNG signature.
 "$bake" --default --reference 32x24 --spp 4 -o "$dir/ref.png" 2>/dev/null && \

@@ -1,6 +1,7 @@
 /* test_ivg.c — IVG grid creation, memory accounting, bundle decoding in both
  * wire forms against double references, and rejection of every malformed
- * bundle with the grid left byte-for-byte unchanged. */
+ * bundle with the grid left byte-for-byte unchanged; runs of records without
+ * the header (lumo_ivg_apply_records) against the same records in a bundle. */
 #include "test_ivg_util.h"
 
 /* ---- creation and memory ----------------------------------------------- */
@@ -412,6 +413,147 @@ static void test_byte_flips(void **state)
     fixture_free(&x);
 }
 
+/* ---- runs of records without the header ----------------------------------- */
+
+/* Same received/solid state and the same stored entries, vertex by vertex. */
+static void assert_grids_equal(const lumo_ivg *a, const lumo_ivg *b)
+{
+    uint32_t v;
+    int h;
+    assert_int_equal(lumo_ivg_received_count(a), lumo_ivg_received_count(b));
+    assert_int_equal(lumo_ivg_solid_count(a), lumo_ivg_solid_count(b));
+    for (v = 0; v < lumo_ivg_vertex_count(a); v++) {
+        assert_int_equal(lumo_ivg_is_received(a, v), lumo_ivg_is_received(b, v));
+        assert_int_equal(lumo_ivg_is_solid(a, v), lumo_ivg_is_solid(b, v));
+        for (h = 0; h < LUMO_IVG_AXES; h++)
+            assert_memory_equal(lumo_ivg_entry_at(a, v, (lumo_ivg_axis)h), lumo_ivg_entry_at(b, v, (lumo_ivg_axis)h),
+                                sizeof(lumo_ivg_entry));
+    }
+}
+
+/* Byte length of the record at p (the run is valid). */
+static size_t record_bytes(const uint8_t *p, lumo_ivg_form form)
+{
+    uint32_t word = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    if (word & LUMO_IVG_SOLID_BIT)
+        return 4;
+    return form == LUMO_IVG_FORM_FLOAT ? LUMO_IVG_FLOAT_RECORD : LUMO_IVG_QUANT_RECORD;
+}
+
+/* A bundle with data and solid records, applied whole to one grid and as
+ * runs of 1, 2, 3, ... records (cut at record boundaries) to another: the
+ * grids agree, in both forms. */
+static void test_apply_records_equals_bundle(void **state)
+{
+    test_rng r = {4242};
+    int form;
+    (void)state;
+    for (form = 0; form < 2; form++) {
+        tgrid ta, tb;
+        lumo_ivg *ga = tgrid_make(&ta, 6, 5, 4, 3), *gb = tgrid_make(&tb, 6, 5, 4, 3);
+        uint32_t count = lumo_ivg_vertex_count(ga), *verts = malloc(count * sizeof *verts), n, i, applied;
+        srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 200.0);
+        size_t cap, len, at, run_len;
+        uint8_t *buf;
+        srv_ivg_writer w;
+        n = random_subset(&r, count, 60, verts);
+        cap = srv_ivg_bundle_bytes((lumo_ivg_form)form, n, 0);
+        buf = malloc(cap);
+        assert_int_equal(srv_ivg_writer_begin(&w, buf, cap, (lumo_ivg_form)form, ta.desc.dims), LUMO_OK);
+        for (i = 0; i < n; i++)   /* every third vertex solid */
+            assert_int_equal(i % 3 == 1 ? srv_ivg_writer_add_solid(&w, verts[i]) : srv_ivg_writer_add(&w, verts[i], f[verts[i]]),
+                             LUMO_OK);
+        len = srv_ivg_writer_finish(&w);
+        assert_int_equal(lumo_ivg_apply_bundle(ga, buf, len, &applied), LUMO_OK);
+        assert_int_equal(applied, n);
+        /* the whole run at once */
+        assert_int_equal(lumo_ivg_apply_records(gb, (lumo_ivg_form)form, n, buf + 16, len - 16, &applied), LUMO_OK);
+        assert_int_equal(applied, n);
+        assert_grids_equal(ga, gb);
+        tgrid_free(&tb);
+        gb = tgrid_make(&tb, 6, 5, 4, 3);
+        /* runs of growing length */
+        for (at = 16, i = 0; i < n;) {
+            uint32_t k = 0, want = 1 + i % 4;
+            run_len = 0;
+            while (k < want && i + k < n) {
+                run_len += record_bytes(buf + at + run_len, (lumo_ivg_form)form);
+                k++;
+            }
+            assert_int_equal(lumo_ivg_apply_records(gb, (lumo_ivg_form)form, k, buf + at, run_len, &applied), LUMO_OK);
+            assert_int_equal(applied, k);
+            at += run_len;
+            i += k;
+        }
+        assert_int_equal(at, len);
+        assert_grids_equal(ga, gb);
+        /* an empty run changes nothing */
+        assert_int_equal(lumo_ivg_apply_records(gb, (lumo_ivg_form)form, 0, NULL, 0, &applied), LUMO_OK);
+        assert_int_equal(applied, 0);
+        assert_grids_equal(ga, gb);
+        free(buf);
+        free(verts);
+        free(f);
+        tgrid_free(&ta);
+        tgrid_free(&tb);
+    }
+}
+
+/* The run must fail with `want` and leave every arena byte as it was. */
+static void expect_reject_run(reject_fixture *x, lumo_ivg_form form, uint32_t count, const uint8_t *p, size_t len,
+                              lumo_status want, const char *what)
+{
+    uint32_t applied = 12345;
+    lumo_status st = lumo_ivg_apply_records(x->g, form, count, p, len, &applied);
+    if (st != want)
+        fail_msg("%s: got %s, want %s", what, lumo_strerror(st), lumo_strerror(want));
+    assert_int_equal(applied, 12345);
+    assert_memory_equal(x->t.mem, x->before, x->t.size);
+}
+
+static void test_apply_records_reject(void **state)
+{
+    reject_fixture x;
+    uint32_t v[3] = {1, 2, 3}, dup[3] = {7, 8, 7};
+    size_t len, i;
+    uint8_t *b, *c;
+    const uint8_t *rec;
+    (void)state;
+    fixture_init(&x);
+    b = bundle_of(&x, LUMO_IVG_FORM_QUANTIZED, v, 3, &len);
+    rec = b + 16;
+    len -= 16;
+    for (i = 0; i < len; i++)           /* every truncation */
+        expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 3, rec, i, LUMO_ERR_TRUNCATED, "truncated run");
+    expect_reject_run(&x, (lumo_ivg_form)2, 3, rec, len, LUMO_ERR_UNSUPPORTED, "form 2");
+    expect_reject_run(&x, (lumo_ivg_form)255, 3, rec, len, LUMO_ERR_UNSUPPORTED, "form 255");
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 61, rec, len, LUMO_ERR_CORRUPT, "more records than vertices");
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 0xFFFFFFFFu, rec, len, LUMO_ERR_CORRUPT, "huge count");
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 4, rec, len, LUMO_ERR_TRUNCATED, "count one too many");
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 2, rec, len, LUMO_ERR_CORRUPT, "count one too few");
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 0, rec, len, LUMO_ERR_CORRUPT, "count 0 with bytes");
+    expect_reject_run(&x, LUMO_IVG_FORM_FLOAT, 3, rec, len, LUMO_ERR_TRUNCATED, "quantized records as float");
+    c = malloc(len);
+    memcpy(c, rec, len); put32(c + 2 * LUMO_IVG_QUANT_RECORD, 60);
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 3, c, len, LUMO_ERR_RANGE, "index = vertex count");
+    memcpy(c, rec, len); c[4 + 5 * 7 + 1] = 0x80;
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 3, c, len, LUMO_ERR_CORRUPT, "q = -128");
+    free(c);
+    free(b);
+    b = bundle_of(&x, LUMO_IVG_FORM_QUANTIZED, dup, 3, &len);
+    expect_reject_run(&x, LUMO_IVG_FORM_QUANTIZED, 3, b + 16, len - 16, LUMO_ERR_CORRUPT, "duplicate vertex");
+    assert_int_equal(lumo_ivg_apply_records(x.g, LUMO_IVG_FORM_QUANTIZED, 1, NULL, 4, NULL), LUMO_ERR_ARG);
+    assert_int_equal(lumo_ivg_apply_records(NULL, LUMO_IVG_FORM_QUANTIZED, 3, b + 16, len - 16, NULL), LUMO_ERR_ARG);
+    assert_int_equal(lumo_ivg_apply_records(x.g, LUMO_IVG_FORM_QUANTIZED, 1, NULL, 0, NULL), LUMO_ERR_TRUNCATED);
+    /* the same vertex in two runs is an update, not a duplicate */
+    assert_int_equal(lumo_ivg_apply_records(x.g, LUMO_IVG_FORM_QUANTIZED, 2, b + 16, 2 * LUMO_IVG_QUANT_RECORD, NULL),
+                     LUMO_OK);
+    assert_int_equal(lumo_ivg_apply_records(x.g, LUMO_IVG_FORM_QUANTIZED, 1, b + 16 + 2 * LUMO_IVG_QUANT_RECORD,
+                                            LUMO_IVG_QUANT_RECORD, NULL), LUMO_OK);
+    free(b);
+    fixture_free(&x);
+}
+
 /* ---- the server's encoder ------------------------------------------------- */
 
 static void test_encoder(void **state)
@@ -476,6 +618,8 @@ int main(void)
         cmocka_unit_test(test_reject_float),
         cmocka_unit_test(test_byte_flips),
         cmocka_unit_test(test_encoder),
+        cmocka_unit_test(test_apply_records_equals_bundle),
+        cmocka_unit_test(test_apply_records_reject),
     };
     return cmocka_run_group_tests_name("ivg", tests, NULL, NULL);
 }

@@ -2,7 +2,8 @@
  * test_package.c — the client's .lumo reader (lumo/package.h) on packages
  * assembled byte by byte here (docs/package-format.md): known values,
  * every single-byte corruption and every truncation refused, outputs
- * untouched on error, CRC-32 check value.
+ * untouched on error, CRC-32 check value, version 1 refused, the ORDR
+ * decoder.
  */
 #include "test_common.h"
 #include <stdlib.h>
@@ -105,9 +106,20 @@ static void test_version_and_limits(void **state)
     static bytes p;
     lumo_package pkg;
     sample_package(&p);
-    p.b[4] = 2;   /* major 2, header CRC fixed up: a well-formed newer package */
+    assert_int_equal(LUMO_PKG_VERSION_MAJOR, 2);
+    p.b[4] = 3;   /* major 3, header CRC fixed up: a well-formed newer package */
     wr32(p.b + 20, lumo_wire_crc32(0, p.b, 20));
     assert_int_equal(lumo_package_open(&pkg, p.b, p.n), LUMO_ERR_VERSION);
+    p.b[4] = 1;   /* major 1: the IVG in index order, no IVGS; re-bake */
+    wr32(p.b + 20, lumo_wire_crc32(0, p.b, 20));
+    assert_int_equal(lumo_package_open(&pkg, p.b, p.n), LUMO_ERR_VERSION);
+    uint16_t major = 0, minor = 9;
+    assert_int_equal(lumo_package_peek_version(p.b, p.n, &major, &minor), LUMO_OK);
+    assert_int_equal(major, 1);
+    assert_int_equal(minor, 0);
+    assert_int_equal(lumo_package_peek_version(p.b, 7, &major, &minor), LUMO_ERR_TRUNCATED);
+    p.b[0] = 'X';
+    assert_int_equal(lumo_package_peek_version(p.b, p.n, &major, &minor), LUMO_ERR_CORRUPT);
     sample_package(&p);
     p.b[6] = 9;   /* a newer minor version still opens */
     wr32(p.b + 20, lumo_wire_crc32(0, p.b, 20));
@@ -158,12 +170,82 @@ static void test_mesh_content_errors(void **state)
     assert_int_equal(lumo_package_info(&pkg, &in), LUMO_ERR_CORRUPT);
 }
 
+/* ORDR: prefix and cycle steps, every field checked. */
+static void ordr_chunk(chunk *c, uint32_t prefix, uint32_t cycle, const uint32_t (*steps)[3])
+{
+    bytes *o = &c->data;
+    c->type = LUMO_PKG_ORDR;
+    o->n = 0;
+    put32(o, prefix), put32(o, cycle);
+    for (uint32_t i = 0; i < prefix + cycle; i++)
+        put32(o, steps[i][0]), put32(o, steps[i][1]), put32(o, steps[i][2]);
+}
+
+static void test_order_chunk(void **state)
+{
+    (void)state;
+    static bytes p;
+    static chunk c[3];
+    const uint32_t steps[4][3] = {{0, 0, 3}, {1, 0, 1}, {0, 0, 250}, {1, 0, 2}};
+    lumo_package pkg;
+    lumo_scene_order o;
+    lumo_scene_step st;
+    lumo_ivg_order io;
+    info_chunk(&c[0]);
+    ivgd_chunk(&c[1]);
+    ordr_chunk(&c[2], 2, 2, steps);
+    assemble(&p, c, 3);
+    assert_int_equal(lumo_package_open(&pkg, p.b, p.n), LUMO_OK);
+    assert_int_equal(lumo_package_order(&pkg, &o), LUMO_OK);
+    assert_int_equal(o.prefix, 2);
+    assert_int_equal(o.cycle, 2);
+    for (uint32_t i = 0; i < 4; i++) {
+        assert_int_equal(lumo_scene_order_step(&o, i, &st), LUMO_OK);
+        assert_int_equal(st.channel, steps[i][0]);
+        assert_int_equal(st.mesh, steps[i][1]);
+        assert_int_equal(st.amount, steps[i][2]);
+    }
+    assert_int_equal(lumo_scene_order_step(&o, 4, &st), LUMO_ERR_RANGE);
+    assert_int_equal(lumo_package_ivg_order(&pkg, &io), LUMO_ERR_RANGE);   /* no IVGS */
+    /* the decoder on damaged payloads */
+    const uint8_t *d = c[2].data.b;
+    size_t n = c[2].data.n;
+    for (size_t k = 0; k < n; k++)
+        assert_int_equal(lumo_scene_order_decode(d, k, 1, &o), LUMO_ERR_TRUNCATED);
+    assert_int_equal(lumo_scene_order_decode(d, n, 0, &o), LUMO_ERR_RANGE);   /* mesh 0 of none */
+    static uint8_t x[128];
+    memcpy(x, d, n);
+    x[n] = 0;
+    assert_int_equal(lumo_scene_order_decode(x, n + 1, 1, &o), LUMO_ERR_CORRUPT);
+    memcpy(x, d, n), x[8 + 12 * 2] = 2;        /* channel 2 */
+    assert_int_equal(lumo_scene_order_decode(x, n, 1, &o), LUMO_ERR_UNSUPPORTED);
+    memcpy(x, d, n), wr32(x + 8 + 12 * 3 + 8, 0);   /* amount 0 */
+    assert_int_equal(lumo_scene_order_decode(x, n, 1, &o), LUMO_ERR_CORRUPT);
+    memcpy(x, d, n), wr32(x + 8 + 12 + 4, 1);        /* lighting naming mesh 1 */
+    assert_int_equal(lumo_scene_order_decode(x, n, 2, &o), LUMO_ERR_CORRUPT);
+    memcpy(x, d, n), wr32(x + 8 + 12 * 2 + 4, 1);    /* geometry mesh 1 of 1 */
+    assert_int_equal(lumo_scene_order_decode(x, n, 1, &o), LUMO_ERR_RANGE);
+    assert_int_equal(lumo_scene_order_decode(x, n, 2, &o), LUMO_OK);
+    memcpy(x, d, n), wr32(x, 0xFFFFFFFFu);           /* counts beyond the length */
+    assert_int_equal(lumo_scene_order_decode(x, n, 1, &o), LUMO_ERR_TRUNCATED);
+    memcpy(x, d, n), wr32(x, 1);
+    assert_int_equal(lumo_scene_order_decode(x, n, 1, &o), LUMO_ERR_CORRUPT);
+    /* no ORDR: RANGE; and an empty cycle is a valid order */
+    assemble(&p, c, 2);
+    assert_int_equal(lumo_package_open(&pkg, p.b, p.n), LUMO_OK);
+    assert_int_equal(lumo_package_order(&pkg, &o), LUMO_ERR_RANGE);
+    ordr_chunk(&c[2], 1, 0, steps);
+    assert_int_equal(lumo_scene_order_decode(c[2].data.b, c[2].data.n, 1, &o), LUMO_OK);
+    assert_int_equal(o.cycle, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_open_and_read),
         cmocka_unit_test(test_every_byte_flip_refused), cmocka_unit_test(test_every_truncation_refused),
         cmocka_unit_test(test_version_and_limits),      cmocka_unit_test(test_mesh_content_errors),
+        cmocka_unit_test(test_order_chunk),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

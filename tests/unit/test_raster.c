@@ -8,6 +8,7 @@
 #include "test_common.h"
 #include "lumo/raster.h"
 #include "../../tools/lumo-render/mesh_build.h"
+#include "../../tools/lumo-render/scene_convert.h"
 #include "../../rasterizer/soft/raster_internal.h"
 
 #define W 64
@@ -383,7 +384,7 @@ static void scene_camera(lumo_raster_view *v)
 {
     lumo_raster_camera cam;
     memset(&cam, 0, sizeof cam);
-    host_camera_parse("0.3,0.8,2.2:0,0,0:0,1,0:50", &cam);
+    assert_int_equal(host_camera_from_string("0.3,0.8,2.2:0,0,0:0,1,0:50", &cam), LUMO_OK);
     cam.znear = host_q16(0.05);
     assert_int_equal(lumo_raster_view_init(v, &cam, W, H), LUMO_OK);
 }
@@ -393,9 +394,9 @@ static lumo_raster_light scene_lights[3];
 static lumo_raster_scene lit_scene(uint32_t flags)
 {
     lumo_raster_scene s;
-    host_light_parse("point:1,2,1.5:30,25,20", &scene_lights[0]);
-    host_light_parse("spot:-1,1.5,0.5:1,-1,-0.3:25:40,40,60", &scene_lights[1]);
-    host_light_parse("directional:0.3,-1,-0.2:0.3,0.3,0.35", &scene_lights[2]);
+    assert_int_equal(host_light_from_string("point:1,2,1.5:30,25,20", &scene_lights[0]), LUMO_OK);
+    assert_int_equal(host_light_from_string("spot:-1,1.5,0.5:1,-1,-0.3:25:40,40,60", &scene_lights[1]), LUMO_OK);
+    assert_int_equal(host_light_from_string("directional:0.3,-1,-0.2:0.3,0.3,0.35", &scene_lights[2]), LUMO_OK);
     memset(&s, 0, sizeof s);
     s.lights = scene_lights;
     s.light_count = 3;
@@ -652,9 +653,9 @@ static void test_irradiance(void **state)
     int i, k;
     (void)state;
 
-    host_light_parse("point:0.5,2,-0.3:30,20,10", &l[0]);
-    host_light_parse("spot:-1,1.5,0.5:1,-1,-0.3:35:40,40,60", &l[1]);
-    host_light_parse("directional:0.3,-1,-0.2:2,3,4", &l[2]);
+    assert_int_equal(host_light_from_string("point:0.5,2,-0.3:30,20,10", &l[0]), LUMO_OK);
+    assert_int_equal(host_light_from_string("spot:-1,1.5,0.5:1,-1,-0.3:35:40,40,60", &l[1]), LUMO_OK);
+    assert_int_equal(host_light_from_string("directional:0.3,-1,-0.2:2,3,4", &l[2]), LUMO_OK);
     memset(&s, 0, sizeof s);
     s.lights = l;
     s.light_count = 3;

@@ -14,6 +14,7 @@
 #include "lumo/raster.h"
 #include "package/ivg_encode.h"
 #include "../../tools/lumo-render/mesh_build.h"
+#include "../../tools/lumo-render/scene_convert.h"
 
 #define W 128
 #define H 96
@@ -168,7 +169,7 @@ static uint64_t draw_case(const lumo_ivg *g, int ci, uint32_t flags, int check)
     snprintf(cs, sizeof cs, "%.17g,%.17g,%.17g:%.17g,%.17g,%.17g:0,1,0:60", eye[0], eye[1], eye[2],
              pc->point[0], pc->point[1], pc->point[2]);
     memset(&cam, 0, sizeof cam);
-    assert_int_equal(host_camera_parse(cs, &cam), 0);
+    assert_int_equal(host_camera_from_string(cs, &cam), LUMO_OK);
     cam.znear = host_q16(0.05);
     assert_int_equal(lumo_raster_view_init(&view, &cam, W, H), LUMO_OK);
     memset(&s, 0, sizeof s);

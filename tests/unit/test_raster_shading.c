@@ -9,6 +9,7 @@
 #include "test_common.h"
 #include "lumo/raster.h"
 #include "../../tools/lumo-render/mesh_build.h"
+#include "../../tools/lumo-render/scene_convert.h"
 
 #define W 160
 #define H 120
@@ -98,10 +99,10 @@ static void test_per_pixel_vs_raycast(void **state)
     host_mesh_add_quad(&m, c0, u, v, 16, 16, alb);
     rm = host_mesh_raster(&m);
     memset(&cam, 0, sizeof cam);
-    host_camera_parse("0.3,1.2,2.5:0,0,-1:0,1,0:55", &cam);
+    assert_int_equal(host_camera_from_string("0.3,1.2,2.5:0,0,-1:0,1,0:55", &cam), LUMO_OK);
     cam.znear = host_q16(0.05);
     assert_int_equal(lumo_raster_view_init(&view, &cam, W, H), LUMO_OK);
-    host_light_parse("point:0.5,1.5,-0.5:20,18,15", &light);
+    assert_int_equal(host_light_from_string("point:0.5,1.5,-0.5:20,18,15", &light), LUMO_OK);
     memset(&s, 0, sizeof s);
     s.lights = &light;
     s.light_count = 1;
@@ -164,11 +165,11 @@ static void test_two_sided(void **state)
     for (i = 0; i < 3 * back.vertex_count; i++)
         back.normal[i] = (lumo_q1_14)-back.normal[i];           /* normal away from the eye */
     memset(&cam, 0, sizeof cam);
-    host_camera_parse("0,0,3:0,0,0:0,1,0:40", &cam);
+    assert_int_equal(host_camera_from_string("0,0,3:0,0,0:0,1,0:40", &cam), LUMO_OK);
     cam.znear = host_q16(0.1);
     lumo_raster_view_init(&view, &cam, W, H);
-    host_light_parse("point:0,0,2:10,10,10", &light[0]);
-    host_light_parse("point:0,0,-2:30,30,30", &light[1]);      /* behind: must not light it */
+    assert_int_equal(host_light_from_string("point:0,0,2:10,10,10", &light[0]), LUMO_OK);
+    assert_int_equal(host_light_from_string("point:0,0,-2:30,30,30", &light[1]), LUMO_OK);      /* behind: must not light it */
     memset(&s, 0, sizeof s);
     s.lights = light;
     s.light_count = 2;
@@ -212,13 +213,13 @@ static void test_rgb565_dither_mean(void **state)
     host_mesh_add_quad(&m, c0, u, v, 1, 1, a);
     rm = host_mesh_raster(&m);
     memset(&cam, 0, sizeof cam);
-    host_camera_parse("0,0,3:0,0,0:0,1,0:40", &cam);
+    assert_int_equal(host_camera_from_string("0,0,3:0,0,0:0,1,0:40", &cam), LUMO_OK);
     cam.znear = host_q16(0.1);
     lumo_raster_view_init(&view, &cam, W, H);
     for (level = 1; level < 12; level++) {
         char spec[64];
         snprintf(spec, sizeof spec, "directional:0,0,-1:%g,%g,%g", 0.05 * level, 0.11 * level, 0.23 * level);
-        host_light_parse(spec, &light);
+        assert_int_equal(host_light_from_string(spec, &light), LUMO_OK);
         memset(&s, 0, sizeof s);
         s.lights = &light;
         s.light_count = 1;

@@ -309,6 +309,8 @@ static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
     int rc = pack_meshes(o, &w, s, err, sizeof err);
     if (!rc)
         rc = srv_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
+    if (!rc && (rc = srv_pack_order(&w)))
+        snprintf(err, sizeof err, "cannot write the streaming order: %s", lumo_strerror((lumo_status)rc));
     if (!rc)
         rc = srv_pkgw_write_file(&w, o->out, err, sizeof err);
     srv_pkgw_free(&w);

@@ -133,16 +133,16 @@ static int parse_args(int argc, char **argv, options *o)
     return optind == argc && (!o->connect != !o->replay) ? 0 : -1;
 }
 
-/* ---- the link: a socket, or a recorded byte stream ------------------------------------ */
+/* ---- the client_link: a socket, or a recorded byte stream ------------------------------------ */
 
-typedef struct link {
+typedef struct client_link {
     int fd;
     int replay;          /* reading a recording: nothing is sent */
     FILE *record;
     uint64_t bytes_in, bytes_out;
-} link;
+} client_link;
 
-static int link_send(link *l, const uint8_t *p, size_t n)
+static int link_send(client_link *l, const uint8_t *p, size_t n)
 {
     if (l->replay)
         return 0;
@@ -152,7 +152,7 @@ static int link_send(link *l, const uint8_t *p, size_t n)
 
 /* Read what is there into buf (blocking until at least one byte): bytes
  * read, 0 at the end, -1 on error. */
-static ssize_t link_read(link *l, uint8_t *buf, size_t cap)
+static ssize_t link_read(client_link *l, uint8_t *buf, size_t cap)
 {
     ssize_t n;
 
@@ -171,7 +171,7 @@ static ssize_t link_read(link *l, uint8_t *buf, size_t cap)
 
 typedef struct client {
     options o;
-    link l;
+    client_link l;
     lumo_session ses;
     lumo_net_client drv;
     host_scene scene;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
+#include "lumo_host/package_msg.h"
 #include "inspect.h"
 
 #define MAX_COMMANDS 16
@@ -26,7 +27,8 @@ int inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pk
     }
     lumo_status st = lumo_package_open(pkg, *data, *len);
     if (st) {
-        fprintf(stderr, "lumo-inspect: error: %s: not a valid package: %s\n", path, lumo_strerror(st));
+        char why[160];
+        fprintf(stderr, "lumo-inspect: error: %s: %s\n", path, host_package_strerror(*data, *len, st, why, sizeof why));
         free(*data);
         *data = NULL;
         return -1;

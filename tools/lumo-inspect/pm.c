@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
+#include "lumo_host/package_msg.h"
 #include "inspect.h"
 #include "pm/pm_client.h"
 
@@ -44,6 +45,12 @@ static int open_stream(const char *path, uint32_t mesh, uint8_t **file, srv_pm_c
     lumo_status st = srv_pm_find_stream(*file, len, mesh, &s, &slen);
     if (!st)
         st = srv_pm_client_open(c, s, slen);
+    if (st == LUMO_ERR_VERSION) {
+        char why[160];
+        fprintf(stderr, "lumo-inspect: error: %s: %s\n", path, host_package_strerror(*file, len, st, why, sizeof why));
+        free(*file);
+        return -1;
+    }
     if (st) {
         fprintf(stderr, "lumo-inspect: error: %s: no progressive mesh stream %u: %s\n", path, mesh,
                 lumo_strerror(st));

@@ -1,5 +1,6 @@
-/* tools/lumo-inspect/summary.c — `lumo-inspect FILE`: header, chunk table, scene info
- * and IVG descriptor of a package, as decoded by the client reader. */
+/* tools/lumo-inspect/summary.c — `lumo-inspect FILE`: header, chunk table, scene info,
+ * IVG descriptor, IVG streaming order (IVGS) and recommended interleaving
+ * (ORDR) of a package, as decoded by the client reader. */
 #include <stdio.h>
 #include <stdlib.h>
 #include "inspect.h"
@@ -85,6 +86,69 @@ static void print_ivg(const lumo_package *pkg)
            q16(d.bmax[0]), q16(d.bmax[1]), q16(d.bmax[2]));
 }
 
+static const char k_axis[3] = {'x', 'y', 'z'};
+
+/* IVGS: one line for the order, then the rounds grouped into runs of the
+ * same record count (round 0, the full rounds, the shorter tail): records
+ * and bytes of each run in both forms. `lumo-inspect --order` lists every
+ * round. */
+static int print_ivg_order(const lumo_package *pkg)
+{
+    lumo_ivg_order o;
+    const uint8_t *p;
+    uint32_t len;
+    if (lumo_package_find(pkg, LUMO_PKG_IVGS, 0, &p, &len)) {
+        printf("ivg order none\n");
+        return 0;
+    }
+    lumo_status st = lumo_package_ivg_order(pkg, &o);
+    if (st) {
+        fprintf(stderr, "lumo-inspect: error: IVG order (IVGS): %s\n", lumo_strerror(st));
+        return -1;
+    }
+    printf("ivg order %u rounds over %u slices along %c, %u records, seed %llu\n", o.rounds, o.slices,
+           k_axis[o.axis], o.records, (unsigned long long)o.seed);
+    for (uint32_t r = 0; r < o.rounds;) {
+        uint32_t n = lumo_ivg_order_first(&o, r + 1) - lumo_ivg_order_first(&o, r), e = r + 1;
+        while (e < o.rounds && lumo_ivg_order_first(&o, e + 1) - lumo_ivg_order_first(&o, e) == n)
+            e++;
+        printf("  rounds %5u..%-5u %3u record%s each  records %8u..%-8u IVGQ %9u bytes  IVGF %9u bytes\n", r,
+               e - 1, n, n == 1 ? " " : "s", lumo_ivg_order_first(&o, r), lumo_ivg_order_first(&o, e) - 1,
+               lumo_ivg_order_offset(&o, LUMO_IVG_FORM_QUANTIZED, e) - lumo_ivg_order_offset(&o, LUMO_IVG_FORM_QUANTIZED, r),
+               lumo_ivg_order_offset(&o, LUMO_IVG_FORM_FLOAT, e) - lumo_ivg_order_offset(&o, LUMO_IVG_FORM_FLOAT, r));
+        r = e;
+    }
+    return 0;
+}
+
+/* ORDR: the prefix and the cycle, one step a line. */
+static int print_order(const lumo_package *pkg)
+{
+    lumo_scene_order o;
+    const uint8_t *p;
+    uint32_t len;
+    if (lumo_package_find(pkg, LUMO_PKG_ORDR, 0, &p, &len)) {
+        printf("order     none\n");
+        return 0;
+    }
+    lumo_status st = lumo_package_order(pkg, &o);
+    if (st) {
+        fprintf(stderr, "lumo-inspect: error: streaming order (ORDR): %s\n", lumo_strerror(st));
+        return -1;
+    }
+    printf("order     %u prefix steps, then a cycle of %u\n", o.prefix, o.cycle);
+    for (uint32_t i = 0; i < o.prefix + o.cycle; i++) {
+        lumo_scene_step s;
+        lumo_scene_order_step(&o, i, &s);
+        if (s.channel == LUMO_CHANNEL_GEOMETRY)
+            printf("  %-6s  geometry mesh %u, %u vertices\n", i < o.prefix ? "prefix" : "cycle", s.mesh, s.amount);
+        else
+            printf("  %-6s  lighting, %u round%s\n", i < o.prefix ? "prefix" : "cycle", s.amount,
+                   s.amount == 1 ? "" : "s");
+    }
+    return 0;
+}
+
 int inspect_summary(int argc, char **argv);
 int inspect_summary(int argc, char **argv)
 {
@@ -103,7 +167,10 @@ int inspect_summary(int argc, char **argv)
     if (!rc) {
         print_meshes(&pkg);
         print_ivg(&pkg);
+        rc = print_ivg_order(&pkg);
     }
+    if (!rc)
+        rc = print_order(&pkg);
     free(data);
     return rc ? 1 : 0;
 }

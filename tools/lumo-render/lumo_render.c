@@ -1,6 +1,6 @@
 /*
- * lumo_render.c — lumo-render: draw a .lumo package (or a generated scene)
- * locally, without a network, with any rasterizer backend; PNG output.
+ * lumo_render.c — lumo-render: draw a .lumo package (or the server's default
+ * scene) locally, without a network, with any rasterizer backend; PNG output.
  *
  *   lumo-render FILE.lumo|--default -o OUT.png [--backend soft|osmesa|egl]
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
@@ -10,6 +10,9 @@
  *
  * Packages with progressive meshes (PMSH) are decoded through the SDK's
  * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
+ * --default builds the server's scene model (server/scene: default scene,
+ * assimp import) and converts it (scene_convert.h); --camera and --light go
+ * through the server's parsers there too.
  */
 #include <getopt.h>
 #include <math.h>
@@ -17,24 +20,36 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 #include "lumo/raster.h"
 #include "lumo_host/png_io.h"
 #include "mesh_build.h"
 #include "package_load.h"
 #include "render_backend.h"
+#include "scene/shapes.h"
+#include "scene_convert.h"
+
+/* The dragon of the default scene when neither --model nor LUMO_DRAGON names
+ * one (the same as lumo-bake's). */
+#define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
 
 static const char usage[] =
     "usage: lumo-render FILE.lumo|--default -o OUT.png [options]\n"
     "  --backend soft|osmesa|egl   renderer (default soft)\n"
     "  --size WxH                  image size (default 320x240, at most 2048x2048)\n"
-    "  --camera EYE:TARGET:UP:FOVY camera (default: the package's)\n"
+    "  --camera EYE:TARGET:UP:FOVY camera (default: the package's or the scene's)\n"
     "  --per-vertex | --per-pixel  lighting per vertex (default) or per pixel\n"
     "  --no-indirect               direct light only (ignore the IVG)\n"
     "  --frames N --orbit          N frames orbiting the target about UP; prints ms/frame\n"
     "  --exposure E                radiance multiplier before tone mapping (default 1)\n"
-    "  --default                   the built-in Cornell box (no IVG) instead of a package\n"
-    "  --model PATH                with --default: this PLY/OBJ instead of the dragon\n"
-    "  --light SPEC                replace the lights (repeatable; docs/scene-format.md)\n"
+    "  --default                   the server's built-in Cornell box (lumo-bake --default,\n"
+    "                              no IVG) instead of a package\n"
+    "  --model PATH                with --default: this model (any format assimp reads:\n"
+    "                              OBJ, PLY, OFF, STL, glTF, ...) instead of the dragon\n"
+    "  --light SPEC                replace the lights (repeatable): point:X,Y,Z:R,G,B |\n"
+    "                              spot:X,Y,Z:DX,DY,DZ:HALF_DEG:R,G,B |\n"
+    "                              directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
+    "                              (docs/scene-format.md; area: drawn as the client does)\n"
     "  --bands K                   soft: draw in bands of K rows (default: whole frame)\n"
     "  --rgb565 | --depth16        soft: RGB565 output with dither; 16-bit depth\n"
     "  --no-cache                  soft: no transformed-vertex cache\n"
@@ -219,6 +234,33 @@ static int load_package(const options *o, host_scene *scene, host_ivg *ivg)
     return 0;
 }
 
+/* The server's default scene (server/scene/default_scene.c, the scene
+ * lumo-bake --default bakes): --model, else LUMO_DRAGON, else the dragon;
+ * a missing default dragon gives the server's sphere, a missing --model is
+ * an error. */
+static int build_default(const options *o, host_scene *scene)
+{
+    const char *model = o->model ? o->model : getenv("LUMO_DRAGON");
+    char err[600];
+    srv_scene s;
+    lumo_status st;
+
+    if (o->model && access(o->model, R_OK)) {
+        fprintf(stderr, "lumo-render: error: %s: cannot read the model\n", o->model);
+        return -1;
+    }
+    srv_scene_init(&s);
+    st = srv_default_scene(&s, model ? model : DEFAULT_DRAGON, err, sizeof err);
+    if (!st)
+        st = host_scene_from_srv(scene, &s, err, sizeof err);
+    srv_scene_free(&s);
+    if (st) {
+        fprintf(stderr, "lumo-render: error: default scene: %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     options o;
@@ -230,6 +272,7 @@ int main(int argc, char **argv)
     char err[256];
     uint8_t *rgb;
     double total = 0, best = 1e300;
+    lumo_status st;
     int i, rc = 0;
 
     if (parse_args(argc, argv, &o)) {
@@ -242,23 +285,21 @@ int main(int argc, char **argv)
         return 1;
     }
     if (o.use_default) {
-        const char *model = o.model ? o.model : getenv("LUMO_DRAGON");
-        if (!model) model = "build/data/models/dragon_48k.ply";
-        if (host_scene_default(&scene, model)) {
-            fprintf(stderr, "lumo-render: error: cannot build the default scene\n");
+        if (build_default(&o, &scene))
             return 1;
-        }
     } else if (load_package(&o, &scene, &ivg))
         return 1;
-    if (o.camera && host_camera_parse(o.camera, &scene.camera)) {
-        fprintf(stderr, "lumo-render: error: bad camera '%s'\n", o.camera);
+    if (o.camera && (st = host_camera_from_string(o.camera, &scene.camera))) {
+        fprintf(stderr, "lumo-render: error: bad camera '%s': %s (EYE:TARGET:UP:FOVY, FOVY in [1, 179]; "
+                        "docs/scene-format.md)\n", o.camera, lumo_strerror(st));
         return 1;
     }
     if (o.nlights) {
         scene.light_count = 0;
         for (i = 0; i < o.nlights; i++)
-            if (host_light_parse(o.lights[i], &scene.lights[scene.light_count++])) {
-                fprintf(stderr, "lumo-render: error: bad light '%s'\n", o.lights[i]);
+            if ((st = host_light_from_string(o.lights[i], &scene.lights[scene.light_count++]))) {
+                fprintf(stderr, "lumo-render: error: bad light '%s': %s (docs/scene-format.md)\n",
+                        o.lights[i], lumo_strerror(st));
                 return 1;
             }
     }

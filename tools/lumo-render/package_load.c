@@ -10,6 +10,7 @@
 #include "lumo/package.h"
 #include "lumo/session.h"
 #include "lumo_host/file_io.h"
+#include "lumo_host/package_msg.h"
 #include "package_load.h"
 #include "session_scene.h"
 
@@ -118,7 +119,8 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
         return -1;
     }
     if ((st = lumo_package_open(&pkg, data, size))) {
-        snprintf(err, errlen, "%s: %s", path, lumo_strerror(st));
+        snprintf(err, errlen, "%s: %s", path,
+                 st == LUMO_ERR_VERSION ? host_package_strerror(data, size, st, why, sizeof why) : lumo_strerror(st));
         free(data);
         return -1;
     }

@@ -47,11 +47,14 @@ typedef struct lumo_net_frame {
 } lumo_net_frame;
 
 /* Decode the frame at buf[0..avail): checks of docs/protocol.md §1 in
- * order (max_payload: the receiver's limit, at most LUMO_NET_MAX_PAYLOAD).
- * On success *consumed = its size. TRUNCATED when more bytes are needed:
- * *consumed is then the frame's full size when the header is known (so the
- * caller can tell how much to wait for), else LUMO_NET_HEADER. Unknown types
- * are UNSUPPORTED (after the CRC check). */
+ * order (max_payload: the receiver's limit; above LUMO_NET_MAX_PAYLOAD it
+ * counts as LUMO_NET_MAX_PAYLOAD). The header's checks (magic, version,
+ * length) come as soon as its 8 bytes are there, before waiting for the
+ * rest. On success *consumed = its size. TRUNCATED when more bytes are
+ * needed: *consumed is then the frame's full size when the header is known
+ * (so the caller can tell how much to wait for), else LUMO_NET_HEADER.
+ * Unknown types are UNSUPPORTED (after the CRC check). On any other error
+ * *out and *consumed are untouched. */
 lumo_status lumo_net_frame_decode(const uint8_t *buf, size_t avail, uint32_t max_payload,
                                   lumo_net_frame *out, size_t *consumed);
 
@@ -62,7 +65,9 @@ void lumo_net_frame_seal(uint8_t *frame, uint8_t type, uint32_t len);
 
 /* Header of a frame whose payload the caller sends from elsewhere (a package
  * mapping): writes the 8 header bytes and returns the CRC state to continue
- * over the payload with lumo_wire_crc32; the final CRC goes after it. */
+ * over the payload with lumo_wire_crc32; the final CRC goes after it
+ * (lumo_wire_put_le32). Nothing is checked: len is the caller's to keep
+ * within the receiver's max payload. */
 uint32_t lumo_net_frame_head(uint8_t head[LUMO_NET_HEADER], uint8_t type, uint32_t len);
 
 /* Serial resynchronisation: the offset of the first possible frame start
@@ -126,19 +131,25 @@ typedef struct lumo_net_end {
 typedef struct lumo_net_error {
     uint32_t status;           /* a lumo_status */
     uint32_t len;
-    const uint8_t *text;       /* not NUL-terminated */
+    const uint8_t *text;       /* len bytes without NUL, not NUL-terminated */
 } lumo_net_error;
 
 /* Each encoder writes a whole frame (header, payload, CRC) at out[0..cap)
- * and sets *written; NOMEM when cap is too small; ARG for values outside the
- * protocol (e.g. mesh_count > LUMO_MAX_MESHES, text longer than
- * LUMO_NET_MAX_TEXT). Each decoder takes a frame decoded by
+ * and sets *written; NOMEM when cap is too small (nothing written); ARG for
+ * values outside the protocol, i.e. anything its decoder would refuse (e.g.
+ * mesh_count > LUMO_MAX_MESHES, text longer than LUMO_NET_MAX_TEXT), checked
+ * before the room. Each decoder takes a frame decoded by
  * lumo_net_frame_decode of its type (STATE for another type) and checks its
- * payload's exact layout (CORRUPT / TRUNCATED / LIMIT). */
+ * payload's exact layout and values (docs/protocol.md §5, "Decoder checks"):
+ * shorter than the layout TRUNCATED, longer or ill-formed CORRUPT, a count
+ * past a limit LIMIT, a field value outside its range RANGE.
+ *
+ * HELLO: the cursors come from `cursors` (mesh_count u32; NULL when
+ * mesh_count is 0), m->cursors is ignored. */
 lumo_status lumo_net_hello_encode(const lumo_net_hello *m, const uint32_t *cursors, uint8_t *out,
                                   size_t cap, size_t *written);
 lumo_status lumo_net_hello_decode(const lumo_net_frame *f, lumo_net_hello *m);
-/* Cursor i of a decoded HELLO. */
+/* Cursor i of a decoded HELLO (0 for i >= mesh_count). */
 uint32_t lumo_net_hello_cursor(const lumo_net_hello *m, uint32_t i);
 
 /* WELCOME: encoded from a list of messages. */
@@ -152,10 +163,12 @@ lumo_status lumo_net_welcome_next(const lumo_net_welcome *m, size_t *at, lumo_ne
 lumo_status lumo_net_request_encode(const lumo_net_request *m, uint8_t *out, size_t cap, size_t *written);
 lumo_status lumo_net_request_decode(const lumo_net_frame *f, lumo_net_request *m);
 
-/* DATA: the 24-byte head into out[LUMO_NET_HEADER..], then the bytes; or
- * only the head, for a sender that sends the bytes from a mapping
+/* DATA: the 24-byte head into out[LUMO_NET_HEADER..], then the bytes (which
+ * may already be in place at out + LUMO_NET_HEADER + LUMO_NET_DATA_HEAD);
+ * or only the head, for a sender that sends the bytes from a mapping
  * (lumo_net_data_head: writes LUMO_NET_HEADER + LUMO_NET_DATA_HEAD bytes
- * and returns the CRC state to continue over the bytes). */
+ * and returns the CRC state to continue over the bytes; it checks nothing:
+ * m must be one lumo_net_data_encode takes). */
 lumo_status lumo_net_data_encode(const lumo_net_data *m, uint8_t *out, size_t cap, size_t *written);
 uint32_t lumo_net_data_head(const lumo_net_data *m, uint8_t out[LUMO_NET_HEADER + LUMO_NET_DATA_HEAD]);
 lumo_status lumo_net_data_decode(const lumo_net_frame *f, lumo_net_data *m);
@@ -163,10 +176,13 @@ lumo_status lumo_net_data_decode(const lumo_net_frame *f, lumo_net_data *m);
 lumo_status lumo_net_end_encode(const lumo_net_end *m, uint8_t *out, size_t cap, size_t *written);
 lumo_status lumo_net_end_decode(const lumo_net_frame *f, lumo_net_end *m);
 
+/* ERROR: text is NUL-terminated (NULL: no text). */
 lumo_status lumo_net_error_encode(uint32_t status, const char *text, uint8_t *out, size_t cap,
                                   size_t *written);
 lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m);
 
 lumo_status lumo_net_bye_encode(uint8_t *out, size_t cap, size_t *written);
+/* BYE has no fields: OK for an empty payload, CORRUPT for any other. */
+lumo_status lumo_net_bye_decode(const lumo_net_frame *f);
 
 #endif /* LUMO_NET_H */

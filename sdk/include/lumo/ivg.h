@@ -128,6 +128,82 @@ const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo
  * the number of records stored. */
 lumo_status lumo_ivg_apply_bundle(lumo_ivg *g, const uint8_t *buf, size_t len, uint32_t *applied);
 
+/* Decode a run of `count` records without the bundle header — the records
+ * of some rounds of a package's bundle, as the server streams them
+ * (docs/protocol.md, DATA lighting) — in the given form and store them as
+ * received. Same rules and the same loop as lumo_ivg_apply_bundle: the
+ * whole run is validated first (UNSUPPORTED for an unknown form, CORRUPT
+ * for more records than grid vertices or bytes after the last record,
+ * TRUNCATED, RANGE, NONFINITE as for a bundle), and on any error the grid
+ * is unchanged. `records` may be NULL when len is 0. *applied (may be NULL)
+ * gets the number of records stored. */
+lumo_status lumo_ivg_apply_records(lumo_ivg *g, lumo_ivg_form form, uint32_t count, const uint8_t *records,
+                                   size_t len, uint32_t *applied);
+
+/* ---- the stratified streaming order (package chunk IVGS) -----------------
+ * A package's bundles hold their records in the order of seed 000 §4.1
+ * (docs/protocol.md §4, exact draw in docs/package-format.md "IVGS"): round
+ * 0 the eight corners, then rounds of at most one vertex per slice along
+ * the grid's longest axis. The IVGS payload says where each round starts:
+ *
+ *   offset size  field
+ *   0      8     seed of the draw, u64 (two u32, low first)
+ *   8      1     axis of the slices: 0 x, 1 y, 2 z (the longest; x, then y on ties)
+ *   9      3     reserved, 0
+ *   12     4     slices S = dims[axis]
+ *   16     4     rounds R >= 1
+ *   20     4(R+1)  first record of round r (entry R: the record count)
+ *   ...    4(R+1)  byte offset of round r in the IVGQ payload (entry 0: 16,
+ *                  after the bundle header; entry R: the payload's length)
+ *   ...    4(R+1)  the same in the IVGF payload
+ *
+ * Rounds r .. r+k-1 of a form are payload bytes [offset(r), offset(r+k)): a
+ * run of whole records for lumo_ivg_apply_records. */
+typedef struct lumo_ivg_order {
+    uint64_t       seed;
+    uint32_t       axis;      /* 0 x, 1 y, 2 z */
+    uint32_t       slices;
+    uint32_t       rounds;    /* R: round 0 is the corners */
+    uint32_t       records;   /* records of the whole order (grid vertices) */
+    const uint8_t *table;     /* the payload's three arrays (not owned) */
+} lumo_ivg_order;
+
+#define LUMO_IVG_ORDER_HEADER 20u
+/* Most rounds a grid can have: the corners, then one per vertex of an
+ * interior slice of 256 x 256. */
+#define LUMO_IVG_ORDER_MAX_ROUNDS (1u + LUMO_IVG_MAX_DIM * LUMO_IVG_MAX_DIM)
+
+/* The axis the order slices along: the one with the most vertices, x on a
+ * tie with y or z, then y. */
+uint32_t lumo_ivg_order_axis(const uint16_t dims[3]);
+
+/* Decode and check an IVGS payload; *out keeps a pointer into p (which must
+ * outlive it) and is written only on success. Checks: the length is that of
+ * R rounds (TRUNCATED / CORRUPT); axis < 3 (CORRUPT), S in [2, 256] and R in
+ * [1, LUMO_IVG_ORDER_MAX_ROUNDS] (RANGE); round 0 holds 8 records and every
+ * later round 1 .. S; both offset arrays start at 16 and each round's bytes
+ * are those of its records (4 per solid record, 46 or 148 per data record,
+ * the same data records in both forms) (CORRUPT). With a descriptor (may
+ * be NULL) also: axis, S and every round's record count are those of its
+ * grid (RANGE). Work is linear in R. */
+lumo_status lumo_ivg_order_decode(const uint8_t *p, size_t len, const lumo_ivg_desc *desc, lumo_ivg_order *out);
+
+/* Where round r starts: its first record, and its byte offset in the form's
+ * bundle payload. r = rounds (or more) gives the end: the record count, the
+ * payload length. */
+uint32_t lumo_ivg_order_first(const lumo_ivg_order *o, uint32_t r);
+uint32_t lumo_ivg_order_offset(const lumo_ivg_order *o, lumo_ivg_form form, uint32_t r);
+
+/* Whole rounds among the first `records` records of the order. */
+uint32_t lumo_ivg_order_rounds_in(const lumo_ivg_order *o, uint32_t records);
+
+/* Check that a bundle is the one the order describes: its form, its record
+ * count, its length, and a record boundary at every round's offset (the
+ * index words are walked; the entries are left to lumo_ivg_apply_*).
+ * CORRUPT or TRUNCATED otherwise. Linear in the record count. */
+lumo_status lumo_ivg_order_check_bundle(const lumo_ivg_order *o, lumo_ivg_form form, const uint8_t *bundle,
+                                        size_t len);
+
 /* Fill every not-received vertex from the received ones by 3D push-pull;
  * received vertices keep their exact values. flags: LUMO_IVG_SMOOTH.
  * Only received values are inputs, so a re-run after more bundles arrived

@@ -24,7 +24,11 @@
 #include "lumo/scene.h"
 #include "lumo/status.h"
 
-#define LUMO_PKG_VERSION_MAJOR 1u
+/* Version 2: the IVG bundles hold their records in the stratified streaming
+ * order, described by an IVGS chunk; an ORDR chunk recommends how to
+ * interleave geometry and lighting. Version-1 packages are refused
+ * (LUMO_ERR_VERSION): re-bake them. */
+#define LUMO_PKG_VERSION_MAJOR 2u
 #define LUMO_PKG_VERSION_MINOR 0u
 #define LUMO_PKG_HEADER_SIZE   24u
 #define LUMO_PKG_ENTRY_SIZE    16u
@@ -39,6 +43,8 @@
 #define LUMO_PKG_IVGD LUMO_PKG_FOURCC('I', 'V', 'G', 'D')  /* IVG grid descriptor */
 #define LUMO_PKG_IVGQ LUMO_PKG_FOURCC('I', 'V', 'G', 'Q')  /* IVG bundle, quantized form */
 #define LUMO_PKG_IVGF LUMO_PKG_FOURCC('I', 'V', 'G', 'F')  /* IVG bundle, binary32 form */
+#define LUMO_PKG_IVGS LUMO_PKG_FOURCC('I', 'V', 'G', 'S')  /* IVG streaming order (lumo_ivg_order) */
+#define LUMO_PKG_ORDR LUMO_PKG_FOURCC('O', 'R', 'D', 'R')  /* geometry/lighting interleaving (lumo_scene_order) */
 
 typedef struct lumo_pkg_chunk {
     uint32_t type, offset, length, crc;
@@ -55,6 +61,11 @@ typedef struct lumo_package {
  * VERSION (other major), CHECKSUM, LIMIT (too many chunks); *pkg is written
  * only on success. Work is linear in size. */
 lumo_status lumo_package_open(lumo_package *pkg, const uint8_t *data, size_t size);
+
+/* The version a file claims (bytes 4..7), without validating anything
+ * else: what a tool prints when lumo_package_open says VERSION. TRUNCATED
+ * below 8 bytes, CORRUPT without the magic. */
+lumo_status lumo_package_peek_version(const uint8_t *data, size_t size, uint16_t *major, uint16_t *minor);
 
 /* Table entry `index` (0-based). */
 lumo_status lumo_package_chunk(const lumo_package *pkg, uint32_t index, lumo_pkg_chunk *out);
@@ -84,5 +95,15 @@ lumo_status lumo_package_ivg_desc(const lumo_package *pkg, lumo_ivg_desc *out);
  * lumo_package_ivg_desc (through lumo_ivg_apply_bundle: all or nothing). */
 lumo_status lumo_package_load_ivg(const lumo_package *pkg, lumo_ivg *g, lumo_ivg_form form,
                                   uint32_t *applied);
+
+/* The IVG streaming order (IVGS), decoded against the package's IVG
+ * descriptor and checked against both bundles present (lumo_ivg_order_decode,
+ * lumo_ivg_order_check_bundle): a server can then send any rounds as one
+ * byte range of a bundle. RANGE when the package has no IVGS. */
+lumo_status lumo_package_ivg_order(const lumo_package *pkg, lumo_ivg_order *out);
+
+/* The recommended interleaving (ORDR), its meshes checked against the INFO
+ * mesh count. RANGE when the package has none. */
+lumo_status lumo_package_order(const lumo_package *pkg, lumo_scene_order *out);
 
 #endif /* LUMO_PACKAGE_H */

@@ -1,7 +1,7 @@
 /*
  * lumo/scene.h — the scene payloads of docs/package-format.md: scene info
- * (counts, bounds, default camera) with its lights, raw meshes, and the IVG
- * grid descriptor. They arrive as package chunks (lumo/package.h) or as
+ * (counts, bounds, default camera) with its lights, raw meshes, the IVG
+ * grid descriptor, and the recommended streaming order (ORDR). They arrive as package chunks (lumo/package.h) or as
  * network messages; these decoders take the payload bytes either way.
  *
  * Every byte is hostile: each decoder bounds-checks what it reads, converts
@@ -73,5 +73,36 @@ lumo_status lumo_scene_mesh_decode(const uint8_t *p, size_t len, lumo_q16_16 *po
 
 /* The IVGD payload: the grid's dims and bounds (Q16.16). */
 lumo_status lumo_scene_ivg_desc_decode(const uint8_t *p, size_t len, lumo_ivg_desc *out);
+
+/* ---- the recommended interleaving of geometry and lighting (ORDR) --------
+ * Steps, 12 bytes each: u8 channel (LUMO_CHANNEL_*), 3 reserved bytes, u32
+ * mesh (geometry; 0 for lighting), u32 amount (vertices for geometry, as a
+ * REQUEST asks them; IVG rounds for lighting). The payload: u32 prefix step
+ * count P, u32 cycle step count C, then the P + C steps. A client takes the
+ * prefix once, then the cycle again and again until every channel has
+ * ended, skipping steps of a channel (of a mesh) that has ended; a pass over
+ * the cycle in which every step was skipped ends the order
+ * (docs/package-format.md "ORDR"). */
+#define LUMO_CHANNEL_GEOMETRY 0u
+#define LUMO_CHANNEL_LIGHTING 1u
+
+typedef struct lumo_scene_step {
+    uint32_t channel, mesh, amount;
+} lumo_scene_step;
+
+typedef struct lumo_scene_order {
+    uint32_t       prefix, cycle;   /* step counts */
+    const uint8_t *steps;           /* into the payload (not owned) */
+} lumo_scene_order;
+
+/* Decode and check an ORDR payload; *out keeps a pointer into p. TRUNCATED
+ * / CORRUPT when the length is not that of P + C steps; UNSUPPORTED for a
+ * channel other than 0 and 1; CORRUPT for an amount of 0 or a lighting step
+ * naming a mesh; RANGE for a geometry step naming a mesh >= mesh_count. */
+lumo_status lumo_scene_order_decode(const uint8_t *p, size_t len, uint32_t mesh_count, lumo_scene_order *out);
+
+/* Step i (0 .. prefix + cycle - 1: the prefix's, then the cycle's);
+ * RANGE past the last. */
+lumo_status lumo_scene_order_step(const lumo_scene_order *o, uint32_t i, lumo_scene_step *out);
 
 #endif /* LUMO_SCENE_H */

@@ -4,7 +4,8 @@
  *
  * The session is fed messages — the payloads of docs/package-format.md
  * (scene info, raw meshes, progressive-mesh stream headers and batch
- * records, the IVG descriptor and bundles) — from wherever they come: a
+ * records, the IVG descriptor, bundles and runs of their records, the IVG
+ * streaming order and the interleaving) — from wherever they come: a
  * package file, a socket, a UART, USB or a replay. It owns the
  * level-of-detail cursor of every mesh, the progressive-mesh decoders, the
  * IVG and its push-pull, and hands out what a renderer draws. Every board
@@ -47,9 +48,9 @@
 #include "lumo/status.h"
 
 /* Message types: the package's chunk types (lumo/package.h), plus one for a
- * single batch record of a progressive stream. A PMSH message holds a
- * stream's header, optionally followed by batch records (a whole stream as
- * a package stores it). */
+ * single batch record of a progressive stream and one for a run of IVG
+ * records. A PMSH message holds a stream's header, optionally followed by
+ * batch records (a whole stream as a package stores it). */
 #define LUMO_MSG_INFO  LUMO_PKG_INFO    /* scene info and lights (index 0) */
 #define LUMO_MSG_MESH  LUMO_PKG_MESH    /* raw mesh `index` */
 #define LUMO_MSG_PMSH  LUMO_PKG_PMSH    /* progressive stream of mesh `index` */
@@ -57,6 +58,14 @@
 #define LUMO_MSG_IVGD  LUMO_PKG_IVGD    /* IVG grid descriptor */
 #define LUMO_MSG_IVGQ  LUMO_PKG_IVGQ    /* IVG bundle, quantized form */
 #define LUMO_MSG_IVGF  LUMO_PKG_IVGF    /* IVG bundle, binary32 form */
+#define LUMO_MSG_IVGS  LUMO_PKG_IVGS    /* IVG streaming order (stored) */
+#define LUMO_MSG_ORDR  LUMO_PKG_ORDR    /* recommended interleaving (stored) */
+/* A run of IVG records without the bundle header, as a DATA frame of the
+ * lighting channel carries them (docs/protocol.md): u8 form (0 binary32,
+ * 1 quantized), 3 reserved bytes (written 0, ignored), u32 record count,
+ * then the records (lumo_ivg_apply_records). */
+#define LUMO_MSG_IVGR  LUMO_PKG_FOURCC('I', 'V', 'G', 'R')
+#define LUMO_MSG_IVGR_HEADER 8u
 
 /* Level of detail: how far each progressive mesh is refined. A batch past
  * the target is not applied; the batch that crosses it is applied and the
@@ -93,6 +102,10 @@ typedef struct lumo_session {
     lumo_ivg      *ivg;           /* NULL until IVGD */
     uint32_t       ivg_received;  /* vertices received at the last update */
     int            ivg_dirty;     /* bundles applied since the last update */
+    uint32_t       ivg_records;   /* records applied (bundles and IVGR runs) */
+    int            have_ivg_order, have_order;
+    lumo_ivg_order ivg_order;     /* IVGS, its table copied into the arena */
+    lumo_scene_order order;       /* ORDR, its steps copied into the arena */
     lumo_session_mesh_slot mesh[LUMO_MAX_MESHES];
 } lumo_session;
 
@@ -102,7 +115,8 @@ lumo_status lumo_session_init(lumo_session *s, const lumo_session_config *cfg, l
 
 /* Arena bytes the message (type, payload) will take when fed: the arrays of
  * a raw mesh, a progressive mesh's decoder (from its stream header), the
- * IVG grid; 0 for the others. Errors as the payload's decoder. */
+ * IVG grid, the copy of an IVGS or ORDR payload; 0 for the others. Errors
+ * as the payload's decoder. */
 lumo_status lumo_session_message_need(uint32_t type, const uint8_t *payload, size_t len, size_t *bytes);
 
 /* Arena bytes to feed the whole package (LUMO_ARENA_SLACK included). */
@@ -112,17 +126,20 @@ lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes);
  * INFO must come first (STATE otherwise) and only once; a mesh index past
  * the info's mesh count is RANGE (an info naming more than LUMO_MAX_MESHES
  * is LIMIT); NOMEM when the arena is too small for a descriptor. A PMSB past
- * the level-of-detail target is accepted and ignored. On any error nothing
+ * the level-of-detail target is accepted and ignored. IVGQ, IVGF, IVGR and
+ * IVGS need the IVGD first (STATE); IVGS and ORDR come once (STATE) and are
+ * checked against the grid and the mesh count. On any error nothing
  * changes — except that a PMSH message carrying records acts as its header
  * followed by one PMSB per record: the header and the records before a bad
  * one stay applied. */
 lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, const uint8_t *payload,
                               size_t len);
 
-/* Feed a whole package in its stream order: INFO, the IVG (the quantized
- * bundle a client receives, else the binary32 one), then every mesh (its
- * PMSH stream, else its MESH chunk). Stops at the first error; *where (may
- * be NULL) then names the failing message's type and index. */
+/* Feed a whole package in its stream order: INFO, the IVG (its descriptor,
+ * its streaming order IVGS and the interleaving ORDR when present, then the
+ * quantized bundle a client receives, else the binary32 one), then every
+ * mesh (its PMSH stream, else its MESH chunk). Stops at the first error;
+ * *where (may be NULL) then names the failing message's type and index. */
 typedef struct lumo_session_where {
     uint32_t type, index;
     uint32_t batch;      /* PMSH: the batch record that failed */
@@ -142,6 +159,22 @@ const lumo_pkg_info *lumo_session_info(const lumo_session *s);
 const lumo_pkg_light *lumo_session_lights(const lumo_session *s, uint32_t *count);
 /* The IVG, or NULL when none has arrived. */
 const lumo_ivg *lumo_session_ivg(const lumo_session *s);
+
+/* The IVG streaming order (IVGS) and the interleaving (ORDR), or NULL when
+ * they have not arrived. */
+const lumo_ivg_order *lumo_session_ivg_order(const lumo_session *s);
+const lumo_scene_order *lumo_session_order(const lumo_session *s);
+
+/* Lighting progress: records applied (every bundle's and IVGR run's, in the
+ * order they came), and — with the IVGS — the whole rounds of the streaming
+ * order among them, the cursor of a lighting REQUEST (docs/protocol.md),
+ * out of `rounds`. Rounds are counted as if the records came in the order's
+ * sequence, as a server sends them. */
+typedef struct lumo_session_lighting {
+    uint32_t records;
+    uint32_t rounds_held, rounds;   /* 0, 0 without IVGS */
+} lumo_session_lighting;
+void lumo_session_lighting_progress(const lumo_session *s, lumo_session_lighting *out);
 
 /* Mesh `index` at its current level; RANGE when no such mesh has arrived.
  * The arrays are the session's and change with every fed batch. */

@@ -1,0 +1,60 @@
+/*
+ * net_internal.h — what the codec's sources (net/src/net_*.c) share: the
+ * encoders' room check and the decoders' common entry. Not public.
+ */
+#ifndef LUMO_NET_INTERNAL_H
+#define LUMO_NET_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/net.h"
+#include "lumo/wire.h"
+
+/* The encoders' last check before writing (lumo/net.h): ARG without an
+ * output, NOMEM unless a frame of len payload bytes fits cap. */
+static inline lumo_status net_room(const uint8_t *out, size_t cap, const size_t *written, uint32_t len)
+{
+    if (!written || (!out && cap))
+        return LUMO_ERR_ARG;
+    return cap < (size_t)len + LUMO_NET_OVERHEAD ? LUMO_ERR_NOMEM : LUMO_OK;
+}
+
+/* Seal the payload written at out + LUMO_NET_HEADER and report the frame. */
+static inline lumo_status net_sealed(uint8_t *out, uint8_t type, uint32_t len, size_t *written)
+{
+    lumo_net_frame_seal(out, type, len);
+    *written = (size_t)len + LUMO_NET_OVERHEAD;
+    return LUMO_OK;
+}
+
+/* The decoders' entry (lumo/net.h): ARG without a frame or an output, STATE
+ * for a frame of another type, TRUNCATED when the payload is shorter than
+ * the type's fixed part (docs/protocol.md §1, last row). */
+static inline lumo_status net_payload(const lumo_net_frame *f, const void *m, uint8_t type, uint32_t fixed)
+{
+    if (!f || !m || (!f->payload && f->len))
+        return LUMO_ERR_ARG;
+    if (f->type != type)
+        return LUMO_ERR_STATE;
+    return f->len < fixed ? LUMO_ERR_TRUNCATED : LUMO_OK;
+}
+
+/* A payload of exactly `want` bytes: shorter is TRUNCATED, longer CORRUPT. */
+static inline lumo_status net_exact(uint32_t len, size_t want)
+{
+    if (len < want)
+        return LUMO_ERR_TRUNCATED;
+    return len > want ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
+/* Channel (REQUEST, DATA, END): 0 geometry or 1 lighting; a lighting
+ * message names mesh 0 (docs/protocol.md §2: "mesh index (geometry), else
+ * 0"). RANGE otherwise. */
+static inline lumo_status net_channel(uint8_t channel, uint32_t mesh)
+{
+    if (channel > LUMO_NET_LIGHTING)
+        return LUMO_ERR_RANGE;
+    return channel == LUMO_NET_LIGHTING && mesh != 0 ? LUMO_ERR_RANGE : LUMO_OK;
+}
+
+#endif /* LUMO_NET_INTERNAL_H */

@@ -1,0 +1,14 @@
+#!/bin/sh
+# tests/fuzz/package_seeds/make.sh BIN — regenerate the real packages among
+# the fuzz_package seeds with BIN/lumo-bake (run it from the top of the
+# tree after a change of the package format, and commit the result):
+#   tiny.lumo    raw MESH chunks, a 3x3x3 IVG
+#   lights.lumo  raw MESH chunks, every light kind, a 2x3x2 IVG
+#   stream.lumo  progressive PMSH streams, a 4x3x4 IVG, IVGS and ORDR
+set -e
+bin=${1:-build/bin}
+src=tests/fuzz/package_seeds
+out=tests/fuzz/seeds/fuzz_package
+"$bin/lumo-bake" "$src/tiny.txt" --mesh raw --grid 3 --spp 4 --threads 1 --no-progress -o "$out/tiny.lumo"
+"$bin/lumo-bake" "$src/lights.txt" --mesh raw --grid 2,3,2 --spp 2 --threads 1 --no-progress -o "$out/lights.lumo"
+"$bin/lumo-bake" "$src/stream.txt" --grid 4,3,4 --spp 2 --threads 1 --no-progress -o "$out/stream.lumo"

@@ -1,0 +1,17 @@
+# tools/lumo-client/lumo-client.mk — lumo-client, the Linux thin client
+# (docs/protocol.md): the protocol driver and codec (liblumo_net.a), the
+# session (liblumo.a), the renderers of lumo-render (its backend and scene
+# objects, named literally: fragments are included in any order) and the
+# desktop transports of net/host/.
+CLIENT_TOOL_OBJS := $(BUILD)/host/tools/lumo-client/main.o $(BUILD)/host/net/host/net_socket.o \
+                    $(BUILD)/host/tools/lumo-render/session_scene.o \
+                    $(BUILD)/host/tools/lumo-render/render_backend.o
+
+HOST_TOOLS += $(BIN)/lumo-client
+
+$(BIN)/lumo-client: $(CLIENT_TOOL_OBJS) $(BUILD)/host/rasterizer/gl/raster_gl.o \
+                    $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o $(BUILD)/host/rasterizer/egl/raster_egl.o \
+                    $(BUILD)/host/libmesh_build.a $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
+                    $(BUILD)/rel/liblumo_net.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) -pthread -o $@ $^ -lOSMesa -lEGL $(SERVER_LIBS)
