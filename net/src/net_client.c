@@ -448,8 +448,8 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
     *written = 0;
     if (c->state == LUMO_NET_FAILED)
         return c->error;
-    if (c->state != LUMO_NET_READY)
-        return c->state == LUMO_NET_DONE ? LUMO_OK : LUMO_ERR_STATE;
+    if (c->state != LUMO_NET_READY)   /* waiting for WELCOME, or done: nothing to send */
+        return c->state == LUMO_NET_DONE || c->state == LUMO_NET_HELLO_SENT ? LUMO_OK : LUMO_ERR_STATE;
     if (c->npending == 0 && all_held(c)) {
         if (!c->cfg.replay && (st = lumo_net_bye_encode(out, cap, written)))
             return st;
