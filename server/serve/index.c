@@ -16,6 +16,7 @@
 #include "lumo/net.h"
 #include "lumo/session.h"
 #include "lumo/wire.h"
+#include "lumo_host/package_msg.h"
 
 static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fmt, ...)
 {
@@ -78,17 +79,43 @@ static lumo_status index_mesh(srv_pkg *p, uint32_t i, char *err, size_t errlen)
     return LUMO_OK;
 }
 
-/* The IVG's round table and records areas. */
+/* The IVG's round table and both bundles (lumo_package_ivg_order checks the
+ * table against the grid and walks both bundles' records: every round
+ * starts on a record boundary). */
 static lumo_status index_ivg(srv_pkg *p, char *err, size_t errlen)
 {
+    srv_ivg_index *g = &p->ivg;
+    lumo_ivg_order o;
     const uint8_t *s;
-    uint32_t n;
+    uint32_t n, r, f;
+    lumo_status st;
 
     if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &s, &n) != LUMO_OK)
-        return LUMO_OK;   /* no IVG: the lighting channel is RANGE */
-    if (lumo_package_find(&p->pkg, SRV_PKG_IVGS, 0, &s, &n) != LUMO_OK)
-        return LUMO_OK;   /* TODO(package-v2): required once version 2 lands */
-    (void)err, (void)errlen;
+        return LUMO_OK;   /* no IVG: a lighting request is RANGE */
+    if ((st = lumo_package_ivg_order(&p->pkg, &o)))
+        return fail(err, errlen, st, "%s: IVG streaming order (IVGS): %s", p->path, lumo_strerror(st));
+    for (f = 0; f < 2; f++) {
+        uint32_t type = f == LUMO_IVG_FORM_QUANTIZED ? LUMO_PKG_IVGQ : LUMO_PKG_IVGF;
+        if ((st = lumo_package_find(&p->pkg, type, 0, &g->bundle[f], &g->bundle_len[f])))
+            return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no %s bundle", p->path, f ? "IVGQ" : "IVGF");
+    }
+    g->rounds = o.rounds;
+    g->records = o.records;
+    g->first = malloc(((size_t)o.rounds + 1) * sizeof *g->first);
+    g->off[0] = malloc(((size_t)o.rounds + 1) * sizeof *g->off[0]);
+    g->off[1] = malloc(((size_t)o.rounds + 1) * sizeof *g->off[1]);
+    if (!g->first || !g->off[0] || !g->off[1])
+        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
+    for (r = 0; r <= o.rounds; r++) {
+        g->first[r] = lumo_ivg_order_first(&o, r);
+        for (f = 0; f < 2; f++)
+            g->off[f][r] = lumo_ivg_order_offset(&o, (lumo_ivg_form)f, r);
+    }
+    for (f = 0; f < 2; f++)
+        if (g->off[f][0] != SRV_IVG_BUNDLE_HEAD || g->off[f][o.rounds] != g->bundle_len[f])
+            return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: the round table does not cover the %s bundle",
+                        p->path, f ? "IVGQ" : "IVGF");
+    g->present = 1;
     return LUMO_OK;
 }
 
@@ -111,11 +138,11 @@ static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
     if (p->ivg.present) {
         if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &d, &n) == LUMO_OK)
             msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGD, 0, n, d};
-        if (lumo_package_find(&p->pkg, SRV_PKG_IVGS, 0, &d, &n) == LUMO_OK)
-            msgs[count++] = (lumo_net_msg){SRV_PKG_IVGS, 0, n, d};
+        if (lumo_package_find(&p->pkg, LUMO_PKG_IVGS, 0, &d, &n) == LUMO_OK)
+            msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGS, 0, n, d};
     }
-    if (lumo_package_find(&p->pkg, SRV_PKG_ORDR, 0, &d, &n) == LUMO_OK)
-        msgs[count++] = (lumo_net_msg){SRV_PKG_ORDR, 0, n, d};
+    if (lumo_package_find(&p->pkg, LUMO_PKG_ORDR, 0, &d, &n) == LUMO_OK)
+        msgs[count++] = (lumo_net_msg){LUMO_PKG_ORDR, 0, n, d};
     for (i = 0; i < count; i++) {
         size_t b;
         if ((st = lumo_session_message_need(msgs[i].type, msgs[i].data, msgs[i].len, &b)))
@@ -131,19 +158,6 @@ static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
     if ((st = lumo_net_welcome_encode(p->id, p->arena_need, msgs, count, p->welcome, cap, &p->welcome_len)))
         return fail(err, errlen, st, "%s: WELCOME: %s", p->path, lumo_strerror(st));
     return LUMO_OK;
-}
-
-/* The SDK's reader refuses other majors with VERSION; say which and why. */
-static lumo_status version_error(const uint8_t *map, size_t size, const char *path, char *err, size_t errlen)
-{
-    unsigned major = size >= 6 ? (unsigned)(map[4] | map[5] << 8) : 0;
-
-    if (major && major < LUMO_PKG_VERSION_MAJOR)
-        return fail(err, errlen, LUMO_ERR_VERSION,
-                    "%s: package format version %u; lumo-server needs version %u (the stratified "
-                    "lighting order): re-bake it with this lumo-bake", path, major, LUMO_PKG_VERSION_MAJOR);
-    return fail(err, errlen, LUMO_ERR_VERSION, "%s: package format version %u is newer than this "
-                "server reads (%u)", path, major, LUMO_PKG_VERSION_MAJOR);
 }
 
 lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
@@ -179,10 +193,9 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
     p->name = slash ? slash + 1 : p->path;
 
     if ((st = lumo_package_open(&p->pkg, p->map, p->size))) {
-        if (st == LUMO_ERR_VERSION)
-            st = version_error(p->map, p->size, path, err, errlen);
-        else
-            fail(err, errlen, st, "%s: not a valid .lumo package: %s", path, lumo_strerror(st));
+        char why[160];
+        /* "package version 1: re-bake it with this lumo-bake", as every tool says it */
+        fail(err, errlen, st, "%s: %s", path, host_package_strerror(p->map, p->size, st, why, sizeof why));
         srv_pkg_close(p);
         return st;
     }

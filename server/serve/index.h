@@ -11,7 +11,7 @@
  *  - per mesh: its PMSH chunk, the stream header (base and batch vertex
  *    counts) and the byte offset of every batch record;
  *  - the IVG: the round table (first record and byte offset of every round
- *    in each form's records area) and the records areas of IVGQ and IVGF;
+ *    in each form's bundle) and the records of IVGQ and IVGF;
  *  - the WELCOME frame (docs/protocol.md §2), encoded once and sent to every
  *    client of the package as it is.
  */
@@ -23,10 +23,6 @@
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
 #include "lumo/status.h"
-
-/* Chunk types the server looks for beside lumo/package.h's. */
-#define SRV_PKG_IVGS LUMO_PKG_FOURCC('I', 'V', 'G', 'S')  /* stratified round table */
-#define SRV_PKG_ORDR LUMO_PKG_FOURCC('O', 'R', 'D', 'R')  /* streaming order (sent as is) */
 
 /* Bytes of a bundle's header before its records (docs/ivg-format.md §2.1). */
 #define SRV_IVG_BUNDLE_HEAD 16u
@@ -40,17 +36,18 @@ typedef struct srv_mesh_index {
     uint32_t          max_record;
 } srv_mesh_index;
 
-/* The stratified lighting order (docs/protocol.md §4): round r holds records
- * first[r] .. first[r + 1] - 1 of both bundles, bytes off[f][r] ..
- * off[f][r + 1] - 1 of form f's records area (form: LUMO_IVG_FORM_FLOAT = 0
- * is IVGF, LUMO_IVG_FORM_QUANTIZED = 1 is IVGQ). */
+/* The stratified lighting order (docs/protocol.md §4, the package's IVGS):
+ * round r holds records first[r] .. first[r + 1] - 1 of both bundles, bytes
+ * off[f][r] .. off[f][r + 1] - 1 of form f's bundle payload (f:
+ * LUMO_IVG_FORM_FLOAT = 0 is IVGF, LUMO_IVG_FORM_QUANTIZED = 1 is IVGQ;
+ * off[f][0] is SRV_IVG_BUNDLE_HEAD, the records start after the header). */
 typedef struct srv_ivg_index {
     int            present;
     uint32_t       rounds, records;
     uint32_t      *first;       /* rounds + 1 */
-    uint32_t      *off[2];      /* rounds + 1 each, relative to area[f] */
-    const uint8_t *area[2];     /* records area: the bundle payload after its header */
-    uint32_t       area_len[2];
+    uint32_t      *off[2];      /* rounds + 1 each, into bundle[f] */
+    const uint8_t *bundle[2];   /* the IVGF and IVGQ payloads, in the mapping */
+    uint32_t       bundle_len[2];
 } srv_ivg_index;
 
 typedef struct srv_pkg {
@@ -70,7 +67,7 @@ typedef struct srv_pkg {
 
 /* Map, validate and index the package at path. LUMO_ERR_IO (cannot open or
  * map), the SDK reader's status for a damaged or foreign file (a version-1
- * package is LUMO_ERR_VERSION, "re-bake it"), LUMO_ERR_UNSUPPORTED (raw
+ * package is LUMO_ERR_VERSION: "re-bake it"), a bad IVG order (IVGS), LUMO_ERR_UNSUPPORTED (raw
  * meshes only: nothing to stream), LUMO_ERR_NOMEM; a message naming the
  * path in err. *p is zeroed on failure. */
 lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen);

@@ -125,7 +125,7 @@ static int next_lighting(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
 {
     const srv_ivg_index *g = &p->ivg;
     const uint32_t *off = g->off[a->form];
-    const uint8_t *area = g->area[a->form];
+    const uint8_t *area = g->bundle[a->form];
     uint32_t r = a->next, start = a->pos;
 
     d->channel = LUMO_NET_LIGHTING;

@@ -13,7 +13,7 @@ SERVE_SAN_OBJS := $(patsubst %.c,$(BUILD)/tests/%.o,$(sort $(wildcard server/ser
 $(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^
-$(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
+$(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
