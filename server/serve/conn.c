@@ -29,7 +29,7 @@ void srv_conn_init(srv_conn *c, srv_serve *s, int fd, int serial, uint64_t id, c
     c->srv = s;
     c->state = SRV_CONN_WAIT_HELLO;
     c->heap_idx = -1;
-    c->connected_us = c->last_rx_us = now;
+    c->connected_us = c->last_rx_us = c->last_tx_us = now;
     c->form = LUMO_NET_FORM_NONE;
     snprintf(c->peer, sizeof c->peer, "%s", peer);
     srv_link_init(&c->link, link_cfg(c), id, now);
@@ -628,8 +628,7 @@ static int write_some(srv_conn *c, int64_t now)
     if (w < 0) {
         if (errno == EAGAIN || errno == EWOULDBLOCK) {
             c->want_write = 1;
-            if (!c->stall_since_us)
-                c->stall_since_us = now;
+            c->blocked = 1;   /* since last_tx_us, if nothing moves */
             return 0;
         }
         close_now(c, "send: %s (%llu bytes sent)", strerror(errno), (unsigned long long)c->bytes_out);
@@ -637,7 +636,7 @@ static int write_some(srv_conn *c, int64_t now)
     }
     srv_link_spend(&c->link, link_cfg(c), (size_t)w);
     c->bytes_out += (uint64_t)w;
-    c->stall_since_us = 0;
+    c->last_tx_us = now;
     written = (size_t)w;
     while (w > 0 && c->job_count) {
         srv_job *j = &c->jobs[c->job_head];
@@ -652,8 +651,10 @@ static int write_some(srv_conn *c, int64_t now)
     }
     if (written < offered) {
         c->want_write = 1;   /* the socket took part of it: wait for room */
+        c->blocked = 1;
         return 0;
     }
+    c->blocked = 0;
     return 1;
 }
 
@@ -710,7 +711,7 @@ void srv_conn_check_time(srv_conn *c, int64_t now, int64_t idle_us)
         c->abort = 1;
         return;
     }
-    if (c->stall_since_us && now - c->stall_since_us >= idle_us) {
+    if (c->blocked && c->job_count && now - c->last_tx_us >= idle_us) {
         close_now(c, "slow client: read nothing for %lld s", (long long)(idle_us / 1000000));
         c->abort = 1;
         return;

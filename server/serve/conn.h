@@ -109,7 +109,9 @@ typedef struct srv_conn {
 
     /* link emulation and timing */
     srv_link        link;
-    int64_t         connected_us, last_rx_us, stall_since_us, deadline_us;
+    int64_t         connected_us, last_rx_us, deadline_us;
+    int64_t         last_tx_us;  /* the last write that moved a byte */
+    int             blocked;     /* the socket is full (a write took less than offered) */
     int64_t         wake_us;    /* when a time-based wait ends (0: none) */
     int             want_read, want_write;
     uint32_t        events;     /* epoll events registered */
