@@ -16,6 +16,8 @@
  *   hostile  malformed and out-of-place frames, each on its own connection,
  *            end that client with the right ERROR while a well-behaved client
  *            on the same server goes on between them and finishes
+ *   idle     a client that never reads and one that never talks are closed
+ *            after the server's idle timeout, beside a well-behaved one
  *   many N   N clients at once, each to the end
  *   serial   over the serial listener: garbage before and between frames,
  *            lost and damaged frames (--loss on the server) recovered by
@@ -25,7 +27,8 @@
  *            takes at least the bytes' time at that rate and 2 L per request
  *
  * Options: --max-payload N, --form q|f|none, --seed S, --pipeline K,
- * --cuts N (resume), --idle S (hostile: the server's idle timeout).
+ * --package I, --cuts N (resume), --idle S (idle: the server's idle
+ * timeout), --expect-loss 1 (serial: the server damages frames).
  * Output: a line per check, then "RESULT: N passed, M failed". Every wait
  * is bounded (poll timeouts, and an alarm for the whole run).
  */
@@ -174,7 +177,6 @@ static int pkg_load(pkg_view *v, const char *path)
         m->rec[b] = (uint32_t)at;
     }
     v->has_ivg = lumo_package_find(&v->pkg, LUMO_PKG_IVGD, 0, &v->ivgd, &v->ivgd_len) == LUMO_OK;
-#ifdef LUMO_PKG_IVGS
     if (v->has_ivg) {
         lumo_ivg_order o;
         uint32_t r, f;
@@ -196,18 +198,8 @@ static int pkg_load(pkg_view *v, const char *path)
         }
     }
     lumo_package_find(&v->pkg, LUMO_PKG_ORDR, 0, &v->ordr, &v->ordr_len);
-#else
-    v->has_ivg = 0;   /* before package format 2: no lighting channel */
-#endif
     if (lumo_session_package_need(&v->pkg, &v->arena_need))
         return -1;
-#ifndef LUMO_PKG_IVGS
-    if (v->ivgd) {   /* before format 2 the server leaves the IVG out */
-        size_t g = 0;
-        lumo_session_message_need(LUMO_PKG_IVGD, v->ivgd, v->ivgd_len, &g);
-        v->arena_need -= g;
-    }
-#endif
     return 0;
 }
 
@@ -466,9 +458,9 @@ static void check_welcome(const pkg_view *v, const lumo_net_frame *f, lumo_sessi
         else if (v->has_ivg && k == v->meshes + 1)
             want_type = LUMO_PKG_IVGD, want = v->ivgd, want_len = v->ivgd_len;
         else if (v->has_ivg && k == v->meshes + 2)
-            want_type = LUMO_PKG_FOURCC('I', 'V', 'G', 'S'), want = v->ivgs, want_len = v->ivgs_len;
+            want_type = LUMO_PKG_IVGS, want = v->ivgs, want_len = v->ivgs_len;
         else if (v->ordr && k == v->meshes + (v->has_ivg ? 3u : 1u))
-            want_type = LUMO_PKG_FOURCC('O', 'R', 'D', 'R'), want = v->ordr, want_len = v->ordr_len;
+            want_type = LUMO_PKG_ORDR, want = v->ordr, want_len = v->ordr_len;
         if (m.type != want_type || m.index != want_index || m.len != want_len || !want ||
             memcmp(m.data, want, m.len))
             problem("WELCOME message %u: type %08x index %u, %u bytes: not the package's", k, m.type, m.index,
@@ -706,7 +698,6 @@ static int on_answer(fetch *f, const lumo_net_frame *fr)
                 f->rounds_held += d.count;
                 f->round_pos = 0;
             }
-#ifdef LUMO_MSG_IVGR
             if (f->session) {
                 /* the 8 bytes before the records are the IVGR head (form, records) */
                 st = lumo_session_feed(f->session, LUMO_MSG_IVGR, 0, d.bytes - LUMO_NET_IVGR_HEAD,
@@ -714,7 +705,6 @@ static int on_answer(fetch *f, const lumo_net_frame *fr)
                 if (st)
                     problem("the session refuses the lighting records at round %u: %s", r, lumo_strerror(st));
             }
-#endif
             if (f->got_ivg)
                 memcpy(f->got_ivg + pos - BUNDLE_HEAD, d.bytes, d.len);
             f->record_bytes += d.len;
@@ -731,6 +721,7 @@ typedef struct run_opts {
     uint32_t max_payload, pipeline, cuts, package;
     uint8_t  form;
     int      amounts;
+    int      expect_loss;   /* serial: the server damages frames */
 } run_opts;
 
 static void fetch_init(fetch *f, const pkg_view *v, const run_opts *o, int keep)
@@ -1832,6 +1823,8 @@ static void mode_serial(const pkg_view *v, const run_opts *o)
     }
     say_bye(&c);
     conn_close(&c);
+    if (o->expect_loss && resyncs + timeouts == 0)
+        problem("the server damages frames (--loss), yet none was refused or lost");
     check("serial: every record through a lossy line: %llu frames refused and resynchronised over %llu bytes, "
           "%llu timeouts asked again, %llu stale frames dropped, %llu bytes sent with garbage",
           (unsigned long long)resyncs, (unsigned long long)skipped, (unsigned long long)timeouts,
@@ -1986,6 +1979,8 @@ int main(int argc, char **argv)
             o.cuts = (uint32_t)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--idle"))
             idle = atoi(argv[i + 1]);
+        else if (!strcmp(argv[i], "--expect-loss"))
+            o.expect_loss = atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--package"))
             o.package = (uint32_t)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--form"))

@@ -103,6 +103,21 @@ expect_error "--loss without serial" "serial" "$scene" --loss 0.1
 expect_error "bad address"         "address" "$scene" --listen nowhere
 expect_error "unknown option"      "unknown" "$scene" --frobnicate
 
+# lumo_client NAME PORTS ARGS...: the real client (the protocol driver and
+# the session, tools/lumo-client) streams the first package to the end.
+lumo_client() {
+    name=$1; port=${2%%,*}; shift 2
+    rm -rf "$dir/client"; mkdir -p "$dir/client"
+    timeout 60 "$bin/lumo-client" --connect "127.0.0.1:$port" --out "$dir/client" --quiet --frames-at 100 "$@" \
+        >"$dir/client.out" 2>&1; st=$?
+    last=$(tail -n 1 "$dir/client/progress.csv" 2>/dev/null)
+    if [ $st -eq 0 ] && echo "$last" | awk -F, '{ exit !($1 == 100 && $4 == $5 && $7 == $8 && $8 > 0) }'; then
+        ok "$name: to the end through the session: $(tail -n 1 "$dir/client.out" | sed 's/^lumo-client: //')"
+    else
+        bad "$name (status $st): $last"; sed 's/^/    /' "$dir/client.out"
+    fi
+}
+
 # ---- one server, several packages: whole fetches, resume, hostile frames ------------
 if start main "$san" "$scene" "$split" "$small"; then
     run full         full "$ports" "$scene" --seed 1
@@ -112,6 +127,8 @@ if start main "$san" "$scene" "$split" "$small"; then
     run resume       resume "$ports" "$scene" --seed 5 --cuts 40
     run resume-split resume "$ports" "$split" --package 1 --seed 6 --cuts 25 --max-payload 4096 --form f
     run hostile      hostile "$ports" "$scene" --seed 7
+    lumo_client "lumo-client" "$ports" --order interleaved
+    lumo_client "lumo-client --float --order geometry" "$ports" --float --order geometry --size 64x48
     stop main
 fi
 
@@ -122,8 +139,8 @@ if start idle "$san" "$scene" --idle-timeout 2; then
 fi
 
 # ---- the serial listener: garbage, lost and damaged frames -------------------------
-if start serial "$san" "$scene" --serial-listen 127.0.0.1:0 --loss 0.05 --seed 9; then
-    run serial serial "$ports" "$scene" --seed 10
+if start serial "$san" "$scene" --serial-listen 127.0.0.1:0 --loss 0.1 --seed 9; then
+    run serial serial "$ports" "$scene" --seed 10 --expect-loss 1
     grep -q "serial: HELLO.*resyncs" "$dir/serial.log" && ok "serial: the server resynchronised on the client's garbage" ||
         bad "serial: no resynchronisation in the server's log"
     stop serial
@@ -137,6 +154,10 @@ fi
 if start link "$bin/lumo-server" "$scene" --rate 400 --latency 30; then
     run timing timing "$ports" "$scene" 400 30 --seed 11
     stop link
+fi
+if start link2 "$bin/lumo-server" "$scene" --rate 2000 --latency 20; then
+    lumo_client "lumo-client over 2 Mbit/s, 20 ms (adaptive request sizes)" "$ports"
+    stop link2
 fi
 
 # ---- 1000 clients at once: all finish, memory per client --------------------------
