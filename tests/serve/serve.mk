@@ -1,4 +1,5 @@
-# tests/serve/serve.mk — lumo-server end to end (tests/serve/serve_test.sh):
+# tests/serve/serve.mk — lumo-server: the request mapping as a unit test
+# (test_serve_plan.c), and end to end (tests/serve/serve_test.sh):
 # whole fetches checked byte for byte, resume after cuts, hostile frames,
 # idle and slow clients, the serial listener with loss, --max-clients, link
 # emulation timing, 1000 clients at once with the server's memory per
@@ -16,6 +17,15 @@ $(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_
 $(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
+
+# The request mapping on synthetic streams and round tables (cmocka).
+SERVE_UNIT := $(BUILD)/tests/bin/test_serve_plan
+UNIT_TESTS += $(SERVE_UNIT)
+$(SERVE_UNIT): $(BUILD)/tests/tests/serve/test_serve_plan.o $(BUILD)/tests/server/serve/plan.o \
+               $(BUILD)/tests/server/serve/index.o $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a \
+               $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ $(TEST_LDLIBS)
 
 TEST_STEPS += test-serve
 .PHONY: test-serve
