@@ -31,7 +31,8 @@ static const char usage[] =
     "  --out DIR               where frames and progress.csv go (default .)\n"
     "  --frames-at PERCENTS    draw a frame when the scene reaches these percentages\n"
     "                          (comma-separated; geometry and lighting count half each;\n"
-    "                          default 100)\n"
+    "                          default 100); frame-first.png is always drawn as soon as\n"
+    "                          every base mesh and the grid's corners are in\n"
     "  --backend soft|osmesa|egl  renderer (default soft)\n"
     "  --size WxH              frame size (default 320x240)\n"
     "  --order interleaved|geometry|lighting  what to ask for first (default interleaved)\n"
@@ -178,6 +179,9 @@ typedef struct client {
     FILE *csv;
     uint32_t t0;
     int next_at;
+    int first_done;          /* the first picture has been drawn */
+    uint32_t first_ms;
+    uint64_t first_bytes;
     double last_fps;
 } client;
 
@@ -191,7 +195,21 @@ static double held_percent(const lumo_net_progress *p)
     return 100.0 * (l < 0 ? g : (g + l) / 2);
 }
 
-static int draw_frame(client *c, double percent, const lumo_net_progress *p)
+/* The first picture: every mesh has its base and the grid its corners (or
+ * there is no grid): what seed 000 shows after a few percent of the bytes. */
+static int first_picture_ready(const client *c)
+{
+    uint32_t m;
+
+    if (c->drv.state != LUMO_NET_READY && c->drv.state != LUMO_NET_DONE)
+        return 0;
+    for (m = 0; m < c->drv.mesh_count; m++)
+        if (c->drv.held[m] == 0)
+            return 0;
+    return !c->drv.has_ivg || c->drv.rounds_held > 0;
+}
+
+static int draw_frame(client *c, double percent, const lumo_net_progress *p, const char *tag)
 {
     const lumo_ivg *ivg = lumo_session_ivg(&c->ses);
     lumo_raster_mesh mesh;
@@ -222,7 +240,10 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p)
     t = host_net_clock_ms(NULL);
     rc = !rgb || host_renderer_draw(r, &c->scene.camera, &rs, rgb);
     c->last_fps = 1000.0 / ((host_net_clock_ms(NULL) - t) + 0.5);
-    snprintf(name, sizeof name, "%s/frame-%06.2f.png", c->o.out, percent);
+    if (tag)
+        snprintf(name, sizeof name, "%s/frame-%s.png", c->o.out, tag);
+    else
+        snprintf(name, sizeof name, "%s/frame-%06.2f.png", c->o.out, percent);
     if (!rc && host_png_write_rgb8(name, rgb, c->o.ro.width, c->o.ro.height, err, sizeof err)) {
         fprintf(stderr, "lumo-client: error: %s\n", err);
         rc = 1;
@@ -253,8 +274,15 @@ static int frames_due(client *c)
 
     lumo_net_client_progress(&c->drv, &p);
     have = p.done ? 100.0 : held_percent(&p);
+    if (!c->first_done && first_picture_ready(c)) {
+        c->first_done = 1;
+        c->first_ms = host_net_clock_ms(NULL) - c->t0;
+        c->first_bytes = c->l.bytes_in;
+        if (draw_frame(c, have, &p, "first"))
+            return -1;
+    }
     while (c->next_at < c->o.nat && have >= c->o.at[c->next_at] - 1e-9) {
-        if (draw_frame(c, c->o.at[c->next_at], &p))
+        if (draw_frame(c, c->o.at[c->next_at], &p, NULL))
             return -1;
         c->next_at++;
     }
@@ -409,10 +437,11 @@ int main(int argc, char **argv)
     if (!c.o.quiet)
         fputc('\n', stderr);
     if (rc == 0)
-        printf("lumo-client: %s: %u vertices, IVG %u/%u rounds, %llu bytes in, %llu out, %u ms\n",
+        printf("lumo-client: %s: %u vertices, IVG %u/%u rounds, %llu bytes in, %llu out, %u ms; "
+               "first picture after %u ms, %llu bytes\n",
                c.o.connect ? c.o.connect : c.o.replay, p.vertices, p.rounds, p.full_rounds,
                (unsigned long long)c.l.bytes_in, (unsigned long long)c.l.bytes_out,
-               host_net_clock_ms(NULL) - c.t0);
+               host_net_clock_ms(NULL) - c.t0, c.first_ms, (unsigned long long)c.first_bytes);
     if (c.l.record)
         fclose(c.l.record);
     if (c.csv)

@@ -102,12 +102,17 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
+/* Up to MAX_IN pictures, at most COLS to a row (seed 000 Fig. 1 style
+ * progressions need more than three). */
+#define MAX_IN 8
+#define COLS   4
+
 int main(int argc, char **argv)
 {
-    const char *in[3], *out = NULL, *labels = NULL;
-    char label[3][64];
-    uint8_t *img[3], *side;
-    int w[3], h[3], n = 0, i, j, sw, sh, fail = 0;
+    const char *in[MAX_IN], *out = NULL, *labels = NULL;
+    char label[MAX_IN][64];
+    uint8_t *img[MAX_IN], *side;
+    int w[MAX_IN], h[MAX_IN], n = 0, i, j, sw, sh, fail = 0, cols, rows;
     double max_de = -1, min_psnr = -1;
 
     for (i = 1; i < argc; i++) {
@@ -115,11 +120,13 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--labels") && i + 1 < argc) labels = argv[++i];
         else if (!strcmp(argv[i], "--max-mean-de") && i + 1 < argc) max_de = atof(argv[++i]);
         else if (!strcmp(argv[i], "--min-psnr") && i + 1 < argc) min_psnr = atof(argv[++i]);
-        else if (n < 3 && argv[i][0] != '-') in[n++] = argv[i];
+        else if (n < MAX_IN && argv[i][0] != '-') in[n++] = argv[i];
         else n = 99;
     }
-    if (n < 2 || n > 3) {
-        fputs("usage: lumo-compare A.png B.png [C.png] [-o SIDE.png] [--labels A,B,C] [--max-mean-de X] [--min-psnr DB]\n",
+    if (n < 2 || n > MAX_IN) {
+        fputs("usage: lumo-compare A.png B.png [C.png ... up to 8] [-o SIDE.png] [--labels A,B,...]\n"
+              "                    [--max-mean-de X] [--min-psnr DB]\n"
+              "  with three pictures or fewer every pair is compared; with more, each against the last\n",
               stderr);
         return 2;
     }
@@ -139,8 +146,10 @@ int main(int argc, char **argv)
         }
     }
     for (i = 0; i < n; i++)
-        for (j = i + 1; j < n; j++) {
+        for (j = n > 3 ? n - 1 : i + 1; j < n; j++) {
             host_image_diff d;
+            if (i == j)
+                continue;
             if (w[i] != w[j] || h[i] != h[j]) {
                 fprintf(stderr, "lumo-compare: error: %s and %s differ in size\n", in[i], in[j]);
                 return 1;
@@ -152,14 +161,16 @@ int main(int argc, char **argv)
                 fail = 1;
         }
     if (out) {
-        sw = w[0] * n + 4 * (n - 1);
-        sh = h[0] + LABEL_H;
+        cols = n < COLS ? n : COLS;
+        rows = (n + cols - 1) / cols;
+        sw = w[0] * cols + 4 * (cols - 1);
+        sh = (h[0] + LABEL_H) * rows;
         side = calloc((size_t)sw * sh, 3);
         for (i = 0; side && i < n; i++) {
-            int x0 = i * (w[0] + 4), y;
+            int x0 = (i % cols) * (w[0] + 4), y0 = (i / cols) * (h[0] + LABEL_H), y;
             for (y = 0; y < h[0]; y++)
-                memcpy(side + ((size_t)y * sw + x0) * 3, img[i] + (size_t)y * w[0] * 3, (size_t)w[0] * 3);
-            draw_text(side, sw, sh, x0 + 4, h[0] + 4, label[i]);
+                memcpy(side + ((size_t)(y0 + y) * sw + x0) * 3, img[i] + (size_t)y * w[0] * 3, (size_t)w[0] * 3);
+            draw_text(side, sw, sh, x0 + 4, y0 + h[0] + 4, label[i]);
         }
         if (!side || host_png_write_rgb8(out, side, sw, sh, NULL, 0)) {
             fprintf(stderr, "lumo-compare: error: cannot write %s\n", out);
