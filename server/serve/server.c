@@ -404,7 +404,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
     struct epoll_event ev[MAX_EVENTS];
     sigset_t mask;
     int64_t next_sweep;
-    int i, kinds[2] = {KIND_LISTEN_TCP, KIND_LISTEN_SERIAL};
+    int i;
     static int tags[4] = {KIND_CONN, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL};
     lumo_status st = LUMO_OK;
 
@@ -451,7 +451,6 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
         struct epoll_event e;
         if (s.lfd[i] < 0)
             continue;
-        s.lkind[i] = kinds[i];
         e.events = EPOLLIN;
         e.data.ptr = &tags[i + 1];
         epoll_ctl(s.epfd, EPOLL_CTL_ADD, s.lfd[i], &e);
@@ -465,9 +464,11 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
     for (i = 0; i < (int)npkgs; i++)
         srv_log(&s, 1, "package %d: %s (%u meshes, %s, %zu bytes, id %08x)", i, pkgs[i].path, pkgs[i].mesh_count,
                 pkgs[i].ivg.present ? "IVG" : "no IVG", pkgs[i].size, pkgs[i].id);
-    srv_log(&s, 1, "listening on %s (tcp port %u)%s%s, at most %u clients, idle timeout %u s", s.opt.listen,
-            s.port[0], s.lfd[1] >= 0 ? ", serial line on " : "", s.lfd[1] >= 0 ? s.opt.serial_listen : "",
+    srv_log(&s, 1, "listening on %s (tcp port %u), at most %u clients, idle timeout %u s", s.opt.listen, s.port[0],
             s.opt.max_clients, s.opt.idle_timeout_s);
+    if (s.lfd[1] >= 0)
+        srv_log(&s, 1, "serial line on %s (tcp port %u): resynchronised after garbage", s.opt.serial_listen,
+                s.port[1]);
     if (s.link.rate_bytes > 0 || s.link.latency_us || s.serial_link.loss > 0)
         srv_log(&s, 1, "link emulation per client: rate %g kbit/s, latency %u ms, serial loss %g per frame (seed %llu)",
                 s.opt.rate_kbit, s.opt.latency_ms, s.opt.loss, (unsigned long long)s.opt.seed);
@@ -549,8 +550,12 @@ out:
     for (i = 0; i < 2; i++)
         if (s.lfd[i] >= 0)
             close(s.lfd[i]);
-    if (s.sigfd >= 0)
+    if (s.sigfd >= 0) {
+        struct signalfd_siginfo si;
+        while (read(s.sigfd, &si, sizeof si) == (ssize_t)sizeof si)
+            ;   /* consumed: a signal left pending would kill us when unblocked */
         close(s.sigfd);
+    }
     if (s.epfd >= 0)
         close(s.epfd);
     free(s.timers.a);

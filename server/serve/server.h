@@ -54,7 +54,6 @@ struct srv_serve {
 
     int               epfd, sigfd;
     int               lfd[2];       /* TCP, serial (-1: none) */
-    int               lkind[2];
     unsigned          port[2];
     srv_conn         *conns;        /* every open connection */
     uint32_t          nconns;
