@@ -386,11 +386,18 @@ static int reading(const srv_conn *c)
     return c->state == SRV_CONN_WAIT_HELLO || c->state == SRV_CONN_READY;
 }
 
+/* Requests outstanding (queued, and the one being answered) stay within
+ * protocol.md §5's 16: more are not read until answered. */
+static int room_for_ops(const srv_conn *c)
+{
+    return c->op_count + (c->answering ? 1u : 0u) < SRV_MAX_OPS;
+}
+
 /* Decode the frames in the receive buffer while there is room for what
  * they ask. */
 static void parse(srv_conn *c, int64_t now)
 {
-    while (reading(c) && c->op_count < SRV_MAX_OPS) {
+    while (reading(c) && room_for_ops(c)) {
         const uint8_t *b = c->rx;
         uint32_t avail = c->rx_len, n;
         lumo_net_frame f;
@@ -453,7 +460,7 @@ void srv_conn_on_readable(srv_conn *c, int64_t now)
     for (;;) {
         ssize_t n;
 
-        if (!reading(c) || c->rx_len == SRV_RX_CAP || c->op_count >= SRV_MAX_OPS)
+        if (!reading(c) || c->rx_len == SRV_RX_CAP || !room_for_ops(c))
             break;
         n = read(c->fd, c->rx + c->rx_len, SRV_RX_CAP - c->rx_len);
         if (n > 0) {
@@ -680,7 +687,7 @@ void srv_conn_pump(srv_conn *c, int64_t now)
         }
         while (c->state != SRV_CONN_CLOSED && make_job(c, now))
             made = 1;
-        if (c->rx_len && c->op_count < SRV_MAX_OPS)
+        if (c->rx_len && room_for_ops(c))
             parse(c, now);   /* frames left in the buffer while the ops were full */
         if (!c->job_count) {
             if (!made)
@@ -696,7 +703,7 @@ void srv_conn_pump(srv_conn *c, int64_t now)
         c->state = SRV_CONN_CLOSED;
     /* backpressure: read only while there is room for what the client may
      * ask and the output is at most one frame behind */
-    c->want_read = reading(c) && !c->eof && c->op_count < SRV_MAX_OPS && c->job_count <= 1 &&
+    c->want_read = reading(c) && !c->eof && room_for_ops(c) && c->job_count <= 1 &&
                    c->rx_len < SRV_RX_CAP;
 }
 
