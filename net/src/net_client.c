@@ -197,17 +197,28 @@ static lumo_status apply_lighting(lumo_net_client *c, const lumo_net_data *d)
     return LUMO_OK;
 }
 
-/* The oldest pending request is answered once its cursor reaches its end. */
+/* The oldest pending request is answered once its cursor reaches its end.
+ * The link is two numbers (seed 000 §5.2: a request costs a round trip plus
+ * its bytes): the shortest answer time seen is the round trip; the rest of
+ * an answer's time, or the gap since the previous answer when requests were
+ * in flight back to back, is its bytes' transfer. */
 static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
 {
     lumo_net_pending *p = &c->pending[0];
     uint32_t held = p->channel == LUMO_NET_GEOMETRY ? c->held[p->mesh] : c->rounds_held;
+    uint32_t took, flow;
 
     c->data_bytes += bytes;
     if (held < p->end)
         return;
-    c->costs.ms_per_kib_q10 = blend_rate(c->costs.ms_per_kib_q10, t - p->sent_ms, c->data_bytes);
+    took = t - p->sent_ms;
+    if (!c->costs.rtt_ms || took < c->costs.rtt_ms)
+        c->costs.rtt_ms = took ? took : 1;
+    flow = c->retired && p->sent_ms < c->retired_ms ? t - c->retired_ms : took - c->costs.rtt_ms;
+    c->costs.ms_per_kib_q10 = blend_rate(c->costs.ms_per_kib_q10, flow ? flow : 1, c->data_bytes);
     c->data_bytes = 0;
+    c->retired_ms = t;
+    c->retired++;
     memmove(c->pending, c->pending + 1, --c->npending * sizeof *c->pending);
 }
 
@@ -312,26 +323,10 @@ static int ivg_open(const lumo_net_client *c)
 static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t from, uint32_t to)
 {
     lumo_pmesh_header h;
-    uint64_t v = 0;
 
     if (lumo_session_stream_header(c->session, m, &h) || from >= to)
         return 0;
-    if (from == 0)
-        v = h.base_vertices, from = 1;
-    v += (uint64_t)(to - from) * h.batch_vertices;
-    return v > h.vertices ? h.vertices : (uint32_t)v;
-}
-
-/* The batches the server sends for `amount` vertices from cursor `from`:
- * whole batches holding at most amount vertices, at least one
- * (docs/protocol.md §2 DATA). */
-static uint32_t geometry_end(const lumo_net_client *c, uint32_t m, uint32_t from, uint32_t amount)
-{
-    uint32_t to = from + 1;
-
-    while (to < c->batches[m] && batch_vertices(c, m, from, to + 1) <= amount)
-        to++;
-    return to;
+    return lumo_net_vertices_before(&h, to) - lumo_net_vertices_before(&h, from);
 }
 
 /* How much one request should ask (seed 000 §5.2): fixed by the policy, or
@@ -344,8 +339,11 @@ static uint32_t adaptive(const lumo_net_client *c, uint32_t bytes_per_unit, uint
     uint32_t budget = c->cfg.policy.target_ms > fixed_ms ? c->cfg.policy.target_ms - fixed_ms : 0;
     uint64_t n;
 
-    if (!c->cfg.clock || !bytes_per_unit || !ms_per_unit_q10)
-        return unit;   /* nothing measured yet: one batch, one round */
+    if (!c->cfg.clock || !bytes_per_unit || !ms_per_unit_q10 || c->retired < 2) {
+        /* Nothing measured yet: one unit, then twice as many each answer. */
+        uint64_t start = (uint64_t)unit << (c->retired < 10 ? c->retired : 10);
+        return start > limit ? limit : (uint32_t)start;
+    }
     n = ((uint64_t)budget << 10) / ms_per_unit_q10;
     return n < unit ? unit : n > limit ? limit : (uint32_t)n;
 }
@@ -415,7 +413,9 @@ static lumo_status send_request(lumo_net_client *c, int channel, uint32_t mesh, 
         return st;
     p->channel = r.channel, p->mesh = r.mesh, p->cursor = r.cursor, p->sent_ms = now_ms(c);
     if (channel == LUMO_NET_GEOMETRY) {
-        p->end = geometry_end(c, mesh, r.cursor, r.amount);
+        lumo_pmesh_header h;
+        lumo_session_stream_header(c->session, mesh, &h);
+        p->end = lumo_net_geometry_end(&h, r.cursor, r.amount);   /* what the server sends */
         c->asked[mesh] = p->end;
     } else {
         p->end = r.cursor + r.amount > c->rounds_total ? c->rounds_total : r.cursor + r.amount;
@@ -425,6 +425,18 @@ static lumo_status send_request(lumo_net_client *c, int channel, uint32_t mesh, 
         c->data_bytes = 0;
     c->npending++;
     return LUMO_OK;
+}
+
+/* Every base mesh and the corners asked for: the first picture is on its
+ * way, and the policy's pipeline applies from now on. */
+static int first_picture_asked(const lumo_net_client *c)
+{
+    uint32_t m;
+
+    for (m = 0; m < c->mesh_count; m++)
+        if (c->asked[m] == 0 && mesh_open(c, m))
+            return 0;
+    return c->rounds_asked > 0 || !ivg_open(c);
 }
 
 static int all_held(const lumo_net_client *c)
@@ -458,7 +470,8 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
     }
     if (c->cfg.replay)
         return LUMO_OK;   /* a recording answers what was asked when it was made */
-    if (c->npending >= c->cfg.policy.pipeline || (channel = pick(c, &mesh)) < 0)
+    if (c->npending >= (first_picture_asked(c) ? c->cfg.policy.pipeline : MAX_PIPELINE) ||
+        (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
     return send_request(c, channel, mesh, out, cap, written);
 }

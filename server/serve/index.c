@@ -30,16 +30,6 @@ static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fm
     return st;
 }
 
-uint32_t srv_mesh_vertices_before(const srv_mesh_index *m, uint32_t b)
-{
-    uint64_t v;
-
-    if (b == 0)
-        return 0;
-    v = (uint64_t)m->h.base_vertices + (uint64_t)(b - 1) * m->h.batch_vertices;
-    return v > m->h.vertices ? m->h.vertices : (uint32_t)v;
-}
-
 /* Offsets of every batch record of mesh i, walked with the SDK's one walk
  * over a stream; the walk must end exactly at the chunk's end with
  * batch_count records, each holding its index. */

@@ -73,7 +73,5 @@ typedef struct srv_pkg {
 lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen);
 void srv_pkg_close(srv_pkg *p);
 
-/* Vertices held after the first b batches of a stream (0 for b = 0). */
-uint32_t srv_mesh_vertices_before(const srv_mesh_index *m, uint32_t b);
 
 #endif

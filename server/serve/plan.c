@@ -21,26 +21,6 @@ static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fm
     return st;
 }
 
-uint32_t srv_plan_geometry_end(const srv_mesh_index *m, uint32_t c, uint32_t amount)
-{
-    uint64_t target = (uint64_t)srv_mesh_vertices_before(m, c) + amount;
-    uint64_t e;
-
-    /* The largest e with vertices_before(e) <= target: every batch when the
-     * target reaches the full mesh, else base + (e - 1) * B <= target. */
-    if (target >= m->h.vertices)
-        e = m->h.batch_count;
-    else if (target < m->h.base_vertices)
-        e = 0;
-    else
-        e = 1 + (target - m->h.base_vertices) / m->h.batch_vertices;
-    if (e < (uint64_t)c + 1)
-        e = (uint64_t)c + 1;   /* at least one batch */
-    if (e > m->h.batch_count)
-        e = m->h.batch_count;
-    return (uint32_t)e;
-}
-
 lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t form, uint32_t max_payload,
                            srv_answer *a, int *end_of_channel, char *err, size_t errlen)
 {
@@ -65,7 +45,7 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
         if (r->cursor == m->h.batch_count)
             return *end_of_channel = 1, LUMO_OK;
         a->next = r->cursor;
-        a->end = srv_plan_geometry_end(m, r->cursor, r->amount);
+        a->end = lumo_net_geometry_end(&m->h, r->cursor, r->amount);
         if (m->max_record > a->max_data)   /* only then can a record of the range be too large */
             for (b = a->next; b < a->end; b++)
                 if (m->rec[b + 1] - m->rec[b] > a->max_data)

@@ -47,8 +47,5 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
  * the answer is complete. */
 int srv_plan_next(const srv_pkg *p, srv_answer *a, lumo_net_data *d);
 
-/* Batches [c, end) the server sends for `amount` vertices from cursor c
- * (c < batch_count, amount >= 1). */
-uint32_t srv_plan_geometry_end(const srv_mesh_index *m, uint32_t c, uint32_t amount);
 
 #endif

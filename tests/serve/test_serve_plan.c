@@ -46,9 +46,9 @@ static void test_geometry_end_exhaustive(void **state)
                 m.h.batch_count = 1 + (n - base + bv - 1) / bv;
                 for (c = 0; c < m.h.batch_count; c++) {
                     for (amount = 1; amount <= n + 3; amount++, cases++)
-                        assert_int_equal(srv_plan_geometry_end(&m, c, amount), ref_end(&m.h, c, amount));
-                    assert_int_equal(srv_plan_geometry_end(&m, c, 0xffffffffu), m.h.batch_count);
-                    assert_int_equal(srv_mesh_vertices_before(&m, c), ref_vertices(&m.h, c));
+                        assert_int_equal(lumo_net_geometry_end(&m.h, c, amount), ref_end(&m.h, c, amount));
+                    assert_int_equal(lumo_net_geometry_end(&m.h, c, 0xffffffffu), m.h.batch_count);
+                    assert_int_equal(lumo_net_vertices_before(&m.h, c), ref_vertices(&m.h, c));
                 }
             }
     print_message("%u cursor/amount cases\n", cases);

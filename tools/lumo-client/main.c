@@ -310,6 +310,12 @@ static int send_pending(client *c, uint8_t *out, size_t cap)
     return 0;
 }
 
+static const char *frame_name(uint8_t type)
+{
+    static const char *names[] = {"?", "HELLO", "WELCOME", "REQUEST", "DATA", "END", "ERROR", "BYE"};
+    return type < sizeof names / sizeof names[0] ? names[type] : "unknown";
+}
+
 /* Decode and apply every whole frame in rx[0..*len); keep the rest. */
 static int take_frames(client *c, uint8_t *rx, size_t *len)
 {
@@ -321,8 +327,12 @@ static int take_frames(client *c, uint8_t *rx, size_t *len)
         st = lumo_net_frame_decode(rx + at, *len - at, c->drv.cfg.max_payload, &f, &used);
         if (st == LUMO_ERR_TRUNCATED)
             break;
-        if (st || (st = lumo_net_client_on_frame(&c->drv, &f))) {
-            fprintf(stderr, "\nlumo-client: error: %s\n", lumo_strerror(st));
+        if (st) {
+            fprintf(stderr, "\nlumo-client: error: a frame from the server: %s\n", lumo_strerror(st));
+            return -1;
+        }
+        if ((st = lumo_net_client_on_frame(&c->drv, &f))) {
+            fprintf(stderr, "\nlumo-client: error: %s frame: %s\n", frame_name(f.type), lumo_strerror(st));
             return -1;
         }
         at += used;

@@ -15,6 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lumo/config.h"
+#include "lumo/pmesh.h"
 #include "lumo/status.h"
 
 #define LUMO_NET_VERSION      1u
@@ -184,5 +185,16 @@ lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m);
 lumo_status lumo_net_bye_encode(uint8_t *out, size_t cap, size_t *written);
 /* BYE has no fields: OK for an empty payload, CORRUPT for any other. */
 lumo_status lumo_net_bye_decode(const lumo_net_frame *f);
+
+/* ---- planning a geometry answer (§2 DATA "Geometry") --------------------------- */
+
+/* Vertices held once batch records [0, b) of a stream are applied. */
+uint32_t lumo_net_vertices_before(const lumo_pmesh_header *h, uint32_t b);
+
+/* The end (exclusive) of the batches that answer a request for `amount`
+ * vertices from batch `cursor`: as many whole batches as hold at most
+ * amount vertices, at least one, never past batch_count. The server sends
+ * exactly these; a client predicts its cursors with it. */
+uint32_t lumo_net_geometry_end(const lumo_pmesh_header *h, uint32_t cursor, uint32_t amount);
 
 #endif /* LUMO_NET_H */

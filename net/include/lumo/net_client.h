@@ -38,7 +38,9 @@ typedef struct lumo_net_policy {
     uint32_t vertices;     /* geometry request size; 0: adaptive */
     uint32_t rounds;       /* lighting request size (rounds); 0: adaptive */
     uint32_t target_ms;    /* adaptive: aim each response at this long (0: 250) */
-    uint32_t pipeline;     /* requests in flight (0: 2); hides the link's latency */
+    uint32_t pipeline;     /* requests in flight (0: 2); hides the link's latency.
+                              The first picture's requests (base meshes, the
+                              corners) go out together whatever this is. */
 } lumo_net_policy;
 
 /* A clock in milliseconds (wrapping u32), for the adaptive sizes; NULL: the
@@ -68,7 +70,8 @@ typedef struct lumo_net_pending {
 
 /* Per-unit costs the adaptive policy learns (fixed point: ms * 1024). */
 typedef struct lumo_net_costs {
-    uint32_t ms_per_kib_q10;       /* link: ms per KiB, latency included */
+    uint32_t rtt_ms;               /* link: the shortest request-to-answer time seen */
+    uint32_t ms_per_kib_q10;       /* link: ms per KiB once the answer flows */
     uint32_t bytes_per_vertex;     /* geometry bytes per vertex seen so far */
     uint32_t bytes_per_round;      /* lighting bytes per round */
     uint32_t apply_ms_per_kib_q10; /* session: ms to apply a KiB */
@@ -98,8 +101,9 @@ typedef struct lumo_net_client {
     uint32_t partial_records;         /* records of a round split over frames */
     uint64_t bytes_in;                /* payload bytes of DATA applied */
     lumo_net_costs costs;
-    uint32_t data_ms;                 /* last DATA's arrival, for the link estimate */
-    uint32_t data_bytes;              /* bytes since the oldest pending request was sent */
+    uint32_t retired_ms;              /* when the last request was answered */
+    uint32_t retired;                 /* requests answered */
+    uint32_t data_bytes;              /* bytes of the oldest pending request so far */
     lumo_status error;                /* why FAILED */
 } lumo_net_client;
 
