@@ -8,7 +8,7 @@
 #include "lumo/wire.h"
 
 #define DEFAULT_TARGET_MS 250u
-#define DEFAULT_PIPELINE  2u
+#define DEFAULT_PIPELINE  4u
 #define MAX_PIPELINE      8u
 /* Adaptive sizes stay within these (a request smaller than one batch still
  * gets one; more than this many vertices or rounds per request buys no

@@ -39,6 +39,7 @@ static const char usage[] =
     "  --vertices N            fixed geometry request size (default: adaptive)\n"
     "  --rounds K              fixed lighting request size in rounds (default: adaptive)\n"
     "  --target-ms T           adaptive: aim each answer at T ms (default 250)\n"
+    "  --pipeline N            requests in flight, 1..8 (default 4)\n"
     "  --no-smoothing          push-pull without smoothing (cheaper on weak clients)\n"
     "  --float                 ask for the binary32 IVG form instead of the quantized one\n"
     "  --arena MIB             arena for the scene (default 256)\n"
@@ -84,12 +85,12 @@ static int parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *v)
 static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_CONNECT = 256, O_REPLAY, O_RECORD, O_PACKAGE, O_OUT, O_AT, O_BACKEND, O_SIZE, O_ORDER,
-           O_VERTS, O_ROUNDS, O_TARGET, O_NOSMOOTH, O_FLOAT, O_ARENA, O_QUIET, O_HELP };
+           O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_NOSMOOTH, O_FLOAT, O_ARENA, O_QUIET, O_HELP };
     static const struct option longs[] = {
         {"connect", 1, 0, O_CONNECT}, {"replay", 1, 0, O_REPLAY}, {"record", 1, 0, O_RECORD},
         {"package", 1, 0, O_PACKAGE}, {"out", 1, 0, O_OUT}, {"frames-at", 1, 0, O_AT},
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"order", 1, 0, O_ORDER},
-        {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS}, {"target-ms", 1, 0, O_TARGET},
+        {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS}, {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE},
         {"no-smoothing", 0, 0, O_NOSMOOTH}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
         {"quiet", 0, 0, O_QUIET}, {"help", 0, 0, O_HELP}, {0, 0, 0, 0}};
     unsigned w, h;
@@ -124,6 +125,7 @@ static int parse_args(int argc, char **argv, options *o)
         case O_VERTS: if (parse_u32(optarg, 1, 1u << 28, &o->policy.vertices)) return -1; break;
         case O_ROUNDS: if (parse_u32(optarg, 1, 1u << 20, &o->policy.rounds)) return -1; break;
         case O_TARGET: if (parse_u32(optarg, 1, 60000, &o->policy.target_ms)) return -1; break;
+        case O_PIPE: if (parse_u32(optarg, 1, 8, &o->policy.pipeline)) return -1; break;
         case O_NOSMOOTH: o->no_smoothing = 1; break;
         case O_FLOAT: o->use_float = 1; break;
         case O_ARENA: if (parse_u32(optarg, 1, 4095, &o->arena_mib)) return -1; break;

@@ -38,7 +38,7 @@ typedef struct lumo_net_policy {
     uint32_t vertices;     /* geometry request size; 0: adaptive */
     uint32_t rounds;       /* lighting request size (rounds); 0: adaptive */
     uint32_t target_ms;    /* adaptive: aim each response at this long (0: 250) */
-    uint32_t pipeline;     /* requests in flight (0: 2); hides the link's latency.
+    uint32_t pipeline;     /* requests in flight (0: 4); hides the link's latency.
                               The first picture's requests (base meshes, the
                               corners) go out together whatever this is. */
 } lumo_net_policy;
