@@ -1,9 +1,10 @@
-# tools/demo.mk — make demo (issue 6): tools/demo.sh bakes the default scene,
-# renders it on the client with and without the IVG, path-traces the
-# server's reference and places the three side by side with the error
-# printed; the progressive meshes at three levels of detail side by side
-# (lod.png); plus an orbit of PNG frames. Output in build/demo/; settings
-# (GRID, SPP, REF_SPP, SIZE, FRAMES, LODS) from the environment.
+# tools/demo.mk — make demo: tools/demo.sh bakes the default scene, serves
+# it with lumo-server on loopback behind an emulated slow link, streams it to
+# lumo-client (interleaved, geometry first, lighting first), and writes
+# progress.png (the scene after growing amounts of bytes), error-vs-bytes.png
+# and side-by-side.png against the path-traced reference. Output in
+# build/demo/; settings (GRID, SPP, REF_SPP, SIZE, RATE, LATENCY, FRAMES_AT)
+# from the environment.
 .PHONY: demo
 demo: $(BUILD)/.setup-done all
 	@sh tools/demo.sh $(BUILD)

@@ -35,6 +35,7 @@ static const char usage[] =
     "                          every base mesh and the grid's corners are in\n"
     "  --backend soft|osmesa|egl  renderer (default soft)\n"
     "  --size WxH              frame size (default 320x240)\n"
+    "  --per-vertex            light per vertex, as a weak device would (default: per pixel)\n"
     "  --order interleaved|geometry|lighting  what to ask for first (default interleaved)\n"
     "  --vertices N            fixed geometry request size (default: adaptive)\n"
     "  --rounds K              fixed lighting request size in rounds (default: adaptive)\n"
@@ -48,7 +49,7 @@ static const char usage[] =
 typedef struct options {
     const char *connect, *replay, *record, *out, *backend;
     double at[64];
-    int nat, quiet, no_smoothing, use_float;
+    int nat, quiet, no_smoothing, use_float, per_vertex;
     uint32_t package, arena_mib;
     lumo_net_policy policy;
     render_opts ro;
@@ -85,13 +86,13 @@ static int parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *v)
 static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_CONNECT = 256, O_REPLAY, O_RECORD, O_PACKAGE, O_OUT, O_AT, O_BACKEND, O_SIZE, O_ORDER,
-           O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_NOSMOOTH, O_FLOAT, O_ARENA, O_QUIET, O_HELP };
+           O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_NOSMOOTH, O_FLOAT, O_PV, O_ARENA, O_QUIET, O_HELP };
     static const struct option longs[] = {
         {"connect", 1, 0, O_CONNECT}, {"replay", 1, 0, O_REPLAY}, {"record", 1, 0, O_RECORD},
         {"package", 1, 0, O_PACKAGE}, {"out", 1, 0, O_OUT}, {"frames-at", 1, 0, O_AT},
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"order", 1, 0, O_ORDER},
         {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS}, {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE},
-        {"no-smoothing", 0, 0, O_NOSMOOTH}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
+        {"no-smoothing", 0, 0, O_NOSMOOTH}, {"per-vertex", 0, 0, O_PV}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
         {"quiet", 0, 0, O_QUIET}, {"help", 0, 0, O_HELP}, {0, 0, 0, 0}};
     unsigned w, h;
     char tail;
@@ -127,6 +128,7 @@ static int parse_args(int argc, char **argv, options *o)
         case O_TARGET: if (parse_u32(optarg, 1, 60000, &o->policy.target_ms)) return -1; break;
         case O_PIPE: if (parse_u32(optarg, 1, 8, &o->policy.pipeline)) return -1; break;
         case O_NOSMOOTH: o->no_smoothing = 1; break;
+        case O_PV: o->per_vertex = 1; break;
         case O_FLOAT: o->use_float = 1; break;
         case O_ARENA: if (parse_u32(optarg, 1, 4095, &o->arena_mib)) return -1; break;
         case O_QUIET: o->quiet = 1; break;
@@ -230,6 +232,7 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
     rs.lights = c->scene.lights;
     rs.light_count = c->scene.light_count;
     rs.exposure = LUMO_Q16_ONE;
+    rs.flags = c->o.per_vertex ? 0 : LUMO_RASTER_PER_PIXEL;
     if (ivg && p->rounds) {
         rs.indirect = lumo_raster_ivg_irradiance;
         rs.indirect_ctx = ivg;
