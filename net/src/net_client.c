@@ -245,6 +245,13 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
         uint32_t u = now_ms(c);
         lumo_session_update(c->session);   /* push-pull after lighting (§4.1) */
         c->costs.update_ms = now_ms(c) - u;
+        /* Smoothing is most of push-pull's time (seed 000 Fig. 7) and its
+         * quality gain small: a client over its budget drops it. */
+        if (c->cfg.policy.smooth_budget_ms && c->costs.update_ms > c->cfg.policy.smooth_budget_ms &&
+            !c->smoothing_dropped) {
+            lumo_session_set_ivg_flags(c->session, 0);
+            c->smoothing_dropped = 1;
+        }
         c->costs.bytes_per_round = d.count ? d.len / d.count : c->costs.bytes_per_round;
     }
     t1 = now_ms(c);

@@ -401,6 +401,14 @@ lumo_status lumo_session_feed_package(lumo_session *s, const lumo_package *pkg, 
     return LUMO_OK;
 }
 
+lumo_status lumo_session_set_ivg_flags(lumo_session *s, unsigned flags)
+{
+    if (!s || (flags & ~LUMO_IVG_SMOOTH))
+        return LUMO_ERR_ARG;
+    s->cfg.ivg_flags = flags;
+    return LUMO_OK;
+}
+
 int lumo_session_update(lumo_session *s)
 {
     if (!s || !s->ivg || !s->ivg_dirty)

@@ -38,6 +38,9 @@ typedef struct lumo_net_policy {
     uint32_t vertices;     /* geometry request size; 0: adaptive */
     uint32_t rounds;       /* lighting request size (rounds); 0: adaptive */
     uint32_t target_ms;    /* adaptive: aim each response at this long (0: 250) */
+    uint32_t smooth_budget_ms; /* a push-pull with smoothing that takes longer
+                                  than this turns smoothing off for the rest
+                                  of the session (0: never) */
     uint32_t pipeline;     /* requests in flight (0: 4); hides the link's latency.
                               The first picture's requests (base meshes, the
                               corners) go out together whatever this is. */
@@ -104,6 +107,7 @@ typedef struct lumo_net_client {
     uint32_t retired_ms;              /* when the last request was answered */
     uint32_t retired;                 /* requests answered */
     uint32_t data_bytes;              /* bytes of the oldest pending request so far */
+    uint8_t  smoothing_dropped;       /* smooth_budget_ms was exceeded */
     lumo_status error;                /* why FAILED */
 } lumo_net_client;
 

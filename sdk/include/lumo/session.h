@@ -146,6 +146,11 @@ typedef struct lumo_session_where {
 } lumo_session_where;
 lumo_status lumo_session_feed_package(lumo_session *s, const lumo_package *pkg, lumo_session_where *where);
 
+/* Change the push-pull flags for the next updates (LUMO_IVG_SMOOTH or 0):
+ * a weak client drops smoothing when it costs more than it can spend
+ * (seed 000 §5.2, Fig. 7). ARG for unknown flags. */
+lumo_status lumo_session_set_ivg_flags(lumo_session *s, unsigned flags);
+
 /* Bring derived state up to date: push-pull fills the IVG's missing
  * vertices when bundles arrived since the last update (never changing a
  * received one). Returns 1 when something changed. */
