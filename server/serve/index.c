@@ -5,7 +5,6 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,20 +14,9 @@
 #include "lumo/arena.h"
 #include "lumo/net.h"
 #include "lumo/session.h"
+#include "common/status_msg.h"
 #include "lumo/wire.h"
 #include "lumo_host/package_msg.h"
-
-static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fmt, ...)
-{
-    va_list ap;
-
-    if (err && errlen) {
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return st;
-}
 
 /* Offsets of every batch record of mesh i, walked with the SDK's one walk
  * over a stream; the walk must end exactly at the chunk's end with
@@ -42,29 +30,29 @@ static lumo_status index_mesh(srv_pkg *p, uint32_t i, char *err, size_t errlen)
     lumo_status st;
 
     if ((st = lumo_package_find(&p->pkg, LUMO_PKG_PMSH, i, &m->stream, &m->len)))
-        return fail(err, errlen, LUMO_ERR_UNSUPPORTED, "%s: mesh %u has no progressive stream (PMSH): "
+        return srv_fail(err, errlen, LUMO_ERR_UNSUPPORTED, "%s: mesh %u has no progressive stream (PMSH): "
                     "lumo-server streams progressive meshes only (bake with --mesh pm)", p->path, i);
     if ((st = lumo_pmesh_read_header(m->stream, m->len, &m->h)))
-        return fail(err, errlen, st, "%s: mesh %u: stream header: %s", p->path, i, lumo_strerror(st));
+        return srv_fail(err, errlen, st, "%s: mesh %u: stream header: %s", p->path, i, lumo_strerror(st));
     m->rec = malloc(((size_t)m->h.batch_count + 1) * sizeof *m->rec);
     if (!m->rec)
-        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
+        return srv_fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
     for (b = 0; b < m->h.batch_count; b++) {
         lumo_pmesh_record_head rh;
         m->rec[b] = (uint32_t)at;
         if ((st = lumo_pmesh_next_record(m->stream, m->len, &at, &rec, &n)))
-            return fail(err, errlen, st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st,
+            return srv_fail(err, errlen, st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st,
                         "%s: mesh %u: batch record %u: %s", p->path, i, b,
                         lumo_strerror(st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st));
         if ((st = lumo_pmesh_read_record_head(rec, n, &rh)) || rh.index != b)
-            return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: batch record %u has index %u",
+            return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: batch record %u has index %u",
                         p->path, i, b, st ? 0u : rh.index);
         if (n > m->max_record)
             m->max_record = (uint32_t)n;
     }
     m->rec[b] = (uint32_t)at;
     if (at != m->len)
-        return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: %zu bytes after the last batch record",
+        return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: %zu bytes after the last batch record",
                     p->path, i, (size_t)m->len - at);
     return LUMO_OK;
 }
@@ -83,11 +71,11 @@ static lumo_status index_ivg(srv_pkg *p, char *err, size_t errlen)
     if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &s, &n) != LUMO_OK)
         return LUMO_OK;   /* no IVG: a lighting request is RANGE */
     if ((st = lumo_package_ivg_order(&p->pkg, &o)))
-        return fail(err, errlen, st, "%s: IVG streaming order (IVGS): %s", p->path, lumo_strerror(st));
+        return srv_fail(err, errlen, st, "%s: IVG streaming order (IVGS): %s", p->path, lumo_strerror(st));
     for (f = 0; f < 2; f++) {
         uint32_t type = f == LUMO_IVG_FORM_QUANTIZED ? LUMO_PKG_IVGQ : LUMO_PKG_IVGF;
         if ((st = lumo_package_find(&p->pkg, type, 0, &g->bundle[f], &g->bundle_len[f])))
-            return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no %s bundle", p->path, f ? "IVGQ" : "IVGF");
+            return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no %s bundle", p->path, f ? "IVGQ" : "IVGF");
     }
     g->rounds = o.rounds;
     g->records = o.records;
@@ -95,7 +83,7 @@ static lumo_status index_ivg(srv_pkg *p, char *err, size_t errlen)
     g->off[0] = malloc(((size_t)o.rounds + 1) * sizeof *g->off[0]);
     g->off[1] = malloc(((size_t)o.rounds + 1) * sizeof *g->off[1]);
     if (!g->first || !g->off[0] || !g->off[1])
-        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
+        return srv_fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
     for (r = 0; r <= o.rounds; r++) {
         g->first[r] = lumo_ivg_order_first(&o, r);
         for (f = 0; f < 2; f++)
@@ -103,7 +91,7 @@ static lumo_status index_ivg(srv_pkg *p, char *err, size_t errlen)
     }
     for (f = 0; f < 2; f++)
         if (g->off[f][0] != SRV_IVG_BUNDLE_HEAD || g->off[f][o.rounds] != g->bundle_len[f])
-            return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: the round table does not cover the %s bundle",
+            return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: the round table does not cover the %s bundle",
                         p->path, f ? "IVGQ" : "IVGF");
     g->present = 1;
     return LUMO_OK;
@@ -121,7 +109,7 @@ static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
     lumo_status st;
 
     if ((st = lumo_package_find(&p->pkg, LUMO_PKG_INFO, 0, &d, &n)))
-        return fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no INFO chunk", p->path);
+        return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no INFO chunk", p->path);
     msgs[count++] = (lumo_net_msg){LUMO_PKG_INFO, 0, n, d};
     for (i = 0; i < p->mesh_count; i++)
         msgs[count++] = (lumo_net_msg){LUMO_PKG_PMSH, i, LUMO_PMESH_HEADER_SIZE, p->mesh[i].stream};
@@ -136,17 +124,17 @@ static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
     for (i = 0; i < count; i++) {
         size_t b;
         if ((st = lumo_session_message_need(msgs[i].type, msgs[i].data, msgs[i].len, &b)))
-            return fail(err, errlen, st, "%s: descriptor %u: %s", p->path, i, lumo_strerror(st));
+            return srv_fail(err, errlen, st, "%s: descriptor %u: %s", p->path, i, lumo_strerror(st));
         need += b;
         cap += 12 + ((msgs[i].len + 3u) & ~(size_t)3);
     }
     if (need > UINT32_MAX || cap > LUMO_NET_OVERHEAD + (size_t)LUMO_NET_MAX_PAYLOAD)
-        return fail(err, errlen, LUMO_ERR_LIMIT, "%s: the scene's descriptors are too large to send", p->path);
+        return srv_fail(err, errlen, LUMO_ERR_LIMIT, "%s: the scene's descriptors are too large to send", p->path);
     p->arena_need = (uint32_t)need;
     if (!(p->welcome = malloc(cap)))
-        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
+        return srv_fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
     if ((st = lumo_net_welcome_encode(p->id, p->arena_need, msgs, count, p->welcome, cap, &p->welcome_len)))
-        return fail(err, errlen, st, "%s: WELCOME: %s", p->path, lumo_strerror(st));
+        return srv_fail(err, errlen, st, "%s: WELCOME: %s", p->path, lumo_strerror(st));
     return LUMO_OK;
 }
 
@@ -162,22 +150,22 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
 
     memset(p, 0, sizeof *p);
     if ((fd = open(path, O_RDONLY | O_CLOEXEC)) < 0)
-        return fail(err, errlen, LUMO_ERR_IO, "%s: %s", path, strerror(errno));
+        return srv_fail(err, errlen, LUMO_ERR_IO, "%s: %s", path, strerror(errno));
     if (fstat(fd, &sb) < 0 || !S_ISREG(sb.st_mode) || sb.st_size <= 0) {
         int e = errno;
         close(fd);
-        return fail(err, errlen, LUMO_ERR_IO, "%s: %s", path,
+        return srv_fail(err, errlen, LUMO_ERR_IO, "%s: %s", path,
                     sb.st_size <= 0 && !e ? "empty or not a regular file" : strerror(e));
     }
     map = mmap(NULL, (size_t)sb.st_size, PROT_READ, MAP_SHARED, fd, 0);
     close(fd);
     if (map == MAP_FAILED)
-        return fail(err, errlen, LUMO_ERR_IO, "%s: mmap: %s", path, strerror(errno));
+        return srv_fail(err, errlen, LUMO_ERR_IO, "%s: mmap: %s", path, strerror(errno));
     p->map = map;
     p->size = (size_t)sb.st_size;
     if (!(p->path = strdup(path))) {
         srv_pkg_close(p);
-        return fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", path);
+        return srv_fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", path);
     }
     slash = strrchr(p->path, '/');
     p->name = slash ? slash + 1 : p->path;
@@ -185,23 +173,23 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
     if ((st = lumo_package_open(&p->pkg, p->map, p->size))) {
         char why[160];
         /* "package version 1: re-bake it with this lumo-bake", as every tool says it */
-        fail(err, errlen, st, "%s: %s", path, host_package_strerror(p->map, p->size, st, why, sizeof why));
+        srv_fail(err, errlen, st, "%s: %s", path, host_package_strerror(p->map, p->size, st, why, sizeof why));
         srv_pkg_close(p);
         return st;
     }
     p->id = lumo_wire_le32(p->map + 20);
     if ((st = lumo_package_info(&p->pkg, &info))) {
-        fail(err, errlen, st, "%s: INFO: %s", path, lumo_strerror(st));
+        srv_fail(err, errlen, st, "%s: INFO: %s", path, lumo_strerror(st));
         goto failed;
     }
     p->mesh_count = info.mesh_count;
     if (p->mesh_count > LUMO_MAX_MESHES) {
-        st = fail(err, errlen, LUMO_ERR_LIMIT, "%s: %u meshes, more than LUMO_MAX_MESHES (%u)", path,
+        st = srv_fail(err, errlen, LUMO_ERR_LIMIT, "%s: %u meshes, more than LUMO_MAX_MESHES (%u)", path,
                   p->mesh_count, (unsigned)LUMO_MAX_MESHES);
         goto failed;
     }
     if (p->mesh_count && !(p->mesh = calloc(p->mesh_count, sizeof *p->mesh))) {
-        st = fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", path);
+        st = srv_fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", path);
         goto failed;
     }
     for (i = 0; i < p->mesh_count; i++)

@@ -3,23 +3,11 @@
  */
 #include "serve/plan.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include "lumo/ivg.h"
+#include "common/status_msg.h"
 #include "lumo/wire.h"
-
-static lumo_status fail(char *err, size_t errlen, lumo_status st, const char *fmt, ...)
-{
-    va_list ap;
-
-    if (err && errlen) {
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return st;
-}
 
 lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t form, uint32_t max_payload,
                            srv_answer *a, int *end_of_channel, char *err, size_t errlen)
@@ -27,19 +15,19 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
     memset(a, 0, sizeof *a);
     *end_of_channel = 0;
     if (max_payload <= LUMO_NET_DATA_HEAD)
-        return fail(err, errlen, LUMO_ERR_LIMIT, "max payload %u holds no record", max_payload);
+        return srv_fail(err, errlen, LUMO_ERR_LIMIT, "max payload %u holds no record", max_payload);
     a->channel = r->channel;
     a->max_data = max_payload - LUMO_NET_DATA_HEAD;
     if (r->amount == 0)
-        return fail(err, errlen, LUMO_ERR_RANGE, "request for 0 %s", r->channel ? "rounds" : "vertices");
+        return srv_fail(err, errlen, LUMO_ERR_RANGE, "request for 0 %s", r->channel ? "rounds" : "vertices");
     if (r->channel == LUMO_NET_GEOMETRY) {
         const srv_mesh_index *m;
         uint32_t b;
         if (r->mesh >= p->mesh_count)
-            return fail(err, errlen, LUMO_ERR_RANGE, "mesh %u past the mesh count %u", r->mesh, p->mesh_count);
+            return srv_fail(err, errlen, LUMO_ERR_RANGE, "mesh %u past the mesh count %u", r->mesh, p->mesh_count);
         m = &p->mesh[r->mesh];
         if (r->cursor > m->h.batch_count)
-            return fail(err, errlen, LUMO_ERR_RANGE, "mesh %u: cursor %u past its %u batches", r->mesh,
+            return srv_fail(err, errlen, LUMO_ERR_RANGE, "mesh %u: cursor %u past its %u batches", r->mesh,
                         r->cursor, m->h.batch_count);
         a->mesh = r->mesh;
         if (r->cursor == m->h.batch_count)
@@ -49,7 +37,7 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
         if (m->max_record > a->max_data)   /* only then can a record of the range be too large */
             for (b = a->next; b < a->end; b++)
                 if (m->rec[b + 1] - m->rec[b] > a->max_data)
-                    return fail(err, errlen, LUMO_ERR_LIMIT,
+                    return srv_fail(err, errlen, LUMO_ERR_LIMIT,
                                 "mesh %u: batch record %u is %u bytes, more than max payload %u allows",
                                 r->mesh, b, m->rec[b + 1] - m->rec[b], max_payload);
         return LUMO_OK;
@@ -57,11 +45,11 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
     if (r->channel == LUMO_NET_LIGHTING) {
         const srv_ivg_index *g = &p->ivg;
         if (!g->present)
-            return fail(err, errlen, LUMO_ERR_RANGE, "lighting request: the package has no IVG");
+            return srv_fail(err, errlen, LUMO_ERR_RANGE, "lighting request: the package has no IVG");
         if (form != LUMO_IVG_FORM_FLOAT && form != LUMO_IVG_FORM_QUANTIZED)
-            return fail(err, errlen, LUMO_ERR_RANGE, "lighting request: no IVG form chosen in HELLO");
+            return srv_fail(err, errlen, LUMO_ERR_RANGE, "lighting request: no IVG form chosen in HELLO");
         if (r->cursor > g->rounds)
-            return fail(err, errlen, LUMO_ERR_RANGE, "lighting cursor %u past the %u rounds", r->cursor,
+            return srv_fail(err, errlen, LUMO_ERR_RANGE, "lighting cursor %u past the %u rounds", r->cursor,
                         g->rounds);
         if (r->cursor == g->rounds)
             return *end_of_channel = 1, LUMO_OK;
@@ -72,7 +60,7 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
         a->pos = g->off[form][a->next];
         return LUMO_OK;
     }
-    return fail(err, errlen, LUMO_ERR_RANGE, "unknown channel %u", r->channel);
+    return srv_fail(err, errlen, LUMO_ERR_RANGE, "unknown channel %u", r->channel);
 }
 
 static int next_geometry(const srv_pkg *p, srv_answer *a, lumo_net_data *d)

@@ -3,6 +3,7 @@
  * (serve/server.h).
  */
 #include "serve/server.h"
+#include "common/status_msg.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -46,16 +47,6 @@ void srv_log(const srv_serve *s, int always, const char *fmt, ...)
     vsnprintf(line, sizeof line, fmt, ap);
     va_end(ap);
     fprintf(stderr, "lumo-server: %s\n", line);
-}
-
-static lumo_status fail(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-    return LUMO_ERR_IO;
 }
 
 /* ---- the timer heap (connections waiting for a time: latency, rate) ----------- */
@@ -160,7 +151,7 @@ static int open_listener(const char *spec, unsigned *port_out, char *err, size_t
     int fd = -1, one = 1, rc;
 
     if (split_addr(spec, host, sizeof host, port, sizeof port)) {
-        fail(err, errlen, "bad address '%s' (want ADDR:PORT, e.g. 127.0.0.1:7420)", spec);
+        srv_fail(err, errlen, LUMO_ERR_IO, "bad address '%s' (want ADDR:PORT, e.g. 127.0.0.1:7420)", spec);
         return -1;
     }
     memset(&hints, 0, sizeof hints);
@@ -168,7 +159,7 @@ static int open_listener(const char *spec, unsigned *port_out, char *err, size_t
     hints.ai_socktype = SOCK_STREAM;
     hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
     if ((rc = getaddrinfo(host[0] ? host : NULL, port, &hints, &res))) {
-        fail(err, errlen, "address '%s': %s", spec, gai_strerror(rc));
+        srv_fail(err, errlen, LUMO_ERR_IO, "address '%s': %s", spec, gai_strerror(rc));
         return -1;
     }
     for (ai = res; ai; ai = ai->ai_next) {
@@ -178,7 +169,7 @@ static int open_listener(const char *spec, unsigned *port_out, char *err, size_t
         setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
         if (bind(fd, ai->ai_addr, ai->ai_addrlen) == 0 && listen(fd, 4096) == 0)
             break;
-        fail(err, errlen, "listen on %s: %s", spec, strerror(errno));
+        srv_fail(err, errlen, LUMO_ERR_IO, "listen on %s: %s", spec, strerror(errno));
         close(fd);
         fd = -1;
     }
@@ -192,7 +183,7 @@ static int open_listener(const char *spec, unsigned *port_out, char *err, size_t
                                                  : ntohs(((struct sockaddr_in *)&ss)->sin_port);
     } else if (!ai) {
         if (!err[0])
-            fail(err, errlen, "listen on %s: no usable address", spec);
+            srv_fail(err, errlen, LUMO_ERR_IO, "listen on %s: no usable address", spec);
     }
     return fd;
 }
@@ -435,7 +426,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
     sigaddset(&mask, SIGTERM);
     if (sigprocmask(SIG_BLOCK, &mask, NULL) < 0 || (s.sigfd = signalfd(-1, &mask, SFD_NONBLOCK | SFD_CLOEXEC)) < 0 ||
         (s.epfd = epoll_create1(EPOLL_CLOEXEC)) < 0) {
-        st = fail(err, errlen, "event loop: %s", strerror(errno));
+        st = srv_fail(err, errlen, LUMO_ERR_IO, "event loop: %s", strerror(errno));
         goto out;
     }
     err[0] = 0;
@@ -473,7 +464,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
         srv_log(&s, 1, "link emulation per client: rate %g kbit/s, latency %u ms, serial loss %g per frame (seed %llu)",
                 s.opt.rate_kbit, s.opt.latency_ms, s.opt.loss, (unsigned long long)s.opt.seed);
     if (s.opt.port_file && write_port_file(&s)) {
-        st = fail(err, errlen, "%s: %s", s.opt.port_file, strerror(errno));
+        st = srv_fail(err, errlen, LUMO_ERR_IO, "%s: %s", s.opt.port_file, strerror(errno));
         goto out;
     }
 
@@ -491,7 +482,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
         timeout_ms = until <= now ? 0 : (int)((until - now + 999) / 1000);
         n = epoll_wait(s.epfd, ev, MAX_EVENTS, timeout_ms);
         if (n < 0 && errno != EINTR) {
-            st = fail(err, errlen, "epoll_wait: %s", strerror(errno));
+            st = srv_fail(err, errlen, LUMO_ERR_IO, "epoll_wait: %s", strerror(errno));
             break;
         }
         now = srv_now_us();

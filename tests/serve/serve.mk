@@ -9,7 +9,8 @@
 # release build. Libraries are named literally.
 SERVE_CLIENT   := $(BUILD)/tests/bin/serve_client
 SERVE_SAN      := $(BUILD)/tests/bin/lumo-server-san
-SERVE_SAN_OBJS := $(patsubst %.c,$(BUILD)/tests/%.o,$(sort $(wildcard server/serve/*.c)) tools/lumo-server/main.c)
+SERVE_SAN_OBJS := $(patsubst %.c,$(BUILD)/tests/%.o,$(sort $(wildcard server/serve/*.c)) server/common/status_msg.c \
+                  tools/lumo-server/main.c)
 
 $(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
@@ -22,7 +23,7 @@ $(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net
 SERVE_UNIT := $(BUILD)/tests/bin/test_serve_plan
 UNIT_TESTS += $(SERVE_UNIT)
 $(SERVE_UNIT): $(BUILD)/tests/tests/serve/test_serve_plan.o $(BUILD)/tests/server/serve/plan.o \
-               $(BUILD)/tests/server/serve/index.o $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a \
+               $(BUILD)/tests/server/serve/index.o $(BUILD)/tests/server/common/status_msg.o $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a \
                $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ $(TEST_LDLIBS)
