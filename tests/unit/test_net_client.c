@@ -3,7 +3,7 @@
  * asks again after a refused frame (docs/protocol.md §1) and drops the rest
  * of the earlier answers. The driver's state is set by hand here (its
  * fields are in the header); the whole conversation is exercised end to end
- * by tests/serve (lumo-client) and tests/board/client.sh (the board client). */
+ * by tests/serve (lumo-client) and boards/client/client-test.sh (the board client). */
 #include <string.h>
 #include "test_common.h"
 #include "lumo/net.h"

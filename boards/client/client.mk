@@ -1,0 +1,31 @@
+# boards/client/client.mk — the thin client as a board program
+# (boards/client/client.c, docs/porting.md §7): built for mps2-an385 (QEMU)
+# and for the Linux board.
+#
+# The program links a board's port and the client libraries, never test
+# code; its objects come from the boards' rules (boards/armv7m/armv7m.mk,
+# boards/host/board.mk). Files of other fragments are named literally:
+# fragments are included in any order.
+CLIENT_ELF  := $(BUILD)/board/mps2-an385/client.elf
+CLIENT_HOST := $(BUILD)/board/host/client
+CLIENT_M3_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3/%.o,boards/client/client.c boards/armv7m/startup.c \
+    boards/armv7m/fault.c boards/armv7m/semihost.c boards/mps2-an385/board.c boards/common/console.c)
+CLIENT_HOST_OBJS := $(patsubst %.c,$(BUILD)/board/obj-host/%.o,boards/client/client.c boards/host/board.c \
+    boards/common/console.c)
+CLIENT_M3_LIBS := $(BUILD)/m3/liblumo_net.a $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo.a
+
+# make check-embedded proves the client rules on the image's own objects too
+# (boards/armv7m/armv7m.mk), beside the libraries'.
+BOARD_CHECK_OBJS += $(CLIENT_M3_OBJS)
+check-embedded: $(CLIENT_M3_OBJS)
+
+$(CLIENT_ELF): $(CLIENT_M3_OBJS) $(CLIENT_M3_LIBS) boards/mps2-an385/mps2-an385.ld
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M3_ARCH) -nostartfiles -specs=nano.specs -T boards/mps2-an385/mps2-an385.ld -Wl,--gc-sections \
+	    -Wl,--no-warn-rwx-segments -Wl,-Map=$@.map -o $@ $(CLIENT_M3_OBJS) $(CLIENT_M3_LIBS)
+	@if $(ARM_NM) $@ | awk '{print $$NF}' | grep -Ex '$(BOARD_BANNED_SYMS)'; then \
+	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
+
+$(CLIENT_HOST): $(CLIENT_HOST_OBJS) $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^
