@@ -1,6 +1,12 @@
 # boards/client/client.mk — the thin client as a board program
 # (boards/client/client.c, docs/porting.md §7): built for mps2-an385 (QEMU)
-# and for the Linux board.
+# and for the Linux board, and tested end to end by `make board-client`.
+#
+#   make board-client   a small baked scene through lumo-server's serial
+#                       listener: recorded by the host build, replayed on the
+#                       host and under QEMU, streamed live under QEMU over the
+#                       UART, and once more through --loss 0.01; HASH lines
+#                       compared (boards/client/client-test.sh)
 #
 # The program links a board's port and the client libraries, never test
 # code; its objects come from the boards' rules (boards/armv7m/armv7m.mk,
@@ -29,3 +35,18 @@ $(CLIENT_ELF): $(CLIENT_M3_OBJS) $(CLIENT_M3_LIBS) boards/mps2-an385/mps2-an385.
 $(CLIENT_HOST): $(CLIENT_HOST_OBJS) $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^
+
+# The scene: the default Cornell box with the 11k dragon, an 8^3 grid (the
+# live run over QEMU's UART moves about 30 KB/s).
+CLIENT_DIR   := $(BUILD)/board/client
+CLIENT_SCENE := $(CLIENT_DIR)/scene.lumo
+$(CLIENT_SCENE): $(BIN)/lumo-bake
+	@mkdir -p $(@D)
+	$(BIN)/lumo-bake --default --dragon $(BUILD)/data/models/dragon_11k.ply --grid 8 --spp 64 --no-progress \
+	    -o $@ >$(CLIENT_DIR)/bake.log 2>&1 || { cat $(CLIENT_DIR)/bake.log; exit 1; }
+
+.PHONY: board-client
+board-client: $(CLIENT_ELF) $(CLIENT_HOST) $(CLIENT_SCENE) $(BIN)/lumo-server
+	@sh boards/client/client-test.sh $(CLIENT_DIR) $(CLIENT_SCENE) $(BIN)/lumo-server $(CLIENT_HOST) \
+	    $(CLIENT_ELF) "$(MPS2_QEMU_CMD) -icount shift=0"
+TEST_STEPS += board-client
