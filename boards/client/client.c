@@ -685,10 +685,10 @@ static int start(client *c)
     return 0;
 }
 
-static void report(const client *c, uint32_t t0)
+/* "client: done: ..." — what arrived and what the line did to it. */
+static void report_counts(const client *c)
 {
     lumo_net_progress p;
-    cost total = {0, 0}, decode = c->decode;
 
     lumo_net_client_progress(&c->drv, &p);
     con_str("client: done: ");
@@ -711,14 +711,12 @@ static void report(const client *c, uint32_t t0)
     con_u64(c->resends);
     con_str(" times asked again");
     con_nl();
-    cost_line("geometry.batch", &c->geometry, "batches");
-    cost_line("lighting.data", &c->lighting, "DATA frames, push-pull included");
-    cost_line("lighting.pushpull", &c->pushpull, "push-pulls");
-    decode.n = c->frames;
-    cost_line("frame.decode", &decode, "frames, CRC and checks");
-    cost_line("picture", &c->drawing, "pictures");
-    total.ticks = board_ticks() - t0;
-    cost_line(c->replay ? "session.total" : "session.total.with-waiting", &total, NULL);
+}
+
+static void report_memory(const client *c)
+{
+    size_t stack = board_stack_peak();
+
     con_str("MEM scene arena peak ");
     con_u64(c->scene_arena.peak);
     con_str(" of ");
@@ -729,13 +727,34 @@ static void report(const client *c, uint32_t t0)
     con_u64(c->pictures.size);
     con_str(" bytes");
     con_nl();
+    if (stack != 0) {
+        con_str("stack peak: ");
+        con_u64(stack);
+        con_str(" bytes");
+        con_nl();
+    }
+}
+
+static void report(const client *c, uint32_t t0)
+{
+    cost total = {0, 0}, decode = c->decode;
+
+    report_counts(c);
+    cost_line("geometry.batch", &c->geometry, "batches");
+    cost_line("lighting.data", &c->lighting, "DATA frames, push-pull included");
+    cost_line("lighting.pushpull", &c->pushpull, "push-pulls");
+    decode.n = c->frames;
+    cost_line("frame.decode", &decode, "frames, CRC and checks");
+    cost_line("picture", &c->drawing, "pictures");
+    total.ticks = board_ticks() - t0;
+    cost_line(c->replay ? "session.total" : "session.total.with-waiting", &total, NULL);
+    report_memory(c);
 }
 
 int main(void)
 {
     client *c = &g_client;
     uint32_t t0 = board_ticks();
-    size_t stack;
     int rc;
 
     if (parse_args(c) || carve_memory(c) || start(c))
@@ -745,11 +764,5 @@ int main(void)
     if (rc == 0 && c->record && board_write_file(c->record, c->log, c->log_len))
         rc = fail("cannot write the recording ", c->record);
     report(c, t0);
-    if ((stack = board_stack_peak()) != 0) {
-        con_str("stack peak: ");
-        con_u64(stack);
-        con_str(" bytes");
-        con_nl();
-    }
     return rc ? 1 : 0;
 }
