@@ -50,4 +50,26 @@ uint8_t *board_scratch(size_t *bytes);
  * the board cannot tell. */
 size_t board_stack_peak(void);
 
+/* The program's command line: its name, then its arguments, separated by
+ * single spaces, NUL-terminated in buf[0..cap). QEMU: the semihosting
+ * command line (SYS_GET_CMDLINE: the -kernel path and the -append text);
+ * host: argv. 0, or -1 when the board has none or it does not fit. */
+int board_cmdline(char *buf, size_t cap);
+
+/* ---- the link: a byte stream to the server --------------------------------
+ * A serial line as the stream protocol sees it (docs/protocol.md §1: bytes
+ * may be lost or garbled; the client resynchronises). mps2-an385: CMSDK
+ * UART0, which QEMU connects to a chardev (`-serial chardev:ID`); host: a
+ * TCP connection to LUMO_LINK=HOST:PORT (lumo-server --serial-listen);
+ * lm3s6965evb: none. */
+
+/* Send n bytes; returns once they are handed to the line. 0, or -1 when
+ * the board has no link or it failed. */
+int board_link_write(const uint8_t *buf, size_t n);
+
+/* Receive up to cap bytes: waits up to timeout_ms for the first one, then
+ * takes what follows without waiting. Returns the bytes read (0: none came
+ * within the timeout), or -1 when the board has no link or it closed. */
+int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms);
+
 #endif /* LUMO_BOARD_H */

@@ -19,6 +19,10 @@ $(BUILD)/board/obj-m3/%.o: %.c
 	$(ARM_CC) $(CLIENT_CFLAGS_m3) $(BOARD_CPPFLAGS) $(BOARD_PROG_CPPFLAGS) -MMD -MP -c $< -o $@
 .PRECIOUS: $(BUILD)/board/obj-m3/%.o
 
+# Board images checked too (their fragments add their objects here and make
+# check-embedded depend on them): the board client and the port it links.
+BOARD_CHECK_OBJS ?=
+
 # Client sources and headers the source rules apply to: everything the
 # fragments put in CLIENT_SRCS, the headers beside them, the SDK's public
 # headers, and every other header a client object was compiled with (from
@@ -30,11 +34,11 @@ CHECK_EMBEDDED_SRCS = $(sort $(CLIENT_SRCS) $(wildcard $(addsuffix *.h,$(sort $(
 
 .PHONY: check-embedded check-embedded-selftest
 check-embedded: $(BUILD)/m3/liblumo.a $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo_net.a
-	@deps=$$(cat $(CLIENT_OBJS_m3:.o=.d) 2>/dev/null | tr ' \\' '\n\n' | sed 's/:$$//' \
+	@deps=$$(cat $(CLIENT_OBJS_m3:.o=.d) $(BOARD_CHECK_OBJS:.o=.d) 2>/dev/null | tr ' \\' '\n\n' | sed 's/:$$//' \
 	        | grep '\.h$$' | grep -v '^/' | sort -u); \
-	srcs=$$({ for f in $(CHECK_EMBEDDED_SRCS); do echo $$f; done; \
+	srcs=$$({ for f in $(CHECK_EMBEDDED_SRCS) $(BOARD_CHECK_OBJS:$(BUILD)/board/obj-m3/%.o=%.c); do echo $$f; done; \
 	          for f in $$deps; do [ -f $$f ] && echo $$f; done; } | sort -u); \
-	sh boards/armv7m/check-embedded.sh $(ARM_NM) "$(CLIENT_OBJS_m3)" "$$srcs"
+	sh boards/armv7m/check-embedded.sh $(ARM_NM) "$(CLIENT_OBJS_m3) $(BOARD_CHECK_OBJS)" "$$srcs"
 
 check-embedded-selftest:
 	@sh tests/board/check_embedded_selftest.sh $(BUILD)/check-embedded-selftest \

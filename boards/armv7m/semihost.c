@@ -13,7 +13,7 @@
 
 enum {
     SYS_OPEN = 0x01, SYS_CLOSE = 0x02, SYS_WRITE0 = 0x04, SYS_WRITE = 0x05,
-    SYS_READ = 0x06, SYS_FLEN = 0x0C, SYS_EXIT_EXTENDED = 0x20
+    SYS_READ = 0x06, SYS_FLEN = 0x0C, SYS_GET_CMDLINE = 0x15, SYS_EXIT_EXTENDED = 0x20
 };
 /* Open modes are the indices of fopen's strings "r","rb","r+",... */
 enum { MODE_RB = 1, MODE_WB = 5, MODE_A = 8 };
@@ -108,4 +108,20 @@ int board_write_file(const char *path, const uint8_t *buf, size_t len)
     rc = sh_transfer(SYS_WRITE, fd, buf, len) == 0 ? 0 : -1;
     sh_close(fd);
     return rc;
+}
+
+/* SYS_GET_CMDLINE writes the NUL-terminated line into the block's buffer;
+ * QEMU builds it from -kernel and -append (or -semihosting-config arg=). */
+int board_cmdline(char *buf, size_t cap)
+{
+    uint32_t blk[2];
+
+    if (cap == 0)
+        return -1;
+    blk[0] = (uint32_t)(uintptr_t)buf;
+    blk[1] = (uint32_t)cap;
+    if (armv7m_semihost_call(SYS_GET_CMDLINE, blk) != 0)
+        return -1;
+    buf[cap - 1] = '\0';
+    return 0;
 }

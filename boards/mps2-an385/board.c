@@ -46,3 +46,50 @@ uint8_t *board_scratch(size_t *bytes)
     *bytes = sizeof g_psram;
     return g_psram;
 }
+
+/* ---- the link: CMSDK APB UART0, polled (QEMU hw/char/cmsdk-apb-uart.c) ---- */
+
+#define UART0_DATA    (*(volatile uint32_t *)0x40004000u)
+#define UART0_STATE   (*(volatile uint32_t *)0x40004004u)
+#define UART0_CTRL    (*(volatile uint32_t *)0x40004008u)
+#define UART0_BAUDDIV (*(volatile uint32_t *)0x40004010u)
+#define STATE_TXFULL  0x1u
+#define STATE_RXFULL  0x2u
+#define CTRL_TX_RX_EN 0x3u
+#define LINK_BAUD     115200u
+
+static void link_enable(void)
+{
+    if ((UART0_CTRL & CTRL_TX_RX_EN) != CTRL_TX_RX_EN) {
+        UART0_BAUDDIV = SYSCLK_HZ / LINK_BAUD;   /* >= 16, or QEMU logs an error */
+        UART0_CTRL = CTRL_TX_RX_EN;
+    }
+}
+
+int board_link_write(const uint8_t *buf, size_t n)
+{
+    size_t i;
+
+    link_enable();
+    for (i = 0; i < n; i++) {
+        while (UART0_STATE & STATE_TXFULL)
+            ;
+        UART0_DATA = buf[i];
+    }
+    return 0;
+}
+
+int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    uint32_t t0 = board_ticks(), limit = timeout_ms * (SYSCLK_HZ / 1000u);
+    size_t n = 0;
+
+    link_enable();
+    while (n < cap) {
+        if (UART0_STATE & STATE_RXFULL)
+            buf[n++] = (uint8_t)UART0_DATA;
+        else if (n > 0 || board_ticks() - t0 >= limit)
+            break;
+    }
+    return (int32_t)n;
+}

@@ -55,6 +55,7 @@ define MPS2_LINK
 	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
 endef
 $(MPS2_OUT)/%.elf: $(BUILD)/board/obj-m3/tests/board/%.o $(MPS2_OBJS) $(MPS2_LIBS) $(MPS2_DIR)/mps2-an385.ld
+	@mkdir -p $(@D)
 	$(MPS2_LINK)
 $(MPS2_OUT)/facts/%.elf: $(BUILD)/board/obj-m3/tests/board/facts/%.o $(MPS2_OBJS) $(MPS2_LIBS) $(MPS2_DIR)/mps2-an385.ld
 	@mkdir -p $(@D)

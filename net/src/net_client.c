@@ -314,6 +314,53 @@ lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f
     return st ? fail(c, st) : LUMO_OK;
 }
 
+/* ---- frames out of turn (a serial line, docs/protocol.md §1) --------------------------- */
+
+/* The oldest request in flight is for this channel (and mesh). */
+static int answers_oldest(const lumo_net_client *c, uint8_t channel, uint32_t mesh)
+{
+    const lumo_net_pending *p = &c->pending[0];
+
+    return c->npending > 0 && p->channel == channel && (channel != LUMO_NET_GEOMETRY || p->mesh == mesh);
+}
+
+static int data_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_data d;
+
+    if (lumo_net_data_decode(f, &d))
+        return 1;
+    if (!c->cfg.replay && !answers_oldest(c, d.channel, d.mesh))
+        return 0;
+    if (d.channel == LUMO_NET_GEOMETRY)
+        return d.mesh < c->mesh_count && d.first == c->held[d.mesh];
+    return d.first == c->rounds_held;
+}
+
+static int end_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_end e;
+
+    if (lumo_net_end_decode(f, &e))
+        return 1;
+    return c->cfg.replay || answers_oldest(c, e.channel, e.mesh);
+}
+
+int lumo_net_client_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
+{
+    if (!c || !f)
+        return 0;
+    if (f->type == LUMO_NET_ERROR)
+        return 1;
+    if (f->type == LUMO_NET_WELCOME)
+        return c->state == LUMO_NET_HELLO_SENT;
+    if (c->state != LUMO_NET_READY)
+        return 0;
+    if (f->type == LUMO_NET_DATA)
+        return data_in_turn(c, f);
+    return f->type == LUMO_NET_END && end_in_turn(c, f);
+}
+
 /* ---- requests --------------------------------------------------------------------- */
 
 static int mesh_open(const lumo_net_client *c, uint32_t m)

@@ -136,7 +136,7 @@ static void test_light_from_pkg(void **state)
     }
     p.dir[1] = -16384;
     p.cos_half = -16384;
-    host_light_from_pkg(&p, &l);
+    lumo_raster_light_from_pkg(&p, &l);
     assert_int_equal(l.kind, LUMO_LIGHT_SPOT);
     assert_q16_3(l.pos, 2, 1, 3);
     assert_int_equal(l.dir[1], -16384);
@@ -144,10 +144,39 @@ static void test_light_from_pkg(void **state)
     assert_int_equal(l.value[0], UINT32_MAX);
     assert_int_equal(l.value[1], 6 * LUMO_Q16_ONE);
     p.kind = LUMO_LIGHT_POINT;
-    host_light_from_pkg(&p, &l);
+    lumo_raster_light_from_pkg(&p, &l);
     assert_int_equal(l.kind, LUMO_LIGHT_POINT);
     assert_q16_3(l.pos, 1, 1, 1);
     assert_int_equal(l.value[1], 3 * LUMO_Q16_ONE);
+}
+
+/* A package's camera: the info's fields, the clients' near plane (the one
+ * host_camera_from_srv gives a server camera). */
+static void test_camera_from_info(void **state)
+{
+    lumo_pkg_info info;
+    lumo_raster_camera c;
+    srv_camera sc;
+    lumo_raster_camera h;
+    int k;
+    (void)state;
+
+    memset(&info, 0, sizeof info);
+    for (k = 0; k < 3; k++) {
+        info.eye[k] = (k + 1) * LUMO_Q16_ONE;
+        info.target[k] = -k * LUMO_Q16_ONE / 2;
+        info.up[k] = k == 1 ? LUMO_Q16_ONE : 0;
+    }
+    info.fovy_deg = 40 * LUMO_Q16_ONE;
+    lumo_raster_camera_from_info(&info, &c);
+    assert_q16_3(c.eye, 1, 2, 3);
+    assert_int_equal(c.target[1], -LUMO_Q16_ONE / 2);
+    assert_int_equal(c.up[1], LUMO_Q16_ONE);
+    assert_int_equal(c.fovy_deg, 40 * LUMO_Q16_ONE);
+    assert_int_equal(c.znear, host_q16(0.01));
+    assert_int_equal(srv_camera_parse("0,1,3:0,1,0:0,1,0:40", &sc), LUMO_OK);
+    assert_int_equal(host_camera_from_srv(&sc, &h), LUMO_OK);
+    assert_int_equal(h.znear, c.znear);
 }
 
 /* The server's default scene without its dragon: the walls, the sphere, the
@@ -311,6 +340,7 @@ int main(void)
         cmocka_unit_test(test_camera_strings),
         cmocka_unit_test(test_light_strings),
         cmocka_unit_test(test_light_from_pkg),
+        cmocka_unit_test(test_camera_from_info),
         cmocka_unit_test(test_default_scene),
         cmocka_unit_test(test_imported_model_welded),
         cmocka_unit_test(test_weld_and_seam),

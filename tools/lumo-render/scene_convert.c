@@ -42,34 +42,9 @@ lumo_status host_camera_from_srv(const srv_camera *c, lumo_raster_camera *out)
     q16_3(c->target, r.target);
     q16_3(c->up, r.up);
     r.fovy_deg = host_q16(c->fovy_deg);
-    r.znear = host_q16(0.01);
+    r.znear = LUMO_RASTER_ZNEAR;
     *out = r;
     return LUMO_OK;
-}
-
-void host_light_from_pkg(const lumo_pkg_light *p, lumo_raster_light *l)
-{
-    int k;
-
-    memset(l, 0, sizeof *l);
-    for (k = 0; k < 3; k++) {
-        l->pos[k] = p->pos[k];
-        l->dir[k] = p->dir[k];
-        l->value[k] = p->power[k];
-    }
-    l->cos_cutoff = p->cos_half;
-    switch (p->kind) {
-    case LUMO_LIGHT_POINT: l->kind = LUMO_LIGHT_POINT; break;
-    case LUMO_LIGHT_SPOT: l->kind = LUMO_LIGHT_SPOT; break;
-    case LUMO_LIGHT_DIRECTIONAL: l->kind = LUMO_LIGHT_DIRECTIONAL; break;
-    default:
-        l->kind = LUMO_LIGHT_SPOT;
-        l->cos_cutoff = 0;
-        for (k = 0; k < 3; k++) {
-            l->pos[k] = p->pos[k] + p->u[k] / 2 + p->v[k] / 2;
-            l->value[k] = p->power[k] > UINT32_MAX / 2 ? UINT32_MAX : p->power[k] * 2;
-        }
-    }
 }
 
 lumo_status host_light_from_srv(const srv_light *l, lumo_raster_light *out)
@@ -94,7 +69,7 @@ lumo_status host_light_from_srv(const srv_light *l, lumo_raster_light *out)
     p.power[0] = uq16(l->power.x);
     p.power[1] = uq16(l->power.y);
     p.power[2] = uq16(l->power.z);
-    host_light_from_pkg(&p, out);
+    lumo_raster_light_from_pkg(&p, out);
     return LUMO_OK;
 }
 

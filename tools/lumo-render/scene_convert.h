@@ -5,7 +5,7 @@
  * docs/scene-format.md read by the server's own parsers (srv_camera_parse,
  * srv_light_parse). lumo-render and the rasterizer's unit tests meet scene
  * text and scene models only through here; package lights (lumo/scene.h)
- * take the same light rule (host_light_from_pkg).
+ * take the same light rule (lumo_raster_light_from_pkg, lumo/raster.h).
  *
  * Desktop code: floats and heap. Fixed-point values are rounded to nearest
  * (host_q16, host_q14); powers saturate at the top of UQ16.16.
@@ -20,19 +20,13 @@
 #include "mesh_build.h"
 #include "scene/scene.h"
 
-/* A server camera as the rasterizer's; znear is 0.01. LUMO_ERR_RANGE when
- * the field of view is outside the rasterizer's [1, 179] degrees (the
- * server accepts (0, 180)). */
+/* A server camera as the rasterizer's; znear is LUMO_RASTER_ZNEAR (0.01).
+ * LUMO_ERR_RANGE when the field of view is outside the rasterizer's
+ * [1, 179] degrees (the server accepts (0, 180)). */
 lumo_status host_camera_from_srv(const srv_camera *c, lumo_raster_camera *out);
 
-/* A package light (already fixed point) as a rasterizer light. The client
- * has no area lights: an area light becomes a spot at its centre facing its
- * normal with a 90-degree half angle and 2 Phi as its point-equivalent power
- * (a uniform hemisphere emitter; docs/rasterizer.md). */
-void host_light_from_pkg(const lumo_pkg_light *p, lumo_raster_light *out);
-
 /* A server light as the rasterizer's: the fields a package would carry
- * (lumo_pkg_light), then host_light_from_pkg. LUMO_OK, or
+ * (lumo_pkg_light), then lumo_raster_light_from_pkg. LUMO_OK, or
  * LUMO_ERR_NONFINITE (then *out is untouched). */
 lumo_status host_light_from_srv(const srv_light *l, lumo_raster_light *out);
 

@@ -4,7 +4,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include "scene_convert.h"
 #include "session_scene.h"
 
 /* The session's meshes, one after the other, into m. */
@@ -32,7 +31,6 @@ int host_scene_from_session(const lumo_session *ses, host_scene *s, host_load_st
     const lumo_pkg_light *lights;
     host_load_stats local;
     uint32_t i, nl;
-    int k;
 
     if (!info)
         return -1;
@@ -45,13 +43,7 @@ int host_scene_from_session(const lumo_session *ses, host_scene *s, host_load_st
         return -1;
     lights = lumo_session_lights(ses, &nl);
     for (i = 0; i < nl; i++)
-        host_light_from_pkg(&lights[i], &s->lights[s->light_count++]);
-    for (k = 0; k < 3; k++) {
-        s->camera.eye[k] = info->eye[k];
-        s->camera.target[k] = info->target[k];
-        s->camera.up[k] = info->up[k];
-    }
-    s->camera.fovy_deg = info->fovy_deg;
-    s->camera.znear = host_q16(0.01);
+        lumo_raster_light_from_pkg(&lights[i], &s->lights[s->light_count++]);
+    lumo_raster_camera_from_info(info, &s->camera);
     return 0;
 }

@@ -78,7 +78,9 @@ typedef struct lumo_net_costs {
     uint32_t bytes_per_vertex;     /* geometry bytes per vertex seen so far */
     uint32_t bytes_per_round;      /* lighting bytes per round */
     uint32_t apply_ms_per_kib_q10; /* session: ms to apply a KiB */
-    uint32_t update_ms;            /* session: one push-pull */
+    uint32_t update_ms;            /* session: one push-pull (the clock read
+                                      right before and right after
+                                      lumo_session_update) */
 } lumo_net_costs;
 
 typedef enum lumo_net_state {
@@ -127,6 +129,18 @@ lumo_status lumo_net_client_hello(lumo_net_client *c, uint8_t *out, size_t cap, 
  * not fit the conversation is STATE. On an error the session keeps its last
  * good state. */
 lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f);
+
+/* Whether f is the conversation's next step, one lumo_net_client_on_frame
+ * would take: WELCOME while waiting for it; a DATA at the cursor held (the
+ * mesh's batches, or the lighting rounds) that, live, answers the oldest
+ * request in flight; an END for that request (any END in replay); ERROR
+ * always; and a DATA or END whose payload is malformed (on_frame then says
+ * why). 0 for anything else. On a serial line (docs/protocol.md §1) the
+ * client asks again after a refused frame (lumo_net_client_reset_link,
+ * then lumo_net_client_next or, before WELCOME, lumo_net_client_hello), and
+ * the rest of the answers to what it asked before still arrive: it drops
+ * the frames this says are out of turn instead of failing on them. */
+int lumo_net_client_in_turn(const lumo_net_client *c, const lumo_net_frame *f);
 
 /* The next frame to send: a REQUEST while fewer than policy.pipeline are in
  * flight and something is left, BYE once everything has arrived. *written

@@ -66,6 +66,22 @@ typedef struct lumo_raster_light {
                                 * surface facing it */
 } lumo_raster_light;
 
+/* ---- a package's camera and lights (lumo/scene.h) ------------------------ */
+
+/* The near plane clients draw a package's camera with: 0.01 m (Q16.16,
+ * rounded); docs/rasterizer.md, "16-bit depth", says what it costs. */
+#define LUMO_RASTER_ZNEAR ((lumo_q16_16)655)
+
+/* The package's default camera (its scene info), near plane
+ * LUMO_RASTER_ZNEAR. */
+void lumo_raster_camera_from_info(const lumo_pkg_info *info, lumo_raster_camera *out);
+
+/* A package light as a rasterizer light. The client has no area lights: an
+ * area light becomes a spot at its centre facing its normal with a
+ * 90-degree half angle and 2 Phi as its point-equivalent power (a uniform
+ * hemisphere emitter, saturating; docs/rasterizer.md). */
+void lumo_raster_light_from_pkg(const lumo_pkg_light *p, lumo_raster_light *out);
+
 /* Indirect irradiance towards unit normal n at p (W/m^2, UQ16.16 per channel).
  * lumo_raster_ivg_irradiance() adapts lumo/ivg.h to it. */
 typedef void (*lumo_raster_indirect_fn)(const void *ctx, const lumo_q16_16 p[3],
