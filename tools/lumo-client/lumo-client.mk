@@ -3,7 +3,8 @@
 # session (liblumo.a), the renderers of lumo-render (its backend and scene
 # objects, named literally: fragments are included in any order) and the
 # desktop transports of net/host/.
-CLIENT_TOOL_OBJS := $(BUILD)/host/tools/lumo-client/main.o $(BUILD)/host/net/host/net_socket.o \
+CLIENT_TOOL_OBJS := $(patsubst %.c,$(BUILD)/host/%.o,$(sort $(wildcard tools/lumo-client/*.c))) \
+                    $(BUILD)/host/net/host/net_socket.o \
                     $(BUILD)/host/tools/lumo-render/session_scene.o \
                     $(BUILD)/host/tools/lumo-render/render_backend.o
 

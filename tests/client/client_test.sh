@@ -1,0 +1,126 @@
+#!/bin/sh
+# tests/client/client_test.sh BIN TESTBIN WORKDIR MODELS — lumo-client end to
+# end against lumo-server on loopback (free ports: --listen 127.0.0.1:0
+# --port-file). Every process it starts is bounded by `timeout` and killed by
+# the trap. Prints "RESULT: N passed, M failed".
+bin=$1; tbin=$2; dir=$3; models=$4
+client=$bin/lumo-client
+mkdir -p "$dir"
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); echo "ok   $1"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1"; }
+
+pids=""
+cleanup() { for p in $pids; do kill -9 "$p" 2>/dev/null; done; }
+trap cleanup EXIT
+trap 'cleanup; exit 1' INT TERM
+
+# start NAME ARGS...: lumo-server in the background on free ports; sets $pid,
+# $port (TCP) and $sport (serial, when asked for) once it listens.
+start() {
+    name=$1; shift
+    rm -f "$dir/$name.port"
+    timeout 300 "$bin/lumo-server" "$@" --listen 127.0.0.1:0 --port-file "$dir/$name.port" 2>"$dir/$name.log" &
+    pid=$!
+    pids="$pids $pid"
+    i=0
+    while [ ! -s "$dir/$name.port" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    if [ ! -s "$dir/$name.port" ]; then
+        bad "$name: the server did not start"; sed 's/^/    /' "$dir/$name.log"; return 1
+    fi
+    port=$(cut -d' ' -f1 "$dir/$name.port"); sport=$(cut -d' ' -f2 "$dir/$name.port")
+}
+stop() { kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; }
+
+# lc NAME ARGS...: lumo-client into $dir/NAME (60 s at most); $st its status.
+lc() {
+    name=$1; shift
+    rm -rf "${dir:?}/$name"; mkdir -p "$dir/$name"
+    timeout 60 "$client" --out "$dir/$name" --quiet "$@" >"$dir/$name.out" 2>"$dir/$name.err"; st=$?
+}
+# complete NAME: the run ended 0 with the whole scene in its last progress row.
+complete() {
+    last=$(tail -n 1 "$dir/$1/progress.csv" 2>/dev/null)
+    [ "$st" -eq 0 ] && echo "$last" | awk -F, '{ exit !($1 == 100 && $4 == $5 && $7 == $8 && $8 > 0) }'
+}
+show() { sed 's/^/    /' "$dir/$1.out" "$dir/$1.err" | tail -n 8; }
+# same_frames A B: every PNG of A is in B, byte for byte (and B has no other).
+same_frames() {
+    [ "$(cd "$dir/$1" && ls ./*.png)" = "$(cd "$dir/$2" && ls ./*.png)" ] || return 1
+    for f in "$dir/$1"/*.png; do cmp -s "$f" "$dir/$2/$(basename "$f")" || return 1; done
+}
+# progress NAME: progress.csv without its timing column (ms) and frame directory.
+progress() { awk -F, 'BEGIN { OFS = "," } { $9 = ""; sub(".*/", "", $10); print }' "$dir/$1/progress.csv"; }
+# flip FILE OFFSET: one byte changed (xor 0x55) in place.
+flip() {
+    b=$(od -An -tu1 -j "$2" -N1 "$1" | tr -d ' ')
+    printf "\\$(printf %o $((b ^ 85)))" | dd of="$1" bs=1 seek="$2" conv=notrunc 2>/dev/null
+}
+summary_field() { sed -n "s/.* \([0-9]*\) $1.*/\1/p" "$dir/$2.out"; }
+
+# ---- the package ------------------------------------------------------------------
+dragon=$models/dragon_11k.ply
+[ -f "$dragon" ] || { echo "RESULT: 0 passed, 1 failed ($dragon missing: run tools/setup.sh)"; exit 1; }
+scene="$dir/scene.lumo"
+timeout 120 "$bin/lumo-bake" --default --dragon "$dragon" --grid 12 --spp 8 --no-progress -o "$scene" \
+    2>"$dir/bake.log" || { cat "$dir/bake.log"; echo "RESULT: 0 passed, 1 failed (lumo-bake)"; exit 1; }
+AT=5,10,25,50,75,100
+
+# ---- the command line ---------------------------------------------------------------
+if timeout 10 "$client" --help >"$dir/help.out" 2>&1 && grep -q -- "--record FILE" "$dir/help.out"; then
+    ok "lumo-client --help"
+else
+    bad "lumo-client --help"
+fi
+timeout 10 "$client" --connect 127.0.0.1:1 --replay x >/dev/null 2>&1
+[ $? -eq 2 ] && ok "two sources: usage, status 2" || bad "two sources"
+
+if start main "$scene"; then
+    # ---- record / replay ----------------------------------------------------------
+    lc live --connect "127.0.0.1:$port" --frames-at $AT --record "$dir/live.rec"
+    if complete live; then ok "live run with --record: $(sed 's/^lumo-client: //' "$dir/live.out")"; else bad "live run"; show live; fi
+    lc replay --replay "$dir/live.rec" --frames-at $AT
+    if complete replay && same_frames live replay; then
+        ok "--replay: the same $(ls "$dir/live"/*.png | wc -l) PNG frames, byte for byte"
+    else
+        bad "--replay frames"; show replay
+    fi
+    if progress live >"$dir/a.csv" && progress replay >"$dir/b.csv" && cmp -s "$dir/a.csv" "$dir/b.csv"; then
+        ok "--replay: progress.csv the same but for its ms column"
+    else
+        bad "--replay progress.csv"; diff "$dir/a.csv" "$dir/b.csv" | head -5 | sed 's/^/    /'
+    fi
+    inb=$(summary_field "bytes in" live)
+    if [ "$(wc -c <"$dir/live.rec")" -eq "$inb" ]; then
+        ok "the recording of an uncut TCP run is the received byte stream ($inb bytes)"
+    else
+        bad "recording $(wc -c <"$dir/live.rec") bytes, $inb received"
+    fi
+
+    # a damaged recording: a byte flipped half-way, then cut short
+    size=$(wc -c <"$dir/live.rec")
+    cp "$dir/live.rec" "$dir/damaged.rec"
+    flip "$dir/damaged.rec" $((size / 2))
+    lc damaged --replay "$dir/damaged.rec" --frames-at $AT
+    n=$(ls "$dir/damaged"/*.png 2>/dev/null | wc -l)
+    kept=1
+    for f in "$dir/damaged"/*.png; do cmp -s "$f" "$dir/live/$(basename "$f")" || kept=0; done
+    if [ "$st" -eq 1 ] && [ "$(wc -l <"$dir/damaged.err")" -eq 1 ] && grep -q "error: .*damaged frame at byte" "$dir/damaged.err" &&
+        [ "$n" -ge 1 ] && [ "$n" -lt "$(ls "$dir/live"/*.png | wc -l)" ] && [ $kept -eq 1 ]; then
+        ok "damaged recording: status 1, $n frames kept (equal to the live run's): $(sed 's/^lumo-client: //' "$dir/damaged.err")"
+    else
+        bad "damaged recording (status $st, $n frames, kept $kept)"; show damaged
+    fi
+    head -c $((size - 5)) "$dir/live.rec" >"$dir/short.rec"
+    lc short --replay "$dir/short.rec" --frames-at $AT
+    if [ "$st" -eq 1 ] && grep -q "error: .*ends inside a frame" "$dir/short.err"; then
+        ok "truncated recording: $(sed 's/^lumo-client: //' "$dir/short.err")"
+    else
+        bad "truncated recording (status $st)"; show short
+    fi
+
+    stop
+fi
+
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,190 @@
+/*
+ * converse.c — lumo-client's conversation over a link: HELLO, then the
+ * driver's requests out and the frames in, each handed to the protocol
+ * driver (lumo/net_client.h) and, when it took it, to the recorder and the
+ * pictures, until the scene is complete.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "lumo/net.h"
+#include "client.h"
+
+static const char *frame_name(uint8_t type)
+{
+    static const char *names[] = {"?", "HELLO", "WELCOME", "REQUEST", "DATA", "END", "ERROR", "BYE"};
+    return type < sizeof names / sizeof names[0] ? names[type] : "unknown";
+}
+
+static int is_replay(const client *c)
+{
+    return c->l.ops == &link_replay;
+}
+
+/* Errors start on a line of their own after the progress line. */
+static const char *nl(const client *c)
+{
+    return c->o.quiet ? "" : "\n";
+}
+
+/* Where a failure happened, for a person: the frame after the last taken
+ * and its byte offset in the received stream (a replay file's offset). */
+static void say_where(const client *c, const char *what, lumo_status st)
+{
+    if (is_replay(c))
+        fprintf(stderr, "%slumo-client: error: %s: %s at byte %llu (after frame %u): %s; the frames before it "
+                "were applied, pictures drawn from them: %u\n", nl(c), c->l.target, what,
+                (unsigned long long)c->taken_bytes, c->taken, lumo_strerror(st), c->frames_drawn);
+    else
+        fprintf(stderr, "%slumo-client: error: %s after frame %u (byte %llu of the stream): %s\n", nl(c), what,
+                c->taken, (unsigned long long)c->taken_bytes, lumo_strerror(st));
+}
+
+/* The server is told why the client ends (docs/protocol.md §3). */
+static void send_error(client *c, lumo_status st, const char *text)
+{
+    uint8_t out[LUMO_NET_OVERHEAD + 8 + LUMO_NET_MAX_TEXT];
+    size_t n;
+
+    if (!is_replay(c) && lumo_net_error_encode((uint32_t)st, text, out, sizeof out, &n) == LUMO_OK)
+        (void)c->l.ops->send(&c->l, out, n);
+}
+
+static int send_hello(client *c)
+{
+    uint8_t out[512];
+    size_t n;
+    lumo_status st;
+
+    if ((st = lumo_net_client_hello(&c->drv, out, sizeof out, &n))) {
+        fprintf(stderr, "lumo-client: error: HELLO: %s\n", lumo_strerror(st));
+        return -1;
+    }
+    return c->l.ops->send(&c->l, out, n);
+}
+
+/* The driver's requests (and BYE at the end). -1 when the driver failed
+ * (said), 1 when the link failed. */
+static int send_pending(client *c)
+{
+    uint8_t out[256];
+    size_t n;
+    lumo_status st;
+
+    do {
+        if ((st = lumo_net_client_next(&c->drv, out, sizeof out, &n))) {
+            fprintf(stderr, "%slumo-client: error: %s\n", nl(c), lumo_strerror(st));
+            return -1;
+        }
+        if (n && c->l.ops->send(&c->l, out, n))
+            return 1;
+    } while (n && c->drv.state != LUMO_NET_DONE);
+    return 0;
+}
+
+/* One whole frame f (its bytes at p, n of them) to the driver; then to the
+ * recorder and the pictures. */
+static int take(client *c, const lumo_net_frame *f, const uint8_t *p, size_t n)
+{
+    int resumed = f->type == LUMO_NET_WELCOME && c->drv.package_id != 0;
+    lumo_status st;
+
+    if ((st = lumo_net_client_on_frame(&c->drv, f))) {
+        char what[64];
+        snprintf(what, sizeof what, "%s frame", frame_name(f->type));
+        say_where(c, what, st);
+        send_error(c, st, "the client refused a frame");
+        return -1;
+    }
+    /* a resumed connection's WELCOME is checked, not applied: not recorded */
+    if (!resumed && record_frame(c->record, p, n)) {
+        fprintf(stderr, "%slumo-client: error: %s: %s\n", nl(c), c->o.record, strerror(errno));
+        return -1;
+    }
+    c->taken++;
+    c->taken_bytes += n;
+    return frames_due(c);
+}
+
+/* Decode and take every whole frame in rx[0..*len); keep the rest. */
+static int take_frames(client *c, uint8_t *rx, size_t *len)
+{
+    size_t at = 0, used;
+    lumo_net_frame f;
+    lumo_status st;
+
+    for (;;) {
+        st = lumo_net_frame_decode(rx + at, *len - at, c->drv.cfg.max_payload, &f, &used);
+        if (st == LUMO_ERR_TRUNCATED)
+            break;
+        if (st) {
+            say_where(c, is_replay(c) ? "a damaged frame" : "a frame from the server", st);
+            send_error(c, st, "the client refused a frame");
+            return -1;
+        }
+        if (take(c, &f, rx + at, used))
+            return -1;
+        at += used;
+        if (c->drv.state == LUMO_NET_DONE)
+            break;
+    }
+    memmove(rx, rx + at, *len - at);
+    *len -= at;
+    return 0;
+}
+
+/* The link ended before the scene was complete. */
+static void say_ended(client *c, long got, size_t len)
+{
+    if (is_replay(c) && got == 0)
+        fprintf(stderr, "%slumo-client: error: %s: the recording ends%s at byte %llu (after frame %u) before the "
+                "scene is complete; the frames before it were applied, pictures drawn from them: %u\n", nl(c),
+                c->l.target, len ? " inside a frame" : "", (unsigned long long)(c->taken_bytes + len), c->taken,
+                c->frames_drawn);
+    else
+        fprintf(stderr, "%slumo-client: error: %s: %s before the scene was complete (after frame %u)\n", nl(c),
+                c->l.target, got == 0 ? "the connection closed" : got == LINK_TIMEOUT ? "nothing arrived for 60 s"
+                                                                                    : c->l.err, c->taken);
+}
+
+int converse(client *c)
+{
+    size_t cap = c->drv.cfg.max_payload + LUMO_NET_OVERHEAD, len = 0;
+    uint8_t *rx = malloc(cap);
+    int rc = -1, s;
+
+    if (!rx)
+        return -1;
+    if (c->l.ops->open(&c->l)) {
+        fprintf(stderr, "lumo-client: error: %s\n", c->l.err);
+        goto done;
+    }
+    if (send_hello(c)) {
+        fprintf(stderr, "lumo-client: error: %s: %s\n", c->l.target, c->l.err);
+        goto done;
+    }
+    while (c->drv.state != LUMO_NET_DONE) {
+        long got;
+        if ((s = send_pending(c))) {
+            if (s > 0)
+                fprintf(stderr, "%slumo-client: error: %s: %s\n", nl(c), c->l.target, c->l.err);
+            goto done;
+        }
+        if (c->drv.state == LUMO_NET_DONE)
+            break;
+        got = c->l.ops->read(&c->l, rx + len, cap - len, is_replay(c) ? -1 : 60000);
+        if (got <= 0) {
+            say_ended(c, got, len);
+            goto done;
+        }
+        len += (size_t)got;
+        if (take_frames(c, rx, &len))
+            goto done;
+    }
+    rc = frames_due(c);
+done:
+    c->l.ops->close(&c->l);
+    free(rx);
+    return rc;
+}
