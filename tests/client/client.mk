@@ -1,8 +1,16 @@
 # tests/client/client.mk — lumo-client end to end (tests/client/client_test.sh):
 # record and replay (the same PNG frames and progress byte for byte; a
-# damaged recording refused after its last good frame). Every server and
-# client runs under `timeout` and is killed by the script's trap.
+# damaged recording refused after its last good frame); resume after cuts
+# made by a proxy (tests/client/cut_proxy.c: the same frames as an uncut
+# run, and only the frames cut mid-way and the WELCOMEs of the new
+# connections received twice). Every server, proxy and client runs under
+# `timeout` and is killed by the script's trap.
+CUT_PROXY := $(BUILD)/tests/bin/cut_proxy
+$(CUT_PROXY): $(BUILD)/tests/tests/client/cut_proxy.o
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^
+
 TEST_STEPS += test-client
 .PHONY: test-client
-test-client: $(BIN)/lumo-client $(BIN)/lumo-server $(BIN)/lumo-bake
+test-client: $(BIN)/lumo-client $(BIN)/lumo-server $(BIN)/lumo-bake $(CUT_PROXY)
 	@sh tests/client/client_test.sh $(BIN) $(BUILD)/tests/bin $(BUILD)/tests/client $(BUILD)/data/models

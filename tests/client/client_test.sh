@@ -32,6 +32,23 @@ start() {
 }
 stop() { kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; }
 
+# proxy NAME UPSTREAM-PORT ARGS...: tests/client/cut_proxy in the background;
+# sets $ppid and $pport once it listens. Its lines go to $dir/NAME.stats.
+proxy() {
+    name=$1; up=$2; shift 2
+    rm -f "$dir/$name.pport"
+    timeout 150 "$tbin/cut_proxy" --upstream "127.0.0.1:$up" --port-file "$dir/$name.pport" \
+        --stats "$dir/$name.stats" "$@" 2>"$dir/$name.plog" &
+    ppid=$!
+    pids="$pids $ppid"
+    i=0
+    while [ ! -s "$dir/$name.pport" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    pport=$(cat "$dir/$name.pport" 2>/dev/null)
+    [ -n "$pport" ] || { bad "$name: the proxy did not start"; return 1; }
+}
+# stat NAME FIELD: the sum of a field over the proxy's connections.
+stat() { awk -v k="$2" '{ for (i = 1; i < NF; i++) if ($i == k) s += $(i + 1) } END { print s + 0 }' "$dir/$1.stats"; }
+
 # lc NAME ARGS...: lumo-client into $dir/NAME (60 s at most); $st its status.
 lc() {
     name=$1; shift
@@ -117,6 +134,59 @@ if start main "$scene"; then
         ok "truncated recording: $(sed 's/^lumo-client: //' "$dir/short.err")"
     else
         bad "truncated recording (status $st)"; show short
+    fi
+
+    # ---- resume after cuts -------------------------------------------------------------
+    # Fixed request sizes: the answers are the same frames however the run is
+    # cut (each request starts at a cursor of the uncut run), so the bytes
+    # received twice are exactly the frames cut mid-way and the WELCOMEs of
+    # the new connections.
+    FIXED="--vertices 300 --rounds 5 --pipeline 4"
+    if proxy uncut "$port" --cuts 0; then
+        lc uncut --connect "127.0.0.1:$pport" --frames-at $AT $FIXED --record "$dir/uncut.rec"
+        kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+        if complete uncut; then ok "uncut run through the proxy: $(sed 's/^lumo-client: //' "$dir/uncut.out")"; else bad "uncut run"; show uncut; fi
+    fi
+    total=$(summary_field "bytes in" uncut)
+    for seed in 1 2 3; do
+        r=cut$seed
+        proxy "$r" "$port" --cuts 8 --span $((total / 6)) --seed $seed || continue
+        lc "$r" --connect "127.0.0.1:$pport" --frames-at $AT $FIXED --retries 5 --record "$dir/$r.rec"
+        kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+        cuts=$(stat "$r" cut); partial=$(stat "$r" partial)
+        extra=$(( $(summary_field "bytes in" "$r") - total ))
+        welcomes=$(( $(stat "$r" welcome) - $(stat uncut welcome) ))
+        said=$(sed -n 's/.*; \([0-9]*\) cuts resumed, \([0-9]*\) bytes of frames cut mid-way.*/\1 \2/p' "$dir/$r.out")
+        if ! complete "$r"; then
+            bad "$r: did not finish"; show "$r"
+        elif ! same_frames uncut "$r"; then
+            bad "$r: frames differ from the uncut run's"
+        elif [ "$(stat "$r" data)" -ne "$(stat uncut data)" ] || [ "$extra" -ne $((welcomes + partial)) ] ||
+             [ "$said" != "$cuts $partial" ]; then
+            bad "$r: $cuts cuts, $extra bytes more than uncut, $welcomes of WELCOMEs, $partial of cut frames (client: $said); DATA bytes $(stat "$r" data) vs $(stat uncut data)"
+        else
+            ok "$r: $cuts cuts resumed, the same $(ls "$dir/$r"/*.png | wc -l) frames as uncut; $extra bytes more = $welcomes of new WELCOMEs + $partial of frames cut mid-way; the same $(stat uncut data) DATA bytes"
+        fi
+        [ "$cuts" -ge 3 ] || bad "$r: only $cuts cuts made"
+        lc "$r-replay" --replay "$dir/$r.rec" --frames-at $AT
+        if complete "$r-replay" && same_frames uncut "$r-replay" && [ "$(wc -c <"$dir/$r.rec")" -eq "$total" ]; then
+            ok "$r: its recording ($(wc -c <"$dir/$r.rec") bytes, as many as the uncut run received) replays to the same frames"
+        else
+            bad "$r: replay of a cut run's recording"; show "$r-replay"
+        fi
+    done
+    # retries run out: the proxy serves one connection, cuts it and goes away
+    if proxy gone "$port" --cuts 1 --span 3000 --max-conns 1; then
+        t0=$(date +%s)
+        lc gone --connect "127.0.0.1:$pport" $FIXED --retries 3
+        t1=$(date +%s)
+        if [ "$st" -eq 1 ] && [ "$(wc -l <"$dir/gone.err")" -eq 1 ] && grep -q "connection lost after frame .*3 reconnections" "$dir/gone.err" &&
+           [ $((t1 - t0)) -lt 10 ]; then
+            ok "retries bounded: $(sed 's/^lumo-client: //' "$dir/gone.err")"
+        else
+            bad "retries (status $st, $((t1 - t0)) s)"; show gone
+        fi
+        wait "$ppid" 2>/dev/null
     fi
 
     stop

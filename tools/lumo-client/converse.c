@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include "lumo/net.h"
 #include "client.h"
 
@@ -104,6 +105,7 @@ static int take(client *c, const lumo_net_frame *f, const uint8_t *p, size_t n)
     }
     c->taken++;
     c->taken_bytes += n;
+    c->failures = 0;   /* the link works: retries count again from here */
     return frames_due(c);
 }
 
@@ -148,6 +150,41 @@ static void say_ended(client *c, long got, size_t len)
                                                                                     : c->l.err, c->taken);
 }
 
+static void sleep_ms(uint32_t ms)
+{
+    struct timespec ts = {(time_t)(ms / 1000), (long)(ms % 1000) * 1000000L};
+    while (nanosleep(&ts, &ts) && errno == EINTR)
+        ;
+}
+
+/* The connection dropped (or failed): the bytes of a frame it cut are
+ * dropped, the link opened again after 50 ms, 100, 200 ... 2 s, at most
+ * --retries times in a row without a frame taken in between, and the
+ * driver resumes. 0, or -1 (said) when the retries are spent. */
+static int resume(client *c, size_t *len, const char *why)
+{
+    char reason[320];
+
+    snprintf(reason, sizeof reason, "%s", why);
+    c->cuts++;
+    c->cut_bytes += *len;
+    *len = 0;
+    c->l.ops->close(&c->l);
+    lumo_net_client_reset_link(&c->drv);
+    while (c->failures < c->o.retries) {
+        uint32_t wait = 50u << (c->failures < 6 ? c->failures : 6);
+        c->failures++;
+        sleep_ms(wait > 2000 ? 2000 : wait);
+        if (c->l.ops->open(&c->l) == 0 && send_hello(c) == 0)
+            return 0;
+        snprintf(reason, sizeof reason, "%s", c->l.err);
+        c->l.ops->close(&c->l);
+    }
+    fprintf(stderr, "%slumo-client: error: %s: connection lost after frame %u (%s); %u reconnections in a row "
+            "failed\n", nl(c), c->l.target, c->taken, reason, c->failures);
+    return -1;
+}
+
 int converse(client *c)
 {
     size_t cap = c->drv.cfg.max_payload + LUMO_NET_OVERHEAD, len = 0;
@@ -166,17 +203,29 @@ int converse(client *c)
     }
     while (c->drv.state != LUMO_NET_DONE) {
         long got;
-        if ((s = send_pending(c))) {
-            if (s > 0)
-                fprintf(stderr, "%slumo-client: error: %s: %s\n", nl(c), c->l.target, c->l.err);
+        if ((s = send_pending(c)) < 0)
             goto done;
+        if (s > 0) {
+            if (!c->l.ops->resumable) {
+                fprintf(stderr, "%slumo-client: error: %s: %s\n", nl(c), c->l.target, c->l.err);
+                goto done;
+            }
+            if (resume(c, &len, c->l.err))
+                goto done;
+            continue;
         }
         if (c->drv.state == LUMO_NET_DONE)
             break;
         got = c->l.ops->read(&c->l, rx + len, cap - len, is_replay(c) ? -1 : 60000);
         if (got <= 0) {
-            say_ended(c, got, len);
-            goto done;
+            if (!c->l.ops->resumable) {
+                say_ended(c, got, len);
+                goto done;
+            }
+            if (resume(c, &len, got == 0 ? "the connection closed" : got == LINK_TIMEOUT ? "nothing for 60 s"
+                                                                                         : c->l.err))
+                goto done;
+            continue;
         }
         len += (size_t)got;
         if (take_frames(c, rx, &len))

@@ -60,4 +60,4 @@ static void tcp_close(client_link *l)
     l->fd = -1;
 }
 
-const link_ops link_tcp = {"tcp", 0, 0, tcp_open, tcp_send, tcp_read, tcp_close};
+const link_ops link_tcp = {"tcp", 0, 1, tcp_open, tcp_send, tcp_read, tcp_close};

@@ -7,6 +7,7 @@
  * (seed 000 Fig. 1). The parts: client.h.
  */
 #include <getopt.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,9 +20,12 @@
 static const char usage[] =
     "usage: lumo-client (--connect HOST:PORT | --replay FILE) [options]\n"
     "Streams a scene piece by piece (docs/protocol.md) and writes PNG frames as it refines.\n"
-    "  --connect HOST:PORT     lumo-server over TCP\n"
+    "  --connect HOST:PORT     lumo-server over TCP; a dropped connection is opened again\n"
+    "                          and resumed from the cursors held (see --retries)\n"
     "  --replay FILE           replay a session recorded with --record (no network)\n"
     "  --record FILE           write every frame taken, as received, to FILE (for --replay)\n"
+    "  --retries N             reconnections in a row after a dropped connection (default 5,\n"
+    "                          waits 50 ms doubling to 2 s; 0: none)\n"
     "  --package N             which of the server's packages (default 0)\n"
     "  --out DIR               where frames and progress.csv go (default .)\n"
     "  --frames-at PERCENTS    draw a frame when the scene reaches these percentages\n"
@@ -135,6 +139,7 @@ static int parse_args(int argc, char **argv, options *o)
 {
     static const struct option longs[] = {
         {"connect", 1, 0, O_CONNECT}, {"replay", 1, 0, O_REPLAY}, {"record", 1, 0, O_RECORD},
+        {"retries", 1, 0, O_RETRIES},
         {"package", 1, 0, O_PACKAGE}, {"out", 1, 0, O_OUT}, {"frames-at", 1, 0, O_AT},
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"per-vertex", 0, 0, O_PV},
         {"order", 1, 0, O_ORDER}, {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS},
@@ -212,6 +217,8 @@ static void summary(const client *c)
            c->l.target, p.vertices, p.rounds, p.full_rounds, (unsigned long long)c->l.bytes_in,
            (unsigned long long)c->l.bytes_out, host_net_clock_ms(NULL) - c->t0, c->first_ms,
            (unsigned long long)c->first_bytes);
+    if (c->cuts)
+        printf("; %u cuts resumed, %llu bytes of frames cut mid-way", c->cuts, (unsigned long long)c->cut_bytes);
     printf("\n");
 }
 
@@ -221,6 +228,7 @@ int main(int argc, char **argv)
     void *arena_mem = NULL;
     int rc;
 
+    signal(SIGPIPE, SIG_IGN);   /* a dropped connection is a failed write, resumed */
     if ((rc = parse_args(argc, argv, &c.o))) {
         fputs(usage, rc > 0 ? stdout : stderr);
         return rc > 0 ? 0 : 2;
