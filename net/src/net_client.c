@@ -235,9 +235,9 @@ static lumo_status check_data(const lumo_net_client *c, const lumo_net_data *d)
 
     if (!p && !c->cfg.replay)
         return LUMO_ERR_STATE;
-    if (p && (d->channel != p->channel || (d->channel == LUMO_NET_GEOMETRY && d->mesh != p->mesh) ||
-              (uint64_t)d->first + d->count > p->end))
-        return LUMO_ERR_STATE;
+    if (p && (p->end <= p->cursor || d->channel != p->channel ||
+              (d->channel == LUMO_NET_GEOMETRY && d->mesh != p->mesh) || (uint64_t)d->first + d->count > p->end))
+        return LUMO_ERR_STATE;   /* (a request at the end, the resync marker, is answered by END) */
     if (d->channel == LUMO_NET_GEOMETRY) {
         if (d->mesh >= c->mesh_count || d->first != c->held[d->mesh] || d->count != d->records ||
             (uint64_t)d->first + d->count > c->batches[d->mesh])
@@ -541,6 +541,65 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
         (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
     return send_request(c, channel, mesh, out, cap, written);
+}
+
+/* ---- lossy links ------------------------------------------------------------------ */
+
+int lumo_net_client_expects(const lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_data d;
+    lumo_net_end e;
+
+    if (!c || !f || c->state == LUMO_NET_FAILED)
+        return 0;
+    switch (f->type) {
+    case LUMO_NET_ERROR:
+        return 1;
+    case LUMO_NET_WELCOME:
+        return c->state == LUMO_NET_HELLO_SENT;
+    case LUMO_NET_DATA:
+        return c->state == LUMO_NET_READY && lumo_net_data_decode(f, &d) == LUMO_OK && check_data(c, &d) == LUMO_OK;
+    case LUMO_NET_END:
+        return c->state == LUMO_NET_READY && lumo_net_end_decode(f, &e) == LUMO_OK && check_end(c, &e) == LUMO_OK;
+    default:
+        return 0;
+    }
+}
+
+lumo_status lumo_net_client_resync(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written)
+{
+    lumo_net_request r;
+    lumo_net_pending *p;
+    lumo_status st;
+    int hello;
+
+    if (!c || !out || !written)
+        return LUMO_ERR_ARG;
+    *written = 0;
+    if (c->state == LUMO_NET_FAILED)
+        return c->error;
+    if (c->state == LUMO_NET_DONE)
+        return LUMO_OK;
+    hello = c->state != LUMO_NET_READY;   /* WELCOME lost (or nothing sent yet) */
+    lumo_net_client_reset_link(c);
+    if (hello)
+        return lumo_net_client_hello(c, out, cap, written);
+    memset(&r, 0, sizeof r);
+    r.amount = 1;
+    if (c->mesh_count) {
+        r.channel = LUMO_NET_GEOMETRY, r.cursor = c->batches[0];
+    } else if (c->has_ivg) {
+        r.channel = LUMO_NET_LIGHTING, r.cursor = c->rounds_total;
+    } else {
+        return LUMO_OK;   /* nothing is streamed: nothing can be stale */
+    }
+    if ((st = lumo_net_request_encode(&r, out, cap, written)))
+        return st;
+    p = &c->pending[0];
+    p->channel = r.channel, p->mesh = 0, p->cursor = p->end = r.cursor, p->sent_ms = now_ms(c);
+    c->npending = 1;
+    c->data_bytes = 0;
+    return LUMO_OK;
 }
 
 void lumo_net_client_progress(const lumo_net_client *c, lumo_net_progress *out)

@@ -3,7 +3,9 @@
 # damaged recording refused after its last good frame); resume after cuts
 # made by a proxy (tests/client/cut_proxy.c: the same frames as an uncut
 # run, and only the frames cut mid-way and the WELCOMEs of the new
-# connections received twice). Every server, proxy and client runs under
+# connections received twice); --serial against lumo-server --serial-listen
+# --loss 0.05 (the full scene whatever the loss). Every server, proxy and
+# client runs under
 # `timeout` and is killed by the script's trap.
 CUT_PROXY := $(BUILD)/tests/bin/cut_proxy
 $(CUT_PROXY): $(BUILD)/tests/tests/client/cut_proxy.o

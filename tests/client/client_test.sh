@@ -77,10 +77,60 @@ summary_field() { sed -n "s/.* \([0-9]*\) $1.*/\1/p" "$dir/$2.out"; }
 
 # ---- the package ------------------------------------------------------------------
 dragon=$models/dragon_11k.ply
-[ -f "$dragon" ] || { echo "RESULT: 0 passed, 1 failed ($dragon missing: run tools/setup.sh)"; exit 1; }
+[ -f "$dragon" ] || { # ---- the serial line: --serial against --serial-listen --loss 0.05 ---------------------
+if start serial "$scene" --serial-listen 127.0.0.1:0 --loss 0.05 --seed 9; then
+    damaged=0
+    for args in "--pipeline 1" "--pipeline 4" "--pipeline 8 --order lighting" "--vertices 300 --rounds 5 --order geometry" \
+                "--float --pipeline 2"; do
+        r=serial$(echo "$args" | tr -cd '0-9a-z')
+        lc "$r" --serial "127.0.0.1:$sport" --frames-at 50,100 $args --record "$dir/$r.rec"
+        refused=$(sed -n 's/.*; \([0-9]*\) frames refused, \([0-9]*\) silences.*/\1 \2/p' "$dir/$r.out")
+        damaged=$((damaged + ${refused% *} + ${refused#* }))
+        if complete "$r" && { [ -n "$args" ] && [ "${args#*float}" != "$args" ] || cmp -s "$dir/$r/frame-100.00.png" "$dir/live/frame-100.00.png"; }; then
+            ok "serial $args: the full scene$( [ "${args#*float}" = "$args" ] && echo ", the TCP run's last frame byte for byte"): $(sed 's/.*bytes; //' "$dir/$r.out")"
+        else
+            bad "serial $args"; show "$r"
+        fi
+    done
+    [ "$damaged" -gt 0 ] && ok "serial: the client saw $damaged damaged or lost frames" || bad "serial: no damage seen (--loss 0.05)"
+    lc serial-replay --replay "$dir/serialpipeline4.rec" --frames-at 50,100
+    if complete serial-replay && same_frames serialpipeline4 serial-replay; then
+        ok "serial: the recording (only the frames taken) replays to the same frames"
+    else
+        bad "serial: replay"; show serial-replay
+    fi
+    stop
+fi
+
+echo "RESULT: 0 passed, 1 failed ($dragon missing: run tools/setup.sh)"; exit 1; }
 scene="$dir/scene.lumo"
 timeout 120 "$bin/lumo-bake" --default --dragon "$dragon" --grid 12 --spp 8 --no-progress -o "$scene" \
-    2>"$dir/bake.log" || { cat "$dir/bake.log"; echo "RESULT: 0 passed, 1 failed (lumo-bake)"; exit 1; }
+    2>"$dir/bake.log" || { cat "$dir/bake.log"; # ---- the serial line: --serial against --serial-listen --loss 0.05 ---------------------
+if start serial "$scene" --serial-listen 127.0.0.1:0 --loss 0.05 --seed 9; then
+    damaged=0
+    for args in "--pipeline 1" "--pipeline 4" "--pipeline 8 --order lighting" "--vertices 300 --rounds 5 --order geometry" \
+                "--float --pipeline 2"; do
+        r=serial$(echo "$args" | tr -cd '0-9a-z')
+        lc "$r" --serial "127.0.0.1:$sport" --frames-at 50,100 $args --record "$dir/$r.rec"
+        refused=$(sed -n 's/.*; \([0-9]*\) frames refused, \([0-9]*\) silences.*/\1 \2/p' "$dir/$r.out")
+        damaged=$((damaged + ${refused% *} + ${refused#* }))
+        if complete "$r" && { [ -n "$args" ] && [ "${args#*float}" != "$args" ] || cmp -s "$dir/$r/frame-100.00.png" "$dir/live/frame-100.00.png"; }; then
+            ok "serial $args: the full scene$( [ "${args#*float}" = "$args" ] && echo ", the TCP run's last frame byte for byte"): $(sed 's/.*bytes; //' "$dir/$r.out")"
+        else
+            bad "serial $args"; show "$r"
+        fi
+    done
+    [ "$damaged" -gt 0 ] && ok "serial: the client saw $damaged damaged or lost frames" || bad "serial: no damage seen (--loss 0.05)"
+    lc serial-replay --replay "$dir/serialpipeline4.rec" --frames-at 50,100
+    if complete serial-replay && same_frames serialpipeline4 serial-replay; then
+        ok "serial: the recording (only the frames taken) replays to the same frames"
+    else
+        bad "serial: replay"; show serial-replay
+    fi
+    stop
+fi
+
+echo "RESULT: 0 passed, 1 failed (lumo-bake)"; exit 1; }
 AT=5,10,25,50,75,100
 
 # ---- the command line ---------------------------------------------------------------
@@ -189,6 +239,31 @@ if start main "$scene"; then
         wait "$ppid" 2>/dev/null
     fi
 
+    stop
+fi
+
+# ---- the serial line: --serial against --serial-listen --loss 0.05 ---------------------
+if start serial "$scene" --serial-listen 127.0.0.1:0 --loss 0.05 --seed 9; then
+    damaged=0
+    for args in "--pipeline 1" "--pipeline 4" "--pipeline 8 --order lighting" "--vertices 300 --rounds 5 --order geometry" \
+                "--float --pipeline 2"; do
+        r=serial$(echo "$args" | tr -cd '0-9a-z')
+        lc "$r" --serial "127.0.0.1:$sport" --frames-at 50,100 $args --record "$dir/$r.rec"
+        refused=$(sed -n 's/.*; \([0-9]*\) frames refused, \([0-9]*\) silences.*/\1 \2/p' "$dir/$r.out")
+        damaged=$((damaged + ${refused% *} + ${refused#* }))
+        if complete "$r" && { [ -n "$args" ] && [ "${args#*float}" != "$args" ] || cmp -s "$dir/$r/frame-100.00.png" "$dir/live/frame-100.00.png"; }; then
+            ok "serial $args: the full scene$( [ "${args#*float}" = "$args" ] && echo ", the TCP run's last frame byte for byte"): $(sed 's/.*bytes; //' "$dir/$r.out")"
+        else
+            bad "serial $args"; show "$r"
+        fi
+    done
+    [ "$damaged" -gt 0 ] && ok "serial: the client saw $damaged damaged or lost frames" || bad "serial: no damage seen (--loss 0.05)"
+    lc serial-replay --replay "$dir/serialpipeline4.rec" --frames-at 50,100
+    if complete serial-replay && same_frames serialpipeline4 serial-replay; then
+        ok "serial: the recording (only the frames taken) replays to the same frames"
+    else
+        bad "serial: replay"; show serial-replay
+    fi
     stop
 fi
 

@@ -11,7 +11,11 @@
  *           every frame the headers chain to (so mutations reach the driver
  *           and the session instead of the CRC check)
  *   byte 1  fixed geometry size: {1, 7, 40, 250, 100000}[byte 1 % 5]
- *   byte 2  fixed lighting size: {1, 2, 5, 1000}[byte 2 % 4]
+ *   byte 2  bits 0-6: fixed lighting size {1, 2, 5, 1000}[(byte 2 & 127) % 4];
+ *           bit 7: a lossy line (lumo-client --serial): frames the driver
+ *           does not expect are dropped (lumo_net_client_expects) and a
+ *           refused frame is asked again (lumo_net_client_resync, once
+ *           until a frame is taken)
  * The frames are decoded as a byte stream (a refused frame: resynchronise
  * on the next magic, docs/protocol.md §1) and each is given to the driver,
  * which is asked for its requests after every one. Seeds
@@ -122,10 +126,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lumo_net_frame f;
     uint8_t out[256], *buf;
     size_t n, at = 0, used;
+    int lossy, resyncing = 0;
 
     setup();
     if (size < 3)
         return 0;
+    lossy = data[2] >> 7;
     memset(&cfg, 0, sizeof cfg);
     cfg.arena_bytes = (uint32_t)ARENA;
     cfg.max_payload = LUMO_NET_MIN_PAYLOAD;
@@ -136,7 +142,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.policy.pipeline = 1u + ((data[0] >> 2) & 7);
     if (data[0] & 0x40) {
         cfg.policy.vertices = vertices[data[1] % 5];
-        cfg.policy.rounds = rounds[data[2] % 4];
+        cfg.policy.rounds = rounds[(data[2] & 127) % 4];
     } else {
         cfg.clock = fake_clock;
     }
@@ -161,10 +167,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             break;
         if (st) {
             at = lumo_net_resync(buf, size, at + 1);
+            if (lossy && !resyncing) {
+                st = lumo_net_client_resync(&g_c, out, sizeof out, &n);
+                CHECK(st == LUMO_OK || (g_c.state == LUMO_NET_FAILED && st == g_c.error));
+                resyncing = 1;
+                pump();
+            }
             continue;
         }
         at += used;
+        if (lossy && !lumo_net_client_expects(&g_c, &f))
+            continue;
         st = lumo_net_client_on_frame(&g_c, &f);
+        resyncing = 0;
         if (st) {
             CHECK(g_c.state == LUMO_NET_FAILED && g_c.error == st);
             CHECK(lumo_net_client_on_frame(&g_c, &f) == st);
@@ -173,6 +188,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         invariants();
     }
     invariants();
+    if (lossy) {   /* silence at the end: asked again */
+        lumo_status st = lumo_net_client_resync(&g_c, out, sizeof out, &n);
+        CHECK(st == LUMO_OK || (g_c.state == LUMO_NET_FAILED && st == g_c.error));
+        CHECK(g_c.state == LUMO_NET_FAILED || g_c.npending <= 1);
+        pump();
+        invariants();
+    }
     free(buf);
     return 0;
 }

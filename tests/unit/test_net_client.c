@@ -902,6 +902,233 @@ static void test_before_welcome(void **state)
     world_free(&h.w);
 }
 
+/* ---- a lossy line ----------------------------------------------------------------- */
+
+/* The server's frames become a byte stream on which a frame is damaged with
+ * probability 1/loss (a byte flipped or dropped, as lumo-server --loss
+ * does); the client parses it as lumo-client --serial does: a refused frame
+ * is skipped to the next magic and asked again (lumo_net_client_resync,
+ * once per loss: not again while its marker is in flight), a frame not
+ * expected is dropped, and silence while something is awaited (the stream
+ * ran dry) forces a resync. The scene must still be the reference's. */
+#define LINE_CAP ((size_t)64 << 20)
+static uint8_t *g_line;
+
+typedef struct line {
+    uint8_t *b;
+    size_t len, cap;
+    uint32_t damaged;
+} line;
+
+static void line_put(line *l, const uint8_t *p, size_t n, test_rng *rng, uint32_t loss)
+{
+    uint64_t r = test_rng_next(rng);
+    size_t at = (size_t)((r >> 8) % n);
+
+    assert_true(l->len + n <= l->cap);
+    memcpy(l->b + l->len, p, n);
+    if (loss && r % loss == 0) {
+        l->damaged++;
+        if ((r >> 40) & 1) {
+            l->b[l->len + at] ^= (uint8_t)(1u << ((r >> 32) & 7));
+        } else {
+            memmove(l->b + l->len + at, l->b + l->len + at + 1, n - at - 1);
+            n--;
+        }
+    }
+    l->len += n;
+}
+
+static void lossy_send(world *w, fake_server *srv, const uint8_t *out, size_t n)
+{
+    lumo_net_frame f;
+    lumo_net_request r;
+    lumo_net_hello h;
+    size_t used;
+
+    assert_int_equal(lumo_net_frame_decode(out, n, LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+    if (f.type == LUMO_NET_REQUEST) {
+        assert_int_equal(lumo_net_request_decode(&f, &r), LUMO_OK);
+        assert_int_equal(fake_server_request(srv, &r), LUMO_OK);
+    } else if (f.type == LUMO_NET_HELLO) {   /* the server starts over (its serial listener does) */
+        assert_int_equal(lumo_net_hello_decode(&f, &h), LUMO_OK);
+        fake_server_init(srv, srv->k, h.ivg_form, h.max_payload);
+        srv->qn = FAKE_QUEUE;   /* marks "WELCOME owed" below */
+    }
+    (void)w;
+}
+
+static void lossy_run(int pkg, uint8_t form, uint32_t max_payload, uint32_t pipeline, uint32_t loss, uint64_t seed,
+                      const world *ref, uint32_t *damaged, uint32_t *resyncs)
+{
+    static world w;
+    static line l;   /* the buffer: test_lossy_line's */
+    fake_server srv;
+    test_rng rng = {seed * 7919 + 3};
+    run_cfg r;
+    uint8_t out[512];
+    size_t n, at = 0;
+    uint32_t steps, stale = 0, refused = 0;
+    int resyncing = 0;
+
+    memset(&r, 0, sizeof r);
+    r.pkg = pkg, r.form = form, r.max_payload = max_payload;
+    r.policy.pipeline = pipeline;
+    r.policy.vertices = (uint32_t)(seed % 3) * 150;   /* fixed or adaptive */
+    r.policy.rounds = (uint32_t)(seed % 3) * 2;
+    r.clock = 1;
+    driver_init(&w, &r);
+    l.b = g_line, l.cap = LINE_CAP, l.len = 0, l.damaged = 0;
+    fake_server_init(&srv, &g_pkg[pkg], form, max_payload);
+    assert_int_equal(lumo_net_client_hello(&w.c, out, sizeof out, &n), LUMO_OK);
+    lossy_send(&w, &srv, out, n);
+    for (steps = 0; steps < 100000 && w.c.state != LUMO_NET_DONE; steps++) {
+        lumo_net_frame f;
+        size_t used;
+        lumo_status st;
+        /* the server's side: WELCOME owed after a HELLO, else the next frame */
+        if (srv.qn == FAKE_QUEUE) {
+            srv.qn = 0;
+            line_put(&l, g_pkg[pkg].welcome, g_pkg[pkg].welcome_len, &rng, loss);
+        } else if (fake_server_frame(&srv, g_frame, FRAME_CAP, &n)) {
+            line_put(&l, g_frame, n, &rng, loss);
+        }
+        /* the client's side */
+        st = lumo_net_frame_decode(l.b + at, l.len - at, max_payload, &f, &used);
+        if (st == LUMO_ERR_TRUNCATED) {
+            if (srv.answering || srv.qn)
+                continue;   /* more is coming */
+            /* silence: what is left is a damaged frame (or nothing): ask again */
+            at = l.len;
+            assert_int_equal(lumo_net_client_resync(&w.c, out, sizeof out, &n), LUMO_OK);
+            (*resyncs)++;
+            resyncing = 1;
+        } else if (st) {
+            at = lumo_net_resync(l.b, l.len, at + 1);
+            refused++;
+            if (resyncing)
+                continue;
+            assert_int_equal(lumo_net_client_resync(&w.c, out, sizeof out, &n), LUMO_OK);
+            (*resyncs)++;
+            resyncing = 1;
+        } else {
+            at += used;
+            if (!lumo_net_client_expects(&w.c, &f)) {
+                stale++;
+                continue;
+            }
+            assert_int_equal(lumo_net_client_on_frame(&w.c, &f), LUMO_OK);
+            resyncing = 0;
+            n = 0;
+        }
+        if (n)
+            lossy_send(&w, &srv, out, n);
+        while (lumo_net_client_next(&w.c, out, sizeof out, &n) == LUMO_OK && n && w.c.state != LUMO_NET_DONE)
+            lossy_send(&w, &srv, out, n);
+        assert_int_not_equal(w.c.state, LUMO_NET_FAILED);
+    }
+    assert_int_equal(w.c.state, LUMO_NET_DONE);
+    lumo_session_update(&w.s);
+    same_meshes(&w.s, &ref->s, g_pkg[pkg].meshes);
+    same_grid(&w.s, &ref->s);
+    *damaged += l.damaged;
+    (void)stale, (void)refused;
+    world_free(&w);
+}
+
+static void test_lossy_line(void **state)
+{
+    static world ref[2];
+    uint32_t p, form, i, damaged = 0, resyncs = 0, runs = 0;
+    (void)state;
+
+    assert_non_null(g_line = malloc(LINE_CAP));
+    for (p = 0; p < PKG_COUNT; p++) {
+        for (form = 0; form < 2; form++)
+            reference(&ref[form], &g_pkg[p], (uint8_t)form);
+        for (i = 0; i < 24; i++) {
+            form = i & 1;
+            lossy_run((int)p, (uint8_t)form, i & 2 ? LUMO_NET_MIN_PAYLOAD : 1u << 20, 1 + i % 8, 4 + i % 7,
+                      i + 1, &ref[form], &damaged, &resyncs);
+            runs++;
+        }
+        for (form = 0; form < 2; form++)
+            world_free(&ref[form]);
+    }
+    free(g_line);
+    g_line = NULL;
+    assert_true(damaged > 50);
+    print_message("lossy line: %u runs to the full scene through %u damaged frames, %u resyncs\n", runs, damaged,
+                  resyncs);
+}
+
+/* The marker: before WELCOME, resync is HELLO again; after it, one REQUEST
+ * at the end of mesh 0 that only END answers; every DATA is stale until
+ * then; requests go out behind it. */
+static void test_resync_marker(void **state)
+{
+    static uint8_t buf[1u << 16];
+    hostile h;
+    lumo_net_frame f;
+    lumo_net_request r;
+    lumo_net_end e;
+    uint8_t out[512];
+    size_t n, used;
+    (void)state;
+
+    hostile_until(&h, PKG_MIXED, LUMO_IVG_FORM_QUANTIZED, 0, 1);
+    assert_true(lumo_net_client_expects(&h.w.c, &h.next));
+    assert_int_equal(lumo_net_client_resync(&h.w.c, out, sizeof out, &n), LUMO_OK);
+    assert_int_equal(lumo_net_frame_decode(out, n, LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+    assert_int_equal(lumo_net_request_decode(&f, &r), LUMO_OK);
+    assert_int_equal(r.channel, LUMO_NET_GEOMETRY);
+    assert_int_equal(r.mesh, 0);
+    assert_int_equal(r.cursor, h.w.c.batches[0]);
+    assert_int_equal(h.w.c.npending, 1);
+    assert_false(lumo_net_client_expects(&h.w.c, &h.next));   /* the answer asked before: stale */
+    assert_int_equal(lumo_net_client_next(&h.w.c, out, sizeof out, &n), LUMO_OK);
+    assert_int_equal(n, 0);   /* pipeline 1: the marker is the request in flight */
+    e.channel = LUMO_NET_GEOMETRY, e.mesh = 1;
+    assert_int_equal(lumo_net_end_encode(&e, buf, sizeof buf, &n), LUMO_OK);
+    assert_int_equal(lumo_net_frame_decode(buf, n, LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+    assert_false(lumo_net_client_expects(&h.w.c, &f));        /* another mesh's END */
+    e.mesh = 0;
+    assert_int_equal(lumo_net_end_encode(&e, buf, sizeof buf, &n), LUMO_OK);
+    assert_int_equal(lumo_net_frame_decode(buf, n, LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+    assert_true(lumo_net_client_expects(&h.w.c, &f));
+    assert_int_equal(lumo_net_client_on_frame(&h.w.c, &f), LUMO_OK);
+    assert_false(lumo_net_client_expects(&h.w.c, &f));        /* a second END: stale */
+    assert_false(lumo_net_client_expects(&h.w.c, &h.next));   /* nothing asked yet */
+    assert_int_equal(lumo_net_client_next(&h.w.c, out, sizeof out, &n), LUMO_OK);
+    assert_true(n > 0);                                        /* asked again from the cursors held */
+    assert_int_equal(lumo_net_frame_decode(out, n, LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+    assert_int_equal(lumo_net_request_decode(&f, &r), LUMO_OK);
+    assert_int_equal(r.cursor, r.channel == LUMO_NET_GEOMETRY ? h.w.c.held[r.mesh] : h.w.c.rounds_held);
+    /* the answer of the old request is next again if this one asks the same */
+    assert_int_equal(lumo_net_client_expects(&h.w.c, &h.next),
+                     r.channel == h.d.channel && r.mesh == h.d.mesh && r.cursor == h.d.first);
+    assert_false(lumo_net_client_expects(&h.w.c, (const lumo_net_frame *)&(lumo_net_frame){LUMO_NET_WELCOME, 0, buf}));
+    world_free(&h.w);
+
+    /* before WELCOME: HELLO again */
+    {
+        run_cfg rc;
+        lumo_net_hello hh;
+        memset(&rc, 0, sizeof rc);
+        rc.pkg = PKG_MIXED, rc.form = LUMO_IVG_FORM_QUANTIZED, rc.max_payload = 1u << 20;
+        driver_init(&h.w, &rc);
+        assert_int_equal(lumo_net_client_hello(&h.w.c, out, sizeof out, &n), LUMO_OK);
+        assert_int_equal(lumo_net_client_resync(&h.w.c, out, sizeof out, &n), LUMO_OK);
+        assert_int_equal(lumo_net_frame_decode(out, n, LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+        assert_int_equal(lumo_net_hello_decode(&f, &hh), LUMO_OK);
+        assert_int_equal(h.w.c.state, LUMO_NET_HELLO_SENT);
+        assert_int_equal(lumo_net_frame_decode(g_pkg[PKG_MIXED].welcome, g_pkg[PKG_MIXED].welcome_len,
+                                               LUMO_NET_MAX_PAYLOAD, &f, &used), LUMO_OK);
+        assert_true(lumo_net_client_expects(&h.w.c, &f));
+        world_free(&h.w);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -911,6 +1138,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_policies_split),
         cmocka_unit_test(test_short_last_batch),
         cmocka_unit_test(test_resume),
+        cmocka_unit_test(test_lossy_line),
+        cmocka_unit_test(test_resync_marker),
         cmocka_unit_test(test_hostile),
         cmocka_unit_test(test_before_welcome),
     };

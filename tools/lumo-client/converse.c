@@ -106,7 +106,37 @@ static int take(client *c, const lumo_net_frame *f, const uint8_t *p, size_t n)
     c->taken++;
     c->taken_bytes += n;
     c->failures = 0;   /* the link works: retries count again from here */
+    c->resyncing = 0;
     return frames_due(c);
+}
+
+/* Lossy links: something was lost; ask again (HELLO, or the marker and the
+ * requests behind it). Once per loss: while a marker is in flight and
+ * nothing has been taken since, only `force` (silence) sends another. */
+static int ask_again(client *c, int force)
+{
+    uint8_t out[512];
+    size_t n;
+    lumo_status st;
+
+    if (c->resyncing && !force)
+        return 0;
+    if ((st = lumo_net_client_resync(&c->drv, out, sizeof out, &n))) {
+        fprintf(stderr, "%slumo-client: error: %s\n", nl(c), lumo_strerror(st));
+        return -1;
+    }
+    c->resyncs++;
+    c->resyncing = 1;
+    return n && c->l.ops->send(&c->l, out, n) ? 1 : 0;
+}
+
+/* Lossy links: skip from a refused frame at rx[at] to the next magic. */
+static size_t skip(client *c, const uint8_t *rx, size_t len, size_t at)
+{
+    size_t next = lumo_net_resync(rx, len, at + 1);
+
+    c->garbage += next - at;
+    return next;
 }
 
 /* Decode and take every whole frame in rx[0..*len); keep the rest. */
@@ -120,10 +150,22 @@ static int take_frames(client *c, uint8_t *rx, size_t *len)
         st = lumo_net_frame_decode(rx + at, *len - at, c->drv.cfg.max_payload, &f, &used);
         if (st == LUMO_ERR_TRUNCATED)
             break;
+        if (st && c->l.ops->lossy) {
+            c->refused++;
+            at = skip(c, rx, *len, at);
+            if (ask_again(c, 0) < 0)
+                return -1;
+            continue;
+        }
         if (st) {
             say_where(c, is_replay(c) ? "a damaged frame" : "a frame from the server", st);
             send_error(c, st, "the client refused a frame");
             return -1;
+        }
+        if (c->l.ops->lossy && !lumo_net_client_expects(&c->drv, &f)) {
+            c->stale++;   /* answers a request sent before a loss */
+            at += used;
+            continue;
         }
         if (take(c, &f, rx + at, used))
             return -1;
@@ -148,6 +190,30 @@ static void say_ended(client *c, long got, size_t len)
         fprintf(stderr, "%slumo-client: error: %s: %s before the scene was complete (after frame %u)\n", nl(c),
                 c->l.target, got == 0 ? "the connection closed" : got == LINK_TIMEOUT ? "nothing arrived for 60 s"
                                                                                     : c->l.err, c->taken);
+}
+
+/* How long a lossy link may stay silent while something is awaited before
+ * it counts as lost: a few round trips, at least 300 ms. */
+static int silence_ms(const client *c)
+{
+    uint32_t rtt = c->drv.costs.rtt_ms;
+    uint32_t ms = rtt ? 300 + 4 * rtt : 1000;
+
+    return (int)(ms > 10000 ? 10000 : ms);
+}
+
+/* Lossy links: nothing came for silence_ms: the bytes left are a damaged
+ * frame's (a dropped byte keeps it waiting for one that never comes) or
+ * nothing; skip to the next magic after their start and ask again. */
+static int on_silence(client *c, uint8_t *rx, size_t *len)
+{
+    c->timeouts++;
+    if (*len) {
+        size_t next = skip(c, rx, *len, 0);
+        memmove(rx, rx + next, *len - next);
+        *len -= next;
+    }
+    return ask_again(c, 1);
 }
 
 static void sleep_ms(uint32_t ms)
@@ -216,7 +282,15 @@ int converse(client *c)
         }
         if (c->drv.state == LUMO_NET_DONE)
             break;
-        got = c->l.ops->read(&c->l, rx + len, cap - len, is_replay(c) ? -1 : 60000);
+        got = c->l.ops->read(&c->l, rx + len, cap - len,
+                             is_replay(c) ? -1 : c->l.ops->lossy ? silence_ms(c) : 60000);
+        if (got == LINK_TIMEOUT && c->l.ops->lossy) {
+            if ((s = on_silence(c, rx, &len)) < 0 || (s > 0 && resume(c, &len, c->l.err)))
+                goto done;
+            if (take_frames(c, rx, &len))   /* what followed the skipped bytes */
+                goto done;
+            continue;
+        }
         if (got <= 0) {
             if (!c->l.ops->resumable) {
                 say_ended(c, got, len);

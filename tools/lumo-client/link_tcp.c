@@ -61,3 +61,4 @@ static void tcp_close(client_link *l)
 }
 
 const link_ops link_tcp = {"tcp", 0, 1, tcp_open, tcp_send, tcp_read, tcp_close};
+const link_ops link_serial = {"serial", 1, 1, tcp_open, tcp_send, tcp_read, tcp_close};

@@ -18,10 +18,13 @@
 #include "client.h"
 
 static const char usage[] =
-    "usage: lumo-client (--connect HOST:PORT | --replay FILE) [options]\n"
+    "usage: lumo-client (--connect HOST:PORT | --serial HOST:PORT | --replay FILE) [options]\n"
     "Streams a scene piece by piece (docs/protocol.md) and writes PNG frames as it refines.\n"
     "  --connect HOST:PORT     lumo-server over TCP; a dropped connection is opened again\n"
     "                          and resumed from the cursors held (see --retries)\n"
+    "  --serial HOST:PORT      lumo-server's --serial-listen: the frames over a lossy byte\n"
+    "                          stream; garbage and damaged frames are skipped (resynchronised\n"
+    "                          on the next frame) and what was lost is asked again\n"
     "  --replay FILE           replay a session recorded with --record (no network)\n"
     "  --record FILE           write every frame taken, as received, to FILE (for --replay)\n"
     "  --retries N             reconnections in a row after a dropped connection (default 5,\n"
@@ -138,7 +141,8 @@ static int take_option(int c, const char *arg, options *o)
 static int parse_args(int argc, char **argv, options *o)
 {
     static const struct option longs[] = {
-        {"connect", 1, 0, O_CONNECT}, {"replay", 1, 0, O_REPLAY}, {"record", 1, 0, O_RECORD},
+        {"connect", 1, 0, O_CONNECT}, {"serial", 1, 0, O_SERIAL}, {"replay", 1, 0, O_REPLAY},
+        {"record", 1, 0, O_RECORD},
         {"retries", 1, 0, O_RETRIES},
         {"package", 1, 0, O_PACKAGE}, {"out", 1, 0, O_OUT}, {"frames-at", 1, 0, O_AT},
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"per-vertex", 0, 0, O_PV},
@@ -165,6 +169,8 @@ static int parse_args(int argc, char **argv, options *o)
 
 static const char *source(const options *o, const link_ops **ops)
 {
+    if (o->serial)
+        return *ops = &link_serial, o->serial;
     if (o->replay)
         return *ops = &link_replay, o->replay;
     return *ops = &link_tcp, o->connect;
@@ -219,6 +225,9 @@ static void summary(const client *c)
            (unsigned long long)c->first_bytes);
     if (c->cuts)
         printf("; %u cuts resumed, %llu bytes of frames cut mid-way", c->cuts, (unsigned long long)c->cut_bytes);
+    if (c->l.ops->lossy)
+        printf("; %u frames refused, %u silences, %u times asked again, %llu bytes skipped, %u stale frames dropped",
+               c->refused, c->timeouts, c->resyncs, (unsigned long long)c->garbage, c->stale);
     printf("\n");
 }
 

@@ -140,6 +140,27 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
  * the cursors held) so that lumo_net_client_hello resumes. */
 void lumo_net_client_reset_link(lumo_net_client *c);
 
+/* ---- lossy links (a serial line: docs/protocol.md §1 and §7 "Serial lines") ----
+ * Bytes may be lost or damaged: the caller skips a refused frame
+ * (lumo_net_resync), and frames may arrive that answer requests sent before
+ * a loss. Two calls keep the conversation exact:
+ *
+ * lumo_net_client_expects: 1 when on_frame would take f as the next frame
+ * of the conversation (WELCOME while it is awaited, a DATA or END answering
+ * the oldest request in flight as on_frame checks them, ERROR), 0 for a
+ * frame to drop unseen (a late answer, a duplicate). Nothing changes.
+ *
+ * lumo_net_client_resync: after a loss (a refused frame, or silence while
+ * something is awaited). Before WELCOME it writes HELLO again. Afterwards it
+ * forgets the requests in flight (reset_link) and writes a marker: a
+ * REQUEST at the end of mesh 0 (of the rounds without meshes), which the
+ * server answers with END only, in turn after everything asked before it.
+ * Until that END arrives every DATA is unexpected (stale); the requests
+ * lumo_net_client_next writes meanwhile go out behind the marker and ask
+ * again from the cursors held. *written is 0 when nothing is streamed. */
+int lumo_net_client_expects(const lumo_net_client *c, const lumo_net_frame *f);
+lumo_status lumo_net_client_resync(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written);
+
 typedef struct lumo_net_progress {
     uint32_t vertices, full_vertices;   /* all meshes */
     uint32_t rounds, full_rounds;       /* IVG rounds held / total */
