@@ -4,7 +4,8 @@
 # made by a proxy (tests/client/cut_proxy.c: the same frames as an uncut
 # run, and only the frames cut mid-way and the WELCOMEs of the new
 # connections received twice); --serial against lumo-server --serial-listen
-# --loss 0.05 (the full scene whatever the loss). Every server, proxy and
+# --loss 0.05 (the full scene whatever the loss); --http from Debian's nginx
+# on loopback (the TCP run's frames and received bytes, byte for byte). Every server, proxy and
 # client runs under
 # `timeout` and is killed by the script's trap.
 CUT_PROXY := $(BUILD)/tests/bin/cut_proxy

@@ -75,62 +75,60 @@ flip() {
 }
 summary_field() { sed -n "s/.* \([0-9]*\) $1.*/\1/p" "$dir/$2.out"; }
 
-# ---- the package ------------------------------------------------------------------
+# listening PORT: something listens on 127.0.0.1:PORT (Linux: /proc/net/tcp).
+listening() { grep -qi "0100007F:$(printf %04X "$1") 00000000:0000 0A" /proc/net/tcp; }
+
+# nginx_start DIR FILES...: Debian's nginx serving FILES from DIR/www on a free
+# loopback port (a generated minimal nginx.conf, daemon off, in the
+# background, killed by the trap); sets $npid and $hport.
+nginx_start() {
+    command -v nginx >/dev/null || { bad "nginx missing (nginx-light: run tools/setup.sh)"; return 1; }
+    rm -rf "$1"; mkdir -p "$1/www" "$1/tmp"
+    ng=$(cd "$1" && pwd); shift   # nginx wants absolute paths
+    cp "$@" "$ng/www/"
+    for try in 1 2 3 4 5 6; do
+        hport=$(( 20000 + ($(date +%N | sed 's/^0*//;s/^$/0/') / 1000 + try * 7919) % 40000 ))
+        listening "$hport" && continue
+        cat >"$ng/nginx.conf" <<EOF
+daemon off;
+master_process off;
+worker_processes 1;
+pid $ng/nginx.pid;
+error_log $ng/error.log;
+events { worker_connections 64; }
+http {
+    access_log $ng/access.log;
+    client_body_temp_path $ng/tmp/body;
+    proxy_temp_path $ng/tmp/proxy;
+    fastcgi_temp_path $ng/tmp/fastcgi;
+    uwsgi_temp_path $ng/tmp/uwsgi;
+    scgi_temp_path $ng/tmp/scgi;
+    types { application/octet-stream lumo; }
+    server {
+        listen 127.0.0.1:$hport;
+        root $ng/www;
+    }
+}
+EOF
+        timeout 300 nginx -c "$ng/nginx.conf" -p "$ng/" >"$ng/stderr" 2>&1 &
+        npid=$!
+        pids="$pids $npid"
+        i=0
+        while kill -0 "$npid" 2>/dev/null && ! listening "$hport" && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+        listening "$hport" && kill -0 "$npid" 2>/dev/null && return 0
+        kill "$npid" 2>/dev/null; wait "$npid" 2>/dev/null
+    done
+    bad "nginx did not start"; sed 's/^/    /' "$ng/stderr" "$ng/error.log" 2>/dev/null | tail -5
+    return 1
+}
+
+# ---- the packages -----------------------------------------------------------------
 dragon=$models/dragon_11k.ply
-[ -f "$dragon" ] || { # ---- the serial line: --serial against --serial-listen --loss 0.05 ---------------------
-if start serial "$scene" --serial-listen 127.0.0.1:0 --loss 0.05 --seed 9; then
-    damaged=0
-    for args in "--pipeline 1" "--pipeline 4" "--pipeline 8 --order lighting" "--vertices 300 --rounds 5 --order geometry" \
-                "--float --pipeline 2"; do
-        r=serial$(echo "$args" | tr -cd '0-9a-z')
-        lc "$r" --serial "127.0.0.1:$sport" --frames-at 50,100 $args --record "$dir/$r.rec"
-        refused=$(sed -n 's/.*; \([0-9]*\) frames refused, \([0-9]*\) silences.*/\1 \2/p' "$dir/$r.out")
-        damaged=$((damaged + ${refused% *} + ${refused#* }))
-        if complete "$r" && { [ -n "$args" ] && [ "${args#*float}" != "$args" ] || cmp -s "$dir/$r/frame-100.00.png" "$dir/live/frame-100.00.png"; }; then
-            ok "serial $args: the full scene$( [ "${args#*float}" = "$args" ] && echo ", the TCP run's last frame byte for byte"): $(sed 's/.*bytes; //' "$dir/$r.out")"
-        else
-            bad "serial $args"; show "$r"
-        fi
-    done
-    [ "$damaged" -gt 0 ] && ok "serial: the client saw $damaged damaged or lost frames" || bad "serial: no damage seen (--loss 0.05)"
-    lc serial-replay --replay "$dir/serialpipeline4.rec" --frames-at 50,100
-    if complete serial-replay && same_frames serialpipeline4 serial-replay; then
-        ok "serial: the recording (only the frames taken) replays to the same frames"
-    else
-        bad "serial: replay"; show serial-replay
-    fi
-    stop
-fi
-
-echo "RESULT: 0 passed, 1 failed ($dragon missing: run tools/setup.sh)"; exit 1; }
-scene="$dir/scene.lumo"
-timeout 120 "$bin/lumo-bake" --default --dragon "$dragon" --grid 12 --spp 8 --no-progress -o "$scene" \
-    2>"$dir/bake.log" || { cat "$dir/bake.log"; # ---- the serial line: --serial against --serial-listen --loss 0.05 ---------------------
-if start serial "$scene" --serial-listen 127.0.0.1:0 --loss 0.05 --seed 9; then
-    damaged=0
-    for args in "--pipeline 1" "--pipeline 4" "--pipeline 8 --order lighting" "--vertices 300 --rounds 5 --order geometry" \
-                "--float --pipeline 2"; do
-        r=serial$(echo "$args" | tr -cd '0-9a-z')
-        lc "$r" --serial "127.0.0.1:$sport" --frames-at 50,100 $args --record "$dir/$r.rec"
-        refused=$(sed -n 's/.*; \([0-9]*\) frames refused, \([0-9]*\) silences.*/\1 \2/p' "$dir/$r.out")
-        damaged=$((damaged + ${refused% *} + ${refused#* }))
-        if complete "$r" && { [ -n "$args" ] && [ "${args#*float}" != "$args" ] || cmp -s "$dir/$r/frame-100.00.png" "$dir/live/frame-100.00.png"; }; then
-            ok "serial $args: the full scene$( [ "${args#*float}" = "$args" ] && echo ", the TCP run's last frame byte for byte"): $(sed 's/.*bytes; //' "$dir/$r.out")"
-        else
-            bad "serial $args"; show "$r"
-        fi
-    done
-    [ "$damaged" -gt 0 ] && ok "serial: the client saw $damaged damaged or lost frames" || bad "serial: no damage seen (--loss 0.05)"
-    lc serial-replay --replay "$dir/serialpipeline4.rec" --frames-at 50,100
-    if complete serial-replay && same_frames serialpipeline4 serial-replay; then
-        ok "serial: the recording (only the frames taken) replays to the same frames"
-    else
-        bad "serial: replay"; show serial-replay
-    fi
-    stop
-fi
-
-echo "RESULT: 0 passed, 1 failed (lumo-bake)"; exit 1; }
+[ -f "$dragon" ] || { echo "RESULT: 0 passed, 1 failed ($dragon missing: run tools/setup.sh)"; exit 1; }
+scene="$dir/scene.lumo"; split="$dir/split.lumo"
+timeout 120 "$bin/lumo-bake" --default --dragon "$dragon" --grid 12 --spp 8 --no-progress -o "$scene" 2>"$dir/bake.log" &&
+timeout 120 "$bin/lumo-bake" --default --dragon "$dragon" --grid 32,8,8 --spp 4 --no-progress -o "$split" 2>>"$dir/bake.log" ||
+    { cat "$dir/bake.log"; echo "RESULT: 0 passed, 1 failed (lumo-bake)"; exit 1; }
 AT=5,10,25,50,75,100
 
 # ---- the command line ---------------------------------------------------------------
@@ -142,7 +140,7 @@ fi
 timeout 10 "$client" --connect 127.0.0.1:1 --replay x >/dev/null 2>&1
 [ $? -eq 2 ] && ok "two sources: usage, status 2" || bad "two sources"
 
-if start main "$scene"; then
+if start main "$scene" "$split"; then
     # ---- record / replay ----------------------------------------------------------
     lc live --connect "127.0.0.1:$port" --frames-at $AT --record "$dir/live.rec"
     if complete live; then ok "live run with --record: $(sed 's/^lumo-client: //' "$dir/live.out")"; else bad "live run"; show live; fi
@@ -237,6 +235,39 @@ if start main "$scene"; then
             bad "retries (status $st, $((t1 - t0)) s)"; show gone
         fi
         wait "$ppid" 2>/dev/null
+    fi
+
+    # ---- HTTP: the same package from nginx with Range requests -----------------------
+    printf 'this is a text file, not a package at all; %0200d\n' 0 >"$dir/junk.lumo"
+    if nginx_start "$dir/nginx" "$scene" "$split" "$dir/junk.lumo" tests/server/data/v1_tiny.lumo; then
+        url="http://127.0.0.1:$hport"
+        for v in "scene.lumo 0 --vertices 300 --rounds 5" "split.lumo 1 --vertices 150 --rounds 3 --float --max-payload 4096 --pipeline 8"; do
+            file=${v%% *}; rest=${v#* }; pkg=${rest%% *}; args=${rest#* }
+            lc "http-$file" --http "$url/$file" --frames-at $AT $args --record "$dir/http-$file.rec"
+            lc "tcp-$file" --connect "127.0.0.1:$port" --package "$pkg" --frames-at $AT $args --record "$dir/tcp-$file.rec"
+            fetched=$(sed -n 's/.*; \([0-9]*\) range requests, \([0-9]*\) bytes fetched.*/\1 \2/p' "$dir/http-$file.out")
+            if complete "http-$file" && complete "tcp-$file" && same_frames "tcp-$file" "http-$file" &&
+               cmp -s "$dir/http-$file.rec" "$dir/tcp-$file.rec"; then
+                ok "http $file $args: the TCP run's $(ls "$dir/http-$file"/*.png | wc -l) frames and its $(wc -c <"$dir/tcp-$file.rec") received bytes, byte for byte, from ${fetched% *} range requests of ${fetched#* } bytes (the package: $(wc -c <"$dir/nginx/www/$file"))"
+            else
+                bad "http $file $args"; show "http-$file"; show "tcp-$file"
+            fi
+        done
+        lc http-adaptive --http "$url/scene.lumo" --frames-at 50,100
+        if complete http-adaptive && cmp -s "$dir/http-adaptive/frame-100.00.png" "$dir/live/frame-100.00.png"; then
+            ok "http, adaptive sizes: the full scene, the TCP run's last frame: $(sed 's/.*bytes; //' "$dir/http-adaptive.out")"
+        else
+            bad "http adaptive"; show http-adaptive
+        fi
+        for v in "none.lumo:HTTP 404" "junk.lumo:not a valid package" "v1_tiny.lumo:re-bake"; do
+            lc http-err --http "$url/${v%%:*}"
+            if [ "$st" -eq 1 ] && [ "$(wc -l <"$dir/http-err.err")" -eq 1 ] && grep -q "error: .*${v#*:}" "$dir/http-err.err"; then
+                ok "http ${v%%:*}: $(sed 's/^lumo-client: //' "$dir/http-err.err")"
+            else
+                bad "http ${v%%:*} (status $st)"; show http-err
+            fi
+        done
+        kill "$npid" 2>/dev/null; wait "$npid" 2>/dev/null
     fi
 
     stop

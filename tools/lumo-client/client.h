@@ -54,6 +54,7 @@ struct client_link {
     int fd;
     void *impl;               /* a link's own state (http) */
     char err[320];
+    char note[160];           /* for the summary line (http: ranges fetched) */
     uint64_t bytes_in, bytes_out;   /* over every connection */
 };
 

@@ -18,13 +18,16 @@
 #include "client.h"
 
 static const char usage[] =
-    "usage: lumo-client (--connect HOST:PORT | --serial HOST:PORT | --replay FILE) [options]\n"
+    "usage: lumo-client (--connect HOST:PORT | --serial HOST:PORT | --http URL | --replay FILE) [options]\n"
     "Streams a scene piece by piece (docs/protocol.md) and writes PNG frames as it refines.\n"
     "  --connect HOST:PORT     lumo-server over TCP; a dropped connection is opened again\n"
     "                          and resumed from the cursors held (see --retries)\n"
     "  --serial HOST:PORT      lumo-server's --serial-listen: the frames over a lossy byte\n"
     "                          stream; garbage and damaged frames are skipped (resynchronised\n"
     "                          on the next frame) and what was lost is asked again\n"
+    "  --http URL              a .lumo package on a plain HTTP/1.1 server (Range requests):\n"
+    "                          the client reads the package's table and answers its own\n"
+    "                          requests from byte ranges, as lumo-server would\n"
     "  --replay FILE           replay a session recorded with --record (no network)\n"
     "  --record FILE           write every frame taken, as received, to FILE (for --replay)\n"
     "  --retries N             reconnections in a row after a dropped connection (default 5,\n"
@@ -141,7 +144,8 @@ static int take_option(int c, const char *arg, options *o)
 static int parse_args(int argc, char **argv, options *o)
 {
     static const struct option longs[] = {
-        {"connect", 1, 0, O_CONNECT}, {"serial", 1, 0, O_SERIAL}, {"replay", 1, 0, O_REPLAY},
+        {"connect", 1, 0, O_CONNECT}, {"serial", 1, 0, O_SERIAL}, {"http", 1, 0, O_HTTP},
+        {"replay", 1, 0, O_REPLAY},
         {"record", 1, 0, O_RECORD},
         {"retries", 1, 0, O_RETRIES},
         {"package", 1, 0, O_PACKAGE}, {"out", 1, 0, O_OUT}, {"frames-at", 1, 0, O_AT},
@@ -171,6 +175,8 @@ static const char *source(const options *o, const link_ops **ops)
 {
     if (o->serial)
         return *ops = &link_serial, o->serial;
+    if (o->http)
+        return *ops = &link_http, o->http;
     if (o->replay)
         return *ops = &link_replay, o->replay;
     return *ops = &link_tcp, o->connect;
@@ -228,6 +234,8 @@ static void summary(const client *c)
     if (c->l.ops->lossy)
         printf("; %u frames refused, %u silences, %u times asked again, %llu bytes skipped, %u stale frames dropped",
                c->refused, c->timeouts, c->resyncs, (unsigned long long)c->garbage, c->stale);
+    if (c->l.note[0])
+        printf("; %s", c->l.note);
     printf("\n");
 }
 
