@@ -89,6 +89,7 @@ typedef struct client {
     uint32_t refused, stale, timeouts, resyncs;   /* lossy lines */
     uint64_t garbage;          /* bytes skipped resynchronising */
     int resyncing;             /* a resync marker is in flight, nothing taken since */
+    uint32_t silences;         /* silences in a row, nothing taken since */
 } client;
 
 /* converse.c: HELLO to the full scene over c->l (opened here). 0 or -1

@@ -107,6 +107,7 @@ static int take(client *c, const lumo_net_frame *f, const uint8_t *p, size_t n)
     c->taken_bytes += n;
     c->failures = 0;   /* the link works: retries count again from here */
     c->resyncing = 0;
+    c->silences = 0;
     return frames_due(c);
 }
 
@@ -192,6 +193,9 @@ static void say_ended(client *c, long got, size_t len)
                                                                                     : c->l.err, c->taken);
 }
 
+/* Silences in a row (no frame taken in between) before a lossy link gives up. */
+#define MAX_SILENCES 10u
+
 /* How long a lossy link may stay silent while something is awaited before
  * it counts as lost: a few round trips, at least 300 ms. */
 static int silence_ms(const client *c)
@@ -208,6 +212,11 @@ static int silence_ms(const client *c)
 static int on_silence(client *c, uint8_t *rx, size_t *len)
 {
     c->timeouts++;
+    if (++c->silences > MAX_SILENCES) {
+        fprintf(stderr, "%slumo-client: error: %s: nothing taken through %u silences in a row (%d ms each): is it "
+                "a lumo serial line?\n", nl(c), c->l.target, MAX_SILENCES, silence_ms(c));
+        return -1;
+    }
     if (*len) {
         size_t next = skip(c, rx, *len, 0);
         memmove(rx, rx + next, *len - next);
@@ -251,63 +260,69 @@ static int resume(client *c, size_t *len, const char *why)
     return -1;
 }
 
+/* The receive buffer: room for one frame of the largest payload taken. */
+typedef struct rx_buf {
+    uint8_t *b;
+    size_t cap, len;
+} rx_buf;
+
+/* The link failed (send or read): resumed when it can be, else said. */
+static int link_failed(client *c, rx_buf *rx, long got)
+{
+    if (!c->l.ops->resumable) {
+        if (got > 0)
+            fprintf(stderr, "%slumo-client: error: %s: %s\n", nl(c), c->l.target, c->l.err);
+        else
+            say_ended(c, got, rx->len);
+        return -1;
+    }
+    return resume(c, &rx->len, got > 0 ? c->l.err : got == 0 ? "the connection closed"
+                                        : got == LINK_TIMEOUT ? "nothing for 60 s" : c->l.err);
+}
+
+/* One turn: the driver's frames out, what the link has in. -1 on failure. */
+static int turn(client *c, rx_buf *rx)
+{
+    long got;
+    int s;
+
+    if ((s = send_pending(c)) < 0)
+        return -1;
+    if (s > 0)
+        return link_failed(c, rx, 1);
+    if (c->drv.state == LUMO_NET_DONE)
+        return 0;
+    got = c->l.ops->read(&c->l, rx->b + rx->len, rx->cap - rx->len,
+                         is_replay(c) ? -1 : c->l.ops->lossy ? silence_ms(c) : 60000);
+    if (got == LINK_TIMEOUT && c->l.ops->lossy) {
+        if ((s = on_silence(c, rx->b, &rx->len)) < 0 || (s > 0 && link_failed(c, rx, 1)))
+            return -1;
+        return take_frames(c, rx->b, &rx->len);   /* what followed the skipped bytes */
+    }
+    if (got <= 0)
+        return link_failed(c, rx, got);
+    rx->len += (size_t)got;
+    return take_frames(c, rx->b, &rx->len);
+}
+
 int converse(client *c)
 {
-    size_t cap = c->drv.cfg.max_payload + LUMO_NET_OVERHEAD, len = 0;
-    uint8_t *rx = malloc(cap);
-    int rc = -1, s;
+    rx_buf rx = {NULL, c->drv.cfg.max_payload + LUMO_NET_OVERHEAD, 0};
+    int rc = -1;
 
-    if (!rx)
+    if (!(rx.b = malloc(rx.cap)))
         return -1;
-    if (c->l.ops->open(&c->l)) {
+    if (c->l.ops->open(&c->l))
         fprintf(stderr, "lumo-client: error: %s\n", c->l.err);
-        goto done;
-    }
-    if (send_hello(c)) {
+    else if (send_hello(c))
         fprintf(stderr, "lumo-client: error: %s: %s\n", c->l.target, c->l.err);
-        goto done;
+    else {
+        while (c->drv.state != LUMO_NET_DONE)
+            if (turn(c, &rx))
+                break;
+        rc = c->drv.state == LUMO_NET_DONE ? frames_due(c) : -1;
     }
-    while (c->drv.state != LUMO_NET_DONE) {
-        long got;
-        if ((s = send_pending(c)) < 0)
-            goto done;
-        if (s > 0) {
-            if (!c->l.ops->resumable) {
-                fprintf(stderr, "%slumo-client: error: %s: %s\n", nl(c), c->l.target, c->l.err);
-                goto done;
-            }
-            if (resume(c, &len, c->l.err))
-                goto done;
-            continue;
-        }
-        if (c->drv.state == LUMO_NET_DONE)
-            break;
-        got = c->l.ops->read(&c->l, rx + len, cap - len,
-                             is_replay(c) ? -1 : c->l.ops->lossy ? silence_ms(c) : 60000);
-        if (got == LINK_TIMEOUT && c->l.ops->lossy) {
-            if ((s = on_silence(c, rx, &len)) < 0 || (s > 0 && resume(c, &len, c->l.err)))
-                goto done;
-            if (take_frames(c, rx, &len))   /* what followed the skipped bytes */
-                goto done;
-            continue;
-        }
-        if (got <= 0) {
-            if (!c->l.ops->resumable) {
-                say_ended(c, got, len);
-                goto done;
-            }
-            if (resume(c, &len, got == 0 ? "the connection closed" : got == LINK_TIMEOUT ? "nothing for 60 s"
-                                                                                         : c->l.err))
-                goto done;
-            continue;
-        }
-        len += (size_t)got;
-        if (take_frames(c, rx, &len))
-            goto done;
-    }
-    rc = frames_due(c);
-done:
     c->l.ops->close(&c->l);
-    free(rx);
+    free(rx.b);
     return rc;
 }

@@ -59,6 +59,17 @@ static int first_picture_ready(const client *c)
     return !c->drv.has_ivg || c->drv.rounds_held > 0;
 }
 
+/* A row of progress.csv for the frame just written. */
+static void progress_row(client *c, double percent, const lumo_net_progress *p, uint32_t tris, const char *name)
+{
+    if (!c->csv)
+        return;
+    fprintf(c->csv, "%.2f,%llu,%llu,%u,%u,%u,%u,%u,%u,%s\n", percent, (unsigned long long)c->taken_bytes,
+            (unsigned long long)p->bytes, p->vertices, p->full_vertices, tris, p->rounds, p->full_rounds,
+            host_net_clock_ms(NULL) - c->t0, name);
+    fflush(c->csv);
+}
+
 static int draw_frame(client *c, double percent, const lumo_net_progress *p, const char *tag)
 {
     const lumo_ivg *ivg = lumo_session_ivg(&c->ses);
@@ -99,14 +110,10 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
         fprintf(stderr, "lumo-client: error: %s\n", err);
         rc = 1;
     }
-    if (!rc && c->csv) {
-        fprintf(c->csv, "%.2f,%llu,%llu,%u,%u,%u,%u,%u,%u,%s\n", percent, (unsigned long long)c->taken_bytes,
-                (unsigned long long)p->bytes, p->vertices, p->full_vertices, mesh.tri_count, p->rounds,
-                p->full_rounds, host_net_clock_ms(NULL) - c->t0, name);
-        fflush(c->csv);
-    }
-    if (!rc)
+    if (!rc) {
+        progress_row(c, percent, p, mesh.tri_count, name);
         c->frames_drawn++;
+    }
     free(rgb);
     host_renderer_close(r);
     return rc ? -1 : 0;
