@@ -117,7 +117,6 @@ static lumo_status take_scene(lumo_net_client *c)
     c->has_ivg = lumo_session_ivg(c->session) != NULL && lumo_session_ivg_order(c->session) != NULL &&
                  c->cfg.ivg_form != LUMO_NET_FORM_NONE;
     c->rounds_total = c->has_ivg ? lumo_session_ivg_order(c->session)->rounds : 0;
-    c->ivg_ended = !c->has_ivg;
     return LUMO_OK;
 }
 
@@ -158,6 +157,31 @@ static uint32_t blend_rate(uint32_t avg, uint32_t ms, uint32_t bytes)
     return avg ? (uint32_t)(((uint64_t)avg * 3 + r) / 4) : (uint32_t)r;
 }
 
+/* Every record of a geometry DATA checked before any is applied (the walk,
+ * each head, its batch index and its CRC), so that a damaged or foreign
+ * frame changes nothing. */
+static lumo_status check_records(const lumo_net_data *d)
+{
+    size_t at = 0, n;
+    const uint8_t *rec;
+    uint32_t k, crc;
+    lumo_status st;
+
+    for (k = 0; k < d->count; k++) {
+        lumo_pmesh_record_head rh;
+        if ((st = lumo_pmesh_next_record(d->bytes, d->len, &at, &rec, &n)))
+            return st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st;
+        if ((st = lumo_pmesh_read_record_head(rec, n, &rh)))
+            return st;
+        if (rh.index != d->first + k)
+            return LUMO_ERR_CORRUPT;
+        crc = lumo_wire_crc32(0, rec, rh.head_bytes - 4u);
+        if (lumo_wire_crc32(crc, rec + rh.head_bytes, n - rh.head_bytes) != rh.crc)
+            return LUMO_ERR_CHECKSUM;
+    }
+    return at == d->len ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
 static lumo_status apply_geometry(lumo_net_client *c, const lumo_net_data *d)
 {
     size_t at = 0, n;
@@ -165,19 +189,17 @@ static lumo_status apply_geometry(lumo_net_client *c, const lumo_net_data *d)
     uint32_t k;
     lumo_status st;
 
-    if (d->mesh >= c->mesh_count || d->first != c->held[d->mesh] || d->count != d->records ||
-        d->first + d->count > c->batches[d->mesh])
-        return LUMO_ERR_STATE;
+    if ((st = check_records(d)))
+        return st;
     for (k = 0; k < d->count; k++) {
-        if ((st = lumo_pmesh_next_record(d->bytes, d->len, &at, &rec, &n)))
-            return st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st;
-        /* A refused record leaves the mesh at the last good batch: the
+        (void)lumo_pmesh_next_record(d->bytes, d->len, &at, &rec, &n);
+        /* Past the checks only a record the decoder refuses stops here: the
          * records before it stay applied, and so do their cursors. */
         if ((st = lumo_session_feed(c->session, LUMO_MSG_PMSB, d->mesh, rec, n)))
             return st;
         c->held[d->mesh]++;
     }
-    return at == d->len ? LUMO_OK : LUMO_ERR_CORRUPT;
+    return LUMO_OK;
 }
 
 /* The records of a lighting DATA go to the session as one IVGR message: the
@@ -186,14 +208,53 @@ static lumo_status apply_lighting(lumo_net_client *c, const lumo_net_data *d)
 {
     lumo_status st;
 
-    if (!c->has_ivg || d->form != c->cfg.ivg_form || d->first != c->rounds_held ||
-        d->first + d->count > c->rounds_total)
-        return LUMO_ERR_STATE;
     st = lumo_session_feed(c->session, LUMO_MSG_IVGR, 0, d->bytes - LUMO_NET_IVGR_HEAD,
                            d->len + LUMO_NET_IVGR_HEAD);
     if (st)
         return st;
     c->rounds_held += d->count;   /* 0 for a frame that continues a round */
+    c->partial_records = d->count ? 0 : c->partial_records + d->records;
+    return LUMO_OK;
+}
+
+/* The request a DATA or END answers: the oldest in flight (none in replay,
+ * where the recording is taken as it comes). */
+static const lumo_net_pending *answering(const lumo_net_client *c)
+{
+    return c->npending ? &c->pending[0] : NULL;
+}
+
+/* Does DATA d fit the conversation (docs/protocol.md §2, §3)? STATE when it
+ * answers something not asked or not next (channel, mesh, first past or
+ * before the cursor, more than asked, past the end); CORRUPT when its
+ * lighting records are not those of the rounds it names (IVGS: the records
+ * of a round add up over the frames of a split round). Nothing changes. */
+static lumo_status check_data(const lumo_net_client *c, const lumo_net_data *d)
+{
+    const lumo_net_pending *p = answering(c);
+
+    if (!p && !c->cfg.replay)
+        return LUMO_ERR_STATE;
+    if (p && (p->end <= p->cursor || d->channel != p->channel ||
+              (d->channel == LUMO_NET_GEOMETRY && d->mesh != p->mesh) || (uint64_t)d->first + d->count > p->end))
+        return LUMO_ERR_STATE;   /* (a request at the end, the resync marker, is answered by END) */
+    if (d->channel == LUMO_NET_GEOMETRY) {
+        if (d->mesh >= c->mesh_count || d->first != c->held[d->mesh] || d->count != d->records ||
+            (uint64_t)d->first + d->count > c->batches[d->mesh])
+            return LUMO_ERR_STATE;
+        return LUMO_OK;
+    }
+    if (!c->has_ivg || d->form != c->cfg.ivg_form || d->first != c->rounds_held ||
+        (uint64_t)d->first + d->count > c->rounds_total || (d->count == 0 && d->first >= c->rounds_total))
+        return LUMO_ERR_STATE;
+    {
+        const lumo_ivg_order *o = lumo_session_ivg_order(c->session);
+        uint32_t base = lumo_ivg_order_first(o, d->first);
+        uint64_t have = (uint64_t)c->partial_records + d->records;
+        if (d->count ? have != lumo_ivg_order_first(o, d->first + d->count) - base
+                     : have >= lumo_ivg_order_first(o, d->first + 1) - base)
+            return LUMO_ERR_CORRUPT;
+    }
     return LUMO_OK;
 }
 
@@ -228,11 +289,8 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
     uint32_t t0, t1, before;
     lumo_status st;
 
-    if ((st = lumo_net_data_decode(f, &d)))
+    if ((st = lumo_net_data_decode(f, &d)) || (st = check_data(c, &d)))
         return st;
-    if (!c->cfg.replay && (c->npending == 0 || d.channel != c->pending[0].channel ||
-                           (d.channel == LUMO_NET_GEOMETRY && d.mesh != c->pending[0].mesh)))
-        return LUMO_ERR_STATE;
     t0 = now_ms(c);
     before = d.channel == LUMO_NET_GEOMETRY ? c->held[d.mesh] : c->rounds_held;
     st = d.channel == LUMO_NET_GEOMETRY ? apply_geometry(c, &d) : apply_lighting(c, &d);
@@ -262,22 +320,31 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
     return LUMO_OK;
 }
 
+/* END answers a request at the end of its channel (a cursor at the stream's
+ * batch count or the rounds' count): the driver asks for no such thing but
+ * the marker of lumo_net_client_resync. A recording's END is taken as it
+ * comes. */
+static lumo_status check_end(const lumo_net_client *c, const lumo_net_end *e)
+{
+    const lumo_net_pending *p = answering(c);
+
+    if (e->channel == LUMO_NET_GEOMETRY ? e->mesh >= c->mesh_count : !c->has_ivg)
+        return LUMO_ERR_STATE;
+    if (!p)
+        return c->cfg.replay ? LUMO_OK : LUMO_ERR_STATE;
+    if (e->channel != p->channel || (e->channel == LUMO_NET_GEOMETRY && e->mesh != p->mesh) ||
+        p->cursor < (e->channel == LUMO_NET_GEOMETRY ? c->batches[e->mesh] : c->rounds_total))
+        return LUMO_ERR_STATE;
+    return LUMO_OK;
+}
+
 static lumo_status on_end(lumo_net_client *c, const lumo_net_frame *f)
 {
     lumo_net_end e;
     lumo_status st;
 
-    if ((st = lumo_net_end_decode(f, &e)))
+    if ((st = lumo_net_end_decode(f, &e)) || (st = check_end(c, &e)))
         return st;
-    if (!c->cfg.replay && (c->npending == 0 || e.channel != c->pending[0].channel))
-        return LUMO_ERR_STATE;
-    if (e.channel == LUMO_NET_GEOMETRY) {
-        if (e.mesh >= c->mesh_count)
-            return LUMO_ERR_STATE;
-        c->mesh_ended[e.mesh] = 1;
-    } else {
-        c->ivg_ended = 1;
-    }
     if (c->npending)
         memmove(c->pending, c->pending + 1, --c->npending * sizeof *c->pending);
     return LUMO_OK;
@@ -365,12 +432,12 @@ int lumo_net_client_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
 
 static int mesh_open(const lumo_net_client *c, uint32_t m)
 {
-    return !c->mesh_ended[m] && c->asked[m] < c->batches[m];
+    return c->asked[m] < c->batches[m];
 }
 
 static int ivg_open(const lumo_net_client *c)
 {
-    return c->has_ivg && !c->ivg_ended && c->rounds_asked < c->rounds_total;
+    return c->has_ivg && c->rounds_asked < c->rounds_total;
 }
 
 /* Vertices in batches [from, to) of mesh m. */
@@ -498,9 +565,9 @@ static int all_held(const lumo_net_client *c)
     uint32_t m;
 
     for (m = 0; m < c->mesh_count; m++)
-        if (!c->mesh_ended[m] && c->held[m] < c->batches[m])
+        if (c->held[m] < c->batches[m])
             return 0;
-    return !c->has_ivg || c->ivg_ended || c->rounds_held >= c->rounds_total;
+    return !c->has_ivg || c->rounds_held >= c->rounds_total;
 }
 
 lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written)
@@ -528,6 +595,65 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
         (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
     return send_request(c, channel, mesh, out, cap, written);
+}
+
+/* ---- lossy links ------------------------------------------------------------------ */
+
+int lumo_net_client_expects(const lumo_net_client *c, const lumo_net_frame *f)
+{
+    lumo_net_data d;
+    lumo_net_end e;
+
+    if (!c || !f || c->state == LUMO_NET_FAILED)
+        return 0;
+    switch (f->type) {
+    case LUMO_NET_ERROR:
+        return 1;
+    case LUMO_NET_WELCOME:
+        return c->state == LUMO_NET_HELLO_SENT;
+    case LUMO_NET_DATA:
+        return c->state == LUMO_NET_READY && lumo_net_data_decode(f, &d) == LUMO_OK && check_data(c, &d) == LUMO_OK;
+    case LUMO_NET_END:
+        return c->state == LUMO_NET_READY && lumo_net_end_decode(f, &e) == LUMO_OK && check_end(c, &e) == LUMO_OK;
+    default:
+        return 0;
+    }
+}
+
+lumo_status lumo_net_client_resync(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written)
+{
+    lumo_net_request r;
+    lumo_net_pending *p;
+    lumo_status st;
+    int hello;
+
+    if (!c || !out || !written)
+        return LUMO_ERR_ARG;
+    *written = 0;
+    if (c->state == LUMO_NET_FAILED)
+        return c->error;
+    if (c->state == LUMO_NET_DONE)
+        return LUMO_OK;
+    hello = c->state != LUMO_NET_READY;   /* WELCOME lost (or nothing sent yet) */
+    lumo_net_client_reset_link(c);
+    if (hello)
+        return lumo_net_client_hello(c, out, cap, written);
+    memset(&r, 0, sizeof r);
+    r.amount = 1;
+    if (c->mesh_count) {
+        r.channel = LUMO_NET_GEOMETRY, r.cursor = c->batches[0];
+    } else if (c->has_ivg) {
+        r.channel = LUMO_NET_LIGHTING, r.cursor = c->rounds_total;
+    } else {
+        return LUMO_OK;   /* nothing is streamed: nothing can be stale */
+    }
+    if ((st = lumo_net_request_encode(&r, out, cap, written)))
+        return st;
+    p = &c->pending[0];
+    p->channel = r.channel, p->mesh = 0, p->cursor = p->end = r.cursor, p->sent_ms = now_ms(c);
+    c->npending = 1;
+    c->data_bytes = 0;
+    return LUMO_OK;
 }
 
 void lumo_net_client_progress(const lumo_net_client *c, lumo_net_progress *out)

@@ -97,30 +97,12 @@ static lumo_status index_ivg(srv_pkg *p, char *err, size_t errlen)
     return LUMO_OK;
 }
 
-/* The descriptors of WELCOME (docs/protocol.md §2): INFO, each stream's
- * header, IVGD and IVGS, then ORDR when present; and the arena they need. */
-static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
+lumo_status srv_welcome_build(srv_pkg *p, const lumo_net_msg *msgs, uint32_t count, char *err, size_t errlen)
 {
-    lumo_net_msg msgs[LUMO_NET_MAX_WELCOME_MSGS];
-    uint32_t count = 0, i;
     size_t need = LUMO_ARENA_SLACK, cap = LUMO_NET_OVERHEAD + 12;
-    const uint8_t *d;
-    uint32_t n;
+    uint32_t i;
     lumo_status st;
 
-    if ((st = lumo_package_find(&p->pkg, LUMO_PKG_INFO, 0, &d, &n)))
-        return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no INFO chunk", p->path);
-    msgs[count++] = (lumo_net_msg){LUMO_PKG_INFO, 0, n, d};
-    for (i = 0; i < p->mesh_count; i++)
-        msgs[count++] = (lumo_net_msg){LUMO_PKG_PMSH, i, LUMO_PMESH_HEADER_SIZE, p->mesh[i].stream};
-    if (p->ivg.present) {
-        if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &d, &n) == LUMO_OK)
-            msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGD, 0, n, d};
-        if (lumo_package_find(&p->pkg, LUMO_PKG_IVGS, 0, &d, &n) == LUMO_OK)
-            msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGS, 0, n, d};
-    }
-    if (lumo_package_find(&p->pkg, LUMO_PKG_ORDR, 0, &d, &n) == LUMO_OK)
-        msgs[count++] = (lumo_net_msg){LUMO_PKG_ORDR, 0, n, d};
     for (i = 0; i < count; i++) {
         size_t b;
         if ((st = lumo_session_message_need(msgs[i].type, msgs[i].data, msgs[i].len, &b)))
@@ -136,6 +118,31 @@ static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
     if ((st = lumo_net_welcome_encode(p->id, p->arena_need, msgs, count, p->welcome, cap, &p->welcome_len)))
         return srv_fail(err, errlen, st, "%s: WELCOME: %s", p->path, lumo_strerror(st));
     return LUMO_OK;
+}
+
+/* The descriptors of WELCOME (docs/protocol.md §2): INFO, each stream's
+ * header, IVGD and IVGS, then ORDR when present. */
+static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
+{
+    lumo_net_msg msgs[LUMO_NET_MAX_WELCOME_MSGS];
+    uint32_t count = 0, i;
+    const uint8_t *d;
+    uint32_t n;
+
+    if (lumo_package_find(&p->pkg, LUMO_PKG_INFO, 0, &d, &n))
+        return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no INFO chunk", p->path);
+    msgs[count++] = (lumo_net_msg){LUMO_PKG_INFO, 0, n, d};
+    for (i = 0; i < p->mesh_count; i++)
+        msgs[count++] = (lumo_net_msg){LUMO_PKG_PMSH, i, LUMO_PMESH_HEADER_SIZE, p->mesh[i].stream};
+    if (p->ivg.present) {
+        if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &d, &n) == LUMO_OK)
+            msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGD, 0, n, d};
+        if (lumo_package_find(&p->pkg, LUMO_PKG_IVGS, 0, &d, &n) == LUMO_OK)
+            msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGS, 0, n, d};
+    }
+    if (lumo_package_find(&p->pkg, LUMO_PKG_ORDR, 0, &d, &n) == LUMO_OK)
+        msgs[count++] = (lumo_net_msg){LUMO_PKG_ORDR, 0, n, d};
+    return srv_welcome_build(p, msgs, count, err, errlen);
 }
 
 lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)

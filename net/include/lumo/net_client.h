@@ -97,9 +97,8 @@ typedef struct lumo_net_client {
     uint32_t held[LUMO_MAX_MESHES];   /* batch records applied per mesh */
     uint32_t asked[LUMO_MAX_MESHES];  /* batch records asked for (held + pending) */
     uint32_t batches[LUMO_MAX_MESHES];/* batch records of each stream */
-    uint8_t  mesh_ended[LUMO_MAX_MESHES];
     uint32_t rounds_held, rounds_asked, rounds_total;
-    uint8_t  has_ivg, ivg_ended;
+    uint8_t  has_ivg;
     uint32_t turn;                    /* interleaving position */
     lumo_net_pending pending[8];
     uint32_t npending;
@@ -122,12 +121,20 @@ lumo_status lumo_net_client_init(lumo_net_client *c, lumo_session *session, cons
 lumo_status lumo_net_client_hello(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written);
 
 /* Feed one frame received. WELCOME: the descriptors go to the session
- * (NOMEM when the scene needs more arena than the session has); DATA: its
- * records are applied (whole frame or nothing) and the session updated
- * (push-pull) after lighting; END: that channel is done; ERROR: the
- * server's status is returned and the driver is FAILED. A frame that does
- * not fit the conversation is STATE. On an error the session keeps its last
- * good state. */
+ * (NOMEM when the scene needs more arena than the session has). DATA must
+ * answer the oldest request in flight: its channel and mesh, first = the
+ * cursor held, no more batches or rounds than that request asked, never
+ * past a stream's end (STATE otherwise), and lighting records that add up
+ * to the rounds it names (IVGS; over the frames of a split round: CORRUPT
+ * otherwise). Its geometry records are all checked (the walk, each head,
+ * the batch indices, the CRCs) before the first is applied, so a damaged or
+ * foreign DATA changes nothing; only a record the decoder refuses after
+ * those checks leaves the records before it applied. Lighting records go to
+ * the session as one IVGR message (all or nothing) and the session is
+ * updated (push-pull). END answers only a request at the end of its channel
+ * (STATE otherwise). ERROR: the server's status is returned. Anything else
+ * is STATE. On any error the driver is FAILED (every later call returns the
+ * same status) and the session keeps its last good state: it still draws. */
 lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f);
 
 /* Whether f is the conversation's next step, one lumo_net_client_on_frame
@@ -150,6 +157,27 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
 /* After a cut: forget the requests in flight (they will be asked again from
  * the cursors held) so that lumo_net_client_hello resumes. */
 void lumo_net_client_reset_link(lumo_net_client *c);
+
+/* ---- lossy links (a serial line: docs/protocol.md §1 and §7 "Serial lines") ----
+ * Bytes may be lost or damaged: the caller skips a refused frame
+ * (lumo_net_resync), and frames may arrive that answer requests sent before
+ * a loss. Two calls keep the conversation exact:
+ *
+ * lumo_net_client_expects: 1 when on_frame would take f as the next frame
+ * of the conversation (WELCOME while it is awaited, a DATA or END answering
+ * the oldest request in flight as on_frame checks them, ERROR), 0 for a
+ * frame to drop unseen (a late answer, a duplicate). Nothing changes.
+ *
+ * lumo_net_client_resync: after a loss (a refused frame, or silence while
+ * something is awaited). Before WELCOME it writes HELLO again. Afterwards it
+ * forgets the requests in flight (reset_link) and writes a marker: a
+ * REQUEST at the end of mesh 0 (of the rounds without meshes), which the
+ * server answers with END only, in turn after everything asked before it.
+ * Until that END arrives every DATA is unexpected (stale); the requests
+ * lumo_net_client_next writes meanwhile go out behind the marker and ask
+ * again from the cursors held. *written is 0 when nothing is streamed. */
+int lumo_net_client_expects(const lumo_net_client *c, const lumo_net_frame *f);
+lumo_status lumo_net_client_resync(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written);
 
 typedef struct lumo_net_progress {
     uint32_t vertices, full_vertices;   /* all meshes */
