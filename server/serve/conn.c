@@ -521,7 +521,7 @@ static int make_job(srv_conn *c, int64_t now)
         c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
         c->op_count--;
         if (o->kind == SRV_OP_WELCOME) {
-            push_welcome(c, now + link_cfg(c)->latency_us);
+            push_welcome(c, o->due_us + link_cfg(c)->latency_us);
             return 1;
         }
         st = srv_plan_start(c->pkg, &o->r, c->form, c->max_payload, &c->answer, &end, err, sizeof err);
@@ -531,11 +531,11 @@ static int make_job(srv_conn *c, int64_t now)
         }
         if (end) {
             push_end(c, o->r.channel, o->r.channel == LUMO_NET_GEOMETRY ? o->r.mesh : 0,
-                     now + link_cfg(c)->latency_us);
+                     o->due_us + link_cfg(c)->latency_us);
             return 1;
         }
         c->answering = 1;
-        c->answer_due_us = now + link_cfg(c)->latency_us;
+        c->answer_due_us = o->due_us + link_cfg(c)->latency_us;
         return make_job(c, now);
     }
     return 0;
