@@ -26,8 +26,10 @@ lumo_status lumo_net_client_init(lumo_net_client *c, lumo_session *session, cons
     c->cfg = *cfg;
     if (!c->cfg.policy.target_ms)
         c->cfg.policy.target_ms = DEFAULT_TARGET_MS;
-    if (!c->cfg.policy.pipeline)
+    if (!c->cfg.policy.pipeline) {
         c->cfg.policy.pipeline = DEFAULT_PIPELINE;
+        c->pipeline_auto = 1;
+    }
     c->session = session;
     return LUMO_OK;
 }
@@ -439,6 +441,33 @@ static int first_picture_asked(const lumo_net_client *c)
     return c->rounds_asked > 0 || !ivg_open(c);
 }
 
+/* With the pipeline left to the driver (policy.pipeline 0): the answers in
+ * flight, at the measured bytes per vertex and per round and the measured
+ * flow, would leave the link idle before the answer to a request sent now
+ * could arrive (they take less than a round trip). A count of requests
+ * alone does not cover a round trip when the requests are small (the rest
+ * of a small mesh: a few hundred bytes), and each such wait costs a round
+ * trip of idle link. */
+static int link_idles(const lumo_net_client *c)
+{
+    uint64_t bytes = 0;
+    uint32_t k;
+
+    if (!c->pipeline_auto || !c->cfg.clock || !c->costs.rtt_ms || !c->costs.ms_per_kib_q10)
+        return 0;
+    for (k = 0; k < c->npending; k++) {
+        const lumo_net_pending *p = &c->pending[k];
+        if (p->channel == LUMO_NET_GEOMETRY) {
+            uint32_t from = c->held[p->mesh] > p->cursor ? c->held[p->mesh] : p->cursor;
+            bytes += (uint64_t)batch_vertices(c, p->mesh, from, p->end) * c->costs.bytes_per_vertex;
+        } else {
+            uint32_t from = c->rounds_held > p->cursor ? c->rounds_held : p->cursor;
+            bytes += (uint64_t)(p->end > from ? p->end - from : 0) * c->costs.bytes_per_round;
+        }
+    }
+    return ((bytes * c->costs.ms_per_kib_q10) >> 20) < c->costs.rtt_ms;
+}
+
 static int all_held(const lumo_net_client *c)
 {
     uint32_t m;
@@ -470,7 +499,8 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
     }
     if (c->cfg.replay)
         return LUMO_OK;   /* a recording answers what was asked when it was made */
-    if (c->npending >= (first_picture_asked(c) ? c->cfg.policy.pipeline : MAX_PIPELINE) ||
+    if ((c->npending >= (first_picture_asked(c) ? c->cfg.policy.pipeline : MAX_PIPELINE) &&
+         !(c->npending < MAX_PIPELINE && link_idles(c))) ||
         (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
     return send_request(c, channel, mesh, out, cap, written);

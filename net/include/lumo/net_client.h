@@ -38,9 +38,13 @@ typedef struct lumo_net_policy {
     uint32_t vertices;     /* geometry request size; 0: adaptive */
     uint32_t rounds;       /* lighting request size (rounds); 0: adaptive */
     uint32_t target_ms;    /* adaptive: aim each response at this long (0: 250) */
-    uint32_t pipeline;     /* requests in flight (0: 4); hides the link's latency.
-                              The first picture's requests (base meshes, the
-                              corners) go out together whatever this is. */
+    uint32_t pipeline;     /* requests in flight, 1..8; hides the link's latency.
+                              0: at least 4, and more (up to 8) while the
+                              answers in flight would take less than the
+                              measured round trip (small requests, e.g. the
+                              rest of a small mesh). The first picture's
+                              requests (base meshes, the corners) go out
+                              together whatever this is. */
 } lumo_net_policy;
 
 /* A clock in milliseconds (wrapping u32), for the adaptive sizes; NULL: the
@@ -96,6 +100,7 @@ typedef struct lumo_net_client {
     uint32_t rounds_held, rounds_asked, rounds_total;
     uint8_t  has_ivg, ivg_ended;
     uint32_t turn;                    /* interleaving position */
+    uint8_t  pipeline_auto;           /* policy.pipeline was 0 */
     lumo_net_pending pending[8];
     uint32_t npending;
     uint32_t partial_records;         /* records of a round split over frames */
