@@ -243,6 +243,7 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
     if (d.channel == LUMO_NET_GEOMETRY) {
         uint32_t v = batch_vertices(c, d.mesh, before, c->held[d.mesh]);
         c->costs.bytes_per_vertex = v ? d.len / v + 1 : c->costs.bytes_per_vertex;
+        c->mesh_bytes[d.mesh] += d.len;
     } else {
         uint32_t u = now_ms(c);
         lumo_session_update(c->session);   /* push-pull after lighting (§4.1) */
@@ -331,6 +332,16 @@ static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t fr
     return lumo_net_vertices_before(&h, to) - lumo_net_vertices_before(&h, from);
 }
 
+/* Bytes per vertex of mesh m: what its batches held so far took (meshes
+ * differ: a wall's one-vertex batch is mostly record framing, ~100 bytes a
+ * vertex, the dragon's batches ~5); the last DATA's figure before any. */
+static uint32_t mesh_bytes_per_vertex(const lumo_net_client *c, uint32_t m)
+{
+    uint32_t v = batch_vertices(c, m, 0, c->held[m]);
+
+    return v && c->mesh_bytes[m] ? c->mesh_bytes[m] / v + 1 : c->costs.bytes_per_vertex;
+}
+
 /* How much one request should ask (seed 000 §5.2): fixed by the policy, or
  * what the measured link and apply costs fit into the target time. */
 static uint32_t adaptive(const lumo_net_client *c, uint32_t bytes_per_unit, uint32_t fixed_ms,
@@ -360,7 +371,7 @@ static uint32_t geometry_amount(const lumo_net_client *c, uint32_t m)
         return c->cfg.policy.vertices;
     if (lumo_session_stream_header(c->session, m, &h))
         return 1;
-    return adaptive(c, c->costs.bytes_per_vertex, 0, h.batch_vertices, MAX_VERTICES);
+    return adaptive(c, mesh_bytes_per_vertex(c, m), 0, h.batch_vertices, MAX_VERTICES);
 }
 
 static uint32_t lighting_amount(const lumo_net_client *c)
@@ -459,7 +470,7 @@ static int link_idles(const lumo_net_client *c)
         const lumo_net_pending *p = &c->pending[k];
         if (p->channel == LUMO_NET_GEOMETRY) {
             uint32_t from = c->held[p->mesh] > p->cursor ? c->held[p->mesh] : p->cursor;
-            bytes += (uint64_t)batch_vertices(c, p->mesh, from, p->end) * c->costs.bytes_per_vertex;
+            bytes += (uint64_t)batch_vertices(c, p->mesh, from, p->end) * mesh_bytes_per_vertex(c, p->mesh);
         } else {
             uint32_t from = c->rounds_held > p->cursor ? c->rounds_held : p->cursor;
             bytes += (uint64_t)(p->end > from ? p->end - from : 0) * c->costs.bytes_per_round;

@@ -76,7 +76,9 @@ typedef struct lumo_net_pending {
 typedef struct lumo_net_costs {
     uint32_t rtt_ms;               /* link: the shortest request-to-answer time seen */
     uint32_t ms_per_kib_q10;       /* link: ms per KiB once the answer flows */
-    uint32_t bytes_per_vertex;     /* geometry bytes per vertex seen so far */
+    uint32_t bytes_per_vertex;     /* geometry bytes per vertex of the last DATA
+                                      (each mesh's own from its mesh_bytes once
+                                      it has batches) */
     uint32_t bytes_per_round;      /* lighting bytes per round */
     uint32_t apply_ms_per_kib_q10; /* session: ms to apply a KiB */
     uint32_t update_ms;            /* session: one push-pull */
@@ -97,6 +99,7 @@ typedef struct lumo_net_client {
     uint32_t asked[LUMO_MAX_MESHES];  /* batch records asked for (held + pending) */
     uint32_t batches[LUMO_MAX_MESHES];/* batch records of each stream */
     uint8_t  mesh_ended[LUMO_MAX_MESHES];
+    uint32_t mesh_bytes[LUMO_MAX_MESHES];  /* record bytes of the batches held, per mesh */
     uint32_t rounds_held, rounds_asked, rounds_total;
     uint8_t  has_ivg, ivg_ended;
     uint32_t turn;                    /* interleaving position */
