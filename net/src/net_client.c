@@ -201,14 +201,14 @@ static lumo_status apply_lighting(lumo_net_client *c, const lumo_net_data *d)
 
 /* The oldest pending request is answered once its cursor reaches its end.
  * The link is two numbers (seed 000 §5.2: a request costs a round trip plus
- * its bytes): the shortest answer time seen is the round trip; the rest of
- * an answer's time, or the gap since the previous answer when requests were
- * in flight back to back, is its bytes' transfer. */
+ * its bytes): the shortest answer time seen is the round trip; an answer's
+ * bytes flowed from a round trip after its request, or from the previous
+ * answer's end when that came later (requests in flight back to back). */
 static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
 {
     lumo_net_pending *p = &c->pending[0];
     uint32_t held = p->channel == LUMO_NET_GEOMETRY ? c->held[p->mesh] : c->rounds_held;
-    uint32_t took, flow;
+    uint32_t took, flow, from;
 
     c->data_bytes += bytes;
     if (held < p->end)
@@ -216,7 +216,13 @@ static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
     took = t - p->sent_ms;
     if (!c->costs.rtt_ms || took < c->costs.rtt_ms)
         c->costs.rtt_ms = took ? took : 1;
-    flow = c->retired && p->sent_ms < c->retired_ms ? t - c->retired_ms : took - c->costs.rtt_ms;
+    /* The answer flowed from when its first byte could come (a round trip
+     * after the request) or, if the link was still busy with the previous
+     * answer then, from that one's end. */
+    from = p->sent_ms + c->costs.rtt_ms;
+    if (c->retired && (int32_t)(c->retired_ms - from) > 0)
+        from = c->retired_ms;
+    flow = (int32_t)(t - from) > 0 ? t - from : 0;
     c->costs.ms_per_kib_q10 = blend_rate(c->costs.ms_per_kib_q10, flow ? flow : 1, c->data_bytes);
     c->data_bytes = 0;
     c->retired_ms = t;
