@@ -124,13 +124,13 @@ RATE_B=20000; LAT_B=1
 SIZES_B="250 500 1000 2500 5000 10000 100000"
 start b "$dir/d203.lumo" --rate $RATE_B --latency $LAT_B
 : >"$dir/fig5.dat"
-for n in $SIZES_B; do
-    for p in 1 auto; do
-        for r in 1 2 3; do
-            if [ $p = 1 ]; then run "$dir/b-$n-$p-$r.txt" --no-ivg --order geometry --vertices $n --pipeline 1
-            else run "$dir/b-$n-$p-$r.txt" --no-ivg --order geometry --vertices $n; fi
-        done
+for r in 1 2 3; do   # repetitions outermost: a burst of other load hits one run of a size, not all three
+    for n in $SIZES_B; do
+        run "$dir/b-$n-1-$r.txt" --no-ivg --order geometry --vertices $n --pipeline 1
+        run "$dir/b-$n-auto-$r.txt" --no-ivg --order geometry --vertices $n
     done
+done
+for n in $SIZES_B; do
     t1=$(median3 $(for r in 1 2 3; do f="$dir/b-$n-1-$r.txt"; echo $(( $(kv $f geometry_us) - $(kv $f welcome_us) )); done))
     ta=$(median3 $(for r in 1 2 3; do f="$dir/b-$n-auto-$r.txt"; echo $(( $(kv $f geometry_us) - $(kv $f welcome_us) )); done))
     ap=$(median3 $(for r in 1 2 3; do kv "$dir/b-$n-auto-$r.txt" geometry_apply_us; done))
