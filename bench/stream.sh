@@ -133,7 +133,7 @@ done
 for n in $SIZES_B; do
     t1=$(median3 $(for r in 1 2 3; do f="$dir/b-$n-1-$r.txt"; echo $(( $(kv $f geometry_us) - $(kv $f welcome_us) )); done))
     ta=$(median3 $(for r in 1 2 3; do f="$dir/b-$n-auto-$r.txt"; echo $(( $(kv $f geometry_us) - $(kv $f welcome_us) )); done))
-    ap=$(median3 $(for r in 1 2 3; do kv "$dir/b-$n-auto-$r.txt" geometry_apply_us; done))
+    ap=$(median3 $(for r in 1 2 3; do kv "$dir/b-$n-auto-$r.txt" geometry_apply_cpu_us; done))
     f="$dir/b-$n-auto-1.txt"
     echo "$n $t1 $ta $ap $(kv $f requests) $(kv $f geometry_bytes) $(kv $f data_frames)" >>"$dir/fig5.dat"
 done
@@ -144,7 +144,7 @@ start bs "$dir/d203.lumo" --rate $RATE_A --latency $LAT_A
 for n in $SIZES_BS; do
     run "$dir/bs-$n.txt" --no-ivg --order geometry --vertices $n
     f="$dir/bs-$n.txt"
-    echo "$n $(( $(kv $f geometry_us) - $(kv $f welcome_us) )) $(kv $f geometry_apply_us) $(kv $f requests) $(kv $f geometry_bytes)" >>"$dir/fig5s.dat"
+    echo "$n $(( $(kv $f geometry_us) - $(kv $f welcome_us) )) $(kv $f geometry_apply_cpu_us) $(kv $f requests) $(kv $f geometry_bytes)" >>"$dir/fig5s.dat"
 done
 stop
 geo_bytes=$(awk 'NR == 1 { print $6 }' "$dir/fig5.dat")
@@ -153,7 +153,7 @@ geo_bytes=$(awk 'NR == 1 { print $6 }' "$dir/fig5.dat")
 # Lighting first, geometry fixed (one request per mesh, after the lighting);
 # the time from WELCOME to the last round applied. A round is one record per
 # slice of the grid's longest axis (32 slices): K rounds per request = the
-# paper's "K samples per slice". Client work = time inside the driver for
+# paper's "K samples per slice". Client work = CPU time inside the driver for
 # lighting DATA (records applied: dequantized or copied, and push-pull).
 SIZES_C="4 8 16 32 64 128 256 1024"
 start c "$dir/g32.lumo" --rate $RATE_B --latency $LAT_B
@@ -165,8 +165,10 @@ for k in $SIZES_C; do
     line="$k"
     for m in q f n; do
         f="$dir/c-$m-$k.txt"
-        line="$line $(( $(kv $f lighting_us) - $(kv $f welcome_us) )) $(kv $f lighting_apply_us) $(kv $f pushpull_us) $(kv $f pushpull_calls) $(kv $f lighting_bytes)"
+        line="$line $(( $(kv $f lighting_us) - $(kv $f welcome_us) )) $(kv $f lighting_apply_cpu_us) $(kv $f pushpull_cpu_us) $(kv $f pushpull_calls) $(kv $f lighting_bytes)"
     done
+    # columns 17-19: the median push-pull call in CPU µs of q, f, n
+    for m in q f n; do line="$line $(kv "$dir/c-$m-$k.txt" pushpull_cpu_median_us)"; done
     echo "$line" >>"$dir/fig6.dat"
 done
 stop
@@ -228,11 +230,11 @@ set yrange [0:*]
 set title "20 Mbit/s, 1 ms each way"
 plot "$dir/fig5.dat" u 1:(\$2/1e6) w lp pt 7 lw 2 t "stop-and-wait (--pipeline 1)", \
      "$dir/fig5.dat" u 1:(\$3/1e6) w lp pt 5 lw 2 t "default pipeline", \
-     "$dir/fig5.dat" u 1:(\$4/1e6) w lp pt 4 dt 2 t "client work (default pipeline)", \
+     "$dir/fig5.dat" u 1:(\$4/1e6) w lp pt 4 dt 2 t "client CPU time (default pipeline)", \
      $raw_b w l lw 2 lc rgb "cyan" t "no streaming: one transfer of the same bytes"
 set title "1 Mbit/s, 50 ms each way"
 plot "$dir/fig5s.dat" u 1:(\$2/1e6) w lp pt 5 lw 2 lc 2 t "default pipeline", \
-     "$dir/fig5s.dat" u 1:(\$3/1e6) w lp pt 4 dt 2 lc 3 t "client work", \
+     "$dir/fig5s.dat" u 1:(\$3/1e6) w lp pt 4 dt 2 lc 3 t "client CPU time", \
      $raw_bs w l lw 2 lc rgb "cyan" t "no streaming"
 unset multiplot
 set output "docs/bench-stream-fig6.png"
@@ -241,17 +243,17 @@ set title "Seed 000 Fig. 6 over lumo-server: 32^3 IVG at 20 Mbit/s, 1 ms each wa
 set xlabel "rounds per request (= samples per slice, 32 slices)"; set ylabel "seconds"; set key at graph 0.98, 0.85
 set xrange [3:1500]
 plot "$dir/fig6.dat" u 1:(\$7/1e6) w lp pt 7 lw 2 lc 1 t "binary32 (${fb} bytes): download", \
-     "$dir/fig6.dat" u 1:(\$8/1e6) w lp pt 6 dt 2 lc 1 t "binary32: client work (records + push-pull)", \
+     "$dir/fig6.dat" u 1:(\$8/1e6) w lp pt 6 dt 2 lc 1 t "binary32: client CPU (records + push-pull)", \
      $raw_f w l lc 1 dt 3 lw 2 t "binary32: one transfer", \
      "$dir/fig6.dat" u 1:(\$2/1e6) w lp pt 5 lw 2 lc 2 t "quantized (${qb} bytes): download", \
-     "$dir/fig6.dat" u 1:(\$3/1e6) w lp pt 4 dt 2 lc 2 t "quantized: client work", \
+     "$dir/fig6.dat" u 1:(\$3/1e6) w lp pt 4 dt 2 lc 2 t "quantized: client CPU", \
      $raw_q w l lc 2 dt 3 lw 2 t "quantized: one transfer"
 set output "docs/bench-stream-fig7.png"
 set title "Seed 000 Fig. 7 over lumo-server: quantized 32^3 IVG, push-pull with and without smoothing"
 plot "$dir/fig6.dat" u 1:(\$2/1e6) w lp pt 7 lw 2 lc 1 t "download, smoothing", \
      "$dir/fig6.dat" u 1:(\$12/1e6) w lp pt 5 lw 2 lc 2 t "download, no smoothing", \
-     "$dir/fig6.dat" u 1:(\$4/1e6) w lp pt 6 dt 2 lc 1 t "push-pull time, smoothing", \
-     "$dir/fig6.dat" u 1:(\$14/1e6) w lp pt 4 dt 2 lc 2 t "push-pull time, no smoothing", \
+     "$dir/fig6.dat" u 1:(\$4/1e6) w lp pt 6 dt 2 lc 1 t "push-pull CPU time, smoothing", \
+     "$dir/fig6.dat" u 1:(\$14/1e6) w lp pt 4 dt 2 lc 2 t "push-pull CPU time, no smoothing", \
      $raw_q w l lc rgb "cyan" lw 2 t "one transfer of the same bytes"
 EOF
 
@@ -300,13 +302,14 @@ elapsed=$(( $(date +%s) - started ))
     echo
     echo "Default scene with the 203k dragon, \`lumo-bench-stream run --no-ivg --order geometry --vertices N\`"
     echo "(HELLO asks for no lighting): time from WELCOME to the last batch applied, median of 3 runs;"
-    echo "client work = time applying batches (Draco decode, vertex splits, normals) inside that time."
+    echo "client work = CPU time applying batches (Draco decode, vertex splits, normals) inside that time"
+    echo "(this thread's CPU time: other jobs share the 2 cores)."
     echo "No streaming = one request and one transfer of the same ${geo_bytes} record bytes at the link rate"
     echo "(plus its round trip). Plot: [docs/bench-stream-fig5.png](bench-stream-fig5.png)."
     echo
     echo "20 Mbit/s, 1 ms each way:"
     echo
-    echo "| vertices per request | requests | stop-and-wait s | over no streaming | default pipeline s | over no streaming | client work s |"
+    echo "| vertices per request | requests | stop-and-wait s | over no streaming | default pipeline s | over no streaming | client CPU s |"
     echo "|---|---|---|---|---|---|---|"
     awk -v raw="$raw_b" '{ printf "| %d | %d | %.3f | %+.0f %% | %.3f | %+.0f %% | %.3f |\n", $1, $5, $2 / 1e6,
         100 * ($2 / 1e6 / raw - 1), $3 / 1e6, 100 * ($3 / 1e6 / raw - 1), $4 / 1e6 }' "$dir/fig5.dat"
@@ -314,7 +317,7 @@ elapsed=$(( $(date +%s) - started ))
     echo
     echo "1 Mbit/s, 50 ms each way, default pipeline (one run each):"
     echo
-    echo "| vertices per request | requests | download s | over no streaming | client work s |"
+    echo "| vertices per request | requests | download s | over no streaming | client CPU s |"
     echo "|---|---|---|---|---|"
     awk -v raw="$raw_bs" '{ printf "| %d | %d | %.3f | %+.1f %% | %.3f |\n", $1, $4, $2 / 1e6, 100 * ($2 / 1e6 / raw - 1), $3 / 1e6 }' "$dir/fig5s.dat"
     echo "| no streaming | 1 | $raw_bs | | |"
@@ -323,10 +326,10 @@ elapsed=$(( $(date +%s) - started ))
     echo
     echo "\`lumo-bench-stream run --order lighting --vertices 100000000 --rounds K [--float]\` at 20 Mbit/s,"
     echo "1 ms: time from WELCOME to the last of the $rounds_c rounds applied. A round is one record per slice"
-    echo "(32 slices), so K is the paper's samples per slice. Client work = records fed to the session"
+    echo "(32 slices), so K is the paper's samples per slice. Client work = CPU time feeding records to the session"
     echo "(dequantized, or copied) + push-pull after each answer. Plot: [docs/bench-stream-fig6.png](bench-stream-fig6.png)."
     echo
-    echo "| K | push-pulls (answers) | quantized s | client work s | of which push-pull s | binary32 s | client work s | of which push-pull s | binary32 / quantized |"
+    echo "| K | push-pulls (answers) | quantized s | client CPU s | of which push-pull | binary32 s | client CPU s | of which push-pull | binary32 / quantized |"
     echo "|---|---|---|---|---|---|---|---|---|"
     awk '{ printf "| %d | %d | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.2f |\n", $1, $5, $2 / 1e6, $3 / 1e6, $4 / 1e6,
         $7 / 1e6, $8 / 1e6, $9 / 1e6, $7 / $2 }' "$dir/fig6.dat"
@@ -359,20 +362,21 @@ elapsed=$(( $(date +%s) - started ))
     echo "### d. Push-pull with and without smoothing over the protocol (Fig. 7)"
     echo
     echo "Quantized 32^3 grid as in c, \`--no-smoothing\` against the default (smoothing); push-pull time ="
-    echo "the driver's \`lumo_session_update\` calls (one per lighting answer) summed. Smoothing share ="
-    echo "(smooth − plain) / smooth push-pull time, shown where both runs made 30 calls or more (fewer are at"
-    echo "the mercy of other jobs on the 2 cores); the paper reports 80 % (bench-ivg above: ~20 % on host)."
+    echo "this thread's CPU time in the driver's \`lumo_session_update\` calls (one per lighting answer), summed"
+    echo "(other jobs share the 2 cores: wall times move with them, CPU time much less). Smoothing share ="
+    echo "(smooth − plain) / smooth of the median call, shown where the runs made 30 calls or more; the paper"
+    echo "reports 80 % (bench-ivg above: 13-22 % at 32^3)."
     echo "Plot: [docs/bench-stream-fig7.png](bench-stream-fig7.png)."
     echo
-    echo "| K | push-pulls | download s, smoothing | download s, none | push-pull s, smoothing | push-pull s, none | ms per push-pull, smoothing | ms, none | smoothing share |"
+    echo "| K | push-pulls | download s, smoothing | download s, none | push-pull CPU s, smoothing | push-pull CPU s, none | median ms per push-pull, smoothing | median ms, none | smoothing share |"
     echo "|---|---|---|---|---|---|---|---|---|"
     awk '{ printf "| %d | %d | %.3f | %.3f | %.3f | %.3f | %.2f | %.2f | %s |\n", $1, $5, $2 / 1e6, $12 / 1e6, $4 / 1e6,
-        $14 / 1e6, $4 / $5 / 1e3, $14 / $15 / 1e3, $5 < 30 ? "-" : sprintf("%.0f %%", 100 * ($4 - $14) / $4) }' "$dir/fig6.dat"
+        $14 / 1e6, $17 / 1e3, $19 / 1e3, $5 < 30 ? "-" : sprintf("%.0f %%", 100 * ($17 - $19) / $17) }' "$dir/fig6.dat"
     echo
     awk '{ s += $4; p += $14; n += $5; m += $15 } END {
-        printf "Over all K: %.3f s of push-pull with smoothing (%d calls, %.2f ms each), %.3f s without (%d calls, %.2f ms\n", s / 1e6, n, s / n / 1e3, p / 1e6, m, p / m / 1e3
-        printf "each): smoothing is %.0f %% of the push-pull time. Only where the client is the bottleneck (K ≤ 8 here)\n", 100 * (s - p) / s
-        printf "does it show in the download time.\n" }' "$dir/fig6.dat"
+        printf "Over all K, CPU time in push-pull: %.3f s with smoothing (%d calls), %.3f s without (%d calls): smoothing\n", s / 1e6, n, p / 1e6, m
+        printf "is %.0f %% of the push-pull time. Only where the client is the bottleneck (small K) does it show in the\n", 100 * (s - p) / s
+        printf "download time.\n" }' "$dir/fig6.dat"
     echo
     echo "### e. Server throughput, CPU per MB and memory per client (loopback, no link emulation)"
     echo
@@ -388,6 +392,10 @@ elapsed=$(( $(date +%s) - started ))
     awk -v tck="$tck" '{ mb = $3 / 1e6; cpu = $5 / tck
         printf "| %d | %d | %.1f | %.3f | %.0f | %.2f | %.2f | %.0f %% | %d | %d | %.0f |\n", $1, $2, mb, $4, mb / $4, cpu,
             1000 * cpu / mb, 100 * cpu / $4, $6, $7, ($7 - $6) * 1024 / $1 }' "$dir/load.dat"
+    echo
+    awk -v tck="$tck" '{ c += $5 / tck; m += $3 / 1e6; b = ($7 - $6) * 1024 / $1; if (b > mx) mx = b } END {
+        printf "Over all rows: %.2f ms of server CPU per MB, one core of this machine for ~%.0f MB/s; memory at most\n", 1000 * c / m, m / c
+        printf "%.0f bytes per client beside the fixed kernel buffers.\n", mx }' "$dir/load.dat"
     if [ -s "$dir/perf.txt" ]; then
         echo
         echo "Server CPU by symbol (self time; \`perf record -p PID\` over a separate 100-client run; [k] kernel, [.] lumo-server):"
@@ -395,6 +403,11 @@ elapsed=$(( $(date +%s) - started ))
         echo "| share | where | symbol |"
         echo "|---|---|---|"
         awk '{ printf "| %s | %s | `%s` |\n", $1, $2 == "k" ? "kernel" : "user", $3 }' "$dir/perf.txt"
+        if grep -q lumo_wire_crc32 "$dir/perf.txt"; then
+            echo
+            echo "\`lumo_wire_crc32\` is the CRC-32 trailer of each DATA frame, computed over the package bytes as"
+            echo "the frame is made (conn.c push_data; the SDK's half-byte table, chosen for client memory)."
+        fi
     fi
 } >"$out.tmp"
 mv "$out.tmp" "$out"

@@ -8,10 +8,12 @@
  *       line of key=value with microsecond times from just before connect():
  *       welcome, first picture (every base mesh and the grid's corners, as
  *       lumo-client defines it), geometry complete, lighting complete, full
- *       scene; bytes; requests; and the client's own work: time inside
- *       lumo_net_client_on_frame for DATA (records applied + push-pull) and
+ *       scene; bytes; requests; and the client's own work: time (wall and
+ *       this thread's CPU) inside lumo_net_client_on_frame for DATA (records
+ *       applied + push-pull) and
  *       inside lumo_session_update alone (push-pull; the driver's calls, timed
- *       through the linker's --wrap).
+ *       through the linker's --wrap: wall time summed, and this thread's CPU
+ *       time summed and its median call).
  *       Options as lumo-client: --order interleaved|geometry|lighting,
  *       --vertices N, --rounds K, --pipeline N, --target-ms T, --float,
  *       --no-smoothing, --package N; and --no-ivg (HELLO asks for no lighting),
@@ -65,17 +67,49 @@ static uint32_t clock_ms(void *ctx)
 }
 
 /* push-pull: every call the driver makes, timed (-Wl,--wrap=lumo_session_update) */
-static int64_t g_pp_us;
+/* This thread's CPU time (µs): what a call cost, whatever else runs on the
+ * machine (a shared host descheduling us does not count). */
+static int64_t cpu_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+#define PP_KEEP 65536
+static int64_t g_pp_us, g_pp_cpu_us;
 static uint32_t g_pp_calls;
+static uint32_t g_pp_each[PP_KEEP];   /* each call's CPU µs, for the median */
 int __real_lumo_session_update(lumo_session *s);
 int __wrap_lumo_session_update(lumo_session *s);
 int __wrap_lumo_session_update(lumo_session *s)
 {
-    int64_t t = now_us();
+    int64_t t = now_us(), c = cpu_us(), d;
     int r = __real_lumo_session_update(s);
     g_pp_us += now_us() - t;
+    d = cpu_us() - c;
+    g_pp_cpu_us += d;
+    if (g_pp_calls < PP_KEEP)
+        g_pp_each[g_pp_calls] = (uint32_t)d;
     g_pp_calls++;
     return r;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The median push-pull call (CPU µs). */
+static uint32_t pp_median(void)
+{
+    uint32_t n = g_pp_calls < PP_KEEP ? g_pp_calls : PP_KEEP;
+
+    if (!n)
+        return 0;
+    qsort(g_pp_each, n, sizeof *g_pp_each, cmp_u32);
+    return g_pp_each[n / 2];
 }
 
 static int tcp_connect(const char *spec)
@@ -212,7 +246,7 @@ static int mode_run(int argc, char **argv)
     size_t bytes, cap, len = 0, n;
     uint8_t *mem, *rx, out[1024];
     uint64_t in = 0, outb = 0, geo_bytes = 0, light_bytes = 0;
-    int64_t geo_apply_us = 0, light_apply_us = 0;
+    int64_t geo_apply_us = 0, light_apply_us = 0, geo_cpu_us = 0, light_cpu_us = 0;
     uint32_t requests = 0, frames = 0, data_frames = 0;
     int64_t t0, t_welcome = -1, t_first = -1, t_geo = -1, t_light = -1, t_full = -1, apply_us = 0;
     int fd, rc = 1;
@@ -282,7 +316,7 @@ static int mode_run(int argc, char **argv)
         in += (uint64_t)got;
         for (;;) {
             lumo_net_frame f;
-            int64_t t, t2;
+            int64_t t, t2, c1, c2;
             st = lumo_net_frame_decode(rx + at, len - at, drv.cfg.max_payload, &f, &used);
             if (st == LUMO_ERR_TRUNCATED)
                 break;
@@ -290,12 +324,12 @@ static int mode_run(int argc, char **argv)
                 fprintf(stderr, "lumo-bench-stream: frame: %s\n", lumo_strerror(st));
                 goto done;
             }
-            t = now_us();
+            t = now_us(), c1 = cpu_us();
             if ((st = lumo_net_client_on_frame(&drv, &f))) {
                 fprintf(stderr, "lumo-bench-stream: frame type %u: %s\n", f.type, lumo_strerror(st));
                 goto done;
             }
-            t2 = now_us();
+            t2 = now_us(), c2 = cpu_us();
             frames++;
             if (f.type == LUMO_NET_DATA) {
                 if (o.trace)
@@ -308,9 +342,11 @@ static int mode_run(int argc, char **argv)
                 if (f.payload[0] == LUMO_NET_GEOMETRY) {
                     geo_bytes += f.len - LUMO_NET_DATA_HEAD;
                     geo_apply_us += t2 - t;
+                    geo_cpu_us += c2 - c1;
                 } else {
                     light_bytes += f.len - LUMO_NET_DATA_HEAD;
                     light_apply_us += t2 - t;
+                    light_cpu_us += c2 - c1;
                 }
             }
             if (f.type == LUMO_NET_WELCOME && t_welcome < 0)
@@ -337,13 +373,15 @@ done:
         lumo_net_client_progress(&drv, &p);
         printf("welcome_us=%lld first_us=%lld geometry_us=%lld lighting_us=%lld full_us=%lld bytes_in=%llu "
                "bytes_out=%llu geometry_bytes=%llu lighting_bytes=%llu requests=%u frames=%u data_frames=%u "
-               "vertices=%u rounds=%u apply_us=%lld geometry_apply_us=%lld lighting_apply_us=%lld pushpull_us=%lld "
-               "pushpull_calls=%u rtt_ms=%u\n",
+               "vertices=%u rounds=%u apply_us=%lld geometry_apply_us=%lld lighting_apply_us=%lld "
+               "geometry_apply_cpu_us=%lld lighting_apply_cpu_us=%lld pushpull_us=%lld "
+               "pushpull_calls=%u pushpull_cpu_us=%lld pushpull_cpu_median_us=%u rtt_ms=%u\n",
                (long long)t_welcome, (long long)t_first, (long long)t_geo, (long long)t_light, (long long)t_full,
                (unsigned long long)in, (unsigned long long)outb, (unsigned long long)geo_bytes,
                (unsigned long long)light_bytes, requests, frames, data_frames, p.vertices, p.rounds,
-               (long long)apply_us, (long long)geo_apply_us, (long long)light_apply_us, (long long)g_pp_us, g_pp_calls,
-               drv.costs.rtt_ms);
+               (long long)apply_us, (long long)geo_apply_us, (long long)light_apply_us, (long long)geo_cpu_us,
+               (long long)light_cpu_us, (long long)g_pp_us, g_pp_calls,
+               (long long)g_pp_cpu_us, pp_median(), drv.costs.rtt_ms);
     }
     close(fd);
     free(rx);
