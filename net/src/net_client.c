@@ -26,8 +26,10 @@ lumo_status lumo_net_client_init(lumo_net_client *c, lumo_session *session, cons
     c->cfg = *cfg;
     if (!c->cfg.policy.target_ms)
         c->cfg.policy.target_ms = DEFAULT_TARGET_MS;
-    if (!c->cfg.policy.pipeline)
+    if (!c->cfg.policy.pipeline) {
         c->cfg.policy.pipeline = DEFAULT_PIPELINE;
+        c->pipeline_auto = 1;
+    }
     c->session = session;
     return LUMO_OK;
 }
@@ -260,14 +262,14 @@ static lumo_status check_data(const lumo_net_client *c, const lumo_net_data *d)
 
 /* The oldest pending request is answered once its cursor reaches its end.
  * The link is two numbers (seed 000 §5.2: a request costs a round trip plus
- * its bytes): the shortest answer time seen is the round trip; the rest of
- * an answer's time, or the gap since the previous answer when requests were
- * in flight back to back, is its bytes' transfer. */
+ * its bytes): the shortest answer time seen is the round trip; an answer's
+ * bytes flowed from a round trip after its request, or from the previous
+ * answer's end when that came later (requests in flight back to back). */
 static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
 {
     lumo_net_pending *p = &c->pending[0];
     uint32_t held = p->channel == LUMO_NET_GEOMETRY ? c->held[p->mesh] : c->rounds_held;
-    uint32_t took, flow;
+    uint32_t took, flow, from;
 
     c->data_bytes += bytes;
     if (held < p->end)
@@ -275,7 +277,13 @@ static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
     took = t - p->sent_ms;
     if (!c->costs.rtt_ms || took < c->costs.rtt_ms)
         c->costs.rtt_ms = took ? took : 1;
-    flow = c->retired && p->sent_ms < c->retired_ms ? t - c->retired_ms : took - c->costs.rtt_ms;
+    /* The answer flowed from when its first byte could come (a round trip
+     * after the request) or, if the link was still busy with the previous
+     * answer then, from that one's end. */
+    from = p->sent_ms + c->costs.rtt_ms;
+    if (c->retired && (int32_t)(c->retired_ms - from) > 0)
+        from = c->retired_ms;
+    flow = (int32_t)(t - from) > 0 ? t - from : 0;
     c->costs.ms_per_kib_q10 = blend_rate(c->costs.ms_per_kib_q10, flow ? flow : 1, c->data_bytes);
     c->data_bytes = 0;
     c->retired_ms = t;
@@ -299,6 +307,7 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
     if (d.channel == LUMO_NET_GEOMETRY) {
         uint32_t v = batch_vertices(c, d.mesh, before, c->held[d.mesh]);
         c->costs.bytes_per_vertex = v ? d.len / v + 1 : c->costs.bytes_per_vertex;
+        c->mesh_bytes[d.mesh] += d.len;
     } else {
         uint32_t u = now_ms(c);
         lumo_session_update(c->session);   /* push-pull after lighting (§4.1) */
@@ -450,6 +459,16 @@ static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t fr
     return lumo_net_vertices_before(&h, to) - lumo_net_vertices_before(&h, from);
 }
 
+/* Bytes per vertex of mesh m: what its batches held so far took (meshes
+ * differ: a wall's one-vertex batch is mostly record framing, ~100 bytes a
+ * vertex, the dragon's batches ~5); the last DATA's figure before any. */
+static uint32_t mesh_bytes_per_vertex(const lumo_net_client *c, uint32_t m)
+{
+    uint32_t v = batch_vertices(c, m, 0, c->held[m]);
+
+    return v && c->mesh_bytes[m] ? c->mesh_bytes[m] / v + 1 : c->costs.bytes_per_vertex;
+}
+
 /* How much one request should ask (seed 000 §5.2): fixed by the policy, or
  * what the measured link and apply costs fit into the target time. */
 static uint32_t adaptive(const lumo_net_client *c, uint32_t bytes_per_unit, uint32_t fixed_ms,
@@ -479,7 +498,7 @@ static uint32_t geometry_amount(const lumo_net_client *c, uint32_t m)
         return c->cfg.policy.vertices;
     if (lumo_session_stream_header(c->session, m, &h))
         return 1;
-    return adaptive(c, c->costs.bytes_per_vertex, 0, h.batch_vertices, MAX_VERTICES);
+    return adaptive(c, mesh_bytes_per_vertex(c, m), 0, h.batch_vertices, MAX_VERTICES);
 }
 
 static uint32_t lighting_amount(const lumo_net_client *c)
@@ -560,6 +579,33 @@ static int first_picture_asked(const lumo_net_client *c)
     return c->rounds_asked > 0 || !ivg_open(c);
 }
 
+/* With the pipeline left to the driver (policy.pipeline 0): the answers in
+ * flight, at the measured bytes per vertex and per round and the measured
+ * flow, would leave the link idle before the answer to a request sent now
+ * could arrive (they take less than a round trip). A count of requests
+ * alone does not cover a round trip when the requests are small (the rest
+ * of a small mesh: a few hundred bytes), and each such wait costs a round
+ * trip of idle link. */
+static int link_idles(const lumo_net_client *c)
+{
+    uint64_t bytes = 0;
+    uint32_t k;
+
+    if (!c->pipeline_auto || !c->cfg.clock || !c->costs.rtt_ms || !c->costs.ms_per_kib_q10)
+        return 0;
+    for (k = 0; k < c->npending; k++) {
+        const lumo_net_pending *p = &c->pending[k];
+        if (p->channel == LUMO_NET_GEOMETRY) {
+            uint32_t from = c->held[p->mesh] > p->cursor ? c->held[p->mesh] : p->cursor;
+            bytes += (uint64_t)batch_vertices(c, p->mesh, from, p->end) * mesh_bytes_per_vertex(c, p->mesh);
+        } else {
+            uint32_t from = c->rounds_held > p->cursor ? c->rounds_held : p->cursor;
+            bytes += (uint64_t)(p->end > from ? p->end - from : 0) * c->costs.bytes_per_round;
+        }
+    }
+    return ((bytes * c->costs.ms_per_kib_q10) >> 20) < c->costs.rtt_ms;
+}
+
 static int all_held(const lumo_net_client *c)
 {
     uint32_t m;
@@ -591,7 +637,8 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
     }
     if (c->cfg.replay)
         return LUMO_OK;   /* a recording answers what was asked when it was made */
-    if (c->npending >= (first_picture_asked(c) ? c->cfg.policy.pipeline : MAX_PIPELINE) ||
+    if ((c->npending >= (first_picture_asked(c) ? c->cfg.policy.pipeline : MAX_PIPELINE) &&
+         !(c->npending < MAX_PIPELINE && link_idles(c))) ||
         (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
     return send_request(c, channel, mesh, out, cap, written);

@@ -521,7 +521,7 @@ static int make_job(srv_conn *c, int64_t now)
         c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
         c->op_count--;
         if (o->kind == SRV_OP_WELCOME) {
-            push_welcome(c, now + link_cfg(c)->latency_us);
+            push_welcome(c, o->due_us + link_cfg(c)->latency_us);
             return 1;
         }
         st = srv_plan_start(c->pkg, &o->r, c->form, c->max_payload, &c->answer, &end, err, sizeof err);
@@ -531,11 +531,11 @@ static int make_job(srv_conn *c, int64_t now)
         }
         if (end) {
             push_end(c, o->r.channel, o->r.channel == LUMO_NET_GEOMETRY ? o->r.mesh : 0,
-                     now + link_cfg(c)->latency_us);
+                     o->due_us + link_cfg(c)->latency_us);
             return 1;
         }
         c->answering = 1;
-        c->answer_due_us = now + link_cfg(c)->latency_us;
+        c->answer_due_us = o->due_us + link_cfg(c)->latency_us;
         return make_job(c, now);
     }
     return 0;
@@ -702,9 +702,17 @@ void srv_conn_pump(srv_conn *c, int64_t now)
     else if (c->state == SRV_CONN_DRAINING && idle_output(c))
         c->state = SRV_CONN_CLOSED;
     /* backpressure: read only while there is room for what the client may
-     * ask and the output is at most one frame behind */
-    c->want_read = reading(c) && !c->eof && room_for_ops(c) && c->job_count <= 1 &&
-                   c->rx_len < SRV_RX_CAP;
+     * ask and the output is at most one frame behind. Frames the link
+     * emulation holds (latency, rate) would be in the kernel's buffer or on
+     * the wire on a real link, where they do not stop the server reading:
+     * with emulation on, the output is behind when the socket is full.
+     * (Not reading them delayed each request by the time the queue took to
+     * drain, and its emulated latency then started only at the read.) */
+    {
+        const srv_link_config *l = link_cfg(c);
+        int behind = l->rate_bytes > 0 || l->latency_us > 0 ? c->blocked : c->job_count > 1;
+        c->want_read = reading(c) && !c->eof && room_for_ops(c) && !behind && c->rx_len < SRV_RX_CAP;
+    }
 }
 
 void srv_conn_check_time(srv_conn *c, int64_t now, int64_t idle_us)

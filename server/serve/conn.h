@@ -102,7 +102,7 @@ typedef struct srv_conn {
     uint32_t        op_head, op_count;
     srv_answer      answer;
     int             answering;
-    int64_t         answer_due_us;
+    int64_t         answer_due_us;  /* the op's due + latency: its frames leave no earlier */
     srv_job         jobs[SRV_MAX_JOBS];
     uint32_t        job_head, job_count;
     uint8_t        *errframe;   /* the ERROR frame, allocated on error */

@@ -6,9 +6,11 @@
  *    holding at most SRV_LINK_BURST_MS worth of bytes (at least one
  *    Ethernet frame), so a link of R kbit/s never carries more than R kbit in
  *    any second after its first burst;
- *  - latency: a frame leaves no earlier than the latency after it was queued,
- *    and a request read from the client is acted on no earlier than the
- *    latency after it was read (the two directions of a link);
+ *  - latency: a request read from the client is acted on no earlier than
+ *    the latency after it was read, and its answer's frames leave no earlier
+ *    than the latency after that (the two directions of a link), counted
+ *    from the request's arrival, not from when its answer was started: an
+ *    answer queued behind others is not held again;
  *  - loss (the serial listener only): each frame, with probability P, gets
  *    one byte flipped or one byte dropped, from a seeded random stream per
  *    connection (splitmix64 of seed and connection number): the same run

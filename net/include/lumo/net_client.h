@@ -41,9 +41,13 @@ typedef struct lumo_net_policy {
     uint32_t smooth_budget_ms; /* a push-pull with smoothing that takes longer
                                   than this turns smoothing off for the rest
                                   of the session (0: never) */
-    uint32_t pipeline;     /* requests in flight (0: 4); hides the link's latency.
-                              The first picture's requests (base meshes, the
-                              corners) go out together whatever this is. */
+    uint32_t pipeline;     /* requests in flight, 1..8; hides the link's latency.
+                              0: at least 4, and more (up to 8) while the
+                              answers in flight would take less than the
+                              measured round trip (small requests, e.g. the
+                              rest of a small mesh). The first picture's
+                              requests (base meshes, the corners) go out
+                              together whatever this is. */
 } lumo_net_policy;
 
 /* A clock in milliseconds (wrapping u32), for the adaptive sizes; NULL: the
@@ -75,7 +79,9 @@ typedef struct lumo_net_pending {
 typedef struct lumo_net_costs {
     uint32_t rtt_ms;               /* link: the shortest request-to-answer time seen */
     uint32_t ms_per_kib_q10;       /* link: ms per KiB once the answer flows */
-    uint32_t bytes_per_vertex;     /* geometry bytes per vertex seen so far */
+    uint32_t bytes_per_vertex;     /* geometry bytes per vertex of the last DATA
+                                      (each mesh's own from its mesh_bytes once
+                                      it has batches) */
     uint32_t bytes_per_round;      /* lighting bytes per round */
     uint32_t apply_ms_per_kib_q10; /* session: ms to apply a KiB */
     uint32_t update_ms;            /* session: one push-pull (the clock read
@@ -97,9 +103,11 @@ typedef struct lumo_net_client {
     uint32_t held[LUMO_MAX_MESHES];   /* batch records applied per mesh */
     uint32_t asked[LUMO_MAX_MESHES];  /* batch records asked for (held + pending) */
     uint32_t batches[LUMO_MAX_MESHES];/* batch records of each stream */
+    uint32_t mesh_bytes[LUMO_MAX_MESHES];  /* record bytes of the batches held, per mesh */
     uint32_t rounds_held, rounds_asked, rounds_total;
     uint8_t  has_ivg;
     uint32_t turn;                    /* interleaving position */
+    uint8_t  pipeline_auto;           /* policy.pipeline was 0 */
     lumo_net_pending pending[8];
     uint32_t npending;
     uint32_t partial_records;         /* records of a round split over frames */
