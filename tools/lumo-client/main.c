@@ -49,6 +49,8 @@ static const char usage[] =
     "                          answers in flight take less than a round trip)\n"
     "  --max-payload BYTES     the largest frame payload taken, 4096.. (default 1048576)\n"
     "  --no-smoothing          push-pull without smoothing (cheaper on weak clients)\n"
+    "  --smoothing-budget MS   drop smoothing for the rest of the session the first time\n"
+    "                          a smoothed push-pull takes longer than MS\n"
     "  --float                 ask for the binary32 IVG form instead of the quantized one\n"
     "  --arena MIB             arena for the scene (default 256)\n"
     "  --quiet                 no progress line\n"
@@ -109,7 +111,7 @@ static int parse_order(const char *s, options *o)
 }
 
 enum { O_CONNECT = 256, O_SERIAL, O_HTTP, O_REPLAY, O_RECORD, O_RETRIES, O_PACKAGE, O_OUT, O_AT, O_BACKEND,
-       O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_FLOAT, O_ARENA,
+       O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
        O_QUIET };
 
 static int take_option(int c, const char *arg, options *o)
@@ -134,6 +136,7 @@ static int take_option(int c, const char *arg, options *o)
     case O_PIPE: return parse_u32(arg, 1, 8, &o->policy.pipeline);
     case O_MAXPAY: return parse_u32(arg, LUMO_NET_MIN_PAYLOAD, LUMO_NET_MAX_PAYLOAD, &o->max_payload);
     case O_NOSMOOTH: o->no_smoothing = 1; return 0;
+    case O_SMOOTHB: return parse_u32(arg, 1, 60000, &o->policy.smooth_budget_ms);
     case O_FLOAT: o->use_float = 1; return 0;
     case O_ARENA: return parse_u32(arg, 1, 4095, &o->arena_mib);
     case O_QUIET: o->quiet = 1; return 0;
@@ -153,7 +156,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"per-vertex", 0, 0, O_PV},
         {"order", 1, 0, O_ORDER}, {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS},
         {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE}, {"max-payload", 1, 0, O_MAXPAY},
-        {"no-smoothing", 0, 0, O_NOSMOOTH}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
+        {"no-smoothing", 0, 0, O_NOSMOOTH}, {"smoothing-budget", 1, 0, O_SMOOTHB}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
         {"quiet", 0, 0, O_QUIET}, {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
 
