@@ -66,11 +66,14 @@ label_of() {
 }
 
 step "5/6 progress.png: the interleaved stream after growing amounts of bytes"
-set --; labels=""
-for f in first 005.00 010.00 030.00 060.00 100.00; do
+set --; labels=""; last=""
+for f in first 002.00 005.00 010.00 020.00 030.00 050.00 070.00 100.00; do
     p="$out/interleaved/frame-$f.png"
     [ -f "$p" ] || continue
-    set -- "$@" "$p"; labels="$labels$(label_of "$p"),"
+    l=$(label_of "$p")
+    # one picture per state: a large answer can cross several shares at once
+    [ "$l" != "$last" ] && [ $# -lt 7 ] || continue
+    set -- "$@" "$p"; labels="$labels$l,"; last=$l
 done
 "$bin/lumo-compare" "$@" "$out/reference.png" --labels "${labels}PATH TRACED" -o "$out/progress.png" \
     >"$out/progress.txt"
