@@ -28,6 +28,17 @@ $(SERVE_UNIT): $(BUILD)/tests/tests/serve/test_serve_plan.o $(BUILD)/tests/serve
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ $(TEST_LDLIBS)
 
+# docs/protocol.md §6, the worked example: a whole session on
+# tests/fuzz/seeds/fuzz_package/example.lumo, checked against the doc
+# (run from the top of the tree; --markdown prints the section).
+EXAMPLE_UNIT := $(BUILD)/tests/bin/test_protocol_example
+UNIT_TESTS += $(EXAMPLE_UNIT)
+$(EXAMPLE_UNIT): $(BUILD)/tests/tests/serve/test_protocol_example.o $(BUILD)/tests/server/serve/plan.o \
+                 $(BUILD)/tests/server/serve/index.o $(BUILD)/tests/server/common/status_msg.o $(BUILD)/host/libhost.a \
+                 $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ $(TEST_LDLIBS)
+
 TEST_STEPS += test-serve
 .PHONY: test-serve
 test-serve: $(BIN)/lumo-server $(BIN)/lumo-bake $(SERVE_SAN) $(SERVE_CLIENT)

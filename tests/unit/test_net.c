@@ -2,10 +2,9 @@
  * message round-trips encode -> frame decode -> decode with all its fields;
  * every byte flip and truncation of a valid frame is refused with the
  * status and *consumed of §1; the limits and payload checks of §5; serial
- * resynchronisation; the zero-copy DATA path; encoders out of room; and the
- * worked example of docs/protocol.md §6, checked against the encoder. */
+ * resynchronisation; the zero-copy DATA path; encoders out of room. The
+ * worked example of docs/protocol.md §6 is tests/serve/test_protocol_example.c. */
 #include <stdio.h>
-#include <ctype.h>
 #include "test_common.h"
 #include "lumo/ivg.h"
 #include "lumo/net.h"
@@ -912,94 +911,8 @@ static void test_end_error_bye_checks(void **state)
     assert_int_equal(payload_status(LUMO_NET_BYE, p, 1), LUMO_ERR_CORRUPT);
 }
 
-/* ---- the worked example of docs/protocol.md §6 ---------------------------------------- */
-
-/* The frames of the worked example, from the encoder. */
-static size_t worked_frames(uint8_t out[3][64], size_t n[3])
-{
-    lumo_net_hello h = {0};
-    lumo_net_request r = {LUMO_NET_GEOMETRY, 0, 0, 500};
-    lumo_net_end e = {LUMO_NET_GEOMETRY, 0};
-
-    h.package = 0;
-    h.arena_bytes = 8u << 20;
-    h.max_payload = 64u << 10;
-    h.width = 320;
-    h.height = 240;
-    h.ivg_form = LUMO_IVG_FORM_QUANTIZED;
-    h.flags = LUMO_NET_FLAG_SMOOTHING;
-    assert_int_equal(lumo_net_hello_encode(&h, NULL, out[0], 64, &n[0]), LUMO_OK);
-    assert_int_equal(lumo_net_request_encode(&r, out[1], 64, &n[1]), LUMO_OK);
-    assert_int_equal(lumo_net_end_encode(&e, out[2], 64, &n[2]), LUMO_OK);
-    return 3;
-}
-
-/* The bytes at the start of the line at p ("4C 53  magic"): pairs of hex
- * digits one space apart, ended by two spaces or the line's end. Returns
- * the next line. */
-static const char *line_bytes(const char *p, uint8_t *out, size_t *n)
-{
-    unsigned v;
-
-    while (isxdigit((unsigned char)p[0]) && isxdigit((unsigned char)p[1])
-           && (p[2] == ' ' || p[2] == '\n') && sscanf(p, "%2x", &v) == 1) {
-        assert_true(*n < 64);
-        out[(*n)++] = (uint8_t)v;
-        p += 2;
-        if (p[0] != ' ' || p[1] == ' ')
-            break;
-        p++;
-    }
-    p = strchr(p, '\n');
-    return p ? p + 1 : NULL;
-}
-
-/* The bytes of the first three code blocks of the section "Worked example". */
-static size_t doc_blocks(const char *doc, uint8_t out[3][64], size_t n[3])
-{
-    const char *p = strstr(doc, "## 6. Worked example");
-    size_t blocks = 0;
-
-    if (!p)
-        fail_msg("docs/protocol.md has no section \"## 6. Worked example\"");
-    while (blocks < 3 && (p = strstr(p, "\n```\n")) != NULL) {
-        const char *end = strstr(p + 5, "\n```\n");
-        assert_non_null(end);
-        n[blocks] = 0;
-        for (p += 5; p && p <= end; )
-            p = line_bytes(p, out[blocks], &n[blocks]);
-        p = end + 4;
-        blocks++;
-    }
-    return blocks;
-}
-
-static void test_worked_example(void **state)
-{
-    static char doc[65536];
-    uint8_t want[3][64], got[3][64];
-    size_t wn[3], gn[3], i, len;
-    FILE *f = fopen("docs/protocol.md", "rb");
-    (void)state;
-    if (!f)
-        fail_msg("docs/protocol.md not found (run from the repository root)");
-    len = fread(doc, 1, sizeof doc - 1, f);
-    fclose(f);
-    doc[len] = 0;
-    worked_frames(want, wn);
-    assert_int_equal(doc_blocks(doc, got, gn), 3);
-    for (i = 0; i < 3; i++) {
-        if (gn[i] != wn[i] || memcmp(got[i], want[i], wn[i]) != 0) {
-            size_t k;
-            fprintf(stderr, "frame %zu from the encoder:", i);
-            for (k = 0; k < wn[i]; k++)
-                fprintf(stderr, " %02X", want[i][k]);
-            fprintf(stderr, "\n");
-            fail_msg("docs/protocol.md §6, block %zu (%zu bytes) differs from the encoder's frame"
-                     " (%zu bytes)", i, gn[i], wn[i]);
-        }
-    }
-}
+/* The worked example of docs/protocol.md §6 (a whole session, checked byte
+ * for byte against the doc) is tests/serve/test_protocol_example.c. */
 
 int main(void)
 {
@@ -1028,7 +941,6 @@ int main(void)
         cmocka_unit_test(test_request_checks),
         cmocka_unit_test(test_data_checks),
         cmocka_unit_test(test_end_error_bye_checks),
-        cmocka_unit_test(test_worked_example),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -5,6 +5,8 @@
 #   tiny.lumo    raw MESH chunks, a 3x3x3 IVG
 #   lights.lumo  raw MESH chunks, every light kind, a 2x3x2 IVG
 #   stream.lumo  progressive PMSH streams, a 4x3x4 IVG, IVGS and ORDR
+#   example.lumo one quad, a 3x2x2 IVG: docs/protocol.md §6, checked by
+#                tests/serve/test_protocol_example.c (regenerate §6 with it)
 set -e
 bin=${1:-build/bin}
 src=tests/fuzz/package_seeds
@@ -12,3 +14,4 @@ out=tests/fuzz/seeds/fuzz_package
 "$bin/lumo-bake" "$src/tiny.txt" --mesh raw --grid 3 --spp 4 --threads 1 --no-progress -o "$out/tiny.lumo"
 "$bin/lumo-bake" "$src/lights.txt" --mesh raw --grid 2,3,2 --spp 2 --threads 1 --no-progress -o "$out/lights.lumo"
 "$bin/lumo-bake" "$src/stream.txt" --grid 4,3,4 --spp 2 --threads 1 --no-progress -o "$out/stream.lumo"
+"$bin/lumo-bake" "$src/example.txt" --grid 3,2,2 --spp 1 --seed 1 --threads 1 --no-progress -o "$out/example.lumo"
