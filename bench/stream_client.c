@@ -31,9 +31,6 @@
  */
 #include <errno.h>
 #include <fcntl.h>
-#include <netdb.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -44,6 +41,7 @@
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
+#include "../net/host/net_socket.h"
 #include "lumo/arena.h"
 #include "lumo/ivg.h"
 #include "lumo/package.h"
@@ -112,34 +110,11 @@ static uint32_t pp_median(void)
     return g_pp_each[n / 2];
 }
 
+/* A TCP connection to "HOST:PORT" through the desktop transport (net/host). */
 static int tcp_connect(const char *spec)
 {
-    char host[256], port[16];
-    const char *colon = strrchr(spec, ':');
-    struct addrinfo hints, *res, *ai;
-    int fd = -1, one = 1;
-
-    if (!colon || (size_t)(colon - spec) >= sizeof host || strlen(colon + 1) >= sizeof port)
-        return -1;
-    memcpy(host, spec, (size_t)(colon - spec));
-    host[colon - spec] = 0;
-    strcpy(port, colon + 1);
-    memset(&hints, 0, sizeof hints);
-    hints.ai_socktype = SOCK_STREAM;
-    if (getaddrinfo(host, port, &hints, &res))
-        return -1;
-    for (ai = res; ai; ai = ai->ai_next) {
-        fd = socket(ai->ai_family, ai->ai_socktype, ai->ai_protocol);
-        if (fd >= 0 && connect(fd, ai->ai_addr, ai->ai_addrlen) == 0)
-            break;
-        if (fd >= 0)
-            close(fd);
-        fd = -1;
-    }
-    freeaddrinfo(res);
-    if (fd >= 0)
-        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-    return fd;
+    char err[256];
+    return host_net_connect(spec, err, sizeof err);
 }
 
 static int write_all(int fd, const uint8_t *p, size_t n)
