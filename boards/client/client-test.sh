@@ -18,28 +18,15 @@
 # Prints "RESULT: N passed, M failed". Logs: DIR/*.log.
 dir=$1; scene=$2; server=$3; host=$4; elf=$5; qemu=$6
 mkdir -p "$dir"
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
-
-pids=""
-cleanup() { for p in $pids; do kill -9 "$p" 2>/dev/null; done; }
-trap cleanup EXIT
-trap 'cleanup; exit 1' INT TERM
+. "$(dirname "$0")/../../tests/lib/background.sh"
 
 # serve NAME ARGS...: lumo-server in the background; sets $serial (its
 # serial listener's port) once it listens (5 s at most).
 serve() {
     name=$1; shift
-    rm -f "$dir/$name.port"
-    "$server" "$scene" --listen 127.0.0.1:0 --serial-listen 127.0.0.1:0 --port-file "$dir/$name.port" "$@" \
-        2>"$dir/$name.server.log" &
-    pids="$pids $!"
-    i=0
-    while [ ! -s "$dir/$name.port" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    serial=$(cut -d' ' -f2 "$dir/$name.port" 2>/dev/null)
-    [ -n "$serial" ] || { bad "$name: lumo-server did not start"; sed 's/^/    /' "$dir/$name.server.log"; }
-    [ -n "$serial" ]
+    spawn "$name: lumo-server" "$dir/$name.port" "$dir/$name.server.log" "$server" "$scene" \
+        --listen 127.0.0.1:0 --serial-listen 127.0.0.1:0 --port-file "$dir/$name.port" "$@" || return 1
+    serial=$(cut -d' ' -f2 "$dir/$name.port")
 }
 
 # run LOG CMD...: in the background (so the trap can end it), 60 s at most;

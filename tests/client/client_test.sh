@@ -6,28 +6,14 @@
 bin=$1; tbin=$2; dir=$3; models=$4
 client=$bin/lumo-client
 mkdir -p "$dir"
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
-
-pids=""
-cleanup() { for p in $pids; do kill -9 "$p" 2>/dev/null; done; }
-trap cleanup EXIT
-trap 'cleanup; exit 1' INT TERM
+. "$(dirname "$0")/../lib/background.sh"
 
 # start NAME ARGS...: lumo-server in the background on free ports; sets $pid,
 # $port (TCP) and $sport (serial, when asked for) once it listens.
 start() {
     name=$1; shift
-    rm -f "$dir/$name.port"
-    timeout 300 "$bin/lumo-server" "$@" --listen 127.0.0.1:0 --port-file "$dir/$name.port" 2>"$dir/$name.log" &
-    pid=$!
-    pids="$pids $pid"
-    i=0
-    while [ ! -s "$dir/$name.port" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    if [ ! -s "$dir/$name.port" ]; then
-        bad "$name: the server did not start"; sed 's/^/    /' "$dir/$name.log"; return 1
-    fi
+    spawn "$name" "$dir/$name.port" "$dir/$name.log" \
+        timeout 300 "$bin/lumo-server" "$@" --listen 127.0.0.1:0 --port-file "$dir/$name.port" || return 1
     port=$(cut -d' ' -f1 "$dir/$name.port"); sport=$(cut -d' ' -f2 "$dir/$name.port")
 }
 stop() { kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; }
@@ -36,15 +22,13 @@ stop() { kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; }
 # sets $ppid and $pport once it listens. Its lines go to $dir/NAME.stats.
 proxy() {
     name=$1; up=$2; shift 2
-    rm -f "$dir/$name.pport"
-    timeout 150 "$tbin/cut_proxy" --upstream "127.0.0.1:$up" --port-file "$dir/$name.pport" \
-        --stats "$dir/$name.stats" "$@" 2>"$dir/$name.plog" &
-    ppid=$!
-    pids="$pids $ppid"
-    i=0
-    while [ ! -s "$dir/$name.pport" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    pport=$(cat "$dir/$name.pport" 2>/dev/null)
-    [ -n "$pport" ] || { bad "$name: the proxy did not start"; return 1; }
+    server_pid=$pid   # spawn sets $pid: keep the server's for stop()
+    spawn "$name proxy" "$dir/$name.pport" "$dir/$name.plog" timeout 150 "$tbin/cut_proxy" \
+        --upstream "127.0.0.1:$up" --port-file "$dir/$name.pport" --stats "$dir/$name.stats" "$@"
+    st_proxy=$?
+    ppid=$pid; pid=$server_pid
+    [ $st_proxy -eq 0 ] || return 1
+    pport=$(cat "$dir/$name.pport")
 }
 # stat NAME FIELD: the sum of a field over the proxy's connections.
 stat() { awk -v k="$2" '{ for (i = 1; i < NF; i++) if ($i == k) s += $(i + 1) } END { print s + 0 }' "$dir/$1.stats"; }

@@ -10,28 +10,14 @@ bin=$1; tbin=$2; dir=$3; models=$4
 client=$tbin/serve_client
 san=$tbin/lumo-server-san
 mkdir -p "$dir"
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; }
-
-pids=""
-cleanup() { for p in $pids; do kill -9 "$p" 2>/dev/null; done; }
-trap cleanup EXIT
-trap 'cleanup; exit 1' INT TERM
+. "$(dirname "$0")/../lib/background.sh"
 
 # start NAME SERVER ARGS...: a server in the background on free ports; sets
 # $pid and $ports ("TCP,SERIAL") once it listens (5 s at most).
 start() {
     name=$1; shift
-    rm -f "$dir/$name.port"
-    "$@" --listen 127.0.0.1:0 --port-file "$dir/$name.port" 2>"$dir/$name.log" &
-    pid=$!
-    pids="$pids $pid"
-    i=0
-    while [ ! -s "$dir/$name.port" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    if [ ! -s "$dir/$name.port" ]; then
-        bad "$name: the server did not start"; sed 's/^/    /' "$dir/$name.log"; return 1
-    fi
+    spawn "$name" "$dir/$name.port" "$dir/$name.log" "$@" --listen 127.0.0.1:0 --port-file "$dir/$name.port" \
+        || return 1
     ports=$(tr ' ' ',' <"$dir/$name.port")
 }
 
