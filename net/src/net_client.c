@@ -60,6 +60,9 @@ lumo_status lumo_net_client_hello(lumo_net_client *c, uint8_t *out, size_t cap, 
     h.width = c->cfg.width, h.height = c->cfg.height;
     h.ivg_form = c->cfg.ivg_form;
     h.flags = c->cfg.smoothing ? LUMO_NET_FLAG_SMOOTHING : 0;
+    if (c->cfg.first_picture && !c->package_id && !c->cfg.replay)
+        h.flags |= LUMO_NET_FLAG_FIRST_PICTURE;
+    c->hello_ms = now_ms(c);
     h.resume_id = c->package_id;
     h.mesh_count = c->package_id ? c->mesh_count : 0;
     if ((st = lumo_net_hello_encode(&h, c->held, out, cap, written)))
@@ -122,6 +125,33 @@ static lumo_status take_scene(lumo_net_client *c)
     return LUMO_OK;
 }
 
+static void expect(lumo_net_client *c, uint8_t channel, uint32_t mesh, uint32_t end)
+{
+    lumo_net_pending *p = &c->pending[c->npending++];
+
+    p->channel = channel, p->mesh = mesh, p->cursor = 0, p->end = end;
+    p->sent_ms = c->hello_ms;   /* asked with HELLO: its round trip counts from there */
+}
+
+/* The answers the server sends after WELCOME when HELLO asked for the first
+ * picture (protocol.md §2 HELLO): they are requests in flight as if the
+ * client had asked right then, and their cursors advance the same way. */
+static void expect_first_picture(lumo_net_client *c)
+{
+    lumo_pmesh_header h;
+    uint32_t m;
+
+    for (m = 0; m < c->mesh_count; m++) {
+        lumo_session_stream_header(c->session, m, &h);
+        c->asked[m] = lumo_net_geometry_end(&h, 0, h.base_vertices);
+        expect(c, LUMO_NET_GEOMETRY, m, c->asked[m]);
+    }
+    if (c->has_ivg && c->rounds_total) {
+        c->rounds_asked = 1;
+        expect(c, LUMO_NET_LIGHTING, 0, 1);
+    }
+}
+
 static lumo_status on_welcome(lumo_net_client *c, const lumo_net_frame *f)
 {
     lumo_net_welcome w;
@@ -141,6 +171,8 @@ static lumo_status on_welcome(lumo_net_client *c, const lumo_net_frame *f)
         return st;
     c->package_id = w.package_id;
     c->state = LUMO_NET_READY;
+    if (c->cfg.first_picture && !c->cfg.replay)
+        expect_first_picture(c);
     return LUMO_OK;
 }
 

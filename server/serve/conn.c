@@ -268,6 +268,31 @@ static void on_hello(srv_conn *c, const lumo_net_frame *f, int64_t now)
     }
     c->state = SRV_CONN_READY;
     push_op(c, SRV_OP_WELCOME, NULL, now);
+    if ((h.flags & LUMO_NET_FLAG_FIRST_PICTURE) && !h.resume_id) {
+        lumo_net_request first;
+        memset(&first, 0, sizeof first);
+        push_op(c, SRV_OP_FIRST, &first, now);
+    }
+}
+
+/* The next request of the first picture (protocol.md §2 HELLO): the base
+ * batch of mesh 0, 1, ..., then lighting round 0 when the client asked for
+ * an IVG form and the package has one. 0 when none is left. */
+static int first_picture_request(const srv_conn *c, uint32_t k, lumo_net_request *r)
+{
+    memset(r, 0, sizeof *r);
+    if (k < c->pkg->mesh_count) {
+        r->channel = LUMO_NET_GEOMETRY;
+        r->mesh = k;
+        r->amount = c->pkg->mesh[k].h.base_vertices;
+        return 1;
+    }
+    if (k == c->pkg->mesh_count && c->pkg->ivg.present && c->form != LUMO_NET_FORM_NONE) {
+        r->channel = LUMO_NET_LIGHTING;
+        r->amount = 1;
+        return 1;
+    }
+    return 0;
 }
 
 static void on_request(srv_conn *c, const lumo_net_frame *f, int64_t now)
@@ -517,6 +542,26 @@ static int make_job(srv_conn *c, int64_t now)
             if (!c->wake_us || o->due_us < c->wake_us)
                 c->wake_us = o->due_us;
             return 0;
+        }
+        if (o->kind == SRV_OP_FIRST) {
+            /* stays at the head until its last request is planned */
+            lumo_net_request r;
+            if (first_picture_request(c, o->r.mesh++, &r)) {
+                srv_op one = *o;
+                one.r = r;
+                o = &one;
+                st = srv_plan_start(c->pkg, &o->r, c->form, c->max_payload, &c->answer, &end, err, sizeof err);
+                if (st) {
+                    fail(c, st, "%s", err);
+                    return 1;
+                }
+                c->answering = 1;
+                c->answer_due_us = o->due_us + link_cfg(c)->latency_us;
+                return make_job(c, now);
+            }
+            c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
+            c->op_count--;
+            continue;
         }
         c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
         c->op_count--;

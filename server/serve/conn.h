@@ -64,7 +64,10 @@ typedef struct srv_job {
     int64_t        due_us;      /* leaves no earlier (latency) */
 } srv_job;
 
-enum { SRV_OP_WELCOME = 1, SRV_OP_REQUEST };
+/* SRV_OP_FIRST: the first picture's answers after WELCOME (HELLO flag
+ * LUMO_NET_FLAG_FIRST_PICTURE, protocol.md §2): one op that plans, in turn,
+ * the base batch of every mesh and lighting round 0; r.mesh counts them. */
+enum { SRV_OP_WELCOME = 1, SRV_OP_REQUEST, SRV_OP_FIRST };
 typedef struct srv_op {
     uint8_t          kind;
     lumo_net_request r;

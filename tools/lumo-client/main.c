@@ -211,6 +211,10 @@ static int start(client *c, void **arena_mem)
     ncfg.policy = c->o.policy;
     ncfg.clock = host_net_clock_ms;
     ncfg.replay = c->o.replay != NULL;   /* apply what was recorded; ask nothing */
+    /* lumo-server over TCP sends the first picture with its WELCOME (a round
+     * trip less); a serial line re-asks after losses and an HTTP server
+     * answers only ranges, so they ask for it as any other request. */
+    ncfg.first_picture = c->o.connect != NULL;
     if (lumo_session_init(&c->ses, &scfg, &arena) || lumo_net_client_init(&c->drv, &c->ses, &ncfg))
         return -1;
     if (c->o.record && record_open(&c->record, c->o.record, err, sizeof err)) {

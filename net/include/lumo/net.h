@@ -38,6 +38,10 @@ typedef enum lumo_net_channel { LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1 } l
 
 #define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */
 #define LUMO_NET_FLAG_SMOOTHING 1u
+/* HELLO, fresh start: send the first picture with the WELCOME (the answers
+ * to a base-mesh request per mesh and to lighting round 0, as if asked
+ * right after WELCOME): one round trip less to the first picture. */
+#define LUMO_NET_FLAG_FIRST_PICTURE 2u
 
 /* ---- frames ------------------------------------------------------------------ */
 

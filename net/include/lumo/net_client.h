@@ -62,11 +62,18 @@ typedef struct lumo_net_client_config {
     uint8_t  ivg_form;       /* LUMO_IVG_FORM_QUANTIZED, _FLOAT or LUMO_NET_FORM_NONE */
     uint8_t  smoothing;      /* push-pull smoothing (stated; the session's config decides) */
     lumo_net_policy policy;
+    uint8_t  first_picture;  /* ask the server to send the first picture with
+                                the WELCOME (HELLO flag FIRST_PICTURE): one
+                                round trip less to it */
     uint8_t  replay;         /* frames come from a recording: apply them in the
                                 order they come, send nothing but HELLO */
     lumo_net_clock clock;
     void *clock_ctx;
 } lumo_net_client_config;
+
+/* Requests in flight at most: the first picture's (a base mesh per mesh and
+ * the corners) plus a full pipeline. */
+#define LUMO_NET_MAX_PENDING (LUMO_MAX_MESHES + 1u + 8u)
 
 /* One outstanding request, as the driver predicts its answer. */
 typedef struct lumo_net_pending {
@@ -108,7 +115,8 @@ typedef struct lumo_net_client {
     uint8_t  has_ivg;
     uint32_t turn;                    /* interleaving position */
     uint8_t  pipeline_auto;           /* policy.pipeline was 0 */
-    lumo_net_pending pending[8];
+    lumo_net_pending pending[LUMO_NET_MAX_PENDING];
+    uint32_t hello_ms;                /* when HELLO was written */
     uint32_t npending;
     uint32_t partial_records;         /* records of a round split over frames */
     uint64_t bytes_in;                /* payload bytes of DATA applied */
