@@ -100,7 +100,7 @@ arow() {  # arow LABEL FILE CLIENTFILE RANGE
     awk -v label="$label" -v first="$(kv "$f" first_us)" -v full="$(kv "$f" full_us)" -v bytes="$(kv "$f" bytes_in)" \
         -v req="$(kv "$f" requests)" -v rate=$RATE_A -v lat=$LAT_A -v ctot="${1:-0}" -v cfirst="${2:--}" \
         -v range="$range" 'BEGIN {
-        ideal = bytes * 8 / (rate * 1000); goal = 1.1 * ideal; floor = ideal + 2 * 2 * lat / 1000
+        ideal = bytes * 8 / (rate * 1000); goal = 1.1 * ideal; floor = ideal + 2 * lat / 1000
         printf "| %s | %.0f | %s | %s | %.3f | %s | %.3f | %d | %d | %.3f | %.3f | %.3f | %+.1f %% | %s |\n", label,
             first / 1000, first <= 500000 ? "**yes**" : "no", cfirst, full / 1e6, range, ctot / 1000, bytes, req,
             ideal, floor, goal, 100 * (full / 1e6 / ideal - 1), full / 1e6 <= goal ? "**yes**" : "no" }'
@@ -278,8 +278,9 @@ elapsed=$(( $(date +%s) - started ))
     echo "picture = every base mesh and the grid's corners applied (lumo-client's frame-first.png), from"
     echo "connect(). Full = everything applied (lumo-bench-stream); lumo-client's total also includes"
     echo "drawing and writing its last frame. Goals: first picture ≤ 0.5 s; full scene ≤ 1.1 × streamed"
-    echo "bytes (all bytes received, framing and WELCOME included) / link rate. Floor = bytes/rate + 2 round"
-    echo "trips (HELLO → WELCOME, then the first requests): no client can do better on this link."
+    echo "bytes (all bytes received, framing and WELCOME included) / link rate. Floor = bytes/rate + 1 round"
+    echo "trip (HELLO, answered by WELCOME and the first picture: HELLO flag bit 1 of docs/protocol.md §2):"
+    echo "no client can do better on this link."
     echo
     echo "lumo-bench-stream ran each order 3 times (adaptive sizes follow the measured link, so runs differ):"
     echo "the row is the run of median full-scene time, with the range of the 3."
@@ -289,9 +290,9 @@ elapsed=$(( $(date +%s) - started ))
     cat "$dir/a-rows.md"
     echo
     awk -v b="$(kv "$dir/a-interleaved.txt" bytes_in)" -v r=$RATE_A -v l=$LAT_A 'BEGIN { ideal = b * 8 / (r * 1000)
-        printf "The floor alone is %.1f %% over bytes/rate here (two round trips of %d ms on %.2f s of bytes), so the\n", 400 * l / 1000 / ideal, 2 * l, ideal
-        printf "10 %% goal leaves %.1f %% for everything else. What remains above the floor: the requests after the\n", 10 - 400 * l / 1000 / ideal
-        printf "first picture are sized from its answers (a third round trip before the bulk flows), and adaptive\n"
+        printf "The floor alone is %.1f %% over bytes/rate here (one round trip of %d ms on %.2f s of bytes), so the\n", 200 * l / 1000 / ideal, 2 * l, ideal
+        printf "10 %% goal leaves %.1f %% for everything else. What remains above the floor: the requests after the\n", 10 - 200 * l / 1000 / ideal
+        printf "first picture are sized from its answers (a second round trip before the bulk flows), and adaptive\n"
         printf "requests that are small against the link'"'"'s bytes per round trip. lumo-client'"'"'s total adds drawing and\n"
         printf "writing frame-first.png (during the stream) and its last frame.\n" }'
     echo

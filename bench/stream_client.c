@@ -246,6 +246,7 @@ static int mode_run(int argc, char **argv)
     ncfg.ivg_form = o.no_ivg ? LUMO_NET_FORM_NONE : o.use_float ? LUMO_IVG_FORM_FLOAT : LUMO_IVG_FORM_QUANTIZED;
     ncfg.smoothing = !o.no_smoothing;
     ncfg.policy = o.policy;
+    ncfg.first_picture = 1;   /* lumo-server over TCP, as lumo-client does (protocol.md §2 HELLO) */
     ncfg.clock = clock_ms;
     if (lumo_session_init(&ses, &scfg, &arena) || lumo_net_client_init(&drv, &ses, &ncfg)) {
         fprintf(stderr, "lumo-bench-stream: session/driver init failed\n");
