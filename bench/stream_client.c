@@ -117,19 +117,6 @@ static int tcp_connect(const char *spec)
     return host_net_connect(spec, err, sizeof err);
 }
 
-static int write_all(int fd, const uint8_t *p, size_t n)
-{
-    while (n) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            return -1;
-        p += w, n -= (size_t)w;
-    }
-    return 0;
-}
-
 /* ---- run: one client through the driver -------------------------------------------- */
 
 typedef struct run_opts {
@@ -257,7 +244,7 @@ static int mode_run(int argc, char **argv)
         fprintf(stderr, "lumo-bench-stream: cannot connect to %s\n", o.addr);
         return 1;
     }
-    if (lumo_net_client_hello(&drv, out, sizeof out, &n) || write_all(fd, out, n))
+    if (lumo_net_client_hello(&drv, out, sizeof out, &n) || host_net_write_all(fd, out, n))
         goto done;
     outb += n;
     while (drv.state != LUMO_NET_DONE) {
@@ -270,7 +257,7 @@ static int mode_run(int argc, char **argv)
                 fprintf(stderr, "lumo-bench-stream: %s\n", lumo_strerror(st));
                 goto done;
             }
-            if (n && write_all(fd, out, n))
+            if (n && host_net_write_all(fd, out, n))
                 goto done;
             if (o.trace && n == LUMO_NET_OVERHEAD + 16)
                 fprintf(stderr, "%8.1f ms  request %s mesh %u cursor %u amount %u (%u in flight)\n",
@@ -451,7 +438,7 @@ static int send_fetch(lclient *c)
         n += k;
     }
     c->sent++;
-    return write_all(c->fd, out, n);
+    return host_net_write_all(c->fd, out, n);
 }
 
 /* A frame head is complete: account for it. 0 fine, -1 off the protocol. */
@@ -472,7 +459,7 @@ static int on_head(lclient *c, uint32_t reps)
                     uint8_t bye[LUMO_NET_OVERHEAD];
                     size_t n;
                     lumo_net_bye_encode(bye, sizeof bye, &n);
-                    if (write_all(c->fd, bye, n))
+                    if (host_net_write_all(c->fd, bye, n))
                         return -1;
                     c->state = 2;
                 }
@@ -606,7 +593,7 @@ static int mode_load(int argc, char **argv)
     }
     t0 = now_us();
     for (i = 0; i < count; i++)
-        if (cl[i].state == 0 && write_all(cl[i].fd, hello, hn))
+        if (cl[i].state == 0 && host_net_write_all(cl[i].fd, hello, hn))
             cl[i].state = -1;
     while (finished + failed < count && now_us() - t0 < 100000000) {
         int k, ne = epoll_wait(ep, ev, 256, 500);
