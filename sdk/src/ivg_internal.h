@@ -73,10 +73,40 @@ static inline uint8_t *ivg_packed_at(const ivg_level *lv, uint32_t v, unsigned a
     return lv->e + (size_t)v * IVG_PACKED_VERTEX + (size_t)a * IVG_PACKED;
 }
 
-/* ivg_pack.c: the packed entry <-> its fixed-point value. Unpacking is
- * exact (the decoding of §2.5); packing rounds d to the nearest q/127 and c
- * to the nearest RGB9E5 word (shared exponent: error at most half a
- * mantissa step of the largest channel, 2^-10 of it). */
+/* A packed entry opened for arithmetic: c in UQ16.16 (exact, §2.5), d
+ * still in the wire's q units (value q/127) — push-pull averages q and
+ * sampling interpolates q, converting to Q1.14 once per result. */
+typedef struct ivg_raw {
+    uint32_t c[3];
+    int32_t  q[3];
+} ivg_raw;
+
+/* RGB9E5 to UQ16.16 as lumo_rgb9e5_to_uq16 (m * 2^(E-8), rounded half up
+ * below E = 8), inline: sampling and push-pull open every tap. */
+static inline void ivg_rgb9e5_open(const uint8_t *p, uint32_t c[3])
+{
+    uint32_t w = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    unsigned e = w >> 27, k;
+
+    for (k = 0; k < 3; k++) {
+        uint32_t m = (w >> (9u * k)) & 0x1FFu;
+        c[k] = e >= 8u ? m << (e - 8u) : (m + (1u << (7u - e))) >> (8u - e);
+    }
+}
+
+static inline void ivg_raw_open(const uint8_t *p, ivg_raw *r)
+{
+    r->q[0] = (int8_t)p[0];
+    r->q[1] = (int8_t)p[1];
+    r->q[2] = (int8_t)p[2];
+    ivg_rgb9e5_open(p + 3, r->c);
+}
+
+/* ivg_pack.c: packing rounds c to the nearest RGB9E5 word (shared
+ * exponent: error at most half a mantissa step of the largest channel,
+ * 2^-9 of it); q must be in [-127, 127] (an average of such is). Unpacking
+ * to lumo_ivg_entry is exact (the decoding of §2.5). */
+void ivg_raw_pack(const ivg_raw *r, uint8_t *p);
 void ivg_entry_unpack(const uint8_t *p, lumo_ivg_entry *e);
 void ivg_entry_pack(const lumo_ivg_entry *e, uint8_t *p);
 lumo_q1_14 ivg_snorm8_to_q14(int32_t q);

@@ -24,56 +24,91 @@ lumo_q1_14 ivg_snorm8_to_q14(int32_t q)
 
 void ivg_entry_unpack(const uint8_t *p, lumo_ivg_entry *e)
 {
+    ivg_raw r;
     int k;
 
-    for (k = 0; k < 3; k++)
-        e->d[k] = ivg_snorm8_to_q14((int8_t)p[k]);
-    lumo_rgb9e5_to_uq16(lumo_wire_le32(p + 3), e->c);
+    ivg_raw_open(p, &r);
+    for (k = 0; k < 3; k++) {
+        e->d[k] = ivg_snorm8_to_q14(r.q[k]);
+        e->c[k] = r.c[k];
+    }
     e->reserved = 0;
 }
 
 /* Q1.14 to the nearest q/127, ties away from zero, clamped to +-127 (a
  * direction longer than one, which a binary32 record may hold, keeps its
  * sign and saturates). */
-static uint8_t q14_to_snorm8(int32_t d)
+static int32_t q14_to_snorm8(int32_t d)
 {
     uint32_t mag = d < 0 ? (uint32_t)-d : (uint32_t)d;
     uint32_t q = (mag * 254u + LUMO_Q14_ONE) / (2u * LUMO_Q14_ONE);   /* round(mag * 127 / 2^14) */
 
     if (q > 127u)
         q = 127u;
-    return (uint8_t)(d < 0 ? (256u - q) & 0xFFu : q);
+    return d < 0 ? -(int32_t)q : (int32_t)q;
 }
 
-/* c >> s rounded half up (s may be 0). */
-static uint32_t shift_round(uint32_t c, unsigned s)
+/* Bits needed for v (0 for 0), without a count-leading-zeros instruction
+ * (the Cortex-M0+ has none). */
+static unsigned bit_length(uint32_t v)
 {
-    return s == 0 ? c : (uint32_t)(((uint64_t)c + (1u << (s - 1u))) >> s);
+    unsigned b = 0, s;
+
+    for (s = 16; s > 0; s >>= 1)
+        if (v >> s) {
+            v >>= s;
+            b += s;
+        }
+    return b + (v != 0);
+}
+
+/* c in mantissa steps of 2^(e-8) UQ16.16 units, rounded half up. */
+static uint32_t mantissa(uint32_t c, unsigned e)
+{
+    if (e < 8u)
+        return c << (8u - e);   /* only for c < 2^(e+1): exact, < 512 */
+    if (e == 8u)
+        return c;
+    return (uint32_t)(((uint64_t)c + (1u << (e - 9u))) >> (e - 8u));
 }
 
 /* The smallest exponent whose rounded mantissa of the largest channel fits
- * 9 bits: E < 8 shifts left (exact for the tiny values that take it). */
+ * 9 bits: e = bit length - 1 puts it in [256, 512) before rounding, one
+ * more when it rounds up to 512. */
 static uint32_t rgb9e5_pack(const uint32_t c[3])
 {
-    uint32_t top = c[0] > c[1] ? c[0] : c[1], m[3], word;
-    unsigned e = 0, k;
+    uint32_t top = c[0] > c[1] ? c[0] : c[1], m[3];
+    unsigned b, e, k;
 
     top = top > c[2] ? top : c[2];
-    while (e < EXP_MAX && (e < 8u ? (uint64_t)top << (8u - e) : shift_round(top, e - 8u)) > MANT_MAX)
+    b = bit_length(top);
+    e = b > 0u ? b - 1u : 0u;
+    if (e < EXP_MAX && mantissa(top, e) > MANT_MAX)
         e++;
     for (k = 0; k < 3; k++) {
-        uint64_t v = e < 8u ? (uint64_t)c[k] << (8u - e) : shift_round(c[k], e - 8u);
-        m[k] = v > MANT_MAX ? MANT_MAX : (uint32_t)v;
+        m[k] = mantissa(c[k], e);
+        m[k] = m[k] > MANT_MAX ? MANT_MAX : m[k];   /* only above 65408 W/m^2 */
     }
-    word = m[0] | m[1] << 9 | m[2] << 18 | (uint32_t)e << 27;
-    return word;
+    return m[0] | m[1] << 9 | m[2] << 18 | (uint32_t)e << 27;
 }
 
-void ivg_entry_pack(const lumo_ivg_entry *e, uint8_t *p)
+void ivg_raw_pack(const ivg_raw *r, uint8_t *p)
 {
     int k;
 
     for (k = 0; k < 3; k++)
-        p[k] = q14_to_snorm8(e->d[k]);
-    lumo_wire_put_le32(p + 3, rgb9e5_pack(e->c));
+        p[k] = (uint8_t)(r->q[k] & 0xFF);
+    lumo_wire_put_le32(p + 3, rgb9e5_pack(r->c));
+}
+
+void ivg_entry_pack(const lumo_ivg_entry *e, uint8_t *p)
+{
+    ivg_raw r;
+    int k;
+
+    for (k = 0; k < 3; k++) {
+        r.q[k] = q14_to_snorm8(e->d[k]);
+        r.c[k] = e->c[k];
+    }
+    ivg_raw_pack(&r, p);
 }

@@ -94,17 +94,17 @@ static int vertex_valid(const lumo_ivg *g, unsigned l, uint32_t v)
     return ivg_bit(l == 0 ? g->received_bits : g->level[l].valid, v);
 }
 
-/* Add a vertex's six packed entries with weight w. */
+/* Add a vertex's six packed entries with weight w (d in q units). */
 static void acc_add(ivg_acc *acc, const uint8_t *packed, uint32_t w)
 {
-    lumo_ivg_entry e;
+    ivg_raw r;
     int a, k;
 
     for (a = 0; a < LUMO_IVG_AXES; a++) {
-        ivg_entry_unpack(packed + a * IVG_PACKED, &e);
+        ivg_raw_open(packed + a * IVG_PACKED, &r);
         for (k = 0; k < 3; k++) {
-            acc->c[a][k] += (uint64_t)e.c[k] * w;
-            acc->d[a][k] += (int32_t)e.d[k] * (int32_t)w;
+            acc->c[a][k] += (uint64_t)r.c[k] * w;
+            acc->d[a][k] += r.q[k] * (int32_t)w;
         }
     }
     acc->w += w;
@@ -147,15 +147,14 @@ static int pow2_shift(uint32_t w)
  * always sum to 8, interior push and smoothing weights to 64), two 32-bit
  * divisions otherwise (s < 0); both give the same result. A weighted average of values in
  * range is in range. */
-static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s, lumo_ivg_entry *e)
+static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s, ivg_raw *e)
 {
     int k;
 
-    e->reserved = 0;
     if (s < 0) {
         for (k = 0; k < 3; k++) {
             e->c[k] = div_round_u48(c[k], w);
-            e->d[k] = (lumo_q1_14)div_round_i32(d[k], w);
+            e->q[k] = div_round_i32(d[k], w);
         }
         return;
     }
@@ -164,19 +163,19 @@ static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s
         uint32_t mag = d[k] < 0 ? (uint32_t)-d[k] : (uint32_t)d[k];
         mag = (mag + half) >> s;
         e->c[k] = (uint32_t)((c[k] + half) >> s);
-        e->d[k] = (lumo_q1_14)(d[k] < 0 ? -(int32_t)mag : (int32_t)mag);
+        e->q[k] = d[k] < 0 ? -(int32_t)mag : (int32_t)mag;
     }
 }
 
-/* The six averages, each rounded to fixed point and then packed. */
+/* The six averages, each rounded (c to UQ16.16, d to q) and packed. */
 static void acc_store(const ivg_acc *acc, uint8_t *packed)
 {
-    lumo_ivg_entry e;
+    ivg_raw e;
     int a, s = pow2_shift(acc->w);
 
     for (a = 0; a < LUMO_IVG_AXES; a++) {
         sum_store(acc->c[a], acc->d[a], acc->w, s, &e);
-        ivg_entry_pack(&e, packed + a * IVG_PACKED);
+        ivg_raw_pack(&e, packed + a * IVG_PACKED);
     }
 }
 
@@ -266,13 +265,13 @@ static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
 
     for (i = 0; i < nx * ny; i++) {
         uint32_t v = z * nx * ny + i;
-        lumo_ivg_entry e = {{0, 0, 0}, {0, 0, 0}, 0};
+        ivg_raw e = {{0, 0, 0}, {0, 0, 0}};
         int on = ivg_bit(lv->valid, v);
         if (on)
-            ivg_entry_unpack(ivg_packed_at(lv, v, (unsigned)a), &e);
+            ivg_raw_open(ivg_packed_at(lv, v, (unsigned)a), &e);
         for (k = 0; k < 3; k++) {
             s[i].c[k] = e.c[k];
-            s[i].d[k] = e.d[k];
+            s[i].d[k] = e.q[k];
         }
         s[i].w = (uint32_t)on;
     }
@@ -291,7 +290,7 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
     const ivg_sum *mid = &ring[(z % 3u) * plane];
     const ivg_sum *hi = z + 1u < nz ? &ring[((z + 1u) % 3u) * plane] : NULL;
     ivg_sum out;
-    lumo_ivg_entry e;
+    ivg_raw e;
 
     for (i = 0; i < plane; i++) {
         uint32_t v = z * plane + i;
@@ -299,7 +298,7 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
             continue;
         sum_mix(&out, lo != NULL ? lo + i : NULL, mid + i, hi != NULL ? hi + i : NULL);
         sum_store(out.c, out.d, out.w, pow2_shift(out.w), &e);
-        ivg_entry_pack(&e, ivg_packed_at(lv, v, (unsigned)a));
+        ivg_raw_pack(&e, ivg_packed_at(lv, v, (unsigned)a));
     }
 }
 
