@@ -43,7 +43,17 @@ int main(void);
 
 /* ---- what this client asks for and draws ---------------------------------------- */
 
-#define MAX_PAYLOAD      (16u << 10)  /* HELLO: largest frame payload taken */
+/* A board sizes the three buffers to its RAM (-DCLIENT_..., boards/rp2040). */
+#ifndef CLIENT_MAX_PAYLOAD
+#define CLIENT_MAX_PAYLOAD (16u << 10)
+#endif
+#ifndef CLIENT_PICTURE_BYTES
+#define CLIENT_PICTURE_BYTES (4u << 20)
+#endif
+#ifndef CLIENT_RECORD_BYTES
+#define CLIENT_RECORD_BYTES (2u << 20)
+#endif
+#define MAX_PAYLOAD      CLIENT_MAX_PAYLOAD   /* HELLO: largest frame payload taken */
 #define RX_BYTES         (MAX_PAYLOAD + LUMO_NET_OVERHEAD)
 #define TX_BYTES         256u         /* HELLO, REQUEST, BYE */
 /* The cycle of lumo-bake's interleaving (package ORDR): a batch of 250
@@ -54,8 +64,8 @@ int main(void);
 #define SILENCE_MS       250u         /* no byte for this long: ask again */
 #define MAX_TRIES        64u          /* asked again without an answer applied */
 #define BAND_ROWS        16u
-#define PICTURE_BYTES    (4u << 20)   /* vertex caches, a band, a PPM image */
-#define RECORD_BYTES     (2u << 20)   /* a recording, to write or to replay */
+#define PICTURE_BYTES    CLIENT_PICTURE_BYTES   /* vertex caches, a band, a PPM image */
+#define RECORD_BYTES     CLIENT_RECORD_BYTES    /* a recording, to write or to replay; 0: none */
 #define DEFAULT_ALBEDO   ((lumo_q1_14)12288)   /* 0.75: lumo-render's for meshes without albedo */
 
 static const uint8_t k_shares[] = {10, 25, 50, 100};   /* percent of the scene */
@@ -194,6 +204,8 @@ static int carve_memory(client *c)
     size_t bytes;
     uint8_t *scratch = board_scratch(&bytes), *pics;
 
+    if ((c->replay || c->record) && RECORD_BYTES == 0)
+        return fail("this board keeps no recording (CLIENT_RECORD_BYTES 0)", NULL);
     lumo_arena_init(&c->work, scratch, bytes);
     c->rx = lumo_arena_alloc(&c->work, RX_BYTES);
     c->log = c->replay || c->record ? lumo_arena_alloc(&c->work, RECORD_BYTES) : c->rx;

@@ -28,6 +28,7 @@
 #include "package/package_write.h"
 #include "pm/pm_stream.h"
 #include "scene/shapes.h"
+#include "test_ivg_entry.h"
 
 static void wr32(uint8_t *p, uint32_t v)
 {
@@ -344,8 +345,7 @@ static void assert_same_grid(const lumo_ivg *a, const lumo_ivg *b)
     for (uint32_t v = 0; v < lumo_ivg_vertex_count(a); v++) {
         assert_int_equal(lumo_ivg_is_received(a, v), lumo_ivg_is_received(b, v));
         assert_int_equal(lumo_ivg_is_solid(a, v), lumo_ivg_is_solid(b, v));
-        assert_memory_equal(lumo_ivg_entry_at(a, v, LUMO_IVG_PX), lumo_ivg_entry_at(b, v, LUMO_IVG_PX),
-                            LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
+        assert_true(test_ivg_vertex_equal(a, v, b, v));
     }
 }
 

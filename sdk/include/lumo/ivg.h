@@ -8,8 +8,11 @@
  * entry is the paper's compressed 3x3 matrix M = (I^R | I^G | I^B): a unit
  * direction d and a colour c with M n = c (d . n) for n = delta (§3.3).
  *
- * The grid holds what was received plus what push-pull filled in; a bitmap
- * says which vertices were received. Received values are never changed by
+ * The grid holds what was received plus what push-pull filled in, every
+ * entry packed as 7 bytes in the quantized wire form (3 x int8 direction,
+ * RGB9E5 colour): received quantized entries exactly as they came, binary32
+ * ones and push-pull's results rounded to that form. A bitmap says which
+ * vertices were received. Received values are never changed by
  * push-pull. A vertex may also be marked "solid" (inside geometry: the
  * server has no irradiance for it); it counts as not received and push-pull
  * fills it like any hole. docs/ivg-format.md gives the wire forms byte by byte.
@@ -118,9 +121,11 @@ int lumo_ivg_is_received(const lumo_ivg *g, uint32_t vertex);
 uint32_t lumo_ivg_solid_count(const lumo_ivg *g);
 int lumo_ivg_is_solid(const lumo_ivg *g, uint32_t vertex);
 
-/* The entry stored for (vertex, axis): received, filled by push-pull, or
- * zero. NULL when out of range. */
-const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis);
+/* The entry stored for (vertex, axis) — received, filled by push-pull, or
+ * zero — unpacked into *out (the grid keeps entries packed in the quantized
+ * wire form, docs/ivg-format.md §2.5 and §6). LUMO_ERR_ARG when out of range
+ * or a pointer is NULL (*out untouched). */
+lumo_status lumo_ivg_entry_get(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis, lumo_ivg_entry *out);
 
 /* Decode one bundle of samples (header + records, docs/ivg-format.md) and
  * store them as received. The whole bundle is validated before anything is
