@@ -1,6 +1,7 @@
 /*
  * render_backend.c — see render_backend.h.
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +20,88 @@ struct host_renderer {
     lumo_egl *egl;
     lumo_gl *gl;
     char desc[160];
+    /* shadows: the lights the maps were drawn for, and copies of them that
+     * point at the maps */
+    lumo_raster_light shadow_key[LUMO_MAX_LIGHTS], shadow_lights[LUMO_MAX_LIGHTS];
+    lumo_raster_shadow shadow[LUMO_MAX_LIGHTS];
+    uint16_t *shadow_depth[LUMO_MAX_LIGHTS];
+    uint32_t shadow_count;
+    unsigned shadow_builds;
+    size_t shadow_bytes;
 };
+
+/* Centre and radius of the mesh's bounding box (directional lights' maps). */
+static void mesh_bounds(const lumo_raster_mesh *m, lumo_q16_16 centre[3], lumo_q16_16 *radius)
+{
+    int64_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+    double r2 = 0;
+    uint32_t v;
+    int k;
+
+    for (v = 0; v < m->vertex_count; v++)
+        for (k = 0; k < 3; k++) {
+            int64_t p = m->pos[3 * (size_t)v + k];
+            if (p < lo[k]) lo[k] = p;
+            if (p > hi[k]) hi[k] = p;
+        }
+    for (k = 0; k < 3; k++) {
+        centre[k] = m->vertex_count ? (lumo_q16_16)((lo[k] + hi[k]) / 2) : 0;
+        r2 += m->vertex_count ? (double)(hi[k] - lo[k]) * (hi[k] - lo[k]) / 4 : 0;
+    }
+    *radius = (lumo_q16_16)(sqrt(r2) + 65536);
+}
+
+static int same_light(const lumo_raster_light *a, const lumo_raster_light *b)
+{
+    return a->kind == b->kind && !memcmp(a->pos, b->pos, sizeof a->pos) && !memcmp(a->dir, b->dir, sizeof a->dir)
+        && a->cos_cutoff == b->cos_cutoff;
+}
+
+/* Draw the maps again only when a light moved or changed (the mesh is the
+ * renderer's own and fixed); a light's power does not change its map. */
+static int shadows_update(host_renderer *r, const lumo_raster_scene *s)
+{
+    lumo_q16_16 centre[3], radius;
+    uint32_t i;
+
+    for (i = 0; i < s->light_count && s->light_count == r->shadow_count; i++)
+        if (!same_light(&s->lights[i], &r->shadow_key[i]))
+            break;
+    if (s->light_count == r->shadow_count && i == s->light_count) {
+        for (i = 0; i < s->light_count; i++) {     /* power may change freely */
+            const lumo_raster_shadow *sh = r->shadow_lights[i].shadow;
+            r->shadow_lights[i] = s->lights[i];
+            r->shadow_lights[i].shadow = sh;
+        }
+        return 0;
+    }
+    mesh_bounds(r->mesh, centre, &radius);
+    r->shadow_bytes = 0;
+    for (i = 0; i < s->light_count; i++) {
+        size_t bytes = lumo_raster_shadow_bytes(&s->lights[i], r->o.shadow_size);
+        r->shadow_key[i] = s->lights[i];
+        r->shadow_lights[i] = s->lights[i];
+        free(r->shadow_depth[i]);
+        r->shadow_depth[i] = bytes ? malloc(bytes) : NULL;
+        if (!r->shadow_depth[i]
+            || lumo_raster_shadow_init(&r->shadow[i], &s->lights[i], r->o.shadow_size, r->shadow_depth[i],
+                                       bytes, centre, radius, 0)
+            || lumo_raster_shadow_draw(&r->shadow[i], r->mesh))
+            return -1;
+        r->shadow_lights[i].shadow = &r->shadow[i];
+        r->shadow_bytes += bytes;
+    }
+    r->shadow_count = s->light_count;
+    r->shadow_builds++;
+    return 0;
+}
+
+unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes)
+{
+    if (bytes)
+        *bytes = r->shadow_bytes;
+    return r->shadow_builds;
+}
 
 static int open_soft(host_renderer *r, char *err, size_t errlen)
 {
@@ -111,12 +193,21 @@ static void band_to_rgb(const host_renderer *r, const lumo_raster_target *t, uin
     }
 }
 
-static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo_raster_scene *s,
+static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo_raster_scene *scene,
                      uint8_t *rgb)
 {
     lumo_raster_view v;
     lumo_raster_target t;
+    lumo_raster_scene shadowed = *scene;
+    const lumo_raster_scene *s = scene;
     uint32_t y0;
+
+    if (r->o.shadow_size && scene->light_count) {
+        if (shadows_update(r, scene))
+            return -1;
+        shadowed.lights = r->shadow_lights;
+        s = &shadowed;
+    }
 
     if (lumo_raster_view_init(&v, cam, r->o.width, r->o.height))
         return -1;
@@ -156,10 +247,14 @@ size_t host_renderer_soft_bytes(const host_renderer *r)
 
 void host_renderer_close(host_renderer *r)
 {
+    uint32_t i;
+
     if (!r)
         return;
     lumo_osmesa_close(r->osmesa);
     lumo_egl_close(r->egl);
+    for (i = 0; i < LUMO_MAX_LIGHTS; i++)
+        free(r->shadow_depth[i]);
     free(r->cache);
     free(r->color);
     free(r->depth);
