@@ -130,7 +130,7 @@ static lumo_status spot_view(lumo_raster_shadow *sh, const lumo_raster_light *l,
     int i;
 
     for (i = 0; i < 3; i++)
-        fwd[i] = (int32_t)l->dir[i] << 2;               /* Q1.14 -> Q16.16 */
+        fwd[i] = (int32_t)l->dir[i] * 4;                /* Q1.14 -> Q16.16 */
     up_for(l->dir, up);
     return face_view(&sh->face[0], l->pos, fwd, up, 2 * half_angle_deg(l->cos_cutoff) + 2, znear,
                      sh->size);
@@ -151,7 +151,7 @@ static lumo_status directional_view(lumo_raster_shadow *sh, const lumo_raster_li
         if (e > INT32_MAX || e < INT32_MIN)
             return LUMO_ERR_RANGE;
         eye[i] = (lumo_q16_16)e;
-        fwd[i] = (int32_t)l->dir[i] << 2;
+        fwd[i] = (int32_t)l->dir[i] * 4;
     }
     up_for(l->dir, up);
     /* the bounding sphere starts DIR_DISTANCE - 1 radii away; one more
