@@ -43,6 +43,9 @@ typedef struct draw_ctx {
 /* ---- vertices ------------------------------------------------------------ */
 
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v);
+static int faces_away(const lumo_raster_view *v, const lumo_q16_16 p[3], const lumo_q1_14 n[3]);
+static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                       int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3]);
 static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
 
 void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
@@ -80,13 +83,14 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
             out->var[6 + i] = rho[i];
         }
     } else {
-        lumo_uq16_16 e[3], l[3];
-        lumo_q1_14 nf[3];
-        lumo_raster_face_viewer(v, p, n, nf);
-        lumo_raster_irradiance(s, p, nf, e);
-        lumo_raster_radiance(e, rho, l);
+        lumo_uq16_16 l[3];
+        const lumo_uq16_16 *lit = l;
+        if (m->lit)
+            lit = &m->lit[6 * (size_t)index + (faces_away(v, p, n) ? 3 : 0)];
+        else
+            light_side(s, p, n, faces_away(v, p, n), rho, l);
         for (i = 0; i < 3; i++)
-            out->var[i] = l[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)l[i];
+            out->var[i] = lit[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)lit[i];
     }
     out->outcode = outcode(v, out);
     out->screen[0] = out->screen[1] = 0;
@@ -100,18 +104,65 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
     }
 }
 
-/* Surfaces are two-sided (docs/scene-format.md): the shading normal is
- * turned towards the viewer. out may alias n. */
-void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
-                             const lumo_q1_14 n[3], lumo_q1_14 out[3])
+/* 1 when the eye sees the side of p opposite to n. */
+static int faces_away(const lumo_raster_view *v, const lumo_q16_16 p[3], const lumo_q1_14 n[3])
 {
     int64_t d = 0;
     int i;
 
     for (i = 0; i < 3; i++)
         d += ((int64_t)v->eye[i] - p[i]) * n[i];
+    return d < 0;
+}
+
+/* Surfaces are two-sided (docs/scene-format.md): the shading normal is
+ * turned towards the viewer. out may alias n. */
+void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
+                             const lumo_q1_14 n[3], lumo_q1_14 out[3])
+{
+    int away = faces_away(v, p, n), i;
+
     for (i = 0; i < 3; i++)
-        out[i] = (lumo_q1_14)(d < 0 ? -n[i] : n[i]);
+        out[i] = (lumo_q1_14)(away ? -n[i] : n[i]);
+}
+
+/* Radiance of the side of p facing n (back: -n): the one lighting of a
+ * vertex, per frame or once into a mesh's `lit`. */
+static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                       int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3])
+{
+    lumo_uq16_16 e[3];
+    lumo_q1_14 nf[3];
+    int i;
+
+    for (i = 0; i < 3; i++)
+        nf[i] = (lumo_q1_14)(back ? -n[i] : n[i]);
+    lumo_raster_irradiance(s, p, nf, e);
+    lumo_raster_radiance(e, rho, out);
+}
+
+size_t lumo_raster_lit_bytes(uint32_t vertex_count)
+{
+    return lumo_size_mul(lumo_size_mul(vertex_count, 6), sizeof(lumo_uq16_16));
+}
+
+lumo_status lumo_raster_light_vertices(const lumo_raster_scene *s, const lumo_raster_mesh *m,
+                                       lumo_uq16_16 *lit)
+{
+    uint32_t i;
+
+    if (!s || !m || (m->vertex_count && (!lit || !m->pos || !m->normal)))
+        return LUMO_ERR_ARG;
+    if (s->light_count > LUMO_MAX_LIGHTS || (s->light_count && !s->lights))
+        return LUMO_ERR_RANGE;
+    for (i = 0; i < m->vertex_count; i++) {
+        const lumo_q16_16 *p = &m->pos[3 * (size_t)i];
+        const lumo_q1_14 *n = &m->normal[3 * (size_t)i];
+        const lumo_q1_14 *rho = m->albedo ? &m->albedo[3 * (size_t)i] : m->mesh_albedo;
+        light_side(s, p, n, 0, rho, &lit[6 * (size_t)i]);
+        light_side(s, p, n, 1, rho, &lit[6 * (size_t)i + 3]);
+    }
+    return LUMO_OK;
 }
 
 size_t lumo_raster_cache_bytes(uint32_t vertex_count)

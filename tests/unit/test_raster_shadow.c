@@ -193,7 +193,8 @@ static void test_point_shadow_vs_path_tracer(void **state)
 }
 
 /* Bands of any height and the vertex cache give the bytes of one pass,
- * with shadows, in both lighting modes; shadows darken, never brighten. */
+ * with shadows, in both lighting modes, and so do vertices lit once
+ * (lumo_raster_light_vertices); shadows darken, never brighten. */
 static void test_bands_cache_with_shadows(void **state)
 {
     static lumo_raster_vertex cache[256];
@@ -220,6 +221,20 @@ static void test_bands_cache_with_shadows(void **state)
         for (b = 0; b < sizeof bands / sizeof *bands; b++) {
             draw(&hs, &m, &l, flags, color2, bands[b], b & 1 ? cache : NULL);
             assert_memory_equal(color, color2, sizeof color);
+        }
+        if (!mode) {                                 /* vertices lit once: the same bytes */
+            static lumo_uq16_16 lit[256 * 6];
+            lumo_raster_mesh lm = m;
+            lumo_raster_scene sc = {&l, 1, NULL, NULL, LUMO_Q16_ONE, flags};
+            assert_true(lumo_raster_lit_bytes(m.vertex_count) <= sizeof lit);
+            assert_int_equal(lumo_raster_light_vertices(&sc, &m, lit), LUMO_OK);
+            lm.lit = lit;
+            draw(&hs, &lm, &l, flags, color2, 7, cache);
+            assert_memory_equal(color, color2, sizeof color);
+            draw(&hs, &lm, &l, flags, color2, H, NULL);
+            assert_memory_equal(color, color2, sizeof color);
+            assert_int_equal(lumo_raster_light_vertices(NULL, &m, lit), LUMO_ERR_ARG);
+            assert_int_equal(lumo_raster_light_vertices(&sc, &m, NULL), LUMO_ERR_ARG);
         }
         draw(&hs, &m, &hs.lights[0], flags, color2, H, NULL);
         for (i = 0; i < W * H; i++) {

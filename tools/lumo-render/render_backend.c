@@ -28,7 +28,39 @@ struct host_renderer {
     uint32_t shadow_count;
     unsigned shadow_builds;
     size_t shadow_bytes;
+    /* per-vertex lighting, lit once per change of the lights or the IVG */
+    lumo_uq16_16 *lit;
+    lumo_raster_mesh lit_mesh;
+    lumo_raster_light lit_key[LUMO_MAX_LIGHTS];
+    lumo_raster_scene lit_scene;
+    unsigned lit_shadow_builds, lit_builds;
 };
+
+/* The mesh to draw per vertex: the renderer's with `lit` filled for scene
+ * s, lit again only when s's lights, IVG or exposure-independent inputs
+ * changed (diffuse light does not depend on the view). NULL on failure. */
+static const lumo_raster_mesh *lit_mesh(host_renderer *r, const lumo_raster_scene *s)
+{
+    size_t bytes = lumo_raster_lit_bytes(r->mesh->vertex_count);
+
+    if (r->lit && r->lit_builds && s->light_count == r->lit_scene.light_count
+        && s->indirect == r->lit_scene.indirect && s->indirect_ctx == r->lit_scene.indirect_ctx
+        && r->shadow_builds == r->lit_shadow_builds
+        && !memcmp(s->lights, r->lit_key, s->light_count * sizeof *s->lights))
+        return &r->lit_mesh;
+    if (!r->lit && !(r->lit = malloc(bytes ? bytes : 1)))
+        return NULL;
+    r->lit_mesh = *r->mesh;
+    r->lit_mesh.lit = NULL;
+    if (lumo_raster_light_vertices(s, &r->lit_mesh, r->lit))
+        return NULL;
+    r->lit_mesh.lit = r->lit;
+    r->lit_scene = *s;
+    memcpy(r->lit_key, s->lights, s->light_count * sizeof *s->lights);
+    r->lit_shadow_builds = r->shadow_builds;
+    r->lit_builds++;
+    return &r->lit_mesh;
+}
 
 /* Centre and radius of the mesh's bounding box (directional lights' maps). */
 static void mesh_bounds(const lumo_raster_mesh *m, lumo_q16_16 centre[3], lumo_q16_16 *radius)
@@ -118,9 +150,9 @@ static int open_soft(host_renderer *r, char *err, size_t errlen)
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    snprintf(r->desc, sizeof r->desc, "soft (fixed point, %s, %u-bit depth, %u-row bands%s)",
+    snprintf(r->desc, sizeof r->desc, "soft (fixed point, %s, %u-bit depth, %u-row bands%s%s)",
              o->format == LUMO_PIXEL_RGB565 ? "RGB565" : "XRGB8888", o->depth_bits, rows,
-             o->no_cache ? ", no vertex cache" : "");
+             o->no_cache ? ", no vertex cache" : "", o->relight ? ", lit every frame" : "");
     return 0;
 }
 
@@ -200,6 +232,7 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
     lumo_raster_target t;
     lumo_raster_scene shadowed = *scene;
     const lumo_raster_scene *s = scene;
+    const lumo_raster_mesh *mesh = r->mesh;
     uint32_t y0;
 
     if (r->o.shadow_size && scene->light_count) {
@@ -211,13 +244,15 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
 
     if (lumo_raster_view_init(&v, cam, r->o.width, r->o.height))
         return -1;
-    if (r->cache && lumo_raster_prepare(&v, s, r->mesh, r->cache))
+    if (!(s->flags & LUMO_RASTER_PER_PIXEL) && !r->o.relight && !(mesh = lit_mesh(r, s)))
+        return -1;
+    if (r->cache && lumo_raster_prepare(&v, s, mesh, r->cache))
         return -1;
     for (y0 = 0; y0 < r->o.height; y0 += r->o.band_rows) {
         uint16_t rows = (uint16_t)(r->o.height - y0 < r->o.band_rows ? r->o.height - y0 : r->o.band_rows);
         if (lumo_raster_target_init(&t, (uint16_t)r->o.width, (uint16_t)r->o.height, (uint16_t)y0,
                                     rows, r->o.format, r->color, r->depth, r->o.depth_bits)
-            || lumo_raster_clear(&t, 0) || lumo_raster_draw(&v, s, r->mesh, r->cache, &t))
+            || lumo_raster_clear(&t, 0) || lumo_raster_draw(&v, s, mesh, r->cache, &t))
             return -1;
         band_to_rgb(r, &t, rgb);
     }
@@ -242,7 +277,8 @@ size_t host_renderer_soft_bytes(const host_renderer *r)
     if (r->kind != SOFT)
         return 0;
     return lumo_raster_band_bytes(r->o.width, r->o.band_rows, r->o.format, r->o.depth_bits)
-         + (r->cache ? lumo_raster_cache_bytes(r->mesh->vertex_count) : 0);
+         + (r->cache ? lumo_raster_cache_bytes(r->mesh->vertex_count) : 0)
+         + (r->lit ? lumo_raster_lit_bytes(r->mesh->vertex_count) : 0);
 }
 
 void host_renderer_close(host_renderer *r)
@@ -255,6 +291,7 @@ void host_renderer_close(host_renderer *r)
     lumo_egl_close(r->egl);
     for (i = 0; i < LUMO_MAX_LIGHTS; i++)
         free(r->shadow_depth[i]);
+    free(r->lit);
     free(r->cache);
     free(r->color);
     free(r->depth);

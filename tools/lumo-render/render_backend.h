@@ -17,6 +17,8 @@ typedef struct render_opts {
     lumo_pixel_format format;     /* soft: XRGB8888 or RGB565 */
     uint8_t depth_bits;           /* soft: 16 or 32 */
     int no_cache;                 /* soft: transform per triangle */
+    int relight;                  /* soft, per vertex: light the vertices every frame
+                                   * (default: once per change of lights or IVG) */
     uint16_t shadow_size;         /* shadow map texels per side for every light, 0: no
                                    * shadows (docs/rasterizer.md "Shadows") */
 } render_opts;

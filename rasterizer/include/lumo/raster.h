@@ -121,7 +121,22 @@ typedef struct lumo_raster_mesh {
     const uint32_t *tris;         /* 3 vertex indices per triangle */
     uint32_t vertex_count;
     uint32_t tri_count;
+    const lumo_uq16_16 *lit;      /* optional, per-vertex lighting only: 6 per
+                                   * vertex, the radiance of its front (n) and
+                                   * back (-n) side from lumo_raster_light_vertices
+                                   * for the scene drawn; NULL: lit per frame */
 } lumo_raster_mesh;
+
+/* Diffuse light does not depend on the view: a vertex's radiance (direct,
+ * shadowed, and the IVG's indirect light) changes only with the lights, the
+ * IVG or the mesh. lumo_raster_light_vertices fills `lit` (vertex_count * 6
+ * entries, lumo_raster_lit_bytes) once; a mesh whose `lit` points at it is
+ * then drawn per vertex without evaluating any light, with the very bytes
+ * of a mesh without it (which side a vertex shows is still decided per
+ * frame). Fill it again when a light, the IVG or the mesh changes. */
+size_t lumo_raster_lit_bytes(uint32_t vertex_count);
+lumo_status lumo_raster_light_vertices(const struct lumo_raster_scene *s, const lumo_raster_mesh *m,
+                                       lumo_uq16_16 *lit);
 
 /* ---- target: a frame, or one band of K rows of it ------------------------ */
 
