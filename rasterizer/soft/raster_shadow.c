@@ -146,6 +146,8 @@ static lumo_status directional_view(lumo_raster_shadow *sh, const lumo_raster_li
 
     if (!centre || radius <= 0)
         return LUMO_ERR_ARG;
+    if (dist > INT32_MAX)
+        return LUMO_ERR_RANGE;                          /* the eye must stay in Q16.16 */
     for (i = 0; i < 3; i++) {
         int64_t e = centre[i] - lumo_round_shift(dist * l->dir[i], LUMO_Q14_SHIFT);
         if (e > INT32_MAX || e < INT32_MIN)
@@ -157,7 +159,7 @@ static lumo_status directional_view(lumo_raster_shadow *sh, const lumo_raster_li
     /* the bounding sphere starts DIR_DISTANCE - 1 radii away; one more
      * radius of margin for the normal offset */
     return face_view(&sh->face[0], eye, fwd, up, 2 * dir_half_angle_deg() + 2,
-                     (lumo_q16_16)(radius * (DIR_DISTANCE - 2)), sh->size);
+                     (lumo_q16_16)(dist / DIR_DISTANCE * (DIR_DISTANCE - 2)), sh->size);
 }
 
 lumo_status lumo_raster_shadow_init(lumo_raster_shadow *sh, const lumo_raster_light *l,
