@@ -1,10 +1,11 @@
 /* bench/pm_surface.c — mesh-to-mesh distances for the simplification
  * benchmark (pm_surface.h): Embree 3 point queries, the closest point on a
- * triangle by Voronoi regions (Ericson, Real-Time Collision Detection §5.1.5). */
+ * triangle from server/common/closest.c. */
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "common/closest.h"
 #include "pm_surface.h"
 
 struct pm_surface {
@@ -26,45 +27,17 @@ static d3 sub(d3 a, d3 b) { d3 r = {a.x - b.x, a.y - b.y, a.z - b.z}; return r; 
 static d3 madd(d3 a, d3 b, double t) { d3 r = {a.x + t * b.x, a.y + t * b.y, a.z + t * b.z}; return r; }
 static double dot(d3 a, d3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-/* The point of triangle abc closest to p. */
-static d3 closest_on_triangle(d3 p, d3 a, d3 b, d3 c)
-{
-    d3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-    double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0)
-        return a;
-    d3 bp = sub(p, b);
-    double d3_ = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3_ >= 0 && d4 <= d3_)
-        return b;
-    double vc = d1 * d4 - d3_ * d2;
-    if (vc <= 0 && d1 >= 0 && d3_ <= 0)
-        return madd(a, ab, d1 / (d1 - d3_));
-    d3 cp = sub(p, c);
-    double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6)
-        return c;
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-        return madd(a, ac, d2 / (d2 - d6));
-    double va = d3_ * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3_ >= 0 && d5 - d6 >= 0)
-        return madd(b, sub(c, b), (d4 - d3_) / ((d4 - d3_) + (d5 - d6)));
-    double den = va + vb + vc;
-    if (den <= 0)
-        return a;  /* degenerate triangle: its first corner */
-    return madd(madd(a, ab, vb / den), ac, vc / den);
-}
-
 typedef struct { const pm_surface *s; d3 p; double best; } query_state;
 
 static bool on_primitive(struct RTCPointQueryFunctionArguments *args)
 {
     query_state *q = args->userPtr;
     const uint32_t *t = q->s->tris + 3 * (size_t)args->primID;
-    d3 c = closest_on_triangle(q->p, at(q->s->xyz, t[0]), at(q->s->xyz, t[1]), at(q->s->xyz, t[2]));
-    d3 d = sub(c, q->p);
-    double dist = sqrt(dot(d, d));
+    double p[3] = {q->p.x, q->p.y, q->p.z}, c[3][3];
+    for (int k = 0; k < 3; k++)
+        for (int a = 0; a < 3; a++)
+            c[k][a] = q->s->xyz[3 * (size_t)t[k] + a];
+    double dist = sqrt(srv_triangle_dist2(p, c[0], c[1], c[2]));
     if (dist >= q->best)
         return false;
     q->best = dist;
