@@ -461,18 +461,6 @@ static int push_vertex_edges(simp *s, uint32_t v)
     return 0;
 }
 
-/* Every directed edge u -> w of the current mesh once (from u's side). */
-static int append_vertex_edges(simp *s, uint32_t u)
-{
-    if (grow_nb(s, 2 * s->vf[u].n + 2))
-        return -1;
-    uint32_t n = neighbours(s, u, s->nb_u);
-    for (uint32_t i = 0; i < n; i++)
-        if (list_append(s, u, s->nb_u[i]))
-            return -1;
-    return 0;
-}
-
 /* ---- the collapse --------------------------------------------------------- */
 static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm_collapses *out)
 {
@@ -576,12 +564,41 @@ static void round_lock(simp *s, uint32_t u, uint32_t v, uint32_t r)
     s->core[u] = s->core[v] = r;
 }
 
-/* The candidates of a round: every directed edge, cheapest first. */
-static int collect_round(simp *s)
+/* Did round r - 1 touch x (a collapse end or a neighbour of one)? Only
+ * then can x's faces, quadric or input set have changed (round 1: all). */
+static int touched(const simp *s, uint32_t x, uint32_t r)
 {
-    s->hn = 0;
+    return r == 1 || s->core[x] == r - 1 || s->ring[x] == r - 1;
+}
+
+/* u's directed edges whose cost is not known from the last round. */
+static int append_changed_edges(simp *s, uint32_t u, uint32_t r)
+{
+    if (grow_nb(s, 2 * s->vf[u].n + 2))
+        return -1;
+    uint32_t n = neighbours(s, u, s->nb_u);
+    int all = touched(s, u, r);
+    for (uint32_t i = 0; i < n; i++)
+        if ((all || touched(s, s->nb_u[i], r)) && list_append(s, u, s->nb_u[i]))
+            return -1;
+    return 0;
+}
+
+/* The candidates of a round: every directed edge, cheapest first. An edge
+ * neither of whose ends the last round touched keeps its cost (the worst-
+ * case term reads the input sets, so recomputing every edge every round
+ * would cost the whole mesh per round); the others are priced anew. */
+static int collect_round(simp *s, uint32_t r)
+{
+    size_t kept = 0;
+    for (size_t i = 0; r > 1 && i < s->hn; i++) {
+        cand c = s->heap[i];
+        if (s->vert_alive[c.u] && s->vert_alive[c.v] && !touched(s, c.u, r) && !touched(s, c.v, r))
+            s->heap[kept++] = c;
+    }
+    s->hn = kept;
     for (uint32_t v = 0; v < s->nv; v++)
-        if (s->vert_alive[v] && append_vertex_edges(s, v))
+        if (s->vert_alive[v] && append_changed_edges(s, v, r))
             return -1;
     qsort(s->heap, s->hn, sizeof *s->heap, cand_cmp);
     return 0;
@@ -595,7 +612,7 @@ static int run_rounds(simp *s, srv_pm_collapses *out)
 {
     uint32_t alive = s->nv, target = s->opt->min_vertices;
     for (uint32_t r = 1; alive > target; r++) {
-        if (collect_round(s))
+        if (collect_round(s, r))
             return -1;
         size_t limit = (size_t)(s->opt->round_fraction * (double)s->hn), taken = 0;
         for (size_t i = 0; i < s->hn && alive > target && (i < limit || !taken); i++) {
