@@ -72,7 +72,6 @@ static measure measure_faces(const model *m, const uint32_t *tris, uint32_t nf)
     pm_surface_one_sided(m->pm.xyz, tris, nf, m->orig, SAMPLES, 0x9e3779b97f4a7c15ull, &ms_a, &mx_a);
     pm_surface_one_sided(m->pm.xyz, m->full, m->nf, s, SAMPLES, 0xd1b54a32d192ed03ull, &ms_b, &mx_b);
     pm_surface_close(s);
-    if (getenv("PMQ_DEBUG")) fprintf(stderr, "  %u tris: simplified->orig max %.1f, orig->simplified max %.1f\n", nf, 1e4*mx_a/m->diag, 1e4*mx_b/m->diag);
     r.rms = sqrt(0.5 * (ms_a + ms_b)) / m->diag;
     r.hausdorff = fmax(mx_a, mx_b) / m->diag;
     return r;
