@@ -33,6 +33,8 @@ liblapacke-dev
 gnuplot-nox
 nginx-light
 libcurl4-openssl-dev
+libmeshoptimizer-dev
+libcgal-demo
 "
 
 missing=""
