@@ -5,6 +5,7 @@
 #include <string.h>
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "lumo/scene.h"
 
 lumo_status srv_camera_parse(const char *text, srv_camera *out)
 {
@@ -53,4 +54,44 @@ srv_camera srv_camera_default(void)
 {
     srv_camera c = {{0, 1, 3.4f}, {0, 1, 0}, {0, 1, 0}, 40.0f};
     return c;
+}
+
+/* Metres to Q16.16, refusing what the clients cannot hold. */
+static int to_q16(float v, lumo_q16_16 *out)
+{
+    double q = nearbyint((double)v * 65536.0);
+    if (!(q >= (double)INT32_MIN && q <= (double)INT32_MAX))
+        return -1;
+    *out = (lumo_q16_16)q;
+    return 0;
+}
+
+static vec3 from_q16(const lumo_q16_16 v[3])
+{
+    return v3((float)v[0] / 65536.0f, (float)v[1] / 65536.0f, (float)v[2] / 65536.0f);
+}
+
+lumo_status srv_camera_fit(vec3 lo, vec3 hi, srv_camera *out)
+{
+    lumo_pkg_info info;
+    lumo_status st;
+
+    memset(&info, 0, sizeof info);
+    for (int a = 0; a < 3; a++)
+        if (to_q16(v3_get(lo, a), &info.bmin[a]) || to_q16(v3_get(hi, a), &info.bmax[a]))
+            return LUMO_ERR_RANGE;
+    if ((st = lumo_scene_camera_fit(&info, 1, 1)))
+        return st;
+    out->eye = from_q16(info.eye);
+    out->target = from_q16(info.target);
+    out->up = from_q16(info.up);
+    out->fovy_deg = (float)info.fovy_deg / 65536.0f;
+    return LUMO_OK;
+}
+
+void srv_camera_format(const srv_camera *c, char *buf, size_t len)
+{
+    snprintf(buf, len, "%g,%g,%g:%g,%g,%g:%g,%g,%g:%g", (double)c->eye.x, (double)c->eye.y,
+             (double)c->eye.z, (double)c->target.x, (double)c->target.y, (double)c->target.z,
+             (double)c->up.x, (double)c->up.y, (double)c->up.z, (double)c->fovy_deg);
 }

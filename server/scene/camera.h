@@ -28,4 +28,15 @@ vec3 srv_camera_ray(const srv_camera *c, int w, int h, float px, float py);
 /* The default scene's camera: 0,1,3.4:0,1,0:0,1,0:40. */
 srv_camera srv_camera_default(void);
 
+/* A camera that frames the axis-aligned box lo..hi (metres) in any frame at
+ * least as wide as it is tall: the client SDK's own fit
+ * (lumo_scene_camera_fit, docs/scene-format.md "Fitted camera"), so a
+ * client that refits gets the same camera. LUMO_ERR_RANGE for a box outside
+ * the clients' Q16.16 range (|coordinate| < 32768 m) or lo > hi. */
+lumo_status srv_camera_fit(vec3 lo, vec3 hi, srv_camera *out);
+
+/* Render-friendly text of a camera, "ex,ey,ez:tx,ty,tz:ux,uy,uz:fovy"
+ * (what --camera takes), into buf. */
+void srv_camera_format(const srv_camera *c, char *buf, size_t len);
+
 #endif

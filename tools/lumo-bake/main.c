@@ -57,7 +57,7 @@ static const char usage[] =
     "  --mesh pm|raw|both     mesh chunks: progressive PMSH (default), raw MESH, or both\n"
     "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ")\n"
     "  --reference WxH        render a reference image instead of baking\n"
-    "  --camera E:T:U:FOVY    camera (default: the scene's)\n"
+    "  --camera E:T:U:FOVY    camera (default: the scene's, else one fitted to its bounds)\n"
     "  --indirect-only        reference image of the indirect light only\n"
     "  --exposure E           PNG exposure (default 1.0)\n"
     "  --no-progress          never draw the progress bar\n"
@@ -214,6 +214,27 @@ static lumo_status load_file(const char *path, srv_scene *s, char *err, size_t e
     return srv_import_file(s, path, &x, NULL, err, errlen);
 }
 
+/* A scene with no camera of its own (a model, a scene file without a
+ * camera line) gets one that frames it, and the user is told where the
+ * scene is, so lights and cameras can be placed (docs/scene-format.md). */
+static lumo_status fit_camera(srv_scene *s, char *err, size_t errlen)
+{
+    vec3 lo, hi;
+    char text[256];
+
+    srv_scene_bounds(s, &lo, &hi);
+    if (srv_camera_fit(lo, hi, &s->camera)) {
+        snprintf(err, errlen, "the scene spans %g,%g,%g .. %g,%g,%g: clients hold coordinates below "
+                 "32768 m (Q16.16); scale the model down", (double)lo.x, (double)lo.y, (double)lo.z,
+                 (double)hi.x, (double)hi.y, (double)hi.z);
+        return LUMO_ERR_RANGE;
+    }
+    srv_camera_format(&s->camera, text, sizeof text);
+    fprintf(stderr, "lumo-bake: scene bounds %g,%g,%g .. %g,%g,%g; no camera given, fitted: --camera %s\n",
+            (double)lo.x, (double)lo.y, (double)lo.z, (double)hi.x, (double)hi.y, (double)hi.z, text);
+    return LUMO_OK;
+}
+
 static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t errlen)
 {
     const char *dragon = o->dragon ? o->dragon : getenv("LUMO_DRAGON") ? getenv("LUMO_DRAGON") : DEFAULT_DRAGON;
@@ -231,7 +252,9 @@ static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t 
         srv_scene_override_albedo(s, o->albedo);
     if (o->has_camera)
         s->camera = o->camera;
-    return srv_scene_validate(s, err, errlen);
+    if ((st = srv_scene_validate(s, err, errlen)) || o->has_camera || s->has_camera)
+        return st;
+    return fit_camera(s, err, errlen);
 }
 
 static int run_reference(const options *o, const srv_scene *s, const srv_tracer *t)

@@ -16,6 +16,7 @@
 #include "lumo/session.h"
 #include "../../net/host/net_socket.h"
 #include "client.h"
+#include "../lumo-render/scene_convert.h"
 
 static const char usage[] =
     "usage: lumo-client (--connect HOST:PORT | --serial HOST:PORT | --http URL | --replay FILE) [options]\n"
@@ -41,6 +42,8 @@ static const char usage[] =
     "  --backend soft|osmesa|egl  renderer (default soft)\n"
     "  --size WxH              frame size (default 320x240)\n"
     "  --per-vertex            light per vertex, as a weak device would (default: per pixel)\n"
+    "  --camera EYE:TARGET:UP:FOVY  draw from this camera (default: the package's)\n"
+    "  --fit                   draw from a camera fitted to the scene's bounds\n"
     "  --order interleaved|geometry|lighting  what to ask for first (default interleaved)\n"
     "  --vertices N            fixed geometry request size (default: adaptive)\n"
     "  --rounds K              fixed lighting request size in rounds (default: adaptive)\n"
@@ -112,7 +115,7 @@ static int parse_order(const char *s, options *o)
 
 enum { O_CONNECT = 256, O_SERIAL, O_HTTP, O_REPLAY, O_RECORD, O_RETRIES, O_PACKAGE, O_OUT, O_AT, O_BACKEND,
        O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
-       O_QUIET };
+       O_QUIET, O_CAMERA, O_FIT };
 
 static int take_option(int c, const char *arg, options *o)
 {
@@ -129,6 +132,8 @@ static int take_option(int c, const char *arg, options *o)
     case O_BACKEND: o->backend = arg; return 0;
     case O_SIZE: return parse_size(arg, o);
     case O_PV: o->per_vertex = 1; return 0;
+    case O_CAMERA: o->camera = arg; return 0;
+    case O_FIT: o->fit = 1; return 0;
     case O_ORDER: return parse_order(arg, o);
     case O_VERTS: return parse_u32(arg, 1, 1u << 28, &o->policy.vertices);
     case O_ROUNDS: return parse_u32(arg, 1, 1u << 20, &o->policy.rounds);
@@ -157,7 +162,8 @@ static int parse_args(int argc, char **argv, options *o)
         {"order", 1, 0, O_ORDER}, {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS},
         {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE}, {"max-payload", 1, 0, O_MAXPAY},
         {"no-smoothing", 0, 0, O_NOSMOOTH}, {"smoothing-budget", 1, 0, O_SMOOTHB}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
-        {"quiet", 0, 0, O_QUIET}, {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
+        {"quiet", 0, 0, O_QUIET}, {"camera", 1, 0, O_CAMERA}, {"fit", 0, 0, O_FIT},
+        {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
 
     memset(o, 0, sizeof *o);
@@ -257,6 +263,11 @@ int main(int argc, char **argv)
     if ((rc = parse_args(argc, argv, &c.o))) {
         fputs(usage, rc > 0 ? stdout : stderr);
         return rc > 0 ? 0 : 2;
+    }
+    if (c.o.camera && host_camera_from_string(c.o.camera, &c.scene.camera)) {
+        fprintf(stderr, "lumo-client: error: --camera %s: not EYE:TARGET:UP:FOVY with eye != target, "
+                "UP not along the view, FOVY in [1, 179] (docs/scene-format.md)\n", c.o.camera);
+        return 2;
     }
     if (start(&c, &arena_mem)) {
         free(arena_mem);

@@ -38,6 +38,8 @@ static const char usage[] =
     "  --backend soft|osmesa|egl   renderer (default soft)\n"
     "  --size WxH                  image size (default 320x240, at most 2048x2048)\n"
     "  --camera EYE:TARGET:UP:FOVY camera (default: the package's or the scene's)\n"
+    "  --fit                       a camera fitted to the scene's bounds instead (a model\n"
+    "                              baked without a camera gets one already)\n"
     "  --per-vertex | --per-pixel  lighting per vertex (default) or per pixel\n"
     "  --no-indirect               direct light only (ignore the IVG)\n"
     "  --frames N --orbit          N frames orbiting the target about UP; prints ms/frame\n"
@@ -66,7 +68,7 @@ static const char usage[] =
 typedef struct options {
     const char *input, *output, *backend, *camera, *model;
     const char *lights[LUMO_MAX_LIGHTS];
-    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set;
+    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit;
     const char *lod_arg;
     host_lod lod;
     double exposure;
@@ -88,7 +90,7 @@ static int parse_size(const char *s, uint16_t *w, uint16_t *h)
 static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_HELP };
+           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP };
     static const struct option longs[] = {
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
         {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
@@ -96,7 +98,8 @@ static int parse_args(int argc, char **argv, options *o)
         {"default", 0, 0, O_DEFAULT}, {"model", 1, 0, O_MODEL}, {"light", 1, 0, O_LIGHT},
         {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
         {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
-        {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"help", 0, 0, O_HELP},
+        {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
+        {"help", 0, 0, O_HELP},
         {"output", 1, 0, 'o'}, {0, 0, 0, 0}
     };
     int c;
@@ -118,6 +121,7 @@ static int parse_args(int argc, char **argv, options *o)
         case O_BACKEND: o->backend = optarg; break;
         case O_SIZE: if (parse_size(optarg, &o->ro.width, &o->ro.height)) return -1; break;
         case O_CAMERA: o->camera = optarg; break;
+        case O_FIT: o->fit = 1; break;
         case O_PV: o->per_pixel = 0; break;
         case O_PP: o->per_pixel = 1; break;
         case O_NOIND: o->no_indirect = 1; break;
@@ -298,9 +302,8 @@ int main(int argc, char **argv)
             return 1;
     } else if (load_package(&o, &scene, &ivg))
         return 1;
-    if (o.camera && (st = host_camera_from_string(o.camera, &scene.camera))) {
-        fprintf(stderr, "lumo-render: error: bad camera '%s': %s (EYE:TARGET:UP:FOVY, FOVY in [1, 179]; "
-                        "docs/scene-format.md)\n", o.camera, lumo_strerror(st));
+    if (host_scene_aim(&scene, o.camera, o.fit, o.ro.width, o.ro.height, err, sizeof err)) {
+        fprintf(stderr, "lumo-render: error: %s\n", err);
         return 1;
     }
     if (o.nlights) {
@@ -334,8 +337,10 @@ int main(int argc, char **argv)
         lumo_raster_camera cam = scene.camera;
         char name[1024];
         double t0, dt;
-        if (o.orbit)
+        if (o.orbit) {
             orbit_camera(&scene.camera, i, o.frames, &cam);
+            cam.znear = lumo_raster_znear_for_box(&cam, scene.bmin, scene.bmax);
+        }
         t0 = now_ms();
         if (timed_frame(r, &cam, &rs, rgb)) {
             fprintf(stderr, "lumo-render: error: frame %d failed\n", i);

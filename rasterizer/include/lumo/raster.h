@@ -77,10 +77,21 @@ typedef struct lumo_raster_light {
 /* The near plane clients draw a package's camera with: 0.01 m (Q16.16,
  * rounded); docs/rasterizer.md, "16-bit depth", says what it costs. */
 #define LUMO_RASTER_ZNEAR ((lumo_q16_16)655)
+/* The smallest near plane a box gives (lumo_raster_znear_for_box): 1/4096 m,
+ * so a millimetre-sized model seen from a few millimetres keeps its depth. */
+#define LUMO_RASTER_ZNEAR_MIN ((lumo_q16_16)16)
 
-/* The package's default camera (its scene info), near plane
- * LUMO_RASTER_ZNEAR. */
+/* The package's default camera (its scene info), its near plane from the
+ * scene's bounds (lumo_raster_znear_for_box). */
 void lumo_raster_camera_from_info(const lumo_pkg_info *info, lumo_raster_camera *out);
+
+/* The near plane for cam looking at geometry inside the box bmin..bmax
+ * (metres, Q16.16): half the smallest view depth of the box's corners, so
+ * nothing inside is clipped; LUMO_RASTER_ZNEAR when that is below
+ * LUMO_RASTER_ZNEAR_MIN (the eye inside or beside the box) or eye == target. A larger near plane gives 16-bit
+ * depth finer steps (docs/rasterizer.md, "16-bit depth"). */
+lumo_q16_16 lumo_raster_znear_for_box(const lumo_raster_camera *cam, const lumo_q16_16 bmin[3],
+                                      const lumo_q16_16 bmax[3]);
 
 /* A package light as a rasterizer light. The client has no area lights: an
  * area light becomes a spot at its centre facing its normal with a

@@ -46,6 +46,23 @@ typedef struct lumo_pkg_info {
     lumo_q16_16 eye[3], target[3], up[3], fovy_deg;
 } lumo_pkg_info;
 
+/* ---- a camera that frames the scene (docs/scene-format.md) -------------- */
+
+/* The fitted camera's vertical field of view: 40 degrees (Q16.16). */
+#define LUMO_SCENE_FIT_FOVY LUMO_Q16_FROM_INT(40)
+
+/* Replace info's camera (eye, target, up, fovy_deg) with one that sees the
+ * whole box info->bmin..bmax in a width x height frame: it looks at the
+ * box's centre from a three-quarter view above the front (+z, y up, 30
+ * degrees to the right, 25 above), vertical field of view
+ * LUMO_SCENE_FIT_FOVY, from the nearest distance at which all eight corners
+ * are in the frame (plus 1/64). The server fits for a square frame (1, 1),
+ * which frames every landscape frame too. Integer code; the same on every
+ * board.
+ * LUMO_ERR_ARG (NULL, zero size), LUMO_ERR_RANGE (bmin > bmax on an axis,
+ * or the eye would leave the Q16.16 range); info is unchanged on error. */
+lumo_status lumo_scene_camera_fit(lumo_pkg_info *info, uint32_t width, uint32_t height);
+
 typedef struct lumo_pkg_mesh_info {
     uint32_t nverts, ntris;
     uint32_t flags;          /* LUMO_PKG_MESH_EMITTER */
