@@ -99,5 +99,5 @@ check "make install CROSS=arm-none-eabi- CPU=cortex-m4: Arm objects" \
 
 # ---- the CHANGELOG is at the headers' version ------------------------------------
 check "CHANGELOG.md's newest release is $version" \
-    sh -c "grep -m1 '^## ' CHANGELOG.md | grep -q '^## $version '"
+    sh -c "grep -m1 '^## [0-9]' CHANGELOG.md | grep -q '^## $version '"
 finish
