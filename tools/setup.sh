@@ -33,6 +33,7 @@ liblapacke-dev
 gnuplot-nox
 nginx-light
 libcurl4-openssl-dev
+doxygen
 "
 
 missing=""
