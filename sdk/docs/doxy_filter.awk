@@ -6,9 +6,14 @@
 #     between) documents that declaration;
 #   - a comment after code on the same line documents that member, enum
 #     value or macro;
-#   - everything else stays a plain comment: section rules (/* ---- x ---- */),
+#   - everything else stays a plain comment: one-line section rules
+#     (/* ---- x ---- */),
 #     comments followed by a blank line, and every comment inside a function
 #     body (static inline helpers);
+#   - a comment right above several declarations in a row (up to a blank
+#     line or the next comment: `lumo_x_encode` and `lumo_x_decode` under
+#     one comment) documents each of them (a member group, its doc
+#     distributed: DISTRIBUTE_GROUP_DOC);
 #   - a field line declaring several names (`uint32_t a, b;  /* x */`) is
 #     split into one declaration per name on the same line, each with the
 #     comment, so every name is documented;
@@ -23,6 +28,8 @@ END {
         s = line[i]
         if (!incomment && depth > 0 && !body) s = split_fields(s)
         if (!incomment) s = open_comment(s, i)
+        if (i in group_open) s = s " /**@{*/"
+        if (i in group_close) s = "/**@}*/ " s
         if (depth == 0 && line[i] ~ /[Ff]ields are private/) private = 1
         if (depth == 0 && private && line[i] ~ /(struct|union)[^;]*\{/) { s = s " /** @privatesection */"; private = 0 }
         if (depth == 0 && !incomment && line[i] !~ /^[ \t]*(\/\*|\*)/ && line[i] ~ /;/) private = 0
@@ -46,7 +53,8 @@ function open_comment(s, i,    p, before, text) {
     first = 0
     if (before !~ /^[ \t]*$/)
         return before "/**<" substr(text, 3)
-    if (text ~ /^\/\*[ \t]*-/ || !touches_code(i)) return s
+    if ((text ~ /^\/\*[ \t]*-/ && text ~ /\*\/[ \t]*$/) || !touches_code(i)) return s
+    if (depth == 0) group_after(i)
     return before "/**" substr(text, 3)
 }
 
@@ -74,6 +82,23 @@ function split_fields(s,    p, code, com, first, type, n, k, d, out, doc) {
         out = out " " type " " d ";" doc
     }
     return out
+}
+
+# The comment starting on line i (depth 0) ends on line e; when the lines
+# after it up to a blank or comment line hold two or more declarations or
+# macros and no block, they become one member group.
+function group_after(i,    e, j, n) {
+    for (e = i; e <= NR && index(substr(line[e], e == i ? index(line[e], "/*") + 2 : 1), "*/") == 0; e++) ;
+    n = 0
+    for (j = e + 1; j <= NR && line[j] !~ /^[ \t]*$/ && line[j] !~ /^[ \t]*(\/\*|\*)/; j++) {
+        if (index(line[j], "/*") && line[j] !~ /\*\/[ \t]*$/) return   # a comment running on
+        if (line[j] ~ /^[ \t]*#[ \t]*define/) { n++; continue }
+        if (line[j] ~ /[{}]/ || line[j] ~ /^[ \t]*#/) return
+        n += gsub(/;/, ";", line[j])
+    }
+    if (n < 2) return
+    group_open[e] = 1
+    group_close[j] = 1   # on the line after the run: a #define line's comment is the macro's
 }
 
 function quote_count(s,    n, k) {

@@ -28,9 +28,8 @@
 #define LUMO_VERSION_MINOR 1   /* additions */
 #define LUMO_VERSION_PATCH 0   /* fixes */
 
-/* Helpers of LUMO_VERSION_STRING: a macro's value as a string literal. */
-#define LUMO_VERSION_STR_(x) #x
-#define LUMO_VERSION_XSTR_(x) LUMO_VERSION_STR_(x)
+#define LUMO_VERSION_STR_(x) #x   /* helper of LUMO_VERSION_STRING: x as a string */
+#define LUMO_VERSION_XSTR_(x) LUMO_VERSION_STR_(x)   /* helper: x's value as a string */
 
 /* "MAJOR.MINOR.PATCH" of the headers being compiled. */
 #define LUMO_VERSION_STRING \
