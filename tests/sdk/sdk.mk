@@ -11,6 +11,6 @@ $(PPM_PNG_SAME): $(BUILD)/host/tests/sdk/ppm_png_same.o $(BUILD)/host/libhost.a
 
 TEST_STEPS += test-sdk
 .PHONY: test-sdk
-test-sdk: $(BIN)/lumo-render $(BIN)/lumo-bake $(PPM_PNG_SAME) $(BUILD)/rel/liblumo.a \
+test-sdk: $(BIN)/lumo-render $(BIN)/lumo-bake $(BIN)/lumo-server $(BIN)/lumo-client $(PPM_PNG_SAME) $(BUILD)/rel/liblumo.a \
           $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo_net.a
 	+@sh tests/sdk/sdk_test.sh "$(MAKE)" $(BUILD) $(BIN) $(PPM_PNG_SAME) $(BUILD)/data/models

@@ -97,6 +97,12 @@ check "make install CROSS=arm-none-eabi- CPU=cortex-m4: Arm objects" \
            && arm-none-eabi-objdump -f '$fw/lib/liblumo.a' | grep -q 'file format elf32-littlearm' \
            && arm-none-eabi-objdump -f '$fw/lib/liblumo_raster.a' | grep -q 'file format elf32-littlearm'"
 
+# ---- the tools say which lumo they are -------------------------------------------
+for t in lumo-bake lumo-server lumo-client lumo-render; do
+    check "$t --version: lumo $version and the format versions" \
+        sh -c "'$bin/$t' --version | grep -qx '$t lumo $version (package format [0-9]*\.[0-9]*, progressive mesh [0-9]*, IVG bundle [0-9]*, protocol [0-9]*)'"
+done
+
 # ---- the CHANGELOG is at the headers' version ------------------------------------
 check "CHANGELOG.md's newest release is $version" \
     sh -c "grep -m1 '^## [0-9]' CHANGELOG.md | grep -q '^## $version '"
