@@ -35,6 +35,7 @@ nginx-light
 libcurl4-openssl-dev
 libmeshoptimizer-dev
 libcgal-demo
+doxygen
 "
 
 missing=""

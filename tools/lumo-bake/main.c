@@ -13,6 +13,7 @@
 #include "common/progress.h"
 #include "bake/reference.h"
 #include "scene/shapes.h"
+#include "lumo_host/version_line.h"
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
 
@@ -352,6 +353,8 @@ static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
 
 int main(int argc, char **argv)
 {
+    if (host_version_option(argc, argv, "lumo-bake"))
+        return 0;
     options o;
     srv_scene s;
     char err[512];

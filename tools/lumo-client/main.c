@@ -17,6 +17,7 @@
 #include "../../net/host/net_socket.h"
 #include "client.h"
 #include "../lumo-render/scene_convert.h"
+#include "lumo_host/version_line.h"
 
 static const char usage[] =
     "usage: lumo-client (--connect HOST:PORT | --serial HOST:PORT | --http URL | --replay FILE) [options]\n"
@@ -255,6 +256,8 @@ static void summary(const client *c)
 
 int main(int argc, char **argv)
 {
+    if (host_version_option(argc, argv, "lumo-client"))
+        return 0;
     static client c;
     void *arena_mem = NULL;
     int rc;

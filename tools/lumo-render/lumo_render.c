@@ -28,6 +28,7 @@
 #include "render_backend.h"
 #include "scene/shapes.h"
 #include "scene_convert.h"
+#include "lumo_host/version_line.h"
 
 /* The dragon of the default scene when neither --model nor LUMO_DRAGON names
  * one (the same as lumo-bake's). */
@@ -276,6 +277,8 @@ static int build_default(const options *o, host_scene *scene)
 
 int main(int argc, char **argv)
 {
+    if (host_version_option(argc, argv, "lumo-render"))
+        return 0;
     options o;
     host_scene scene;
     host_ivg ivg;

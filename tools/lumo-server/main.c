@@ -9,6 +9,7 @@
 #include <string.h>
 #include "serve/index.h"
 #include "serve/server.h"
+#include "lumo_host/version_line.h"
 
 static const char usage[] =
     "usage: lumo-server PACKAGE.lumo... [options]\n"
@@ -67,6 +68,8 @@ static int parse_double(const char *t, double lo, double hi, double *out)
 
 int main(int argc, char **argv)
 {
+    if (host_version_option(argc, argv, "lumo-server"))
+        return 0;
     enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET };
     static const struct option longopts[] = {
         {"listen", required_argument, NULL, O_LISTEN},
