@@ -10,3 +10,12 @@ UNIT_TESTS += $(CLI_OPTIONS_TEST)
 $(CLI_OPTIONS_TEST): $(CLI_OPTIONS_TEST_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ $(TEST_LDLIBS)
+
+# The parser's fuzz target: tests/fuzz/fuzz_cli_options.c is picked up by
+# the top Makefile's fuzz wildcard (run by `make test` and `make fuzz`), but
+# it links the desktop parser rather than the client sources, so it has this
+# rule of its own (an explicit rule wins over the pattern rule).
+$(BUILD)/fuzz/bin/fuzz_cli_options: tests/fuzz/fuzz_cli_options.c tools/lib/options.c \
+                                    tools/lib/include/lumo_host/options.h
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_cli_options
+	$(CLANG) $(FUZZ_CFLAGS) -D_GNU_SOURCE -Itools/lib/include -o $@ tests/fuzz/fuzz_cli_options.c tools/lib/options.c
