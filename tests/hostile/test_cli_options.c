@@ -7,6 +7,8 @@
  */
 #include "test_common.h"
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "lumo_host/options.h"
 
@@ -232,6 +234,36 @@ static void test_message_escaping(void **state)
     assert_int_equal(strlen(small), sizeof small - 1);
 }
 
+/* Named files: missing, a directory, a device, empty, then a real one. */
+static void test_files(void **state)
+{
+    char dir[] = "/tmp/lumo_test_cli_XXXXXX", path[64];
+    FILE *f;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/m.ply", dir);
+    assert_int_equal(host_opt_file("--model", path, "model file", g_err, sizeof g_err), -1);
+    assert_non_null(strstr(g_err, "m.ply: cannot read: No such file or directory"));
+    assert_int_equal(strncmp(g_err, "--model /tmp/", 13), 0);
+    assert_int_equal(host_opt_file(NULL, dir, "scene file", g_err, sizeof g_err), -1);
+    assert_non_null(strstr(g_err, ": a directory, not a scene file"));
+    assert_int_equal(strncmp(g_err, "/tmp/", 5), 0);
+    assert_int_equal(host_opt_file("--dragon", "/dev/null", "model file", g_err, sizeof g_err), -1);
+    assert_msg("--dragon /dev/null: not a regular file (a model file is read whole)");
+    f = fopen(path, "w");
+    assert_non_null(f);
+    fclose(f);
+    assert_int_equal(host_opt_file("--model", path, "model file", g_err, sizeof g_err), -1);
+    assert_non_null(strstr(g_err, "m.ply: empty file, not a model file"));
+    f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("ply\n", f);
+    fclose(f);
+    assert_int_equal(host_opt_file("--model", path, "model file", g_err, sizeof g_err), 0);
+    assert_int_equal(remove(path), 0);
+    assert_int_equal(remove(dir), 0);
+}
+
 static void test_getopt_errors(void **state)
 {
     (void)state;
@@ -255,7 +287,8 @@ int main(void)
         cmocka_unit_test(test_numbers_not_finite), cmocka_unit_test(test_positive),
         cmocka_unit_test(test_sizes),           cmocka_unit_test(test_vectors),
         cmocka_unit_test(test_lists),           cmocka_unit_test(test_choice),
-        cmocka_unit_test(test_message_escaping), cmocka_unit_test(test_getopt_errors),
+        cmocka_unit_test(test_message_escaping), cmocka_unit_test(test_files),
+        cmocka_unit_test(test_getopt_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

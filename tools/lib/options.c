@@ -12,17 +12,21 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
-/* The longest value shown whole in a message; longer ones are cut. */
+/* The longest value shown whole in a message; longer ones are cut.
+ * File names get more room. */
 #define SHOWN_MAX 48
+#define PATH_SHOWN_MAX 240
 
-/* The value as the message shows it: verbatim when short, non-empty and
- * printable; otherwise quoted, bytes outside printable ASCII as \xNN and
- * cut after SHOWN_MAX characters. */
-static void show_value(const char *text, char *out, size_t len)
+/* The value as the message shows it: verbatim when at most max bytes,
+ * non-empty and printable; otherwise quoted, bytes outside printable ASCII
+ * as \xNN and cut after max characters. */
+static void show_value(const char *text, size_t max, char *out, size_t len)
 {
     size_t i, o = 0;
-    int plain = text[0] != 0 && strlen(text) <= SHOWN_MAX;
+    int plain = text[0] != 0 && strlen(text) <= max;
 
     for (i = 0; plain && text[i]; i++)
         plain = text[i] > ' ' && text[i] < 127 && text[i] != '\'';
@@ -31,7 +35,7 @@ static void show_value(const char *text, char *out, size_t len)
         return;
     }
     out[o++] = '\'';
-    for (i = 0; text[i] && i < SHOWN_MAX && o + 6 < len; i++) {
+    for (i = 0; text[i] && i < max && o + 6 < len; i++) {
         unsigned char c = (unsigned char)text[i];
         if (c >= ' ' && c < 127 && c != '\'' && c != '\\')
             out[o++] = (char)c;
@@ -56,7 +60,7 @@ __attribute__((format(printf, 5, 6))) static int refuse(const char *opt, const c
     va_start(ap, why);
     vsnprintf(reason, sizeof reason, why, ap);
     va_end(ap);
-    show_value(text, shown, sizeof shown);
+    show_value(text, SHOWN_MAX, shown, sizeof shown);
     if (errlen)
         snprintf(err, errlen, "%s %s: %s", opt, shown, reason);
     return -1;
@@ -322,12 +326,32 @@ int host_opt_getopt_error(int c, const char *arg, int optopt_, char *err, size_t
         snprintf(opt, sizeof opt, "-%c", optopt_);
         arg = opt;
     }
-    show_value(arg ? arg : "", shown, sizeof shown);
+    show_value(arg ? arg : "", SHOWN_MAX, shown, sizeof shown);
     if (c == ':')
         snprintf(err, errlen, "%s needs a value (try --help)", shown);
     else if (strchr(shown, '='))
         snprintf(err, errlen, "%s: unknown option, or one that takes no value (try --help)", shown);
     else
         snprintf(err, errlen, "%s: unknown option (try --help)", shown);
+    return -1;
+}
+
+int host_opt_file(const char *opt, const char *path, const char *kind, char *err, size_t errlen)
+{
+    struct stat st;
+    const char *o = opt ? opt : "", *sep = opt ? " " : "";
+    char shown[4 * PATH_SHOWN_MAX + 8];
+
+    show_value(path, PATH_SHOWN_MAX, shown, sizeof shown);
+    if (stat(path, &st) || access(path, R_OK))
+        snprintf(err, errlen, "%s%s%s: cannot read: %s", o, sep, shown, strerror(errno));
+    else if (S_ISDIR(st.st_mode))
+        snprintf(err, errlen, "%s%s%s: a directory, not a %s", o, sep, shown, kind);
+    else if (!S_ISREG(st.st_mode))
+        snprintf(err, errlen, "%s%s%s: not a regular file (a %s is read whole)", o, sep, shown, kind);
+    else if (st.st_size == 0)
+        snprintf(err, errlen, "%s%s%s: empty file, not a %s", o, sep, shown, kind);
+    else
+        return 0;
     return -1;
 }

@@ -64,6 +64,14 @@ int host_opt_list(const char *opt, const char *text, double lo, double hi, int i
 int host_opt_choice(const char *opt, const char *text, const char *const *names, int count, int *out, char *err,
                     size_t errlen);
 
+/* A file the user named, before any reader sees it: it must exist, be a
+ * regular file (not a directory, pipe or device), be readable and hold at
+ * least one byte. `opt` is the option that named it, or NULL for a
+ * positional argument; `kind` says what the tool wanted ("model file"):
+ *   --model /tmp/m: a directory, not a model file
+ *   scene.txt: cannot read: No such file or directory */
+int host_opt_file(const char *opt, const char *path, const char *kind, char *err, size_t errlen);
+
 /* The line for an option getopt_long refused (opterr = 0 and an optstring
  * starting with ':'): c is what getopt_long returned (':' for a missing
  * value, '?' otherwise), `arg` the word it stopped at (argv[optind - 1]),
