@@ -446,8 +446,8 @@ int main(int argc, char **argv)
         total += dt;
         if (dt < best) best = dt;
         frame_name(o.output, i, o.frames, name, sizeof name);
-        if (host_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, NULL, 0)) {
-            fprintf(stderr, "lumo-render: error: cannot write %s\n", name);
+        if (host_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, err, sizeof err)) {
+            fprintf(stderr, "lumo-render: error: %s\n", err);
             rc = 1;
             break;
         }
