@@ -134,8 +134,6 @@ static int check_args(const options *o, int argc, char **argv, char *err, size_t
         snprintf(err, errlen, "no output file: give -o OUT.png (try --help)");
     else if (o->model && !o->use_default)
         snprintf(err, errlen, "--model %s: only with --default (a package holds its own meshes)", o->model);
-    else if (o->use_default && o->lod_set)
-        snprintf(err, errlen, "--lod %s: needs a package with progressive meshes, not --default", o->lod_arg);
     else
         return 0;
     return -1;
@@ -393,6 +391,11 @@ int main(int argc, char **argv)
         return 2;
     }
     memset(&ivg, 0, sizeof ivg);
+    if (o.use_default && o.lod_set) {
+        fprintf(stderr, "lumo-render: error: --lod %s: needs a package with progressive meshes, not --default\n",
+                o.lod_arg);
+        return 1;
+    }
     if (o.use_default) {
         if (build_default(&o, &scene))
             return 1;
