@@ -275,6 +275,8 @@ static void test_getopt_errors(void **state)
     assert_msg("--orbit=3: unknown option, or one that takes no value (try --help)");
     host_opt_getopt_error(':', "-o", 'o', g_err, sizeof g_err);
     assert_msg("-o needs a value (try --help)");
+    host_opt_getopt_error('?', "--help=3", 'h', g_err, sizeof g_err);
+    assert_msg("--help=3: unknown option, or one that takes no value (try --help)");
     host_opt_getopt_error('?', "-qz", 'z', g_err, sizeof g_err);
     assert_msg("-z: unknown option (try --help)");
 }

@@ -322,7 +322,9 @@ int host_opt_getopt_error(int c, const char *arg, int optopt_, char *err, size_t
 {
     char shown[4 * SHOWN_MAX + 8], opt[8];
 
-    if (optopt_ > ' ' && optopt_ < 127) {
+    /* getopt_long sets optopt to a long option's value too ("--help=3"
+     * gives 'h'): the word typed names it better. */
+    if (optopt_ > ' ' && optopt_ < 127 && !(arg && arg[0] == '-' && arg[1] == '-')) {
         snprintf(opt, sizeof opt, "-%c", optopt_);
         arg = opt;
     }
