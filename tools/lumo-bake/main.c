@@ -58,7 +58,8 @@ static const char usage[] =
     "  --albedo R,G,B         override every material's albedo\n"
     "  --mesh pm|raw|both     mesh chunks: progressive PMSH (default), raw MESH, or both\n"
     "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ",\n"
-    "                         or LUMO_DRAGON); a named model that cannot be read is an error\n"
+    "                         or LUMO_DRAGON); a named model that cannot be read is an error;\n"
+    "                         'sphere': the server's generated sphere instead of a model\n"
     "  --reference WxH        render a reference image instead of baking\n"
     "  --camera E:T:U:FOVY    camera (default: the scene's)\n"
     "  --indirect-only        reference image of the indirect light only\n"
@@ -255,22 +256,29 @@ static lumo_status load_file(const char *path, srv_scene *s, char *err, size_t e
     return srv_import_file(s, path, &x, NULL, err, errlen);
 }
 
-/* The model of --default: --dragon, else LUMO_DRAGON, else the dragon. A
- * file the user named is used or refused; only the built-in dragon, when
- * tools/setup.sh has not fetched it, gives way to the server's sphere
- * (said on stderr). NULL with err set on refusal. */
-static const char *default_model(const options *o, char *err, size_t errlen)
+/* The model of --default: --dragon, else LUMO_DRAGON, else the dragon;
+ * "sphere" asks for the server's generated sphere (*model NULL). A file
+ * the user named is used or refused; only the built-in dragon, when
+ * tools/setup.sh has not fetched it, gives way to the sphere (said on
+ * stderr). 0, or -1 with err set. */
+static int default_model(const options *o, const char **model, char *err, size_t errlen)
 {
     const char *env = getenv("LUMO_DRAGON");
 
+    *model = o->dragon ? o->dragon : env;
+    if (*model && !strcmp(*model, "sphere")) {
+        *model = NULL;
+        return 0;
+    }
     if (o->dragon)
-        return host_opt_file("--dragon", o->dragon, "model file", err, errlen) ? NULL : o->dragon;
+        return host_opt_file("--dragon", o->dragon, "model file", err, errlen);
     if (env)
-        return host_opt_file("LUMO_DRAGON", env, "model file", err, errlen) ? NULL : env;
+        return host_opt_file("LUMO_DRAGON", env, "model file", err, errlen);
     if (access(DEFAULT_DRAGON, R_OK))
         fprintf(stderr, "lumo-bake: note: %s missing (tools/setup.sh fetches it): a sphere in its place\n",
                 DEFAULT_DRAGON);
-    return DEFAULT_DRAGON;
+    *model = DEFAULT_DRAGON;
+    return 0;
 }
 
 /* SCENE or --default with its model, checked as files first (a directory
@@ -282,7 +290,7 @@ static lumo_status load_base(const options *o, srv_scene *s, char *err, size_t e
     if (!o->use_default)
         return host_opt_file(NULL, o->scene, "scene or model file", err, errlen) ? LUMO_ERR_ARG
                                                                                  : load_file(o->scene, s, err, errlen);
-    if (!(dragon = default_model(o, err, errlen)))
+    if (default_model(o, &dragon, err, errlen))
         return LUMO_ERR_ARG;
     return srv_default_scene(s, dragon, err, errlen);
 }
