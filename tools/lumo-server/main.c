@@ -9,6 +9,7 @@
 #include <string.h>
 #include "serve/index.h"
 #include "serve/server.h"
+#include "serve/usb.h"
 
 static const char usage[] =
     "usage: lumo-server PACKAGE.lumo... [options]\n"
@@ -29,6 +30,10 @@ static const char usage[] =
     "  --max-clients N            clients at once (default 1024); more get ERROR LIMIT\n"
     "  --idle-timeout S           close a client that sends nothing, or reads nothing,\n"
     "                             for S seconds (default 30)\n"
+    "  --usb [VID:PID]            also serve thin clients plugged in by USB: every\n"
+    "                             device with a lumo interface (class ff/4c/01), or\n"
+    "                             those of VID:PID (hex); found by hotplug and by a\n"
+    "                             scan every 500 ms (docs/protocol.md §8 \"USB\")\n"
     "  --port-file FILE           write \"TCP_PORT SERIAL_PORT\" once listening (scripts)\n"
     "  --quiet                    no line per client (start, stop and errors only)\n"
     "  -h, --help                 this text\n"
@@ -65,9 +70,25 @@ static int parse_double(const char *t, double lo, double hi, double *out)
     return 0;
 }
 
+/* --usb, --usb=VID:PID or --usb VID:PID (the next word when it is one). */
+static int usb_option(srv_serve_options *o, const char *arg, int argc, char **argv)
+{
+    o->usb = 1;
+    o->usb_any = 1;
+    if (!arg && optind < argc && srv_usb_parse_id(argv[optind], &o->usb_vid, &o->usb_pid) == 0) {
+        optind++;
+        o->usb_any = 0;
+        return 0;
+    }
+    if (!arg)
+        return 0;
+    o->usb_any = 0;
+    return srv_usb_parse_id(arg, &o->usb_vid, &o->usb_pid);
+}
+
 int main(int argc, char **argv)
 {
-    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET };
+    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET, O_USB };
     static const struct option longopts[] = {
         {"listen", required_argument, NULL, O_LISTEN},
         {"serial-listen", required_argument, NULL, O_SERIAL},
@@ -79,6 +100,7 @@ int main(int argc, char **argv)
         {"idle-timeout", required_argument, NULL, O_IDLE},
         {"port-file", required_argument, NULL, O_PORTFILE},
         {"quiet", no_argument, NULL, O_QUIET},
+        {"usb", optional_argument, NULL, O_USB},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
@@ -137,6 +159,10 @@ int main(int argc, char **argv)
             break;
         case O_QUIET:
             o.quiet = 1;
+            break;
+        case O_USB:
+            if (usb_option(&o, optarg, argc, argv))
+                return fail("--usb wants nothing or VID:PID in hex (e.g. 1209:0001)");
             break;
         default:
             snprintf(msg, sizeof msg, "unknown or incomplete option '%s' (see --help)", argv[optind - 1]);
