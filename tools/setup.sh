@@ -33,6 +33,8 @@ liblapacke-dev
 gnuplot-nox
 nginx-light
 libcurl4-openssl-dev
+qemu-system-x86
+busybox-static
 "
 
 missing=""

@@ -61,8 +61,10 @@ srv_usb_end srv_usb_pump_in(const srv_usb_io *io, int sock)
         size_t got = 0;
         int r = io->bulk_in(io->ctx, buf, sizeof buf, &got, SRV_USB_WAKE_MS);
         /* bytes that came before a timeout or a failure still belong to the stream */
-        if (got && (why = to_socket(io, sock, buf, got)) != 0)
+        if (got && (why = to_socket(io, sock, buf, got)) != 0) {
+            why = *io->stop ? SRV_USB_END_STOP : why;   /* shut by the other pump */
             break;
+        }
         why = SRV_USB_END_STOP;
         if (r != SRV_USB_OK) {
             why = SRV_USB_END_DEVICE;
@@ -101,7 +103,7 @@ srv_usb_end srv_usb_pump_out(const srv_usb_io *io, int sock)
         int r = wait_sock(sock, POLLIN);
 
         if (r < 0) {
-            why = SRV_USB_END_SOCKET;
+            why = *io->stop ? SRV_USB_END_STOP : SRV_USB_END_SOCKET;
             break;
         }
         if (r == 0)
@@ -110,7 +112,8 @@ srv_usb_end srv_usb_pump_out(const srv_usb_io *io, int sock)
         if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
             continue;
         if (n <= 0) {
-            why = SRV_USB_END_SOCKET;   /* the loop closed the connection */
+            /* the loop closed the connection, or the other pump shut it */
+            why = *io->stop ? SRV_USB_END_STOP : SRV_USB_END_SOCKET;
             break;
         }
         if ((why = to_device(io, buf, (size_t)n)) != 0)
