@@ -17,8 +17,8 @@
 #     nothing taken out of turn, the DATA bytes of the clean run exactly,
 #     and the bytes received twice are only the cut frame and a WELCOME.
 #  3. throughput: the same client without pictures, USB and TCP loopback
-#     alternately, 3 runs each; bytes / session time from the server's
-#     log lines ("USBTEST bench" lines).
+#     alternately, lumo_runs=N runs each (kernel command line; default 3);
+#     bytes / session time from the server's log lines ("USBTEST bench").
 # Lines: "USBTEST ok: ...", "USBTEST bad: ...", "USBTEST RESULT: N passed,
 # M failed".
 pass=0
@@ -136,7 +136,9 @@ stop_server
 
 # 3. throughput: bytes / session seconds from the server's lines
 serve bench
-for r in 1 2 3; do
+runs=$(sed -n 's/.*lumo_runs=\([0-9]*\).*/\1/p' /proc/cmdline)
+runs=${runs:-3}
+for r in $(seq 1 "$runs"); do
     gadget "u$r" --no-pictures && finish "$cpid" 40
     LUMO_LINK=127.0.0.1:$tcp lumo-client-tcp --no-pictures >"/tmp/t$r.log" 2>&1 &
     finish $! 40
@@ -144,7 +146,7 @@ done
 stop_server
 grep -E ' (usb|tcp): HELLO' /tmp/bench.server.log |
     sed -n 's/.* \(usb\|tcp\): HELLO.* \([0-9]*\) bytes sent in .*, \([0-9.]*\) s: bye$/USBTEST bench \1 \2 \3/p'
-[ "$(grep -c ': bye$' /tmp/bench.server.log)" = 6 ] && ok "throughput: 3 USB and 3 TCP sessions, each to BYE" ||
+[ "$(grep -c ': bye$' /tmp/bench.server.log)" = $((2 * runs)) ] && ok "throughput: $runs USB and $runs TCP sessions, each to BYE" ||
     { bad "throughput runs"; cat /tmp/bench.server.log; }
 echo "USBTEST info: done at $(cut -d' ' -f1 /proc/uptime) s"
 echo "USBTEST RESULT: $pass passed, $fail failed"

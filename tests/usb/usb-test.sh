@@ -9,8 +9,9 @@
 #     initramfs (tests/usb/initramfs.sh) with SERVER, GADGET, TCP_CLIENT,
 #     boards/linux-gadget/gadget.sh, the package and the reference;
 #  3. the guest runs tests/usb/guest-test.sh (clean run, unplug and
-#     resume, throughput) under qemu-system-x86_64 -accel tcg, at most
-#     150 s; its "USBTEST" lines are read from the console log.
+#     resume, USB_RUNS throughput pairs, default 3) under
+#     qemu-system-x86_64 -accel tcg, at most 150 s (+10 s a pair beyond
+#     3); its "USBTEST" lines are read from the console log.
 # QEMU's exit status does not carry the verdict: the guest's RESULT line
 # does. Prints "RESULT: N passed, M failed"; the throughput lines go to
 # DIR/bench.txt (bench/usb.sh formats them). Logs: DIR/*.log.
@@ -45,8 +46,10 @@ if ! sh "$here/initramfs.sh" "$dir/initramfs.gz" "$kroot" "$here/guest-test.sh" 
 fi
 
 # 3. boot
-timeout 150 qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$kroot"/boot/vmlinuz-* \
-    -initrd "$dir/initramfs.gz" -append "console=ttyS0 panic=-1 quiet" </dev/null >"$dir/console.log" 2>&1 &
+runs=${USB_RUNS:-3}
+limit=$((150 + (runs > 3 ? runs - 3 : 0) * 10))
+timeout $limit qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$kroot"/boot/vmlinuz-* \
+    -initrd "$dir/initramfs.gz" -append "console=ttyS0 panic=-1 quiet lumo_runs=$runs" </dev/null >"$dir/console.log" 2>&1 &
 q=$!
 pids="$pids $q"
 wait $q
@@ -60,7 +63,7 @@ if [ -n "$res" ] && [ "${res#* }" = 0 ] && [ "${res% *}" -ge 6 ]; then
 elif [ -n "$res" ]; then
     bad "QEMU guest: ${res#* } of its checks failed — $dir/console.txt"
 else
-    bad "QEMU guest: no result line (QEMU status $qst; timeout 150 s) — $dir/console.txt"
+    bad "QEMU guest: no result line (QEMU status $qst; timeout $limit s) — $dir/console.txt"
     tail -n 15 "$dir/console.txt" | sed 's/^/    /'
 fi
 echo "RESULT: $pass passed, $fail failed"
