@@ -26,6 +26,8 @@
 #include <unistd.h>
 
 enum { KIND_CONN = 1, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL, KIND_USB };
+/* Where a client came from (the listener index, then USB). */
+enum { VIA_TCP = 0, VIA_SERIAL = 1, VIA_USB = 2 };
 
 /* Sweep for timeouts this often. */
 #define SWEEP_US 200000
@@ -279,7 +281,7 @@ static void refuse_client(srv_serve *s, int fd, const char *peer)
 
 /* A connected socket fd (non-blocking) becomes a client: TCP, serial or a
  * USB bridge's (serve/usb.h). */
-static void adopt(srv_serve *s, int fd, int which, const char *peer, int64_t now)
+static void adopt(srv_serve *s, int fd, int via, const char *peer, int64_t now)
 {
     struct epoll_event e;
     srv_conn *c;
@@ -294,14 +296,14 @@ static void adopt(srv_serve *s, int fd, int which, const char *peer, int64_t now
         close(fd);
         return;
     }
-    if (which != 2)
+    if (via != VIA_USB)
         setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     /* a fixed kernel send buffer: a client that stops reading holds at
      * most this much kernel memory and is found stalled soon */
     setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
-    srv_conn_init(c, s, fd, which == 1, ++s->next_id, peer, now);
+    srv_conn_init(c, s, fd, via == VIA_SERIAL, ++s->next_id, peer, now);
     c->kind = KIND_CONN;
-    c->usb = which == 2;
+    c->usb = via == VIA_USB;
     c->events = EPOLLIN;
     e.events = EPOLLIN;
     e.data.ptr = c;
@@ -347,7 +349,7 @@ static void on_usb(srv_serve *s, int64_t now)
 
     while ((fd = srv_usb_take(s->usb, peer, sizeof peer)) >= 0) {
         srv_log(s, 0, "%s: a lumo client, claimed", peer);
-        adopt(s, fd, 2, peer, now);
+        adopt(s, fd, VIA_USB, peer, now);
     }
 }
 
