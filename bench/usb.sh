@@ -29,5 +29,8 @@ included), not raw bulk bandwidth. Seconds from the server's line per session
 | USB (dummy_hcd, high speed) | $u s | $(awk -v b="$bytes" -v s="$u" 'BEGIN { printf "%.3f MB/s", b / s / 1e6 }') |
 | TCP loopback | $t s | $(awk -v b="$bytes" -v s="$t" 'BEGIN { printf "%.3f MB/s", b / s / 1e6 }') |
 
+Host load average when written: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores (the guest's
+timings move with it; the runs alternate so a burst hits both links).
+
 USB / TCP throughput: **$(awk -v u="$u" -v t="$t" 'BEGIN { printf "%.2f", t / u }')** (every run: $(awk '{ printf "%s%s %s s", (NR > 1 ? ", " : ""), $1, $3 }' "$f")).
 EOT
