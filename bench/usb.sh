@@ -22,7 +22,9 @@ is one session: $bytes bytes from HELLO to BYE with the client's fixed request
 sizes (250 vertices, 4 lighting rounds, 4 in flight), so the figure is what a
 real client gets through each link (round trips and the client's decoding
 included), not raw bulk bandwidth. Seconds from the server's line per session
-(10 ms steps); medians.
+(10 ms steps); medians. The guest has one virtual CPU: over USB each byte
+also crosses the bridge's pump threads, the gadget's reader thread and
+dummy_hcd's 1 ms frame timer, all on that CPU under TCG.
 
 | link | median session | throughput |
 |---|---:|---:|
