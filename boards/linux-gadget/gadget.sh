@@ -3,10 +3,11 @@
 # through configfs and libcomposite (docs/porting.md §8). POSIX sh; needs
 # the modules libcomposite and usb_f_fs (and a UDC driver), run as root.
 #
-#   gadget.sh setup [DIR]   the gadget "lumo" (VID:PID 1209:0001, pid.codes'
-#                           test pair: use your own in a product) with one
-#                           configuration holding the FunctionFS function
-#                           ffs.lumo, mounted at DIR (default /dev/ffs-lumo)
+#   gadget.sh setup [DIR]   the gadget $LUMO_GADGET (default "lumo"; VID:PID
+#                           1209:0001, pid.codes' test pair: use your own in
+#                           a product) with one configuration holding the
+#                           FunctionFS function ffs.$LUMO_GADGET, mounted at
+#                           DIR (default /dev/ffs-$LUMO_GADGET)
 #   gadget.sh bind [UDC]    bind it to UDC (default: the first in
 #                           /sys/class/udc), once the client has written its
 #                           descriptors (DIR/ep1 exists): the host sees the
@@ -15,10 +16,13 @@
 #   gadget.sh wait [DIR]    wait (10 s at most) for the client's descriptors
 #
 # Start the client (lumo-gadget, LUMO_FFS=DIR) between setup and bind.
+# Several gadgets (one per UDC) differ by LUMO_GADGET.
 set -eu
-G=/sys/kernel/config/usb_gadget/lumo
+name=${LUMO_GADGET:-lumo}
+G=/sys/kernel/config/usb_gadget/$name
+F=ffs.$name
 cmd=${1:-}
-dir=${2:-/dev/ffs-lumo}
+dir=${2:-/dev/ffs-$name}
 
 setup() {
     [ -d /sys/kernel/config/usb_gadget ] || mount -t configfs none /sys/kernel/config
@@ -26,15 +30,15 @@ setup() {
     echo 0x1209 >"$G/idVendor"
     echo 0x0001 >"$G/idProduct"
     echo 0x0200 >"$G/bcdUSB"
-    mkdir -p "$G/strings/0x409" "$G/configs/c.1/strings/0x409" "$G/functions/ffs.lumo"
+    mkdir -p "$G/strings/0x409" "$G/configs/c.1/strings/0x409" "$G/functions/$F"
     echo lumo >"$G/strings/0x409/manufacturer"
     echo "lumo thin client" >"$G/strings/0x409/product"
-    echo 0001 >"$G/strings/0x409/serialnumber"
+    echo "$name" >"$G/strings/0x409/serialnumber"
     echo "lumo stream" >"$G/configs/c.1/strings/0x409/configuration"
     echo 100 >"$G/configs/c.1/MaxPower"
-    [ -e "$G/configs/c.1/ffs.lumo" ] || ln -s "$G/functions/ffs.lumo" "$G/configs/c.1/"
+    [ -e "$G/configs/c.1/$F" ] || ln -s "$G/functions/$F" "$G/configs/c.1/"
     mkdir -p "$dir"
-    grep -q " $dir functionfs " /proc/mounts || mount -t functionfs lumo "$dir"
+    grep -q " $dir functionfs " /proc/mounts || mount -t functionfs "$name" "$dir"
 }
 
 case $cmd in

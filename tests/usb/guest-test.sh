@@ -10,14 +10,17 @@
 #  1. clean: lumo-server --usb streams the package to the gadget client;
 #     its pictures equal the TCP client's in the same guest, the full
 #     scene's equal the host's.
-#  2. unplug: with --rate (so the stream lasts ~2 s) the UDC is unbound
-#     once the first picture is drawn and bound again 1 s later: the
-#     server ends that session only, claims the device when it comes back,
-#     the client resumes with HELLO and its cursors; the full scene again,
-#     nothing taken out of turn, the DATA bytes of the clean run exactly,
-#     and the bytes received twice are only the cut frame and a WELCOME.
+#  2. two devices at once, one unplugged: with --rate (so the stream lasts
+#     a few seconds) a second gadget (dummy_udc.1) streams beside the
+#     first; the first's UDC is unbound once its first picture is drawn and
+#     bound again 1 s later: the server ends that session only (the other
+#     finishes on its one connection), claims the device when it comes
+#     back, the client resumes with HELLO and its cursors; the full scene
+#     again, nothing taken out of turn, the DATA bytes of the clean run
+#     exactly, and the bytes received twice are only a WELCOME and any of a
+#     frame the cut left.
 #  3. throughput: the same client without pictures, USB and TCP loopback
-#     alternately, lumo_runs=N runs each (kernel command line; default 3);
+#     alternately, lumo_runs=N runs each (kernel command line; default 2);
 #     bytes / session time from the server's log lines ("USBTEST bench").
 # Lines: "USBTEST ok: ...", "USBTEST bad: ...", "USBTEST RESULT: N passed,
 # M failed".
@@ -100,8 +103,15 @@ grep -q ' usb: HELLO .*: bye' /tmp/clean.server.log && ok "server: $(grep ' usb:
     { bad "server: no USB session ended with BYE"; cat /tmp/clean.server.log; }
 stop_server
 
-# 2. unplug mid-stream, plug back
+# 2. two devices; one unplugged mid-stream and plugged back
+export LUMO_GADGET=lumo2
+sh /gadget.sh setup
 serve unplug --rate 1000
+sh /gadget.sh unbind
+LUMO_FFS=/dev/ffs-lumo2 lumo-gadget >/tmp/other.log 2>/tmp/other.err &
+opid=$!
+sh /gadget.sh wait && sh /gadget.sh bind dummy_udc.1 || bad "the second gadget could not be bound"
+export LUMO_GADGET=lumo
 if gadget cut; then
     i=0
     while ! grep -q '^HASH frame-first' /tmp/cut.log && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
@@ -113,6 +123,15 @@ if gadget cut; then
     sleep 1
     sh /gadget.sh bind dummy_udc.0
     finish "$cpid" 40
+    cst=$st
+    finish "$opid" 40
+    grep '^HASH frame-100' /tmp/other.log >/tmp/other.hash
+    if [ "$st" -eq 0 ] && cmp -s /tmp/other.hash /ref.hash && [ "$(field /tmp/other.log connections)" = 1 ]; then
+        ok "the other device, beside the unplugged one: the full scene on its one connection"
+    else
+        bad "the other device (exit $st)"; tail -n 3 /tmp/other.log /tmp/other.err
+    fi
+    st=$cst
     grep '^HASH frame-100' /tmp/cut.log >/tmp/cut.hash
     data_a=$(field /tmp/usb.log 'DATA bytes'); data_b=$(field /tmp/cut.log 'DATA bytes')
     if [ "$st" -eq 0 ] && cmp -s /tmp/cut.hash /ref.hash; then
@@ -126,8 +145,9 @@ if gadget cut; then
     else
         bad "unplug: not resumed cleanly: $(grep '^client: done' /tmp/cut.log) (clean run: $data_a DATA bytes)"
     fi
-    if [ "$(grep -c ' usb: HELLO' /tmp/unplug.server.log)" = 2 ] && grep ' usb: HELLO' /tmp/unplug.server.log | tail -n 1 | grep -q ' resume,'; then
-        ok "server: the unplugged session ended alone, the device came back and resumed: $(grep ' usb: HELLO' /tmp/unplug.server.log | head -n 1 | sed 's/.*: //')"
+    if [ "$(grep -c ' usb: HELLO' /tmp/unplug.server.log)" = 3 ] && [ "$(grep -c ' usb: HELLO.* resume,' /tmp/unplug.server.log)" = 1 ] &&
+       [ "$(grep -c ' usb: HELLO.*: bye$' /tmp/unplug.server.log)" = 2 ]; then
+        ok "server: 3 USB sessions: the unplugged one ended alone ($(grep ' usb: HELLO' /tmp/unplug.server.log | grep -v ': bye$' | sed 's/.*: //')), the other and the resumed one to BYE"
     else
         bad "server: no resumed second session"; cat /tmp/unplug.server.log
     fi
@@ -137,7 +157,7 @@ stop_server
 # 3. throughput: bytes / session seconds from the server's lines
 serve bench
 runs=$(sed -n 's/.*lumo_runs=\([0-9]*\).*/\1/p' /proc/cmdline)
-runs=${runs:-3}
+runs=${runs:-2}
 for r in $(seq 1 "$runs"); do
     gadget "u$r" --no-pictures && finish "$cpid" 40
     LUMO_LINK=127.0.0.1:$tcp lumo-client-tcp --no-pictures >"/tmp/t$r.log" 2>&1 &
