@@ -10,6 +10,7 @@
 #include "lumo_host/options.h"
 #include "serve/index.h"
 #include "serve/server.h"
+#include "serve/usb.h"
 #include "lumo_host/version_line.h"
 
 static const char usage[] =
@@ -32,6 +33,10 @@ static const char usage[] =
     "  --max-clients N            clients at once (default 1024); more get ERROR LIMIT\n"
     "  --idle-timeout S           close a client that sends nothing, or reads nothing,\n"
     "                             for S seconds, 1..86400 (default 30)\n"
+    "  --usb [VID:PID]            also serve thin clients plugged in by USB: every\n"
+    "                             device with a lumo interface (class ff/4c/01), or\n"
+    "                             those of VID:PID (hex); found by hotplug and by a\n"
+    "                             scan every 500 ms (docs/protocol.md §8 \"USB\")\n"
     "  --port-file FILE           write \"TCP_PORT SERIAL_PORT\" once listening (scripts)\n"
     "  --quiet                    no line per client (start, stop and errors only)\n"
     "  -h, --help                 this text\n"
@@ -44,11 +49,27 @@ static int fail(const char *msg)
     return 1;
 }
 
+/* --usb, --usb=VID:PID or --usb VID:PID (the next word when it is one). */
+static int usb_option(srv_serve_options *o, const char *arg, int argc, char **argv)
+{
+    o->usb = 1;
+    o->usb_any = 1;
+    if (!arg && optind < argc && srv_usb_parse_id(argv[optind], &o->usb_vid, &o->usb_pid) == 0) {
+        optind++;
+        o->usb_any = 0;
+        return 0;
+    }
+    if (!arg)
+        return 0;
+    o->usb_any = 0;
+    return srv_usb_parse_id(arg, &o->usb_vid, &o->usb_pid);
+}
+
 int main(int argc, char **argv)
 {
     if (host_version_option(argc, argv, "lumo-server"))
         return 0;
-    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET };
+    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET, O_USB };
     static const struct option longopts[] = {
         {"listen", required_argument, NULL, O_LISTEN},
         {"serial-listen", required_argument, NULL, O_SERIAL},
@@ -60,6 +81,7 @@ int main(int argc, char **argv)
         {"idle-timeout", required_argument, NULL, O_IDLE},
         {"port-file", required_argument, NULL, O_PORTFILE},
         {"quiet", no_argument, NULL, O_QUIET},
+        {"usb", optional_argument, NULL, O_USB},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
@@ -118,6 +140,12 @@ int main(int argc, char **argv)
             break;
         case O_QUIET:
             o.quiet = 1;
+            break;
+        case O_USB:
+            if (usb_option(&o, optarg, argc, argv)) {
+                snprintf(msg, sizeof msg, "--usb %s: not VID:PID in hex (e.g. 1209:0001)", optarg ? optarg : "");
+                return fail(msg);
+            }
             break;
         default:
             host_opt_getopt_error(c, argv[optind - 1], optopt, msg, sizeof msg);
