@@ -42,3 +42,26 @@ TEST_STEPS += draco-conformance
 draco-arena: $(BIN)/lumo-draco-decode
 	@sh tests/draco/arena_check.sh $(BUILD)
 TEST_STEPS += draco-arena
+
+# refusal conformance (issue 24): mutated streams libdraco refuses, lumo
+# refuses too; libdraco in-process against the sanitizer build of liblumo
+DRACO_REFUSAL := $(BIN)/draco-refusal
+HOST_TOOLS    += $(DRACO_REFUSAL)
+$(BUILD)/tests/tests/draco/draco_refusal.o: tests/draco/draco_refusal.cc
+	@mkdir -p $(@D)
+	$(CXX) -std=c++17 -Wall -Wextra -Werror -Isdk/include -O1 -g $(SAN_FLAGS) -MMD -MP -c $< -o $@
+$(DRACO_REFUSAL): $(BUILD)/tests/tests/draco/draco_refusal.o $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CXX) $(SAN_FLAGS) -o $@ $^ -ldraco -pthread
+
+.PHONY: draco-refusal
+draco-refusal: $(DRACO_REFUSAL) $(DRACO_GEN)
+	@sh tests/draco/refusal.sh $(BUILD)
+TEST_STEPS += draco-refusal
+
+# the attribute set of issue 25 (normals from assimp, colours synthesised)
+DRACO_GEN_ATTR := $(BIN)/gen-attr-meshes
+HOST_TOOLS     += $(DRACO_GEN_ATTR)
+$(DRACO_GEN_ATTR): $(BUILD)/host/tests/draco/gen_attr_meshes.o
+	@mkdir -p $(@D)
+	$(CXX) -o $@ $^ -lassimp
