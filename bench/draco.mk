@@ -15,3 +15,14 @@ $(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o
 bench-draco: $(DRACO_BENCH) $(DRACO_BENCH_LIB) $(BUILD)/m3/liblumo.a
 	@sh bench/draco_bench.sh $(BUILD)
 BENCH_STEPS += bench-draco
+
+# the attribute set of issue 25 (bench/draco_attrs.sh): many files a process
+DRACO_SET_BENCH     := $(BIN)/draco-set-bench
+DRACO_SET_BENCH_LIB := $(BIN)/draco-set-bench-libdraco
+HOST_TOOLS          += $(DRACO_SET_BENCH) $(DRACO_SET_BENCH_LIB)
+$(DRACO_SET_BENCH): $(BUILD)/host/bench/draco_set_bench.o $(BUILD)/rel/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^
+$(DRACO_SET_BENCH_LIB): $(BUILD)/host/bench/draco_set_bench_libdraco.o
+	@mkdir -p $(@D)
+	$(CXX) -o $@ $^ -ldraco -pthread

@@ -802,59 +802,111 @@ static lumo_status ld_tex_coords(ld_pred *p, int32_t *v, uint32_t n)
     return LUMO_OK;
 }
 
-static lumo_status ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
+/* The positions the geometric-normal fan walk reads: a corner's point
+ * from the output face array, the point's position value through the
+ * position attribute's point map. libdraco goes from the corner's vertex
+ * to the normal's entry and back to the entry's first point
+ * (GetPositionForCorner); every corner of one vertex holds that vertex's
+ * position, so the corner's own point gives the same value in one load
+ * less per indirection (positions are per mesh vertex: decoded with the
+ * connectivity, never split by seams). */
+typedef struct ld_nfan {
+    ld_fan f;                 /* the walk's corner table (seams cut fans) */
+    const uint32_t *faces;    /* corner -> point */
+    uint32_t fmask;
+    const uint32_t *pmap;     /* point -> position value; NULL: identity */
+    const int32_t *pos;       /* position values, 3 components */
+} ld_nfan;
+
+static LD_FORCE_INLINE const int32_t *ld_nfan_pos(const ld_nfan *g, uint32_t c)
 {
-    return ld_position(p, ld_value_of_vertex(p, ld_vert(p->seq->ct, corner)), out);
+    uint32_t pt = g->faces[c] & g->fmask;
+    if (g->pmap)
+        pt = g->pmap[pt];
+    return g->pos + 3u * (size_t)pt;
+}
+
+/* d = position at corner c - the fan centre */
+static LD_FORCE_INLINE void ld_nfan_rel(const ld_nfan *g, uint32_t c, const int64_t cent[3],
+                                        int64_t d[3])
+{
+    const int32_t *q = ld_nfan_pos(g, c);
+    d[0] = q[0] - cent[0];
+    d[1] = q[1] - cent[1];
+    d[2] = q[2] - cent[2];
+}
+
+/* n += a x b, wrapping (libdraco's int64 CrossProduct, summed) */
+static LD_FORCE_INLINE void ld_cross_add(uint64_t n[3], const int64_t a[3], const int64_t b[3])
+{
+    n[0] += (uint64_t)ld_sub64(ld_mul64(a[1], b[2]), ld_mul64(a[2], b[1]));
+    n[1] += (uint64_t)ld_sub64(ld_mul64(a[2], b[0]), ld_mul64(a[0], b[2]));
+    n[2] += (uint64_t)ld_sub64(ld_mul64(a[0], b[1]), ld_mul64(a[1], b[0]));
+}
+
+static LD_FORCE_INLINE void ld_copy3(int64_t d[3], const int64_t s[3])
+{
+    d[0] = s[0];
+    d[1] = s[1];
+    d[2] = s[2];
 }
 
 /* Area-weighted normal of the triangle fan around the corner's vertex
- * (MeshPredictionSchemeGeometricNormalPredictorArea), scaled below 2^29. */
-static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[3])
+ * (MeshPredictionSchemeGeometricNormalPredictorArea: VertexCornersIterator
+ * swings left to a border or back to the start, then right from the
+ * start), scaled below 2^29. Each swing crosses the edge from the vertex
+ * to one of the face's other corners, so the next face shares that
+ * corner's position: one position read and one cross product per face
+ * (libdraco: two reads through the entry map and two differences; the
+ * same faces in the same order, so the same sums, on every consistent
+ * corner table). `limit`: faces a walk may visit (a crafted table cannot
+ * make it loop). */
+static LD_FORCE_INLINE lumo_status ld_fan_normal(const ld_nfan *g, uint32_t corner, uint32_t limit,
+                                                 int32_t out[3], int packed)
 {
-    const ld_ct *ct = p->seq->ct;
+    const int32_t *q = ld_nfan_pos(g, corner);
+    const int64_t cent[3] = {q[0], q[1], q[2]};
     uint64_t nrm[3] = {0, 0, 0};
-    int64_t cent[3], n[3], sum;
-    uint32_t c = corner, guard = 0;
-    int left = 1;
-    lumo_status st = ld_corner_position(p, corner, cent);
-    if (st)
-        return st;
-    while (c != LD_INV) {
-        int64_t pn[3], pp[3], a[3], b[3];
-        unsigned k;
-        if (++guard > ct->num_corners + 1u)
+    int64_t a[3], b[3], a0[3], n[3], sum;
+    uint32_t c = corner, o, steps = 1;
+    ld_nfan_rel(g, ld_next_v(c), cent, a);
+    ld_copy3(a0, a);
+    for (;;) {  /* left: the next face's next corner is this one's previous */
+        ld_nfan_rel(g, ld_prev_v(c), cent, b);
+        ld_cross_add(nrm, a, b);
+        o = ld_fan_opp(&g->f, ld_next_v(c), packed);
+        if (o == LD_INV)
+            break;
+        c = ld_next_v(o);
+        if (c == corner)
+            goto done;
+        if (++steps > limit)
             return LUMO_ERR_LIMIT;
-        if ((st = ld_corner_position(p, ld_next_v(c), pn)) ||
-            (st = ld_corner_position(p, ld_prev_v(c), pp)))
-            return st;
-        for (k = 0; k < 3; ++k) {
-            a[k] = pn[k] - cent[k];
-            b[k] = pp[k] - cent[k];
-        }
-        nrm[0] += (uint64_t)ld_sub64(ld_mul64(a[1], b[2]), ld_mul64(a[2], b[1]));
-        nrm[1] += (uint64_t)ld_sub64(ld_mul64(a[2], b[0]), ld_mul64(a[0], b[2]));
-        nrm[2] += (uint64_t)ld_sub64(ld_mul64(a[0], b[1]), ld_mul64(a[1], b[0]));
-        if (left) {  /* VertexCornersIterator */
-            c = ld_swing_left(ct, c);
-            if (c == LD_INV) {
-                c = ld_swing_right(ct, corner);
-                left = 0;
-            } else if (c == corner) {
-                c = LD_INV;
-            }
-        } else {
-            c = ld_swing_right(ct, c);
-        }
+        ld_copy3(a, b);
     }
+    c = corner;
+    ld_copy3(a, a0);
+    for (;;) {  /* right: the next face's previous corner is this one's next */
+        o = ld_fan_opp(&g->f, ld_prev_v(c), packed);
+        if (o == LD_INV)
+            break;
+        c = ld_prev_v(o);
+        if (++steps > limit)
+            return LUMO_ERR_LIMIT;
+        ld_copy3(b, a);
+        ld_nfan_rel(g, ld_next_v(c), cent, a);
+        ld_cross_add(nrm, a, b);
+    }
+done:
     n[0] = (int64_t)nrm[0];
     n[1] = (int64_t)nrm[1];
     n[2] = (int64_t)nrm[2];
     sum = ld_add64(ld_add64(ld_abs64(n[0]), ld_abs64(n[1])), ld_abs64(n[2]));
     if (sum > ((int64_t)1 << 29)) {
-        int64_t q = sum / ((int64_t)1 << 29);
-        n[0] = ld_div64(n[0], q);
-        n[1] = ld_div64(n[1], q);
-        n[2] = ld_div64(n[2], q);
+        int64_t d = sum / ((int64_t)1 << 29);
+        n[0] = ld_div64(n[0], d);
+        n[1] = ld_div64(n[1], d);
+        n[2] = ld_div64(n[2], d);
     }
     out[0] = (int32_t)n[0];
     out[1] = (int32_t)n[1];
@@ -911,15 +963,21 @@ static void ld_int_to_octa(const ld_pred *p, const int32_t v[3], int32_t out[2])
 
 /* MeshPredictionSchemeGeometricNormalDecoder: predict from the fan normal,
  * a flip bit per value says the normal points the other way. */
-static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
+static LD_FORCE_INLINE lumo_status ld_geometric_normal_run(ld_pred *p, int32_t *v, uint32_t n,
+                                                           int packed)
 {
+    const uint32_t limit = p->seq->ct->num_corners + 1u;
+    ld_nfan g;
     uint32_t i;
     lumo_status st;
-    if (!p->pos || p->pos->num_portable != 3)
-        return LUMO_ERR_CORRUPT;
+    ld_fan_init(&g.f, p, 1);
+    g.faces = p->seq->faces;
+    g.fmask = p->seq->faces_mask;
+    g.pmap = p->pos->point_to_value;
+    g.pos = p->pos->values;
     for (i = 0; i < n; ++i) {
         int32_t vec[3], oct[2];
-        if ((st = ld_fan_normal(p, p->seq->value_to_corner[i], vec)))
+        if ((st = ld_fan_normal(&g, p->seq->value_to_corner[i], limit, vec, packed)))
             return st;
         ld_canonicalize(p, vec);
         if (ld_rabs_bit(&p->flip)) {
@@ -931,6 +989,14 @@ static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
         ld_original(p, oct, v + 2 * (size_t)i, v + 2 * (size_t)i);
     }
     return LUMO_OK;
+}
+
+static LD_NOINLINE lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
+{
+    if (!p->pos || p->pos->num_portable != 3 || !p->seq->faces || p->seq->opposites)
+        return LUMO_ERR_CORRUPT;
+    return p->seq->ct->opp32 ? ld_geometric_normal_run(p, v, n, 0)
+                             : ld_geometric_normal_run(p, v, n, 1);
 }
 
 int ld_pred_needs_opposites_only(const ld_pred *p)
