@@ -674,17 +674,17 @@ static LD_NOINLINE lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, ui
     return ld_multi_run(p, v, n, 0, packed);
 }
 
-static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
+/* The position at a corner: its point's position value. libdraco reads
+ * the position of the texture coordinate's entry (its first point); every
+ * corner of one vertex holds that vertex's position (positions are per
+ * mesh vertex), so the corner's own point gives the same value without
+ * the entry -> corner -> point steps. */
+static void ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
 {
-    uint32_t point, c;
-    if (entry < 0 || (uint32_t)entry >= p->seq->num_entries)
-        return LUMO_ERR_CORRUPT;
-    point = p->seq->faces
-                ? p->seq->faces[p->seq->value_to_corner[entry]] & p->seq->faces_mask
-                : (uint32_t)entry;
+    const uint32_t point = p->seq->faces[corner] & p->seq->faces_mask;
+    unsigned c;
     for (c = 0; c < 3; ++c)
         out[c] = lumo_draco_value(p->pos, point, c);
-    return LUMO_OK;
 }
 
 /* libdraco's IntSqrt, step for step (floor of the square root). */
@@ -719,16 +719,15 @@ static lumo_status ld_tex_predict(ld_pred *p, uint32_t corner, const int32_t *da
         int64_t tip[3], nx[3], pr[3], pn[3], cn[3], xpos[3], cx[3];
         uint64_t pn2, cx2, norm;
         int64_t dot, pnu, pnv, xu, xv, absmax, pn_absmax, cxu, cxv;
-        lumo_status st;
         unsigned c;
         if (pu == nu && pv == nv) {
             out[0] = (int32_t)pu;
             out[1] = (int32_t)pv;
             return LUMO_OK;
         }
-        if ((st = ld_position(p, id, tip)) || (st = ld_position(p, nid, nx)) ||
-            (st = ld_position(p, pid, pr)))
-            return st;
+        ld_corner_position(p, corner, tip);
+        ld_corner_position(p, ld_next_v(corner), nx);
+        ld_corner_position(p, ld_prev_v(corner), pr);
         for (c = 0; c < 3; ++c)
             pn[c] = pr[c] - nx[c];  /* int32 differences: no overflow */
         pn2 = (uint64_t)ld_add64(ld_add64(ld_mul64(pn[0], pn[0]), ld_mul64(pn[1], pn[1])),
@@ -791,7 +790,7 @@ static lumo_status ld_tex_coords(ld_pred *p, int32_t *v, uint32_t n)
 {
     uint32_t i;
     lumo_status st;
-    if (p->comps != 2 || !p->pos || p->pos->num_portable != 3)
+    if (p->comps != 2 || !p->pos || p->pos->num_portable != 3 || !p->seq->faces)
         return LUMO_ERR_CORRUPT;
     for (i = 0; i < n; ++i) {
         int32_t pred[2];
