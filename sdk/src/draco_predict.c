@@ -679,7 +679,7 @@ static LD_NOINLINE lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, ui
  * corner of one vertex holds that vertex's position (positions are per
  * mesh vertex), so the corner's own point gives the same value without
  * the entry -> corner -> point steps. */
-static void ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
+static LD_FORCE_INLINE void ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
 {
     const uint32_t point = p->seq->faces[corner] & p->seq->faces_mask;
     unsigned c;
@@ -687,16 +687,30 @@ static void ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3]
         out[c] = lumo_draco_value(p->pos, point, c);
 }
 
-/* libdraco's IntSqrt, step for step (floor of the square root). */
+/* Bits of n (0 for 0): six halving steps. */
+static unsigned ld_bit_length64(uint64_t n)
+{
+    unsigned len = 0;
+    if (n >> 32) { len += 32; n >>= 32; }
+    if (n >> 16) { len += 16; n >>= 16; }
+    if (n >> 8) { len += 8; n >>= 8; }
+    if (n >> 4) { len += 4; n >>= 4; }
+    if (n >> 2) { len += 2; n >>= 2; }
+    if (n >> 1) { len += 1; n >>= 1; }
+    return len + (unsigned)n;
+}
+
+/* libdraco's IntSqrt (floor of the square root), the same Newton steps
+ * from the same start: libdraco doubles r while quartering n down to
+ * below 2, i.e. once for each i with n >= 2^(2i+1), so r = 2^k with
+ * k = floor((L - 2) / 2) + 1 for an L-bit n >= 2 (1 below); computed from
+ * L instead of up to 32 loop turns. */
 static uint64_t ld_int_sqrt(uint64_t n)
 {
-    uint64_t act = n, r = 1;
+    const unsigned len = ld_bit_length64(n);
+    uint64_t r = len >= 2 ? (uint64_t)1 << ((len - 2) / 2 + 1) : 1u;
     if (n == 0)
         return 0;
-    while (act >= 2) {
-        r *= 2;
-        act /= 4;
-    }
     do {
         r = (r + n / r) / 2;
     } while (r * r > n);
