@@ -11,8 +11,8 @@ $(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o
 	@mkdir -p $(@D)
 	$(CXX) -o $@ $^ -ldraco -pthread
 
-.PHONY: bench-draco
-bench-draco: $(DRACO_BENCH) $(DRACO_BENCH_LIB) $(BUILD)/m3/liblumo.a
+.PHONY: bench-draco bench-draco-attrs
+bench-draco: $(DRACO_BENCH) $(DRACO_BENCH_LIB) $(BUILD)/m3/liblumo.a bench-draco-attrs
 	@sh bench/draco_bench.sh $(BUILD)
 BENCH_STEPS += bench-draco
 
@@ -26,3 +26,6 @@ $(DRACO_SET_BENCH): $(BUILD)/host/bench/draco_set_bench.o $(BUILD)/rel/liblumo.a
 $(DRACO_SET_BENCH_LIB): $(BUILD)/host/bench/draco_set_bench_libdraco.o
 	@mkdir -p $(@D)
 	$(CXX) -o $@ $^ -ldraco -pthread
+# the attribute set alone (section 41); DRACO_ATTRS=quick: 21 of its 126 rows
+bench-draco-attrs: $(DRACO_SET_BENCH) $(DRACO_SET_BENCH_LIB) $(BIN)/gen-attr-meshes
+	@sh bench/draco_attrs.sh $(BUILD) $(DRACO_ATTRS)

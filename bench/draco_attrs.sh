@@ -45,6 +45,16 @@ instr "$work/ir.txt" "$bin/draco-set-bench" $files
 instr "$work/ir_lean.txt" "$bin/draco-set-bench" lean $files
 instr "$work/ir_lib.txt" "$bin/draco-set-bench-libdraco" $files
 
+# summary ROWS: per attributes and level, ranges of the four ratios
+summary() {
+    awk -F'|' '{ k = $3 "|" ($4 + 0); if (!(k in n)) order[++m] = k; n[k]++
+                 for (j = 10; j <= 13; j++) { v = $j + 0; if (!((k, j) in lo) || v < lo[k, j]) lo[k, j] = v; if (v > hi[k, j]) hi[k, j] = v }
+                 if ($15 !~ /no/) ok[k]++ }
+         END { for (i = 1; i <= m; i++) { k = order[i]; split(k, a, "|")
+                   printf "|%s| %d |", a[1], a[2]
+                   for (j = 10; j <= 13; j++) printf " %.2f-%.2fx |", lo[k, j], hi[k, j]
+                   printf " %d of %d |\n", ok[k], n[k] } }' "$1"
+}
 rows="$work/rows.md"
 awk -v work="$work/" '
     function field(line, k,   i, a, n) { n = split(line, a, " "); for (i = 2; i <= n; i++) if (index(a[i], k "=") == 1) return substr(a[i], length(k) + 2); return "" }
@@ -93,6 +103,13 @@ awk -v work="$work/" '
     echo "| mesh | attributes | cl | qp/qt/qn | faces | lumo Minstr | lean Minstr | libdraco Minstr | instr ratio | lean instr ratio | arena/output | lean arena/output | libdraco heap B/face | both goals |"
     echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     cat "$rows"
+    echo
+    echo "By attributes and level (rows of all meshes and both quantizations): the lowest and"
+    echo "highest instruction ratio and arena/output of each mode, rows meeting both goals."
+    echo
+    echo "| attributes | cl | instr ratio | lean instr ratio | arena/output | lean arena/output | both goals |"
+    echo "|---|---|---|---|---|---|---|"
+    summary "$rows"
     echo
     awk -F'|' '{ n++; if ($15 ~ /no/) miss++; r = $10 + 0; rl = $11 + 0; if (!min || r < min) min = r; if (!minl || rl < minl) minl = rl }
          END { printf "Rows: %d; both goals met in one mode on %d; lowest instruction ratio %.2fx (default), %.2fx (lean).\n", n, n - miss, min, minl }' "$rows"
