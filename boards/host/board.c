@@ -180,3 +180,19 @@ int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms)
     while (k < 0 && errno == EINTR);
     return k > 0 ? (int32_t)k : -1;
 }
+
+/* No screen: the host's pictures go to files (--out). */
+int board_display_grey4(uint16_t y, uint16_t rows, uint16_t width, const uint8_t *px)
+{
+    (void)y;
+    (void)rows;
+    (void)width;
+    (void)px;
+    return -1;
+}
+
+/* Nothing to keep on show: done. */
+void board_hold(void)
+{
+    exit(0);
+}
