@@ -27,13 +27,28 @@ typedef struct ivg_sum {
 #define IVG_PACKED_VERTEX (LUMO_IVG_AXES * IVG_PACKED)
 
 /* One pyramid level. Level 0 is the grid (validity = received bitmap);
- * coarser levels keep one validity bit per vertex. */
+ * coarser levels keep one validity bit per vertex. Level 1 is not kept
+ * whole but as a ring of `ring` x-y planes (plane z in slot z % ring),
+ * made again plane by plane when push-pull needs them
+ * (docs/ivg-format.md §6); ring 0: every plane is kept. */
 typedef struct ivg_level {
     uint32_t  dims[3];
     uint32_t  count;
-    uint8_t  *e;        /* count * IVG_PACKED_VERTEX bytes */
-    uint8_t  *valid;    /* count bits; NULL on level 0 */
+    uint32_t  ring;     /* planes kept; 0: all */
+    uint8_t  *e;        /* (ring ? ring x plane : count) * IVG_PACKED_VERTEX bytes */
+    uint8_t  *valid;    /* as many bits; NULL on level 0 */
 } ivg_level;
+
+/* Where vertex v of a level is stored: v itself, or its place in the ring. */
+static inline uint32_t ivg_slot(const ivg_level *lv, uint32_t v)
+{
+    uint32_t plane;
+
+    if (lv->ring == 0u)
+        return v;
+    plane = lv->dims[0] * lv->dims[1];
+    return v / plane % lv->ring * plane + v % plane;
+}
 
 struct lumo_ivg {
     lumo_ivg_desc   desc;
@@ -50,6 +65,7 @@ struct lumo_ivg {
     unsigned        levels;           /* used entries of level[] */
     ivg_level       level[IVG_MAX_LEVELS];
     ivg_sum        *scratch;          /* smoothing: 3 x-y planes of level 1 */
+    ivg_level       raw1;             /* level 1 before smoothing: a ring */
 };
 
 static inline int ivg_bit(const uint8_t *bits, uint32_t i)
@@ -70,7 +86,7 @@ static inline void ivg_bit_clear(uint8_t *bits, uint32_t i)
 /* The packed entry (vertex v, hemisphere a) of a level. */
 static inline uint8_t *ivg_packed_at(const ivg_level *lv, uint32_t v, unsigned a)
 {
-    return lv->e + (size_t)v * IVG_PACKED_VERTEX + (size_t)a * IVG_PACKED;
+    return lv->e + (size_t)ivg_slot(lv, v) * IVG_PACKED_VERTEX + (size_t)a * IVG_PACKED;
 }
 
 /* A packed entry opened for arithmetic: c in UQ16.16 (exact, §2.5), d
