@@ -68,19 +68,20 @@ static size_t smooth_sums(const ivg_plan *p)
 }
 
 /* Planes of level 1 kept in each of its two rings (before and after
- * smoothing, ivg_pushpull.c): the three a smoothing or a push reads, or
- * all of them when there are fewer. */
+ * smoothing, ivg_pushpull.c): the three a smoothing or a push reads; 0 (the
+ * level kept whole) when two rings would hold as many planes as the level
+ * (level 1 of 6 planes or fewer: grid axes of 10 or fewer along z). */
 #define IVG_RING_PLANES 3u
 
 static uint32_t ring_planes(const ivg_plan *p)
 {
-    return p->dims[1][2] < IVG_RING_PLANES ? p->dims[1][2] : IVG_RING_PLANES;
+    return p->levels > 1 && p->dims[1][2] > 2u * IVG_RING_PLANES ? IVG_RING_PLANES : 0u;
 }
 
 /* Vertices a level stores: level 1 its ring's planes, the others all. */
 static uint32_t stored(const ivg_plan *p, unsigned l)
 {
-    return l == 1u ? ring_planes(p) * p->dims[1][0] * p->dims[1][1] : p->count[l];
+    return l == 1u && ring_planes(p) ? ring_planes(p) * p->dims[1][0] * p->dims[1][1] : p->count[l];
 }
 
 static size_t plan_bytes(const ivg_plan *p)
@@ -94,8 +95,9 @@ static size_t plan_bytes(const ivg_plan *p)
         total = lumo_size_add(total, entries_bytes(stored(p, l)));
         total = lumo_size_add(total, lumo_arena_round(bits_bytes(stored(p, l))));
     }
-    if (p->levels > 1) {
+    if (p->levels > 1)
         total = lumo_size_add(total, lumo_arena_round(lumo_size_mul(smooth_sums(p), sizeof(ivg_sum))));
+    if (ring_planes(p)) {   /* level 1 before smoothing */
         total = lumo_size_add(total, entries_bytes(stored(p, 1)));
         total = lumo_size_add(total, lumo_arena_round(bits_bytes(stored(p, 1))));
     }
@@ -162,7 +164,7 @@ lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_de
         g->level[l].valid = l == 0 ? NULL : lumo_arena_alloc(arena, bits_bytes(stored(&p, l)));
     }
     g->scratch = p.levels > 1 ? lumo_arena_alloc_array(arena, smooth_sums(&p), sizeof(ivg_sum)) : NULL;
-    if (p.levels > 1) {
+    if (ring_planes(&p)) {
         g->raw1 = g->level[1];
         g->raw1.e = alloc_entries(arena, stored(&p, 1));
         g->raw1.valid = lumo_arena_alloc(arena, bits_bytes(stored(&p, 1)));
@@ -170,7 +172,7 @@ lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_de
     /* plan_bytes() was checked against the room left, so these cannot fail;
      * the check stays in case the two ever drift apart. */
     if (g->received_bits == NULL || g->solid_bits == NULL || g->seen_bits == NULL
-        || g->level[p.levels - 1].e == NULL || (p.levels > 1 && (g->scratch == NULL || g->raw1.valid == NULL))) {
+        || g->level[p.levels - 1].e == NULL || (p.levels > 1 && g->scratch == NULL) || (ring_planes(&p) && g->raw1.valid == NULL)) {
         lumo_arena_reset(arena, mark);
         return LUMO_ERR_NOMEM;
     }

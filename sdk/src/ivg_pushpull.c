@@ -313,7 +313,8 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
     }
 }
 
-/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l >= 2 (level 1: smooth_level1_plane):
+/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l
+ * kept whole (level 1 as a ring: smooth_level1_plane):
  * every valid vertex becomes the weighted average of the valid vertices
  * around it. The weights are a product, so the sums of weight x value and
  * of weight over valid neighbours are separable: x and y passes per plane
@@ -440,7 +441,8 @@ static uint32_t last_tap(const ivg_taps *t)
     return t->idx[t->n - 1u];
 }
 
-/* Level l -> l+1 whole (l >= 1), smoothed after; level 1 made as read. */
+/* Level l -> l+1, smoothed after; level 1 made as read when it is a
+ * ring (s; NULL: kept whole). */
 static void push(lumo_ivg *g, unsigned l, unsigned flags, ivg_level1 *s)
 {
     ivg_level *c = &g->level[l + 1];
@@ -448,7 +450,7 @@ static void push(lumo_ivg *g, unsigned l, unsigned flags, ivg_level1 *s)
     ivg_taps t;
 
     for (k = 0; k < c->dims[2]; k++) {
-        if (l == 1u) {
+        if (l == 1u && s != NULL) {
             push_taps(k, g->level[1].dims[2], c->dims[2], &t);
             level1_need(s, last_tap(&t));
         }
@@ -458,14 +460,15 @@ static void push(lumo_ivg *g, unsigned l, unsigned flags, ivg_level1 *s)
         smooth(g, l + 1);
 }
 
-/* Level l from level l+1 whole (l >= 1); level 0 with level 1 made as read. */
+/* Level l from level l+1; into level 0 with level 1 made as read when it
+ * is a ring (s; NULL: kept whole). */
 static void pull(lumo_ivg *g, unsigned l, ivg_level1 *s)
 {
     uint32_t k;
     ivg_taps t;
 
     for (k = 0; k < g->level[l].dims[2]; k++) {
-        if (l == 0u) {
+        if (l == 0u && s != NULL) {
             pull_taps(k, g->level[0].dims[2], g->level[1].dims[2], &t);
             level1_need(s, last_tap(&t));
         }
@@ -482,6 +485,13 @@ lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags)
         return LUMO_ERR_ARG;
     if (g->levels < 2u)
         return LUMO_OK;
+    if (g->level[1].ring == 0u) {   /* a small grid: level 1 kept whole */
+        for (l = 0; l + 1 < g->levels; l++)
+            push(g, l, flags, NULL);
+        for (l = g->levels - 1; l-- > 0;)
+            pull(g, l, NULL);
+        return LUMO_OK;
+    }
     /* up: level 1 exists only as the push into level 2 reads it */
     level1_start(&s, g, flags, 0);
     for (l = 1; l + 1 < g->levels; l++)
