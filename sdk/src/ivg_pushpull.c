@@ -89,17 +89,19 @@ static void pull_taps(uint32_t f, uint32_t fine, uint32_t coarse, ivg_taps *t)
     }
 }
 
+/* Validity by storage index (ivg_plane_slot; the vertex index on level 0,
+ * where valid means received). */
 static int level_valid(const ivg_level *lv, uint32_t v)
 {
-    return ivg_bit(lv->valid, ivg_slot(lv, v));
+    return ivg_bit(lv->valid, v);
 }
 
 static void level_set_valid(ivg_level *lv, uint32_t v, int on)
 {
     if (on)
-        ivg_bit_set(lv->valid, ivg_slot(lv, v));
+        ivg_bit_set(lv->valid, v);
     else
-        ivg_bit_clear(lv->valid, ivg_slot(lv, v));
+        ivg_bit_clear(lv->valid, v);
 }
 
 static int vertex_valid(const lumo_ivg *g, unsigned l, uint32_t v)
@@ -202,7 +204,7 @@ static void gather(const lumo_ivg *g, unsigned l, const ivg_taps t[3], int valid
     memset(acc, 0, sizeof *acc);
     for (z = 0; z < t[2].n; z++) {
         for (y = 0; y < t[1].n; y++) {
-            uint32_t row = lv->dims[0] * (t[1].idx[y] + lv->dims[1] * t[2].idx[z]);
+            uint32_t row = ivg_plane_slot(lv, t[2].idx[z]) + lv->dims[0] * t[1].idx[y];
             uint32_t wyz = t[1].w[y] * t[2].w[z];
             for (x = 0; x < t[0].n; x++) {
                 uint32_t v = row + t[0].idx[x];
@@ -220,7 +222,7 @@ static void gather(const lumo_ivg *g, unsigned l, const ivg_taps t[3], int valid
 static void push_plane(lumo_ivg *g, unsigned l, uint32_t k, ivg_level *c)
 {
     const ivg_level *f = &g->level[l];
-    uint32_t i, j, v = k * c->dims[0] * c->dims[1];
+    uint32_t i, j, v = ivg_plane_slot(c, k);
     ivg_taps t[3];
     ivg_acc acc;
 
@@ -270,11 +272,11 @@ static void sum_pass(ivg_sum *line, uint32_t len, uint32_t stride)
  * weight x value and weight over the valid vertices only. */
 static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
 {
-    uint32_t nx = lv->dims[0], ny = lv->dims[1], i;
+    uint32_t nx = lv->dims[0], ny = lv->dims[1], base = ivg_plane_slot(lv, z), i;
     int k;
 
     for (i = 0; i < nx * ny; i++) {
-        uint32_t v = z * nx * ny + i;
+        uint32_t v = base + i;
         ivg_raw e = {{0, 0, 0}, {0, 0, 0}};
         int on = level_valid(lv, v);
         if (on)
@@ -296,7 +298,7 @@ static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
  * in the ring (slot = plane % 3). */
 static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
 {
-    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], i;
+    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], base = ivg_plane_slot(lv, z), i;
     const ivg_sum *lo = z > 0u ? &ring[((z - 1u) % 3u) * plane] : NULL;
     const ivg_sum *mid = &ring[(z % 3u) * plane];
     const ivg_sum *hi = z + 1u < nz ? &ring[((z + 1u) % 3u) * plane] : NULL;
@@ -304,7 +306,7 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
     ivg_raw e;
 
     for (i = 0; i < plane; i++) {
-        uint32_t v = z * plane + i;
+        uint32_t v = base + i;
         if (!level_valid(lv, v))
             continue;
         sum_mix(&out, lo != NULL ? lo + i : NULL, mid + i, hi != NULL ? hi + i : NULL);
@@ -344,7 +346,7 @@ static void pull_plane(lumo_ivg *g, unsigned l, uint32_t k)
 {
     ivg_level *f = &g->level[l];
     const ivg_level *c = &g->level[l + 1];
-    uint32_t i, j, v = k * f->dims[0] * f->dims[1];
+    uint32_t i, j, v = ivg_plane_slot(f, k);
     ivg_taps t[3];
     ivg_acc acc;
 
@@ -383,7 +385,7 @@ typedef struct ivg_level1 {
 static void copy_raw_plane(lumo_ivg *g, uint32_t z)
 {
     ivg_level *dst = &g->level[1];
-    uint32_t plane = dst->dims[0] * dst->dims[1], v = z * plane, i;
+    uint32_t plane = dst->dims[0] * dst->dims[1], v = ivg_plane_slot(dst, z), i;
 
     memcpy(ivg_packed_at(dst, v, 0), ivg_packed_at(&g->raw1, v, 0), (size_t)plane * IVG_PACKED_VERTEX);
     for (i = 0; i < plane; i++)
