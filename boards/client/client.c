@@ -18,10 +18,18 @@
  * (REQUEST_VERTICES, REQUEST_ROUNDS), so what is asked, and the state the
  * scene is drawn in, depend only on the answers, never on timing.
  *
+ * A picture of the board's screen size (CLIENT_SCREEN_W x CLIENT_SCREEN_H,
+ * the lm3s6965evb's 128 x 64 OLED) is also reduced to 16 grey levels band
+ * by band (grey4.h), hashed ("HASH grey-<share>-<W>x<H>") and handed to
+ * board_display_grey4, so the screen shows the scene as it refines.
+ *
  * Command line (board_cmdline; QEMU: -append): --replay FILE applies a
  * recording (the bytes a live run received) read with board_read_file,
  * the driver in replay mode; --record FILE writes the bytes received;
- * --out DIR writes every picture as DIR/frame-<share>-<W>x<H>.ppm.
+ * --out DIR writes every picture as DIR/frame-<share>-<W>x<H>.ppm (and
+ * its grey reduction as DIR/grey-<share>-<W>x<H>.pgm); --hold keeps the
+ * last picture on the board's screen when the scene is complete
+ * (board_hold, never returns: QEMU until the test quits it).
  *
  * Client rules (docs/architecture.md): C99, no heap, no float, no stdio.
  * Memory: board_scratch() holds the receive buffer, the recording, the
