@@ -392,20 +392,57 @@ static void copy_raw_plane(lumo_ivg *g, uint32_t z)
         level_set_valid(dst, v + i, level_valid(&g->raw1, v + i));
 }
 
-/* Smoothed plane z of level 1 from raw planes z-1..z+1 (smooth(), for one
- * plane: the x-y sums of each neighbour plane are made again for every
- * hemisphere, the price of keeping three planes instead of the level). */
+/* Hemisphere a of raw plane n added to the sums s with weight w (valid
+ * vertices only). */
+static void sum_raw_plane(const ivg_level *raw, int a, uint32_t n, uint32_t w, ivg_sum *s)
+{
+    uint32_t plane = raw->dims[0] * raw->dims[1], base = ivg_plane_slot(raw, n), i;
+    int k;
+
+    for (i = 0; i < plane; i++) {
+        ivg_raw e;
+        if (!level_valid(raw, base + i))
+            continue;
+        ivg_raw_open(ivg_packed_at(raw, base + i, (unsigned)a), &e);
+        for (k = 0; k < 3; k++) {
+            s[i].c[k] += (uint64_t)e.c[k] * w;
+            s[i].d[k] += e.q[k] * (int32_t)w;
+        }
+        s[i].w += w;
+    }
+}
+
+/* Smoothed plane z of level 1 from raw planes z-1..z+1: smooth() for one
+ * plane, with the passes in the other order — per hemisphere the (1,2,1)
+ * along z first, into one plane of sums, then along x and y. The sums are
+ * exact integers, so the order changes nothing (the same bytes), and each
+ * x-y pass runs once per plane as when level 1 was whole. */
 static void smooth_level1_plane(lumo_ivg *g, uint32_t z)
 {
     ivg_level *lv = &g->level[1];
-    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], n;
+    uint32_t nx = lv->dims[0], ny = lv->dims[1], nz = lv->dims[2], base = ivg_plane_slot(lv, z), i;
+    ivg_sum *s = g->scratch;
+    ivg_raw e;
     int a;
 
     copy_raw_plane(g, z);
     for (a = 0; a < LUMO_IVG_AXES; a++) {
-        for (n = z > 0u ? z - 1u : 0u; n <= z + 1u && n < nz; n++)
-            smooth_plane(&g->raw1, a, n, &g->scratch[(n % 3u) * plane]);
-        smooth_write(lv, a, z, g->scratch);
+        memset(s, 0, (size_t)nx * ny * sizeof *s);
+        if (z > 0u)
+            sum_raw_plane(&g->raw1, a, z - 1u, 1u, s);
+        sum_raw_plane(&g->raw1, a, z, 2u, s);
+        if (z + 1u < nz)
+            sum_raw_plane(&g->raw1, a, z + 1u, 1u, s);
+        for (i = 0; i < ny; i++)
+            sum_pass(&s[i * nx], nx, 1);
+        for (i = 0; i < nx; i++)
+            sum_pass(&s[i], ny, nx);
+        for (i = 0; i < nx * ny; i++) {
+            if (!level_valid(lv, base + i))
+                continue;
+            sum_store(s[i].c, s[i].d, s[i].w, pow2_shift(s[i].w), &e);
+            ivg_raw_pack(&e, ivg_packed_at(lv, base + i, (unsigned)a));
+        }
     }
 }
 
