@@ -60,30 +60,41 @@ static int32_t q14_to_snorm8(int32_t d)
     return d < 0 ? -(int32_t)q : (int32_t)q;
 }
 
+/* Bit lengths of 0..255. */
+static const uint8_t k_bits8[256] = {
+#define B4(n) n, n, n, n
+#define B16(n) B4(n), B4(n), B4(n), B4(n)
+    0, 1, 2, 2, B4(3), B4(4), B4(4), B16(5), B16(6), B16(6),
+    B16(7), B16(7), B16(7), B16(7),
+    B16(8), B16(8), B16(8), B16(8), B16(8), B16(8), B16(8), B16(8),
+#undef B16
+#undef B4
+};
+
 /* Bits needed for v (0 for 0), without a count-leading-zeros instruction
- * (the Cortex-M0+ has none). */
+ * (the Cortex-M0+ has none): two halvings and a table. */
 static unsigned bit_length(uint32_t v)
 {
-    unsigned b = 0, s;
+    unsigned b = 0;
 
-    for (s = 16; s > 0; s >>= 1)
-        if (v >> s) {
-            v >>= s;
-            b += s;
-        }
-    return b + (v != 0);
+    if (v >> 16) {
+        v >>= 16;
+        b = 16;
+    }
+    if (v >> 8) {
+        v >>= 8;
+        b += 8;
+    }
+    return b + k_bits8[v];
 }
 
 /* c in mantissa steps of 2^(e-8) UQ16.16 units, rounded half up:
  * floor((c + 2^(e-9)) / 2^(e-8)) = (floor(c / 2^(e-9)) + 1) / 2, in 32
- * bits. */
+ * bits; below e = 9 the step divides c exactly (only for c < 2^(e+1): the
+ * result is < 512). */
 static uint32_t mantissa(uint32_t c, unsigned e)
 {
-    if (e < 8u)
-        return c << (8u - e);   /* only for c < 2^(e+1): exact, < 512 */
-    if (e == 8u)
-        return c;
-    return ((c >> (e - 9u)) + 1u) >> 1;
+    return e >= 9u ? ((c >> (e - 9u)) + 1u) >> 1 : c << (8u - e);
 }
 
 /* The smallest exponent whose rounded mantissa of the largest channel fits
