@@ -102,6 +102,14 @@ static void guard_stack(void)
     __asm__ volatile("dsb\n isb" ::: "memory");
 }
 
+/* The screen keeps its last picture; the core sleeps between interrupts
+ * (none are enabled, so for ever: QEMU until it is quit). */
+void board_hold(void)
+{
+    for (;;)
+        __asm__ volatile("wfi");
+}
+
 void Reset_Handler(void)
 {
     size_t data = (size_t)((uintptr_t)__data_end - (uintptr_t)__data_start);

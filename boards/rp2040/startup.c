@@ -63,6 +63,14 @@ size_t board_stack_peak(void)
     return (size_t)((uintptr_t)__stack_top - (uintptr_t)p);
 }
 
+/* The screen keeps its last picture; the core sleeps between interrupts
+ * (none are enabled, so for ever: QEMU until it is quit). */
+void board_hold(void)
+{
+    for (;;)
+        __asm__ volatile("wfi");
+}
+
 void Reset_Handler(void)
 {
     SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;   /* the first thing in SRAM */
