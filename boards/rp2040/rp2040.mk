@@ -2,7 +2,7 @@
 # FPU, no hardware divide, no CLZ, no MPU guard), built, not run
 # (docs/porting.md §8).
 #
-#   make board-rp2040   the client libraries for the Cortex-M0+ (build/m0/),
+#   make board-rp2040   the client libraries for the Cortex-M0+ (build/sdk/cortex-m0plus/, the SDK's cross build),
 #                       the thin client (boards/client/client.c) linked with
 #                       this port into build/board/rp2040/client.elf, its
 #                       size (build/board/rp2040/size.txt) and the client
@@ -18,18 +18,13 @@ M0_ARCH          := -mcpu=cortex-m0plus -mthumb -mfloat-abi=soft
 CLIENT_CFLAGS_m0 := $(CLIENT_STD) $(WARN) $(CLIENT_INC) $(M0_ARCH) -Os -g -ffunction-sections -fdata-sections
 RP2040_OUT := $(BUILD)/board/rp2040
 
-$(BUILD)/m0/%.o: %.c
-	@mkdir -p $(@D)
-	$(ARM_CC) $(CLIENT_CFLAGS_m0) -MMD -MP -c $< -o $@
-# The libraries' member lists are expanded a second time: the fragments
-# that fill CLIENT_SRCS may be read after this one.
-.SECONDEXPANSION:
-$(BUILD)/m0/liblumo.a: $$(patsubst %.c,$(BUILD)/m0/%.o,$$(LUMO_SRCS))
-	rm -f $@ && arm-none-eabi-ar rcs $@ $^
-$(BUILD)/m0/liblumo_raster.a: $$(patsubst %.c,$(BUILD)/m0/%.o,$$(RASTER_SRCS))
-	rm -f $@ && arm-none-eabi-ar rcs $@ $^
-$(BUILD)/m0/liblumo_net.a: $$(patsubst %.c,$(BUILD)/m0/%.o,$$(NET_SRCS))
-	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+# The client libraries are the SDK's own Cortex-M0+ build (sdk/cross.mk,
+# `make sdk CROSS=arm-none-eabi- CPU=cortex-m0plus`, also proven by the
+# sdk-cross step), made by a sub-make: one recipe for a firmware's libraries.
+RP2040_SDK := $(BUILD)/sdk/cortex-m0plus
+.PHONY: rp2040-sdk
+rp2040-sdk:
+	+@$(MAKE) --no-print-directory -s sdk CROSS=arm-none-eabi- CPU=cortex-m0plus >/dev/null
 
 # The client sized for 264 KiB (boards/client/client.c's knobs): frames of
 # at most 4 KiB, 24 KiB of picture memory (one 16-row band at 320 pixels
@@ -42,7 +37,8 @@ $(BUILD)/board/obj-m0/%.o: %.c
 .PRECIOUS: $(BUILD)/board/obj-m0/%.o
 RP2040_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m0/%.o,boards/client/client.c boards/client/grey4.c boards/rp2040/startup.c boards/common/stack_paint.c \
     boards/rp2040/board.c boards/armv7m/semihost.c boards/common/console.c)
-RP2040_LIBS := $(BUILD)/m0/liblumo_net.a $(BUILD)/m0/liblumo_raster.a $(BUILD)/m0/liblumo.a
+RP2040_LIBS := $(RP2040_SDK)/liblumo_net.a $(RP2040_SDK)/liblumo_raster.a $(RP2040_SDK)/liblumo.a
+$(RP2040_LIBS): rp2040-sdk
 
 $(RP2040_OUT)/client.elf: $(RP2040_OBJS) $(RP2040_LIBS) boards/rp2040/rp2040.ld
 	@mkdir -p $(@D)
@@ -53,10 +49,10 @@ $(RP2040_OUT)/client.elf: $(RP2040_OBJS) $(RP2040_LIBS) boards/rp2040/rp2040.ld
 	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
 
 .PHONY: board-rp2040
-board-rp2040: $(RP2040_OUT)/client.elf $$(patsubst %.c,$(BUILD)/m0/%.o,$$(CLIENT_SRCS))
+board-rp2040: $(RP2040_OUT)/client.elf
 	@{ echo "rp2040: $(RP2040_OUT)/client.elf (the thin client, Cortex-M0+, image in SRAM)"; \
 	   cat $(RP2040_OUT)/memory-usage.txt; $(ARM_SIZE) -A $< | awk '$$2 > 0 && $$1 !~ /^\.(debug|comment|ARM\.attr)/'; } >$(RP2040_OUT)/size.txt
 	@cat $(RP2040_OUT)/size.txt
-	@sh boards/armv7m/check-embedded.sh $(ARM_NM) "$(filter $(BUILD)/m0/%.o,$^) $(RP2040_OBJS)" \
+	@sh boards/armv7m/check-embedded.sh $(ARM_NM) "$(patsubst %.c,$(RP2040_SDK)/%.o,$(CLIENT_SRCS)) $(RP2040_OBJS)" \
 	    "$(CLIENT_SRCS) $(RP2040_OBJS:$(BUILD)/board/obj-m0/%.o=%.c)"
 TEST_STEPS += board-rp2040
