@@ -16,11 +16,12 @@
  * the bytes of their Draco payloads and record framing. */
 typedef struct srv_pm_stream_stats {
     uint64_t splits;                    /* split vertices */
-    uint64_t parent_bits, kind_bits;    /* lookup-table parents, kind codes */
-    uint64_t fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
+    /* bits of the range code (-log2 of each coded bit's probability) */
+    double   parent_bits, kind_bits;    /* lookup-table parents, kind codes */
+    double   fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
     uint64_t arc_ranked, fans;          /* fan splits coded by rank; all fan splits */
-    uint64_t mask_bits;                 /* mask splits: masks, flips, third vertices */
-    uint64_t other_bits;                /* Rice parameters and padding */
+    double   mask_bits;                 /* mask splits: masks, flips, third vertices */
+    double   other_bits;                /* the code's flush and rounding */
     uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
 } srv_pm_stream_stats;
 
