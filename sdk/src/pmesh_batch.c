@@ -581,28 +581,30 @@ static void arc_select(int64_t *key, uint32_t count, uint32_t r)
     }
 }
 
-/* The rank r <= limit (docs/progressive-mesh.md §2.3 step 3): unary in
- * adaptive bits ("r > i", context by the parent's corner count n and i)
- * for i < min(limit, RANK_UNARY); from RANK_UNARY on, gamma(r - RANK_UNARY
- * + 1) in direct bits. */
+/* The rank r <= limit (docs/progressive-mesh.md §2.3 step 3): the class
+ * b of r + 1 (its bit length less one) in unary, adaptive bits "class >
+ * c" (context by the parent's corner count n and c) while class c + 1
+ * fits the limit; then the b bits of r + 1 under its leading one, most
+ * significant first, the first two adaptive (context by b and place). */
 static lumo_status read_rank(split_ctx *s, uint32_t n, uint32_t limit, uint32_t *r)
 {
-    uint32_t bit = 1, g;
-    lumo_status st;
-    for (*r = 0; *r < limit && *r < LUMO_PMESH_RANK_UNARY; (*r)++) {
-        if (read_ctx(s, lumo_pmesh_rank_ctx(n, *r), &bit))
+    uint32_t b = 0, bit, v = 1;
+    while ((2u << b) <= limit + 1) {
+        if (read_ctx(s, lumo_pmesh_rank_ctx(n, b), &bit))
             return LUMO_ERR_TRUNCATED;
         if (!bit)
-            return LUMO_OK;
+            break;
+        b++;
     }
-    if (*r < limit) {
-        if ((st = read_gamma(&s->br, &g)))
-            return st;
-        if (g - 1u > limit - *r)
-            return LUMO_ERR_CORRUPT;
-        *r += g - 1u;
+    for (uint32_t j = 0; j < b; j++) {
+        int over = j < 2 ? read_ctx(s, LUMO_PMESH_CTX_RANK_LOW + 2 * b + j, &bit)
+                         : read_bits(&s->br, 1, &bit);
+        if (over)
+            return LUMO_ERR_TRUNCATED;
+        v = v << 1 | bit;
     }
-    return LUMO_OK;
+    *r = v - 1;
+    return *r > limit ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
 /* The fan as a rank: *xa and *m, or *m = 0 for the escape (rank equal to

@@ -328,18 +328,27 @@ static uint32_t arc_rank(const lumo_pmesh_fan *g, uint32_t xa, uint32_t m)
     return found ? above : count;
 }
 
-/* Mirrors read_rank() in pmesh_batch.c: unary in adaptive bits up to
- * RANK_UNARY, then gamma in direct bits; nothing past the limit. */
+/* Mirrors read_rank() in pmesh_batch.c: the class b of r + 1 (its bit
+ * length less one) in adaptive unary while a larger class fits the limit,
+ * then the b bits of r + 1 below its leading one, most significant first,
+ * the first two adaptive. */
 static void put_rank(replay *r, bitwriter *w, uint32_t n, uint32_t limit, uint32_t rank)
 {
-    uint32_t i;
-    for (i = 0; i < limit && i < LUMO_PMESH_RANK_UNARY; i++) {
-        put_ctx(r, w, lumo_pmesh_rank_ctx(n, i), rank > i);
-        if (rank == i)
-            return;
+    uint32_t v = rank + 1, b = 0;
+    while ((v >> (b + 1)) != 0)
+        b++;
+    for (uint32_t c = 0; (2u << c) <= limit + 1; c++) {
+        put_ctx(r, w, lumo_pmesh_rank_ctx(n, c), c < b);
+        if (c == b)
+            break;
     }
-    if (i < limit)
-        put_gamma(w, rank - LUMO_PMESH_RANK_UNARY + 1);
+    for (uint32_t i = b; i-- > 0;) {
+        uint32_t bit = v >> i & 1u, j = b - 1 - i;
+        if (j < 2)
+            put_ctx(r, w, LUMO_PMESH_CTX_RANK_LOW + 2 * b + j, bit);
+        else
+            put_bits(w, bit, 1);
+    }
 }
 
 /* The explicit fan (read_wing, read_fan_length): the first corner of

@@ -25,24 +25,27 @@
 /* The adaptive contexts (LUMO_PMESH_CONTEXTS of them, lumo/pmesh.h), by
  * first index: whether a parent continues the round; whether an eligible
  * vertex is the parent, by its valence (PARENT_CTXS); whether the split
- * is a fan split, by the previous split's kind (2); the fan rank in
- * unary, by the parent's corner count (RANK_CTXS) and position
- * (RANK_UNARY); a mask bit (1). They carry over from record to record. */
+ * is a fan split, by the previous split's kind (2); the fan rank's class
+ * in unary, by the parent's corner count (RANK_CTXS) and place
+ * (RANK_CLASSES); the first two bits under the rank's leading one, by
+ * class (2 RANK_CLASSES); a mask bit (1). They carry over from record to
+ * record. */
 #define LUMO_PMESH_PARENT_CTXS  7u
 #define LUMO_PMESH_RANK_CTXS    5u
-#define LUMO_PMESH_RANK_UNARY   16u
+#define LUMO_PMESH_RANK_CLASSES 9u
 #define LUMO_PMESH_CTX_ROUND    0u
 #define LUMO_PMESH_CTX_PARENT   1u
 #define LUMO_PMESH_CTX_KIND     (LUMO_PMESH_CTX_PARENT + LUMO_PMESH_PARENT_CTXS)
 #define LUMO_PMESH_CTX_RANK     (LUMO_PMESH_CTX_KIND + 2u)
-#define LUMO_PMESH_CTX_MASK     (LUMO_PMESH_CTX_RANK + LUMO_PMESH_RANK_CTXS * LUMO_PMESH_RANK_UNARY)
+#define LUMO_PMESH_CTX_RANK_LOW (LUMO_PMESH_CTX_RANK + LUMO_PMESH_RANK_CTXS * LUMO_PMESH_RANK_CLASSES)
+#define LUMO_PMESH_CTX_MASK     (LUMO_PMESH_CTX_RANK_LOW + 2u * LUMO_PMESH_RANK_CLASSES)
 #define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_MASK + 1u)
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
-/* Context of the rank's unary bit i for a parent with n corners. */
-static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t i)
+/* Context of the rank's class bit c for a parent with n corners. */
+static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
 {
     uint32_t b = n < 6u ? 0u : n > 10u ? 4u : n - 6u;
-    return LUMO_PMESH_CTX_RANK + b * LUMO_PMESH_RANK_UNARY + i;
+    return LUMO_PMESH_CTX_RANK + b * LUMO_PMESH_RANK_CLASSES + c;
 }
 
 /* Parent scan (§2.3 step 1): vertex v may be the parent of a split that
