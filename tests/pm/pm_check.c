@@ -508,6 +508,8 @@ int main(int argc, char **argv)
             so.quant_bits = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
             po.round_fraction = atof(argv[++i]);  /* 0: one collapse at a time */
+        else if (!strcmp(argv[i], "--max-error") && i + 1 < argc)
+            po.max_error = atof(argv[++i]);  /* 0: no limit (the seeds' small meshes split down to a few vertices) */
         else if (!strcmp(argv[i], "--base") && i + 1 < argc)
             want_base = argv[++i];  /* "V/F": the base mesh must be exactly that */
         else
@@ -542,8 +544,9 @@ int main(int argc, char **argv)
         snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
         check(streamed, "stream written", err);
         if (streamed && po.round_fraction > 0 && pm.vertices > 1000 && so.batch_vertices >= 100) {
-            /* Rounds sort each round's splits by parent: the Rice-coded
-             * gaps must stay far below w(n) (~13-19 bits on the dragons). */
+            /* Rounds sort each round's splits by parent: the scan of
+             * eligible vertices must cost far below w(n) (~13-19 bits on
+             * the dragons). */
             double pb = st.splits ? (double)st.parent_bits / st.splits : 99;
             snprintf(err, sizeof err, "%.2f bits per split vertex (w(n) = %u)", pb,
                      lumo_pmesh_field_bits(pm.vertices));

@@ -372,7 +372,7 @@ static void section_bits(FILE *o, model *ms, int n)
                "Fan = the fan's geometric rank (or the escape and the explicit first wing and length); "
                "record heads = index, block and payload sizes as varints plus a CRC-32 "
                "(docs/progressive-mesh.md §2).\n\n"
-               "| model | parent | kind | fan | mask splits | Rice + padding "
+               "| model | parent | kind | fan | mask splits | code flush "
                "| Draco payload | record heads | total bits/vertex | fan splits by rank |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
