@@ -97,6 +97,7 @@ typedef struct {
                                 record), NIL before the first split */
     uint32_t    round_first; /* first split vertex of the current round */
     uint32_t    last_fan;    /* the previous split was a fan split */
+    uint32_t    stamped;     /* splits whose parent's round_parent is set */
     uint16_t    ctx[LUMO_PMESH_CONTEXTS];  /* working copy of pm->ctx */
 } split_ctx;
 
@@ -674,7 +675,7 @@ static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
         return read_trunc(&s->br, k, p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
     }
     for (v = s->prev_parent + 1; v < s->round_first; v++) {
-        int c = lumo_pmesh_parent_ctx(pm->tris, pm->head, pm->next, v, s->round_first);
+        int c = lumo_pmesh_parent_ctx(pm->tris, pm->head, pm->next, pm->round_parent, v, s->round_first);
         if (c < 0)
             continue;
         if (read_ctx(s, (uint32_t)c, &bit))
@@ -694,6 +695,8 @@ static lumo_status split(split_ctx *s, uint32_t k)
         return st;
     if (p >= k)
         return LUMO_ERR_RANGE;
+    s->pm->stamp_log[s->stamped++] = s->pm->round_parent[p];
+    s->pm->round_parent[p] = s->round_first;
     s->prev_parent = p;
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
@@ -828,6 +831,8 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
      * vertices (qpos beyond vertex_count is invisible until kept) */
     if ((st = grid_positions(pm, &b, pos)) || (st = run_splits(&s))) {
         rollback_to(&s, 0);
+        while (s.stamped-- > 0)  /* newest first: a parent may repeat in new rounds */
+            pm->round_parent[pm->batch_parent[s.stamped]] = pm->stamp_log[s.stamped];
         return st;
     }
     pm->last_parent = s.prev_parent, pm->round_first = s.round_first, pm->last_fan = s.last_fan;

@@ -84,6 +84,7 @@ typedef struct {
     unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
     uint32_t  round_first;    /* first split vertex of the current round */
+    uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
     uint32_t  last_fan;       /* the previous split was a fan split */
     uint16_t  ctx[LUMO_PMESH_CONTEXTS];  /* the decoder's probabilities, replayed */
 } replay;
@@ -416,7 +417,7 @@ static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
  * the eligible vertices after prev, or start a new one explicitly ---- */
 static int parent_ctx(const replay *r, uint32_t v)
 {
-    return lumo_pmesh_parent_ctx(r->disp, r->head, r->next, v, r->round_first);
+    return lumo_pmesh_parent_ctx(r->disp, r->head, r->next, r->round_parent, v, r->round_first);
 }
 
 static void put_parent(replay *r, bitwriter *w, uint32_t p, uint32_t prev, uint32_t k)
@@ -429,13 +430,13 @@ static void put_parent(replay *r, bitwriter *w, uint32_t p, uint32_t prev, uint3
     if (!cont) {
         r->round_first = k;
         put_trunc(w, p, k);
-        return;
     }
-    for (uint32_t v = prev + 1; v <= p; v++) {
+    for (uint32_t v = prev + 1; cont && v <= p; v++) {
         int c = parent_ctx(r, v);
         if (c >= 0)
             put_ctx(r, w, (uint32_t)c, v == p);
     }
+    r->round_parent[p] = r->round_first;
 }
 
 /* Mirrors read_split_kind(): the fan bit, then a mask split's kind code. */
@@ -676,6 +677,7 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
     r.q = malloc(12 * (size_t)pm->vertices), r.res = malloc(12 * (size_t)pm->vertices);
     r.disp = malloc(12 * (size_t)pm->faces + 4), r.next = malloc(12 * (size_t)pm->faces + 4);
     r.head = malloc(4 * (size_t)pm->vertices);
+    r.round_parent = calloc(pm->vertices, 4);
     for (uint32_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
         r.ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
     srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
@@ -683,7 +685,7 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
     srv_buf_put(&s, header, sizeof header);
     lumo_status rc = LUMO_ERR_NOMEM;
-    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !bi)
+    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.round_parent || !bi)
         goto done;
     quantize(pm, &q, r.q);
     r.quant_bits = (unsigned)q.bits;
@@ -708,6 +710,7 @@ done:
     free(r.disp);
     free(r.next);
     free(r.head);
+    free(r.round_parent);
     free(bi);
     free(s.p);
     return rc;

@@ -110,6 +110,10 @@ typedef struct lumo_pmesh {
     uint32_t    *batch_parent;        /* parent of each vertex of the batch */
     uint32_t    *split_log;           /* journal length before each split of
                                          the last batch (batch_vertices + 1) */
+    uint32_t    *round_parent;        /* vertices: the round start of the last
+                                         round the vertex was a parent in, or 0 */
+    uint32_t    *stamp_log;           /* round_parent of each split's parent
+                                         before the split (undo) */
     uint32_t     log_n;               /* journal entries of the last batch */
     uint32_t     last_parent;         /* parent of the last split applied, or
                                          0xffffffff before the first */

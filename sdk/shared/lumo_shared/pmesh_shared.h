@@ -50,13 +50,14 @@ static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
 
 /* Parent scan (§2.3 step 1): vertex v may be the parent of a split that
  * continues the round that began with vertex round_first when it has a
- * face and no neighbour at or above round_first (a vertex split in this
- * round: the server's collapses of one round are independent, their ends
- * two edges apart). Returns the context of its flag
+ * face and no neighbour that is an end of a split of this round: a vertex
+ * at or above round_first, or a parent u of the round (round_parent[u] ==
+ * round_first). The server's collapses of one round are independent,
+ * their ends two edges apart. Returns the context of its flag
  * (CTX_PARENT + its valence bucket), or -1 when it is not eligible. Work:
  * v's corners. Shared by the writer and the decoder. */
 int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint32_t *next,
-                          uint32_t v, uint32_t round_first);
+                          const uint32_t *round_parent, uint32_t v, uint32_t round_first);
 
 /* Fan splits whose parent has at most ARC_MAX_CORNERS corners name their
  * fan (first wing and length) by its rank among p's fans ordered by a
