@@ -587,10 +587,60 @@ static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_optio
         d[64 + k] = (uint8_t)(crc >> (8 * k));
 }
 
+/* ---- per-mesh choices (docs/progressive-mesh.md §2.1) ---- */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double srv_pm_median_edge(const srv_pm *pm)
+{
+    size_t n = 3 * (size_t)pm->faces;
+    double *len = n ? malloc(n * sizeof *len) : NULL, m;
+    if (!len)
+        return 0;
+    for (size_t c = 0; c < n; c++) {
+        const float *a = pm->xyz + 3 * (size_t)pm->tris[c];
+        const float *b = pm->xyz + 3 * (size_t)pm->tris[c - c % 3 + (c % 3 + 1) % 3];
+        double d[3] = {(double)a[0] - b[0], (double)a[1] - b[1], (double)a[2] - b[2]};
+        len[c] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    qsort(len, n, sizeof *len, cmp_double);
+    m = len[n / 2];
+    free(len);
+    return m;
+}
+
+int srv_pm_stream_auto_bits(const srv_pm *pm)
+{
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
+        lo[i % 3] = pm->xyz[i] < lo[i % 3] ? pm->xyz[i] : lo[i % 3];
+        hi[i % 3] = pm->xyz[i] > hi[i % 3] ? pm->xyz[i] : hi[i % 3];
+    }
+    double range = 0, edge = srv_pm_median_edge(pm);
+    for (int c = 0; c < 3; c++)
+        range = hi[c] - lo[c] > range ? hi[c] - lo[c] : range;
+    int bits = SRV_PM_MIN_AUTO_BITS;
+    /* the grid step range / (2^bits - 1) at most edge / EDGE_STEPS */
+    while (bits < SRV_PM_MAX_AUTO_BITS && range * SRV_PM_EDGE_STEPS > edge * (double)((1u << bits) - 1u))
+        bits++;
+    return bits;
+}
+
+uint32_t srv_pm_stream_auto_batch(const srv_pm *pm)
+{
+    uint32_t b = SRV_PM_BATCH;
+    while (b < SRV_PM_MAX_BATCH && pm->vertices / SRV_PM_BATCHES_MAX > b)
+        b *= 2;
+    return b < SRV_PM_MAX_BATCH ? b : SRV_PM_MAX_BATCH;
+}
+
 void srv_pm_stream_default_options(srv_pm_stream_options *o)
 {
-    o->batch_vertices = 250;
-    o->quant_bits = 12;
+    o->batch_vertices = 0;  /* per mesh: srv_pm_stream_auto_batch */
+    o->quant_bits = 0;      /* per mesh: srv_pm_stream_auto_bits */
     o->draco = srv_draco_default_settings();
     o->position_coding = LUMO_PMESH_POS_PREDICTED;
     o->stats = NULL;
@@ -664,9 +714,14 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
         srv_pm_stream_default_options(&def);
         o = &def;
     }
-    if (!pm->vertices || !o->batch_vertices || o->quant_bits < 1 ||
-        o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
+    if (!pm->vertices || o->quant_bits < 0 || o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
         return LUMO_ERR_ARG;
+    srv_pm_stream_options chosen = *o;
+    if (!chosen.batch_vertices)
+        chosen.batch_vertices = srv_pm_stream_auto_batch(pm);
+    if (!chosen.quant_bits)
+        chosen.quant_bits = srv_pm_stream_auto_bits(pm);
+    o = &chosen;
     uint32_t rest = pm->vertices - pm->base_vertices;
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
     srv_draco_quant q;

@@ -552,6 +552,20 @@ int main(int argc, char **argv)
                      lumo_pmesh_field_bits(pm.vertices));
             check(pb < 6.0, "lookup-table parents coded as increasing runs", err);
         }
+        if (streamed && !so.quant_bits) {
+            /* precision per mesh: the fewest bits whose step is at most
+             * 1/EDGE_STEPS of the median edge (docs/progressive-mesh.md §2.1) */
+            int b = s[44];
+            double range, edge = srv_pm_median_edge(&pm);
+            float rf;
+            uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
+            memcpy(&rf, &rb, 4);
+            range = rf;
+            int fine = b == SRV_PM_MAX_AUTO_BITS || range / ((1 << b) - 1) <= 1.0001 * edge / SRV_PM_EDGE_STEPS;
+            int fewest = b == SRV_PM_MIN_AUTO_BITS || range / ((1 << (b - 1)) - 1) > 0.9999 * edge / SRV_PM_EDGE_STEPS;
+            snprintf(err, sizeof err, "%d bits, step %.3g, median edge %.3g", b, range / ((1 << b) - 1), edge);
+            check(fine && fewest, "position bits from the median edge", err);
+        }
         if (streamed && dump) {
             FILE *f = fopen(dump, "wb");
             check(f && fwrite(s, 1, len, f) == len && !fclose(f), "stream saved", dump);
@@ -560,7 +574,7 @@ int main(int argc, char **argv)
             float range;
             uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
             memcpy(&range, &rb, 4);
-            double step = range / ((1 << so.quant_bits) - 1) + 2.0 / 65536;
+            double step = range / ((1 << s[44]) - 1) + 2.0 / 65536;  /* the stream's own bits */
             srv_pm_client cl;
             check_client(&pm, s, len, step, &cl);
             lumo_pmesh_view v;

@@ -15,6 +15,7 @@
 #include "package/package_write.h"
 #include "pm/pm_client.h"
 #include "pm/pm_load.h"
+#include "lumo/pmesh.h"
 #include "pm/pm_stream.h"
 
 int bench_main(int argc, char **argv);
@@ -61,7 +62,7 @@ static int parse(int argc, char **argv, args *a)
         else
             return -1;
     }
-    return a->in && a->out && a->so.batch_vertices ? 0 : -1;
+    return a->in && a->out ? 0 : -1;  /* --batch 0, --bits 0: chosen per mesh (the default) */
 }
 
 static int write_file(const char *path, const uint8_t *d, size_t n)
@@ -116,10 +117,12 @@ static int cmd_build(const args *a, int clean_only)
         fprintf(stderr, "lumo-pm: error: %s: cannot write the stream\n", a->out);
         goto done;
     }
+    lumo_pmesh_header h;
+    (void)lumo_pmesh_read_header(s, n, &h);  /* what the per-mesh choices made */
     printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
-           "%u batches of %u, %zu bytes, %.2f bits/triangle\n",
+           "%u batches of %u, %u-bit positions, %zu bytes, %.2f bits/triangle\n",
            a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
-           pm.base_faces, nb, a->so.batch_vertices, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
+           pm.base_faces, nb, h.batch_vertices, h.quant_bits, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
     double sv = st.splits ? (double)st.splits : 1.0;
     printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, other %.2f, "
            "draco payload %.2f, record heads %.2f\n",
