@@ -98,7 +98,7 @@ typedef struct {
     uint32_t    round_first; /* first split vertex of the current round */
     uint32_t    last_fan;    /* the previous split was a fan split */
     uint32_t    stamped;     /* splits whose parent's round_parent is set */
-    uint16_t    ctx[LUMO_PMESH_CONTEXTS];  /* working copy of pm->ctx */
+    uint16_t   *ctx;         /* pm->ctx (pm->ctx_undo keeps the batch's start) */
 } split_ctx;
 
 /* One bit of adaptive context `c` of the split record's range code. */
@@ -826,17 +826,18 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     s.pm = pm, s.b = &b, s.res = predicted ? pos : NULL;
     s.br.wb = (lumo_wire_bits){b.side, (size_t)b.side_bytes * 8u, 0};
     s.prev_parent = pm->last_parent, s.round_first = pm->round_first, s.last_fan = pm->last_fan;
-    memcpy(s.ctx, pm->ctx, sizeof s.ctx);
+    s.ctx = pm->ctx;
+    memcpy(pm->ctx_undo, pm->ctx, LUMO_PMESH_CONTEXTS * sizeof *pm->ctx);
     /* absolute positions first: the fan ranks read the batch's earlier
      * vertices (qpos beyond vertex_count is invisible until kept) */
     if ((st = grid_positions(pm, &b, pos)) || (st = run_splits(&s))) {
         rollback_to(&s, 0);
         while (s.stamped-- > 0)  /* newest first: a parent may repeat in new rounds */
             pm->round_parent[pm->batch_parent[s.stamped]] = pm->stamp_log[s.stamped];
+        memcpy(pm->ctx, pm->ctx_undo, LUMO_PMESH_CONTEXTS * sizeof *pm->ctx);
         return st;
     }
     pm->last_parent = s.prev_parent, pm->round_first = s.round_first, pm->last_fan = s.last_fan;
-    memcpy(pm->ctx, s.ctx, sizeof s.ctx);
     store_positions(pm, &b);
     store_albedo(pm, &b, rgb);
     pm->split_log[b.first ? b.count : 0] = s.log_n;

@@ -417,7 +417,7 @@ int bench_main(int argc, char **argv)
     self[sl > 0 ? sl : 0] = 0;
     const char *out = NULL, *cmd = "lumo-pm bench", *fig5 = NULL;
     model ms[8];
-    int n = 0;
+    int n = 0, sizes_only = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
@@ -425,6 +425,8 @@ int bench_main(int argc, char **argv)
             cmd = argv[++i];
         else if (!strcmp(argv[i], "--fig5") && i + 1 < argc)
             fig5 = argv[++i];
+        else if (!strcmp(argv[i], "--sizes-only"))
+            sizes_only = 1;  /* stream sizes and where the bits go: minutes, not hours */
         else if (n < 8 && access(argv[i], R_OK) == 0 && !load_model(argv[i], &ms[n]))
             n++;
         else
@@ -435,12 +437,16 @@ int bench_main(int argc, char **argv)
         return 1;
     fprintf(o, "## Progressive meshes\n\nMade by `%s`.\n\n", cmd);
     section_sizes(o, ms, n);
+    fflush(o);
     section_bits(o, ms, n);
-    section_rounds(o, ms, n);
-    for (int i = 0; fig5 && i < n; i++)
-        if (!strcmp(ms[i].path, fig5))
-            section_fig5(o, &ms[i]);
-    section_scaling(o, ms, n, self);
+    fflush(o);
+    if (!sizes_only) {
+        section_rounds(o, ms, n);
+        for (int i = 0; fig5 && i < n; i++)
+            if (!strcmp(ms[i].path, fig5))
+                section_fig5(o, &ms[i]);
+        section_scaling(o, ms, n, self);
+    }
     for (int i = 0; i < n; i++)
         free_model(&ms[i]);
     return o != stdout && fclose(o) ? 1 : 0;

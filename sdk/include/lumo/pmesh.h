@@ -55,7 +55,7 @@
 /* "LPM1", first character in the lowest byte. */
 #define LUMO_PMESH_MAGIC       0x314d504cu
 /* Adaptive probabilities of the split records' range code, kept from
- * record to record (layout: lumo_shared/pmesh_shared.h). */
+ * record to record (layout: lumo_shared/pmesh_shared.h); in the arena. */
 #define LUMO_PMESH_CONTEXTS    96u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
@@ -121,7 +121,8 @@ typedef struct lumo_pmesh {
     uint32_t     round_first;         /* first split vertex of the current
                                          collapse round (parent scan) */
     uint32_t     last_fan;            /* the last split was a fan split */
-    uint16_t     ctx[LUMO_PMESH_CONTEXTS]; /* range-code probabilities */
+    uint16_t    *ctx;                 /* LUMO_PMESH_CONTEXTS range-code probabilities */
+    uint16_t    *ctx_undo;            /* their copy from before the batch */
     int          rewound;             /* lumo_pmesh_rewind was used */
     int64_t     *arc_key;             /* fan-rank candidates of one split
                                          (ARC_MAX_CORNERS^2 keys) */
