@@ -8,9 +8,12 @@
  * between the two wings (an interior split: only the fan's rank among
  * the fans p's ring geometry makes likely, or its first wing and length,
  * is coded) or those a bit mask selects (boundary and
- * non-manifold splits), then appends the faces that reappear. The work is
- * that of the batch:
- * its vertices, their parents' valences and the new faces, never the mesh.
+ * non-manifold splits), then appends the faces that reappear. A split
+ * record is one adaptive binary range code (pmesh_rc.h); its parents are
+ * found by a scan of the vertices that may still split in the current
+ * collapse round. The work is that of the batch: its vertices, their
+ * parents' valences, the vertices the parent scans pass and the new
+ * faces, never the mesh.
  *
  * A batch is checked whole before it is kept: the record's CRC and counts,
  * then the Draco payload is decoded into scratch memory, then the splits

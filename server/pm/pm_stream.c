@@ -8,10 +8,12 @@
  * which of p's corners move (one bit each) and which neighbour closes each
  * reappearing face (a short index into the corners around k and p). Seed
  * 000 §4.2 sends vertices, faces and lookup tables; here the lookup-table
- * entry of k is its parent p, Rice coded as the gap from the previous
- * split's parent (the splits of one collapse round are numbered by
- * increasing parent, pm_build.c), and the split kinds ride in a per-record
- * section of fan-split runs. */
+ * entry of k is its parent p, found by a scan of the vertices after the
+ * previous split's parent that may still split in this round (the splits
+ * of one collapse round are numbered by increasing parent, pm_build.c),
+ * an adaptive bit each. A split record is one adaptive binary range code
+ * (pm/pm_rc.h), whose probabilities the writer replays as the decoder
+ * keeps them. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>

@@ -61,7 +61,7 @@ int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint
 
 /* Fan splits whose parent has at most ARC_MAX_CORNERS corners name their
  * fan (first wing and length) by its rank among p's fans ordered by a
- * geometric score, an order-1 Exp-Golomb code (§2.3 step 3). */
+ * geometric score, coded by its class in adaptive bits (§2.3 step 3). */
 #define LUMO_PMESH_ARC_MAX_CORNERS 16u
 /* The fan score sees grid integers of at most ARC_BITS bits (q >> (bits -
  * ARC_BITS) on finer grids), so a score and the candidate's id fit one
