@@ -35,6 +35,9 @@ nginx-light
 libcurl4-openssl-dev
 libmeshoptimizer-dev
 libcgal-demo
+doxygen
+qemu-system-x86
+busybox-static
 "
 
 missing=""

@@ -85,6 +85,18 @@ static float draco_text_float(double v)
     return std::strtof(text, nullptr);
 }
 
+// The next text float from v in direction dir (+1 or -1): a step of 1e-6,
+// doubled until the text round trip moves (past ~8 m a float's spacing is
+// above 1e-6, and a fixed step would round back to v for ever).
+static float draco_text_step(float v, int dir)
+{
+    for (double step = 1e-6;; step *= 2) {
+        float next = draco_text_float(static_cast<double>(v) + dir * step);
+        if (dir > 0 ? next > v : next < v)
+            return next;
+    }
+}
+
 extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, srv_draco_quant *q)
 {
     double extent = 0;
@@ -92,14 +104,14 @@ extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, s
     for (int c = 0; c < 3; ++c) {
         q->origin[c] = draco_text_float(std::floor(static_cast<double>(lo[c]) * 1e6) / 1e6 - 1e-6);
         while (q->origin[c] > lo[c])  // text rounding went up: step down
-            q->origin[c] = draco_text_float(static_cast<double>(q->origin[c]) - 1e-6);
+            q->origin[c] = draco_text_step(q->origin[c], -1);
         double e = static_cast<double>(hi[c]) - q->origin[c];
         extent = e > extent ? e : extent;
     }
     q->range = draco_text_float(std::ceil(extent * 1e6) / 1e6 + 1e-6);
     for (int c = 0; c < 3; ++c)
         while (static_cast<double>(q->origin[c]) + q->range < hi[c])
-            q->range = draco_text_float(static_cast<double>(q->range) + 1e-6);
+            q->range = draco_text_step(q->range, +1);
     if (q->range <= 0)
         q->range = 1;
 }

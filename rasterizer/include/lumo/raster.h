@@ -46,10 +46,11 @@
 
 /* ---- camera ------------------------------------------------------------- */
 
+/* A pinhole camera, scene units. */
 typedef struct lumo_raster_camera {
-    lumo_q16_16 eye[3];
-    lumo_q16_16 target[3];
-    lumo_q16_16 up[3];
+    lumo_q16_16 eye[3];     /* where it is */
+    lumo_q16_16 target[3];  /* where it looks */
+    lumo_q16_16 up[3];      /* up direction (any length) */
     lumo_q16_16 fovy_deg;   /* vertical field of view in degrees, [1, 179] */
     lumo_q16_16 znear;      /* near plane distance (> 0), scene units */
 } lumo_raster_camera;
@@ -58,8 +59,9 @@ typedef struct lumo_raster_camera {
 
 struct lumo_raster_shadow;
 
+/* A light as the rasterizer shades with it (no area lights). */
 typedef struct lumo_raster_light {
-    lumo_light_kind kind;
+    lumo_light_kind kind;      /* point, spot or directional */
     lumo_q16_16  pos[3];       /* point, spot: position */
     lumo_q1_14   dir[3];       /* spot: cone axis; directional: the direction
                                 * the light travels. Unit length. */
@@ -77,10 +79,21 @@ typedef struct lumo_raster_light {
 /* The near plane clients draw a package's camera with: 0.01 m (Q16.16,
  * rounded); docs/rasterizer.md, "16-bit depth", says what it costs. */
 #define LUMO_RASTER_ZNEAR ((lumo_q16_16)655)
+/* The smallest near plane a box gives (lumo_raster_znear_for_box): 1/4096 m,
+ * so a millimetre-sized model seen from a few millimetres keeps its depth. */
+#define LUMO_RASTER_ZNEAR_MIN ((lumo_q16_16)16)
 
-/* The package's default camera (its scene info), near plane
- * LUMO_RASTER_ZNEAR. */
+/* The package's default camera (its scene info), its near plane from the
+ * scene's bounds (lumo_raster_znear_for_box). */
 void lumo_raster_camera_from_info(const lumo_pkg_info *info, lumo_raster_camera *out);
+
+/* The near plane for cam looking at geometry inside the box bmin..bmax
+ * (metres, Q16.16): half the smallest view depth of the box's corners, so
+ * nothing inside is clipped; LUMO_RASTER_ZNEAR when that is below
+ * LUMO_RASTER_ZNEAR_MIN (the eye inside or beside the box) or eye == target. A larger near plane gives 16-bit
+ * depth finer steps (docs/rasterizer.md, "16-bit depth"). */
+lumo_q16_16 lumo_raster_znear_for_box(const lumo_raster_camera *cam, const lumo_q16_16 bmin[3],
+                                      const lumo_q16_16 bmax[3]);
 
 /* A package light as a rasterizer light. The client has no area lights: an
  * area light becomes a spot at its centre facing its normal with a
@@ -102,25 +115,27 @@ void lumo_raster_ivg_irradiance(const void *ivg, const lumo_q16_16 p[3],
 #define LUMO_RASTER_PER_PIXEL 1u   /* per-pixel lighting (default: per vertex) */
 #define LUMO_RASTER_CULL_BACK 2u   /* drop back faces (closed meshes) */
 
+/* What lights a frame. */
 typedef struct lumo_raster_scene {
     const lumo_raster_light *lights;   /* light_count entries (may be NULL if 0) */
     uint32_t light_count;              /* <= LUMO_MAX_LIGHTS */
     lumo_raster_indirect_fn indirect;  /* NULL: no indirect light */
-    const void *indirect_ctx;
+    const void *indirect_ctx;          /* handed to indirect */
     lumo_uq16_16 exposure;             /* multiplies radiance; 1.0 = LUMO_Q16_ONE */
     uint32_t flags;                    /* LUMO_RASTER_* */
 } lumo_raster_scene;
 
 /* ---- mesh ---------------------------------------------------------------- */
 
+/* A mesh to draw; the arrays are the caller's. */
 typedef struct lumo_raster_mesh {
     const lumo_q16_16 *pos;       /* 3 per vertex, scene units */
     const lumo_q1_14  *normal;    /* 3 per vertex, unit length */
     const lumo_q1_14  *albedo;    /* 3 per vertex in [0, 1], or NULL ... */
     lumo_q1_14 mesh_albedo[3];    /* ... then this one for the whole mesh */
     const uint32_t *tris;         /* 3 vertex indices per triangle */
-    uint32_t vertex_count;
-    uint32_t tri_count;
+    uint32_t vertex_count;        /* entries of pos, normal, albedo */
+    uint32_t tri_count;           /* triangles at tris */
     const lumo_uq16_16 *lit;      /* optional, per-vertex lighting only: 6 per
                                    * vertex, the radiance of its front (n) and
                                    * back (-n) side from lumo_raster_light_vertices
@@ -140,16 +155,18 @@ lumo_status lumo_raster_light_vertices(const struct lumo_raster_scene *s, const 
 
 /* ---- target: a frame, or one band of K rows of it ------------------------ */
 
+/* The colour buffer's pixels. */
 typedef enum lumo_pixel_format {
     LUMO_PIXEL_XRGB8888 = 0,   /* uint32 0x00RRGGBB */
     LUMO_PIXEL_RGB565          /* uint16, ordered dither on absolute (x, y) */
 } lumo_pixel_format;
 
+/* Where a frame (or a band of it) is drawn; buffers are the caller's. */
 typedef struct lumo_raster_target {
     uint16_t width, height;    /* the whole frame, <= LUMO_MAX_FRAME_DIM */
     uint16_t band_y;           /* first frame row held in the buffers */
     uint16_t band_rows;        /* rows held (K); band_y + K <= height */
-    lumo_pixel_format format;
+    lumo_pixel_format format;  /* of color */
     void    *color;            /* band_rows rows of color_stride bytes */
     uint32_t color_stride;     /* bytes between rows, >= width * pixel size */
     void    *depth;            /* band_rows * width entries of depth_bits */
@@ -179,12 +196,13 @@ lumo_status lumo_raster_clear(lumo_raster_target *t, uint32_t rgb);
 
 /* ---- the view: camera reduced to integer matrices ------------------------ */
 
+/* A camera prepared for one frame size (lumo_raster_view_init). */
 typedef struct lumo_raster_view {
-    lumo_q16_16 eye[3];
+    lumo_q16_16 eye[3];        /* the camera's position */
     lumo_q1_14  rot[3][3];     /* rows: right, up, forward (camera basis) */
     lumo_q16_16 cot_half;      /* cot(fovy / 2) */
-    lumo_q16_16 znear;
-    uint16_t width, height;
+    lumo_q16_16 znear;         /* near plane, scene units */
+    uint16_t width, height;    /* the frame, pixels */
 } lumo_raster_view;
 
 /* Build the view for a frame of width x height. LUMO_ERR_RANGE when the
@@ -217,9 +235,10 @@ uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure);
  * inside every clip plane, its screen position: triangles of such vertices
  * skip projection, and each band rejects them from their rows alone. */
 #define LUMO_RASTER_MAX_VARYINGS 9
+/* One transformed vertex of the cache (above). */
 typedef struct lumo_raster_vertex {
     int32_t  clip[3];          /* x, y, w in scene units, Q16.16 */
-    int32_t  var[LUMO_RASTER_MAX_VARYINGS];
+    int32_t  var[LUMO_RASTER_MAX_VARYINGS];   /* the varyings (above) */
     uint32_t outcode;          /* clip planes the vertex is outside of */
     int32_t  screen[2];        /* when outcode == 0: x, y in 1/16 pixel */
     uint32_t q;                /* when outcode == 0: znear / w, Q0.30 */
@@ -257,6 +276,7 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
  * Geometry nearer the light than this casts no shadow. */
 #define LUMO_RASTER_SHADOW_ZNEAR ((lumo_q16_16)3277)
 
+/* A light's shadow map: its views and the caller's depth texels. */
 typedef struct lumo_raster_shadow {
     lumo_raster_view face[LUMO_RASTER_SHADOW_MAX_FACES];  /* the light's views */
     uint16_t *depth;           /* faces * size * size texels, face-major, rows top first */
@@ -308,8 +328,8 @@ lumo_status lumo_raster_draw(const lumo_raster_view *v, const lumo_raster_scene 
 
 /* Statistics of the last draw, for tests and benchmarks (optional). */
 typedef struct lumo_raster_stats {
-    uint32_t tris_in, tris_culled, tris_clipped, tris_drawn;
-    uint32_t pixels_tested, pixels_written;
+    uint32_t tris_in, tris_culled, tris_clipped, tris_drawn;   /* triangles: given, culled, clipped, drawn */
+    uint32_t pixels_tested, pixels_written;   /* depth tests; pixels written */
 } lumo_raster_stats;
 
 lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,
