@@ -21,10 +21,15 @@ srv_xform srv_xform_identity(void);
 vec3 srv_xform_apply(const srv_xform *x, vec3 p);
 
 /* Load every mesh (and light) of a file into the scene, transformed.
- * albedo: NULL to use the file's materials / vertex colours. LUMO_OK, or
- * with a one-line reason in err: LUMO_ERR_IO (no such file),
- * LUMO_ERR_CORRUPT (assimp cannot read it, or it holds no triangle),
- * LUMO_ERR_NOMEM. */
+ * albedo: NULL to use the file's materials / vertex colours. The file goes
+ * through lumo's own checks first (scene/model_check.h: declared counts
+ * against the file's size, face lists, indices, coordinates), then assimp
+ * with aiProcess_ValidateDataStructure, then every mesh it returns is
+ * checked again. LUMO_OK, or with a one-line reason naming the file, the
+ * element and why in err: srv_model_check_file's statuses (IO, CORRUPT,
+ * TRUNCATED, RANGE, NONFINITE, LIMIT, UNSUPPORTED), LUMO_ERR_UNSUPPORTED
+ * (a format assimp does not read), LUMO_ERR_CORRUPT (assimp cannot read
+ * it, or it holds no triangle), LUMO_ERR_NOMEM. */
 lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
                             char *err, size_t errlen);
 
