@@ -10,6 +10,7 @@
 #include "lumo/package.h"
 #include "lumo/session.h"
 #include "lumo_host/file_io.h"
+#include "lumo_host/package_check.h"
 #include "lumo_host/package_msg.h"
 #include "package_load.h"
 #include "session_scene.h"
@@ -102,7 +103,7 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
 {
     static lumo_session ses;   /* 19 KB: not on the stack */
     host_load_stats local;
-    char why[200];
+    char why[300];
     size_t size = 0;
     uint8_t *data = host_read_file(path, &size);
     lumo_package pkg;
@@ -119,8 +120,12 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
         return -1;
     }
     if ((st = lumo_package_open(&pkg, data, size))) {
-        snprintf(err, errlen, "%s: %s", path,
-                 st == LUMO_ERR_VERSION ? host_package_strerror(data, size, st, why, sizeof why) : lumo_strerror(st));
+        snprintf(err, errlen, "%s: %s", path, host_package_strerror(data, size, st, why, sizeof why));
+        free(data);
+        return -1;
+    }
+    if ((st = host_package_check(&pkg, 1, why, sizeof why))) {
+        snprintf(err, errlen, "%s: %s", path, why);
         free(data);
         return -1;
     }

@@ -57,7 +57,8 @@ typedef struct lumo_package {
     uint32_t       chunk_count;
 } lumo_package;
 
-/* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout),
+/* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout, a
+ * second INFO, IVGD, IVGQ, IVGF, IVGS or ORDR chunk),
  * VERSION (other major), CHECKSUM, LIMIT (too many chunks); *pkg is written
  * only on success. Work is linear in size. */
 lumo_status lumo_package_open(lumo_package *pkg, const uint8_t *data, size_t size);
