@@ -11,6 +11,7 @@
 #include "package/package_write.h"
 #include "pm/pm_stream.h"
 #include "common/progress.h"
+#include "bake/budget.h"
 #include "bake/reference.h"
 #include "scene/shapes.h"
 
@@ -27,7 +28,7 @@ enum { MESH_RAW = 1, MESH_PM = 2, MESH_BOTH = 3 };
 
 typedef struct {
     const char *scene, *out, *dragon;
-    int   use_default, dims[3], spp, threads, ref_w, ref_h, indirect_only, progress;
+    int   use_default, dims[3], spp, threads, ref_w, ref_h, indirect_only, progress, allow_large;
     float cell, exposure;
     uint64_t seed;
     vec3  albedo;
@@ -61,6 +62,7 @@ static const char usage[] =
     "  --indirect-only        reference image of the indirect light only\n"
     "  --exposure E           PNG exposure (default 1.0)\n"
     "  --no-progress          never draw the progress bar\n"
+    "  --allow-large          bake past the budget (64^3 vertices, 32^3 x 512 paths)\n"
     "  -h, --help             this text\n"
     "Conventions (units, lights, camera, tone mapping): docs/scene-format.md\n";
 
@@ -94,7 +96,7 @@ static int parse_grid(const char *t, int dims[3])
 }
 
 enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
-       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH };
+       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH, O_ALLOW_LARGE };
 
 static const struct option k_long[] = {
     {"default", no_argument, 0, O_DEFAULT}, {"output", required_argument, 0, 'o'},
@@ -105,6 +107,7 @@ static const struct option k_long[] = {
     {"reference", required_argument, 0, O_REF}, {"camera", required_argument, 0, O_CAMERA},
     {"indirect-only", no_argument, 0, O_INDIRECT}, {"exposure", required_argument, 0, O_EXPOSURE},
     {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH},
+    {"allow-large", no_argument, 0, O_ALLOW_LARGE},
     {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
 /* One option; returns 0, 1 for --help, or -1 with a message in err. */
@@ -145,6 +148,7 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
     case O_INDIRECT: o->indirect_only = 1; return 0;
     case O_EXPOSURE: if (!srv_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
     case O_NOPROGRESS: o->progress = 0; return 0;
+    case O_ALLOW_LARGE: o->allow_large = 1; return 0;
     case O_MESH:
         o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM
                      : !strcmp(arg, "both") ? MESH_BOTH : 0;
@@ -255,15 +259,22 @@ static int run_reference(const options *o, const srv_scene *s, const srv_tracer 
     return 0;
 }
 
-/* Grid dims from --cell: spacing over the bounds, clamped to [2, 256]. */
-static void cell_dims(const srv_scene *s, float cell, int dims[3])
+/* The grid (--grid, or --cell over the bounds), said before anything is
+ * traced, and refused past the budget without --allow-large (bake/budget.h). */
+static lumo_status plan_bake(options *o, const srv_scene *s, char *err, size_t errlen)
 {
     vec3 lo, hi;
+    char what[160];
+    lumo_status st;
     srv_scene_bounds(s, &lo, &hi);
-    for (int a = 0; a < 3; a++) {
-        float n = ceilf((v3_get(hi, a) - v3_get(lo, a)) / cell) + 1.0f;
-        dims[a] = n < 2.0f ? 2 : n > 256.0f ? 256 : (int)n;
-    }
+    if (o->cell > 0 && (st = srv_bake_dims_for_cell(lo, hi, o->cell, o->dims, err, errlen)))
+        return st;
+    srv_bake_plan p = srv_bake_plan_of(o->dims, o->spp);
+    if ((st = srv_bake_budget_check(&p, o->allow_large, err, errlen)))
+        return st;
+    srv_bake_plan_describe(&p, what, sizeof what);
+    fprintf(stderr, "lumo-bake: %s\n", what);
+    return LUMO_OK;
 }
 
 /* INFO, then the meshes as --mesh asks: raw chunks and/or one progressive
@@ -299,8 +310,6 @@ static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
     char err[512];
     srv_bake_result res;
     srv_pkg_writer w;
-    if (o->cell > 0)
-        cell_dims(s, o->cell, o->dims);
     srv_grid g = srv_grid_over(s, o->dims);
     srv_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
     if (srv_bake(t, &g, &bo, &res, err, sizeof err))
@@ -340,7 +349,7 @@ int main(int argc, char **argv)
     if (rc)
         return fail(err);
     srv_scene_init(&s);
-    if (load_scene(&o, &s, err, sizeof err)) {
+    if (load_scene(&o, &s, err, sizeof err) || (!o.ref_w && plan_bake(&o, &s, err, sizeof err))) {
         srv_scene_free(&s);
         return fail(err);
     }
