@@ -6,6 +6,7 @@
 #define SRV_IMPORT_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "lumo/status.h"
 #include "scene/scene.h"
 
@@ -33,10 +34,20 @@ vec3 srv_xform_apply(const srv_xform *x, vec3 p);
 lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
                             char *err, size_t errlen);
 
+/* Longest line and largest file of a scene description. */
+#define SRV_SCENE_MAX_LINE  2046
+#define SRV_SCENE_MAX_BYTES ((uint64_t)1 << 20)
+
 /* Read a scene description file. LUMO_OK, or with "FILE:LINE: reason" in
- * err: LUMO_ERR_IO (cannot open), LUMO_ERR_LIMIT (a line too long),
- * LUMO_ERR_CORRUPT (a malformed statement), LUMO_ERR_RANGE (sphere
- * segments), or the status of a mesh's srv_import_file / of memory. */
+ * err: LUMO_ERR_IO (cannot open, not a regular file), LUMO_ERR_LIMIT (a
+ * line too long, more than 16 words, a file over 1 MiB), LUMO_ERR_CORRUPT
+ * (a malformed statement, a NUL byte), LUMO_ERR_RANGE (sphere segments),
+ * or the status of a mesh's srv_import_file / of memory. */
 lumo_status srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen);
+
+/* The same from len bytes of text (not NUL-terminated; name for messages,
+ * dir for the relative paths of mesh statements). */
+lumo_status srv_scene_parse(srv_scene *s, const char *name, const char *dir, const char *text, size_t len,
+                            char *err, size_t errlen);
 
 #endif
