@@ -29,6 +29,8 @@
 
 #define SRV_BAKE_BYTES_PER_VERTEX 483u
 #define SRV_BAKE_MAX_VERTICES     ((uint64_t)64 * 64 * 64)
+/* A bake of this many paths or more (16^3 at 256 spp, seconds) is announced. */
+#define SRV_BAKE_SAY_PATHS        ((uint64_t)16 * 16 * 16 * 256)
 #define SRV_BAKE_MAX_PATHS        ((uint64_t)32 * 32 * 32 * 512)
 
 typedef struct srv_bake_plan {

@@ -560,28 +560,34 @@ static lumo_status ply_fits(mc *c, const ply *y)
     return LUMO_OK;
 }
 
-/* One number of the body, whatever the encoding. */
-static lumo_status ply_read(mc *c, const ply *y, const ply_type *t, double *out)
+/* One number of the body, whatever the encoding: LUMO_OK, TRUNCATED (the
+ * data ends) or CORRUPT (ASCII: not a number; *bad gets the token). The
+ * caller says which item it was. */
+static lumo_status ply_read(mc *c, const ply *y, const ply_type *t, double *out, span *bad)
 {
     uint8_t b[8];
     uint64_t u = 0;
-    span l = {(const char *)c->p, (const char *)c->end}, tok;
+    span l = {(const char *)c->p, (const char *)c->end};
     if (y->format == PLY_ASCII) {
-        if (!next_tok(&l, &tok) || tok_double(tok, out))
-            return fail(c, LUMO_ERR_CORRUPT, "byte %zu: a number is missing", (size_t)(c->p - c->base));
-        c->p = (const uint8_t *)tok.e;
-        return LUMO_OK;
+        if (!next_tok(&l, bad))
+            return LUMO_ERR_TRUNCATED;
+        c->p = (const uint8_t *)bad->e;
+        return tok_double(*bad, out) ? LUMO_ERR_CORRUPT : LUMO_OK;
     }
     if ((size_t)(c->end - c->p) < t->size)
-        return fail(c, LUMO_ERR_TRUNCATED, "the data ends inside an item");
+        return LUMO_ERR_TRUNCATED;
     for (unsigned i = 0; i < t->size; i++)
         b[i] = c->p[y->format == PLY_LE ? i : t->size - 1 - i];
     c->p += t->size;
     for (unsigned i = t->size; i-- > 0;)
         u = u << 8 | b[i];
-    if (t->is_float) {
-        if (t->size == 4) { float f; uint32_t w = (uint32_t)u; memcpy(&f, &w, 4); *out = f; }
-        else { double d; memcpy(&d, &u, 8); *out = d; }
+    if (t->is_float && t->size == 4) {
+        float f;
+        uint32_t w = (uint32_t)u;
+        memcpy(&f, &w, 4);
+        *out = f;
+    } else if (t->is_float) {
+        memcpy(out, &u, 8);
     } else if (t->is_signed) {
         int shift = 64 - 8 * (int)t->size;
         *out = (double)((int64_t)(u << shift) >> shift);
@@ -591,20 +597,33 @@ static lumo_status ply_read(mc *c, const ply *y, const ply_type *t, double *out)
     return LUMO_OK;
 }
 
+/* Why ply_read refused, for item `item` of element e ("where" inside it). */
+static lumo_status ply_unread(mc *c, lumo_status st, const ply_elem *e, unsigned long long item, const char *where,
+                              span bad)
+{
+    if (st == LUMO_ERR_CORRUPT)
+        return fail(c, st, "%s %llu: '%.*s' is not a number", e->name, item, (int)(bad.e - bad.s > 40 ? 40 :
+                    bad.e - bad.s), bad.s);
+    return fail(c, st, "%s %llu: the data ends %s", e->name, item, where);
+}
+
 static lumo_status ply_list(mc *c, const ply *y, const ply_elem *e, const ply_prop *p, unsigned long long item)
 {
     double n, v;
-    lumo_status st = ply_read(c, y, p->count, &n);
+    span bad = {NULL, NULL};
+    lumo_status st = ply_read(c, y, p->count, &n, &bad);
+    char where[64];
     if (st)
-        return st;
+        return ply_unread(c, st, e, item, "before its list", bad);
     if (n != floor(n) || n < 0 || n > SRV_MODEL_MAX_FACE_VERTS || (p->role == PROP_INDICES && n < 3))
         return fail(c, LUMO_ERR_CORRUPT, "%s %llu: a list of %.0f items (%s)", e->name, item, n,
                     p->role == PROP_INDICES ? "a face has 3 to 1024 vertices" : "at most 1024");
+    snprintf(where, sizeof where, "inside its list of %.0f items", n);
     for (unsigned k = 0; k < (unsigned)n; k++) {
-        if ((st = ply_read(c, y, p->type, &v)))
-            return fail(c, st, "%s %llu: the data ends inside its list of %.0f items", e->name, item, n);
+        if ((st = ply_read(c, y, p->type, &v, &bad)))
+            return ply_unread(c, st, e, item, where, bad);
         if (p->role == PROP_INDICES && (v < 0 || v >= (double)y->nverts || v != floor(v)))
-            return fail(c, LUMO_ERR_RANGE, "face %llu: vertex index %.0f is outside [0, %llu)", item, v, y->nverts);
+            return fail(c, LUMO_ERR_RANGE, "face %llu: vertex index %.12g is outside [0, %llu)", item, v, y->nverts);
     }
     return LUMO_OK;
 }
@@ -613,9 +632,10 @@ static lumo_status ply_scalar(mc *c, const ply *y, const ply_elem *e, const ply_
 {
     double v;
     const char *why;
-    lumo_status st = ply_read(c, y, p->type, &v);
+    span bad = {NULL, NULL};
+    lumo_status st = ply_read(c, y, p->type, &v, &bad);
     if (st)
-        return fail(c, st, "%s %llu: the data ends before it", e->name, item);
+        return ply_unread(c, st, e, item, "inside it", bad);
     if (p->role >= PROP_X && p->role <= PROP_Z && (why = coord_problem(v)))
         return fail(c, coord_status(v), "vertex %llu: %c = %.9g %s", item, "xyz"[p->role - PROP_X], v, why);
     return LUMO_OK;

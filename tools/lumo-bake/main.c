@@ -272,8 +272,11 @@ static lumo_status plan_bake(options *o, const srv_scene *s, char *err, size_t e
     srv_bake_plan p = srv_bake_plan_of(o->dims, o->spp);
     if ((st = srv_bake_budget_check(&p, o->allow_large, err, errlen)))
         return st;
+    /* Said before a bake of seconds or more, and always for --cell, whose
+     * grid the user did not write; the summary line repeats it at the end. */
     srv_bake_plan_describe(&p, what, sizeof what);
-    fprintf(stderr, "lumo-bake: %s\n", what);
+    if (o->cell > 0 || p.paths >= SRV_BAKE_SAY_PATHS)
+        fprintf(stderr, "lumo-bake: %s\n", what);
     return LUMO_OK;
 }
 
