@@ -85,6 +85,18 @@ static float draco_text_float(double v)
     return std::strtof(text, nullptr);
 }
 
+// The next representable value up (dir > 0) or down from v after the text
+// round trip. Steps of 1e-6 vanish in single precision beyond 16 m (the
+// float spacing there is 2e-6 and more): a model with a 1255 m coordinate
+// stepped forever. The float's own neighbour always moves.
+static float draco_text_step(float v, int dir)
+{
+    float t = draco_text_float(static_cast<double>(v) + (dir > 0 ? 1e-6 : -1e-6));
+    if (dir > 0 ? t > v : t < v)
+        return t;
+    return draco_text_float(std::nextafter(v, dir > 0 ? HUGE_VALF : -HUGE_VALF));
+}
+
 extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, srv_draco_quant *q)
 {
     double extent = 0;
@@ -92,14 +104,14 @@ extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, s
     for (int c = 0; c < 3; ++c) {
         q->origin[c] = draco_text_float(std::floor(static_cast<double>(lo[c]) * 1e6) / 1e6 - 1e-6);
         while (q->origin[c] > lo[c])  // text rounding went up: step down
-            q->origin[c] = draco_text_float(static_cast<double>(q->origin[c]) - 1e-6);
+            q->origin[c] = draco_text_step(q->origin[c], -1);
         double e = static_cast<double>(hi[c]) - q->origin[c];
         extent = e > extent ? e : extent;
     }
     q->range = draco_text_float(std::ceil(extent * 1e6) / 1e6 + 1e-6);
     for (int c = 0; c < 3; ++c)
         while (static_cast<double>(q->origin[c]) + q->range < hi[c])
-            q->range = draco_text_float(static_cast<double>(q->range) + 1e-6);
+            q->range = draco_text_step(q->range, 1);
     if (q->range <= 0)
         q->range = 1;
 }

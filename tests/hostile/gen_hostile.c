@@ -249,6 +249,11 @@ static void good_cases(void)
     text_case("model", "good_c.off", "OK", "COFF 3 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n");
     text_case("model", "good.obj", "OK", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
               "f 1/1/1 2/1/1 3/1/1\nf -4//-1 -2//-1 -1//-1\n");
+    /* 1255 m: past 16 m, steps of 1e-6 vanish in single precision (the
+     * Draco grid of lumo-pm build stepped forever); 40000 m: past Q16.16. */
+    text_case("model", "far_ok.off", "OK", "OFF\n3 1 0\n0 0 0\n1255 0 0\n0 1 -900\n3 0 1 2\n");
+    text_case("model", "far_q16.off", "x = 40000 m is beyond the client's", "OFF\n3 1 0\n0 0 0\n40000 0 0\n"
+              "0 1 0\n3 0 1 2\n");
     snprintf(head, sizeof head, k_ply_head, "ascii", "3", "1", "uchar");
     text_case("model", "good_a.ply", "OK", "%s0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", head);
     ply_binary_face("good_le.ply", "binary_little_endian", 3, 3, tri, xyz, "OK");
