@@ -78,6 +78,36 @@ static lumo_status check_info(const uint8_t *p, size_t len)
     return LUMO_OK;
 }
 
+/* v scaled down by a power of two until every component is below 2^20
+ * in magnitude, so that products of two fit in 41 bits. */
+static void small_vec(const int64_t v[3], int64_t out[3])
+{
+    int64_t m = 0;
+    unsigned i, shift = 0;
+    for (i = 0; i < 3; i++)
+        m |= v[i] < 0 ? -v[i] : v[i];
+    while ((m >> shift) >= ((int64_t)1 << 20))
+        shift++;
+    for (i = 0; i < 3; i++)
+        out[i] = v[i] / ((int64_t)1 << shift);
+}
+
+/* A camera that cannot be placed: eye on the target, up zero or along the
+ * view (no frame to draw; the rasterizer would divide by zero). Parallel
+ * means a zero cross product at 2^-20 of the vectors' size. */
+static int camera_degenerate(const lumo_pkg_info *r)
+{
+    int64_t d[3], u[3], a[3], b[3];
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        d[i] = (int64_t)r->target[i] - r->eye[i];
+        u[i] = r->up[i];
+    }
+    small_vec(d, a);
+    small_vec(u, b);
+    return a[1] * b[2] - a[2] * b[1] == 0 && a[2] * b[0] - a[0] * b[2] == 0 && a[0] * b[1] - a[1] * b[0] == 0;
+}
+
 lumo_status lumo_scene_info_decode(const uint8_t *p, size_t len, lumo_pkg_info *out)
 {
     lumo_pkg_info r;
@@ -102,6 +132,8 @@ lumo_status lumo_scene_info_decode(const uint8_t *p, size_t len, lumo_pkg_info *
     if (fovy <= 0 || fovy >= LUMO_Q16_FROM_INT(180))
         return LUMO_ERR_RANGE;
     r.fovy_deg = fovy;
+    if (camera_degenerate(&r))
+        return LUMO_ERR_RANGE;
     *out = r;
     return LUMO_OK;
 }

@@ -186,7 +186,7 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
         return st;
     }
     char why[300];
-    if ((st = host_package_check(&p->pkg, 1, why, sizeof why))) {
+    if ((st = host_package_check(&p->pkg, HOST_PKG_NEED_INFO | HOST_PKG_DEEP, why, sizeof why))) {
         srv_fail(err, errlen, st, "%s: %s", path, why);
         goto failed;
     }

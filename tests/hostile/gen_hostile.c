@@ -492,6 +492,25 @@ static void info_cases(const pkg *base)
         pkg_free(&p);
     }
     pkg p;
+    for (int c = 0; c < 3; c++) {   /* cameras that cannot be placed */
+        static const char *const names[3] = {"info_up0.lumo", "info_eye_on_target.lumo", "info_up_along.lumo"};
+        pkg_copy(&p, base);
+        uint8_t *in = pkg_find(&p, LUMO_PKG_INFO)->p;
+        for (int a = 0; a < 3; a++) {
+            float eye, target;
+            uint32_t w = lumo_wire_le32(in + 40 + 4 * a), t = lumo_wire_le32(in + 52 + 4 * a);
+            memcpy(&eye, &w, 4);
+            memcpy(&target, &t, 4);
+            if (c == 0)
+                put_f32(in + 64 + 4 * a, 0.0f);
+            else if (c == 1)
+                lumo_wire_put_le32(in + 40 + 4 * a, t);
+            else
+                put_f32(in + 64 + 4 * a, 2.0f * (target - eye));
+        }
+        pkg_write(&p, names[c], "eye off the target");
+        pkg_free(&p);
+    }
     pkg_copy(&p, base);
     lumo_wire_put_le32(pkg_find(&p, LUMO_PKG_INFO)->p + 4, 17);
     pkg_write(&p, "info_lights17.lumo", "INFO (");

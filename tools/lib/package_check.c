@@ -1,7 +1,9 @@
 /* package_check.c — lumo_host/package_check.h: INFO and its lights, IVGD,
  * IVGS, ORDR and each mesh's PMSH header or MESH counts, through the SDK. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include "lumo/arena.h"
 #include "lumo/pmesh.h"
 #include "lumo/wire.h"
 #include "lumo_host/package_check.h"
@@ -43,8 +45,9 @@ static lumo_status check_info(const lumo_package *pkg, lumo_pkg_info *in, int ne
         return need_info ? LUMO_ERR_CORRUPT : LUMO_OK;
     }
     if ((st = lumo_package_info(pkg, in))) {
-        snprintf(buf, n, "INFO (%u bytes, %u lights declared): %s", len, len >= 8 ? lumo_wire_le32(p + 4) : 0,
-                 lumo_strerror(st));
+        snprintf(buf, n, "INFO (%u bytes, %u lights declared): %s (at most %u lights; bounds and camera finite, "
+                 "field of view in (0, 180) degrees, eye off the target, up neither zero nor along the view)", len,
+                 len >= 8 ? lumo_wire_le32(p + 4) : 0, lumo_strerror(st), (unsigned)LUMO_MAX_LIGHTS);
         return st;
     }
     return check_lights(pkg, in, buf, n);
@@ -112,8 +115,47 @@ static lumo_status check_mesh(const lumo_package *pkg, uint32_t i, int streams, 
     return st;
 }
 
-lumo_status host_package_check(const lumo_package *pkg, int need_info, char *buf, size_t n)
+void host_package_where(const lumo_session_where *w, lumo_status st, char *buf, size_t n)
 {
+    if (w->type == LUMO_PKG_PMSH)
+        snprintf(buf, n, "progressive mesh %u (PMSH), batch %u: %s", w->index, w->batch, lumo_strerror(st));
+    else if (w->type == LUMO_PKG_MESH)
+        snprintf(buf, n, "MESH chunk %u: %s (finite positions, unit normals, albedo in [0, 1], indices < V)",
+                 w->index, lumo_strerror(st));
+    else if (w->type == LUMO_PKG_INFO)
+        snprintf(buf, n, "INFO: %s", lumo_strerror(st));
+    else
+        snprintf(buf, n, "IVG chunk %c%c%c%c: %s", (char)w->type, (char)(w->type >> 8), (char)(w->type >> 16),
+                 (char)(w->type >> 24), lumo_strerror(st));
+}
+
+/* The whole package through a client session, as lumo-render feeds it. */
+static lumo_status check_deep(const lumo_package *pkg, char *buf, size_t n)
+{
+    static lumo_session ses;   /* 21 KB: not on the stack */
+    lumo_session_where w = {0, 0, 0};
+    lumo_arena arena;
+    size_t bytes;
+    void *mem;
+    lumo_status st = lumo_session_package_need(pkg, &bytes);
+    if (st) {
+        snprintf(buf, n, "session memory: %s", lumo_strerror(st));
+        return st;
+    }
+    if (!(mem = malloc(bytes ? bytes : 1))) {
+        snprintf(buf, n, "no memory for a %zu-byte session arena", bytes);
+        return LUMO_ERR_NOMEM;
+    }
+    lumo_arena_init(&arena, mem, bytes);
+    if ((st = lumo_session_init(&ses, NULL, &arena)) || (st = lumo_session_feed_package(&ses, pkg, &w)))
+        host_package_where(&w, st, buf, n);
+    free(mem);
+    return st;
+}
+
+lumo_status host_package_check(const lumo_package *pkg, unsigned flags, char *buf, size_t n)
+{
+    int need_info = (flags & HOST_PKG_NEED_INFO) != 0;
     const uint8_t *p;
     uint32_t len;
     lumo_pkg_info in = {0};
@@ -132,5 +174,5 @@ lumo_status host_package_check(const lumo_package *pkg, int need_info, char *buf
                  streams ? "PMSH" : "MESH");
         return LUMO_ERR_CORRUPT;
     }
-    return LUMO_OK;
+    return have_info && (flags & HOST_PKG_DEEP) ? check_deep(pkg, buf, n) : LUMO_OK;
 }

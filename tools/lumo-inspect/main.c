@@ -35,7 +35,7 @@ int inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pk
         return -1;
     }
     char why[300];
-    if ((st = host_package_check(pkg, 0, why, sizeof why))) {
+    if ((st = host_package_check(pkg, HOST_PKG_DEEP, why, sizeof why))) {
         fprintf(stderr, "lumo-inspect: error: %s: %s\n", path, why);
         free(*data);
         *data = NULL;

@@ -15,19 +15,6 @@
 #include "package_load.h"
 #include "session_scene.h"
 
-/* Which message of the package failed, in words. */
-static void describe_failure(const lumo_session_where *w, lumo_status st, char *err, size_t errlen)
-{
-    if (w->type == LUMO_PKG_PMSH)
-        snprintf(err, errlen, "progressive mesh %u, batch %u: %s", w->index, w->batch, lumo_strerror(st));
-    else if (w->type == LUMO_PKG_MESH)
-        snprintf(err, errlen, "bad MESH chunk %u: %s", w->index, lumo_strerror(st));
-    else if (w->type == LUMO_PKG_INFO)
-        snprintf(err, errlen, "%s", lumo_strerror(st));
-    else
-        snprintf(err, errlen, "bad IVG chunk: %s", lumo_strerror(st));
-}
-
 int host_lod_parse(const char *s, host_lod *lod)
 {
     char *end;
@@ -88,7 +75,7 @@ static int run_session(const lumo_package *pkg, const host_lod *lod, lumo_sessio
     }
     lumo_arena_init(&arena, ivg->memory, bytes);
     if ((st = lumo_session_init(ses, &cfg, &arena)) || (st = lumo_session_feed_package(ses, pkg, &w))) {
-        describe_failure(&w, st, err, errlen);
+        host_package_where(&w, st, err, errlen);
         return -1;
     }
     lumo_session_update(ses);
@@ -124,7 +111,7 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
         free(data);
         return -1;
     }
-    if ((st = host_package_check(&pkg, 1, why, sizeof why))) {
+    if ((st = host_package_check(&pkg, HOST_PKG_NEED_INFO, why, sizeof why))) {
         snprintf(err, errlen, "%s: %s", path, why);
         free(data);
         return -1;

@@ -16,11 +16,24 @@
 
 #include <stddef.h>
 #include "lumo/package.h"
+#include "lumo/session.h"
+
+/* Flags of host_package_check. NEED_INFO: refuse a package without INFO
+ * (every reader that draws; lumo-inspect also lists the stream-only
+ * packages of lumo-pm build). DEEP: then feed the whole package to a
+ * client session (lumo/session.h) in a heap arena it sizes — every MESH
+ * value, PMSH batch and IVG record decoded as a client decodes it — for
+ * the readers that do not decode it themselves (lumo-inspect,
+ * lumo-server); lumo-render's own session is that pass. */
+#define HOST_PKG_NEED_INFO 1u
+#define HOST_PKG_DEEP      2u
 
 /* LUMO_OK, or the SDK's status with "CHUNK ...: why" in buf (n bytes,
- * always terminated). need_info: refuse a package without INFO (every
- * reader that draws; 0 for lumo-inspect, which also lists the stream-only
- * packages of lumo-pm build). */
-lumo_status host_package_check(const lumo_package *pkg, int need_info, char *buf, size_t n);
+ * always terminated). */
+lumo_status host_package_check(const lumo_package *pkg, unsigned flags, char *buf, size_t n);
+
+/* Which message of a package a session refused (the `where` of
+ * lumo_session_feed_package) and why, in words, into buf. */
+void host_package_where(const lumo_session_where *w, lumo_status st, char *buf, size_t n);
 
 #endif
