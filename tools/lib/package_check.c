@@ -118,7 +118,7 @@ static lumo_status check_mesh(const lumo_package *pkg, uint32_t i, int streams, 
 void host_package_where(const lumo_session_where *w, lumo_status st, char *buf, size_t n)
 {
     if (w->type == LUMO_PKG_PMSH)
-        snprintf(buf, n, "progressive mesh %u (PMSH), batch %u: %s", w->index, w->batch, lumo_strerror(st));
+        snprintf(buf, n, "progressive mesh %u, batch %u: %s", w->index, w->batch, lumo_strerror(st));
     else if (w->type == LUMO_PKG_MESH)
         snprintf(buf, n, "MESH chunk %u: %s (finite positions, unit normals, albedo in [0, 1], indices < V)",
                  w->index, lumo_strerror(st));
