@@ -10,63 +10,62 @@
 
 static const char *const k_kinds[] = {"point", "spot", "directional", "area"};
 
-static lumo_status check_lights(const lumo_package *pkg, const lumo_pkg_info *in, char *buf, size_t n)
+static lumo_status check_lights(const uint8_t *p, uint32_t len, const lumo_pkg_info *in, char *buf, size_t n)
 {
-    const uint8_t *p;
-    uint32_t len;
     for (uint32_t i = 0; i < in->light_count; i++) {
         lumo_pkg_light l;
-        lumo_status st = lumo_package_light(pkg, i, &l);
+        lumo_status st = lumo_scene_light_decode(p, len, i, &l);
         if (!st)
             continue;
-        lumo_package_find(pkg, LUMO_PKG_INFO, 0, &p, &len);
         uint32_t kind = lumo_wire_le32(p + 80 + 72 * (size_t)i);
         if (st == LUMO_ERR_UNSUPPORTED)
             snprintf(buf, n, "INFO light %u of %u: unknown kind %u (0 point, 1 spot, 2 directional, 3 area)", i,
                      in->light_count, kind);
         else
             snprintf(buf, n, "INFO light %u of %u (%s): %s (finite values, unit direction, cosine in [-1, 1], "
-                     "power >= 0; docs/package-format.md \"INFO\")", i, in->light_count, k_kinds[kind],
-                     lumo_strerror(st));
+                     "power >= 0; docs/package-format.md \"INFO\")", i, in->light_count,
+                     kind < 4 ? k_kinds[kind] : "?", lumo_strerror(st));
         return st;
     }
     return LUMO_OK;
+}
+
+lumo_status host_info_check(const uint8_t *p, uint32_t len, lumo_pkg_info *in, char *buf, size_t n)
+{
+    lumo_status st = lumo_scene_info_decode(p, len, in);
+    if (st) {
+        snprintf(buf, n, "INFO (%u bytes, %u lights declared): %s (at most %u lights; bounds and camera finite, "
+                 "field of view in (0, 180) degrees, eye off the target, up neither zero nor along the view)", len,
+                 len >= 8 ? lumo_wire_le32(p + 4) : 0, lumo_strerror(st), (unsigned)LUMO_MAX_LIGHTS);
+        return st;
+    }
+    return check_lights(p, len, in, buf, n);
 }
 
 static lumo_status check_info(const lumo_package *pkg, lumo_pkg_info *in, int need_info, char *buf, size_t n)
 {
     const uint8_t *p;
     uint32_t len;
-    lumo_status st;
     if (lumo_package_find(pkg, LUMO_PKG_INFO, 0, &p, &len)) {
         if (need_info)
             snprintf(buf, n, "no INFO chunk: a stream-only package (as lumo-pm build writes) holds no scene to "
-                     "draw; lumo-inspect --pm lists it, lumo-bake writes whole packages");
+                     "draw; lumo-inspect lists it, lumo-bake writes whole packages");
         return need_info ? LUMO_ERR_CORRUPT : LUMO_OK;
     }
-    if ((st = lumo_package_info(pkg, in))) {
-        snprintf(buf, n, "INFO (%u bytes, %u lights declared): %s (at most %u lights; bounds and camera finite, "
-                 "field of view in (0, 180) degrees, eye off the target, up neither zero nor along the view)", len,
-                 len >= 8 ? lumo_wire_le32(p + 4) : 0, lumo_strerror(st), (unsigned)LUMO_MAX_LIGHTS);
-        return st;
-    }
-    return check_lights(pkg, in, buf, n);
+    return host_info_check(p, len, in, buf, n);
 }
 
 /* The descriptor's raw fields, so the reader sees what was refused. */
-static lumo_status check_ivgd(const lumo_package *pkg, char *buf, size_t n)
+lumo_status host_ivgd_check(const uint8_t *p, uint32_t len, lumo_ivg_desc *d, char *buf, size_t n)
 {
-    const uint8_t *p;
-    uint32_t len;
-    lumo_ivg_desc d;
-    lumo_status st;
-    if (lumo_package_find(pkg, LUMO_PKG_IVGD, 0, &p, &len) || !(st = lumo_package_ivg_desc(pkg, &d)))
+    lumo_status st = lumo_scene_ivg_desc_decode(p, len, d);
+    float f[6];
+    if (!st)
         return LUMO_OK;
     if (len != 48) {
         snprintf(buf, n, "IVGD: %u bytes, the descriptor has 48: %s", len, lumo_strerror(st));
         return st;
     }
-    float f[6];
     for (int i = 0; i < 6; i++) {
         uint32_t w = lumo_wire_le32(p + 8 + 4 * i);
         memcpy(&f[i], &w, 4);
@@ -76,6 +75,14 @@ static lumo_status check_ivgd(const lumo_package *pkg, char *buf, size_t n)
              f[0], f[1], f[2], f[3], f[4], f[5], lumo_strerror(st), (unsigned)LUMO_IVG_MIN_DIM,
              (unsigned)LUMO_IVG_MAX_DIM);
     return st;
+}
+
+static lumo_status check_ivgd(const lumo_package *pkg, char *buf, size_t n)
+{
+    const uint8_t *p;
+    uint32_t len;
+    lumo_ivg_desc d;
+    return lumo_package_find(pkg, LUMO_PKG_IVGD, 0, &p, &len) ? LUMO_OK : host_ivgd_check(p, len, &d, buf, n);
 }
 
 static lumo_status check_orders(const lumo_package *pkg, int have_info, char *buf, size_t n)

@@ -9,19 +9,10 @@
  * (the table is read only as far as the file holds it). */
 static uint32_t twice(const uint8_t *data, size_t size)
 {
-    static const uint32_t once[] = {LUMO_PKG_INFO, LUMO_PKG_IVGD, LUMO_PKG_IVGQ,
-                                    LUMO_PKG_IVGF, LUMO_PKG_IVGS, LUMO_PKG_ORDR};
-    uint32_t count = size >= LUMO_PKG_HEADER_SIZE ? lumo_wire_le32(data + 8) : 0;
+    uint32_t count = size >= LUMO_PKG_HEADER_SIZE ? lumo_wire_le32(data + 8) : 0, type = 0;
     if (count > LUMO_PKG_MAX_CHUNKS || size < LUMO_PKG_HEADER_SIZE + (size_t)count * LUMO_PKG_ENTRY_SIZE)
         return 0;
-    for (unsigned k = 0; k < sizeof once / sizeof once[0]; k++) {
-        uint32_t seen = 0;
-        for (uint32_t i = 0; i < count; i++)
-            seen += lumo_wire_le32(data + LUMO_PKG_HEADER_SIZE + (size_t)i * LUMO_PKG_ENTRY_SIZE) == once[k];
-        if (seen > 1)
-            return once[k];
-    }
-    return 0;
+    return lumo_package_table_once(data + LUMO_PKG_HEADER_SIZE, count, &type) ? type : 0;
 }
 
 const char *host_package_strerror(const uint8_t *data, size_t size, lumo_status st, char *buf, size_t n)

@@ -32,6 +32,12 @@
  * always terminated). */
 lumo_status host_package_check(const lumo_package *pkg, unsigned flags, char *buf, size_t n);
 
+/* The INFO payload and its lights, and the IVGD payload, on their own
+ * (a reader that fetched them, as lumo-client over HTTP): LUMO_OK with the
+ * decoded value, or the decoder's status with the sentence above in buf. */
+lumo_status host_info_check(const uint8_t *p, uint32_t len, lumo_pkg_info *in, char *buf, size_t n);
+lumo_status host_ivgd_check(const uint8_t *p, uint32_t len, lumo_ivg_desc *d, char *buf, size_t n);
+
 /* Which message of a package a session refused (the `where` of
  * lumo_session_feed_package) and why, in words, into buf. */
 void host_package_where(const lumo_session_where *w, lumo_status st, char *buf, size_t n);
