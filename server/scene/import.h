@@ -34,6 +34,12 @@ vec3 srv_xform_apply(const srv_xform *x, vec3 p);
 lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
                             char *err, size_t errlen);
 
+/* Sphere segments at most, and the triangles every sphere of one
+ * description may generate together (2^22: twice the largest stock model;
+ * a line of text cannot justify gigabytes of mesh). */
+#define SRV_SCENE_MAX_SEGMENTS   1024
+#define SRV_SCENE_MAX_SHAPE_TRIS ((uint64_t)1 << 22)
+
 /* Longest line and largest file of a scene description. */
 #define SRV_SCENE_MAX_LINE  2046
 #define SRV_SCENE_MAX_BYTES ((uint64_t)1 << 20)
@@ -41,7 +47,8 @@ lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, 
 /* Read a scene description file. LUMO_OK, or with "FILE:LINE: reason" in
  * err: LUMO_ERR_IO (cannot open, not a regular file), LUMO_ERR_LIMIT (a
  * line too long, more than 16 words, a file over 1 MiB), LUMO_ERR_CORRUPT
- * (a malformed statement, a NUL byte), LUMO_ERR_RANGE (sphere segments),
+ * (a malformed statement, a NUL byte), LUMO_ERR_RANGE (sphere segments
+ * outside [8, 1024]), LUMO_ERR_LIMIT (spheres past SRV_SCENE_MAX_SHAPE_TRIS),
  * or the status of a mesh's srv_import_file / of memory. */
 lumo_status srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen);
 

@@ -1,5 +1,7 @@
 /* scene_file.c — the line-based scene description (docs/scene-format.md). */
+#include <errno.h>
 #include <libgen.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +29,7 @@ typedef struct {
     char *w[MAX_WORDS];
     int  n;
     char err[256];
+    uint64_t shape_tris;   /* triangles of the spheres so far */
 } parser;
 
 static int vec_arg(const char *t, vec3 *v)
@@ -36,6 +39,15 @@ static int vec_arg(const char *t, vec3 *v)
         return -1;
     *v = v3(f[0], f[1], f[2]);
     return 0;
+}
+
+/* A whole decimal integer in [0, INT_MAX], else -1. */
+static int int_arg(const char *t)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(t, &end, 10);
+    return end == t || *end || errno || v < 0 || v > INT_MAX ? -1 : (int)v;
 }
 
 /* Trailing options "albedo R,G,B", "inward", "segments N"; `from` is the
@@ -48,7 +60,7 @@ static lumo_status shape_opts(parser *p, int from, vec3 *albedo, int *inward, in
         else if (!strcmp(p->w[i], "inward") && inward)
             *inward = 1;
         else if (!strcmp(p->w[i], "segments") && segments && i + 1 < p->n)
-            *segments = atoi(p->w[++i]);
+            *segments = int_arg(p->w[++i]);
         else {
             snprintf(p->err, sizeof p->err, "unexpected '%s'", p->w[i]);
             return LUMO_ERR_CORRUPT;
@@ -112,8 +124,16 @@ static lumo_status st_shape(parser *p)
         !srv_parse_floats(p->w[2], &r, 1) && r > 0.0f) {
         if (shape_opts(p, 3, &albedo, &inward, &seg))
             return LUMO_ERR_CORRUPT;
-        if (seg < 8 || seg > 4096)
-            return snprintf(p->err, sizeof p->err, "segments must be in [8, 4096]"), LUMO_ERR_RANGE;
+        if (seg < 8 || seg > SRV_SCENE_MAX_SEGMENTS)
+            return snprintf(p->err, sizeof p->err, "segments must be in [8, %d]", SRV_SCENE_MAX_SEGMENTS),
+                   LUMO_ERR_RANGE;
+        uint64_t tris = 2 * (uint64_t)seg * (uint64_t)(seg / 2 - 1);
+        if (p->shape_tris + tris > SRV_SCENE_MAX_SHAPE_TRIS)
+            return snprintf(p->err, sizeof p->err, "the description's spheres would hold %llu triangles, more than "
+                            "%llu (SRV_SCENE_MAX_SHAPE_TRIS: text that small cannot justify more)",
+                            (unsigned long long)(p->shape_tris + tris), (unsigned long long)SRV_SCENE_MAX_SHAPE_TRIS),
+                   LUMO_ERR_LIMIT;
+        p->shape_tris += tris;
         return srv_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
     }
     snprintf(p->err, sizeof p->err, "malformed %s", k);

@@ -280,7 +280,12 @@ static void scene_cases(void)
         {"s_mesh_none.txt", "mesh none.obj\n", "none.obj: no such file"},
         {"s_words.txt", "quad 0,0,0 1,0,0 0,0,1 albedo 1,1,1 albedo 1,1,1 albedo 1,1,1 albedo 1,1,1 albedo "
                         "1,1,1 albedo 1,1,1 albedo 1,1,1\n", "more than 16 words"},
-        {"s_seg.txt", "sphere 0,0,0 1 segments 100000\n", "segments must be in [8, 4096]"},
+        {"s_seg.txt", "sphere 0,0,0 1 segments 100000\n", "segments must be in [8, 1024]"},
+        {"s_seg_big.txt", "sphere 0,0,0 1 segments 99999999999999999999\n", "segments must be in [8, 1024]"},
+        {"s_seg_word.txt", "sphere 0,0,0 1 segments many\n", "segments must be in [8, 1024]"},
+        {"s_spheres.txt", "sphere 0,0,0 1 segments 1024\nsphere 0,0,0 2 segments 1024\nsphere 0,0,0 3 segments "
+                          "1024\nsphere 0,0,0 4 segments 1024\nsphere 0,0,0 5 segments 1024\n",
+         ":5: the description's spheres would hold 5232640 triangles, more than 4194304"},
         {"s_nan.txt", "quad nan,0,0 1,0,0 0,0,1\n", "malformed quad"},
         {"s_light.txt", "light point:0,nan,0:1,1,1\n", ":1:"},
         {"s_unknown.txt", "teapot 1\n", "unknown or malformed statement 'teapot'"},
