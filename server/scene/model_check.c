@@ -692,6 +692,48 @@ static lumo_status read_all(mc *c, const char *path, uint8_t *buf, size_t size)
     return got == size ? LUMO_OK : fail(c, LUMO_ERR_IO, "cannot read it");
 }
 
+/* One name of an "mtllib" line: a regular file or nothing. */
+static lumo_status mtllib_name(mc *c, const char *dir, span t)
+{
+    char lib[1280];
+    struct stat st;
+    int n = (int)(t.e - t.s);
+    while (n > 0 && isspace((unsigned char)t.s[n - 1]))
+        n--;
+    if (*t.s == '/')
+        snprintf(lib, sizeof lib, "%.*s", n, t.s);
+    else
+        snprintf(lib, sizeof lib, "%s/%.*s", dir, n, t.s);
+    if (n > 0 && stat(lib, &st) == 0 && !S_ISREG(st.st_mode))
+        return fail(c, LUMO_ERR_IO, "line %u: mtllib '%.*s' is not a regular file", c->line, n, t.s);
+    return LUMO_OK;
+}
+
+/* The files an OBJ's "mtllib" lines name, which assimp opens and reads to
+ * their end: each must be a regular file when it exists (a FIFO there
+ * blocked the importer forever; missing ones assimp skips with a
+ * warning). A name is a word, or the rest of the line as assimp takes it. */
+static lumo_status obj_mtllibs(mc *c, const char *path)
+{
+    char dir[1024];
+    const char *slash = strrchr(path, '/');
+    span l, t, rest;
+    lumo_status st = LUMO_OK;
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    while (!st && next_line(c, &l)) {
+        if (!next_tok(&l, &t) || !tok_is(t, "mtllib"))
+            continue;
+        rest = l;
+        while (rest.s < rest.e && isspace((unsigned char)*rest.s))
+            rest.s++;
+        if (rest.s < rest.e)
+            st = mtllib_name(c, dir, rest);
+        while (!st && next_tok(&l, &t))
+            st = mtllib_name(c, dir, t);
+    }
+    return st;
+}
+
 lumo_status srv_model_check_file(const char *path, srv_model_format *fmt, char *err, size_t errlen)
 {
     struct stat st;
@@ -712,6 +754,10 @@ lumo_status srv_model_check_file(const char *path, srv_model_format *fmt, char *
     *fmt = srv_model_format_of(path, buf, (size_t)st.st_size);
     if (!rc)
         rc = srv_model_check_bytes(path, buf, (size_t)st.st_size, *fmt, err, errlen);
+    if (!rc && *fmt == SRV_MODEL_OBJ) {
+        mc o = {path, buf, buf, buf + st.st_size, 0, err, errlen};
+        rc = obj_mtllibs(&o, path);
+    }
     free(buf);
     return rc;
 }

@@ -224,6 +224,9 @@ static void obj_cases(void)
         {"face_2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "a face needs 3"},
         {"no_v.obj", "# nothing\nf 1 2 3\n", "vertex index 1: only 0"},
         {"empty_v.obj", "# only a comment\n", "no vertex"},
+        {"mtl_dev.obj", "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+         "line 1: mtllib '/dev/zero' is not a regular file"},
+        {"mtl_dir.obj", "mtllib .\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "mtllib '.' is not a regular file"},
     };
     static const char nul[] = "v 0 0 0\nv 1 0\0 0\n", png[] = "\x89PNG\r\n\x1a\n\0\0\0\rIHDR";
     for (size_t i = 0; i < sizeof k / sizeof *k; i++)

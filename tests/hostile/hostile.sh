@@ -76,6 +76,9 @@ mkdir -p "$corpus/dir.obj"
 run "lumo-pm build a directory" "a directory, not a model file" "$bin/lumo-pm" build "$corpus/dir.obj" -o "$out/d.lumo"
 run "lumo-pm build a missing file" "no such file" "$bin/lumo-pm" build "$corpus/none.obj" -o "$out/d.lumo"
 run "lumo-pm build a FIFO" "not a regular file" "$bin/lumo-pm" build /dev/stdin -o "$out/d.lumo" </dev/null
+mkfifo "$corpus/pipe.mtl" && printf 'mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$corpus/pipe.obj"
+run "lumo-pm build an OBJ whose mtllib is a FIFO" "line 1: mtllib 'pipe.mtl' is not a regular file" \
+    "$bin/lumo-pm" build "$corpus/pipe.obj" -o "$out/d.lumo"
 
 # The bake's budget: said, refused past it, taken with --allow-large.
 scene=tests/fuzz/package_seeds/tiny.txt
