@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "scene/import.h"
+#include "scene/import_io.h"
 #include "scene/model_check.h"
 
 #define DEFAULT_ALBEDO 0.8f
@@ -199,8 +200,8 @@ static lumo_status read_scene(const char *path, const struct aiScene **out, char
                  "formats assimp reads are)", path, dot && !strchr(dot, '/') ? dot : "");
         return LUMO_ERR_UNSUPPORTED;
     }
-    *out = aiImportFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
-                                  aiProcess_ValidateDataStructure);
+    *out = aiImportFileEx(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                                    aiProcess_ValidateDataStructure, srv_import_io());
     if (!*out || !(*out)->mRootNode || (*out)->mNumMeshes == 0) {
         const char *why = *out ? "no mesh in the file" : aiGetErrorString();
         snprintf(err, errlen, "%s: cannot import: %s", path, why && *why ? why : "unknown format");

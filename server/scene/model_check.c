@@ -2,6 +2,7 @@
  * the file itself, OBJ and OFF line by line, PLY header and body. */
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -9,6 +10,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "scene/model_check.h"
 
 /* What every check carries: the bytes, where it is, where to say why. */
@@ -683,13 +685,9 @@ lumo_status srv_model_check_bytes(const char *name, const uint8_t *data, size_t 
     }
 }
 
-static lumo_status read_all(mc *c, const char *path, uint8_t *buf, size_t size)
+static lumo_status read_all(mc *c, FILE *f, uint8_t *buf, size_t size)
 {
-    FILE *f = fopen(path, "rb");
-    size_t got = f ? fread(buf, 1, size, f) : 0;
-    if (f)
-        fclose(f);
-    return got == size ? LUMO_OK : fail(c, LUMO_ERR_IO, "cannot read it");
+    return fread(buf, 1, size, f) == size ? LUMO_OK : fail(c, LUMO_ERR_IO, "cannot read it");
 }
 
 /* One name of an "mtllib" line: a regular file or nothing. */
@@ -734,28 +732,49 @@ static lumo_status obj_mtllibs(mc *c, const char *path)
     return st;
 }
 
-lumo_status srv_model_check_file(const char *path, srv_model_format *fmt, char *err, size_t errlen)
+/* The file, opened without blocking (a FIFO waits for no writer) and
+ * checked on its descriptor, so the file checked is the file read. */
+static lumo_status open_model(mc *c, const char *path, FILE **f, size_t *size)
 {
     struct stat st;
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    lumo_status rc = LUMO_OK;
+    if (fd < 0 || fstat(fd, &st))
+        rc = fail(c, LUMO_ERR_IO, errno == ENOENT ? "no such file" : "cannot open it");
+    else if (!S_ISREG(st.st_mode))
+        rc = fail(c, LUMO_ERR_IO, S_ISDIR(st.st_mode) ? "a directory, not a model file" : "not a regular file");
+    else if (st.st_size == 0)
+        rc = fail(c, LUMO_ERR_CORRUPT, "empty file");
+    else if ((uint64_t)st.st_size > SRV_MODEL_MAX_BYTES)
+        rc = fail(c, LUMO_ERR_LIMIT, "%lld bytes, models of at most 1 GiB are read", (long long)st.st_size);
+    else if (fcntl(fd, F_SETFL, 0) || !(*f = fdopen(fd, "rb")))
+        rc = fail(c, LUMO_ERR_IO, "cannot open it");
+    if (rc && fd >= 0)
+        close(fd);
+    *size = rc ? 0 : (size_t)st.st_size;
+    return rc;
+}
+
+lumo_status srv_model_check_file(const char *path, srv_model_format *fmt, char *err, size_t errlen)
+{
     mc c = {path, NULL, NULL, NULL, 0, err, errlen};
+    FILE *f = NULL;
+    size_t size;
     uint8_t *buf;
-    lumo_status rc;
-    if (stat(path, &st) != 0)
-        return fail(&c, LUMO_ERR_IO, "no such file");
-    if (!S_ISREG(st.st_mode))
-        return fail(&c, LUMO_ERR_IO, S_ISDIR(st.st_mode) ? "a directory, not a model file" : "not a regular file");
-    if (st.st_size == 0)
-        return fail(&c, LUMO_ERR_CORRUPT, "empty file");
-    if ((uint64_t)st.st_size > SRV_MODEL_MAX_BYTES)
-        return fail(&c, LUMO_ERR_LIMIT, "%lld bytes, models of at most 1 GiB are read", (long long)st.st_size);
-    if (!(buf = malloc((size_t)st.st_size)))
-        return fail(&c, LUMO_ERR_NOMEM, "no memory to check %lld bytes", (long long)st.st_size);
-    rc = read_all(&c, path, buf, (size_t)st.st_size);
-    *fmt = srv_model_format_of(path, buf, (size_t)st.st_size);
+    lumo_status rc = open_model(&c, path, &f, &size);
+    if (rc)
+        return rc;
+    if (!(buf = malloc(size))) {
+        fclose(f);
+        return fail(&c, LUMO_ERR_NOMEM, "no memory to check %zu bytes", size);
+    }
+    rc = read_all(&c, f, buf, size);
+    fclose(f);
+    *fmt = srv_model_format_of(path, buf, size);
     if (!rc)
-        rc = srv_model_check_bytes(path, buf, (size_t)st.st_size, *fmt, err, errlen);
+        rc = srv_model_check_bytes(path, buf, size, *fmt, err, errlen);
     if (!rc && *fmt == SRV_MODEL_OBJ) {
-        mc o = {path, buf, buf, buf + st.st_size, 0, err, errlen};
+        mc o = {path, buf, buf, buf + size, 0, err, errlen};
         rc = obj_mtllibs(&o, path);
     }
     free(buf);

@@ -10,7 +10,8 @@
 FUZZ_HOST_CFLAGS := -std=c11 -D_GNU_SOURCE -g -O1 $(CLIENT_INC) -Iserver -Itools/lib/include \
                     -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 FUZZ_SCENE_SRCS  := server/scene/scene_file.c server/scene/scene.c server/scene/shapes.c \
-                    server/scene/camera.c server/scene/import.c server/scene/model_check.c
+                    server/scene/camera.c server/scene/import.c server/scene/import_io.c \
+                    server/scene/model_check.c
 
 $(BUILD)/fuzz/bin/fuzz_model_check: tests/fuzz/fuzz_model_check.c server/scene/model_check.c \
                                     server/scene/model_check.h

@@ -79,6 +79,12 @@ run "lumo-pm build a FIFO" "not a regular file" "$bin/lumo-pm" build /dev/stdin 
 mkfifo "$corpus/pipe.mtl" && printf 'mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$corpus/pipe.obj"
 run "lumo-pm build an OBJ whose mtllib is a FIFO" "line 1: mtllib 'pipe.mtl' is not a regular file" \
     "$bin/lumo-pm" build "$corpus/pipe.obj" -o "$out/d.lumo"
+printf '%s' '{"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"pipe.mtl"}],"bufferViews":[{"buffer":0,' \
+    '"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],' \
+    '"max":[1,1,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],' \
+    '"scenes":[{"nodes":[0]}]}' >"$corpus/pipe.gltf"
+run "lumo-pm build a glTF whose buffer is a FIFO" "could not open referenced file" \
+    "$bin/lumo-pm" build "$corpus/pipe.gltf" -o "$out/d.lumo"
 
 # The bake's budget: said, refused past it, taken with --allow-large.
 scene=tests/fuzz/package_seeds/tiny.txt
