@@ -69,7 +69,12 @@ int board_link_write(const uint8_t *buf, size_t n);
 
 /* Receive up to cap bytes: waits up to timeout_ms for the first one, then
  * takes what follows without waiting. Returns the bytes read (0: none came
- * within the timeout), or -1 when the board has no link or it closed. */
+ * within the timeout), -1 when the board has no link or it closed, or
+ * BOARD_LINK_NEW when the link was cut and is back as a new connection
+ * whose peer knows nothing of the conversation (a USB gadget unplugged and
+ * plugged again, boards/linux-gadget): bytes of the old one are gone, and
+ * the program starts over with HELLO and the cursors it holds. */
+#define BOARD_LINK_NEW (-2)
 int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms);
 
 #endif /* LUMO_BOARD_H */

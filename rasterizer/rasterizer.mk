@@ -28,6 +28,9 @@ RASTER_UNIT_LIBS  := $(BUILD)/tests/libmesh_build.a $(BUILD)/host/libserver.a $(
 
 # test_raster_scene builds the server's default scene and imports an OBJ.
 RASTER_UNIT_LDLIBS_test_raster_scene = $(SERVER_LIBS)
+# test_raster_shadow traces its reference shadows with the server's Embree tracer.
+RASTER_UNIT_LDLIBS_test_raster_shadow = $(SERVER_LIBS)
+RASTER_UNIT_LDLIBS_test_raster_camera = $(SERVER_LIBS)
 
 $(RASTER_UNIT_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/unit/%.o $(RASTER_UNIT_LIBS)
 	@mkdir -p $(@D)

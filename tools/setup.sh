@@ -33,6 +33,11 @@ liblapacke-dev
 gnuplot-nox
 nginx-light
 libcurl4-openssl-dev
+libmeshoptimizer-dev
+libcgal-demo
+doxygen
+qemu-system-x86
+busybox-static
 "
 
 missing=""

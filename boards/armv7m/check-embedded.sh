@@ -27,9 +27,10 @@ NM=$1; OBJS=$2; SRCS=$3
 
 HEAP_RE='^(malloc|calloc|realloc|reallocf|free|cfree|valloc|pvalloc|memalign|aligned_alloc|posix_memalign|sbrk|_sbrk|_sbrk_r|brk|_malloc_r|_calloc_r|_realloc_r|_free_r|_memalign_r|__malloc_lock|__malloc_unlock|_malloc_usable_size_r|malloc_usable_size|strdup|strndup|_strdup_r|_strndup_r|__builtin_malloc|mmap|munmap)$'
 FLOAT_RE='^(__aeabi_[fd].*|__aeabi_u?[il]2[fd]|__aeabi_c[fd].*|__(add|sub|mul|div|neg|extend|trunc|float|fix|cmp|eq|ne|lt|le|gt|ge|unord|pow)[a-z]*[sdxt]f[0-9]*|(sqrt|cbrt|exp|exp2|expm1|log|log2|log10|log1p|pow|sin|cos|tan|asin|acos|atan|atan2|sinh|cosh|tanh|floor|ceil|round|lround|trunc|fabs|fmod|fmin|fmax|frexp|ldexp|modf|hypot|nearbyint|rint|lrint)[fl]?)$'
-# string.h, the integer helpers libgcc provides for 64-bit and division, and
+# string.h, the integer helpers libgcc provides for 64-bit and division (and
+# the Thumb-1 switch tables of ARMv6-M, boards/rp2040), and
 # the symbols a board's linker script defines for startup.c and fault.c.
-ALLOW_RE='^(__(data_load|data_start|data_end|bss_start|bss_end|stack_top|stack_paint_low)|mem(cpy|move|set|cmp|chr)|str(len|nlen|cmp|ncmp|chr|rchr|cpy|ncpy|cat|ncat|spn|cspn|pbrk|str)|__aeabi_(u?ldivmod|u?idiv|u?idivmod|llsl|llsr|lasr|lmul|u?lcmp|mem(cpy|move|set|clr)[48]?)|__(u?divdi3|u?moddi3|udivmoddi4|muldi3|ashldi3|lshrdi3|ashrdi3|u?cmpdi2|(clz|ctz|ffs|popcount|parity|bswap)[sd]i2))$'
+ALLOW_RE='^(__(data_load|data_start|data_end|bss_start|bss_end|stack_top|stack_paint_low)|mem(cpy|move|set|cmp|chr)|str(len|nlen|cmp|ncmp|chr|rchr|cpy|ncpy|cat|ncat|spn|cspn|pbrk|str)|__aeabi_(u?ldivmod|u?idiv|u?idivmod|llsl|llsr|lasr|lmul|u?lcmp|mem(cpy|move|set|clr)[48]?)|__(u?divdi3|u?moddi3|udivmoddi4|muldi3|ashldi3|lshrdi3|ashrdi3|u?cmpdi2|(clz|ctz|ffs|popcount|parity|bswap)[sd]i2)|__gnu_thumb1_case_(uqi|sqi|uhi|shi|si))$'
 
 pass=0; fail=0
 report() { echo "check-embedded: FAIL $1: $2"; }

@@ -21,7 +21,8 @@
  * Command line (board_cmdline; QEMU: -append): --replay FILE applies a
  * recording (the bytes a live run received) read with board_read_file,
  * the driver in replay mode; --record FILE writes the bytes received;
- * --out DIR writes every picture as DIR/frame-<share>-<W>x<H>.ppm.
+ * --out DIR writes every picture as DIR/frame-<share>-<W>x<H>.ppm;
+ * --no-pictures streams the scene and draws nothing (throughput runs).
  *
  * Client rules (docs/architecture.md): C99, no heap, no float, no stdio.
  * Memory: board_scratch() holds the receive buffer, the recording, the
@@ -43,7 +44,17 @@ int main(void);
 
 /* ---- what this client asks for and draws ---------------------------------------- */
 
-#define MAX_PAYLOAD      (16u << 10)  /* HELLO: largest frame payload taken */
+/* A board sizes the three buffers to its RAM (-DCLIENT_..., boards/rp2040). */
+#ifndef CLIENT_MAX_PAYLOAD
+#define CLIENT_MAX_PAYLOAD (16u << 10)
+#endif
+#ifndef CLIENT_PICTURE_BYTES
+#define CLIENT_PICTURE_BYTES (4u << 20)
+#endif
+#ifndef CLIENT_RECORD_BYTES
+#define CLIENT_RECORD_BYTES (2u << 20)
+#endif
+#define MAX_PAYLOAD      CLIENT_MAX_PAYLOAD   /* HELLO: largest frame payload taken */
 #define RX_BYTES         (MAX_PAYLOAD + LUMO_NET_OVERHEAD)
 #define TX_BYTES         256u         /* HELLO, REQUEST, BYE */
 /* The cycle of lumo-bake's interleaving (package ORDR): a batch of 250
@@ -54,8 +65,8 @@ int main(void);
 #define SILENCE_MS       250u         /* no byte for this long: ask again */
 #define MAX_TRIES        64u          /* asked again without an answer applied */
 #define BAND_ROWS        16u
-#define PICTURE_BYTES    (4u << 20)   /* vertex caches, a band, a PPM image */
-#define RECORD_BYTES     (2u << 20)   /* a recording, to write or to replay */
+#define PICTURE_BYTES    CLIENT_PICTURE_BYTES   /* vertex caches, a band, a PPM image */
+#define RECORD_BYTES     CLIENT_RECORD_BYTES    /* a recording, to write or to replay; 0: none */
 #define DEFAULT_ALBEDO   ((lumo_q1_14)12288)   /* 0.75: lumo-render's for meshes without albedo */
 
 static const uint8_t k_shares[] = {10, 25, 50, 100};   /* percent of the scene */
@@ -84,6 +95,7 @@ typedef struct picture {
 
 typedef struct client {
     const char *replay, *record, *out;
+    int no_pictures;              /* --no-pictures: stream only (throughput runs) */
     lumo_arena work, pictures, scene_arena;
     lumo_session ses;
     lumo_net_client drv;
@@ -93,8 +105,9 @@ typedef struct client {
     unsigned next_share;
     int first_done, asked_again;
     uint32_t tries;
-    uint64_t bytes_in;
+    uint64_t bytes_in, raw_in;    /* DATA payload applied; every byte the link gave */
     uint32_t frames, stale, refused, silences, resends;
+    uint32_t cuts, cut_bytes, welcome_again;   /* new connections (BOARD_LINK_NEW) */
     cost geometry, lighting, pushpull, decode, drawing;
     uint32_t clock_ticks[8];      /* the driver's clock reads during one frame */
     unsigned clock_reads;
@@ -176,11 +189,16 @@ static int parse_args(client *c)
             p++;
     }
     for (i = 1; i < n; i++) {
-        const char **opt = !strcmp(w[i], "--replay") ? &c->replay
+        const char **opt;
+        if (!strcmp(w[i], "--no-pictures")) {
+            c->no_pictures = 1;
+            continue;
+        }
+        opt = !strcmp(w[i], "--replay") ? &c->replay
                          : !strcmp(w[i], "--record") ? &c->record
                          : !strcmp(w[i], "--out") ? &c->out : NULL;
         if (opt == NULL || i + 1 >= n)
-            return fail("usage: client [--replay FILE] [--record FILE] [--out DIR]; not ", w[i]);
+            return fail("usage: client [--replay FILE] [--record FILE] [--out DIR] [--no-pictures]; not ", w[i]);
         *opt = w[++i];
     }
     return c->replay && c->record ? fail("--replay and --record exclude each other", NULL) : 0;
@@ -194,6 +212,8 @@ static int carve_memory(client *c)
     size_t bytes;
     uint8_t *scratch = board_scratch(&bytes), *pics;
 
+    if ((c->replay || c->record) && RECORD_BYTES == 0)
+        return fail("this board keeps no recording (CLIENT_RECORD_BYTES 0)", NULL);
     lumo_arena_init(&c->work, scratch, bytes);
     c->rx = lumo_arena_alloc(&c->work, RX_BYTES);
     c->log = c->replay || c->record ? lumo_arena_alloc(&c->work, RECORD_BYTES) : c->rx;
@@ -228,6 +248,8 @@ static int32_t receive(client *c, uint8_t *buf, size_t cap)
         return n > 0 ? n : -1;
     }
     n = board_link_read(buf, cap, SILENCE_MS);
+    if (n > 0)
+        c->raw_in += (uint64_t)n;
     if (n > 0 && c->record) {
         if ((size_t)n > RECORD_BYTES - c->log_len)
             return fail("the recording is full", NULL);
@@ -440,7 +462,7 @@ static int draw_size(client *c, const char *tag, uint16_t w, uint16_t h, const l
     uint32_t t0 = board_ticks();
     char name[48];
     cost one = {0, 0};
-    uint64_t hash;
+    uint64_t hash = 0;
     int rc;
 
     rc = set_up(c, w, h, p) || draw_bands(c, w, h, &hash);
@@ -478,6 +500,8 @@ static int pictures_due(client *c)
     lumo_net_progress p;
     char tag[4];
 
+    if (c->no_pictures)
+        return 0;
     lumo_net_client_progress(&c->drv, &p);
     if (!c->first_done && first_picture_ready(c, &p)) {
         c->first_done = 1;
@@ -573,9 +597,9 @@ static const char *frame_name(uint8_t type)
     return type < sizeof names / sizeof names[0] ? names[type] : "unknown";
 }
 
-/* One whole frame: dropped when out of turn, else applied, then the
- * pictures now due and the requests now possible. */
-static int take_frame(client *c, const lumo_net_frame *f)
+/* One whole frame (used bytes): dropped when out of turn, else applied,
+ * then the pictures now due and the requests now possible. */
+static int take_frame(client *c, const lumo_net_frame *f, size_t used)
 {
     uint32_t t0;
     lumo_status st;
@@ -585,6 +609,8 @@ static int take_frame(client *c, const lumo_net_frame *f)
         c->stale++;
         return 0;
     }
+    if (f->type == LUMO_NET_WELCOME && c->drv.package_id)
+        c->welcome_again += (uint32_t)used;   /* a new connection's: checked, nothing applied */
     c->clock_reads = 0;
     t0 = board_ticks();
     if ((st = lumo_net_client_on_frame(&c->drv, f))) {
@@ -620,7 +646,7 @@ static int take_frames(client *c)
             continue;
         }
         at += used;
-        if (take_frame(c, &f))
+        if (take_frame(c, &f, used))
             return -1;
     }
     memmove(c->rx, c->rx + at, c->rx_len - at);
@@ -640,12 +666,32 @@ static int silence(client *c)
     return ask_again(c);
 }
 
+/* The link is back as a new connection (BOARD_LINK_NEW): the bytes of a
+ * frame the cut left unfinished are dropped, the requests in flight
+ * forgotten, and HELLO with the cursors held resumes, as a TCP client does
+ * after a cut (docs/protocol.md §8): nothing applied is sent again. */
+static int new_connection(client *c)
+{
+    c->cuts++;
+    c->cut_bytes += (uint32_t)c->rx_len;
+    c->rx_len = 0;
+    c->tries = 0;
+    c->asked_again = 0;
+    lumo_net_client_reset_link(&c->drv);
+    return say_hello(c);
+}
+
 static int converse(client *c)
 {
     if (say_hello(c))
         return -1;
     while (c->drv.state != LUMO_NET_DONE) {
         int32_t n = receive(c, c->rx + c->rx_len, RX_BYTES - c->rx_len);
+        if (n == BOARD_LINK_NEW && !c->replay) {
+            if (new_connection(c))
+                return -1;
+            continue;
+        }
         if (n < 0)
             return fail(c->replay ? "the recording ends before the scene is complete"
                                   : "the link closed before the scene was complete", NULL);
@@ -709,7 +755,15 @@ static void report_counts(const client *c)
     con_u64(c->silences);
     con_str(" silences, ");
     con_u64(c->resends);
-    con_str(" times asked again");
+    con_str(" times asked again; ");
+    con_u64(c->raw_in);
+    con_str(" bytes received, ");
+    con_u64(c->cuts);
+    con_str(" connections (");
+    con_u64(c->welcome_again);
+    con_str(" WELCOME bytes again, ");
+    con_u64(c->cut_bytes);
+    con_str(" bytes of cut frames dropped)");
     con_nl();
 }
 

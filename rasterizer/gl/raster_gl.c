@@ -282,10 +282,11 @@ static void upload_hemisphere(lumo_gl *g, const lumo_ivg *ivg, int axis, float *
     int t, k;
 
     for (i = 0; i < n; i++) {
-        const lumo_ivg_entry *e = lumo_ivg_entry_at(ivg, i, (lumo_ivg_axis)axis);
+        lumo_ivg_entry e;
+        (void)lumo_ivg_entry_get(ivg, i, (lumo_ivg_axis)axis, &e);   /* i, axis in range */
         for (k = 0; k < 3; k++) {
-            double dv = e->d[k] / 16384.0;
-            cbuf[3 * (size_t)i + k] = (float)(e->c[k] / 65536.0);
+            double dv = e.d[k] / 16384.0;
+            cbuf[3 * (size_t)i + k] = (float)(e.c[k] / 65536.0);
             dv = dv < -1 ? -1 : dv > 1 ? 1 : dv;
             dbuf[3 * (size_t)i + k] = (uint8_t)floor((dv * 0.5 + 0.5) * 255.0 + 0.5);
         }

@@ -37,12 +37,28 @@ typedef struct draw_ctx {
     lumo_raster_target      *target;
     lumo_raster_stats       *stats;
     unsigned nvar;
+    int depth_only;            /* shadow maps: depth test and write only */
 } draw_ctx;
 
 /* ---- vertices ------------------------------------------------------------ */
 
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v);
+static int faces_away(const lumo_raster_view *v, const lumo_q16_16 p[3], const lumo_q1_14 n[3]);
+static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                       int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3]);
 static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
+
+void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
+{
+    int64_t d[3];
+    int i;
+
+    for (i = 0; i < 3; i++)
+        d[i] = (int64_t)p[i] - v->eye[i];
+    for (i = 0; i < 3; i++)
+        c[i] = lumo_round_shift(d[0] * v->rot[i][0] + d[1] * v->rot[i][1] + d[2] * v->rot[i][2],
+                                LUMO_Q14_SHIFT);
+}
 
 void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_scene *s,
                                   const lumo_raster_mesh *m, uint32_t index,
@@ -51,14 +67,10 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
     const lumo_q16_16 *p = &m->pos[3 * (size_t)index];
     const lumo_q1_14 *n = &m->normal[3 * (size_t)index];
     const lumo_q1_14 *rho = m->albedo ? &m->albedo[3 * (size_t)index] : m->mesh_albedo;
-    int64_t d[3], c[3];
+    int64_t c[3];
     int i;
 
-    for (i = 0; i < 3; i++)
-        d[i] = (int64_t)p[i] - v->eye[i];
-    for (i = 0; i < 3; i++)
-        c[i] = lumo_round_shift(d[0] * v->rot[i][0] + d[1] * v->rot[i][1] + d[2] * v->rot[i][2],
-                                LUMO_Q14_SHIFT);
+    lumo_raster_to_camera(v, p, c);
     out->clip[0] = lumo_sat_i32(lumo_round_shift(c[0] * v->cot_half, 16));
     out->clip[1] = lumo_sat_i32(lumo_round_shift(c[1] * v->cot_half, 16));
     out->clip[2] = lumo_sat_i32(c[2]);
@@ -71,13 +83,14 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
             out->var[6 + i] = rho[i];
         }
     } else {
-        lumo_uq16_16 e[3], l[3];
-        lumo_q1_14 nf[3];
-        lumo_raster_face_viewer(v, p, n, nf);
-        lumo_raster_irradiance(s, p, nf, e);
-        lumo_raster_radiance(e, rho, l);
+        lumo_uq16_16 l[3];
+        const lumo_uq16_16 *lit = l;
+        if (m->lit)
+            lit = &m->lit[6 * (size_t)index + (faces_away(v, p, n) ? 3 : 0)];
+        else
+            light_side(s, p, n, faces_away(v, p, n), rho, l);
         for (i = 0; i < 3; i++)
-            out->var[i] = l[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)l[i];
+            out->var[i] = lit[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)lit[i];
     }
     out->outcode = outcode(v, out);
     out->screen[0] = out->screen[1] = 0;
@@ -91,18 +104,65 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
     }
 }
 
-/* Surfaces are two-sided (docs/scene-format.md): the shading normal is
- * turned towards the viewer. out may alias n. */
-void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
-                             const lumo_q1_14 n[3], lumo_q1_14 out[3])
+/* 1 when the eye sees the side of p opposite to n. */
+static int faces_away(const lumo_raster_view *v, const lumo_q16_16 p[3], const lumo_q1_14 n[3])
 {
     int64_t d = 0;
     int i;
 
     for (i = 0; i < 3; i++)
         d += ((int64_t)v->eye[i] - p[i]) * n[i];
+    return d < 0;
+}
+
+/* Surfaces are two-sided (docs/scene-format.md): the shading normal is
+ * turned towards the viewer. out may alias n. */
+void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
+                             const lumo_q1_14 n[3], lumo_q1_14 out[3])
+{
+    int away = faces_away(v, p, n), i;
+
     for (i = 0; i < 3; i++)
-        out[i] = (lumo_q1_14)(d < 0 ? -n[i] : n[i]);
+        out[i] = (lumo_q1_14)(away ? -n[i] : n[i]);
+}
+
+/* Radiance of the side of p facing n (back: -n): the one lighting of a
+ * vertex, per frame or once into a mesh's `lit`. */
+static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                       int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3])
+{
+    lumo_uq16_16 e[3];
+    lumo_q1_14 nf[3];
+    int i;
+
+    for (i = 0; i < 3; i++)
+        nf[i] = (lumo_q1_14)(back ? -n[i] : n[i]);
+    lumo_raster_irradiance(s, p, nf, e);
+    lumo_raster_radiance(e, rho, out);
+}
+
+size_t lumo_raster_lit_bytes(uint32_t vertex_count)
+{
+    return lumo_size_mul(lumo_size_mul(vertex_count, 6), sizeof(lumo_uq16_16));
+}
+
+lumo_status lumo_raster_light_vertices(const lumo_raster_scene *s, const lumo_raster_mesh *m,
+                                       lumo_uq16_16 *lit)
+{
+    uint32_t i;
+
+    if (!s || !m || (m->vertex_count && (!lit || !m->pos || !m->normal)))
+        return LUMO_ERR_ARG;
+    if (s->light_count > LUMO_MAX_LIGHTS || (s->light_count && !s->lights))
+        return LUMO_ERR_RANGE;
+    for (i = 0; i < m->vertex_count; i++) {
+        const lumo_q16_16 *p = &m->pos[3 * (size_t)i];
+        const lumo_q1_14 *n = &m->normal[3 * (size_t)i];
+        const lumo_q1_14 *rho = m->albedo ? &m->albedo[3 * (size_t)i] : m->mesh_albedo;
+        light_side(s, p, n, 0, rho, &lit[6 * (size_t)i]);
+        light_side(s, p, n, 1, rho, &lit[6 * (size_t)i + 3]);
+    }
+    return LUMO_OK;
 }
 
 size_t lumo_raster_cache_bytes(uint32_t vertex_count)
@@ -342,6 +402,10 @@ static void fragment(const draw_ctx *c, const screen_vertex *v, const int64_t E[
         c->stats->pixels_tested++;
     if (dz <= load_depth(t, at))
         return;
+    if (c->depth_only) {
+        store_depth(t, at, dz);
+        return;
+    }
     for (i = 0; i < 3; i++)
         p[i] >>= qsh;
     ps = p[0] + p[1] + p[2];
@@ -519,13 +583,40 @@ static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
     draw_fan(c, s, n);
 }
 
+static lumo_status check_indices(const lumo_raster_mesh *m)
+{
+    uint32_t i;
+
+    for (i = 0; i < 3 * m->tri_count; i++)
+        if (m->tris[i] >= m->vertex_count)
+            return LUMO_ERR_RANGE;
+    return LUMO_OK;
+}
+
+static void draw_mesh(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
+{
+    uint32_t i;
+
+    for (i = 0; i < m->tri_count; i++) {
+        const uint32_t *tri = &m->tris[3 * (size_t)i];
+        if (cache) {
+            draw_triangle(c, &cache[tri[0]], &cache[tri[1]], &cache[tri[2]]);
+        } else {
+            lumo_raster_vertex tv[3];
+            int k;
+            for (k = 0; k < 3; k++)
+                lumo_raster_transform_vertex(c->view, c->scene, m, tri[k], &tv[k]);
+            draw_triangle(c, &tv[0], &tv[1], &tv[2]);
+        }
+    }
+}
+
 lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,
                                    const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
                                    lumo_raster_target *t, lumo_raster_stats *stats)
 {
     draw_ctx c;
     lumo_status st = check_inputs(v, s, m);
-    uint32_t i;
 
     if (st)
         return st;
@@ -534,31 +625,47 @@ lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_
         return st;
     if (t->width != v->width || t->height != v->height)
         return LUMO_ERR_RANGE;
-    for (i = 0; i < 3 * m->tri_count; i++)
-        if (m->tris[i] >= m->vertex_count)
-            return LUMO_ERR_RANGE;
+    st = check_indices(m);
+    if (st)
+        return st;
     c.view = v;
     c.scene = s;
     c.target = t;
     c.stats = stats;
     c.nvar = lumo_raster_varyings(s);
+    c.depth_only = 0;
     if (stats) {
         lumo_raster_stats zero = {0, 0, 0, 0, 0, 0};
         *stats = zero;
         stats->tris_in = m->tri_count;
     }
-    for (i = 0; i < m->tri_count; i++) {
-        const uint32_t *tri = &m->tris[3 * (size_t)i];
-        if (cache) {
-            draw_triangle(&c, &cache[tri[0]], &cache[tri[1]], &cache[tri[2]]);
-        } else {
-            lumo_raster_vertex tv[3];
-            int k;
-            for (k = 0; k < 3; k++)
-                lumo_raster_transform_vertex(v, s, m, tri[k], &tv[k]);
-            draw_triangle(&c, &tv[0], &tv[1], &tv[2]);
-        }
-    }
+    draw_mesh(&c, m, cache);
+    return LUMO_OK;
+}
+
+/* Depth only, both sides, no varyings: a shadow map face (raster_shadow.c).
+ * The per-pixel flag keeps transform_vertex from lighting the vertices. */
+lumo_status lumo_raster_draw_depth(const lumo_raster_view *v, const lumo_raster_mesh *m,
+                                   lumo_raster_target *t)
+{
+    static const lumo_raster_scene depth_scene = {NULL, 0, NULL, NULL, 0, LUMO_RASTER_PER_PIXEL};
+    draw_ctx c;
+    lumo_status st = check_inputs(v, &depth_scene, m);
+
+    if (st)
+        return st;
+    if (t->width != v->width || t->height != v->height || t->depth_bits != 16 || !t->depth)
+        return LUMO_ERR_RANGE;
+    st = check_indices(m);
+    if (st)
+        return st;
+    c.view = v;
+    c.scene = &depth_scene;
+    c.target = t;
+    c.stats = NULL;
+    c.nvar = 0;
+    c.depth_only = 1;
+    draw_mesh(&c, m, NULL);
     return LUMO_OK;
 }
 

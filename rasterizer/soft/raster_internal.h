@@ -48,4 +48,13 @@ void lumo_raster_face_viewer(const lumo_raster_view *v, const lumo_q16_16 p[3],
 void lumo_raster_put_pixel(lumo_raster_target *t, int x, int y, const lumo_uq16_16 rgb[3],
                            lumo_uq16_16 exposure);
 
+/* Depth-only drawing of a mesh (both sides) into a 16-bit depth target
+ * whose colour is never touched: the faces of a shadow map. */
+lumo_status lumo_raster_draw_depth(const lumo_raster_view *v, const lumo_raster_mesh *m,
+                                   lumo_raster_target *t);
+
+/* Camera-space coordinates of p in view v: right, up, forward (Q16.16, one
+ * rounding), the transform of every vertex (raster_draw.c). */
+void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3]);
+
 #endif

@@ -1,6 +1,7 @@
 /*
  * raster_shade.c — the shading model shared by per-vertex and per-pixel
- * lighting (docs/rasterizer.md): diffuse direct light without shadows plus
+ * lighting (docs/rasterizer.md): diffuse direct light, shadowed by the
+ * light's shadow map when it has one (raster_shadow.c), plus
  * the IVG's indirect irradiance (seed 000, §3.2), rho/pi, sRGB tone map.
  */
 #include "raster_internal.h"
@@ -15,6 +16,13 @@
 static uint32_t sat_add_u32(uint32_t a, uint32_t b)
 {
     return a > UINT32_MAX - b ? UINT32_MAX : a + b;
+}
+
+/* v scaled by a visibility in [0, 256]; 256 leaves v's bits unchanged, so
+ * an unshadowed light gives the bytes it gave before shadows existed. */
+static uint64_t shadowed(uint64_t v, uint32_t vis)
+{
+    return vis >= 256 ? v : (v * vis + 128) >> 8;
 }
 
 static int32_t clamp_i32(int64_t v, int32_t lim)
@@ -84,6 +92,7 @@ static void add_local_light(const lumo_raster_light *L, const lumo_q16_16 p[3],
 {
     int64_t d[3], ln = 0, la = 0, cos_n;
     uint64_t dist2 = 0, dist;
+    uint32_t vis = 256;
     int i;
 
     /* Components beyond +-16384 units are clamped: such a light is too far
@@ -101,6 +110,8 @@ static void add_local_light(const lumo_raster_light *L, const lumo_q16_16 p[3],
         return;
     if (L->kind == LUMO_LIGHT_SPOT && -la < (int64_t)L->cos_cutoff * (int64_t)dist)
         return;
+    if (L->shadow && (vis = lumo_raster_shadow_visibility(L->shadow, p, n)) == 0)
+        return;                                          /* in full shadow */
     cos_n = (ln + (int64_t)(dist / 2)) / (int64_t)dist;  /* Q14 */
     if (cos_n > 2 * LUMO_Q14_ONE)
         cos_n = 2 * LUMO_Q14_ONE;                        /* non-unit n from a hostile mesh */
@@ -110,7 +121,7 @@ static void add_local_light(const lumo_raster_light *L, const lumo_q16_16 p[3],
     for (i = 0; i < 3; i++) {
         uint64_t inten = ((uint64_t)L->value[i] * INV_4PI_Q32 + ((uint64_t)1 << 31)) >> 32;
         uint64_t num = (inten * (uint64_t)cos_n) << 2;   /* Q30 -> Q32 / Q16 */
-        uint64_t q = (num + dist2 / 2) / dist2;
+        uint64_t q = shadowed((num + dist2 / 2) / dist2, vis);
         e[i] = sat_add_u32(e[i], q > UINT32_MAX ? UINT32_MAX : (uint32_t)q);
     }
 }
@@ -139,15 +150,19 @@ void lumo_raster_normalize_q14(const int32_t v[3], lumo_q1_14 out[3])
         out[i] = lumo_sat_i16((int32_t)lumo_round_shift(c[i] * k, 28));
 }
 
-static void add_directional(const lumo_raster_light *L, const lumo_q1_14 n[3], lumo_uq16_16 e[3])
+static void add_directional(const lumo_raster_light *L, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                            lumo_uq16_16 e[3])
 {
     int32_t cos_n = -dot_q14(n, L->dir);
+    uint32_t vis = 256;
     int i;
 
     if (cos_n <= 0)
         return;
+    if (L->shadow && (vis = lumo_raster_shadow_visibility(L->shadow, p, n)) == 0)
+        return;
     for (i = 0; i < 3; i++)
-        e[i] = sat_add_u32(e[i], lumo_uq16_mul_q14(L->value[i], (lumo_q1_14)cos_n));
+        e[i] = sat_add_u32(e[i], (uint32_t)shadowed(lumo_uq16_mul_q14(L->value[i], (lumo_q1_14)cos_n), vis));
 }
 
 void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
@@ -161,7 +176,7 @@ void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
     for (i = 0; i < count; i++) {
         const lumo_raster_light *L = &s->lights[i];
         if (L->kind == LUMO_LIGHT_DIRECTIONAL)
-            add_directional(L, n, e);
+            add_directional(L, p, n, e);
         else
             add_local_light(L, p, n, e);
     }

@@ -95,14 +95,6 @@ static lumo_status check_direction(int64_t x, int64_t y, int64_t z, int64_t one)
     return LUMO_OK;
 }
 
-/* q/127 in Q1.14, rounded to nearest, ties away from zero (q != -128). */
-static lumo_q1_14 snorm8_to_q14(int32_t q)
-{
-    int32_t mag = q < 0 ? -q : q;
-    int32_t v = (mag * LUMO_Q14_ONE + 63) / 127;
-    return (lumo_q1_14)(q < 0 ? -v : v);
-}
-
 static lumo_status decode_quantized(const uint8_t *p, lumo_ivg_entry *e)
 {
     int32_t q[3];
@@ -118,7 +110,7 @@ static lumo_status decode_quantized(const uint8_t *p, lumo_ivg_entry *e)
     if (st)
         return st;
     for (k = 0; k < 3; k++)
-        e->d[k] = snorm8_to_q14(q[k]);
+        e->d[k] = ivg_snorm8_to_q14(q[k]);
     lumo_rgb9e5_to_uq16(lumo_wire_le32(p + 3), e->c);
     e->reserved = 0;
     return LUMO_OK;
@@ -226,13 +218,28 @@ static void mark_vertex(lumo_ivg *g, uint32_t v, int solid)
     if (solid) {
         ivg_bit_clear(g->received_bits, v);
         ivg_bit_set(g->solid_bits, v);
-        memset(&g->level[0].e[(size_t)v * LUMO_IVG_AXES], 0, LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
+        memset(ivg_packed_at(&g->level[0], v, 0), 0, IVG_PACKED_VERTEX);
         g->solid++;
     } else {
         ivg_bit_set(g->received_bits, v);
         ivg_bit_clear(g->solid_bits, v);
         g->received++;
     }
+}
+
+/* One validated entry into its packed slot: a quantized one is already in
+ * the stored form and is kept byte for byte; a binary32 one is rounded to
+ * it (docs/ivg-format.md §2.5). */
+static void store_entry(unsigned form, const uint8_t *p, uint8_t *slot)
+{
+    lumo_ivg_entry e;
+
+    if (form == LUMO_IVG_FORM_QUANTIZED) {
+        memcpy(slot, p, IVG_PACKED);
+        return;
+    }
+    (void)decode_binary32(p, &e);
+    ivg_entry_pack(&e, slot);
 }
 
 /* Walk the first `records` records (already validated); store them when
@@ -246,14 +253,14 @@ static void walk(lumo_ivg *g, const run *b, uint32_t records, int store)
     for (r = 0; r < records; r++) {
         uint32_t word = lumo_wire_le32(b->p + pos);
         uint32_t v = word & ~LUMO_IVG_SOLID_BIT;
-        lumo_ivg_entry *e = &g->level[0].e[(size_t)v * LUMO_IVG_AXES];
+        uint8_t *e = ivg_packed_at(&g->level[0], v, 0);
         int solid = (word & LUMO_IVG_SOLID_BIT) != 0;
 
         pos += 4u;
         ivg_bit_clear(g->seen_bits, v);
         if (!solid) {
             for (a = 0; a < LUMO_IVG_AXES && store; a++)
-                (void)decode_entry(b->form, b->p + pos + a * b->entry_bytes, &e[a]);
+                store_entry(b->form, b->p + pos + a * b->entry_bytes, e + a * IVG_PACKED);
             pos += LUMO_IVG_AXES * b->entry_bytes;
         }
         if (store)

@@ -30,6 +30,11 @@ static int desc_valid(const lumo_ivg_desc *d)
     return 1;
 }
 
+static size_t bits_bytes(uint32_t count)
+{
+    return ((size_t)count + 7u) / 8u;
+}
+
 /* The pyramid: halve every axis (ivg_coarse_dim) until one vertex is left. */
 static void plan_levels(const lumo_ivg_desc *d, ivg_plan *p)
 {
@@ -47,13 +52,13 @@ static void plan_levels(const lumo_ivg_desc *d, ivg_plan *p)
         l++;
     }
     p->levels = l + 1;
-    p->bitmap_bytes = ((size_t)p->count[0] + 7u) / 8u;
+    p->bitmap_bytes = bits_bytes(p->count[0]);
 }
 
+/* Every level's vertices are packed (ivg_pack.c): 42 bytes each. */
 static size_t entries_bytes(uint32_t count)
 {
-    return lumo_arena_round(lumo_size_mul(lumo_size_mul(count, LUMO_IVG_AXES),
-                                          sizeof(lumo_ivg_entry)));
+    return lumo_arena_round(lumo_size_mul(count, IVG_PACKED_VERTEX));
 }
 
 /* Smoothing keeps three x-y planes of sums of the largest coarse level. */
@@ -71,7 +76,7 @@ static size_t plan_bytes(const ivg_plan *p)
     total = lumo_size_add(total, lumo_size_mul(3, lumo_arena_round(p->bitmap_bytes)));
     for (l = 1; l < p->levels; l++) {
         total = lumo_size_add(total, entries_bytes(p->count[l]));
-        total = lumo_size_add(total, lumo_arena_round(p->count[l]));
+        total = lumo_size_add(total, lumo_arena_round(bits_bytes(p->count[l])));
     }
     if (p->levels > 1)
         total = lumo_size_add(total, lumo_arena_round(lumo_size_mul(smooth_sums(p), sizeof(ivg_sum))));
@@ -88,9 +93,9 @@ size_t lumo_ivg_memory_size(const lumo_ivg_desc *desc)
     return plan_bytes(&p);
 }
 
-static lumo_ivg_entry *alloc_entries(lumo_arena *a, uint32_t count)
+static uint8_t *alloc_entries(lumo_arena *a, uint32_t count)
 {
-    return lumo_arena_alloc_array(a, lumo_size_mul(count, LUMO_IVG_AXES), sizeof(lumo_ivg_entry));
+    return lumo_arena_alloc(a, lumo_size_mul(count, IVG_PACKED_VERTEX));
 }
 
 /* Sampling maps p to grid units with one multiply per axis (§3.2):
@@ -134,7 +139,7 @@ lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_de
         memcpy(g->level[l].dims, p.dims[l], sizeof p.dims[l]);
         g->level[l].count = p.count[l];
         g->level[l].e = alloc_entries(arena, p.count[l]);
-        g->level[l].valid = l == 0 ? NULL : lumo_arena_alloc(arena, p.count[l]);
+        g->level[l].valid = l == 0 ? NULL : lumo_arena_alloc(arena, bits_bytes(p.count[l]));
     }
     g->scratch = p.levels > 1 ? lumo_arena_alloc_array(arena, smooth_sums(&p), sizeof(ivg_sum)) : NULL;
     /* plan_bytes() was checked against the room left, so these cannot fail;
@@ -179,9 +184,10 @@ int lumo_ivg_is_solid(const lumo_ivg *g, uint32_t vertex)
     return g != NULL && vertex < g->count && ivg_bit(g->solid_bits, vertex);
 }
 
-const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis)
+lumo_status lumo_ivg_entry_get(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis, lumo_ivg_entry *out)
 {
-    if (g == NULL || vertex >= g->count || (unsigned)axis >= (unsigned)LUMO_IVG_AXES)
-        return NULL;
-    return &g->level[0].e[(size_t)vertex * LUMO_IVG_AXES + axis];
+    if (g == NULL || out == NULL || vertex >= g->count || (unsigned)axis >= (unsigned)LUMO_IVG_AXES)
+        return LUMO_ERR_ARG;
+    ivg_entry_unpack(ivg_packed_at(&g->level[0], vertex, (unsigned)axis), out);
+    return LUMO_OK;
 }

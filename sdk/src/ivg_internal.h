@@ -19,13 +19,20 @@ typedef struct ivg_sum {
     uint32_t w;
 } ivg_sum;
 
+/* Bytes of one stored (packed) entry and of one vertex's six: the
+ * quantized wire form itself (docs/ivg-format.md §2.5): d as 3 x int8
+ * (q/127), c as a little-endian RGB9E5 word. Received quantized entries are
+ * kept as they came; everything else is packed by ivg_entry_pack. */
+#define IVG_PACKED        LUMO_IVG_QUANT_ENTRY
+#define IVG_PACKED_VERTEX (LUMO_IVG_AXES * IVG_PACKED)
+
 /* One pyramid level. Level 0 is the grid (validity = received bitmap);
- * coarser levels keep one validity byte per vertex. */
+ * coarser levels keep one validity bit per vertex. */
 typedef struct ivg_level {
-    uint32_t        dims[3];
-    uint32_t        count;
-    lumo_ivg_entry *e;        /* count * LUMO_IVG_AXES entries */
-    uint8_t        *valid;    /* count bytes; NULL on level 0 */
+    uint32_t  dims[3];
+    uint32_t  count;
+    uint8_t  *e;        /* count * IVG_PACKED_VERTEX bytes */
+    uint8_t  *valid;    /* count bits; NULL on level 0 */
 } ivg_level;
 
 struct lumo_ivg {
@@ -59,6 +66,50 @@ static inline void ivg_bit_clear(uint8_t *bits, uint32_t i)
 {
     bits[i >> 3] = (uint8_t)(bits[i >> 3] & ~(1u << (i & 7u)));
 }
+
+/* The packed entry (vertex v, hemisphere a) of a level. */
+static inline uint8_t *ivg_packed_at(const ivg_level *lv, uint32_t v, unsigned a)
+{
+    return lv->e + (size_t)v * IVG_PACKED_VERTEX + (size_t)a * IVG_PACKED;
+}
+
+/* A packed entry opened for arithmetic: c in UQ16.16 (exact, §2.5), d
+ * still in the wire's q units (value q/127) — push-pull averages q and
+ * sampling interpolates q, converting to Q1.14 once per result. */
+typedef struct ivg_raw {
+    uint32_t c[3];
+    int32_t  q[3];
+} ivg_raw;
+
+/* RGB9E5 to UQ16.16 as lumo_rgb9e5_to_uq16 (m * 2^(E-8), rounded half up
+ * below E = 8), inline: sampling and push-pull open every tap. */
+static inline void ivg_rgb9e5_open(const uint8_t *p, uint32_t c[3])
+{
+    uint32_t w = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    unsigned e = w >> 27, k;
+
+    for (k = 0; k < 3; k++) {
+        uint32_t m = (w >> (9u * k)) & 0x1FFu;
+        c[k] = e >= 8u ? m << (e - 8u) : (m + (1u << (7u - e))) >> (8u - e);
+    }
+}
+
+static inline void ivg_raw_open(const uint8_t *p, ivg_raw *r)
+{
+    r->q[0] = (int8_t)p[0];
+    r->q[1] = (int8_t)p[1];
+    r->q[2] = (int8_t)p[2];
+    ivg_rgb9e5_open(p + 3, r->c);
+}
+
+/* ivg_pack.c: packing rounds c to the nearest RGB9E5 word (shared
+ * exponent: error at most half a mantissa step of the largest channel,
+ * 2^-9 of it); q must be in [-127, 127] (an average of such is). Unpacking
+ * to lumo_ivg_entry is exact (the decoding of §2.5). */
+void ivg_raw_pack(const ivg_raw *r, uint8_t *p);
+void ivg_entry_unpack(const uint8_t *p, lumo_ivg_entry *e);
+void ivg_entry_pack(const lumo_ivg_entry *e, uint8_t *p);
+lumo_q1_14 ivg_snorm8_to_q14(int32_t q);
 
 /* Dims of the next coarser level along one axis (seed 000 §4.1 pyramid for
  * any size): coarse vertex i sits on fine vertex 2i, so F >= 3 vertices need

@@ -91,17 +91,20 @@ static void pull_taps(uint32_t f, uint32_t fine, uint32_t coarse, ivg_taps *t)
 
 static int vertex_valid(const lumo_ivg *g, unsigned l, uint32_t v)
 {
-    return l == 0 ? ivg_bit(g->received_bits, v) : g->level[l].valid[v];
+    return ivg_bit(l == 0 ? g->received_bits : g->level[l].valid, v);
 }
 
-static void acc_add(ivg_acc *acc, const lumo_ivg_entry *e, uint32_t w)
+/* Add a vertex's six packed entries with weight w (d in q units). */
+static void acc_add(ivg_acc *acc, const uint8_t *packed, uint32_t w)
 {
+    ivg_raw r;
     int a, k;
 
     for (a = 0; a < LUMO_IVG_AXES; a++) {
+        ivg_raw_open(packed + a * IVG_PACKED, &r);
         for (k = 0; k < 3; k++) {
-            acc->c[a][k] += (uint64_t)e[a].c[k] * w;
-            acc->d[a][k] += (int32_t)e[a].d[k] * (int32_t)w;
+            acc->c[a][k] += (uint64_t)r.c[k] * w;
+            acc->d[a][k] += r.q[k] * (int32_t)w;
         }
     }
     acc->w += w;
@@ -144,15 +147,14 @@ static int pow2_shift(uint32_t w)
  * always sum to 8, interior push and smoothing weights to 64), two 32-bit
  * divisions otherwise (s < 0); both give the same result. A weighted average of values in
  * range is in range. */
-static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s, lumo_ivg_entry *e)
+static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s, ivg_raw *e)
 {
     int k;
 
-    e->reserved = 0;
     if (s < 0) {
         for (k = 0; k < 3; k++) {
             e->c[k] = div_round_u48(c[k], w);
-            e->d[k] = (lumo_q1_14)div_round_i32(d[k], w);
+            e->q[k] = div_round_i32(d[k], w);
         }
         return;
     }
@@ -161,16 +163,20 @@ static void sum_store(const uint64_t c[3], const int32_t d[3], uint32_t w, int s
         uint32_t mag = d[k] < 0 ? (uint32_t)-d[k] : (uint32_t)d[k];
         mag = (mag + half) >> s;
         e->c[k] = (uint32_t)((c[k] + half) >> s);
-        e->d[k] = (lumo_q1_14)(d[k] < 0 ? -(int32_t)mag : (int32_t)mag);
+        e->q[k] = d[k] < 0 ? -(int32_t)mag : (int32_t)mag;
     }
 }
 
-static void acc_store(const ivg_acc *acc, lumo_ivg_entry *e)
+/* The six averages, each rounded (c to UQ16.16, d to q) and packed. */
+static void acc_store(const ivg_acc *acc, uint8_t *packed)
 {
+    ivg_raw e;
     int a, s = pow2_shift(acc->w);
 
-    for (a = 0; a < LUMO_IVG_AXES; a++)
-        sum_store(acc->c[a], acc->d[a], acc->w, s, &e[a]);
+    for (a = 0; a < LUMO_IVG_AXES; a++) {
+        sum_store(acc->c[a], acc->d[a], acc->w, s, &e);
+        ivg_raw_pack(&e, packed + a * IVG_PACKED);
+    }
 }
 
 /* Sum the vertices of level l at the product of the three tap lists,
@@ -189,15 +195,10 @@ static void gather(const lumo_ivg *g, unsigned l, const ivg_taps t[3], int valid
                 uint32_t v = row + t[0].idx[x];
                 if (valid_only && !vertex_valid(g, l, v))
                     continue;
-                acc_add(acc, &lv->e[(size_t)v * LUMO_IVG_AXES], wyz * t[0].w[x]);
+                acc_add(acc, ivg_packed_at(lv, v, 0), wyz * t[0].w[x]);
             }
         }
     }
-}
-
-static lumo_ivg_entry *entries_of(const ivg_level *lv, uint32_t v)
-{
-    return &lv->e[(size_t)v * LUMO_IVG_AXES];
 }
 
 /* Level l -> l+1: tent-weighted average of the valid fine vertices. */
@@ -216,11 +217,13 @@ static void push(lumo_ivg *g, unsigned l)
             for (i = 0; i < c->dims[0]; i++, v++) {
                 push_taps(i, f->dims[0], c->dims[0], &t[0]);
                 gather(g, l, t, 1, &acc);
-                c->valid[v] = acc.w != 0u;
-                if (acc.w != 0u)
-                    acc_store(&acc, entries_of(c, v));
-                else
-                    memset(entries_of(c, v), 0, LUMO_IVG_AXES * sizeof(lumo_ivg_entry));
+                if (acc.w != 0u) {
+                    ivg_bit_set(c->valid, v);
+                    acc_store(&acc, ivg_packed_at(c, v, 0));
+                } else {
+                    ivg_bit_clear(c->valid, v);
+                    memset(ivg_packed_at(c, v, 0), 0, IVG_PACKED_VERTEX);
+                }
             }
         }
     }
@@ -262,11 +265,13 @@ static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
 
     for (i = 0; i < nx * ny; i++) {
         uint32_t v = z * nx * ny + i;
-        const lumo_ivg_entry *e = &lv->e[(size_t)v * LUMO_IVG_AXES + a];
-        int on = lv->valid[v] != 0;
+        ivg_raw e = {{0, 0, 0}, {0, 0, 0}};
+        int on = ivg_bit(lv->valid, v);
+        if (on)
+            ivg_raw_open(ivg_packed_at(lv, v, (unsigned)a), &e);
         for (k = 0; k < 3; k++) {
-            s[i].c[k] = on ? e->c[k] : 0u;
-            s[i].d[k] = on ? e->d[k] : 0;
+            s[i].c[k] = e.c[k];
+            s[i].d[k] = e.q[k];
         }
         s[i].w = (uint32_t)on;
     }
@@ -285,13 +290,15 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
     const ivg_sum *mid = &ring[(z % 3u) * plane];
     const ivg_sum *hi = z + 1u < nz ? &ring[((z + 1u) % 3u) * plane] : NULL;
     ivg_sum out;
+    ivg_raw e;
 
     for (i = 0; i < plane; i++) {
         uint32_t v = z * plane + i;
-        if (!lv->valid[v])
+        if (!ivg_bit(lv->valid, v))
             continue;
         sum_mix(&out, lo != NULL ? lo + i : NULL, mid + i, hi != NULL ? hi + i : NULL);
-        sum_store(out.c, out.d, out.w, pow2_shift(out.w), &lv->e[(size_t)v * LUMO_IVG_AXES + a]);
+        sum_store(out.c, out.d, out.w, pow2_shift(out.w), &e);
+        ivg_raw_pack(&e, ivg_packed_at(lv, v, (unsigned)a));
     }
 }
 
@@ -337,7 +344,7 @@ static void pull(lumo_ivg *g, unsigned l)
                     continue;
                 pull_taps(i, f->dims[0], c->dims[0], &t[0]);
                 gather(g, l + 1, t, 0, &acc);
-                acc_store(&acc, entries_of(f, v));
+                acc_store(&acc, ivg_packed_at(f, v, 0));
             }
         }
     }

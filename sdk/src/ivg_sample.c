@@ -44,9 +44,9 @@ typedef struct ivg_hemi {
     int32_t  d[3];
 } ivg_hemi;
 
-/* d is offset by D_BIAS while it is weighted so every sum is non-negative
- * and rounds the same way as c's (no shifts of negative numbers). */
-#define D_BIAS 32768
+/* q is offset by Q_BIAS while it is weighted so every sum is
+ * non-negative (unsigned arithmetic, no shifts of negative numbers). */
+#define Q_BIAS 128
 
 /* a * t / 2^16 rounded half up; a, t <= 2^16. */
 static uint32_t part(uint32_t a, uint32_t t)
@@ -75,43 +75,59 @@ static void cell_weights(const uint32_t t[3], uint32_t w[8])
     }
 }
 
-/* Trilinear interpolation of one hemisphere: base is its entry at the
- * cell's first vertex, off[n] the entry offset of corner n. The colour
- * sums stay below 2^48; the biased direction sums below
- * 2^16 * 65535 + 2^15 < 2^32, so they fit 32 bits (cheaper on the M3). */
-static void interpolate(const lumo_ivg_entry *base, const uint32_t off[8], const uint32_t w[8],
-                        ivg_hemi *out)
+/* q/127 summed with Q16 weights (S = sum w_n q_n, weights summing to
+ * 2^16) to Q1.14, rounded half away from zero: S / 2^16 / 127 * 2^14 =
+ * S / 508. With one corner of weight 2^16 this is the decoding of §2.5,
+ * floor((|q| 2^14 + 63) / 127), so a vertex comes back as stored. */
+static int32_t q_sum_to_q14(int32_t sum)
+{
+    uint32_t mag = sum < 0 ? (uint32_t)-sum : (uint32_t)sum;
+    int32_t v = (int32_t)((2u * mag + 508u) / 1016u);
+
+    return sum < 0 ? -v : v;
+}
+
+/* Trilinear interpolation of one hemisphere: base is its packed entry at
+ * the cell's first vertex, off[n] the byte offset of corner n; the grid
+ * stays packed and each corner is opened here, on sampling: the colour as
+ * UQ16.16 (exact), the direction in the wire's q units, converted to Q1.14
+ * once for the sum. The colour sums stay below 2^48; the biased direction
+ * sums below 2^16 * 255 < 2^24, so they fit 32 bits (cheaper on the M3). */
+static void interpolate(const uint8_t *base, const uint32_t off[8], const uint32_t w[8], ivg_hemi *out)
 {
     uint64_t c0 = 0, c1 = 0, c2 = 0;
     uint32_t d0 = 0, d1 = 0, d2 = 0;
     int n;
 
     for (n = 0; n < 8; n++) {
-        const lumo_ivg_entry *e = base + off[n];
-        uint32_t wn = w[n];
-        c0 += (uint64_t)e->c[0] * wn;
-        c1 += (uint64_t)e->c[1] * wn;
-        c2 += (uint64_t)e->c[2] * wn;
-        d0 += (uint32_t)(e->d[0] + D_BIAS) * wn;
-        d1 += (uint32_t)(e->d[1] + D_BIAS) * wn;
-        d2 += (uint32_t)(e->d[2] + D_BIAS) * wn;
+        const uint8_t *p = base + off[n];
+        uint32_t wn = w[n], c[3];
+        if (wn == 0u)
+            continue;                 /* a cell face: nothing to open */
+        ivg_rgb9e5_open(p + 3, c);
+        c0 += (uint64_t)c[0] * wn;
+        c1 += (uint64_t)c[1] * wn;
+        c2 += (uint64_t)c[2] * wn;
+        d0 += (uint32_t)((int8_t)p[0] + Q_BIAS) * wn;
+        d1 += (uint32_t)((int8_t)p[1] + Q_BIAS) * wn;
+        d2 += (uint32_t)((int8_t)p[2] + Q_BIAS) * wn;
     }
     out->c[0] = (uint32_t)((c0 + (1u << 15)) >> 16);
     out->c[1] = (uint32_t)((c1 + (1u << 15)) >> 16);
     out->c[2] = (uint32_t)((c2 + (1u << 15)) >> 16);
-    out->d[0] = (int32_t)((d0 + (1u << 15)) >> 16) - D_BIAS;
-    out->d[1] = (int32_t)((d1 + (1u << 15)) >> 16) - D_BIAS;
-    out->d[2] = (int32_t)((d2 + (1u << 15)) >> 16) - D_BIAS;
+    out->d[0] = q_sum_to_q14((int32_t)d0 - (Q_BIAS << 16));
+    out->d[1] = q_sum_to_q14((int32_t)d1 - (Q_BIAS << 16));
+    out->d[2] = q_sum_to_q14((int32_t)d2 - (Q_BIAS << 16));
 }
 
-/* Entry offsets of the eight corners of a cell (corner n = x + 2y + 4z). */
+/* Byte offsets of the eight corners of a cell (corner n = x + 2y + 4z). */
 static void corner_offsets(const lumo_ivg *g, uint32_t off[8])
 {
-    uint32_t sy = g->desc.dims[0] * LUMO_IVG_AXES, sz = sy * g->desc.dims[1];
+    uint32_t sy = g->desc.dims[0] * IVG_PACKED_VERTEX, sz = sy * g->desc.dims[1];
     int n;
 
     for (n = 0; n < 8; n++)
-        off[n] = (n & 1 ? (uint32_t)LUMO_IVG_AXES : 0u) + (n & 2 ? sy : 0u) + (n & 4 ? sz : 0u);
+        off[n] = (n & 1 ? (uint32_t)IVG_PACKED_VERTEX : 0u) + (n & 2 ? sy : 0u) + (n & 4 ? sz : 0u);
 }
 
 /* Largest |n_a^2 (d_a . n)| kept, Q28 (2.0): unreachable with unit n and
@@ -122,7 +138,7 @@ void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q
                          lumo_uq16_16 out[3])
 {
     uint32_t cell[3], t[3], w[8], off[8];
-    const lumo_ivg_entry *base;
+    const uint8_t *base;
     int64_t sum[3] = {0, 0, 0};
     int a, k;
 
@@ -131,8 +147,7 @@ void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q
         return;
     for (a = 0; a < 3; a++)
         locate(g, a, p[a], &cell[a], &t[a]);
-    base = &g->level[0].e[(size_t)(cell[0] + g->desc.dims[0] * (cell[1] + g->desc.dims[1] * cell[2]))
-                          * LUMO_IVG_AXES];
+    base = ivg_packed_at(&g->level[0], cell[0] + g->desc.dims[0] * (cell[1] + g->desc.dims[1] * cell[2]), 0);
     cell_weights(t, w);
     corner_offsets(g, off);
     for (a = 0; a < 3; a++) {
@@ -141,7 +156,7 @@ void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q
         ivg_hemi h;
         if (n2 == 0)
             continue;                                     /* no weight: skip */
-        interpolate(base + 2 * a + (n[a] < 0), off, w, &h);
+        interpolate(base + (2 * a + (n[a] < 0)) * IVG_PACKED, off, w, &h);
         for (k = 0; k < 3; k++)
             dn += (int64_t)h.d[k] * n[k];                 /* Q28 */
         f = lumo_round_shift(n2 * dn, 28);                /* Q28 */

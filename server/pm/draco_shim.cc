@@ -85,16 +85,16 @@ static float draco_text_float(double v)
     return std::strtof(text, nullptr);
 }
 
-// The next representable value up (dir > 0) or down from v after the text
-// round trip. Steps of 1e-6 vanish in single precision beyond 16 m (the
-// float spacing there is 2e-6 and more): a model with a 1255 m coordinate
-// stepped forever. The float's own neighbour always moves.
+// The next text float from v in direction dir (+1 or -1): a step of 1e-6,
+// doubled until the text round trip moves (past ~8 m a float's spacing is
+// above 1e-6, and a fixed step would round back to v for ever).
 static float draco_text_step(float v, int dir)
 {
-    float t = draco_text_float(static_cast<double>(v) + (dir > 0 ? 1e-6 : -1e-6));
-    if (dir > 0 ? t > v : t < v)
-        return t;
-    return draco_text_float(std::nextafter(v, dir > 0 ? HUGE_VALF : -HUGE_VALF));
+    for (double step = 1e-6;; step *= 2) {
+        float next = draco_text_float(static_cast<double>(v) + dir * step);
+        if (dir > 0 ? next > v : next < v)
+            return next;
+    }
 }
 
 extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, srv_draco_quant *q)
@@ -111,7 +111,7 @@ extern "C" void srv_draco_grid(const float lo[3], const float hi[3], int bits, s
     q->range = draco_text_float(std::ceil(extent * 1e6) / 1e6 + 1e-6);
     for (int c = 0; c < 3; ++c)
         while (static_cast<double>(q->origin[c]) + q->range < hi[c])
-            q->range = draco_text_step(q->range, 1);
+            q->range = draco_text_step(q->range, +1);
     if (q->range <= 0)
         q->range = 1;
 }

@@ -11,6 +11,7 @@ void srv_pm_default_options(srv_pm_options *o)
     o->boundary_weight = 100.0;
     o->flip_cos = 0.2;
     o->round_fraction = 0.25;
+    o->max_error = 0.05;
 }
 
 static const uint32_t *g_level; /* qsort context */

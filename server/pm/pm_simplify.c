@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "common/closest.h"
 #include "pm/pm_internal.h"
 
 typedef struct { uint32_t *f; uint32_t n, cap; } flist;
@@ -26,14 +27,17 @@ typedef struct {
     uint32_t    *tri;        /* current corners */
     uint8_t     *face_alive, *vert_alive;
     flist       *vf;         /* alive faces around each vertex */
-    double      *q;          /* 10 per vertex: symmetric 4x4 quadric */
+    double      *q;          /* QN per vertex: symmetric 4x4 quadric, then its weight */
     uint32_t    *stamp;
     uint32_t    *core, *ring; /* round locks: u or v of a collapse, their neighbours */
     cand        *heap;
     size_t       hn, hcap;
     uint32_t    *nb_u, *nb_v; /* neighbour scratch */
+    uint32_t    *pt_next, *pt_tail; /* the input vertices each alive vertex stands for: a list
+                                       from v itself through pt_next, ending at pt_tail[v] */
     uint32_t     nb_cap;
     const srv_pm_options *opt;
+    double       limit;      /* largest cost a collapse may have (max_error) */
 } simp;
 
 /* ---- small vector helpers ------------------------------------------------ */
@@ -86,6 +90,8 @@ static int has_vertex(const simp *s, uint32_t f, uint32_t v)
 }
 
 /* ---- quadrics ----------------------------------------------------------- */
+#define QN 11  /* 10 coefficients of the symmetric 4x4 matrix, then the weight sum */
+
 /* Add w * (n.p + d)^2 for the plane through p0 with unit normal n. */
 static void quadric_add(double *q, const double n[3], const float *p0, double w)
 {
@@ -94,15 +100,27 @@ static void quadric_add(double *q, const double n[3], const float *p0, double w)
     q[0] += w * a * a, q[1] += w * a * b, q[2] += w * a * c, q[3] += w * a * d;
     q[4] += w * b * b, q[5] += w * b * c, q[6] += w * b * d;
     q[7] += w * c * c, q[8] += w * c * d, q[9] += w * d * d;
+    q[10] += w;
 }
 
-static double quadric_eval(const double *q, const double *r, const float *p)
+/* The quadric's weighted sum of squared plane distances at p. */
+static double quadric_sum(const double *e, const float *p)
 {
-    double x = p[0], y = p[1], z = p[2], e[10];
-    for (int i = 0; i < 10; i++)
-        e[i] = q[i] + r[i];
-    return e[0] * x * x + 2 * e[1] * x * y + 2 * e[2] * x * z + 2 * e[3] * x
-         + e[4] * y * y + 2 * e[5] * y * z + 2 * e[6] * y + e[7] * z * z + 2 * e[8] * z + e[9];
+    double x = p[0], y = p[1], z = p[2];
+    double r = e[0] * x * x + 2 * e[1] * x * y + 2 * e[2] * x * z + 2 * e[3] * x
+             + e[4] * y * y + 2 * e[5] * y * z + 2 * e[6] * y + e[7] * z * z + 2 * e[8] * z + e[9];
+    return r > 0 ? r : 0;  /* rounding */
+}
+
+/* The mean squared distance of p from the planes u gathered (u's quadric
+ * over its weight): the quadric of the vertex that moves only, normalised
+ * so that big and small triangles compare by distance, not by area times
+ * distance (as meshoptimizer does; Garland & Heckbert's Q_u + Q_v counted
+ * v's own accumulated error into every candidate of v, and area weighting
+ * let small faces travel far: both cost worst-case error, bench-pm-quality). */
+static double quadric_error(const double *q, const float *p)
+{
+    return q[10] > 0 ? quadric_sum(q, p) / q[10] : 0;
 }
 
 /* Faces alive around both u and v. */
@@ -137,7 +155,7 @@ static void init_quadrics(simp *s)
             continue;
         double un[3] = {n[0] / len, n[1] / len, n[2] / len};
         for (int c = 0; c < 3; c++)
-            quadric_add(s->q + 10 * (size_t)t[c], un, p[0], 0.5 * len);
+            quadric_add(s->q + QN * (size_t)t[c], un, p[0], 0.5 * len);
         for (int c = 0; c < 3; c++) {
             uint32_t a = t[c], b = t[(c + 1) % 3], ef[MAX_EDGE_FACES];
             if (edge_faces(s, a, b, ef) != 1)
@@ -149,8 +167,8 @@ static void init_quadrics(simp *s)
             if (bl <= 0)
                 continue;
             double ub[3] = {bn[0] / bl, bn[1] / bl, bn[2] / bl};
-            quadric_add(s->q + 10 * (size_t)a, ub, p[c], s->opt->boundary_weight * dot3(e, e));
-            quadric_add(s->q + 10 * (size_t)b, ub, p[c], s->opt->boundary_weight * dot3(e, e));
+            quadric_add(s->q + QN * (size_t)a, ub, p[c], s->opt->boundary_weight * dot3(e, e));
+            quadric_add(s->q + QN * (size_t)b, ub, p[c], s->opt->boundary_weight * dot3(e, e));
         }
     }
 }
@@ -338,10 +356,53 @@ static int heap_room(simp *s)
     return 0;
 }
 
+static void corner(const simp *s, uint32_t w, double out[3])
+{
+    const float *p = s->xyz + 3 * (size_t)w;
+    out[0] = p[0], out[1] = p[1], out[2] = p[2];
+}
+
+/* Squared distance from input point x to the faces around v after u -> v. */
+static double ring_dist2(const simp *s, uint32_t u, uint32_t v, const double x[3])
+{
+    double best = INFINITY;
+    for (int side = 0; side < 2; side++) {
+        uint32_t w = side ? v : u, other = side ? u : v;
+        for (uint32_t i = 0; i < s->vf[w].n; i++) {
+            uint32_t f = s->vf[w].f[i];
+            if (has_vertex(s, f, other))
+                continue;  /* on the edge: vanishes */
+            const uint32_t *t = s->tri + 3 * (size_t)f;
+            double c[3][3];
+            for (int k = 0; k < 3; k++)
+                corner(s, t[k] == u ? v : t[k], c[k]);
+            double d = srv_triangle_dist2(x, c[0], c[1], c[2]);
+            best = d < best ? d : best;
+        }
+    }
+    return best;
+}
+
+/* The worst-case error of u -> v: the largest distance of the input
+ * vertices u stands for from the faces around v after the collapse (an
+ * upper bound of their distance to the new surface). */
+static double worst_dist2(const simp *s, uint32_t u, uint32_t v)
+{
+    double worst = 0;
+    for (uint32_t x = u; x != UINT32_MAX; x = s->pt_next[x]) {
+        double p[3];
+        corner(s, x, p);
+        double d = ring_dist2(s, u, v, p);
+        worst = d > worst ? d : worst;
+    }
+    return worst;
+}
+
 static cand cand_make(const simp *s, uint32_t u, uint32_t v)
 {
-    cand c = {quadric_eval(s->q + 10 * (size_t)u, s->q + 10 * (size_t)v, s->xyz + 3 * (size_t)v),
-              u, v, s->stamp[u], s->stamp[v]};
+    double qe = quadric_error(s->q + QN * (size_t)u, s->xyz + 3 * (size_t)v);
+    double h = worst_dist2(s, u, v);
+    cand c = {qe > h ? qe : h, u, v, s->stamp[u], s->stamp[v]};
     return c;
 }
 
@@ -400,18 +461,6 @@ static int push_vertex_edges(simp *s, uint32_t v)
     return 0;
 }
 
-/* Every directed edge u -> w of the current mesh once (from u's side). */
-static int append_vertex_edges(simp *s, uint32_t u)
-{
-    if (grow_nb(s, 2 * s->vf[u].n + 2))
-        return -1;
-    uint32_t n = neighbours(s, u, s->nb_u);
-    for (uint32_t i = 0; i < n; i++)
-        if (list_append(s, u, s->nb_u[i]))
-            return -1;
-    return 0;
-}
-
 /* ---- the collapse --------------------------------------------------------- */
 static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm_collapses *out)
 {
@@ -434,8 +483,10 @@ static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm
     }
     s->vf[u].n = 0;
     s->vert_alive[u] = 0;
-    for (int i = 0; i < 10; i++)
-        s->q[10 * (size_t)v + i] += s->q[10 * (size_t)u + i];
+    s->pt_next[s->pt_tail[v]] = u;
+    s->pt_tail[v] = s->pt_tail[u];
+    for (int i = 0; i < QN; i++)
+        s->q[QN * (size_t)v + i] += s->q[QN * (size_t)u + i];
     s->stamp[v]++;
     out->removed[step] = u;
     out->target[step] = v;
@@ -464,6 +515,8 @@ static int run_single(simp *s, srv_pm_collapses *out)
             return -1;
         while (s->hn && alive > target) {
             cand c = heap_pop(s);
+            if (c.cost > s->limit)
+                break;  /* the cheapest left changes the shape */
             if (!s->vert_alive[c.u] || !s->vert_alive[c.v] || s->stamp[c.u] != c.su ||
                 s->stamp[c.v] != c.sv || !collapse_ok(s, c.u, c.v))
                 continue;
@@ -511,12 +564,41 @@ static void round_lock(simp *s, uint32_t u, uint32_t v, uint32_t r)
     s->core[u] = s->core[v] = r;
 }
 
-/* The candidates of a round: every directed edge, cheapest first. */
-static int collect_round(simp *s)
+/* Did round r - 1 touch x (a collapse end or a neighbour of one)? Only
+ * then can x's faces, quadric or input set have changed (round 1: all). */
+static int touched(const simp *s, uint32_t x, uint32_t r)
 {
-    s->hn = 0;
+    return r == 1 || s->core[x] == r - 1 || s->ring[x] == r - 1;
+}
+
+/* u's directed edges whose cost is not known from the last round. */
+static int append_changed_edges(simp *s, uint32_t u, uint32_t r)
+{
+    if (grow_nb(s, 2 * s->vf[u].n + 2))
+        return -1;
+    uint32_t n = neighbours(s, u, s->nb_u);
+    int all = touched(s, u, r);
+    for (uint32_t i = 0; i < n; i++)
+        if ((all || touched(s, s->nb_u[i], r)) && list_append(s, u, s->nb_u[i]))
+            return -1;
+    return 0;
+}
+
+/* The candidates of a round: every directed edge, cheapest first. An edge
+ * neither of whose ends the last round touched keeps its cost (the worst-
+ * case term reads the input sets, so recomputing every edge every round
+ * would cost the whole mesh per round); the others are priced anew. */
+static int collect_round(simp *s, uint32_t r)
+{
+    size_t kept = 0;
+    for (size_t i = 0; r > 1 && i < s->hn; i++) {
+        cand c = s->heap[i];
+        if (s->vert_alive[c.u] && s->vert_alive[c.v] && !touched(s, c.u, r) && !touched(s, c.v, r))
+            s->heap[kept++] = c;
+    }
+    s->hn = kept;
     for (uint32_t v = 0; v < s->nv; v++)
-        if (s->vert_alive[v] && append_vertex_edges(s, v))
+        if (s->vert_alive[v] && append_changed_edges(s, v, r))
             return -1;
     qsort(s->heap, s->hn, sizeof *s->heap, cand_cmp);
     return 0;
@@ -530,11 +612,13 @@ static int run_rounds(simp *s, srv_pm_collapses *out)
 {
     uint32_t alive = s->nv, target = s->opt->min_vertices;
     for (uint32_t r = 1; alive > target; r++) {
-        if (collect_round(s))
+        if (collect_round(s, r))
             return -1;
         size_t limit = (size_t)(s->opt->round_fraction * (double)s->hn), taken = 0;
         for (size_t i = 0; i < s->hn && alive > target && (i < limit || !taken); i++) {
             uint32_t u = s->heap[i].u, v = s->heap[i].v;
+            if (s->heap[i].cost > s->limit)
+                break;  /* this one and all after it change the shape */
             if (!round_free(s, u, v, r) || !collapse_ok(s, u, v))
                 continue;
             round_lock(s, u, v, r);
@@ -570,6 +654,24 @@ static void simp_free(simp *s)
     free(s->heap);
     free(s->nb_u);
     free(s->nb_v);
+    free(s->pt_next);
+    free(s->pt_tail);
+}
+
+/* max_error as a cost: the squared fraction of the bounding-box diagonal. */
+static double error_limit(const srv_pm_clean_mesh *m, double max_error)
+{
+    if (max_error <= 0 || !m->nv)
+        return INFINITY;
+    double lo[3], hi[3], d2 = 0;
+    for (int a = 0; a < 3; a++)
+        lo[a] = hi[a] = m->xyz[a];
+    for (uint32_t v = 1; v < m->nv; v++)
+        for (int a = 0; a < 3; a++)
+            lo[a] = fmin(lo[a], m->xyz[3 * (size_t)v + a]), hi[a] = fmax(hi[a], m->xyz[3 * (size_t)v + a]);
+    for (int a = 0; a < 3; a++)
+        d2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
+    return max_error * max_error * d2;
 }
 
 lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *opt,
@@ -584,27 +686,33 @@ lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *op
     s.face_alive = malloc(nf);
     s.vert_alive = malloc(nv);
     s.vf = calloc(nv, sizeof *s.vf);
-    s.q = calloc(10 * nv, sizeof *s.q);
+    s.q = calloc(QN * nv, sizeof *s.q);
     s.stamp = calloc(nv, sizeof *s.stamp);
     s.core = calloc(nv, sizeof *s.core);
     s.ring = calloc(nv, sizeof *s.ring);
+    s.pt_next = malloc(sizeof *s.pt_next * nv);
+    s.pt_tail = malloc(sizeof *s.pt_tail * nv);
     out->round = malloc(sizeof *out->round * nv);
     out->removed = malloc(sizeof *out->removed * nv);
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
     lumo_status rc = LUMO_ERR_NOMEM;
-    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring ||
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.pt_next || !s.pt_tail ||
         !out->round || !out->removed || !out->target || !out->face_die)
         goto done;
     memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
     memset(s.face_alive, 1, nf);
     memset(s.vert_alive, 1, nv);
+    memset(s.pt_next, 0xff, sizeof *s.pt_next * nv);
+    for (uint32_t v = 0; v < m->nv; v++)
+        s.pt_tail[v] = v;
     memset(out->face_die, 0xff, sizeof *out->face_die * nf);
     for (uint32_t f = 0; f < m->nf; f++)
         for (int c = 0; c < 3; c++)
             if (flist_push(&s.vf[s.tri[3 * (size_t)f + c]], f))
                 goto done;
     init_quadrics(&s);
+    s.limit = error_limit(m, opt->max_error);
     rc = run(&s, out) ? LUMO_ERR_NOMEM : LUMO_OK;   /* its helpers fail only to allocate */
 done:
     simp_free(&s);

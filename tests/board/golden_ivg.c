@@ -117,10 +117,11 @@ static uint64_t hash_entries(const lumo_ivg *g)
     for (v = 0; v < count; v++) {
         h = bt_fnv1a_u32(h, (uint32_t)lumo_ivg_is_received(g, v));
         for (a = 0; a < LUMO_IVG_AXES; a++) {
-            const lumo_ivg_entry *e = lumo_ivg_entry_at(g, v, (lumo_ivg_axis)a);
+            lumo_ivg_entry e;
+            (void)lumo_ivg_entry_get(g, v, (lumo_ivg_axis)a, &e);
             for (k = 0; k < 3; k++) {
-                h = bt_fnv1a_u32(h, e->c[k]);
-                h = bt_fnv1a_u32(h, (uint32_t)(int32_t)e->d[k]);
+                h = bt_fnv1a_u32(h, e.c[k]);
+                h = bt_fnv1a_u32(h, (uint32_t)(int32_t)e.d[k]);
             }
         }
     }

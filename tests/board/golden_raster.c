@@ -6,7 +6,9 @@
  * per-pixel lighting to XRGB8888 in one pass and again in 4 bands of 30
  * rows (the bytes must not depend on the band split — checked here); and
  * per-pixel with IVG indirect light to dithered RGB565 with a 16-bit depth
- * buffer.
+ * buffer; then with the point light's 6 x 64^2 shadow cube map (drawn on
+ * the board by the rasterizer itself): per vertex, per pixel, and per
+ * pixel in 4 bands (again equal to the one-pass frame).
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -34,6 +36,8 @@ static uint32_t g_depth[W * H];
 static uint16_t g_color565[W * H];
 static uint8_t g_ivg_mem[1u << 16];
 static uint8_t g_bundle[WIRE_HEADER + 27u * WIRE_QUANT_RECORD];
+#define SHADOW_SIZE 64
+static uint16_t g_shadow_map[6 * SHADOW_SIZE * SHADOW_SIZE];
 
 #define Q(n, d) LUMO_Q16_FRAC(n, d)
 
@@ -157,11 +161,68 @@ static uint64_t hash_words(const uint32_t *p, size_t n)
     return h;
 }
 
+/* Hash of frame `label` drawn whole, then (check_bands) in 4 bands of 30
+ * rows that must give the same bytes. 0 on success. */
+static int frame_and_bands(const lumo_raster_scene *s, const char *label, int check_bands)
+{
+    lumo_raster_target t;
+    uint64_t h;
+    uint32_t t0;
+    uint16_t y;
+
+    init_target(&t, LUMO_PIXEL_XRGB8888, g_color, 0, H, 32);
+    t0 = board_ticks();
+    if (draw(s, &t) != 0)
+        return 1;
+    golden_cost(label, t0);
+    h = hash_words(g_color, W * H);
+    golden_hash(label, h);
+    if (!check_bands)
+        return 0;
+    for (y = 0; y < H; y += 30) {
+        init_target(&t, LUMO_PIXEL_XRGB8888, g_band_color + (size_t)y * W, y, 30, 32);
+        if (draw(s, &t) != 0)
+            return 1;
+    }
+    if (hash_words(g_band_color, W * H) != h) {
+        con_str("golden_raster: banded shadowed frame differs from the one-pass frame\n");
+        return 1;
+    }
+    return 0;
+}
+
+/* The point light with its shadow cube map: the map's own cost and bytes,
+ * then per-vertex and per-pixel frames. 0 on success. */
+static int shadow_frames(const lumo_raster_light *plain)
+{
+    static lumo_raster_shadow sh;
+    lumo_raster_light light = *plain;
+    lumo_raster_scene s;
+    uint32_t t0 = board_ticks();
+
+    if (lumo_raster_shadow_init(&sh, &light, SHADOW_SIZE, g_shadow_map, sizeof g_shadow_map, NULL, 0, 0)
+            != LUMO_OK
+        || lumo_raster_shadow_draw(&sh, &g_mesh) != LUMO_OK)
+        return 1;
+    golden_cost("raster.shadow_map_64", t0);
+    golden_hash("raster.shadow_map_64", hash_words((const uint32_t *)(const void *)g_shadow_map,
+                                                   sizeof g_shadow_map / 4));
+    light.shadow = &sh;
+    memset(&s, 0, sizeof s);
+    s.lights = &light;
+    s.light_count = 1;
+    s.exposure = LUMO_Q16_ONE;
+    if (frame_and_bands(&s, "raster.vertex_shadow", 0))
+        return 1;
+    s.flags = LUMO_RASTER_PER_PIXEL;
+    return frame_and_bands(&s, "raster.pixel_shadow", 1);
+}
+
 int main(void)
 {
     static const lumo_raster_light light = {
         LUMO_LIGHT_POINT, {0, Q(9, 10), Q(5, 10)}, {0, 0, 0}, 0,
-        {LUMO_Q16_FROM_INT(20), LUMO_Q16_FROM_INT(20), LUMO_Q16_FROM_INT(18)}
+        {LUMO_Q16_FROM_INT(20), LUMO_Q16_FROM_INT(20), LUMO_Q16_FROM_INT(18)}, NULL
     };
     lumo_raster_scene s;
     lumo_raster_target t;
@@ -219,5 +280,5 @@ int main(void)
             h = bt_fnv1a_u32(h, g_color565[i]);
         golden_hash("raster.pixel_ivg_565", h);
     }
-    return golden_done(0);
+    return shadow_frames(&light) ? golden_done(1) : golden_done(0);
 }

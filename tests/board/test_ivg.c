@@ -52,7 +52,7 @@ static void test_memory_size(void)
     lumo_ivg *g = NULL;
     size_t need = lumo_ivg_memory_size(&k_desc);
 
-    BT_CHECK(need > 60u * 6u * sizeof(lumo_ivg_entry));
+    BT_CHECK(need > 60u * 6u * LUMO_IVG_QUANT_ENTRY);   /* packed: 42 bytes a vertex */
     bad.dims[1] = 1;
     BT_EQ(lumo_ivg_memory_size(&bad), 0);
     bad = k_desc;
@@ -83,11 +83,18 @@ static size_t two_records(uint8_t *p, uint32_t v0, uint32_t v1)
     return n;
 }
 
+/* The entry (v, a) unpacked into room (lumo_ivg_entry_get), or NULL. */
+static const lumo_ivg_entry *entry_of(const lumo_ivg *g, uint32_t v, int a, lumo_ivg_entry *room)
+{
+    return lumo_ivg_entry_get(g, v, (lumo_ivg_axis)a, room) == LUMO_OK ? room : NULL;
+}
+
 static void test_decode_quantized_known(void)
 {
     lumo_arena a;
     lumo_ivg *g = make_grid(&a, &k_desc);
     const lumo_ivg_entry *e;
+    lumo_ivg_entry room;
     uint32_t applied = 0;
     size_t n = two_records(g_buf, 7, 59);
 
@@ -98,7 +105,7 @@ static void test_decode_quantized_known(void)
     BT_EQ(applied, 2);
     BT_EQ(lumo_ivg_received_count(g), 2);
     BT_CHECK(lumo_ivg_is_received(g, 7) && lumo_ivg_is_received(g, 59) && !lumo_ivg_is_received(g, 8));
-    e = lumo_ivg_entry_at(g, 7, LUMO_IVG_NY);
+    e = entry_of(g, 7, LUMO_IVG_NY, &room);
     BT_CHECK(e != NULL);
     if (e == NULL)
         return;
@@ -106,11 +113,11 @@ static void test_decode_quantized_known(void)
     BT_EQ(e->d[1], -16384);
     BT_EQ(e->c[0], 256u * 128u);   /* 256 * 2^(15-24) W/m^2 in UQ16.16 */
     BT_EQ(e->c[2], 258u * 128u);
-    e = lumo_ivg_entry_at(g, 59, LUMO_IVG_PX);
+    e = entry_of(g, 59, LUMO_IVG_PX, &room);
     BT_EQ(e->d[0], 8257);
     BT_EQ(e->d[1], 14191);         /* 110/127 * 2^14 = 14190.9 */
     BT_EQ(e->c[1], 257u * 4096u);  /* 257 * 2^(20-24) */
-    BT_CHECK(lumo_ivg_entry_at(g, 60, LUMO_IVG_PX) == NULL);   /* out of range */
+    BT_CHECK(entry_of(g, 60, LUMO_IVG_PX, &room) == NULL);   /* out of range */
 }
 
 static void test_decode_float_known(void)
@@ -119,6 +126,7 @@ static void test_decode_float_known(void)
     lumo_ivg *g = make_grid(&a, &k_desc);
     wire_fentry e[6];
     const lumo_ivg_entry *got;
+    lumo_ivg_entry room;
     size_t n;
     int k;
 
@@ -138,17 +146,20 @@ static void test_decode_float_known(void)
     n = wire_header(g_buf, LUMO_IVG_FORM_FLOAT, k_desc.dims, 1);
     n += wire_float_record(g_buf + n, 33, e);
     BT_EQ(lumo_ivg_apply_bundle(g, g_buf, n, NULL), LUMO_OK);
-    got = lumo_ivg_entry_at(g, 33, LUMO_IVG_PZ);
-    BT_EQ(got->d[0], 12288);
-    BT_EQ(got->d[1], 10240);
-    BT_EQ(got->d[2], -4096);
-    BT_EQ(got->c[0], 229376u);
-    BT_EQ(got->c[1], 256u);
-    BT_EQ(got->c[2], 40000u * 65536u);
+    /* Stored in the packed (quantized) form: d to the nearest q/127 (95,
+     * 79, -32), c to RGB9E5 with 40000's exponent (31: steps of 128 W/m^2),
+     * so 3.5 and 1/256 round to 0 and 40000 to 313 * 128 (312.5 half up). */
+    got = entry_of(g, 33, LUMO_IVG_PZ, &room);
+    BT_EQ(got->d[0], 12256);
+    BT_EQ(got->d[1], 10192);
+    BT_EQ(got->d[2], -4128);
+    BT_EQ(got->c[0], 0u);
+    BT_EQ(got->c[1], 0u);
+    BT_EQ(got->c[2], 40064u * 65536u);
     /* a NaN colour anywhere rejects the bundle */
     wire_u32(g_buf + WIRE_HEADER + 4u + 5u * 24u + 16u, 0x7FC00000u);
     BT_EQ(lumo_ivg_apply_bundle(g, g_buf, n, NULL), LUMO_ERR_NONFINITE);
-    BT_EQ(lumo_ivg_entry_at(g, 33, LUMO_IVG_PZ)->c[0], 229376u);
+    BT_EQ(entry_of(g, 33, LUMO_IVG_PZ, &room)->c[2], 40064u * 65536u);
 }
 
 /* Every hostile variant of a good two-record bundle fails with its code and
@@ -230,6 +241,7 @@ static void test_pushpull_constant(void)
         lumo_ivg *g = make_grid(&a, &k_desc);
         uint32_t v, bad = 0;
         int ax;
+        lumo_ivg_entry x, y;
 
         if (g == NULL || receive_every(g, 7, 300) != 9) {
             BT_CHECK(0);
@@ -238,8 +250,7 @@ static void test_pushpull_constant(void)
         BT_EQ(lumo_ivg_pushpull(g, flags), LUMO_OK);
         for (v = 0; v < 60; v++)
             for (ax = 0; ax < LUMO_IVG_AXES; ax++)
-                bad += !entries_equal(lumo_ivg_entry_at(g, v, (lumo_ivg_axis)ax),
-                                      lumo_ivg_entry_at(g, 0, (lumo_ivg_axis)ax));
+                bad += !entries_equal(entry_of(g, v, ax, &x), entry_of(g, 0, ax, &y));
         BT_EQ(bad, 0);
         BT_EQ(lumo_ivg_received_count(g), 9);
     }
@@ -259,6 +270,7 @@ static void test_pushpull_bounded(void)
     lumo_ivg *g = make_grid(&a, &k_desc);
     wire_qentry e[6];
     uint32_t v, r = 0, out_of_range = 0, changed = 0;
+    lumo_ivg_entry room;
     size_t n = WIRE_HEADER;
 
     if (g == NULL) {
@@ -273,7 +285,7 @@ static void test_pushpull_bounded(void)
     BT_EQ(lumo_ivg_apply_bundle(g, g_buf, n, NULL), LUMO_OK);
     BT_EQ(lumo_ivg_pushpull(g, LUMO_IVG_SMOOTH), LUMO_OK);
     for (v = 0; v < 60; v++) {
-        uint32_t c = lumo_ivg_entry_at(g, v, LUMO_IVG_PX)->c[0];
+        uint32_t c = entry_of(g, v, LUMO_IVG_PX, &room)->c[0];
         out_of_range += c < 100u * 128u || c > 300u * 128u;
         if (v % 3 == 0)
             changed += c != (100u + 50u * (v % 5)) * 128u;

@@ -4,7 +4,8 @@
  * any indices, lights and flags. Properties checked on every input, beyond
  * the sanitizers: a draw either succeeds or leaves the target untouched, and
  * drawing in bands of K rows with the vertex cache gives the bytes of the
- * whole frame drawn without it.
+ * whole frame drawn without it — also with a shadow map drawn from the
+ * hostile mesh on light 0 and with the vertices lit once.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -72,18 +73,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static uint8_t full[W * H * 4], band[W * H * 4];
     static lumo_raster_vertex cache[NV];
+    static uint16_t shadow_mem[6 * 16 * 16];
+    static lumo_raster_shadow sh;
+    static lumo_uq16_16 lit[6 * NV];
     reader r = {data, size};
     lumo_raster_camera cam;
     lumo_raster_view view;
     lumo_raster_light lights[2];
     lumo_raster_scene s;
-    lumo_raster_mesh m;
+    lumo_raster_mesh m, lm;
     lumo_q16_16 pos[3 * NV];
     lumo_q1_14 nrm[3 * NV], alb[3 * NV];
     uint32_t tris[3 * NT];
     lumo_status st1, st2;
     lumo_pixel_format f;
     uint8_t bits;
+    uint32_t extra;
     int i, K;
 
     memset(&cam, 0, sizeof cam);
@@ -130,12 +135,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     f = (take(&r, 1) & 1) ? LUMO_PIXEL_RGB565 : LUMO_PIXEL_XRGB8888;
     bits = (take(&r, 1) & 1) ? 16 : 32;
     K = 1 + (int)(take(&r, 1) % H);
+    extra = take(&r, 1);
+    /* light 0 with a shadow map drawn from this very mesh (any light, any
+     * bounds), and vertices lit once for the banded draw */
+    if ((extra & 1) && s.light_count
+        && lumo_raster_shadow_init(&sh, &lights[0], 16, shadow_mem, sizeof shadow_mem, pos,
+                                   (lumo_q16_16)take(&r, 4), (lumo_q16_16)take(&r, 3)) == LUMO_OK
+        && lumo_raster_shadow_draw(&sh, &m) == LUMO_OK)
+        lights[0].shadow = &sh;
+    lm = m;
+    if ((extra & 2) && lumo_raster_light_vertices(&s, &m, lit) == LUMO_OK)
+        lm.lit = lit;
 
     /* whole frame without the vertex cache, bands with it */
     draw_frame(&view, &s, &m, NULL, f, bits, H, full, &st1);
-    if (lumo_raster_prepare(&view, &s, &m, cache) != LUMO_OK)
+    if (lumo_raster_prepare(&view, &s, &lm, cache) != LUMO_OK)
         abort();
-    draw_frame(&view, &s, &m, cache, f, bits, K, band, &st2);
+    draw_frame(&view, &s, &lm, cache, f, bits, K, band, &st2);
     if (st1 != st2)
         abort();
     if (st1 == LUMO_OK && memcmp(full, band, (size_t)W * H * (f == LUMO_PIXEL_RGB565 ? 2 : 4)))

@@ -8,7 +8,13 @@ ok()  { pass=$((pass + 1)); echo "ok   $1"; }
 bad() { fail=$((fail + 1)); echo "FAIL $1"; }
 
 pids=""
-cleanup() { for p in $pids; do kill -9 "$p" 2>/dev/null; done; }
+# TERM first: `timeout` passes it on to its command (a SIGKILL would leave
+# the command running as an orphan); then KILL whatever is left.
+cleanup() {
+    for p in $pids; do kill "$p" 2>/dev/null; done
+    sleep 0.2
+    for p in $pids; do kill -9 "$p" 2>/dev/null; done
+}
 trap cleanup EXIT
 trap 'cleanup; exit 1' INT TERM
 

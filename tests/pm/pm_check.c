@@ -483,7 +483,7 @@ static void check_rewind(const srv_pm *pm, const uint8_t *s, size_t len, double 
 /* ---- driver ------------------------------------------------------------------------ */
 int main(int argc, char **argv)
 {
-    const char *gen = NULL, *file = NULL, *dump = NULL;
+    const char *gen = NULL, *file = NULL, *dump = NULL, *want_base = NULL;
     int want_rgb = 0;
     srv_pm_stream_options so;
     srv_pm_stream_stats st;
@@ -508,6 +508,8 @@ int main(int argc, char **argv)
             so.quant_bits = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
             po.round_fraction = atof(argv[++i]);  /* 0: one collapse at a time */
+        else if (!strcmp(argv[i], "--base") && i + 1 < argc)
+            want_base = argv[++i];  /* "V/F": the base mesh must be exactly that */
         else
             file = argv[i];
     }
@@ -529,6 +531,11 @@ int main(int argc, char **argv)
              in.nv, built ? pm.vertices : 0, built ? pm.welded : 0, built ? pm.faces : 0,
              built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0);
     check(built, "half-edge collapse build", err);
+    if (built && want_base) {
+        char got[32];
+        snprintf(got, sizeof got, "%u/%u", pm.base_vertices, pm.base_faces);
+        check(!strcmp(got, want_base), "base mesh keeps the shape", got);
+    }
     if (built) {
         check_all_levels(&pm);
         int streamed = !srv_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);

@@ -114,6 +114,17 @@ static void cornell(pm_test_mesh *m)
     quad(m, c1, na, nb, 4, 0), quad(m, c1, nc, na, 4, 0), quad(m, c1, nb, nc, 4, 0);
 }
 
+/* A closed box of six flat 4x4 quads welded through shared positions: its
+ * base is its 8 corners and 12 triangles (issue 23: fewer changes the shape). */
+static void box(pm_test_mesh *m)
+{
+    const double c0[3] = {0, 0, 0}, c1[3] = {1, 0.5, 0.25};
+    const double a[3] = {1, 0, 0}, b[3] = {0, 0.5, 0}, c[3] = {0, 0, 0.25};
+    const double na[3] = {-1, 0, 0}, nb[3] = {0, -0.5, 0}, nc[3] = {0, 0, -0.25};
+    quad(m, c0, b, a, 4, 0), quad(m, c0, a, c, 4, 0), quad(m, c0, c, b, 4, 0);
+    quad(m, c1, na, nb, 4, 0), quad(m, c1, nc, na, 4, 0), quad(m, c1, nb, nc, 4, 0);
+}
+
 /* A sphere with unwelded corners, holes, a fin on a non-manifold edge,
  * a duplicate and a degenerate face, plus a separate noisy patch. */
 static void scan(pm_test_mesh *m)
@@ -177,6 +188,11 @@ int pm_test_mesh_make(const char *name, pm_test_mesh *m)
         cornell(m);
     else if (!strcmp(name, "seam"))
         seam(m);
+    else if (!strcmp(name, "wall")) {
+        const double o[3] = {0, 0, 0}, u[3] = {2, 0, 0}, v[3] = {0, 1, 0};
+        quad(m, o, u, v, 8, 0);  /* flat, open: the base keeps its 4 corners */
+    } else if (!strcmp(name, "box"))
+        box(m);
     else if (!strcmp(name, "scan"))
         scan(m);
     else if (!strcmp(name, "tiny")) {

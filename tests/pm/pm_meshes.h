@@ -11,7 +11,8 @@ typedef struct {
 } pm_test_mesh;
 
 /* "sphere", "grid", "cornell" (coloured walls), "seam" (a sphere whose two
- * hemispheres differ in albedo: a colour seam), "scan", "tiny".
+ * hemispheres differ in albedo: a colour seam), "scan", "tiny", "wall" (a
+ * flat 8x8 quad), "box" (a closed box of flat quads).
  * 0, or -1 for an unknown name. */
 int  pm_test_mesh_make(const char *name, pm_test_mesh *m);
 void pm_test_mesh_free(pm_test_mesh *m);

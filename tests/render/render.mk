@@ -18,3 +18,15 @@ raster-cli: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake
 TEST_STEPS += raster-lod
 raster-lod: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake $(BIN)/lumo-inspect
 	sh tests/render/lod.sh $(BUILD)
+
+# A scene without a camera is framed: random models baked with no camera,
+# drawn by lumo-render (package camera, --fit) and lumo-client --fit
+# (tests/render/fit.sh; tests/render/framed.c checks each picture).
+FRAMED := $(BUILD)/tests/bin/framed
+$(FRAMED): $(BUILD)/host/tests/render/framed.o $(BUILD)/host/libhost.a
+	@mkdir -p $(@D)
+	$(CC) -o $@ $^ -lpng -lm
+.PHONY: raster-fit
+TEST_STEPS += raster-fit
+raster-fit: $(BIN)/lumo-render $(BIN)/lumo-bake $(BIN)/lumo-client $(BIN)/lumo-server $(FRAMED)
+	sh tests/render/fit.sh $(BUILD) $(BUILD)/tests/bin

@@ -3,6 +3,7 @@
  * bundle with the grid left byte-for-byte unchanged; runs of records without
  * the header (lumo_ivg_apply_records) against the same records in a bundle. */
 #include "test_ivg_util.h"
+#include "test_ivg_entry.h"
 
 /* ---- creation and memory ----------------------------------------------- */
 
@@ -15,7 +16,7 @@ static void test_memory_and_create(void **state)
     lumo_arena a;
     lumo_ivg *g = NULL;
     (void)state;
-    assert_true(need >= 60u * 6u * sizeof(lumo_ivg_entry));
+    assert_true(need >= 60u * 6u * LUMO_IVG_QUANT_ENTRY);   /* packed: 42 bytes a vertex */
     assert_int_equal(lumo_ivg_memory_size(NULL), 0);
     bad.dims[1] = 1;
     assert_int_equal(lumo_ivg_memory_size(&bad), 0);
@@ -42,9 +43,9 @@ static void test_memory_and_create(void **state)
     assert_int_equal(lumo_ivg_vertex_count(g), 60);
     assert_int_equal(lumo_ivg_received_count(g), 0);
     assert_memory_equal(lumo_ivg_get_desc(g), &d, sizeof d);
-    assert_null(lumo_ivg_entry_at(g, 60, LUMO_IVG_PX));
-    assert_null(lumo_ivg_entry_at(g, 0, LUMO_IVG_AXES));
-    assert_non_null(lumo_ivg_entry_at(g, 59, LUMO_IVG_NZ));
+    assert_null(IVG_ENTRY(g, 60, LUMO_IVG_PX));
+    assert_null(IVG_ENTRY(g, 0, LUMO_IVG_AXES));
+    assert_non_null(IVG_ENTRY(g, 59, LUMO_IVG_NZ));
     assert_int_equal(lumo_ivg_is_received(g, 1000), 0);
     free(mem);
 }
@@ -54,26 +55,30 @@ static void test_memory_large(void **state)
     lumo_ivg_desc d = {{256, 256, 256}, {0, 0, 0}, {1, 1, 1}};
     size_t n = lumo_ivg_memory_size(&d);
     (void)state;
-    /* 2^24 vertices x 120 bytes plus the pyramid: > 2 GB, still counted */
-    assert_true(n > (size_t)2013265920u);
-    assert_true(n < (size_t)2013265920u / 7u * 9u);
+    /* 2^24 vertices x 42 bytes plus the pyramid (< 2/7 more with its bits) */
+    assert_true(n > (size_t)704643072u);
+    assert_true(n < (size_t)704643072u / 7u * 9u);
 }
 
 /* ---- decoding ------------------------------------------------------------ */
 
-/* Every stored entry against the float the server meant, within the Q1.14 /
- * UQ16.16 rounding (1/2 ulp); quantized: against q/127 and the RGB9E5 value. */
+/* Every stored entry against the float the server meant. Quantized: q/127
+ * and the RGB9E5 value within the Q1.14 / UQ16.16 rounding (1/2 ulp).
+ * Binary32: the grid stores it packed, so within half a step of q/127 and
+ * of the shared-exponent mantissa (1/512 of the entry's largest channel). */
 static void check_entries(const lumo_ivg *g, uint32_t v, const srv_ivg_fentry *want, lumo_ivg_form form)
 {
     int a, k;
     for (a = 0; a < LUMO_IVG_AXES; a++) {
-        const lumo_ivg_entry *e = lumo_ivg_entry_at(g, v, (lumo_ivg_axis)a);
+        const lumo_ivg_entry *e = IVG_ENTRY(g, v, (lumo_ivg_axis)a);
         srv_ivg_fentry ref = want[a];
         if (form == LUMO_IVG_FORM_QUANTIZED)
             srv_ivg_dequantize(&want[a], &ref);
+        double cmax = fmax(ref.c[0], fmax(ref.c[1], ref.c[2]));
+        int packed = form == LUMO_IVG_FORM_FLOAT;
         for (k = 0; k < 3; k++) {
-            assert_close(e->d[k] / Q14, (double)ref.d[k], 0.5 / Q14 + 1e-9);
-            assert_close(e->c[k] / Q16, (double)ref.c[k], 0.5 / Q16 + 1e-9);
+            assert_close(e->d[k] / Q14, (double)ref.d[k], 0.5 / Q14 + (packed ? 0.5 / 127 : 1e-9));
+            assert_close(e->c[k] / Q16, (double)ref.c[k], 0.5 / Q16 + (packed ? cmax / 512 : 1e-9));
         }
         assert_int_equal(e->reserved, 0);
     }
@@ -104,7 +109,7 @@ static void decode_random(lumo_ivg_form form)
             i++;
         } else {
             assert_false(got);
-            assert_int_equal(lumo_ivg_entry_at(g, v, LUMO_IVG_PY)->c[1], 0);
+            assert_int_equal(IVG_ENTRY(g, v, LUMO_IVG_PY)->c[1], 0);
         }
     }
     free(verts);
@@ -137,12 +142,12 @@ static void test_decode_known_values(void **state)
     /* R=256 at bits 0-8, G=128 at 9-17, B=0, E=16 -> 0x80000000 | 128<<9 | 256 */
     b[20 + 3] = 0x00; b[20 + 4] = 0x01 | (128 << 1 & 0xFF); b[20 + 5] = 128 >> 7; b[20 + 6] = 0x80;
     assert_int_equal(lumo_ivg_apply_bundle(g, b, sizeof b, NULL), LUMO_OK);
-    e = lumo_ivg_entry_at(g, 7, LUMO_IVG_PX);
+    e = IVG_ENTRY(g, 7, LUMO_IVG_PX);
     assert_int_equal(e->d[0], LUMO_Q14_ONE);
     assert_int_equal(e->c[0], LUMO_Q16_ONE);
     assert_int_equal(e->c[1], LUMO_Q16_HALF);
     assert_int_equal(e->c[2], 0);
-    e = lumo_ivg_entry_at(g, 7, LUMO_IVG_NX);
+    e = IVG_ENTRY(g, 7, LUMO_IVG_NX);
     assert_int_equal(e->d[0], -11611);   /* round(90 * 16384 / 127) = 11610.7 */
     assert_int_equal(e->d[1], 11611);
     tgrid_free(&t);
@@ -176,13 +181,13 @@ static void test_solid_and_update(void **state)
     assert_true(lumo_ivg_is_solid(g, 5));
     assert_false(lumo_ivg_is_received(g, 5));
     assert_true(lumo_ivg_is_solid(g, 9));
-    assert_int_equal(lumo_ivg_entry_at(g, 5, LUMO_IVG_PX)->c[0], 0);
+    assert_int_equal(IVG_ENTRY(g, 5, LUMO_IVG_PX)->c[0], 0);
     check_entries(g, 4, f2[4], LUMO_IVG_FORM_QUANTIZED);
     check_entries(g, 6, f[6], LUMO_IVG_FORM_QUANTIZED);
     /* push-pull fills solid vertices like holes */
     assert_int_equal(lumo_ivg_pushpull(g, 0), LUMO_OK);
-    assert_true(lumo_ivg_entry_at(g, 5, LUMO_IVG_PX)->c[0] != 0
-                || lumo_ivg_entry_at(g, 5, LUMO_IVG_PX)->c[1] != 0);
+    assert_true(IVG_ENTRY(g, 5, LUMO_IVG_PX)->c[0] != 0
+                || IVG_ENTRY(g, 5, LUMO_IVG_PX)->c[1] != 0);
     /* data again: no longer solid */
     send(g, LUMO_IVG_FORM_FLOAT, verts + 1, 1, f);
     assert_false(lumo_ivg_is_solid(g, 5));
@@ -372,9 +377,9 @@ static void test_reject_float(void **state)
     /* accepted edge values */
     float_case(&x, b, len, 3, -0.0f, LUMO_OK, "-0 colour");
     float_case(&x, b, len, 4, 65535.0f, LUMO_OK, "colour 65535");
-    assert_int_equal(lumo_ivg_entry_at(x.g, 12, LUMO_IVG_NZ)->c[1], 65535u << 16);
+    assert_int_equal(IVG_ENTRY(x.g, 12, LUMO_IVG_NZ)->c[1], 65408u << 16);   /* packed: RGB9E5's largest */
     float_case(&x, b, len, 5, 40000.00390625f, LUMO_OK, "colour above 2^15 with 8 fraction bits");
-    assert_int_equal(lumo_ivg_entry_at(x.g, 12, LUMO_IVG_NZ)->c[2], 40000u * 65536u + 256u);
+    assert_int_equal(IVG_ENTRY(x.g, 12, LUMO_IVG_NZ)->c[2], 40064u << 16);   /* to 128 W/m^2 steps */
     c = malloc(len);
     memcpy(c, b, len);   /* zero direction */
     put_f32(c + len - 24, 0.0f); put_f32(c + len - 20, -0.0f); put_f32(c + len - 16, 0.0f);
@@ -426,7 +431,7 @@ static void assert_grids_equal(const lumo_ivg *a, const lumo_ivg *b)
         assert_int_equal(lumo_ivg_is_received(a, v), lumo_ivg_is_received(b, v));
         assert_int_equal(lumo_ivg_is_solid(a, v), lumo_ivg_is_solid(b, v));
         for (h = 0; h < LUMO_IVG_AXES; h++)
-            assert_memory_equal(lumo_ivg_entry_at(a, v, (lumo_ivg_axis)h), lumo_ivg_entry_at(b, v, (lumo_ivg_axis)h),
+            assert_memory_equal(IVG_ENTRY(a, v, (lumo_ivg_axis)h), IVG_ENTRY(b, v, (lumo_ivg_axis)h),
                                 sizeof(lumo_ivg_entry));
     }
 }

@@ -2,6 +2,7 @@
  * double-precision reference over the stored entries, and hand-made cases
  * with known answers (constant and linear fields, n along delta). */
 #include "test_ivg_util.h"
+#include "test_ivg_entry.h"
 
 /* Reference: trilinear interpolation (in double) of the fixed-point entries
  * the grid holds, then I_n . n = sum_a n_a^2 (d_a . n) c_a, clamped at 0.
@@ -33,7 +34,7 @@ static void ref_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo
         for (c = 0; c < 8; c++) {
             unsigned i = cell[0] + (c & 1), j = cell[1] + (c >> 1 & 1), kk = cell[2] + (c >> 2 & 1);
             double w = (c & 1 ? t[0] : 1 - t[0]) * (c & 2 ? t[1] : 1 - t[1]) * (c & 4 ? t[2] : 1 - t[2]);
-            const lumo_ivg_entry *e = lumo_ivg_entry_at(g, i + d->dims[0] * (j + d->dims[1] * kk), (lumo_ivg_axis)axis);
+            const lumo_ivg_entry *e = IVG_ENTRY(g, i + d->dims[0] * (j + d->dims[1] * kk), (lumo_ivg_axis)axis);
             for (k = 0; k < 3; k++) {
                 ci[k] += w * e->c[k] / Q16;
                 di[k] += w * e->d[k] / Q14;
@@ -229,7 +230,7 @@ static void test_n_along_delta_exact(void **state)
                     lumo_q1_14 n[3] = {0, 0, 0};
                     lumo_uq16_16 got[3];
                     uint32_t v = i + d->dims[0] * (j + d->dims[1] * k);
-                    const lumo_ivg_entry *e = lumo_ivg_entry_at(g, v, (lumo_ivg_axis)axis);
+                    const lumo_ivg_entry *e = IVG_ENTRY(g, v, (lumo_ivg_axis)axis);
                     int64_t dn;
                     n[axis / 2] = axis & 1 ? -LUMO_Q14_ONE : LUMO_Q14_ONE;
                     lumo_ivg_irradiance(g, p, n, got);
@@ -301,12 +302,17 @@ static void test_radiance_and_clamps(void **state)
             assert_close(rad[k] / Q16, rho / M_PI * irr[k] / Q16, 0.5 / Q16 + 1e-5 * irr[k] / Q16);
         }
     }
-    {   /* d opposite to n: the dot product is negative, the result 0 */
-        lumo_ivg_entry *e = (lumo_ivg_entry *)lumo_ivg_entry_at(g, 0, LUMO_IVG_PX);
+    {   /* d opposite to n, the brightest colour the grid stores: the dot
+         * product is negative, the result 0 */
+        srv_ivg_fentry f[LUMO_IVG_AXES];
+        uint32_t v0 = 0;
         lumo_q16_16 p0[3] = {0, 0, 0};
         lumo_q1_14 n[3] = {LUMO_Q14_ONE, 0, 0}, huge[3] = {-32768, -32768, -32768};
-        e->d[0] = -LUMO_Q14_ONE;
-        e->c[0] = 0xFFFFFFFFu;
+        memset(f, 0, sizeof f);
+        f[LUMO_IVG_PX].d[0] = -1.0f;
+        f[LUMO_IVG_PX].c[0] = f[LUMO_IVG_PX].c[1] = f[LUMO_IVG_PX].c[2] = 65408.0f;
+        send(g, LUMO_IVG_FORM_QUANTIZED, &v0, 1, (const srv_ivg_fentry(*)[LUMO_IVG_AXES])&f);
+        assert_int_equal(IVG_ENTRY(g, 0, LUMO_IVG_PX)->c[0], 65408u << 16);
         lumo_ivg_irradiance(g, p0, n, irr);
         assert_int_equal(irr[0], 0);
         /* a wildly non-unit n stays defined (UBSan watches the arithmetic) */

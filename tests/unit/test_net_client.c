@@ -33,6 +33,7 @@
 #include "test_common.h"
 #include "lumo/net_client.h"
 #include "test_net_fake.h"
+#include "test_ivg_entry.h"
 
 #define STREAM_PKG "tests/fuzz/seeds/fuzz_package/stream.lumo"
 #define PMESH_DIR  "tests/fuzz/seeds/fuzz_pmesh/"
@@ -128,7 +129,7 @@ static int bake_split(const char *out)
         return -1;
     }
     snprintf(cmd, sizeof cmd,
-             "'%s' --default --dragon /nonexistent --grid 32,4,4 --spp 2 --threads 1 --no-progress -o '%s' "
+             "'%s' --default --dragon sphere --grid 32,4,4 --spp 2 --threads 1 --no-progress -o '%s' "
              "2>/dev/null", bin, out);
     return system(cmd) == 0 ? 0 : -1;
 }
@@ -266,8 +267,8 @@ static void same_grid(const lumo_session *a, const lumo_session *b)
         assert_int_equal(lumo_ivg_is_received(ga, v), lumo_ivg_is_received(gb, v));
         assert_int_equal(lumo_ivg_is_solid(ga, v), lumo_ivg_is_solid(gb, v));
         for (x = 0; x < LUMO_IVG_AXES; x++)
-            assert_memory_equal(lumo_ivg_entry_at(ga, v, (lumo_ivg_axis)x),
-                                lumo_ivg_entry_at(gb, v, (lumo_ivg_axis)x), sizeof(lumo_ivg_entry));
+            assert_memory_equal(IVG_ENTRY(ga, v, (lumo_ivg_axis)x),
+                                IVG_ENTRY(gb, v, (lumo_ivg_axis)x), sizeof(lumo_ivg_entry));
     }
 }
 
@@ -641,7 +642,7 @@ static void snap_take(snapshot *s, const lumo_session *ses, uint32_t meshes)
         for (v = 0; v < lumo_ivg_vertex_count(g); v++)
             for (x = 0; x < LUMO_IVG_AXES; x++)
                 memcpy(s->grid + ((size_t)v * LUMO_IVG_AXES + x) * sizeof(lumo_ivg_entry),
-                       lumo_ivg_entry_at(g, v, (lumo_ivg_axis)x), sizeof(lumo_ivg_entry));
+                       IVG_ENTRY(g, v, (lumo_ivg_axis)x), sizeof(lumo_ivg_entry));
     }
 }
 

@@ -43,7 +43,8 @@ static void pixel_camera(lumo_raster_view *v)
 
 static const lumo_raster_light white_sun = {
     LUMO_LIGHT_DIRECTIONAL, {0, 0, 0}, {0, 0, -LUMO_Q14_ONE}, 0,
-    {205887, 205887, 205887}     /* pi W/m^2: a white albedo-1 face gives L = 1 */
+    {205887, 205887, 205887},    /* pi W/m^2: a white albedo-1 face gives L = 1 */
+    NULL
 };
 
 static lumo_raster_scene flat_scene(uint32_t flags)

@@ -173,10 +173,15 @@ static void test_camera_from_info(void **state)
     assert_int_equal(c.target[1], -LUMO_Q16_ONE / 2);
     assert_int_equal(c.up[1], LUMO_Q16_ONE);
     assert_int_equal(c.fovy_deg, 40 * LUMO_Q16_ONE);
-    assert_int_equal(c.znear, host_q16(0.01));
+    /* The near plane from the bounds (a point at the origin here): half
+     * its view depth, (0,0,0)-(1,2,3) along the unit view direction. */
+    {
+        double f[3] = {-1, -2.5, -4}, lf = sqrt(1 + 6.25 + 16), w = (-1 * f[0] - 2 * f[1] - 3 * f[2]) / lf;
+        assert_true(fabs(c.znear / 65536.0 - w / 2) < 1e-3);
+    }
     assert_int_equal(srv_camera_parse("0,1,3:0,1,0:0,1,0:40", &sc), LUMO_OK);
     assert_int_equal(host_camera_from_srv(&sc, &h), LUMO_OK);
-    assert_int_equal(h.znear, c.znear);
+    assert_int_equal(h.znear, LUMO_RASTER_ZNEAR);
 }
 
 /* The server's default scene without its dragon: the walls, the sphere, the
@@ -201,6 +206,8 @@ static void test_default_scene(void **state)
     assert_int_equal(host_light_from_string("spot:0,1.95,0:0,-1,0:60:40,40,40", &spot), LUMO_OK);
     assert_memory_equal(&h.lights[0], &spot, sizeof spot);
     assert_int_equal(host_camera_from_string("0,1,3.4:0,1,0:0,1,0:40", &cam), LUMO_OK);
+    cam.znear = lumo_raster_znear_for_box(&cam, h.bmin, h.bmax);   /* from the room's bounds */
+    assert_true(cam.znear > LUMO_RASTER_ZNEAR);
     assert_memory_equal(&h.camera, &cam, sizeof cam);
     for (v = 0; v < h.mesh.vertex_count; v++) {
         const lumo_q16_16 *p = &h.mesh.pos[3 * v];

@@ -48,8 +48,9 @@ static lumo_status check_info(const lumo_package *pkg, lumo_pkg_info *in, int ne
     uint32_t len;
     if (lumo_package_find(pkg, LUMO_PKG_INFO, 0, &p, &len)) {
         if (need_info)
-            snprintf(buf, n, "no INFO chunk: a stream-only package (as lumo-pm build writes) holds no scene to "
-                     "draw; lumo-inspect lists it, lumo-bake writes whole packages");
+            snprintf(buf, n, "no INFO chunk, so no scene to draw (camera, lights); a package from lumo-pm build "
+                     "holds a mesh stream only: see it with lumo-inspect --lod N --ply OUT.ply, or bake the model "
+                     "into a scene with lumo-bake");
         return need_info ? LUMO_ERR_CORRUPT : LUMO_OK;
     }
     return host_info_check(p, len, in, buf, n);

@@ -21,9 +21,9 @@
 
 typedef struct options {
     const char *connect, *serial, *replay, *http;   /* exactly one: the source */
-    const char *record, *out, *backend;
+    const char *record, *out, *backend, *camera;
     double at[64];
-    int nat, quiet, no_smoothing, use_float, per_vertex;
+    int nat, quiet, no_smoothing, use_float, per_vertex, fit;
     uint32_t package, arena_mib, retries, max_payload;
     lumo_net_policy policy;
     render_opts ro;

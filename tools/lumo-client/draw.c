@@ -12,6 +12,7 @@
 #include "lumo_host/png_io.h"
 #include "../../net/host/net_socket.h"
 #include "client.h"
+#include "../lumo-render/scene_convert.h"
 
 int draws_open(client *c)
 {
@@ -84,6 +85,10 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
 
     if (host_scene_from_session(&c->ses, &c->scene, &st))
         return -1;
+    if (host_scene_aim(&c->scene, c->o.camera, c->o.fit, c->o.ro.width, c->o.ro.height, err, sizeof err)) {
+        fprintf(stderr, "lumo-client: error: %s\n", err);
+        return -1;
+    }
     mesh = host_mesh_raster(&c->scene.mesh);
     memset(&rs, 0, sizeof rs);
     rs.lights = c->scene.lights;

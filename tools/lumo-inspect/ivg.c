@@ -17,11 +17,12 @@ static void print_grid(const lumo_ivg *g)
         uint32_t i = v % d->dims[0], j = (v / d->dims[0]) % d->dims[1], k = v / ((uint32_t)d->dims[0] * d->dims[1]);
         int valid = lumo_ivg_is_received(g, v);
         for (int a = 0; a < LUMO_IVG_AXES; a++) {
-            const lumo_ivg_entry *e = lumo_ivg_entry_at(g, v, (lumo_ivg_axis)a);
+            lumo_ivg_entry e;
+            (void)lumo_ivg_entry_get(g, v, (lumo_ivg_axis)a, &e);
             printf("%u %u %u %s %d %.5f %.5f %.5f %.6f %.6f %.6f\n", i, j, k, k_axes[a], valid,
-                   valid ? e->d[0] / 16384.0 : 0.0, valid ? e->d[1] / 16384.0 : 0.0,
-                   valid ? e->d[2] / 16384.0 : 0.0, valid ? e->c[0] / 65536.0 : 0.0,
-                   valid ? e->c[1] / 65536.0 : 0.0, valid ? e->c[2] / 65536.0 : 0.0);
+                   valid ? e.d[0] / 16384.0 : 0.0, valid ? e.d[1] / 16384.0 : 0.0,
+                   valid ? e.d[2] / 16384.0 : 0.0, valid ? e.c[0] / 65536.0 : 0.0,
+                   valid ? e.c[1] / 65536.0 : 0.0, valid ? e.c[2] / 65536.0 : 0.0);
         }
     }
 }

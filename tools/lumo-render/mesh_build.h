@@ -26,6 +26,7 @@ typedef struct host_scene {
     lumo_raster_light lights[LUMO_MAX_LIGHTS];
     uint32_t light_count;
     lumo_raster_camera camera;
+    lumo_q16_16 bmin[3], bmax[3];   /* the scene's bounds (metres): camera fits, near planes */
 } host_scene;
 
 /* Q16.16 and Q1.14 of v, rounded to nearest, saturated to the type. */

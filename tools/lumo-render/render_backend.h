@@ -17,6 +17,10 @@ typedef struct render_opts {
     lumo_pixel_format format;     /* soft: XRGB8888 or RGB565 */
     uint8_t depth_bits;           /* soft: 16 or 32 */
     int no_cache;                 /* soft: transform per triangle */
+    int relight;                  /* soft, per vertex: light the vertices every frame
+                                   * (default: once per change of lights or IVG) */
+    uint16_t shadow_size;         /* shadow map texels per side for every light, 0: no
+                                   * shadows (docs/rasterizer.md "Shadows") */
 } render_opts;
 
 typedef struct host_renderer host_renderer;
@@ -33,6 +37,9 @@ int host_renderer_draw(host_renderer *r, const lumo_raster_camera *cam,
                        const lumo_raster_scene *s, uint8_t *rgb);
 /* e.g. "soft (fixed point, 16-row bands)" or "osmesa: llvmpipe (...)" */
 const char *host_renderer_describe(const host_renderer *r);
+/* Shadow maps drawn so far (once per change of the lights; the mesh is
+ * fixed for a renderer) and their bytes. */
+unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes);
 /* Bytes of frame/band buffers and vertex cache the soft backend uses. */
 size_t host_renderer_soft_bytes(const host_renderer *r);
 void host_renderer_close(host_renderer *r);

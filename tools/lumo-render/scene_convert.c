@@ -217,5 +217,40 @@ lumo_status host_scene_from_srv(host_scene *out, const srv_scene *s, char *err, 
             host_scene_free(out);
             return st;
         }
+    {
+        vec3 lo, hi;
+        srv_scene_bounds(s, &lo, &hi);
+        q16_3(lo, out->bmin);
+        q16_3(hi, out->bmax);
+    }
+    out->camera.znear = lumo_raster_znear_for_box(&out->camera, out->bmin, out->bmax);
+    return LUMO_OK;
+}
+
+lumo_status host_scene_aim(host_scene *s, const char *text, int fit, uint32_t width, uint32_t height,
+                           char *err, size_t errlen)
+{
+    lumo_status st;
+
+    if (text && (st = host_camera_from_string(text, &s->camera))) {
+        snprintf(err, errlen, "bad camera '%s': %s (EYE:TARGET:UP:FOVY, eye != target, UP not along the "
+                 "view, FOVY in [1, 179]; docs/scene-format.md)", text, lumo_strerror(st));
+        return st;
+    }
+    if (!text && fit) {
+        lumo_pkg_info box;
+        memset(&box, 0, sizeof box);
+        memcpy(box.bmin, s->bmin, sizeof box.bmin);
+        memcpy(box.bmax, s->bmax, sizeof box.bmax);
+        if ((st = lumo_scene_camera_fit(&box, width, height))) {
+            snprintf(err, errlen, "cannot fit a camera to the scene's bounds: %s", lumo_strerror(st));
+            return st;
+        }
+        memcpy(s->camera.eye, box.eye, sizeof box.eye);
+        memcpy(s->camera.target, box.target, sizeof box.target);
+        memcpy(s->camera.up, box.up, sizeof box.up);
+        s->camera.fovy_deg = box.fovy_deg;
+    }
+    s->camera.znear = lumo_raster_znear_for_box(&s->camera, s->bmin, s->bmax);
     return LUMO_OK;
 }

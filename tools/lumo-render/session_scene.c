@@ -45,5 +45,7 @@ int host_scene_from_session(const lumo_session *ses, host_scene *s, host_load_st
     for (i = 0; i < nl; i++)
         lumo_raster_light_from_pkg(&lights[i], &s->lights[s->light_count++]);
     lumo_raster_camera_from_info(info, &s->camera);
+    memcpy(s->bmin, info->bmin, sizeof s->bmin);
+    memcpy(s->bmax, info->bmax, sizeof s->bmax);
     return 0;
 }

@@ -18,26 +18,28 @@
 #include "lumo/pmesh.h"
 #include "lumo/status.h"
 
-#define LUMO_NET_VERSION      1u
+#define LUMO_NET_VERSION      1u      /* the protocol version in every frame header */
 #define LUMO_NET_MAGIC0       0x4Cu   /* 'L' */
 #define LUMO_NET_MAGIC1       0x53u   /* 'S' */
 #define LUMO_NET_HEADER       8u      /* magic, version, type, length */
 #define LUMO_NET_TRAILER      4u      /* CRC-32 */
-#define LUMO_NET_OVERHEAD     (LUMO_NET_HEADER + LUMO_NET_TRAILER)
-#define LUMO_NET_MAX_PAYLOAD  (16u << 20)
+#define LUMO_NET_OVERHEAD     (LUMO_NET_HEADER + LUMO_NET_TRAILER)   /* frame bytes around a payload */
+#define LUMO_NET_MAX_PAYLOAD  (16u << 20)   /* the largest payload of any frame (16 MiB) */
 #define LUMO_NET_MIN_PAYLOAD  4096u   /* the smallest max payload a client may state */
 #define LUMO_NET_MAX_TEXT     256u    /* ERROR text bytes */
-#define LUMO_NET_MAX_WELCOME_MSGS (1u + 2u * LUMO_MAX_MESHES + 3u)
+#define LUMO_NET_MAX_WELCOME_MSGS (1u + 2u * LUMO_MAX_MESHES + 3u)   /* descriptors in a WELCOME, at most */
 
+/* Frame types (docs/protocol.md §2). */
 typedef enum lumo_net_type {
     LUMO_NET_HELLO = 1, LUMO_NET_WELCOME = 2, LUMO_NET_REQUEST = 3, LUMO_NET_DATA = 4,
     LUMO_NET_END = 5, LUMO_NET_ERROR = 6, LUMO_NET_BYE = 7
 } lumo_net_type;
 
+/* The two channels a REQUEST, DATA or END belongs to. */
 typedef enum lumo_net_channel { LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1 } lumo_net_channel;
 
 #define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */
-#define LUMO_NET_FLAG_SMOOTHING 1u
+#define LUMO_NET_FLAG_SMOOTHING 1u   /* HELLO: the client smooths its push-pull */
 /* HELLO, fresh start: send the first picture with the WELCOME (the answers
  * to a base-mesh request per mesh and to lighting round 0, as if asked
  * right after WELCOME): one round trip less to the first picture. */
@@ -45,8 +47,9 @@ typedef enum lumo_net_channel { LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1 } l
 
 /* ---- frames ------------------------------------------------------------------ */
 
+/* A decoded frame: its type and payload. */
 typedef struct lumo_net_frame {
-    uint8_t        type;
+    uint8_t        type;       /* lumo_net_type */
     uint32_t       len;        /* payload bytes */
     const uint8_t *payload;    /* into the caller's buffer */
 } lumo_net_frame;
@@ -82,11 +85,12 @@ size_t lumo_net_resync(const uint8_t *buf, size_t avail, size_t from);
 
 /* ---- messages ------------------------------------------------------------------ */
 
+/* HELLO: what the client is and wants (docs/protocol.md §2). */
 typedef struct lumo_net_hello {
-    uint32_t package;
-    uint32_t arena_bytes;
-    uint32_t max_payload;
-    uint16_t width, height;
+    uint32_t package;          /* which of the server's packages */
+    uint32_t arena_bytes;      /* the client's arena, bytes */
+    uint32_t max_payload;      /* the largest frame payload it takes */
+    uint16_t width, height;    /* its display, pixels */
     uint8_t  ivg_form;         /* LUMO_IVG_FORM_* or LUMO_NET_FORM_NONE */
     uint8_t  flags;            /* LUMO_NET_FLAG_SMOOTHING */
     uint32_t resume_id;        /* 0: fresh */
@@ -96,46 +100,51 @@ typedef struct lumo_net_hello {
 
 /* One descriptor of a WELCOME (a session message, docs/client-session.md). */
 typedef struct lumo_net_msg {
-    uint32_t type, index, len;
-    const uint8_t *data;
+    uint32_t type, index, len;   /* a session message's type and index (lumo_session_feed); bytes */
+    const uint8_t *data;         /* its payload (decode: into the frame) */
 } lumo_net_msg;
 
+/* WELCOME: the package's descriptors, the client's session messages. */
 typedef struct lumo_net_welcome {
-    uint32_t package_id;
-    uint32_t arena_need;
+    uint32_t package_id;       /* the package's identity, for a resume */
+    uint32_t arena_need;       /* arena bytes the whole scene takes */
     uint32_t count;            /* messages */
     const uint8_t *msgs;       /* decode: the packed messages, walk with lumo_net_welcome_next */
-    size_t msgs_len;
+    size_t msgs_len;           /* bytes at msgs */
 } lumo_net_welcome;
 
+/* REQUEST: the next part of a channel. */
 typedef struct lumo_net_request {
     uint8_t  channel;          /* lumo_net_channel */
-    uint32_t mesh;
-    uint32_t cursor;
-    uint32_t amount;
+    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
+    uint32_t cursor;           /* the first batch / round wanted */
+    uint32_t amount;           /* vertices (geometry) or rounds (lighting) wanted */
 } lumo_net_request;
 
+/* DATA: the answer to a REQUEST (docs/protocol.md §2 DATA). */
 typedef struct lumo_net_data {
-    uint8_t  channel;
+    uint8_t  channel;          /* lumo_net_channel */
     uint8_t  form;             /* lighting: the records' IVG form */
-    uint32_t mesh;
-    uint32_t first, count, records;
+    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
+    uint32_t first, count, records;   /* first batch / round, how many, records carried */
     const uint8_t *bytes;      /* decode: into the frame */
-    uint32_t len;
+    uint32_t len;              /* bytes at bytes */
 } lumo_net_data;
-#define LUMO_NET_DATA_HEAD 24u
+#define LUMO_NET_DATA_HEAD 24u   /* bytes of DATA's head, before the records */
 /* The last 8 bytes of DATA's head (form, records) are the head of the
  * session's IVGR message, so the records feed the session in place. */
 #define LUMO_NET_IVGR_HEAD 8u
 
+/* END: a channel (of a mesh) has nothing more. */
 typedef struct lumo_net_end {
-    uint8_t  channel;
-    uint32_t mesh;
+    uint8_t  channel;          /* lumo_net_channel */
+    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
 } lumo_net_end;
 
+/* ERROR: why the sender ends the conversation. */
 typedef struct lumo_net_error {
     uint32_t status;           /* a lumo_status */
-    uint32_t len;
+    uint32_t len;              /* bytes of text */
     const uint8_t *text;       /* len bytes without NUL, not NUL-terminated */
 } lumo_net_error;
 
@@ -165,6 +174,7 @@ lumo_status lumo_net_welcome_decode(const lumo_net_frame *f, lumo_net_welcome *m
  * last. (decode has checked the whole list already.) */
 lumo_status lumo_net_welcome_next(const lumo_net_welcome *m, size_t *at, lumo_net_msg *out);
 
+/* REQUEST: encoded and decoded as above. */
 lumo_status lumo_net_request_encode(const lumo_net_request *m, uint8_t *out, size_t cap, size_t *written);
 lumo_status lumo_net_request_decode(const lumo_net_frame *f, lumo_net_request *m);
 
@@ -178,6 +188,7 @@ lumo_status lumo_net_data_encode(const lumo_net_data *m, uint8_t *out, size_t ca
 uint32_t lumo_net_data_head(const lumo_net_data *m, uint8_t out[LUMO_NET_HEADER + LUMO_NET_DATA_HEAD]);
 lumo_status lumo_net_data_decode(const lumo_net_frame *f, lumo_net_data *m);
 
+/* END: encoded and decoded as above. */
 lumo_status lumo_net_end_encode(const lumo_net_end *m, uint8_t *out, size_t cap, size_t *written);
 lumo_status lumo_net_end_decode(const lumo_net_frame *f, lumo_net_end *m);
 
@@ -186,6 +197,7 @@ lumo_status lumo_net_error_encode(uint32_t status, const char *text, uint8_t *ou
                                   size_t *written);
 lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m);
 
+/* BYE: the frame that ends a conversation. */
 lumo_status lumo_net_bye_encode(uint8_t *out, size_t cap, size_t *written);
 /* BYE has no fields: OK for an empty payload, CORRUPT for any other. */
 lumo_status lumo_net_bye_decode(const lumo_net_frame *f);

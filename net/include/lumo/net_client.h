@@ -27,14 +27,16 @@
 #include "lumo/session.h"
 #include "lumo/status.h"
 
+/* Which channel the driver asks first (docs/protocol.md §7). */
 typedef enum lumo_net_order {
     LUMO_NET_ORDER_INTERLEAVED = 0,  /* a batch of each mesh, then a lighting request, in turn */
     LUMO_NET_ORDER_GEOMETRY_FIRST,   /* every batch, then the lighting */
     LUMO_NET_ORDER_LIGHTING_FIRST    /* every lighting round, then the batches */
 } lumo_net_order;
 
+/* How the driver sizes, orders and pipelines its requests. */
 typedef struct lumo_net_policy {
-    lumo_net_order order;
+    lumo_net_order order;  /* interleaved, geometry first or lighting first */
     uint32_t vertices;     /* geometry request size; 0: adaptive */
     uint32_t rounds;       /* lighting request size (rounds); 0: adaptive */
     uint32_t target_ms;    /* adaptive: aim each response at this long (0: 250) */
@@ -54,21 +56,22 @@ typedef struct lumo_net_policy {
  * sizes stay at their starting values (one batch, one round). */
 typedef uint32_t (*lumo_net_clock)(void *ctx);
 
+/* What the driver states in HELLO and how it asks (lumo_net_client_init). */
 typedef struct lumo_net_client_config {
     uint32_t package;        /* which of the server's packages */
     uint32_t arena_bytes;    /* stated in HELLO */
     uint32_t max_payload;    /* largest frame payload this client takes */
-    uint16_t width, height;
+    uint16_t width, height;  /* the display, pixels (stated in HELLO) */
     uint8_t  ivg_form;       /* LUMO_IVG_FORM_QUANTIZED, _FLOAT or LUMO_NET_FORM_NONE */
     uint8_t  smoothing;      /* push-pull smoothing (stated; the session's config decides) */
-    lumo_net_policy policy;
+    lumo_net_policy policy;  /* request sizes, order, pipeline */
     uint8_t  first_picture;  /* ask the server to send the first picture with
                                 the WELCOME (HELLO flag FIRST_PICTURE): one
                                 round trip less to it */
     uint8_t  replay;         /* frames come from a recording: apply them in the
                                 order they come, send nothing but HELLO */
-    lumo_net_clock clock;
-    void *clock_ctx;
+    lumo_net_clock clock;    /* milliseconds, or NULL (fixed sizes) */
+    void *clock_ctx;         /* handed to clock */
 } lumo_net_client_config;
 
 /* Requests in flight at most: the first picture's (a base mesh per mesh and
@@ -77,9 +80,9 @@ typedef struct lumo_net_client_config {
 
 /* One outstanding request, as the driver predicts its answer. */
 typedef struct lumo_net_pending {
-    uint8_t  channel;
+    uint8_t  channel;              /* lumo_net_channel */
     uint32_t mesh, cursor, end;    /* batches / rounds [cursor, end) */
-    uint32_t sent_ms;
+    uint32_t sent_ms;              /* the clock when it was written */
 } lumo_net_pending;
 
 /* Per-unit costs the adaptive policy learns (fixed point: ms * 1024). */
@@ -96,6 +99,7 @@ typedef struct lumo_net_costs {
                                       lumo_session_update) */
 } lumo_net_costs;
 
+/* Where the conversation is: nothing sent, HELLO sent, WELCOME taken, ended, failed. */
 typedef enum lumo_net_state {
     LUMO_NET_START = 0, LUMO_NET_HELLO_SENT, LUMO_NET_READY, LUMO_NET_DONE, LUMO_NET_FAILED
 } lumo_net_state;
@@ -195,12 +199,14 @@ void lumo_net_client_reset_link(lumo_net_client *c);
 int lumo_net_client_expects(const lumo_net_client *c, const lumo_net_frame *f);
 lumo_status lumo_net_client_resync(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written);
 
+/* How much of the scene the driver holds (lumo_net_client_progress). */
 typedef struct lumo_net_progress {
     uint32_t vertices, full_vertices;   /* all meshes */
     uint32_t rounds, full_rounds;       /* IVG rounds held / total */
     uint64_t bytes;                     /* DATA payload bytes applied */
-    int      done;
+    int      done;                      /* 1 once the conversation has ended (state DONE) */
 } lumo_net_progress;
+/* The progress (above) into *out. */
 void lumo_net_client_progress(const lumo_net_client *c, lumo_net_progress *out);
 
 #endif /* LUMO_NET_CLIENT_H */

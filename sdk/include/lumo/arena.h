@@ -18,10 +18,12 @@
 #include <stdint.h>
 #include "lumo/status.h"
 
-#define LUMO_ARENA_ALIGN 8u
+#define LUMO_ARENA_ALIGN 8u   /* bytes every allocation is aligned and rounded to */
 /* Bytes lost at most to aligning the start of an unaligned buffer. */
 #define LUMO_ARENA_SLACK (LUMO_ARENA_ALIGN - 1u)
 
+/* A bump allocator over the caller's buffer; fields are read-only to the
+ * caller (peak for memory reports). */
 typedef struct lumo_arena {
     uint8_t *base;       /* first aligned byte of the caller's buffer */
     size_t   size;       /* usable bytes from base */
@@ -53,6 +55,7 @@ void *lumo_arena_alloc(lumo_arena *a, size_t bytes);
 /* lumo_arena_alloc(a, n * size) with overflow detection. */
 void *lumo_arena_alloc_array(lumo_arena *a, size_t n, size_t size);
 
+/* The arena's current fill level, for lumo_arena_reset. */
 lumo_arena_mark lumo_arena_get_mark(const lumo_arena *a);
 /* Release everything allocated after `mark`. */
 void lumo_arena_reset(lumo_arena *a, lumo_arena_mark mark);

@@ -93,21 +93,22 @@ typedef struct lumo_draco_attribute {
     uint8_t  xform;           /* LUMO_DRACO_XFORM_* */
     uint8_t  quant_bits;      /* quantization / octahedral bits, else 0 */
     uint8_t  frac_bits;       /* fractional bits of min_fixed/range_fixed */
-    uint32_t unique_id;
-    uint32_t num_values;
+    uint32_t unique_id;       /* Draco's attribute id */
+    uint32_t num_values;      /* distinct values decoded */
     int32_t  *values;         /* num_values * num_portable portable ints */
     uint32_t *point_to_value; /* num_points entries, or NULL (identity) */
     /* Quantization (xform == QUANTIZED): float32 bit patterns as stored,
      * and the same in fixed point with frac_bits fractional bits. */
     uint32_t *min_bits;       /* num_components */
-    uint32_t range_bits;
+    uint32_t range_bits;      /* the quantization range, float32 bits */
     int32_t  *min_fixed;      /* num_components */
-    int32_t  range_fixed;
-    lumo_draco_attr_modes modes;
+    int32_t  range_fixed;     /* the range in fixed point (frac_bits) */
+    lumo_draco_attr_modes modes;   /* how the values were coded */
 } lumo_draco_attribute;
 
+/* What lumo_draco_peek reads from a stream's header, without decoding. */
 typedef struct lumo_draco_info {
-    uint8_t  version_major, version_minor;
+    uint8_t  version_major, version_minor;   /* the stream's Draco version */
     uint8_t  geometry;        /* LUMO_DRACO_POINT_CLOUD or LUMO_DRACO_MESH */
     uint8_t  method;          /* LUMO_DRACO_METHOD_* */
     uint16_t flags;           /* bit 15: metadata present */
@@ -118,12 +119,13 @@ typedef struct lumo_draco_info {
     size_t   input_bytes;     /* size of the stream peeked at */
 } lumo_draco_info;
 
+/* A decoded stream: its faces and attributes, arrays in the arena. */
 typedef struct lumo_draco_mesh {
-    uint8_t  geometry, method, connectivity;
-    uint32_t num_points;
-    uint32_t num_faces;
+    uint8_t  geometry, method, connectivity;   /* as in lumo_draco_info */
+    uint32_t num_points;      /* points (vertices) decoded */
+    uint32_t num_faces;       /* triangles; 0 for a point cloud */
     uint32_t *faces;          /* 3 * num_faces point indices, libdraco order */
-    uint32_t num_attributes;
+    uint32_t num_attributes;  /* entries at attributes */
     lumo_draco_attribute *attributes;  /* in libdraco attribute-id order */
     size_t   arena_bytes;     /* arena bytes the outputs occupy */
     size_t   work_bytes;      /* arena_bytes + work_bytes is the exact arena
@@ -184,6 +186,7 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
                                need.bytes assumes the worst packing and
                                bytes_min is close to the exact need.
                                EdgeBreaker meshes up to 2 796 202 faces. */
+/* lumo_draco_decode and lumo_draco_arena_need in the mode `flags` (above). */
 lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flags,
                                  lumo_arena *arena, lumo_draco_mesh *out);
 lumo_status lumo_draco_arena_need_ex(const uint8_t *data, size_t size, unsigned flags,

@@ -27,18 +27,18 @@
 #include <stdint.h>
 #include "lumo/status.h"
 
-typedef int32_t  lumo_q16_16;
-typedef int16_t  lumo_q1_14;
-typedef uint32_t lumo_uq16_16;
+typedef int32_t  lumo_q16_16;    /* signed Q16.16: value = v / 65536 */
+typedef int16_t  lumo_q1_14;     /* signed Q1.14: value = v / 16384, in [-2, 2) */
+typedef uint32_t lumo_uq16_16;   /* unsigned Q16.16: value = v / 65536, in [0, 65536) */
 
-#define LUMO_Q16_SHIFT 16
-#define LUMO_Q16_ONE   ((lumo_q16_16)1 << LUMO_Q16_SHIFT)
-#define LUMO_Q16_HALF  ((lumo_q16_16)1 << (LUMO_Q16_SHIFT - 1))
-#define LUMO_Q16_MAX   INT32_MAX
-#define LUMO_Q16_MIN   INT32_MIN
+#define LUMO_Q16_SHIFT 16   /* fraction bits of Q16.16 */
+#define LUMO_Q16_ONE   ((lumo_q16_16)1 << LUMO_Q16_SHIFT)          /* 1.0 in Q16.16 */
+#define LUMO_Q16_HALF  ((lumo_q16_16)1 << (LUMO_Q16_SHIFT - 1))    /* 0.5 in Q16.16 */
+#define LUMO_Q16_MAX   INT32_MAX   /* the largest Q16.16, saturation bound */
+#define LUMO_Q16_MIN   INT32_MIN   /* the smallest Q16.16, saturation bound */
 
-#define LUMO_Q14_SHIFT 14
-#define LUMO_Q14_ONE   ((lumo_q1_14)(1 << LUMO_Q14_SHIFT))
+#define LUMO_Q14_SHIFT 14   /* fraction bits of Q1.14 */
+#define LUMO_Q14_ONE   ((lumo_q1_14)(1 << LUMO_Q14_SHIFT))         /* 1.0 in Q1.14 */
 
 /* 1/pi in Q16.16: round(65536 / pi) = 20861. */
 #define LUMO_Q16_INV_PI ((lumo_q16_16)20861)
@@ -57,6 +57,7 @@ typedef uint32_t lumo_uq16_16;
 
 /* ---- saturation and rounding -------------------------------------------- */
 
+/* v clamped to [INT32_MIN, INT32_MAX]. */
 static inline int32_t lumo_sat_i32(int64_t v)
 {
     if (v > INT32_MAX) return INT32_MAX;
@@ -64,6 +65,7 @@ static inline int32_t lumo_sat_i32(int64_t v)
     return (int32_t)v;
 }
 
+/* v clamped to [0, UINT32_MAX]. */
 static inline uint32_t lumo_sat_u32(int64_t v)
 {
     if (v < 0) return 0;
@@ -71,6 +73,7 @@ static inline uint32_t lumo_sat_u32(int64_t v)
     return (uint32_t)v;
 }
 
+/* v clamped to [INT16_MIN, INT16_MAX]. */
 static inline int16_t lumo_sat_i16(int32_t v)
 {
     if (v > INT16_MAX) return INT16_MAX;
@@ -96,6 +99,7 @@ static inline uint64_t lumo_round_shift_u(uint64_t v, unsigned shift)
 
 /* ---- Q16.16 arithmetic --------------------------------------------------- */
 
+/* a * b, rounded to nearest, saturated. */
 static inline lumo_q16_16 lumo_q16_mul(lumo_q16_16 a, lumo_q16_16 b)
 {
     return lumo_sat_i32(lumo_round_shift((int64_t)a * b, LUMO_Q16_SHIFT));
@@ -110,6 +114,7 @@ static inline lumo_q16_16 lumo_q16_add(lumo_q16_16 a, lumo_q16_16 b)
     return lumo_sat_i32((int64_t)a + b);
 }
 
+/* a - b, saturated. */
 static inline lumo_q16_16 lumo_q16_sub(lumo_q16_16 a, lumo_q16_16 b)
 {
     return lumo_sat_i32((int64_t)a - b);
@@ -122,6 +127,7 @@ static inline lumo_uq16_16 lumo_uq16_mul_q14(lumo_uq16_16 a, lumo_q1_14 b)
     return lumo_sat_u32(lumo_round_shift((int64_t)a * b, LUMO_Q14_SHIFT));
 }
 
+/* UQ16.16 product, rounded, saturated. */
 static inline lumo_uq16_16 lumo_uq16_mul(lumo_uq16_16 a, lumo_uq16_16 b)
 {
     uint64_t p = lumo_round_shift_u((uint64_t)a * b, LUMO_Q16_SHIFT);
@@ -140,6 +146,7 @@ static inline lumo_q16_16 lumo_q14_to_q16(lumo_q1_14 v)
     return (lumo_q16_16)v * 4;
 }
 
+/* Q16.16 to Q1.14, rounded, saturated to Q1.14's range. */
 static inline lumo_q1_14 lumo_q16_to_q14(lumo_q16_16 v)
 {
     return lumo_sat_i16((int32_t)lumo_round_shift(v, 2));
@@ -169,6 +176,7 @@ lumo_status lumo_normalize3_q14(const int32_t v[3], lumo_q1_14 out[3]);
  * gives LUMO_ERR_RANGE; *out is written only on success. */
 lumo_status lumo_f32bits_to_fixed(uint32_t bits, unsigned frac_bits, int32_t *out);
 
+/* lumo_f32bits_to_fixed with 16 fraction bits: a binary32 to Q16.16. */
 static inline lumo_status lumo_f32bits_to_q16(uint32_t bits, lumo_q16_16 *out)
 {
     return lumo_f32bits_to_fixed(bits, LUMO_Q16_SHIFT, out);

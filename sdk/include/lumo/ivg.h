@@ -8,8 +8,11 @@
  * entry is the paper's compressed 3x3 matrix M = (I^R | I^G | I^B): a unit
  * direction d and a colour c with M n = c (d . n) for n = delta (§3.3).
  *
- * The grid holds what was received plus what push-pull filled in; a bitmap
- * says which vertices were received. Received values are never changed by
+ * The grid holds what was received plus what push-pull filled in, every
+ * entry packed as 7 bytes in the quantized wire form (3 x int8 direction,
+ * RGB9E5 colour): received quantized entries exactly as they came, binary32
+ * ones and push-pull's results rounded to that form. A bitmap says which
+ * vertices were received. Received values are never changed by
  * push-pull. A vertex may also be marked "solid" (inside geometry: the
  * server has no irradiance for it); it counts as not received and push-pull
  * fills it like any hole. docs/ivg-format.md gives the wire forms byte by byte.
@@ -56,6 +59,7 @@
 #include "lumo/fixed.h"
 #include "lumo/status.h"
 
+/* The six hemispheres of a grid vertex: +x, -x, +y, -y, +z, -z. */
 typedef enum lumo_ivg_axis {
     LUMO_IVG_PX = 0, LUMO_IVG_NX, LUMO_IVG_PY, LUMO_IVG_NY, LUMO_IVG_PZ, LUMO_IVG_NZ,
     LUMO_IVG_AXES
@@ -63,20 +67,20 @@ typedef enum lumo_ivg_axis {
 
 /* Limits that bound every computation on hostile descriptors. */
 #define LUMO_IVG_MIN_DIM 2
-#define LUMO_IVG_MAX_DIM 256
+#define LUMO_IVG_MAX_DIM 256   /* vertices per axis, at most */
 
 /* One hemisphere's compressed irradiance: colour c (UQ16.16, W/m^2 per
  * channel) and direction d (Q1.14, unit length or zero). */
 typedef struct lumo_ivg_entry {
-    lumo_uq16_16 c[3];
-    lumo_q1_14   d[3];
+    lumo_uq16_16 c[3];       /* colour, W/m^2 per channel */
+    lumo_q1_14   d[3];       /* direction, unit or zero */
     int16_t      reserved;   /* keeps the entry at 20 bytes, always 0 */
 } lumo_ivg_entry;
 
 /* Grid shape and placement; bounds in scene units as Q16.16. */
 typedef struct lumo_ivg_desc {
     uint16_t    dims[3];     /* vertices per axis, each in [2, 256] */
-    lumo_q16_16 bmin[3];
+    lumo_q16_16 bmin[3];     /* lower corner */
     lumo_q16_16 bmax[3];     /* bmax > bmin on every axis */
 } lumo_ivg_desc;
 
@@ -88,14 +92,14 @@ typedef enum lumo_ivg_form {
     LUMO_IVG_FORM_QUANTIZED = 1    /* d: 3 x int8 (q/127), c: RGB9E5 */
 } lumo_ivg_form;
 
-#define LUMO_IVG_BUNDLE_VERSION  1u
+#define LUMO_IVG_BUNDLE_VERSION  1u   /* the bundle version read */
 #define LUMO_IVG_BUNDLE_HEADER    16u   /* bytes before the first record */
-#define LUMO_IVG_SOLID_BIT        0x80000000u
+#define LUMO_IVG_SOLID_BIT        0x80000000u   /* index word: the vertex is solid */
 #define LUMO_IVG_QUANT_ENTRY      7u    /* bytes per quantized entry */
 #define LUMO_IVG_FLOAT_ENTRY      24u   /* bytes per binary32 entry */
 /* Bytes of one record with data: index word + 6 entries. */
 #define LUMO_IVG_QUANT_RECORD     (4u + LUMO_IVG_AXES * LUMO_IVG_QUANT_ENTRY)
-#define LUMO_IVG_FLOAT_RECORD     (4u + LUMO_IVG_AXES * LUMO_IVG_FLOAT_ENTRY)
+#define LUMO_IVG_FLOAT_RECORD     (4u + LUMO_IVG_AXES * LUMO_IVG_FLOAT_ENTRY)   /* binary32 form */
 
 /* Push-pull options (seed 000, §4.1). */
 #define LUMO_IVG_SMOOTH 1u   /* pyramidal filter after each push step */
@@ -110,6 +114,8 @@ size_t lumo_ivg_memory_size(const lumo_ivg_desc *desc);
  * is left as it was. */
 lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_desc *desc);
 
+/* The grid's descriptor, its vertex count, how many vertices were
+ * received, and whether `vertex` was (1) or not (0). */
 const lumo_ivg_desc *lumo_ivg_get_desc(const lumo_ivg *g);
 uint32_t lumo_ivg_vertex_count(const lumo_ivg *g);
 uint32_t lumo_ivg_received_count(const lumo_ivg *g);
@@ -118,9 +124,11 @@ int lumo_ivg_is_received(const lumo_ivg *g, uint32_t vertex);
 uint32_t lumo_ivg_solid_count(const lumo_ivg *g);
 int lumo_ivg_is_solid(const lumo_ivg *g, uint32_t vertex);
 
-/* The entry stored for (vertex, axis): received, filled by push-pull, or
- * zero. NULL when out of range. */
-const lumo_ivg_entry *lumo_ivg_entry_at(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis);
+/* The entry stored for (vertex, axis) — received, filled by push-pull, or
+ * zero — unpacked into *out (the grid keeps entries packed in the quantized
+ * wire form, docs/ivg-format.md §2.5 and §6). LUMO_ERR_ARG when out of range
+ * or a pointer is NULL (*out untouched). */
+lumo_status lumo_ivg_entry_get(const lumo_ivg *g, uint32_t vertex, lumo_ivg_axis axis, lumo_ivg_entry *out);
 
 /* Decode one bundle of samples (header + records, docs/ivg-format.md) and
  * store them as received. The whole bundle is validated before anything is
@@ -160,15 +168,15 @@ lumo_status lumo_ivg_apply_records(lumo_ivg *g, lumo_ivg_form form, uint32_t cou
  * Rounds r .. r+k-1 of a form are payload bytes [offset(r), offset(r+k)): a
  * run of whole records for lumo_ivg_apply_records. */
 typedef struct lumo_ivg_order {
-    uint64_t       seed;
+    uint64_t       seed;      /* the order's random seed */
     uint32_t       axis;      /* 0 x, 1 y, 2 z */
-    uint32_t       slices;
+    uint32_t       slices;    /* slices along axis */
     uint32_t       rounds;    /* R: round 0 is the corners */
     uint32_t       records;   /* records of the whole order (grid vertices) */
     const uint8_t *table;     /* the payload's three arrays (not owned) */
 } lumo_ivg_order;
 
-#define LUMO_IVG_ORDER_HEADER 20u
+#define LUMO_IVG_ORDER_HEADER 20u   /* bytes of an IVGS payload's head */
 /* Most rounds a grid can have: the corners, then one per vertex of an
  * interior slice of 256 x 256. */
 #define LUMO_IVG_ORDER_MAX_ROUNDS (1u + LUMO_IVG_MAX_DIM * LUMO_IVG_MAX_DIM)

@@ -29,10 +29,10 @@
  * interleave geometry and lighting. Version-1 packages are refused
  * (LUMO_ERR_VERSION): re-bake them. */
 #define LUMO_PKG_VERSION_MAJOR 2u
-#define LUMO_PKG_VERSION_MINOR 0u
-#define LUMO_PKG_HEADER_SIZE   24u
-#define LUMO_PKG_ENTRY_SIZE    16u
-#define LUMO_PKG_MAX_CHUNKS    ((uint32_t)LUMO_MAX_CHUNKS)
+#define LUMO_PKG_VERSION_MINOR 0u   /* additions a version-2 reader may ignore */
+#define LUMO_PKG_HEADER_SIZE   24u  /* bytes of the file header */
+#define LUMO_PKG_ENTRY_SIZE    16u  /* bytes of one chunk-table entry */
+#define LUMO_PKG_MAX_CHUNKS    ((uint32_t)LUMO_MAX_CHUNKS)   /* chunks a package may have (lumo/config.h) */
 
 /* Chunk types: four ASCII characters, first character in the lowest byte. */
 #define LUMO_PKG_FOURCC(a, b, c, d) \
@@ -46,15 +46,17 @@
 #define LUMO_PKG_IVGS LUMO_PKG_FOURCC('I', 'V', 'G', 'S')  /* IVG streaming order (lumo_ivg_order) */
 #define LUMO_PKG_ORDR LUMO_PKG_FOURCC('O', 'R', 'D', 'R')  /* geometry/lighting interleaving (lumo_scene_order) */
 
+/* One entry of the chunk table. */
 typedef struct lumo_pkg_chunk {
-    uint32_t type, offset, length, crc;
+    uint32_t type, offset, length, crc;   /* fourcc; payload's byte offset and length in the file; its CRC-32 */
 } lumo_pkg_chunk;
 
+/* An opened package: a view of the caller's buffer. */
 typedef struct lumo_package {
     const uint8_t *data;     /* the caller's buffer (not owned) */
-    size_t         size;
-    uint16_t       version_major, version_minor;
-    uint32_t       chunk_count;
+    size_t         size;     /* its bytes */
+    uint16_t       version_major, version_minor;   /* the file's format version */
+    uint32_t       chunk_count;   /* entries in the chunk table */
 } lumo_package;
 
 /* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout, a
@@ -83,9 +85,10 @@ lumo_status lumo_package_chunk(const lumo_package *pkg, uint32_t index, lumo_pkg
 lumo_status lumo_package_find(const lumo_package *pkg, uint32_t type, uint32_t nth,
                               const uint8_t **payload, uint32_t *len);
 
+/* The INFO chunk, light `index` of it, the counts of MESH chunk `index`:
+ * errors of lumo_package_find and of the payload's decoder (lumo/scene.h). */
 lumo_status lumo_package_info(const lumo_package *pkg, lumo_pkg_info *out);
 lumo_status lumo_package_light(const lumo_package *pkg, uint32_t index, lumo_pkg_light *out);
-
 lumo_status lumo_package_mesh_info(const lumo_package *pkg, uint32_t index, lumo_pkg_mesh_info *out);
 
 /* Read mesh `index` into caller arrays sized from lumo_package_mesh_info:

@@ -38,8 +38,8 @@
 /* A batch record's head (docs/progressive-mesh.md §2.2): three LEB128
  * varints (index, side bytes, Draco bytes) and a CRC-32: 7 to 19 bytes. */
 #define LUMO_PMESH_BATCH_HEAD_MIN 7u
-#define LUMO_PMESH_BATCH_HEAD_MAX 19u
-#define LUMO_PMESH_VERSION     3u
+#define LUMO_PMESH_BATCH_HEAD_MAX 19u   /* bytes of a record head, at most */
+#define LUMO_PMESH_VERSION     3u    /* the stream version read (docs/progressive-mesh.md) */
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
@@ -48,7 +48,7 @@
  * neighbours right after the split, in the base mesh the previous vertex),
  * about half the bytes. */
 #define LUMO_PMESH_POS_ABSOLUTE 0u
-#define LUMO_PMESH_POS_PREDICTED 1u
+#define LUMO_PMESH_POS_PREDICTED 1u   /* residuals from the prediction (above) */
 /* Header flag: every payload also carries a COLOR uint8 x3 attribute, the
  * per-vertex albedo (0..255 -> 0..1). */
 #define LUMO_PMESH_HAS_ALBEDO 1u
@@ -60,7 +60,7 @@ typedef struct lumo_pmesh_header {
     uint32_t vertices;          /* n: vertices of the full mesh */
     uint32_t faces;             /* triangles of the full mesh */
     uint32_t base_vertices;     /* vertices of the base mesh (first batch) */
-    uint32_t base_faces;
+    uint32_t base_faces;        /* triangles of the base mesh */
     uint32_t batch_vertices;    /* nominal vertices per batch (the last may be short) */
     uint32_t batch_count;       /* batch records following the header */
     uint32_t max_batch_faces;   /* largest face count of one batch */
@@ -76,8 +76,8 @@ typedef struct lumo_pmesh_header {
 /* The current level, as the rasterizer wants it. Arrays belong to the
  * pmesh (its arena) and change with every applied batch. */
 typedef struct lumo_pmesh_view {
-    uint32_t           vertex_count;
-    uint32_t           face_count;
+    uint32_t           vertex_count;   /* vertices of the current level */
+    uint32_t           face_count;     /* triangles of the current level */
     const lumo_q16_16 *positions;  /* 3 per vertex, metres */
     const lumo_q1_14  *normals;    /* 3 per vertex, unit (area-weighted face
                                       normals of the current level); 0,0,0
@@ -142,6 +142,8 @@ typedef struct lumo_pmesh_record_head {
     uint32_t crc;          /* CRC-32 of the record without these 4 bytes */
     uint32_t head_bytes;   /* LUMO_PMESH_BATCH_HEAD_MIN ... _MAX */
 } lumo_pmesh_record_head;
+/* The head of the batch record at data: TRUNCATED, CORRUPT (varints,
+ * sizes past the data). The CRC is read, not checked. */
 lumo_status lumo_pmesh_read_record_head(const uint8_t *data, size_t size, lumo_pmesh_record_head *out);
 
 /* Size of the batch record starting at data (head + payloads), for

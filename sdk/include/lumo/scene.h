@@ -30,27 +30,45 @@ typedef enum lumo_light_kind {
  * dir unit (Q1.14): spot axis, direction of travel, or area normal u x v.
  * cos_half: cosine of the spot's half angle (Q1.14). */
 typedef struct lumo_pkg_light {
-    lumo_light_kind kind;
-    lumo_q16_16  pos[3], u[3], v[3];
-    lumo_q1_14   dir[3];
-    lumo_q1_14   cos_half;
-    lumo_q16_16  half_angle_deg;
-    lumo_uq16_16 power[3];
+    lumo_light_kind kind;        /* point, spot, directional or area */
+    lumo_q16_16  pos[3], u[3], v[3];   /* metres: position; area: its edge vectors */
+    lumo_q1_14   dir[3];         /* unit: spot axis, direction of travel, area normal */
+    lumo_q1_14   cos_half;       /* spot: cosine of the half angle */
+    lumo_q16_16  half_angle_deg; /* spot: half angle, degrees */
+    lumo_uq16_16 power[3];       /* W per channel; directional: W/m^2 */
 } lumo_pkg_light;
 
 /* Scene info: counts, bounds (metres, Q16.16) and the default camera
  * (docs/scene-format.md "Camera"; fovy in degrees, Q16.16). */
 typedef struct lumo_pkg_info {
-    uint32_t    mesh_count, light_count, triangle_count;
-    lumo_q16_16 bmin[3], bmax[3];
-    lumo_q16_16 eye[3], target[3], up[3], fovy_deg;
+    uint32_t    mesh_count, light_count, triangle_count;   /* the scene's counts */
+    lumo_q16_16 bmin[3], bmax[3];   /* bounding box, metres */
+    lumo_q16_16 eye[3], target[3], up[3], fovy_deg;   /* default camera: metres; fovy degrees */
 } lumo_pkg_info;
 
+/* ---- a camera that frames the scene (docs/scene-format.md) -------------- */
+
+/* The fitted camera's vertical field of view: 40 degrees (Q16.16). */
+#define LUMO_SCENE_FIT_FOVY LUMO_Q16_FROM_INT(40)
+
+/* Replace info's camera (eye, target, up, fovy_deg) with one that sees the
+ * whole box info->bmin..bmax in a width x height frame: it looks at the
+ * box's centre from a three-quarter view above the front (+z, y up, 30
+ * degrees to the right, 25 above), vertical field of view
+ * LUMO_SCENE_FIT_FOVY, from the nearest distance at which all eight corners
+ * are in the frame (plus 1/64). The server fits for a square frame (1, 1),
+ * which frames every landscape frame too. Integer code; the same on every
+ * board.
+ * LUMO_ERR_ARG (NULL, zero size), LUMO_ERR_RANGE (bmin > bmax on an axis,
+ * or the eye would leave the Q16.16 range); info is unchanged on error. */
+lumo_status lumo_scene_camera_fit(lumo_pkg_info *info, uint32_t width, uint32_t height);
+
+/* The counts and flags of a raw MESH chunk. */
 typedef struct lumo_pkg_mesh_info {
-    uint32_t nverts, ntris;
+    uint32_t nverts, ntris;  /* vertices, triangles */
     uint32_t flags;          /* LUMO_PKG_MESH_EMITTER */
 } lumo_pkg_mesh_info;
-#define LUMO_PKG_MESH_EMITTER 1u
+#define LUMO_PKG_MESH_EMITTER 1u   /* the visible rectangle of an area light: not shaded */
 
 /* The INFO payload: TRUNCATED, CORRUPT (size), LIMIT (more than
  * LUMO_MAX_LIGHTS lights), NONFINITE, RANGE (field of view outside
@@ -85,13 +103,15 @@ lumo_status lumo_scene_ivg_desc_decode(const uint8_t *p, size_t len, lumo_ivg_de
  * ended, skipping steps of a channel (of a mesh) that has ended; a pass over
  * the cycle in which every step was skipped ends the order
  * (docs/package-format.md "ORDR"). */
-#define LUMO_CHANNEL_GEOMETRY 0u
-#define LUMO_CHANNEL_LIGHTING 1u
+#define LUMO_CHANNEL_GEOMETRY 0u   /* a step of progressive-mesh batches */
+#define LUMO_CHANNEL_LIGHTING 1u   /* a step of IVG rounds */
 
+/* One step of the order, decoded (lumo_scene_order_step). */
 typedef struct lumo_scene_step {
-    uint32_t channel, mesh, amount;
+    uint32_t channel, mesh, amount;   /* LUMO_CHANNEL_*; mesh; vertices or IVG rounds */
 } lumo_scene_step;
 
+/* A decoded ORDR payload. */
 typedef struct lumo_scene_order {
     uint32_t       prefix, cycle;   /* step counts */
     const uint8_t *steps;           /* into the payload (not owned) */

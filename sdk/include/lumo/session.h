@@ -65,7 +65,7 @@
  * 1 quantized), 3 reserved bytes (written 0, ignored), u32 record count,
  * then the records (lumo_ivg_apply_records). */
 #define LUMO_MSG_IVGR  LUMO_PKG_FOURCC('I', 'V', 'G', 'R')
-#define LUMO_MSG_IVGR_HEADER 8u
+#define LUMO_MSG_IVGR_HEADER 8u   /* bytes of an IVGR message's head */
 
 /* Level of detail: how far each progressive mesh is refined. A batch past
  * the target is not applied; the batch that crosses it is applied and the
@@ -73,14 +73,15 @@
  * the mesh is final. Never below the base mesh (it arrives whole). */
 typedef struct lumo_session_lod {
     uint32_t vertices;   /* > 0: at most this many vertices per mesh */
-    uint32_t ppm;        /* else this fraction, in parts per million (0 ..
+    uint32_t ppm;        /* else this fraction, in parts per million (0 to
                             LUMO_SESSION_LOD_ALL), of the vertices streamed
                             after the base mesh, rounded up */
 } lumo_session_lod;
-#define LUMO_SESSION_LOD_ALL 1000000u
+#define LUMO_SESSION_LOD_ALL 1000000u   /* lod.ppm for the full meshes */
 
+/* How a session refines: lumo_session_init's cfg. */
 typedef struct lumo_session_config {
-    lumo_session_lod lod;
+    lumo_session_lod lod;   /* how far meshes are refined */
     unsigned ivg_flags;  /* flags of lumo_ivg_pushpull (LUMO_IVG_SMOOTH) */
 } lumo_session_config;
 
@@ -119,7 +120,9 @@ lumo_status lumo_session_init(lumo_session *s, const lumo_session_config *cfg, l
  * as the payload's decoder. */
 lumo_status lumo_session_message_need(uint32_t type, const uint8_t *payload, size_t len, size_t *bytes);
 
-/* Arena bytes to feed the whole package (LUMO_ARENA_SLACK included). */
+/* Arena bytes to feed the whole package (LUMO_ARENA_SLACK included).
+ * Errors as its payloads' decoders; LUMO_ERR_LIMIT for more than
+ * LUMO_MAX_MESHES meshes (what a session holds). */
 lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes);
 
 /* Feed one message. `index`: the mesh for MESH, PMSH and PMSB, else 0.
@@ -141,9 +144,10 @@ lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, co
  * mesh (its PMSH stream, else its MESH chunk). Stops at the first error;
  * *where (may be NULL) then names the failing message's type and index. */
 typedef struct lumo_session_where {
-    uint32_t type, index;
+    uint32_t type, index;   /* the failing message's type (LUMO_MSG_*) and index */
     uint32_t batch;      /* PMSH: the batch record that failed */
 } lumo_session_where;
+/* Feed the whole package (above); *where names a failure. */
 lumo_status lumo_session_feed_package(lumo_session *s, const lumo_package *pkg, lumo_session_where *where);
 
 /* Change the push-pull flags for the next updates (LUMO_IVG_SMOOTH or 0):
@@ -176,9 +180,10 @@ const lumo_scene_order *lumo_session_order(const lumo_session *s);
  * out of `rounds`. Rounds are counted as if the records came in the order's
  * sequence, as a server sends them. */
 typedef struct lumo_session_lighting {
-    uint32_t records;
+    uint32_t records;               /* IVG records applied */
     uint32_t rounds_held, rounds;   /* 0, 0 without IVGS */
 } lumo_session_lighting;
+/* The lighting progress (above) into *out. */
 void lumo_session_lighting_progress(const lumo_session *s, lumo_session_lighting *out);
 
 /* Mesh `index` at its current level; RANGE when no such mesh has arrived.
@@ -188,10 +193,11 @@ lumo_status lumo_session_mesh(const lumo_session *s, uint32_t index, lumo_pmesh_
 /* Progress of mesh `index`: vertices of the full mesh and whether it is
  * progressive (0: raw). RANGE when no such mesh has arrived. */
 typedef struct lumo_session_progress {
-    uint32_t progressive;
-    uint32_t vertices, full_vertices;
+    uint32_t progressive;   /* 1 for a progressive mesh, 0 for a raw one */
+    uint32_t vertices, full_vertices;   /* vertices now; of the full mesh */
     uint32_t batches;     /* batch records applied */
 } lumo_session_progress;
+/* The progress of mesh `index` (above) into *out. */
 lumo_status lumo_session_mesh_progress(const lumo_session *s, uint32_t index, lumo_session_progress *out);
 
 /* The stream header of progressive mesh `index` (batch sizes and counts, for

@@ -9,8 +9,9 @@
 #ifndef LUMO_STATUS_H
 #define LUMO_STATUS_H
 
+/* What went wrong; LUMO_OK (0) when nothing did. */
 typedef enum lumo_status {
-    LUMO_OK = 0,
+    LUMO_OK = 0,           /* success */
     LUMO_ERR_ARG,          /* a NULL pointer or a nonsensical argument */
     LUMO_ERR_NOMEM,        /* the caller-given arena is too small */
     LUMO_ERR_TRUNCATED,    /* input ended before the structure it announced */
@@ -24,7 +25,7 @@ typedef enum lumo_status {
     LUMO_ERR_OVERFLOW,     /* a size or count computation would overflow */
     LUMO_ERR_IO,           /* a transport or file operation failed */
     LUMO_ERR_LIMIT,        /* input exceeds a configured work or size limit */
-    LUMO_STATUS_COUNT
+    LUMO_STATUS_COUNT      /* the number of codes (not a status) */
 } lumo_status;
 
 /* A short, static, human-readable description ("arena too small", ...).

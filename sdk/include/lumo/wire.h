@@ -22,31 +22,37 @@
 
 /* ---- fixed-width little-endian integers ---------------------------------- */
 
+/* The little-endian uint16 at p (2 bytes readable). */
 static inline uint16_t lumo_wire_le16(const uint8_t *p)
 {
     return (uint16_t)(p[0] | p[1] << 8);
 }
 
+/* The little-endian uint32 at p (4 bytes readable). */
 static inline uint32_t lumo_wire_le32(const uint8_t *p)
 {
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
+/* The little-endian uint64 at p (8 bytes readable). */
 static inline uint64_t lumo_wire_le64(const uint8_t *p)
 {
     return (uint64_t)lumo_wire_le32(p) | (uint64_t)lumo_wire_le32(p + 4) << 32;
 }
 
+/* v little-endian at p (2 bytes writable). */
 static inline void lumo_wire_put_le16(uint8_t *p, uint16_t v)
 {
     p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8);
 }
 
+/* v little-endian at p (4 bytes writable). */
 static inline void lumo_wire_put_le32(uint8_t *p, uint32_t v)
 {
     p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8), p[2] = (uint8_t)(v >> 16), p[3] = (uint8_t)(v >> 24);
 }
 
+/* v little-endian at p (8 bytes writable). */
 static inline void lumo_wire_put_le64(uint8_t *p, uint64_t v)
 {
     lumo_wire_put_le32(p, (uint32_t)v);
@@ -80,6 +86,7 @@ size_t lumo_wire_put_varint(uint8_t *out, uint32_t v);
  * Bit i of a stream is bit (i & 7) of byte i >> 3; a field of n bits holds
  * its lowest bit first. */
 
+/* A bit reader over the caller's bytes. */
 typedef struct lumo_wire_bits {
     const uint8_t *data;   /* not owned */
     size_t nbits;          /* bits available */
