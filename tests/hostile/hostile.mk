@@ -18,9 +18,12 @@ $(BUILD)/fuzz/bin/fuzz_model_check: tests/fuzz/fuzz_model_check.c server/scene/m
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_model_check
 	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_model_check.c server/scene/model_check.c -lm
 
-$(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) $(wildcard server/scene/*.h)
+# The scene room calls the SDK (the camera fit): its sources, built alike.
+$(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) $(wildcard server/scene/*.h) \
+                                   $(filter sdk/%,$(CLIENT_SRCS))
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_scene_file
-	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) -lassimp -lm
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) \
+	    $(filter sdk/%,$(CLIENT_SRCS)) -lassimp -lm
 
 # ---- the generated corpus ------------------------------------------------------------
 # tests/hostile/gen_hostile writes every case (models, scene files, packages
