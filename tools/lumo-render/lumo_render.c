@@ -6,7 +6,7 @@
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
  *       [--no-indirect] [--frames N --orbit] [--exposure E]
  *       [--model PATH] [--light SPEC] [--bands K] [--rgb565] [--depth16]
- *       [--no-cache] [--cull] [--lod N|P%|all]
+ *       [--no-cache] [--cull] [--lod N|P%|all] [--ivg-vertex]
  *
  * Packages with progressive meshes (PMSH) are decoded through the SDK's
  * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
@@ -56,6 +56,8 @@ static const char usage[] =
     "  --cull                      drop back faces\n"
     "  --relight                   soft, per vertex: light the vertices every frame (default:\n"
     "                              once, again only when the lights or the IVG change)\n"
+    "  --ivg-vertex                soft, per pixel: sample the IVG once per vertex and\n"
+    "                              interpolate it (direct light stays per pixel)\n"
     "  --shadows N                 shadow maps of N x N texels per face for every light\n"
     "                              (point: 6 faces; default 0: no shadows)\n"
     "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
@@ -88,7 +90,7 @@ static int parse_size(const char *s, uint16_t *w, uint16_t *h)
 static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_HELP };
+           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_IVGV, O_HELP };
     static const struct option longs[] = {
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
         {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
@@ -96,7 +98,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"default", 0, 0, O_DEFAULT}, {"model", 1, 0, O_MODEL}, {"light", 1, 0, O_LIGHT},
         {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
         {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
-        {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"help", 0, 0, O_HELP},
+        {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"ivg-vertex", 0, 0, O_IVGV}, {"help", 0, 0, O_HELP},
         {"output", 1, 0, 'o'}, {0, 0, 0, 0}
     };
     int c;
@@ -144,6 +146,7 @@ static int parse_args(int argc, char **argv, options *o)
         case O_NOCACHE: o->ro.no_cache = 1; break;
         case O_CULL: o->cull = 1; break;
         case O_RELIGHT: o->ro.relight = 1; break;
+        case O_IVGV: o->ro.ivg_vertex = 1; break;
         case O_SHADOWS: { long k = strtol(optarg, &end, 10);
                           if (*end || (k != 0 && (k < LUMO_RASTER_SHADOW_MIN_SIZE || k > LUMO_MAX_FRAME_DIM)))
                               return -1;
