@@ -125,13 +125,13 @@ static uint32_t depth32(uint64_t z30)
 }
 
 /* The pixel's perspective weights w_i q_i and its depth in Q0.30. */
-static inline uint64_t pixel_depth(const tri *t, const int64_t E[3], uint64_t p[3])
+LUMO_RASTER_HOT uint64_t pixel_depth(const tri *t, const int64_t E[3], uint64_t p[3])
 {
     int i;
 
     for (i = 0; i < 3; i++)
         p[i] = (uint64_t)(uint32_t)((uint64_t)E[i] >> t->sh) * t->v[i].q;   /* < 2^54 */
-    return (((p[0] + p[1] + p[2]) >> t->zs) * t->zr) >> 32;
+    return ((uint64_t)(uint32_t)((p[0] + p[1] + p[2]) >> t->zs) * (uint32_t)t->zr) >> 32;
 }
 
 /* Perspective-correct barycentrics b_i = e_i q_i / sum e_j q_j in Q0.16,
@@ -157,33 +157,78 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
     b[0] = (1u << BARY_BITS) - b[1] - b[2];
 }
 
-/* Row py's covered span [*x0, *x1] and the edge values at *x0; 0 if none. */
-static int row_span(const tri *t, int64_t px0, int64_t px1, int64_t py, int64_t E[3],
-                    int64_t *x0, int64_t *x1)
+/* The covered run of a row from the edge values at its first pixel, in
+ * 32-bit integers (the cheap case on a 32-bit MCU: every edge value of the
+ * row within +-2^30). *x0 = first covered pixel, return the last one, or
+ * x0 - 1 when none. */
+static int64_t run_32(const tri *t, const int64_t E[3], int64_t px0, int64_t px1, int64_t *x0)
 {
-    int64_t sy = py * 16 + 8, sx = px0 * 16 + 8, px, G[3];
+    int32_t e0 = (int32_t)E[0], e1 = (int32_t)E[1], e2 = (int32_t)E[2];
+    int32_t s0 = (int32_t)t->step[0], s1 = (int32_t)t->step[1], s2 = (int32_t)t->step[2];
+    int32_t b0 = (int32_t)t->e[0].bias, b1 = (int32_t)t->e[1].bias, b2 = (int32_t)t->e[2].bias;
+    int64_t px;
+
+    for (px = px0; px <= px1; px++, e0 += s0, e1 += s1, e2 += s2)
+        if (e0 >= b0 && e1 >= b1 && e2 >= b2)
+            break;
+    *x0 = px;
+    if (px > px1)
+        return px - 1;
+    for (px++, e0 += s0, e1 += s1, e2 += s2; px <= px1; px++, e0 += s0, e1 += s1, e2 += s2)
+        if (e0 < b0 || e1 < b1 || e2 < b2)
+            break;
+    return px - 1;
+}
+
+/* The same in 64-bit integers, for any triangle. */
+static int64_t run_64(const tri *t, const int64_t E[3], int64_t px0, int64_t px1, int64_t *x0)
+{
+    int64_t G[3], px;
     int i;
 
     for (i = 0; i < 3; i++)
-        E[i] = t->e[i].a * (sx - t->e[i].x0) + t->e[i].b * (sy - t->e[i].y0);
+        G[i] = E[i];
     for (px = px0; px <= px1; px++) {
-        if (E[0] >= t->e[0].bias && E[1] >= t->e[1].bias && E[2] >= t->e[2].bias)
+        if (G[0] >= t->e[0].bias && G[1] >= t->e[1].bias && G[2] >= t->e[2].bias)
             break;
         for (i = 0; i < 3; i++)
-            E[i] += t->step[i];
+            G[i] += t->step[i];
     }
-    if (px > px1)
-        return 0;
     *x0 = px;
-    for (i = 0; i < 3; i++)
-        G[i] = E[i] + t->step[i];
-    for (px++; px <= px1; px++) {
+    if (px > px1)
+        return px - 1;
+    for (px++, i = 0; i < 3; i++)
+        G[i] += t->step[i];
+    for (; px <= px1; px++) {
         if (G[0] < t->e[0].bias || G[1] < t->e[1].bias || G[2] < t->e[2].bias)
             break;
         for (i = 0; i < 3; i++)
             G[i] += t->step[i];
     }
-    *x1 = px - 1;
+    return px - 1;
+}
+
+static int fits_30(int64_t v)
+{
+    return v < ((int64_t)1 << 30) && v > -((int64_t)1 << 30);
+}
+
+/* Row py's covered span [*x0, *x1] and the edge values at *x0; 0 if none. */
+static int row_span(const tri *t, int64_t px0, int64_t px1, int64_t py, int64_t E[3],
+                    int64_t *x0, int64_t *x1)
+{
+    int64_t sy = py * 16 + 8, sx = px0 * 16 + 8;
+    int small = 1, i;
+
+    for (i = 0; i < 3; i++) {
+        E[i] = t->e[i].a * (sx - t->e[i].x0) + t->e[i].b * (sy - t->e[i].y0);
+        small &= fits_30(E[i]) && fits_30(E[i] + t->step[i] * (px1 - px0));
+    }
+    *x1 = small ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
+    if (*x1 < *x0)
+        return 0;
+    for (i = 0; i < 3; i++)
+        E[i] += t->step[i] * (*x0 - px0);
     return 1;
 }
 
@@ -208,7 +253,7 @@ static void span_depth(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int
 }
 
 /* 1 when the pixel passes the depth test (and its depth is stored). */
-static inline int depth_pass(const lumo_raster_target *tg, size_t at, uint64_t z30)
+LUMO_RASTER_HOT int depth_pass(const lumo_raster_target *tg, size_t at, uint64_t z30)
 {
     if (tg->depth_bits == 16) {
         uint16_t *d = (uint16_t *)tg->depth + at;
@@ -287,6 +332,49 @@ static int32_t seg_step(int32_t from, int32_t to, int32_t n)
     return (to - from) / n;
 }
 
+/* Depth value of z (Q0.30, in [0, 2^30]) in 16 or 32 bits, 0 kept for
+ * "cleared": depth16 and depth32 in 32-bit arithmetic. */
+LUMO_RASTER_HOT uint32_t depth_of(uint32_t z, int d16)
+{
+    if (d16)
+        return z >= ((uint32_t)1 << 30) ? 0xFFFFu : (z >> 14) | ((z >> 14) == 0);
+    return z >= ((uint32_t)1 << 30) ? 0xFFFFFFFFu : (z << 2) | (z == 0);
+}
+
+/* The pixels of a Gouraud run in 32-bit arithmetic, inlined once per pixel
+ * format (rgb565) and depth width (d16) so that the loop holds no format
+ * test: depth and radiance stepped, depth test, three code look-ups. */
+LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z,
+                                  int32_t dz, int32_t c[3], const int32_t dc[3], int rgb565, int d16)
+{
+    uint32_t written = 0;
+    int32_t k;
+
+    for (k = 0; k < count; k++, x++, z += dz, c[0] += dc[0], c[1] += dc[1], c[2] += dc[2]) {
+        uint32_t dv = depth_of((uint32_t)z, d16);
+        unsigned r, g, b;
+        if (d16 ? dv <= ((uint16_t *)depth)[k] : dv <= ((uint32_t *)depth)[k])
+            continue;
+        if (d16)
+            ((uint16_t *)depth)[k] = (uint16_t)dv;
+        else
+            ((uint32_t *)depth)[k] = dv;
+        r = lumo_raster_srgb_code32((uint32_t)c[0]);
+        g = lumo_raster_srgb_code32((uint32_t)c[1]);
+        b = lumo_raster_srgb_code32((uint32_t)c[2]);
+        if (rgb565) {
+            unsigned t = lumo_raster_bayer4[y & 3][x & 3];
+            ((uint16_t *)(void *)line)[k] = (uint16_t)((lumo_raster_dither(r, 31, t) << 11)
+                                                       | (lumo_raster_dither(g, 63, t) << 5)
+                                                       | lumo_raster_dither(b, 31, t));
+        } else {
+            ((uint32_t *)(void *)line)[k] = ((uint32_t)r << 16) | ((uint32_t)g << 8) | b;
+        }
+        written++;
+    }
+    return written;
+}
+
 /* A Gouraud run of pixels [a, b] of a row (b - a < 16): depth and
  * radiance exact (perspective-correct) at both ends and stepped linearly
  * between them, so a pixel costs additions, the depth test and three table
@@ -298,9 +386,8 @@ static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_
     lumo_raster_target *tg = c->target;
     int64_t Eb[3];
     int32_t ca[3], cb[3], dc[3], n = (int32_t)(b - a);
-    uint32_t za, zb, written = 0;
+    uint32_t za, zb;
     int32_t z, dz;
-    int64_t x;
     int i;
 
     za = gouraud_at(t, Ea, ca);
@@ -311,17 +398,13 @@ static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_
         dc[i] = n ? seg_step(ca[i], cb[i], n) : 0;
     z = (int32_t)za;
     dz = n ? seg_step((int32_t)za, (int32_t)zb, n) : 0;
-    for (x = a; x <= b; x++) {
-        if (depth_pass(tg, row + (size_t)x, (uint64_t)(uint32_t)z)) {
-            lumo_raster_put_codes(tg, line, (int)x, (int)y, lumo_raster_srgb_code((uint32_t)ca[0]),
-                                  lumo_raster_srgb_code((uint32_t)ca[1]), lumo_raster_srgb_code((uint32_t)ca[2]));
-            written++;
-        }
-        z += dz;
-        for (i = 0; i < 3; i++)
-            ca[i] += dc[i];
-    }
-    return written;
+    row += (size_t)a;
+    line += (size_t)a * (tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u);
+    if (tg->format == LUMO_PIXEL_RGB565)
+        return tg->depth_bits == 16 ? run_pixels((uint16_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 1, 1)
+                                    : run_pixels((uint32_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 1, 0);
+    return tg->depth_bits == 16 ? run_pixels((uint16_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 0, 1)
+                                : run_pixels((uint32_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 0, 0);
 }
 
 /* Gouraud spans in runs ending at absolute multiples of 16 pixels (so a
