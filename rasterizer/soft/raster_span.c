@@ -344,14 +344,21 @@ LUMO_RASTER_HOT uint32_t depth_of(uint32_t z, int d16)
 /* The pixels of a Gouraud run in 32-bit arithmetic, inlined once per pixel
  * format (rgb565) and depth width (d16) so that the loop holds no format
  * test: depth and radiance stepped, depth test, three code look-ups. */
-LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z,
-                                  int32_t dz, int32_t c[3], const int32_t dc[3], int rgb565, int d16)
+LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z0,
+                                    int32_t dz, const int32_t c0[3], const int32_t dc[3], int rgb565, int d16)
 {
-    uint32_t written = 0;
+    /* Unsigned accumulators: every value the run uses lies in [0, 2^30];
+     * the step past its last pixel may wrap, which unsigned arithmetic
+     * defines. */
+    uint32_t written = 0, z = (uint32_t)z0, c[3];
     int32_t k;
 
-    for (k = 0; k < count; k++, x++, z += dz, c[0] += dc[0], c[1] += dc[1], c[2] += dc[2]) {
-        uint32_t dv = depth_of((uint32_t)z, d16);
+    c[0] = (uint32_t)c0[0];
+    c[1] = (uint32_t)c0[1];
+    c[2] = (uint32_t)c0[2];
+    for (k = 0; k < count; k++, x++, z += (uint32_t)dz, c[0] += (uint32_t)dc[0], c[1] += (uint32_t)dc[1],
+         c[2] += (uint32_t)dc[2]) {
+        uint32_t dv = depth_of(z, d16);
         unsigned r, g, b;
         if (d16 ? dv <= ((uint16_t *)depth)[k] : dv <= ((uint32_t *)depth)[k])
             continue;
@@ -359,9 +366,9 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
             ((uint16_t *)depth)[k] = (uint16_t)dv;
         else
             ((uint32_t *)depth)[k] = dv;
-        r = lumo_raster_srgb_code32((uint32_t)c[0]);
-        g = lumo_raster_srgb_code32((uint32_t)c[1]);
-        b = lumo_raster_srgb_code32((uint32_t)c[2]);
+        r = lumo_raster_srgb_code32(c[0]);
+        g = lumo_raster_srgb_code32(c[1]);
+        b = lumo_raster_srgb_code32(c[2]);
         if (rgb565) {
             unsigned t = lumo_raster_bayer4[y & 3][x & 3];
             ((uint16_t *)(void *)line)[k] = (uint16_t)((lumo_raster_dither(r, 31, t) << 11)
