@@ -108,7 +108,7 @@ echo
 echo "### RAM of the soft rasterizer per resolution and band height"
 echo
 echo "\`lumo-raster-ram\`: colour + depth bytes of one band (lumo_raster_band_bytes); a frame is drawn"
-echo "as ceil(H / K) bands, each a pass over the mesh. Plus about 2.6 KB of stack in lumo_raster_draw on Cortex-M3"
+echo "as ceil(H / K) bands, each a pass over the mesh. Plus about 3.1 KB of stack in lumo_raster_draw on Cortex-M3"
 echo "(docs/rasterizer.md) and the mesh itself."
 echo
 "$bin/lumo-raster-ram"
