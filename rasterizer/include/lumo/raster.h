@@ -316,9 +316,9 @@ uint32_t lumo_raster_shadow_visibility(const lumo_raster_shadow *sh, const lumo_
  * not depend on the band split nor on the cache.
  * Errors (nothing drawn): LUMO_ERR_ARG, LUMO_ERR_RANGE (a triangle index
  * >= vertex_count, a bad target, view size != target size). Uses about
- * 2.7 KB of stack on a Cortex-M3 (-fstack-usage: 1.6 KB for the clipped
- * polygon and the triangle, 0.7 KB for shading with the IVG; 2 720 bytes
- * peak measured on the board) and no other memory. */
+ * 3.1 KB of stack on a Cortex-M3 (the clipped polygon's vertices of 76
+ * bytes and the triangle, shading with the IVG; 3 072 bytes peak measured
+ * on the board by tests/board/golden_raster.c) and no other memory. */
 lumo_status lumo_raster_draw(const lumo_raster_view *v, const lumo_raster_scene *s,
                              const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
                              lumo_raster_target *t);
