@@ -6,7 +6,7 @@
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
  *       [--no-indirect] [--frames N --orbit] [--exposure E]
  *       [--model PATH] [--light SPEC] [--bands K] [--rgb565] [--depth16]
- *       [--no-cache] [--cull] [--lod N|P%|all]
+ *       [--no-cache] [--cull] [--lod N|P%|all] [--ivg-vertex]
  *
  * Packages with progressive meshes (PMSH) are decoded through the SDK's
  * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
@@ -62,6 +62,8 @@ static const char usage[] =
     "  --cull                      drop back faces\n"
     "  --relight                   soft, per vertex: light the vertices every frame (default:\n"
     "                              once, again only when the lights or the IVG change)\n"
+    "  --ivg-vertex                soft, per pixel: sample the IVG once per vertex and\n"
+    "                              interpolate it (direct light stays per pixel)\n"
     "  --shadows N                 shadow maps of N x N texels per face for every light\n"
     "                              (point: 6 faces; default 0: no shadows)\n"
     "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
@@ -80,7 +82,7 @@ typedef struct options {
 } options;
 
 enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP };
+       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_IVGV, O_HELP };
 
 static const struct option k_longs[] = {
     {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
@@ -90,6 +92,7 @@ static const struct option k_longs[] = {
     {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
     {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
     {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
+    {"ivg-vertex", 0, 0, O_IVGV},
     {"help", 0, 0, O_HELP},
     {"output", 1, 0, 'o'}, {0, 0, 0, 0}
 };
@@ -127,6 +130,7 @@ static int take_flag(options *o, int c, const char *arg, char *err, size_t errle
     case O_CULL: o->cull = 1; return 0;
     case O_RELIGHT: o->ro.relight = 1; return 0;
     case O_FIT: o->fit = 1; return 0;
+    case O_IVGV: o->ro.ivg_vertex = 1; return 0;
     default: snprintf(err, errlen, "unhandled option %d", c); return -1;
     }
 }
