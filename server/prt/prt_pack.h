@@ -1,0 +1,55 @@
+/*
+ * prt/prt_pack.h — PRT into a .lumo package (docs/package-format.md
+ * "PRTV", "PRTL"; docs/prt.md): the transfer of a mesh's progressive
+ * vertices (server/pm), compressed by CPCA (prt/cpca.h), quantized to
+ * Q1.14, and the SH lighting of an environment map.
+ */
+#ifndef SRV_PRT_PACK_H
+#define SRV_PRT_PACK_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "lumo/status.h"
+#include "prt/cpca.h"
+#include "prt/transfer.h"
+
+#define SRV_PRT_PKG_PRTV 0x56545250u   /* 'P','R','T','V' as LUMO_PKG_FOURCC */
+#define SRV_PRT_PKG_PRTL 0x4C545250u   /* 'P','R','T','L' */
+
+/* The PRTV chunk of a compressed transfer: header, clusters (mean then
+ * components, Q1.14), vertices (cluster, weights Q1.14) in vertex order.
+ * Malloc'ed into *out. LUMO_OK, LUMO_ERR_LIMIT (clusters or components
+ * beyond lumo/config.h), LUMO_ERR_RANGE (a value outside [-2, 2): it would
+ * not fit Q1.14: nothing is saturated silently), LUMO_ERR_NOMEM. */
+lumo_status srv_prt_encode(const srv_cpca *c, int order, uint8_t **out, size_t *len);
+
+/* The uncompressed-vs-quantized error: average over vertices of the
+ * squared difference between the CPCA reconstruction in double and the
+ * one from the Q1.14 chunk. */
+double srv_prt_quant_sq_error(const srv_cpca *c, const uint8_t *chunk, size_t len);
+
+typedef struct srv_prt_options {
+    srv_prt_transfer_opts transfer;
+    srv_cpca_opts         cpca;
+} srv_prt_options;
+
+void srv_prt_default_options(srv_prt_options *o);
+
+/* For lumo-bake --prt: the same progressive mesh srv_pm_pack builds (the
+ * vertex order of its PMSH chunk), its transfer, CPCA, one PRTV chunk.
+ * LUMO_OK or the failing step's status with a reason in err. */
+struct srv_pkg_writer;
+lumo_status srv_prt_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
+                         const uint32_t *tris, uint32_t nf, const srv_prt_options *o, char *err,
+                         size_t errlen);
+
+/* An equirectangular image (linear RGB floats, w x h; docs/prt.md): longitude phi = 2 pi (x + 0.5) / w from +x towards +y,
+ * polar angle theta = pi (y + 0.5) / h from +z) projected on SH of order
+ * N: out[c * N^2 + i], radiance per basis function. */
+void srv_prt_env_project(const float *rgb, int w, int h, int order, double *out);
+
+/* The PRTL chunk: u8 order, 3 zero bytes, then 3 x N^2 int32 Q16.16
+ * (channel-major). LUMO_ERR_RANGE when a coefficient is beyond Q16.16. */
+lumo_status srv_prt_encode_light(const double *coeffs, int order, uint8_t **out, size_t *len);
+
+#endif
