@@ -106,21 +106,19 @@ static lumo_status alloc_result(srv_cpca *c, uint32_t n, int dim, int k, int npc
 
 static lumo_status cluster(srv_cpca *c, const double *x, const float *pos, const srv_cpca_opts *o)
 {
-    int threads = o->threads < 1 ? 1 : o->threads > 256 ? 256 : o->threads;
+    int threads = o->threads < 1 ? 1 : o->threads;
     lbg g = {.x = x, .n = c->n, .dim = c->dim, .k = c->k, .alpha = o->alpha, .cluster = c->cluster,
              .count = c->count, .mean = c->mean};
     g.next = malloc(c->n * sizeof *g.next);
-    g.scratch = malloc(2u * (size_t)c->k * (size_t)threads * sizeof *g.scratch);
     float *up = o->alpha > 0.0 ? unit_positions(pos, c->n) : NULL;
     g.pos = up;
-    lumo_status st = g.next && g.scratch && (up || o->alpha == 0.0) ? LUMO_OK : LUMO_ERR_NOMEM;
+    lumo_status st = g.next && (up || o->alpha == 0.0) ? LUMO_OK : LUMO_ERR_NOMEM;
     srv_cpca_init_means(x, c->n, c->dim, c->k, o->seed, c->mean);
     if (!st)
         st = srv_cpca_lbg(&g, o->max_iter, o->threshold, threads);
     c->iterations = g.iterations;
     srv_kd_free(&g.kd);
     free(g.next);
-    free(g.scratch);
     free(up);
     return st;
 }

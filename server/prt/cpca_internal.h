@@ -34,7 +34,6 @@ typedef struct lbg {
     int      coherent;    /* this pass uses Eq. 9 */
     uint32_t *cluster, *next, *count;
     double   *mean;       /* k * dim */
-    double   *scratch;    /* 2 * k per worker */
     srv_kd    kd;
     int       iterations;
 } lbg;

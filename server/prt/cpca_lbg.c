@@ -47,30 +47,23 @@ static uint32_t nearest_mean(const lbg *g, uint32_t i)
     return bc;
 }
 
-static int cmp_cand(const void *a, const void *b)
-{
-    const double *x = a, *y = b;
-    return x[0] < y[0] ? -1 : x[0] > y[0] ? 1 : (x[1] < y[1] ? -1 : x[1] > y[1]);
-}
-
-/* Eq. 9: clusters in increasing ||V - mean||; the geometric term (Eq. 10,
- * the nearest member of the cluster by kd-tree) is looked up only while a
- * cluster could still beat the best so far. */
-static uint32_t coherent_mean(const lbg *g, uint32_t i, double *cand)
+/* Eq. 9: the vertex's own cluster (from the last pass) costs ||V - mean||
+ * alone, its geometric term being zero (the vertex is a member); another
+ * cluster can only win if its ||V - mean|| is already below the best, and
+ * only then is its geometric term (Eq. 10, nearest member by kd-tree)
+ * looked up. */
+static uint32_t coherent_mean(const lbg *g, uint32_t i)
 {
     const double *v = &g->x[(size_t)i * (size_t)g->dim];
+    uint32_t bc = g->cluster[i];
+    double best = sqrt(dist2(v, &g->mean[bc * (uint32_t)g->dim], g->dim));
     for (int c = 0; c < g->k; c++) {
-        cand[2 * c] = sqrt(dist2(v, &g->mean[c * g->dim], g->dim));
-        cand[2 * c + 1] = c;
-    }
-    qsort(cand, (size_t)g->k, 2 * sizeof *cand, cmp_cand);
-    double best = DBL_MAX;
-    uint32_t bc = (uint32_t)cand[1];
-    for (int j = 0; j < g->k && cand[2 * j] < best; j++) {
-        uint32_t c = (uint32_t)cand[2 * j + 1];
-        double e = cand[2 * j] + g->alpha * srv_kd_nearest(&g->kd, c, &g->pos[3 * (size_t)i]);
-        if (e < best)
-            best = e, bc = c;
+        double d = sqrt(dist2(v, &g->mean[c * g->dim], g->dim));
+        if ((uint32_t)c == g->cluster[i] || d >= best)
+            continue;
+        double e = d + g->alpha * srv_kd_nearest(&g->kd, (uint32_t)c, &g->pos[3 * (size_t)i]);
+        if (e < best || (e == best && (uint32_t)c < bc))
+            best = e, bc = (uint32_t)c;
     }
     return bc;
 }
@@ -81,9 +74,9 @@ static void assign_block(void *ctx, size_t item, int worker)
 {
     lbg *g = ctx;
     uint32_t a = (uint32_t)item * ASSIGN_BLOCK, b = a + ASSIGN_BLOCK < g->n ? a + ASSIGN_BLOCK : g->n;
-    double *cand = &g->scratch[(size_t)worker * 2u * (size_t)g->k];
+    (void)worker;
     for (uint32_t i = a; i < b; i++)
-        g->next[i] = g->coherent ? coherent_mean(g, i, cand) : nearest_mean(g, i);
+        g->next[i] = g->coherent ? coherent_mean(g, i) : nearest_mean(g, i);
 }
 
 /* Fig. 3.2 step 2 and Eq. 4: the means of the members, the energy. */

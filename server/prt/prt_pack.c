@@ -152,7 +152,7 @@ void srv_prt_env_project(const float *rgb, int w, int h, int order, double *out)
         double th = M_PI * (r + 0.5) / h, st = sin(th);
         double dw = (M_PI / h) * (2.0 * M_PI / w) * st;   /* solid angle of a texel */
         for (int x = 0; x < w; x++) {
-            double ph = 2.0 * M_PI * (x + 0.5) / w, d[3] = {st * cos(ph), st * sin(ph), cos(th)};
+            double ph = 2.0 * M_PI * (x + 0.5) / w, d[3] = {st * cos(ph), cos(th), st * sin(ph)};
             const float *px = &rgb[3 * ((size_t)r * (size_t)w + (size_t)x)];
             srv_sh_eval(order, d, y);
             for (int c = 0; c < 3; c++)

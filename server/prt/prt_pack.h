@@ -43,9 +43,11 @@ lumo_status srv_prt_pack(struct srv_pkg_writer *w, const float *xyz, const uint8
                          const uint32_t *tris, uint32_t nf, const srv_prt_options *o, char *err,
                          size_t errlen);
 
-/* An equirectangular image (linear RGB floats, w x h; docs/prt.md): longitude phi = 2 pi (x + 0.5) / w from +x towards +y,
- * polar angle theta = pi (y + 0.5) / h from +z) projected on SH of order
- * N: out[c * N^2 + i], radiance per basis function. */
+/* An equirectangular image (linear RGB radiance, w x h, row-major from the
+ * top; docs/prt.md) projected on SH of order N. lumo's scenes are y-up, so
+ * row y looks at polar angle theta = pi (y + 0.5) / h from +y and column x
+ * at phi = 2 pi (x + 0.5) / w: d = (sin theta cos phi, cos theta,
+ * sin theta sin phi). out[c * N^2 + i]: radiance per basis function. */
 void srv_prt_env_project(const float *rgb, int w, int h, int order, double *out);
 
 /* The PRTL chunk: u8 order, 3 zero bytes, then 3 x N^2 int32 Q16.16

@@ -6,7 +6,7 @@
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
  *       [--no-indirect] [--frames N --orbit] [--exposure E]
  *       [--model PATH] [--light SPEC] [--bands K] [--rgb565] [--depth16]
- *       [--no-cache] [--cull] [--lod N|P%|all]
+ *       [--no-cache] [--cull] [--lod N|P%|all] [--prt [--env FILE] [--rotate DEG]]
  *
  * Packages with progressive meshes (PMSH) are decoded through the SDK's
  * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
@@ -28,6 +28,7 @@
 #include "render_backend.h"
 #include "scene/shapes.h"
 #include "scene_convert.h"
+#include "prt_render.h"
 #include "lumo_host/version_line.h"
 
 /* The dragon of the default scene when neither --model nor LUMO_DRAGON names
@@ -64,12 +65,19 @@ static const char usage[] =
     "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
     "  --lod N|P%|all              level of detail of progressive meshes: at most N vertices\n"
     "                              per mesh, or the base mesh plus P% of the vertices\n"
-    "                              streamed after it (0% = base mesh), or all (default)\n";
+    "                              streamed after it (0% = base mesh), or all (default)\n"
+    "  --prt                       soft, per vertex: relight with the package's PRT (lumo-bake\n"
+    "                              --prt; docs/prt.md) under the scene's lights as distant\n"
+    "                              lights, or the package's environment (PRTL), or --env\n"
+    "  --env FILE.png              with --prt: an equirectangular environment (y up)\n"
+    "  --rotate DEG                with --prt: turn the lighting DEG degrees about +y a frame\n";
 
 typedef struct options {
     const char *input, *output, *backend, *camera, *model;
     const char *lights[LUMO_MAX_LIGHTS];
-    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit;
+    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit, prt;
+    const char *env;
+    double rotate;
     const char *lod_arg;
     host_lod lod;
     double exposure;
@@ -91,7 +99,8 @@ static int parse_size(const char *s, uint16_t *w, uint16_t *h)
 static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP };
+           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP,
+           O_PRT, O_ENV, O_ROTATE };
     static const struct option longs[] = {
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
         {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
@@ -100,7 +109,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
         {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
         {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
-        {"help", 0, 0, O_HELP},
+        {"help", 0, 0, O_HELP}, {"prt", 0, 0, O_PRT}, {"env", 1, 0, O_ENV}, {"rotate", 1, 0, O_ROTATE},
         {"output", 1, 0, 'o'}, {0, 0, 0, 0}
     };
     int c;
@@ -162,6 +171,12 @@ static int parse_args(int argc, char **argv, options *o)
             o->lod_arg = optarg;
             o->lod_set = strcmp(optarg, "all") != 0;
             break;
+        case O_PRT: o->prt = 1; break;
+        case O_ENV: o->env = optarg; break;
+        case O_ROTATE:
+            o->rotate = strtod(optarg, &end);
+            if (*end || !(fabs(o->rotate) <= 360)) return -1;
+            break;
         case 'h': case O_HELP: fputs(usage, stdout); exit(0);
         default: return -1;
         }
@@ -169,6 +184,8 @@ static int parse_args(int argc, char **argv, options *o)
     if (optind < argc)
         o->input = argv[optind++];
     if (optind != argc || !o->output || (!o->input == !o->use_default))
+        return -1;
+    if ((o->env || o->rotate != 0) && !o->prt)
         return -1;
     return 0;
 }
@@ -319,12 +336,25 @@ int main(int argc, char **argv)
             }
     }
     mesh = host_mesh_raster(&scene.mesh);
+    static host_prt prt;
+    if (o.prt) {
+        if (o.use_default || strcmp(o.backend, "soft") || o.per_pixel) {
+            fprintf(stderr, "lumo-render: error: --prt needs a package, the soft backend and per-vertex lighting\n");
+            return 1;
+        }
+        if (host_prt_open(&prt, o.input, o.env, &scene, err, sizeof err)) {
+            fprintf(stderr, "lumo-render: error: --prt: %s\n", err);
+            return 1;
+        }
+        mesh.lit = prt.lit;   /* drawn as lit, relit by PRT before each frame */
+        o.ro.relight = 1;
+    }
     memset(&rs, 0, sizeof rs);
     rs.lights = scene.lights;
     rs.light_count = scene.light_count;
     rs.exposure = (lumo_uq16_16)floor(o.exposure * 65536 + 0.5);
     rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL : 0) | (o.cull ? LUMO_RASTER_CULL_BACK : 0);
-    if (ivg.grid && !o.no_indirect) {
+    if (ivg.grid && !o.no_indirect && !o.prt) {   /* PRT carries its own interreflections */
         rs.indirect = lumo_raster_ivg_irradiance;
         rs.indirect_ctx = ivg.grid;
     }
@@ -343,6 +373,11 @@ int main(int argc, char **argv)
         if (o.orbit) {
             orbit_camera(&scene.camera, i, o.frames, &cam);
             cam.znear = lumo_raster_znear_for_box(&cam, scene.bmin, scene.bmax);
+        }
+        if (o.prt && host_prt_relight(&prt, &scene, i, o.rotate)) {
+            fprintf(stderr, "lumo-render: error: PRT relight of frame %d failed\n", i);
+            rc = 1;
+            break;
         }
         t0 = now_ms();
         if (timed_frame(r, &cam, &rs, rgb)) {
@@ -366,6 +401,11 @@ int main(int argc, char **argv)
                host_renderer_describe(r), o.ro.width, o.ro.height, mesh.tri_count,
                o.per_pixel ? "per-pixel" : "per-vertex", rs.indirect ? " + IVG" : "", o.frames,
                total / o.frames, best);
+    if (rc == 0 && o.prt)
+        printf("lumo-render: PRT order %u, %u mesh(es), %u clusters, %u components: relight %.3f ms/frame mean\n",
+               prt.mesh[0].order, prt.meshes, prt.mesh[0].clusters, prt.mesh[0].components,
+               prt.relight_ms / o.frames);
+    host_prt_close(&prt);
     free(rgb);
     host_renderer_close(r);
     host_scene_free(&scene);
