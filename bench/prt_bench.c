@@ -121,7 +121,7 @@ static void table(FILE *f, const char *model, const srv_pm *pm, const double *x,
     }
     uint8_t *chunk;
     size_t len;
-    if (srv_prt_encode(&keep, o->order, &chunk, &len) == LUMO_OK) {
+    if (srv_prt_encode(&keep, o->order, NULL, &chunk, &len) == LUMO_OK) {
         fprintf(f, "\nPRTV chunk (original CPCA): %zu bytes (%.1f per vertex; uncompressed binary32 %zu bytes); "
                    "Q1.14 quantization squared error %.2e (CPCA's own: %.2e).\n",
                 len, (double)len / pm->vertices, (size_t)pm->vertices * (size_t)nc * 4u,
@@ -201,7 +201,7 @@ static void client_cost(FILE *f, const srv_pm *pm, const double *x, int nc, cons
     uint8_t *chunk;
     size_t len;
     lumo_prt p;
-    if (srv_cpca_build(x, pm->vertices, nc, pm->xyz, &co, &c) || srv_prt_encode(&c, o->order, &chunk, &len) ||
+    if (srv_cpca_build(x, pm->vertices, nc, pm->xyz, &co, &c) || srv_prt_encode(&c, o->order, NULL, &chunk, &len) ||
         lumo_prt_parse(&p, chunk, len)) {
         fprintf(stderr, "prt-bench: cannot build the client chunk\n");
         exit(1);

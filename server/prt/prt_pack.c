@@ -29,14 +29,14 @@ static int put_q14(uint8_t *p, double v)
     return 0;
 }
 
-lumo_status srv_prt_encode(const srv_cpca *c, int order, uint8_t **out, size_t *len)
+lumo_status srv_prt_encode(const srv_cpca *c, int order, const uint32_t *pass, uint8_t **out, size_t *len)
 {
     if (c->k > LUMO_PRT_MAX_CLUSTERS || c->k > 65535 || c->npc > LUMO_PRT_MAX_COMPONENTS)
         return LUMO_ERR_LIMIT;
     if (order < 1 || order > LUMO_PRT_MAX_ORDER || c->dim != order * order)
         return LUMO_ERR_ARG;
     size_t cb = lumo_prt_cluster_bytes((unsigned)order, (unsigned)c->npc), vb = lumo_prt_vertex_bytes((unsigned)c->npc);
-    size_t n = LUMO_PRT_HEADER_SIZE + (size_t)c->k * cb + (size_t)c->n * vb;
+    size_t n = LUMO_PRT_HEADER_SIZE + (size_t)c->k * (cb + 2u) + (size_t)c->n * vb;
     uint8_t *b = calloc(1, n), *p;
     int bad = 0;
     if (!b)
@@ -52,6 +52,8 @@ lumo_status srv_prt_encode(const srv_cpca *c, int order, uint8_t **out, size_t *
             for (int d = 0; d < c->dim; d++, p += 2)
                 bad |= put_q14(p, c->basis[((size_t)k * (size_t)c->npc + (size_t)j) * (size_t)c->dim + (size_t)d]);
     }
+    for (int k = 0; k < c->k; k++, p += 2)
+        lumo_wire_put_le16(p, (uint16_t)(pass ? pass[k] : (uint32_t)k));
     for (uint32_t v = 0; v < c->n; v++) {
         lumo_wire_put_le16(p, (uint16_t)c->cluster[v]);
         p += 2;
@@ -74,7 +76,7 @@ static double get_q14(const uint8_t *p)
 double srv_prt_quant_sq_error(const srv_cpca *c, const uint8_t *chunk, size_t len)
 {
     size_t cb = lumo_prt_cluster_bytes((unsigned)chunk[1], (unsigned)c->npc), vb = lumo_prt_vertex_bytes((unsigned)c->npc);
-    const uint8_t *cl = chunk + LUMO_PRT_HEADER_SIZE, *vx = cl + (size_t)c->k * cb;
+    const uint8_t *cl = chunk + LUMO_PRT_HEADER_SIZE, *vx = cl + (size_t)c->k * (cb + 2u);
     double r[SRV_SH_MAX_COEFFS], s = 0.0;
     (void)len;
     for (uint32_t v = 0; v < c->n; v++) {
@@ -94,6 +96,7 @@ void srv_prt_default_options(srv_prt_options *o)
 {
     srv_prt_transfer_default_opts(&o->transfer);
     srv_cpca_default_opts(&o->cpca);
+    o->registers = 256;
 }
 
 static lumo_status transfer_cpca(const srv_pm *pm, const srv_prt_options *o, uint8_t **chunk, size_t *len,
@@ -115,8 +118,12 @@ static lumo_status transfer_cpca(const srv_pm *pm, const srv_prt_options *o, uin
     if (!st && (st = srv_cpca_build(t, pm->vertices, nc, pm->xyz, &co, &c)) != LUMO_OK)
         snprintf(err, errlen, "prt: clustered PCA failed (%s)", lumo_strerror(st));
     if (!st) {
-        if ((st = srv_prt_encode(&c, o->transfer.order, chunk, len)) != LUMO_OK)
+        uint32_t *pass = o->registers > 0 ? malloc((size_t)c.k * sizeof *pass) : NULL;
+        if (pass && !srv_cpca_superclusters(&c, pm->tris, pm->faces, srv_cpca_per_pass(nc, c.npc, o->registers), pass))
+            free(pass), pass = NULL;
+        if ((st = srv_prt_encode(&c, o->transfer.order, pass, chunk, len)) != LUMO_OK)
             snprintf(err, errlen, "prt: cannot encode the transfer (%s)", lumo_strerror(st));
+        free(pass);
         srv_cpca_free(&c);
     }
     free(t);

@@ -17,11 +17,13 @@
 #define SRV_PRT_PKG_PRTL 0x4C545250u   /* 'P','R','T','L' */
 
 /* The PRTV chunk of a compressed transfer: header, clusters (mean then
- * components, Q1.14), vertices (cluster, weights Q1.14) in vertex order.
+ * components, Q1.14), the pass of each cluster (pass: k entries from
+ * srv_cpca_superclusters, or NULL: one pass per cluster), vertices
+ * (cluster, weights Q1.14) in vertex order.
  * Malloc'ed into *out. LUMO_OK, LUMO_ERR_LIMIT (clusters or components
  * beyond lumo/config.h), LUMO_ERR_RANGE (a value outside [-2, 2): it would
  * not fit Q1.14: nothing is saturated silently), LUMO_ERR_NOMEM. */
-lumo_status srv_prt_encode(const srv_cpca *c, int order, uint8_t **out, size_t *len);
+lumo_status srv_prt_encode(const srv_cpca *c, int order, const uint32_t *pass, uint8_t **out, size_t *len);
 
 /* The uncompressed-vs-quantized error: average over vertices of the
  * squared difference between the CPCA reconstruction in double and the
@@ -31,6 +33,9 @@ double srv_prt_quant_sq_error(const srv_cpca *c, const uint8_t *chunk, size_t le
 typedef struct srv_prt_options {
     srv_prt_transfer_opts transfer;
     srv_cpca_opts         cpca;
+    int                   registers;   /* super-clusters under this many float4
+                                          registers a pass (seed 003 §4.1: 256);
+                                          0: one pass per cluster */
 } srv_prt_options;
 
 void srv_prt_default_options(srv_prt_options *o);

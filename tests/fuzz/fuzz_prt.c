@@ -2,7 +2,7 @@
  * return an error or a view whose every use stays in bounds — the frame
  * table from a lighting vector (its coefficients from the input's last
  * bytes), every held vertex shaded, the lighting rotated by angles read
- * from the input. */
+ * from the input; every cluster's pass in range. */
 #include <stdint.h>
 #include <stddef.h>
 #include <string.h>
@@ -10,7 +10,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static lumo_q16_16 g_frame[3u * 4096u * 17u];
+static lumo_q16_16 g_frame[3u * LUMO_PRT_MAX_CLUSTERS * (LUMO_PRT_MAX_COMPONENTS + 1u)];
 #define MAXV 65536u
 static lumo_uq16_16 g_lit[6u * MAXV];
 static lumo_q1_14 g_albedo[3u * MAXV];
@@ -48,6 +48,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         __builtin_trap();
     if (p.vertices_held > MAXV)
         return 0;
+    for (uint32_t k = 0; k < p.clusters; k++)
+        if (lumo_prt_pass(&p, k) >= p.clusters)
+            __builtin_trap();
     light_from(data, size, p.order, &l);
     rotate(data, size, &l);
     if (lumo_prt_frame(&p, &l, g_frame) != LUMO_OK)

@@ -181,7 +181,7 @@ static void make_fixture(fixture *f, int order, int k, int npc)
     srv_cpca_default_opts(&co);
     co.clusters = k, co.components = npc, co.alpha = 0.05;
     assert_int_equal(srv_cpca_build(f->t, nv, nc, xyz, &co, &f->c), LUMO_OK);
-    assert_int_equal(srv_prt_encode(&f->c, order, &f->chunk, &f->len), LUMO_OK);
+    assert_int_equal(srv_prt_encode(&f->c, order, NULL, &f->chunk, &f->len), LUMO_OK);
 }
 
 static void free_fixture(fixture *f)
@@ -205,11 +205,20 @@ static void test_chunk(void **state)
     assert_int_equal(p.components, 4);
     assert_int_equal(p.clusters, 12);
     assert_int_equal(p.vertices_held, f.m.nverts);
+    uint32_t pass[12], np = srv_cpca_superclusters(&f.c, f.m.tris, f.m.ntris, 3, pass);
+    uint8_t *sc;
+    size_t sl;
+    assert_int_equal(srv_prt_encode(&f.c, 4, pass, &sc, &sl), LUMO_OK);
+    assert_int_equal(lumo_prt_parse(&p, sc, sl), LUMO_OK);
+    for (uint32_t k = 0; k < 12; k++)
+        assert_true(lumo_prt_pass(&p, k) == pass[k] && pass[k] < np);
+    free(sc);
+    assert_int_equal(lumo_prt_parse(&p, f.chunk, f.len), LUMO_OK);
     double qe = srv_prt_quant_sq_error(&f.c, f.chunk, f.len), se = srv_cpca_sq_error(&f.c, f.t);
     print_message("PRTV %zu bytes; squared error CPCA %.3e, Q1.14 quantization %.3e\n", f.len, se, qe);
     assert_true(qe < 1e-7);
     /* a prefix holds fewer vertices; a cut inside the clusters is truncated */
-    size_t head = LUMO_PRT_HEADER_SIZE + 12 * lumo_prt_cluster_bytes(4, 4);
+    size_t head = LUMO_PRT_HEADER_SIZE + 12 * (lumo_prt_cluster_bytes(4, 4) + 2);
     assert_int_equal(lumo_prt_parse(&p, f.chunk, head + 10 * lumo_prt_vertex_bytes(4) + 3), LUMO_OK);
     assert_int_equal(p.vertices_held, 10);
     assert_int_equal(lumo_prt_parse(&p, f.chunk, head - 1), LUMO_ERR_TRUNCATED);
@@ -224,6 +233,12 @@ static void test_chunk(void **state)
     b[1] = 4, b[2] = LUMO_PRT_MAX_COMPONENTS + 1;
     assert_int_equal(lumo_prt_parse(&p, b, f.len), LUMO_ERR_LIMIT);
     b[2] = 4;
+    lumo_wire_put_le16(b + head - 2, 12);   /* the last cluster's pass: 12 of 12 */
+    assert_int_equal(lumo_prt_parse(&p, b, f.len), LUMO_ERR_RANGE);
+    lumo_wire_put_le16(b + head - 2, 11);
+    assert_int_equal(lumo_prt_parse(&p, b, f.len), LUMO_OK);
+    assert_int_equal(lumo_prt_pass(&p, 11), 11);
+    assert_int_equal(lumo_prt_pass(&p, 3), 3);   /* no selection: one pass per cluster */
     lumo_wire_put_le16(b + head + 5 * lumo_prt_vertex_bytes(4), 12);   /* cluster 12 of 12 */
     p.order = 99;
     assert_int_equal(lumo_prt_parse(&p, b, f.len), LUMO_ERR_RANGE);

@@ -32,6 +32,8 @@ static int take(bake_prt *p, const char *tok)
         return r < 0 ? -1 : (p->o.transfer.bounces = (int)v, 0);
     if ((r = kv(tok, "strata", 2, 256, &v)) != 0)
         return r < 0 ? -1 : (p->o.transfer.strata = (int)v, 0);
+    if ((r = kv(tok, "registers", 0, 65536, &v)) != 0)
+        return r < 0 ? -1 : (p->o.registers = (int)v, 0);
     return -1;
 }
 

@@ -13,7 +13,7 @@ typedef struct bake_prt {
     const char *env;    /* equirectangular PNG, or NULL */
 } bake_prt;
 
-/* "ORDER[,clusters=K][,components=P][,alpha=A][,bounces=B][,strata=S]":
+/* "ORDER[,clusters=K][,components=P][,alpha=A][,bounces=B][,strata=S][,registers=R]":
  * 0, or -1 for a malformed or out-of-range spec. */
 int bake_prt_parse(bake_prt *p, const char *spec, int threads, int progress);
 

@@ -70,7 +70,9 @@ static const char usage[] =
     "                              --prt; docs/prt.md) under the scene's lights as distant\n"
     "                              lights, or the package's environment (PRTL), or --env\n"
     "  --env FILE.png              with --prt: an equirectangular environment (y up)\n"
-    "  --rotate DEG                with --prt: turn the lighting DEG degrees about +y a frame\n";
+    "  --rotate DEG                with --prt: turn the lighting DEG degrees about +y a frame\n"
+    "  --prt-view clusters|passes  with --prt: false colours of each vertex's cluster, or of\n"
+    "                              its cluster's draw pass (super-cluster)\n";
 
 typedef struct options {
     const char *input, *output, *backend, *camera, *model;
@@ -78,6 +80,7 @@ typedef struct options {
     int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit, prt;
     const char *env;
     double rotate;
+    int prt_view;
     const char *lod_arg;
     host_lod lod;
     double exposure;
@@ -100,7 +103,7 @@ static int parse_args(int argc, char **argv, options *o)
 {
     enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
            O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP,
-           O_PRT, O_ENV, O_ROTATE };
+           O_PRT, O_ENV, O_ROTATE, O_PRT_VIEW };
     static const struct option longs[] = {
         {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
         {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
@@ -110,6 +113,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
         {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
         {"help", 0, 0, O_HELP}, {"prt", 0, 0, O_PRT}, {"env", 1, 0, O_ENV}, {"rotate", 1, 0, O_ROTATE},
+        {"prt-view", 1, 0, O_PRT_VIEW},
         {"output", 1, 0, 'o'}, {0, 0, 0, 0}
     };
     int c;
@@ -173,6 +177,10 @@ static int parse_args(int argc, char **argv, options *o)
             break;
         case O_PRT: o->prt = 1; break;
         case O_ENV: o->env = optarg; break;
+        case O_PRT_VIEW:
+            o->prt_view = !strcmp(optarg, "clusters") ? HOST_PRT_CLUSTERS : !strcmp(optarg, "passes") ? HOST_PRT_PASSES : -1;
+            if (o->prt_view < 0) return -1;
+            break;
         case O_ROTATE:
             o->rotate = strtod(optarg, &end);
             if (*end || !(fabs(o->rotate) <= 360)) return -1;
@@ -185,7 +193,7 @@ static int parse_args(int argc, char **argv, options *o)
         o->input = argv[optind++];
     if (optind != argc || !o->output || (!o->input == !o->use_default))
         return -1;
-    if ((o->env || o->rotate != 0) && !o->prt)
+    if ((o->env || o->rotate != 0 || o->prt_view) && !o->prt)
         return -1;
     return 0;
 }
@@ -347,6 +355,7 @@ int main(int argc, char **argv)
             return 1;
         }
         mesh.lit = prt.lit;   /* drawn as lit, relit by PRT before each frame */
+        prt.view = o.prt_view;
         o.ro.relight = 1;
     }
     memset(&rs, 0, sizeof rs);

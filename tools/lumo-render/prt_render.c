@@ -146,8 +146,35 @@ int host_prt_open(host_prt *p, const char *path, const char *env, const host_sce
     return lights_vector(p, s);
 }
 
+/* A false colour for id, bright enough to tell neighbours apart. */
+static void id_colour(uint32_t id, lumo_uq16_16 *rgb)
+{
+    uint32_t h = id * 2654435761u;
+    for (int c = 0; c < 3; c++)
+        rgb[c] = (lumo_uq16_16)(((h >> (8 * c)) & 0xFFu) * 96u + 2048u);
+}
+
+static void false_colour(host_prt *p, const host_scene *s)
+{
+    uint32_t first = 0;
+    for (uint32_t m = 0; m < p->meshes; m++) {
+        const lumo_prt *c = &p->mesh[m];
+        uint32_t n = p->meshes == 1 ? s->mesh.vertex_count : c->vertices_held;
+        for (uint32_t v = 0; v < n; v++) {
+            uint32_t k = lumo_wire_le16(c->vertex_data + (size_t)v * lumo_prt_vertex_bytes(c->components));
+            id_colour(p->view == HOST_PRT_PASSES ? lumo_prt_pass(c, k) + (m << 16) : k + (m << 16),
+                      p->lit + 6u * (first + v));
+        }
+        first += n;
+    }
+}
+
 int host_prt_relight(host_prt *p, const host_scene *s, int i, double deg)
 {
+    if (p->view != HOST_PRT_LIGHT) {
+        false_colour(p, s);
+        return 0;
+    }
     double a = i * deg * M_PI / 180.0, t0 = now_ms();
     lumo_q1_14 one[2] = {LUMO_Q14_ONE, 0}, b[2] = {host_q14(cos(a)), host_q14(sin(a))};
     lumo_prt_light l;

@@ -21,7 +21,12 @@ typedef struct host_prt {
     lumo_q16_16   *frame[LUMO_MAX_MESHES];
     lumo_uq16_16  *lit;                    /* 6 per host vertex */
     double         relight_ms;             /* summed over frames */
+    int            view;                   /* HOST_PRT_LIGHT, _CLUSTERS or _PASSES */
 } host_prt;
+
+/* What --prt draws: the relit mesh, or each vertex in a false colour of its
+ * cluster or of its cluster's draw pass (super-cluster, seed 003 §4.3). */
+enum { HOST_PRT_LIGHT = 0, HOST_PRT_CLUSTERS = 1, HOST_PRT_PASSES = 2 };
 
 /* Open the package's PRT for a host scene of host_vertices vertices (one
  * mesh: any level of detail; several: all vertices). env: PNG or NULL (then

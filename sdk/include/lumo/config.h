@@ -48,7 +48,7 @@
 #define LUMO_PRT_MAX_CLUSTERS 4096
 #endif
 #ifndef LUMO_PRT_MAX_COMPONENTS
-#define LUMO_PRT_MAX_COMPONENTS 16
+#define LUMO_PRT_MAX_COMPONENTS 36   /* order 6's 36 coefficients: all of them */
 #endif
 
 #endif /* LUMO_CONFIG_H */

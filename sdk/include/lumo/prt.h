@@ -41,6 +41,7 @@ typedef struct lumo_prt {
     uint32_t vertices;         /* V announced (the full mesh's vertex count) */
     uint32_t vertices_held;    /* complete vertex records in the bytes given */
     const uint8_t *cluster_data;  /* K records of (P + 1) * N^2 int16 */
+    const uint8_t *pass_data;     /* K uint16: the draw pass (super-cluster) of each cluster */
     const uint8_t *vertex_data;   /* vertices_held records of 2 + 2P bytes */
 } lumo_prt;
 
@@ -48,10 +49,10 @@ typedef struct lumo_prt {
 size_t lumo_prt_cluster_bytes(unsigned order, unsigned components);
 size_t lumo_prt_vertex_bytes(unsigned components);
 
-/* Parse data[0..len): the header, every cluster record, then as many whole
- * vertex records as len holds (a streamed prefix is fine; bytes past the
- * V-th record are LUMO_ERR_CORRUPT). Every held vertex's cluster index is
- * checked. LUMO_OK; LUMO_ERR_ARG (NULL), LUMO_ERR_TRUNCATED (header or
+/* Parse data[0..len): the header, every cluster record, the pass table,
+ * then as many whole vertex records as len holds (a streamed prefix is
+ * fine; bytes past the V-th record are LUMO_ERR_CORRUPT). Every pass and
+ * every held vertex's cluster index is checked (< K). LUMO_OK; LUMO_ERR_ARG (NULL), LUMO_ERR_TRUNCATED (header or
  * clusters incomplete), LUMO_ERR_VERSION, LUMO_ERR_RANGE (order, a cluster
  * index), LUMO_ERR_LIMIT (K or P above lumo/config.h's limits),
  * LUMO_ERR_CORRUPT (non-zero flags, trailing bytes). All-or-nothing: *out
@@ -63,6 +64,10 @@ typedef struct lumo_prt_light {
     uint8_t     order;
     lumo_q16_16 c[3][LUMO_PRT_MAX_COEFFS];
 } lumo_prt_light;
+
+/* The draw pass of cluster k (< clusters): the super-cluster a multipass
+ * GPU client uploads it with (seed 003 §4.3); passes are numbered from 0. */
+uint32_t lumo_prt_pass(const lumo_prt *p, uint32_t k);
 
 /* All coefficients zero, order N (1..6): LUMO_OK or LUMO_ERR_RANGE. */
 lumo_status lumo_prt_light_clear(lumo_prt_light *l, unsigned order);
