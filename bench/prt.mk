@@ -11,7 +11,7 @@ $(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/libserver.a $(BUILD)
 	$(CC) -pthread -o $@ $^ $(SERVER_LIBS)
 
 PRT_BENCH_MODELS := $(BUILD)/data/models/dragon_48k.ply $(BUILD)/data/models/bunny.obj
-PRT_BENCH_ARGS   ?= --order 6 --strata 32 --bounces 1 --components 8 --alpha 0.05 --alpha-sweep 0,0.05,0.5,2,8 \
+PRT_BENCH_ARGS   ?= --order 6 --strata 32 --bounces 1 --components 8 --alpha 0.05 --alpha2 8 --alpha-sweep 0,0.05,0.5,2,8,32 \
                     --clusters 64,128,192,256
 
 BENCH_STEPS += bench-prt

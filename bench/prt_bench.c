@@ -24,7 +24,7 @@ typedef struct {
     const char *out, *cmd;
     int order, strata, bounces, npc, registers, threads, nk;
     int ks[8], nsweep;
-    double alpha, sweep[8];
+    double alpha, alpha2, sweep[8];
 } bench_opts;
 
 static double now_s(void)
@@ -100,23 +100,31 @@ static void run_method(const srv_pm *pm, const double *x, int nc, const bench_op
 
 static void table(FILE *f, const char *model, const srv_pm *pm, const double *x, int nc, const bench_opts *o, int k)
 {
-    result r[4];
+    result r[6];
     srv_cpca keep;
+    char n4[96], n5[96];
+    int rows = o->alpha2 > 0 ? 6 : 4;
     run_method(pm, x, nc, o, k, 0.0, &r[0], &r[1], &keep);
     run_method(pm, x, nc, o, k, o->alpha, &r[2], &r[3], NULL);
+    if (rows == 6)
+        run_method(pm, x, nc, o, k, o->alpha2, &r[4], &r[5], NULL);
+    snprintf(n4, sizeof n4, "Geometry coherence, alpha = %g", o->alpha2);
+    snprintf(n5, sizeof n5, "Both, alpha = %g", o->alpha2);
     const thesis_row *th = thesis_for(model, k);
-    static const char *names[4] = {"Original CPCA", "CPCA + super-clusters (\"overdraw red.\")",
-                                   "Geometry coherence (\"our method\")", "Both"};
+    const char *names[6] = {"Original CPCA", "CPCA + super-clusters (\"overdraw red.\")",
+                            "Geometry coherence (\"our method\")", "Both", n4, n5};
     fprintf(f, "\n**%s, %d clusters, alpha = %.2f** (%d passes of %d clusters for the super-clusters)\n\n", model, k,
             o->alpha, (int)r[1].passes, srv_cpca_per_pass(nc, o->npc, o->registers));
-    fprintf(f, "| method | clustering (s) | LBG passes | avg overdraw | avg SE | thesis time (s) | thesis overdraw | thesis SE |\n");
+    fprintf(f, "| method | clustering (s) [+ selection] | LBG passes | avg overdraw | avg SE | thesis time (s) | thesis overdraw | thesis SE |\n");
     fprintf(f, "|---|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (int m = 0; m < 4; m++) {
-        fprintf(f, "| %s | %.2f%s | %d | %.4f | %.3e |", names[m], r[m].t,
-                r[m].sel_t > 0 ? " (+ selection)" : "", r[m].it, r[m].od, r[m].se);
-        cell(f, th ? th->t[m] : -1, " %.0f |");
-        cell(f, th ? th->od[m] : -1, " %.4f |");
-        cell(f, th ? th->se[m] : -1, " %.4f |");
+    for (int m = 0; m < rows; m++) {
+        if (m % 2)
+            fprintf(f, "| %s | %.2f + %.3f | %d | %.4f | %.3e |", names[m], r[m].t, r[m].sel_t, r[m].it, r[m].od, r[m].se);
+        else
+            fprintf(f, "| %s | %.2f | %d | %.4f | %.3e |", names[m], r[m].t, r[m].it, r[m].od, r[m].se);
+        cell(f, th && m < 4 ? th->t[m] : -1, " %.0f |");
+        cell(f, th && m < 4 ? th->od[m] : -1, " %.4f |");
+        cell(f, th && m < 4 ? th->se[m] : -1, " %.4f |");
         fprintf(f, "\n");
     }
     uint8_t *chunk;
@@ -134,7 +142,7 @@ static void table(FILE *f, const char *model, const srv_pm *pm, const double *x,
 static void usage(void)
 {
     fputs("usage: prt-bench --out FILE [--cmd TEXT] [--order N] [--strata S] [--bounces B] [--components P]\n"
-          "                 [--alpha A] [--alpha-sweep A,A,..] [--clusters K,K,..] [--registers R]\n"
+          "                 [--alpha A] [--alpha2 A] [--alpha-sweep A,A,..] [--clusters K,K,..] [--registers R]\n"
           "                 [--threads T] MODEL...\n",
           stderr);
     exit(2);
@@ -156,6 +164,7 @@ static int parse(bench_opts *o, int argc, char **argv)
         else if (!strcmp(a, "--bounces")) o->bounces = atoi(v);
         else if (!strcmp(a, "--components")) o->npc = atoi(v);
         else if (!strcmp(a, "--alpha")) o->alpha = atof(v);
+        else if (!strcmp(a, "--alpha2")) o->alpha2 = atof(v);
         else if (!strcmp(a, "--registers")) o->registers = atoi(v);
         else if (!strcmp(a, "--threads")) o->threads = atoi(v);
         else if (!strcmp(a, "--alpha-sweep")) {

@@ -22,8 +22,9 @@ typedef struct srv_kd {
 /* (Re)build from the labels. 0, or -1 when out of memory. */
 int srv_kd_build(srv_kd *t, const float *pos, const uint32_t *label, uint32_t n, uint32_t k);
 void srv_kd_free(srv_kd *t);
-/* Distance from p to the nearest member of cluster c; DBL_MAX if empty. */
-double srv_kd_nearest(const srv_kd *t, uint32_t c, const float p[3]);
+/* Distance from p to the nearest member of cluster c other than vertex
+ * skip (UINT32_MAX: none skipped); DBL_MAX when there is none. */
+double srv_kd_nearest(const srv_kd *t, uint32_t c, const float p[3], uint32_t skip);
 
 typedef struct lbg {
     const double *x;      /* n * dim */

@@ -47,21 +47,23 @@ static uint32_t nearest_mean(const lbg *g, uint32_t i)
     return bc;
 }
 
-/* Eq. 9: the vertex's own cluster (from the last pass) costs ||V - mean||
- * alone, its geometric term being zero (the vertex is a member); another
- * cluster can only win if its ||V - mean|| is already below the best, and
- * only then is its geometric term (Eq. 10, nearest member by kd-tree)
- * looked up. */
+/* Eq. 9-10 with k != i: a vertex's distance to its own cluster is to the
+ * nearest other member, as to any cluster (counting the vertex itself
+ * would make the term zero for the cluster it is in and freeze the first
+ * pass's assignment; docs/prt.md "Geometry coherence"). The geometric term
+ * (nearest member by kd-tree) is looked up only for clusters whose
+ * ||V - mean|| is already below the best so far. */
 static uint32_t coherent_mean(const lbg *g, uint32_t i)
 {
     const double *v = &g->x[(size_t)i * (size_t)g->dim];
+    const float *p = &g->pos[3 * (size_t)i];
     uint32_t bc = g->cluster[i];
-    double best = sqrt(dist2(v, &g->mean[bc * (uint32_t)g->dim], g->dim));
+    double best = sqrt(dist2(v, &g->mean[bc * (uint32_t)g->dim], g->dim)) + g->alpha * fmin(srv_kd_nearest(&g->kd, bc, p, i), 1e300);
     for (int c = 0; c < g->k; c++) {
         double d = sqrt(dist2(v, &g->mean[c * g->dim], g->dim));
         if ((uint32_t)c == g->cluster[i] || d >= best)
             continue;
-        double e = d + g->alpha * srv_kd_nearest(&g->kd, (uint32_t)c, &g->pos[3 * (size_t)i]);
+        double e = d + g->alpha * srv_kd_nearest(&g->kd, (uint32_t)c, p, i);
         if (e < best || (e == best && (uint32_t)c < bc))
             best = e, bc = (uint32_t)c;
     }

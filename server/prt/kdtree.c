@@ -57,7 +57,7 @@ void srv_kd_free(srv_kd *t)
 }
 
 static void nearest_range(const srv_kd *t, const uint32_t *idx, uint32_t n, int depth, const float p[3],
-                          double *best)
+                          uint32_t skip, double *best)
 {
     if (n == 0)
         return;
@@ -65,25 +65,25 @@ static void nearest_range(const srv_kd *t, const uint32_t *idx, uint32_t n, int 
     const float *q = &t->pos[3 * idx[mid]];
     double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
     double d2 = dx * dx + dy * dy + dz * dz, off = p[depth % 3] - q[depth % 3];
-    if (d2 < *best)
+    if (d2 < *best && idx[mid] != skip)
         *best = d2;
     const uint32_t *lo = idx, *hi = idx + mid + 1;
     uint32_t nlo = mid, nhi = n - mid - 1;
     if (off > 0) {   /* the near side first */
-        nearest_range(t, hi, nhi, depth + 1, p, best);
+        nearest_range(t, hi, nhi, depth + 1, p, skip, best);
         if (off * off < *best)
-            nearest_range(t, lo, nlo, depth + 1, p, best);
+            nearest_range(t, lo, nlo, depth + 1, p, skip, best);
     } else {
-        nearest_range(t, lo, nlo, depth + 1, p, best);
+        nearest_range(t, lo, nlo, depth + 1, p, skip, best);
         if (off * off < *best)
-            nearest_range(t, hi, nhi, depth + 1, p, best);
+            nearest_range(t, hi, nhi, depth + 1, p, skip, best);
     }
 }
 
-double srv_kd_nearest(const srv_kd *t, uint32_t c, const float p[3])
+double srv_kd_nearest(const srv_kd *t, uint32_t c, const float p[3], uint32_t skip)
 {
     double best = DBL_MAX;
     uint32_t a = t->start[c], b = t->start[c + 1];
-    nearest_range(t, t->idx + a, b - a, 0, p, &best);
+    nearest_range(t, t->idx + a, b - a, 0, p, skip, &best);
     return best == DBL_MAX ? DBL_MAX : sqrt(best);
 }
