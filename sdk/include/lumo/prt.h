@@ -28,10 +28,10 @@
 #include "lumo/fixed.h"
 #include "lumo/status.h"
 
-#define LUMO_PRT_VERSION    1u
-#define LUMO_PRT_MAX_ORDER  6
-#define LUMO_PRT_MAX_COEFFS (LUMO_PRT_MAX_ORDER * LUMO_PRT_MAX_ORDER)
-#define LUMO_PRT_HEADER_SIZE 12u
+#define LUMO_PRT_VERSION    1u    /* the PRTV chunk version this reader takes */
+#define LUMO_PRT_MAX_ORDER  6     /* SH orders 1..6 (bands 0..5) */
+#define LUMO_PRT_MAX_COEFFS (LUMO_PRT_MAX_ORDER * LUMO_PRT_MAX_ORDER)   /* 36 */
+#define LUMO_PRT_HEADER_SIZE 12u  /* bytes of a PRTV chunk's header */
 
 /* A parsed PRTV chunk (or a prefix of it holding every cluster). */
 typedef struct lumo_prt {
@@ -61,8 +61,8 @@ lumo_status lumo_prt_parse(lumo_prt *out, const uint8_t *data, size_t len);
 
 /* Distant lighting as SH radiance coefficients, one vector per channel. */
 typedef struct lumo_prt_light {
-    uint8_t     order;
-    lumo_q16_16 c[3][LUMO_PRT_MAX_COEFFS];
+    uint8_t     order;                      /* N: coefficients 0..N*N-1 are used */
+    lumo_q16_16 c[3][LUMO_PRT_MAX_COEFFS];  /* per channel (r, g, b), W/m^2/sr per basis function */
 } lumo_prt_light;
 
 /* The draw pass of cluster k (< clusters): the super-cluster a multipass
