@@ -2,7 +2,7 @@
 # transfer, CPCA vs geometry coherence vs super-clusters vs both on the
 # dragon at 48k triangles and the bunny, and the client's relight cost per
 # vertex. Writes build/bench/sections/70-prt.md (pasted into
-# docs/benchmarks.md).
+# docs/benchmarks.md) and build/bench/prt-overdraw.svg (docs/prt-overdraw.svg).
 PRT_BENCH := $(BIN)/prt-bench
 HOST_TOOLS += $(PRT_BENCH)
 
@@ -18,6 +18,6 @@ BENCH_STEPS += bench-prt
 .PHONY: bench-prt
 bench-prt: $(PRT_BENCH)
 	@mkdir -p $(BUILD)/bench/sections
-	$(PRT_BENCH) --out $(BUILD)/bench/sections/70-prt.md \
+	$(PRT_BENCH) --out $(BUILD)/bench/sections/70-prt.md --plot $(BUILD)/bench/prt-overdraw.svg \
 	    --cmd "make bench-prt ($(PRT_BENCH) $(PRT_BENCH_ARGS) $(PRT_BENCH_MODELS))" $(PRT_BENCH_ARGS) $(PRT_BENCH_MODELS)
 	@cat $(BUILD)/bench/sections/70-prt.md

@@ -21,7 +21,7 @@
 #include "prt/transfer.h"
 
 typedef struct {
-    const char *out, *cmd;
+    const char *out, *cmd, *plot;
     int order, strata, bounces, npc, registers, threads, nk;
     int ks[8], nsweep;
     double alpha, alpha2, sweep[8];
@@ -70,6 +70,9 @@ static void cell(FILE *f, double v, const char *fmt)
 
 typedef struct { double t, sel_t, od, se; int it; uint32_t passes; } result;
 
+/* Overdraw per cluster count of the first model, for the plot. */
+static struct { int n, k[8]; double od[8][6]; } g_plot;
+
 static void run_method(const srv_pm *pm, const double *x, int nc, const bench_opts *o, int k, double alpha,
                        result *plain, result *super, srv_cpca *keep)
 {
@@ -110,6 +113,12 @@ static void table(FILE *f, const char *model, const srv_pm *pm, const double *x,
         run_method(pm, x, nc, o, k, o->alpha2, &r[4], &r[5], NULL);
     snprintf(n4, sizeof n4, "Geometry coherence, alpha = %g", o->alpha2);
     snprintf(n5, sizeof n5, "Both, alpha = %g", o->alpha2);
+    if (g_plot.n < 8 && strstr(model, "dragon")) {
+        g_plot.k[g_plot.n] = k;
+        for (int m = 0; m < rows; m++)
+            g_plot.od[g_plot.n][m] = r[m].od;
+        g_plot.n++;
+    }
     const thesis_row *th = thesis_for(model, k);
     const char *names[6] = {"Original CPCA", "CPCA + super-clusters (\"overdraw red.\")",
                             "Geometry coherence (\"our method\")", "Both", n4, n5};
@@ -141,7 +150,7 @@ static void table(FILE *f, const char *model, const srv_pm *pm, const double *x,
 
 static void usage(void)
 {
-    fputs("usage: prt-bench --out FILE [--cmd TEXT] [--order N] [--strata S] [--bounces B] [--components P]\n"
+    fputs("usage: prt-bench --out FILE [--plot FILE.svg] [--cmd TEXT] [--order N] [--strata S] [--bounces B] [--components P]\n"
           "                 [--alpha A] [--alpha2 A] [--alpha-sweep A,A,..] [--clusters K,K,..] [--registers R]\n"
           "                 [--threads T] MODEL...\n",
           stderr);
@@ -159,6 +168,7 @@ static int parse(bench_opts *o, int argc, char **argv)
         const char *a = argv[i], *v = argv[i + 1];
         if (!strcmp(a, "--out")) o->out = v;
         else if (!strcmp(a, "--cmd")) o->cmd = v;
+        else if (!strcmp(a, "--plot")) o->plot = v;
         else if (!strcmp(a, "--order")) o->order = atoi(v);
         else if (!strcmp(a, "--strata")) o->strata = atoi(v);
         else if (!strcmp(a, "--bounces")) o->bounces = atoi(v);
@@ -294,6 +304,52 @@ static void model(FILE *f, const char *path, const bench_opts *o, int first)
     srv_pm_free(&pm);
 }
 
+/* One polyline of the plot: x = clusters 0..300, y = overdraw 1.2..1.9. */
+static void poly(FILE *f, int n, const int *k, const double *y, int stride, const char *colour, int dashed)
+{
+    fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"2\"%s points=\"", colour,
+            dashed ? " stroke-dasharray=\"6,4\"" : "");
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%.1f,%.1f ", 60 + k[i] * 1.6, 360 - (y[i * stride] - 1.2) / 0.7 * 320);
+    fprintf(f, "\"/>\n");
+}
+
+/* --plot FILE: average triangle overdraw against clusters on the dragon,
+ * lumo's four methods (coherence at --alpha2) and the thesis's Dino. */
+static void plot(const char *path, const bench_opts *o)
+{
+    FILE *f = fopen(path, "w");
+    static const char *col[4] = {"#c03030", "#3060c0", "#30a040", "#9040a0"};
+    static const char *lab[4] = {"CPCA", "super-clusters", "coherence", "both"};
+    double th[2][4];
+    int tk[4];
+    if (!f || g_plot.n == 0)
+        return;
+    for (int i = 0; i < 4; i++)
+        tk[i] = k_dino[i].k, th[0][i] = k_dino[i].od[0], th[1][i] = k_dino[i].od[2];
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"600\" height=\"400\" font-family=\"sans-serif\" "
+               "font-size=\"12\">\n<rect width=\"600\" height=\"400\" fill=\"white\"/>\n");
+    fprintf(f, "<text x=\"60\" y=\"24\">Average triangle overdraw (Eq. 8), dragon 48k (lines) vs the thesis's Dino "
+               "(dashed), alpha %g</text>\n", o->alpha2);
+    for (int i = 0; i <= 7; i++) {
+        double y = 360 - i * 320.0 / 7;
+        fprintf(f, "<line x1=\"60\" x2=\"540\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"20\" y=\"%.1f\">"
+                   "%.1f</text>\n", y, y, y + 4, 1.2 + i * 0.1);
+    }
+    for (int k = 0; k <= 300; k += 64)
+        fprintf(f, "<text x=\"%.1f\" y=\"380\">%d</text>\n", 52 + k * 1.6, k);
+    fprintf(f, "<text x=\"250\" y=\"396\">clusters</text>\n");
+    for (int m = 0; m < 4; m++) {
+        int col_m = m < 2 ? m : m + 2;   /* coherence and both at alpha2 */
+        poly(f, g_plot.n, g_plot.k, &g_plot.od[0][col_m], 6, col[m], 0);
+        fprintf(f, "<text x=\"420\" y=\"%d\" fill=\"%s\">%s</text>\n", 60 + 16 * m, col[m], lab[m]);
+    }
+    poly(f, 4, tk, th[0], 1, col[0], 1);
+    poly(f, 4, tk, th[1], 1, col[2], 1);
+    fprintf(f, "<text x=\"420\" y=\"124\">dashed: thesis CPCA, ours</text>\n</svg>\n");
+    fclose(f);
+}
+
 int main(int argc, char **argv)
 {
     bench_opts o;
@@ -309,5 +365,7 @@ int main(int argc, char **argv)
     for (int first = 1; i < argc; i++, first = 0)
         model(f, argv[i], &o, first);
     fclose(f);
+    if (o.plot && o.alpha2 > 0)
+        plot(o.plot, &o);
     return 0;
 }
