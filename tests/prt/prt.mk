@@ -9,3 +9,8 @@ UNIT_TESTS    += $(PRT_TESTS)
 $(PRT_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/prt/%.o $(BUILD)/host/libserver.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -pthread -o $@ $< $(SERVER_LIB) $(BUILD)/san/liblumo.a $(SERVER_LIBS) $(TEST_LDLIBS)
+
+TEST_STEPS += test-prt-cli
+.PHONY: test-prt-cli
+test-prt-cli: $(BIN)/lumo-bake $(BIN)/lumo-render $(BIN)/lumo-inspect $(BIN)/prt-demo
+	@sh tests/prt/prt_cli.sh $(BIN) $(BUILD)/tests/prt-cli

@@ -143,6 +143,58 @@ static void test_rotate(void **state)
     assert_int_equal(lumo_prt_light_rotate(&in, one, one, one, &in), LUMO_ERR_ARG);
 }
 
+/* The scene's lights as distant lights: a point light against the double
+ * formula E = power / (4 pi r^2) from its direction; a spot that misses the
+ * centre adds nothing; a light at the centre is refused. */
+static void test_light_pkg(void **state)
+{
+    (void)state;
+    srv_rng r;
+    srv_rng_seed(&r, 3, 0);
+    double worst = 0;
+    for (int t = 0; t < 300; t++) {
+        lumo_prt_light l, ref;
+        lumo_pkg_light pl;
+        lumo_q16_16 c[3];
+        double d[3], r2 = 0, p = 5 + 200 * frand(&r), scale = t % 3 == 0 ? 1000 : t % 3 == 1 ? 10 : 0.5;
+        memset(&pl, 0, sizeof pl);
+        pl.kind = LUMO_LIGHT_POINT;
+        for (int a = 0; a < 3; a++) {
+            c[a] = (lumo_q16_16)lrint((frand(&r) - 0.5) * 4 * 65536);
+            pl.pos[a] = c[a] + (lumo_q16_16)lrint((frand(&r) - 0.5) * 2 * scale * 65536);
+            d[a] = (pl.pos[a] - c[a]) / 65536.0;
+            r2 += d[a] * d[a];
+            pl.power[a] = (lumo_uq16_16)lrint(p * 65536);
+        }
+        lumo_prt_light_clear(&l, 4);
+        assert_int_equal(lumo_prt_light_add_pkg(&l, &pl, c), LUMO_OK);
+        /* reference: the client's own directional path at the exact irradiance */
+        int32_t v[3] = {pl.pos[0] - c[0], pl.pos[1] - c[1], pl.pos[2] - c[2]};
+        lumo_q1_14 q[3];
+        double e = fmin(p / (4 * M_PI * r2), 65535.0);
+        lumo_uq16_16 ef[3] = {(lumo_uq16_16)lrint(e * 65536), (lumo_uq16_16)lrint(e * 65536), (lumo_uq16_16)lrint(e * 65536)};
+        lumo_normalize3_q14(v, q);
+        lumo_prt_light_clear(&ref, 4);
+        lumo_prt_light_add_directional(&ref, q, ef);
+        for (int i = 0; i < 16; i++)
+            worst = fmax(worst, fabs((double)l.c[0][i] - ref.c[0][i]) / 65536.0 / (e + 1.0 / 65536));
+    }
+    print_message("point light as a distant light: worst error %.2e of (E + 1 ulp)\n", worst);
+    assert_true(worst < 1e-3);   /* E's own Q16.16 rounding and 4 pi's */
+    lumo_prt_light l;
+    lumo_pkg_light spot = {.kind = LUMO_LIGHT_SPOT, .pos = {0, 10 * 65536, 0}, .dir = {0, 16384, 0},
+                           .cos_half = 14189, .power = {65536, 65536, 65536}};
+    lumo_q16_16 c[3] = {0, 0, 0};
+    lumo_prt_light_clear(&l, 3);
+    assert_int_equal(lumo_prt_light_add_pkg(&l, &spot, c), LUMO_OK);   /* points away from the centre */
+    assert_true(l.c[0][0] == 0);
+    spot.dir[1] = -16384;
+    assert_int_equal(lumo_prt_light_add_pkg(&l, &spot, c), LUMO_OK);
+    assert_true(l.c[0][0] > 0);
+    spot.pos[1] = 0;
+    assert_int_equal(lumo_prt_light_add_pkg(&l, &spot, c), LUMO_ERR_RANGE);
+}
+
 /* A sphere's shadowed transfer, clustered and written as PRTV. */
 typedef struct {
     srv_scene s;
@@ -309,7 +361,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tables), cmocka_unit_test(test_sh_eval), cmocka_unit_test(test_rotate),
-        cmocka_unit_test(test_chunk),  cmocka_unit_test(test_shade),
+        cmocka_unit_test(test_chunk),  cmocka_unit_test(test_shade),  cmocka_unit_test(test_light_pkg),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -13,6 +13,7 @@
 #include <string.h>
 #include "common/rng.h"
 #include "prt/cpca.h"
+#include "prt/prt_pack.h"
 #include "prt/sh.h"
 #include "prt/transfer.h"
 #include "scene/shapes.h"
@@ -108,6 +109,40 @@ static void test_rotation(void **state)
                 s += Ri[36 * i + k] * R[36 * k + j];
             assert_true(fabs(s - (i == j)) < 1e-10);
         }
+}
+
+/* The equirectangular projection (y up): a constant sky gives 2 sqrt(pi)
+ * times its radiance in coefficient 0 and nothing else; a sky lit above
+ * the horizon only gives sqrt(pi) in coefficient 0 and, on y_1^-1 (the y
+ * axis), sqrt(3 pi) / 2, zero on the other band-1 terms. */
+static void test_env_project(void **state)
+{
+    (void)state;
+    enum { W = 512, H = 256 };
+    float *img = malloc(3u * W * H * sizeof *img);
+    double c[3 * 36];
+    for (int i = 0; i < 3 * W * H; i++)
+        img[i] = 0.5f;
+    srv_prt_env_project(img, W, H, 6, c);
+    for (int ch = 0; ch < 3; ch++)
+        for (int i = 0; i < 36; i++)
+            assert_true(fabs(c[ch * 36 + i] - (i == 0 ? 0.5 * 2.0 * sqrt(M_PI) : 0.0)) < 2e-4);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < 3 * W; x++)
+            img[3 * W * y + x] = y < H / 2 ? 1.0f : 0.0f;
+    srv_prt_env_project(img, W, H, 6, c);
+    assert_true(fabs(c[0] - sqrt(M_PI)) < 1e-4);
+    assert_true(fabs(c[1] - sqrt(3 * M_PI) / 2) < 1e-3);
+    assert_true(fabs(c[2]) < 1e-9 && fabs(c[3]) < 1e-9);
+    uint8_t *chunk;
+    size_t len;
+    assert_int_equal(srv_prt_encode_light(c, 6, &chunk, &len), LUMO_OK);
+    assert_int_equal(len, 4 + 12 * 36);
+    assert_int_equal(chunk[0], 6);
+    free(chunk);
+    c[5] = 1e9;
+    assert_int_equal(srv_prt_encode_light(c, 6, &chunk, &len), LUMO_ERR_RANGE);
+    free(img);
 }
 
 /* A UV sphere from the scene builder, as float arrays. */
@@ -328,7 +363,7 @@ int main(void)
         cmocka_unit_test(test_orthonormal),          cmocka_unit_test(test_rotation),
         cmocka_unit_test(test_convex_transfer),      cmocka_unit_test(test_enclosed_transfer),
         cmocka_unit_test(test_alpha0_is_lbg),        cmocka_unit_test(test_null_clusters_and_pca),
-        cmocka_unit_test(test_overdraw),
+        cmocka_unit_test(test_overdraw),             cmocka_unit_test(test_env_project),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

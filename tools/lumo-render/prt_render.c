@@ -21,35 +21,23 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-/* A light as seen from the scene's centre: its direction (towards it) and
- * the irradiance it gives there (point and spot: Phi / (4 pi r^2)). */
-static void light_at_centre(const lumo_raster_light *l, const double c[3], double towards[3], double e[3])
-{
-    double d2 = 0;
-    for (int a = 0; a < 3; a++) {
-        towards[a] = l->kind == LUMO_LIGHT_DIRECTIONAL ? -l->dir[a] / 16384.0 : l->pos[a] / 65536.0 - c[a];
-        d2 += towards[a] * towards[a];
-    }
-    for (int a = 0; a < 3; a++) {
-        towards[a] /= d2 > 0 ? sqrt(d2) : 1;
-        e[a] = l->value[a] / 65536.0 / (l->kind == LUMO_LIGHT_DIRECTIONAL ? 1.0 : 4 * M_PI * fmax(d2, 1e-6));
-    }
-}
-
+/* The scene's lights through the client's own conversion
+ * (lumo_prt_light_add_pkg): distant lights as seen from the scene's centre. */
 static int lights_vector(host_prt *p, const host_scene *s)
 {
-    double c[3];
+    lumo_q16_16 c[3];
     for (int a = 0; a < 3; a++)
-        c[a] = (s->bmin[a] + s->bmax[a]) / 131072.0;
+        c[a] = (lumo_q16_16)(((int64_t)s->bmin[a] + s->bmax[a]) / 2);
     for (uint32_t i = 0; i < s->light_count; i++) {
-        double t[3], e[3];
-        int32_t v[3];
-        lumo_q1_14 q[3];
-        lumo_uq16_16 ef[3];
-        light_at_centre(&s->lights[i], c, t, e);
-        for (int a = 0; a < 3; a++)
-            v[a] = (int32_t)lrint(t[a] * 1e6), ef[a] = (lumo_uq16_16)fmin(lrint(e[a] * 65536), 4e9);
-        if (lumo_normalize3_q14(v, q) == LUMO_OK && lumo_prt_light_add_directional(&p->base, q, ef))
+        const lumo_raster_light *rl = &s->lights[i];
+        lumo_pkg_light pl;
+        memset(&pl, 0, sizeof pl);
+        pl.kind = rl->kind, pl.cos_half = rl->cos_cutoff;
+        memcpy(pl.pos, rl->pos, sizeof pl.pos);
+        memcpy(pl.dir, rl->dir, sizeof pl.dir);
+        memcpy(pl.power, rl->value, sizeof pl.power);
+        lumo_status st = lumo_prt_light_add_pkg(&p->base, &pl, c);
+        if (st && st != LUMO_ERR_RANGE)   /* a light at the centre itself lights nothing here */
             return -1;
     }
     return 0;

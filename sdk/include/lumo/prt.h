@@ -26,6 +26,7 @@
 #include <stdint.h>
 #include "lumo/config.h"
 #include "lumo/fixed.h"
+#include "lumo/scene.h"
 #include "lumo/status.h"
 
 #define LUMO_PRT_VERSION    1u    /* the PRTV chunk version this reader takes */
@@ -86,6 +87,16 @@ void lumo_prt_sh_eval(unsigned order, const lumo_q1_14 d[3], int32_t *y);
  * band limit. Saturates. LUMO_OK or LUMO_ERR_ARG. */
 lumo_status lumo_prt_light_add_directional(lumo_prt_light *l, const lumo_q1_14 towards[3],
                                            const lumo_uq16_16 e[3]);
+
+/* Add one of the scene's lights (the package's INFO, lumo/scene.h) as a
+ * distant light seen from `centre` (metres, Q16.16; PRT's lighting is
+ * distant, so a local light is taken where the object is): directional as
+ * it is; point, spot and area (at its rectangle's centre) from their
+ * direction to it with irradiance power / (4 pi r^2); a spot whose cone
+ * misses the centre adds nothing. LUMO_OK, LUMO_ERR_ARG (NULL, bad order),
+ * LUMO_ERR_RANGE (a local light at the centre itself). Error against the
+ * double formula: docs/prt.md. */
+lumo_status lumo_prt_light_add_pkg(lumo_prt_light *l, const lumo_pkg_light *light, const lumo_q16_16 centre[3]);
 
 /* Rotate the lighting: out = the lighting turned by R = Rz(gamma) Ry(beta)
  * Rz(alpha) (alpha first), each angle given by its cosine and sine (Q1.14,
