@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include "lumo/prt.h"
 #include "lumo/wire.h"
 #include "package/package_write.h"
@@ -99,8 +100,29 @@ void srv_prt_default_options(srv_prt_options *o)
     o->registers = 256;
 }
 
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Chapter 5's metrics of a finished CPCA and its chunk. */
+static void measure(const srv_pm *pm, const srv_cpca *c, const double *t, const uint32_t *pass, uint32_t npass,
+                    const uint8_t *chunk, size_t len, srv_prt_stats *st)
+{
+    st->vertices = pm->vertices, st->triangles = pm->faces, st->clusters = (uint32_t)c->k;
+    st->passes = pass ? npass : (uint32_t)c->k;
+    st->iterations = c->iterations, st->cluster_seconds = c->cluster_seconds;
+    st->overdraw = srv_cpca_overdraw(c, pm->tris, pm->faces, NULL);
+    st->overdraw_passes = srv_cpca_overdraw(c, pm->tris, pm->faces, pass);
+    st->sq_error = srv_cpca_sq_error(c, t);
+    st->quant_sq_error = srv_prt_quant_sq_error(c, chunk, len);
+    st->bytes = len;
+}
+
 static lumo_status transfer_cpca(const srv_pm *pm, const srv_prt_options *o, uint8_t **chunk, size_t *len,
-                                 char *err, size_t errlen)
+                                 srv_prt_stats *stats, char *err, size_t errlen)
 {
     srv_prt_mesh m = {.nverts = pm->vertices, .ntris = pm->faces, .xyz = pm->xyz, .tris = pm->tris,
                       .albedo = pm->albedo};
@@ -111,18 +133,23 @@ static lumo_status transfer_cpca(const srv_pm *pm, const srv_prt_options *o, uin
         snprintf(err, errlen, "prt: out of memory");
         return LUMO_ERR_NOMEM;
     }
+    double t0 = now_s();
     lumo_status st = srv_prt_transfer(&m, &o->transfer, t, err, errlen);
+    if (stats)
+        stats->transfer_seconds = now_s() - t0;
     srv_cpca_opts co = o->cpca;
     if (!st && (uint32_t)co.clusters > pm->vertices)
         co.clusters = (int)pm->vertices;
     if (!st && (st = srv_cpca_build(t, pm->vertices, nc, pm->xyz, &co, &c)) != LUMO_OK)
         snprintf(err, errlen, "prt: clustered PCA failed (%s)", lumo_strerror(st));
     if (!st) {
-        uint32_t *pass = o->registers > 0 ? malloc((size_t)c.k * sizeof *pass) : NULL;
-        if (pass && !srv_cpca_superclusters(&c, pm->tris, pm->faces, srv_cpca_per_pass(nc, c.npc, o->registers), pass))
+        uint32_t *pass = o->registers > 0 ? malloc((size_t)c.k * sizeof *pass) : NULL, npass = 0;
+        if (pass && !(npass = srv_cpca_superclusters(&c, pm->tris, pm->faces, srv_cpca_per_pass(nc, c.npc, o->registers), pass)))
             free(pass), pass = NULL;
         if ((st = srv_prt_encode(&c, o->transfer.order, pass, chunk, len)) != LUMO_OK)
             snprintf(err, errlen, "prt: cannot encode the transfer (%s)", lumo_strerror(st));
+        else if (stats)
+            measure(pm, &c, t, pass, npass, *chunk, *len, stats);
         free(pass);
         srv_cpca_free(&c);
     }
@@ -131,8 +158,8 @@ static lumo_status transfer_cpca(const srv_pm *pm, const srv_prt_options *o, uin
 }
 
 lumo_status srv_prt_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
-                         const uint32_t *tris, uint32_t nf, const srv_prt_options *o, char *err,
-                         size_t errlen)
+                         const uint32_t *tris, uint32_t nf, const srv_prt_options *o, srv_prt_stats *stats,
+                         char *err, size_t errlen)
 {
     srv_pm pm;
     uint8_t *chunk = NULL;
@@ -142,7 +169,7 @@ lumo_status srv_prt_pack(struct srv_pkg_writer *w, const float *xyz, const uint8
         snprintf(err, errlen, "prt: cannot build the progressive mesh");
         return st;
     }
-    st = transfer_cpca(&pm, o, &chunk, &len, err, errlen);
+    st = transfer_cpca(&pm, o, &chunk, &len, stats, err, errlen);
     if (!st && (st = srv_pkgw_add(w, SRV_PRT_PKG_PRTV, chunk, len)) != LUMO_OK)
         snprintf(err, errlen, "prt: cannot add the chunk (%s)", lumo_strerror(st));
     free(chunk);

@@ -40,13 +40,24 @@ typedef struct srv_prt_options {
 
 void srv_prt_default_options(srv_prt_options *o);
 
+/* What srv_prt_pack measured: seed 003 Chapter 5's metrics for the mesh. */
+typedef struct srv_prt_stats {
+    uint32_t vertices, triangles, clusters, passes;
+    int      iterations;                 /* LBG passes */
+    double   transfer_seconds, cluster_seconds;
+    double   overdraw, overdraw_passes;  /* Eq. 8: one pass per cluster; the written passes */
+    double   sq_error, quant_sq_error;   /* CPCA against the transfer; Q1.14 against CPCA */
+    size_t   bytes;                      /* the PRTV chunk */
+} srv_prt_stats;
+
 /* For lumo-bake --prt: the same progressive mesh srv_pm_pack builds (the
- * vertex order of its PMSH chunk), its transfer, CPCA, one PRTV chunk.
- * LUMO_OK or the failing step's status with a reason in err. */
+ * vertex order of its PMSH chunk), its transfer, CPCA, one PRTV chunk;
+ * stats (may be NULL) gets the metrics. LUMO_OK or the failing step's
+ * status with a reason in err. */
 struct srv_pkg_writer;
 lumo_status srv_prt_pack(struct srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
-                         const uint32_t *tris, uint32_t nf, const srv_prt_options *o, char *err,
-                         size_t errlen);
+                         const uint32_t *tris, uint32_t nf, const srv_prt_options *o, srv_prt_stats *stats,
+                         char *err, size_t errlen);
 
 /* An equirectangular image (linear RGB radiance, w x h, row-major from the
  * top; docs/prt.md) projected on SH of order N. lumo's scenes are y-up, so

@@ -60,9 +60,16 @@ int bake_prt_parse(bake_prt *p, const char *spec, int threads, int progress)
 int bake_prt_mesh(const bake_prt *p, srv_pkg_writer *w, const float *xyz, const uint8_t *albedo, uint32_t nv,
                   const uint32_t *tris, uint32_t nf, char *err, size_t errlen)
 {
+    srv_prt_stats st;
     if (!p->on)
         return 0;
-    return srv_prt_pack(w, xyz, albedo, nv, tris, nf, &p->o, err, errlen) ? -1 : 0;
+    if (srv_prt_pack(w, xyz, albedo, nv, tris, nf, &p->o, &st, err, errlen))
+        return -1;
+    fprintf(stderr, "lumo-bake: prt: %u vertices, order %d: transfer %.2f s; %u clusters (%d LBG passes, %.2f s), "
+                    "overdraw %.4f, %.4f in %u passes; squared error %.3e (Q1.14 adds %.1e); PRTV %zu bytes\n",
+            st.vertices, p->o.transfer.order, st.transfer_seconds, st.clusters, st.iterations, st.cluster_seconds,
+            st.overdraw, st.overdraw_passes, st.passes, st.sq_error, st.quant_sq_error, st.bytes);
+    return 0;
 }
 
 int bake_prt_env(const bake_prt *p, srv_pkg_writer *w, char *err, size_t errlen)
