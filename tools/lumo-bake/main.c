@@ -17,6 +17,7 @@
 #include "scene/camera.h"
 #include "scene/shapes.h"
 #include "lumo_host/version_line.h"
+#include "bake_prt.h"
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
 
@@ -40,6 +41,8 @@ typedef struct {
     srv_camera camera;
     const char *lights[LUMO_MAX_LIGHTS];
     int   nlights;
+    const char *prt_spec;     /* --prt, parsed once threads are known */
+    bake_prt prt;
 } options;
 
 static const char usage[] =
@@ -66,6 +69,12 @@ static const char usage[] =
     "  --camera E:T:U:FOVY    camera (default: the scene's, else one fitted to its bounds)\n"
     "  --indirect-only        reference image of the indirect light only\n"
     "  --exposure E           PNG exposure (default 1.0)\n"
+    "  --prt N[,clusters=K,components=P,alpha=A,bounces=B,strata=S,registers=R]\n"
+    "                         also PRT: SH order N (1..6) transfer per vertex, CPCA\n"
+    "                         (defaults 64 clusters, 8 components, alpha 0, 1 bounce,\n"
+    "                         32x32 directions, super-clusters of 256 float4 registers)\n"
+    "                         into a PRTV chunk per mesh (docs/prt.md)\n"
+    "  --prt-env FILE.png     with --prt: an equirectangular environment's SH lighting (PRTL)\n"
     "  --no-progress          never draw the progress bar\n"
     "  --allow-large          bake past the budget (64^3 vertices, 32^3 x 512 paths)\n"
     "  -h, --help             this text\n"
@@ -113,7 +122,7 @@ static int parse_grid(const char *t, int dims[3], char *err, size_t errlen)
 }
 
 enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
-       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH, O_ALLOW_LARGE };
+       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH, O_ALLOW_LARGE, O_PRT, O_PRT_ENV };
 
 static const struct option k_long[] = {
     {"default", no_argument, 0, O_DEFAULT}, {"output", required_argument, 0, 'o'},
@@ -125,6 +134,7 @@ static const struct option k_long[] = {
     {"indirect-only", no_argument, 0, O_INDIRECT}, {"exposure", required_argument, 0, O_EXPOSURE},
     {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH},
     {"allow-large", no_argument, 0, O_ALLOW_LARGE},
+    {"prt", required_argument, 0, O_PRT}, {"prt-env", required_argument, 0, O_PRT_ENV},
     {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
 /* The options that take a number; 0, or -1 with the refusal in err. */
@@ -197,6 +207,8 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
             return -1;
         o->mesh_mode += 1;
         return 0;
+    case O_PRT: o->prt_spec = arg; return 0;
+    case O_PRT_ENV: o->prt.env = arg; return 0;
     case 'h': return 1;
     default: return take_number(o, c, arg, err, errlen);
     }
@@ -242,6 +254,14 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     }
     if (o->spp == 0)
         o->spp = o->ref_w ? DEFAULT_REF_SPP : DEFAULT_BAKE_SPP;
+    if (o->prt_spec && bake_prt_parse(&o->prt, o->prt_spec, o->threads, o->progress)) {
+        snprintf(err, errlen, "bad value '%s' for --prt (try --help)", o->prt_spec);
+        return -1;
+    }
+    if (o->prt.env && !o->prt.on) {
+        snprintf(err, errlen, "--prt-env needs --prt");
+        return -1;
+    }
     return 0;
 }
 
@@ -404,6 +424,8 @@ static int pack_meshes(const options *o, srv_pkg_writer *w, const srv_scene *s, 
             for (int c = 0; c < 3; c++)
                 albedo[3 * v + (uint32_t)c] = (uint8_t)lrintf(255.0f * v3_get(m->albedo[v], c));
         int rc = srv_pm_pack(w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, NULL, err, errlen);
+        if (!rc)
+            rc = bake_prt_mesh(&o->prt, w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, err, errlen);
         free(albedo);
         if (rc)
             return -1;
@@ -422,6 +444,8 @@ static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
         return fail(err);
     srv_pkgw_init(&w);
     int rc = pack_meshes(o, &w, s, err, sizeof err);
+    if (!rc)
+        rc = bake_prt_env(&o->prt, &w, err, sizeof err);
     if (!rc)
         rc = srv_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
     if (!rc && (rc = srv_pack_order(&w)))
