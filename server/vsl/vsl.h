@@ -39,7 +39,9 @@ typedef struct srv_vsl_place_opts {
     uint64_t seed;
 } srv_vsl_place_opts;
 
-/* §0.4.2 defaults: 10% more, triangles scaled by 0.8. */
+/* §0.4.2 defaults: 10% more, triangles scaled by 0.95 ("a small scale":
+ * 0.8 moved the Cornell walls' energy 20% of a 2 m triangle inwards and
+ * over-lit the room by 4%, 0.95 by under 1% — docs/dynamic.md). */
 srv_vsl_place_opts srv_vsl_place_defaults(size_t nv, uint64_t seed);
 
 /* Place N_v VSLs on s: candidates drawn by area (1 + oversample) N_v,

@@ -199,7 +199,7 @@ static srv_vsl *draw_candidates(const srv_scene *s, const srv_vsl_place_opts *o,
 
 srv_vsl_place_opts srv_vsl_place_defaults(size_t nv, uint64_t seed)
 {
-    srv_vsl_place_opts o = {nv, 0.10f, 0.8f, seed};
+    srv_vsl_place_opts o = {nv, 0.10f, 0.95f, seed};
     return o;
 }
 
