@@ -48,19 +48,25 @@ vec3 srv_vsl_irradiance(const srv_vsl_lit *v, size_t n, vec3 x, vec3 nrm, float 
     return e;
 }
 
-void srv_vsl_ivg_add(const srv_vsl_lit *v, float scale, vec3 p, float *I)
+int srv_vsl_reaches(const srv_vsl_lit *v, vec3 p, float eps)
+{
+    vec3 d = v3_sub(v->pos, p);
+    return v3_dot(d, d) <= srv_vsl_cutoff2(v, eps);
+}
+
+void srv_vsl_ivg_add(const srv_vsl_lit *v, double scale, vec3 p, double *I)
 {
     vec3 w;
-    float g = element(v, p, 0.0f, &w) * scale;   /* no cut-off: exact add/remove */
-    if (g == 0.0f)
+    double g = (double)element(v, p, 0.0f, &w) * scale;
+    if (g == 0.0)
         return;
     for (int h = 0; h < 6; h++) {
         float along = v3_get(w, h / 2);
         if (h & 1 ? along >= 0.0f : along <= 0.0f)
             continue;
         for (int ch = 0; ch < 3; ch++) {
-            float k = g * v3_get(v->flux, ch);
-            float *o = I + (h * 3 + ch) * 3;
+            double k = g * (double)v3_get(v->flux, ch);
+            double *o = I + (h * 3 + ch) * 3;
             o[0] += k * w.x, o[1] += k * w.y, o[2] += k * w.z;
         }
     }

@@ -39,9 +39,13 @@ float srv_vsl_cutoff2(const srv_vsl_lit *v, float eps);
 /* Indirect irradiance (W/m^2 per channel) at x, unit normal n. */
 vec3 srv_vsl_irradiance(const srv_vsl_lit *v, size_t n, vec3 x, vec3 nrm, float eps);
 
-/* Add scale * (one VSL's I_delta) at p into I (54 floats: 6 hemispheres x
- * 3 channels x 3 components, the srv_bake_result order); scale -1 takes a
- * contribution back out (vsl_ivg.h). */
-void srv_vsl_ivg_add(const srv_vsl_lit *v, float scale, vec3 p, float *I);
+/* 1 when p lies inside v's cut-off sphere (r^2 <= srv_vsl_cutoff2). */
+int srv_vsl_reaches(const srv_vsl_lit *v, vec3 p, float eps);
+
+/* Add scale * (one VSL's I_delta) at p into I (54 values: 6 hemispheres x
+ * 3 channels x 3 components, the srv_bake_result order), no cut-off (the
+ * caller picks the vertices); scale -1 takes a contribution back out
+ * (vsl_ivg.h). */
+void srv_vsl_ivg_add(const srv_vsl_lit *v, double scale, vec3 p, double *I);
 
 #endif
