@@ -259,8 +259,11 @@ static lumo_status feed_ivg_bundle(lumo_session *s, const uint8_t *p, size_t len
     return LUMO_OK;
 }
 
-/* IVGR: form, 3 reserved bytes, record count, then the records. */
-static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t len)
+/* IVGR (and IVGU): form, 3 reserved bytes, record count, then the records.
+ * IVGU runs are lighting updates (docs/dynamic.md): applied the same way,
+ * but not counted as records of the streaming order (the lighting
+ * channel's cursor stays the package's). */
+static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t len, int counted)
 {
     uint32_t applied;
     lumo_status st;
@@ -274,7 +277,8 @@ static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t le
     if (st)
         return st;
     s->ivg_dirty = 1;
-    s->ivg_records += applied;
+    if (counted)
+        s->ivg_records += applied;
     return LUMO_OK;
 }
 
@@ -339,7 +343,8 @@ lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, co
     case LUMO_MSG_IVGD: return feed_ivg_desc(s, p, len);
     case LUMO_MSG_IVGQ:
     case LUMO_MSG_IVGF: return feed_ivg_bundle(s, p, len);
-    case LUMO_MSG_IVGR: return feed_ivg_records(s, p, len);
+    case LUMO_MSG_IVGR: return feed_ivg_records(s, p, len, 1);
+    case LUMO_MSG_IVGU: return feed_ivg_records(s, p, len, 0);
     case LUMO_MSG_IVGS: return feed_ivg_order(s, p, len);
     case LUMO_MSG_ORDR: return feed_order(s, p, len);
     default:            return LUMO_ERR_UNSUPPORTED;

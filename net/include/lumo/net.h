@@ -35,8 +35,12 @@ typedef enum lumo_net_type {
     LUMO_NET_END = 5, LUMO_NET_ERROR = 6, LUMO_NET_BYE = 7
 } lumo_net_type;
 
-/* The two channels a REQUEST, DATA or END belongs to. */
-typedef enum lumo_net_channel { LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1 } lumo_net_channel;
+/* The channels a REQUEST, DATA or END belongs to: the package's geometry
+ * and lighting, and the lighting updates of a dynamic scene
+ * (docs/protocol.md §9, docs/dynamic.md). */
+typedef enum lumo_net_channel {
+    LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1, LUMO_NET_UPDATES = 2
+} lumo_net_channel;
 
 #define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */
 #define LUMO_NET_FLAG_SMOOTHING 1u   /* HELLO: the client smooths its push-pull */
@@ -116,17 +120,20 @@ typedef struct lumo_net_welcome {
 /* REQUEST: the next part of a channel. */
 typedef struct lumo_net_request {
     uint8_t  channel;          /* lumo_net_channel */
-    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
-    uint32_t cursor;           /* the first batch / round wanted */
-    uint32_t amount;           /* vertices (geometry) or rounds (lighting) wanted */
+    uint32_t mesh;             /* geometry: which mesh; lighting, updates: 0 */
+    uint32_t cursor;           /* the first batch / round wanted; updates: the update position held */
+    uint32_t amount;           /* vertices (geometry), rounds (lighting) or records (updates) wanted */
 } lumo_net_request;
 
 /* DATA: the answer to a REQUEST (docs/protocol.md §2 DATA). */
 typedef struct lumo_net_data {
     uint8_t  channel;          /* lumo_net_channel */
     uint8_t  form;             /* lighting: the records' IVG form */
-    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
-    uint32_t first, count, records;   /* first batch / round, how many, records carried */
+    uint32_t mesh;             /* geometry: which mesh; lighting, updates: 0 */
+    uint32_t first, count, records;   /* first batch / round, how many, records carried;
+                                         updates: the position the records start after
+                                         (the cursor asked), the position they bring the
+                                         client to (> first), records carried */
     const uint8_t *bytes;      /* decode: into the frame */
     uint32_t len;              /* bytes at bytes */
 } lumo_net_data;

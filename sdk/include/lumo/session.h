@@ -66,6 +66,10 @@
  * then the records (lumo_ivg_apply_records). */
 #define LUMO_MSG_IVGR  LUMO_PKG_FOURCC('I', 'V', 'G', 'R')
 #define LUMO_MSG_IVGR_HEADER 8u   /* bytes of an IVGR message's head */
+/* Lighting updates of a dynamic scene (docs/dynamic.md): an IVGR run that
+ * replaces vertices already held, as a DATA frame of the updates channel
+ * carries it; not counted in lumo_session_lighting_progress. */
+#define LUMO_MSG_IVGU  LUMO_PKG_FOURCC('I', 'V', 'G', 'U')
 
 /* Level of detail: how far each progressive mesh is refined. A batch past
  * the target is not applied; the batch that crosses it is applied and the
@@ -127,7 +131,7 @@ lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes);
  * INFO must come first (STATE otherwise) and only once; a mesh index past
  * the info's mesh count is RANGE (an info naming more than LUMO_MAX_MESHES
  * is LIMIT); NOMEM when the arena is too small for a descriptor. A PMSB past
- * the level-of-detail target is accepted and ignored. IVGQ, IVGF, IVGR and
+ * the level-of-detail target is accepted and ignored. IVGQ, IVGF, IVGR, IVGU and
  * IVGS need the IVGD first (STATE); IVGS and ORDR come once (STATE) and are
  * checked against the grid and the mesh count. On any error nothing
  * changes — except that a PMSH message carrying records acts as its header
