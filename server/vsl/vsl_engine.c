@@ -33,6 +33,8 @@ struct srv_vsl_engine {
     srv_vsl_latency     lat;
     double              lat_sum;
     uint64_t            version;
+    srv_vsl_updates    *updates;     /* NULL: dirty vertices kept for snapshots */
+    uint32_t           *dirty;       /* scratch: one grid of vertex indices */
     pthread_mutex_t     mu;
     pthread_t           th;
     int                 running, stop;
@@ -88,7 +90,8 @@ static lumo_status build(srv_vsl_engine *e, char *err, size_t errlen)
     e->lit = calloc(e->set.n ? e->set.n : 1, sizeof *e->lit);
     e->want_pose = calloc(e->s->nmeshes ? e->s->nmeshes : 1, sizeof *e->want_pose);
     e->want_obj = calloc(e->s->nmeshes ? e->s->nmeshes : 1, 1);
-    if (!e->lit || !e->want_pose || !e->want_obj || srv_vsl_ivg_init(&e->ivg, &g, e->set.n, e->o.eps, e->o.tau)) {
+    e->dirty = calloc((size_t)g.dims[0] * (size_t)g.dims[1] * (size_t)g.dims[2], sizeof *e->dirty);
+    if (!e->lit || !e->want_pose || !e->want_obj || !e->dirty || srv_vsl_ivg_init(&e->ivg, &g, e->set.n, e->o.eps, e->o.tau)) {
         snprintf(err, errlen, "out of memory (IVG grid, VSL states)");
         return LUMO_ERR_NOMEM;
     }
@@ -124,7 +127,7 @@ void srv_vsl_engine_free(srv_vsl_engine *e)
     srv_vsl_pool_free(&e->pool);
     srv_vsl_index_free(&e->ix);
     srv_vsl_set_free(&e->set);
-    free(e->lit), free(e->want_pose), free(e->want_obj);
+    free(e->lit), free(e->want_pose), free(e->want_obj), free(e->dirty);
     pthread_mutex_destroy(&e->mu);
     free(e);
 }
@@ -217,6 +220,9 @@ size_t srv_vsl_engine_step(srv_vsl_engine *e, double t)
     srv_vsl_lit_fill(&e->set, e->rt, &e->pt, e->lit);
     pthread_mutex_lock(&e->mu);
     size_t n = srv_vsl_ivg_update(&e->ivg, e->lit);
+    if (e->updates)
+        srv_vsl_updates_publish(e->updates, e->ivg.I, e->dirty,
+                                srv_vsl_ivg_take_dirty(&e->ivg, e->dirty, e->ivg.nverts));
     e->version++;
     pthread_mutex_unlock(&e->mu);
     settle(e, wall_now());
@@ -292,6 +298,13 @@ size_t srv_vsl_engine_snapshot(srv_vsl_engine *e, double *I, uint32_t *dirty, si
         *version = e->version;
     pthread_mutex_unlock(&e->mu);
     return n;
+}
+
+void srv_vsl_engine_attach_updates(srv_vsl_engine *e, srv_vsl_updates *u)
+{
+    pthread_mutex_lock(&e->mu);
+    e->updates = u;
+    pthread_mutex_unlock(&e->mu);
 }
 
 const srv_vsl_ivg *srv_vsl_engine_ivg(const srv_vsl_engine *e) { return &e->ivg; }

@@ -24,6 +24,7 @@
 #include <stdint.h>
 #include "vsl/vsl_ivg.h"
 #include "vsl/vsl_motion.h"
+#include "vsl/vsl_updates.h"
 
 typedef struct srv_vsl_engine srv_vsl_engine;
 
@@ -71,6 +72,11 @@ lumo_status srv_vsl_engine_move_light(srv_vsl_engine *e, uint32_t i, vec3 pos);
  * count. Returns the number of dirty indices written. */
 size_t srv_vsl_engine_snapshot(srv_vsl_engine *e, double *I, uint32_t *dirty, size_t cap,
                                uint64_t *version);
+
+/* Publish every IVG update into u (vsl_updates.h: what the updates
+ * channel serves) from now on; the dirty vertices then go to u, not to
+ * srv_vsl_engine_snapshot. u must outlive the engine's running. */
+void srv_vsl_engine_attach_updates(srv_vsl_engine *e, srv_vsl_updates *u);
 
 /* Read-only views (engine stopped, or racing as §0.7.2 allows). */
 const srv_vsl_ivg *srv_vsl_engine_ivg(const srv_vsl_engine *e);
