@@ -47,9 +47,9 @@ static inline lumo_status net_exact(uint32_t len, size_t want)
     return len > want ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
-/* Channel (REQUEST, DATA, END): 0 geometry or 1 lighting; a lighting
- * message names mesh 0 (docs/protocol.md §2: "mesh index (geometry), else
- * 0"). RANGE otherwise. */
+/* Channel (REQUEST, DATA, END): 0 geometry, 1 lighting or 2 updates (§9);
+ * a lighting or updates message names mesh 0 (docs/protocol.md §2: "mesh
+ * index (geometry), else 0"). RANGE otherwise. */
 static inline lumo_status net_channel(uint8_t channel, uint32_t mesh)
 {
     if (channel > LUMO_NET_UPDATES)

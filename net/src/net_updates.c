@@ -19,13 +19,15 @@ lumo_status lumo_net_updates_init(lumo_net_updates *u, lumo_session *session, ui
     u->amount = amount;
     u->poll_ms = poll_ms;
     u->cursor = u->answer_records = u->last_ms = 0;
-    u->records = u->answers = 0;
+    u->records = u->answers = u->poses = 0;
     u->error = LUMO_OK;
     return LUMO_OK;
 }
 
 int lumo_net_updates_takes(const lumo_net_frame *f)
 {
+    if (f && f->type == LUMO_NET_POSES)
+        return 1;
     if (!f || (f->type != LUMO_NET_DATA && f->type != LUMO_NET_END) || f->len < 1)
         return 0;
     return f->payload[0] == LUMO_NET_UPDATES;
@@ -106,6 +108,35 @@ static lumo_status on_end(lumo_net_updates *u, const lumo_net_frame *f, uint32_t
     return LUMO_OK;
 }
 
+/* POSES of the answer in flight: every index checked before any applies. */
+static lumo_status on_poses(lumo_net_updates *u, const lumo_net_frame *f)
+{
+    const lumo_pkg_info *info = lumo_session_info(u->session);
+    lumo_net_poses m;
+    lumo_net_pose p;
+    uint32_t i;
+    lumo_status st = lumo_net_poses_decode(f, &m);
+
+    if (st)
+        return st;
+    if (!u->in_flight || !info)
+        return LUMO_ERR_STATE;
+    for (i = 0; i < m.count; i++) {
+        lumo_net_poses_get(&m, i, &p);
+        if (p.index >= (p.kind == LUMO_NET_POSE_LIGHT ? info->light_count : info->mesh_count))
+            return LUMO_ERR_RANGE;
+    }
+    for (i = 0; i < m.count; i++) {
+        lumo_net_poses_get(&m, i, &p);
+        st = p.kind == LUMO_NET_POSE_LIGHT ? lumo_session_move_light(u->session, p.index, p.t)
+                                           : lumo_session_set_mesh_pose(u->session, p.index, p.t, p.yaw_deg);
+        if (st)
+            return st;
+    }
+    u->poses += m.count;
+    return LUMO_OK;
+}
+
 lumo_status lumo_net_updates_on_frame(lumo_net_updates *u, const lumo_net_frame *f, uint32_t now_ms)
 {
     lumo_status st;
@@ -120,6 +151,9 @@ lumo_status lumo_net_updates_on_frame(lumo_net_updates *u, const lumo_net_frame 
         break;
     case LUMO_NET_END:
         st = on_end(u, f, now_ms);
+        break;
+    case LUMO_NET_POSES:
+        st = on_poses(u, f);
         break;
     case LUMO_NET_ERROR:
         st = net_error_status(f);

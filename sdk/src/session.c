@@ -505,3 +505,41 @@ lumo_status lumo_session_stream_header(const lumo_session *s, uint32_t index, lu
     *out = s->mesh[index].pm.h;
     return LUMO_OK;
 }
+
+/* ---- dynamic scenes ------------------------------------------------------------ */
+
+lumo_status lumo_session_move_light(lumo_session *s, uint32_t i, const lumo_q16_16 pos[3])
+{
+    if (!s || !pos)
+        return LUMO_ERR_ARG;
+    if (!s->have_info)
+        return LUMO_ERR_STATE;
+    if (i >= s->info.light_count || i >= LUMO_MAX_LIGHTS)
+        return LUMO_ERR_RANGE;
+    memcpy(s->lights[i].pos, pos, sizeof s->lights[i].pos);
+    return LUMO_OK;
+}
+
+lumo_status lumo_session_set_mesh_pose(lumo_session *s, uint32_t i, const lumo_q16_16 t[3], lumo_q16_16 yaw_deg)
+{
+    if (!s || !t)
+        return LUMO_ERR_ARG;
+    if (!s->have_info)
+        return LUMO_ERR_STATE;
+    if (i >= s->info.mesh_count || i >= LUMO_MAX_MESHES)
+        return LUMO_ERR_RANGE;
+    memcpy(s->pose[i], t, 3 * sizeof *t);
+    s->pose[i][3] = yaw_deg;
+    return LUMO_OK;
+}
+
+lumo_status lumo_session_mesh_pose(const lumo_session *s, uint32_t i, lumo_q16_16 t[3], lumo_q16_16 *yaw_deg)
+{
+    if (!s || !t || !yaw_deg)
+        return LUMO_ERR_ARG;
+    if (i >= LUMO_MAX_MESHES)
+        return LUMO_ERR_RANGE;
+    memcpy(t, s->pose[i], 3 * sizeof *t);
+    *yaw_deg = s->pose[i][3];
+    return LUMO_OK;
+}

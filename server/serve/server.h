@@ -38,6 +38,8 @@ typedef struct srv_serve_options {
     uint32_t    drain_ms;
     int         quiet;          /* no per-client lines */
     const char *port_file;      /* write "TCP_PORT SERIAL_PORT\n" once listening */
+    struct srv_vsl_updates *updates;   /* the updates channel's log (--dynamic), or NULL:
+                                          updates REQUESTs are answered with END */
 } srv_serve_options;
 
 typedef struct srv_heap {

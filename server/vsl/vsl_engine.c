@@ -49,7 +49,7 @@ static double wall_now(void)
 
 srv_vsl_engine_opts srv_vsl_engine_defaults(void)
 {
-    srv_vsl_engine_opts o = {400, 200000, 20000, 0.0, 0.05f, 1e-6f, {16, 16, 16}, 1};
+    srv_vsl_engine_opts o = {400, 200000, 20000, 0.0, 0.05f, 1e-6f, {16, 16, 16}, 0, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, 1};
     return o;
 }
 
@@ -86,7 +86,7 @@ static lumo_status build(srv_vsl_engine *e, char *err, size_t errlen)
     st = srv_photon_tracer_init(&e->pt, e->s, e->rt, &e->ix, &e->pool, e->o.seed, err, errlen);
     if (st || (st = check_motion(e, err, errlen)))
         return st;
-    srv_grid g = srv_grid_over(e->s, e->o.dims);
+    srv_grid g = e->o.use_grid ? e->o.grid : srv_grid_over(e->s, e->o.dims);
     e->lit = calloc(e->set.n ? e->set.n : 1, sizeof *e->lit);
     e->want_pose = calloc(e->s->nmeshes ? e->s->nmeshes : 1, sizeof *e->want_pose);
     e->want_obj = calloc(e->s->nmeshes ? e->s->nmeshes : 1, 1);
@@ -207,6 +207,33 @@ static void settle(srv_vsl_engine *e, double wall)
     }
 }
 
+/* ---- poses for the clients ----------------------------------------------- */
+
+static lumo_q16_16 q16(float x)
+{
+    double v = (double)x * 65536.0;
+    return (lumo_q16_16)(v > 2147483647.0 ? 2147483647.0 : v < -2147483648.0 ? -2147483648.0 : v);
+}
+
+/* Lights where they are now, meshes moved from where the scene put them. */
+static void publish_poses(srv_vsl_engine *e)
+{
+    lumo_net_pose p[LUMO_NET_MAX_POSES];
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < e->pt.nlights && n < LUMO_NET_MAX_POSES; i++) {
+        vec3 x = e->pt.lights[i].pos;
+        lumo_net_pose one = {LUMO_NET_POSE_LIGHT, i, {q16(x.x), q16(x.y), q16(x.z)}, 0};
+        p[n++] = one;
+    }
+    for (uint32_t o = 0; o < e->s->nmeshes && o < LUMO_MAX_MESHES && n < LUMO_NET_MAX_POSES; o++) {
+        const srv_pose *q = srv_vsl_rt_pose(e->rt, o);
+        lumo_net_pose one = {LUMO_NET_POSE_MESH, o, {q16(q->t.x), q16(q->t.y), q16(q->t.z)}, q16(q->yaw_deg)};
+        if (q->t.x != 0.0f || q->t.y != 0.0f || q->t.z != 0.0f || q->yaw_deg != 0.0f)
+            p[n++] = one;
+    }
+    srv_vsl_updates_set_poses(e->updates, p, n);
+}
+
 /* ---- steps ---------------------------------------------------------------- */
 
 size_t srv_vsl_engine_step(srv_vsl_engine *e, double t)
@@ -220,6 +247,8 @@ size_t srv_vsl_engine_step(srv_vsl_engine *e, double t)
     srv_vsl_lit_fill(&e->set, e->rt, &e->pt, e->lit);
     pthread_mutex_lock(&e->mu);
     size_t n = srv_vsl_ivg_update(&e->ivg, e->lit);
+    if (e->updates)
+        publish_poses(e);
     if (e->updates)
         srv_vsl_updates_publish(e->updates, e->ivg.I, e->dirty,
                                 srv_vsl_ivg_take_dirty(&e->ivg, e->dirty, e->ivg.nverts));

@@ -34,7 +34,9 @@ typedef struct srv_vsl_engine_opts {
     uint64_t batch;       /* photon paths per step (between IVG updates) */
     double   rate;        /* photon paths per second: scene time in steps; a cap when running (0: none) */
     float    tau, eps;    /* vsl_ivg.h */
-    int      dims[3];     /* IVG grid over the scene's bounds */
+    int      dims[3];     /* IVG grid over the scene's bounds ... */
+    int      use_grid;    /* ... or this grid (a package's IVGD: the clients' grid) */
+    srv_grid grid;
     uint64_t seed;
 } srv_vsl_engine_opts;
 

@@ -94,6 +94,19 @@ void srv_vsl_updates_publish(srv_vsl_updates *u, const double *I, const uint32_t
     pthread_mutex_unlock(&u->mu);
 }
 
+void srv_vsl_updates_set_poses(srv_vsl_updates *u, const lumo_net_pose *p, uint32_t n)
+{
+    if (n > LUMO_NET_MAX_POSES)
+        n = LUMO_NET_MAX_POSES;
+    pthread_mutex_lock(&u->mu);
+    if (n != u->nposes || memcmp(p, u->poses, n * sizeof *p)) {
+        memcpy(u->poses, p, n * sizeof *p);
+        u->nposes = n;
+        u->poses_pos = u->next;
+    }
+    pthread_mutex_unlock(&u->mu);
+}
+
 uint32_t srv_vsl_updates_position(srv_vsl_updates *u)
 {
     pthread_mutex_lock(&u->mu);
@@ -147,7 +160,9 @@ lumo_status srv_vsl_updates_answer(srv_vsl_updates *u, uint32_t cursor, uint32_t
     pthread_mutex_lock(&u->mu);
     uint32_t at = first_after(u, cursor), k = u->n - at < amount ? u->n - at : amount;
     uint32_t frames = (k + per - 1) / per;
-    size_t cap = (size_t)frames * (LUMO_NET_OVERHEAD + LUMO_NET_DATA_HEAD) + (size_t)k * rec + 64;
+    int poses = u->nposes && u->poses_pos > cursor;
+    size_t cap = (size_t)frames * (LUMO_NET_OVERHEAD + LUMO_NET_DATA_HEAD) + (size_t)k * rec + 64 +
+                 (poses ? LUMO_NET_OVERHEAD + 4 + (size_t)u->nposes * LUMO_NET_POSE_BYTES : 0);
     uint8_t *out = malloc(cap);
     size_t n = 0;
     lumo_status st = out ? LUMO_OK : LUMO_ERR_NOMEM;
@@ -159,9 +174,11 @@ lumo_status srv_vsl_updates_answer(srv_vsl_updates *u, uint32_t cursor, uint32_t
         first = u->pos[u->order[at + now - 1]];
         n += w, at += now, k -= now;
     }
+    size_t w = 0;
+    if (!st && poses && (st = lumo_net_poses_encode(u->poses, u->nposes, out + n, cap - n, &w)) == LUMO_OK)
+        n += w;
     pthread_mutex_unlock(&u->mu);
     lumo_net_end e = {LUMO_NET_UPDATES, 0};
-    size_t w = 0;
     if (!st && (st = lumo_net_end_encode(&e, out + n, cap - n, &w)) == LUMO_OK)
         n += w;
     if (st) {

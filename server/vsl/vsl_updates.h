@@ -22,6 +22,7 @@
 #include <pthread.h>
 #include <stddef.h>
 #include <stdint.h>
+#include "lumo/net.h"
 #include "package/ivg_encode.h"
 #include "vsl/vsl_ivg.h"
 
@@ -38,6 +39,9 @@ typedef struct srv_vsl_updates {
     uint32_t       *scratch;
     srv_ivg_fentry *e;        /* per vertex, 6 hemispheres */
     uint64_t        published;   /* vertex publications in total */
+    lumo_net_pose   poses[LUMO_NET_MAX_POSES];   /* moved lights and meshes now */
+    uint32_t        nposes;
+    uint32_t        poses_pos;   /* the position when they last changed: sent to clients behind it */
 } srv_vsl_updates;
 
 /* A log for a grid of dims. LUMO_OK, LUMO_ERR_NOMEM. */
@@ -50,11 +54,16 @@ void srv_vsl_updates_publish(srv_vsl_updates *u, const double *I, const uint32_t
 
 /* The answer to an updates REQUEST (cursor, amount records) for a client
  * with max_payload and IVG form: DATA frames of at most amount records in
- * all, then END, whole frames into *buf (malloc'd, the caller frees),
+ * all, POSES when they changed after cursor, then END, whole frames into *buf (malloc'd, the caller frees),
  * *len bytes. LUMO_ERR_NOMEM; LUMO_ERR_LIMIT when one record does not fit
  * the client's max payload. */
 lumo_status srv_vsl_updates_answer(srv_vsl_updates *u, uint32_t cursor, uint32_t amount, uint8_t form,
                                    uint32_t max_payload, uint8_t **buf, size_t *len);
+
+/* The poses now (lumo/net.h POSES: lights' positions, moved meshes'
+ * translations and yaws); a change is sent, as one POSES frame before the
+ * END of an answer, to every client not yet past it. */
+void srv_vsl_updates_set_poses(srv_vsl_updates *u, const lumo_net_pose *p, uint32_t n);
 
 /* The position the log has reached (the last given). */
 uint32_t srv_vsl_updates_position(srv_vsl_updates *u);

@@ -455,10 +455,11 @@ static void test_frame_limits(void **state)
     assert_int_equal(used, 3);
 }
 
-/* Types 0 and 8..255: UNSUPPORTED once the CRC holds; a wrong CRC first. */
+/* Types 0 and 9..255 (8 is POSES, §9): UNSUPPORTED once the CRC holds; a
+ * wrong CRC first. */
 static void test_unknown_type(void **state)
 {
-    static const uint8_t types[] = {0, 8, 9, 0x7F, 0xFF};
+    static const uint8_t types[] = {0, 9, 10, 0x7F, 0xFF};
     uint8_t b[64], p[4] = {1, 2, 3, 4};
     lumo_net_frame f = {0};
     size_t i, used = 9;

@@ -38,6 +38,7 @@ typedef struct lumo_net_updates {
     uint8_t  wait;         /* the last answer had nothing new: poll_ms applies */
     uint32_t records;      /* records applied, in total */
     uint32_t answers;      /* answers ended (END taken) */
+    uint32_t poses;        /* poses applied, in total */
     lumo_status error;     /* why it failed (sticky); LUMO_OK while working */
 } lumo_net_updates;
 
@@ -48,7 +49,8 @@ lumo_status lumo_net_updates_init(lumo_net_updates *u, lumo_session *session, ui
                                   uint32_t poll_ms);
 
 /* 1 when f belongs to the updates channel (a DATA or END of channel 2,
- * whatever its payload's validity past the channel byte), else 0. */
+ * whatever its payload's validity past the channel byte, or a POSES),
+ * else 0. */
 int lumo_net_updates_takes(const lumo_net_frame *f);
 
 /* The next REQUEST to send at time now_ms (a wrapping millisecond clock):
@@ -62,7 +64,9 @@ lumo_status lumo_net_updates_next(lumo_net_updates *u, uint32_t now_ms, uint8_t 
  * flight: its first = the position held, its form the one asked, its
  * records within the amount asked (STATE, RANGE, CORRUPT otherwise); the
  * records go to the session as one IVGU message (all or nothing, the
- * session's checks) and the position advances to the frame's count. END
+ * session's checks) and the position advances to the frame's count.
+ * POSES moves the session's lights and sets its meshes' poses (every index
+ * within the info's counts, RANGE otherwise, checked before any applies). END
  * ends the answer; push-pull runs when it brought records. ERROR: the
  * server's status. On an error the poller fails (every later call returns
  * it) and the session keeps its last good state: it still draws. */

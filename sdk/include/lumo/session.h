@@ -112,6 +112,7 @@ typedef struct lumo_session {
     lumo_ivg_order ivg_order;     /* IVGS, its table copied into the arena */
     lumo_scene_order order;       /* ORDR, its steps copied into the arena */
     lumo_session_mesh_slot mesh[LUMO_MAX_MESHES];
+    lumo_q16_16    pose[LUMO_MAX_MESHES][4];   /* dynamic scenes: translation (m), yaw (deg) */
 } lumo_session;
 
 /* An empty session taking its memory from `arena` (not owned; must outlive
@@ -185,6 +186,15 @@ typedef struct lumo_session_lighting {
     uint32_t records;               /* IVG records applied */
     uint32_t rounds_held, rounds;   /* 0, 0 without IVGS */
 } lumo_session_lighting;
+/* Dynamic scenes (docs/dynamic.md): a light moved to pos (RANGE past the
+ * info's lights; STATE before INFO), and a mesh's pose — translation in
+ * metres and rotation about +y in degrees, from where the package put it
+ * (RANGE past the info's meshes). A session starts with every pose zero;
+ * the caller's renderer applies them. */
+lumo_status lumo_session_move_light(lumo_session *s, uint32_t i, const lumo_q16_16 pos[3]);
+lumo_status lumo_session_set_mesh_pose(lumo_session *s, uint32_t i, const lumo_q16_16 t[3], lumo_q16_16 yaw_deg);
+lumo_status lumo_session_mesh_pose(const lumo_session *s, uint32_t i, lumo_q16_16 t[3], lumo_q16_16 *yaw_deg);
+
 /* The lighting progress (above) into *out. */
 void lumo_session_lighting_progress(const lumo_session *s, lumo_session_lighting *out);
 
