@@ -1,6 +1,7 @@
 /* vsl_engine.c — the photon-streaming lighting engine and its thread
  * (seed 004 §0.3, §0.7.2; vsl_engine.h). */
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,8 @@ struct srv_vsl_engine {
     uint8_t            *want_obj;
     vec3                want_light[LUMO_MAX_LIGHTS];
     uint8_t             want_lt[LUMO_MAX_LIGHTS];
+    uint8_t            *live_obj;                 /* moved live: its motion track no longer applies */
+    uint8_t             live_lt[LUMO_MAX_LIGHTS];
     /* latency */
     change              ring[CHANGE_RING];
     size_t              rhead, rlen;
@@ -90,8 +93,9 @@ static lumo_status build(srv_vsl_engine *e, char *err, size_t errlen)
     e->lit = calloc(e->set.n ? e->set.n : 1, sizeof *e->lit);
     e->want_pose = calloc(e->s->nmeshes ? e->s->nmeshes : 1, sizeof *e->want_pose);
     e->want_obj = calloc(e->s->nmeshes ? e->s->nmeshes : 1, 1);
+    e->live_obj = calloc(e->s->nmeshes ? e->s->nmeshes : 1, 1);
     e->dirty = calloc((size_t)g.dims[0] * (size_t)g.dims[1] * (size_t)g.dims[2], sizeof *e->dirty);
-    if (!e->lit || !e->want_pose || !e->want_obj || !e->dirty || srv_vsl_ivg_init(&e->ivg, &g, e->set.n, e->o.eps, e->o.tau)) {
+    if (!e->lit || !e->want_pose || !e->want_obj || !e->live_obj || !e->dirty || srv_vsl_ivg_init(&e->ivg, &g, e->set.n, e->o.eps, e->o.tau)) {
         snprintf(err, errlen, "out of memory (IVG grid, VSL states)");
         return LUMO_ERR_NOMEM;
     }
@@ -127,7 +131,7 @@ void srv_vsl_engine_free(srv_vsl_engine *e)
     srv_vsl_pool_free(&e->pool);
     srv_vsl_index_free(&e->ix);
     srv_vsl_set_free(&e->set);
-    free(e->lit), free(e->want_pose), free(e->want_obj), free(e->dirty);
+    free(e->lit), free(e->want_pose), free(e->want_obj), free(e->live_obj), free(e->dirty);
     pthread_mutex_destroy(&e->mu);
     free(e);
 }
@@ -157,6 +161,8 @@ static int apply_motion(srv_vsl_engine *e, double t)
     for (size_t k = 0; e->motion && k < e->motion->ntracks; k++) {
         const srv_motion_track *tr = &e->motion->tracks[k];
         srv_motion_key key = srv_motion_at(tr, t);
+        if (tr->light ? e->live_lt[tr->target] : e->live_obj[tr->target])
+            continue;
         if (tr->light) {
             moved |= set_light(e, tr->target, key.p) ? 2 : 0;
         } else {
@@ -173,10 +179,10 @@ static int apply_commands(srv_vsl_engine *e)
     pthread_mutex_lock(&e->mu);
     for (uint32_t o = 0; o < e->s->nmeshes; o++)
         if (e->want_obj[o])
-            moved |= set_pose(e, o, &e->want_pose[o]), e->want_obj[o] = 0;
+            moved |= set_pose(e, o, &e->want_pose[o]), e->want_obj[o] = 0, e->live_obj[o] = 1;
     for (uint32_t i = 0; i < e->pt.nlights; i++)
         if (e->want_lt[i])
-            moved |= set_light(e, i, e->want_light[i]) ? 2 : 0, e->want_lt[i] = 0;
+            moved |= set_light(e, i, e->want_light[i]) ? 2 : 0, e->want_lt[i] = 0, e->live_lt[i] = 1;
     pthread_mutex_unlock(&e->mu);
     return moved;
 }
@@ -261,6 +267,9 @@ size_t srv_vsl_engine_step(srv_vsl_engine *e, double t)
 static void *run(void *arg)
 {
     srv_vsl_engine *e = arg;
+    sigset_t all;
+    sigfillset(&all);   /* process signals are the serving thread's (signalfd) */
+    pthread_sigmask(SIG_BLOCK, &all, NULL);
     double start = wall_now();
     uint64_t first = e->pt.emitted;
     while (!__atomic_load_n(&e->stop, __ATOMIC_ACQUIRE)) {

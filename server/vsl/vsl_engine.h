@@ -65,7 +65,9 @@ lumo_status srv_vsl_engine_start(srv_vsl_engine *e);
 void srv_vsl_engine_stop(srv_vsl_engine *e);
 
 /* Live commands, applied at the next step: object o's pose, light i's
- * position. LUMO_ERR_ARG when out of range (or an area light). */
+ * position; from then on the live command holds it (its motion track, if
+ * any, no longer applies). LUMO_ERR_ARG when out of range (or an area or
+ * directional light). */
 lumo_status srv_vsl_engine_move_object(srv_vsl_engine *e, uint32_t o, const srv_pose *p);
 lumo_status srv_vsl_engine_move_light(srv_vsl_engine *e, uint32_t i, vec3 pos);
 

@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -108,6 +109,9 @@ static void command(struct dynamic *d, char *line)
 static void *read_commands(void *arg)
 {
     struct dynamic *d = arg;
+    sigset_t all;
+    sigfillset(&all);   /* SIGINT / SIGTERM are the serving loop's (signalfd) */
+    pthread_sigmask(SIG_BLOCK, &all, NULL);
     char buf[1024];
     size_t len = 0;
     while (!__atomic_load_n(&d->stop, __ATOMIC_ACQUIRE)) {
@@ -187,6 +191,14 @@ struct dynamic *dynamic_start(const char *spec, const srv_pkg *pkg, srv_serve_op
 {
     struct dynamic *d = calloc(1, sizeof *d);
     char *copy = strdup(spec);
+    sigset_t stop;
+    /* Blocked before any thread starts (the engine's, Embree's workers):
+     * the serving loop takes SIGINT / SIGTERM through its signalfd, and a
+     * thread that did not block them would be killed by them instead. */
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop, NULL);
     if (!d || !copy) {
         free(d), free(copy);
         snprintf(err, errlen, "out of memory");
