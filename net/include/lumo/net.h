@@ -164,6 +164,7 @@ typedef struct lumo_net_error {
  * where the package put it), i32 yaw (Q16.16 degrees about +y; lights 0). */
 #define LUMO_NET_POSE_BYTES 24u
 #define LUMO_NET_MAX_POSES  (LUMO_MAX_MESHES + LUMO_MAX_LIGHTS)
+/* What a pose moves: a mesh or a light. */
 enum { LUMO_NET_POSE_MESH = 0, LUMO_NET_POSE_LIGHT = 1 };
 typedef struct lumo_net_pose {
     uint8_t     kind;        /* LUMO_NET_POSE_MESH or _LIGHT */
