@@ -8,7 +8,9 @@
  * it holds (§0.4.2 note (i)).
  *
  * Cost: build O(n log^2 n) once; a query O(log n) expected (descent plus
- * the few subtrees the nearest-so-far sphere crosses), no allocation.
+ * the few subtrees the nearest-so-far sphere crosses), no allocation; an
+ * object with fewer than 48 VSLs is scanned instead (faster there:
+ * docs/benchmarks.md "Dynamic scenes").
  */
 #ifndef SRV_VSL_INDEX_H
 #define SRV_VSL_INDEX_H
