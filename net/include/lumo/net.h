@@ -128,15 +128,14 @@ typedef struct lumo_net_request {
     uint32_t amount;           /* vertices (geometry), rounds (lighting) or records (updates) wanted */
 } lumo_net_request;
 
-/* DATA: the answer to a REQUEST (docs/protocol.md §2 DATA). */
+/* DATA: the answer to a REQUEST (docs/protocol.md §2 DATA). On the updates
+ * channel (§9) first is the position the records start after (the cursor
+ * asked) and count the position they bring the client to (> first). */
 typedef struct lumo_net_data {
     uint8_t  channel;          /* lumo_net_channel */
     uint8_t  form;             /* lighting: the records' IVG form */
     uint32_t mesh;             /* geometry: which mesh; lighting, updates: 0 */
-    uint32_t first, count, records;   /* first batch / round, how many, records carried;
-                                         updates: the position the records start after
-                                         (the cursor asked), the position they bring the
-                                         client to (> first), records carried */
+    uint32_t first, count, records;   /* first batch / round (updates: position held), how many (updates: position reached), records carried */
     const uint8_t *bytes;      /* decode: into the frame */
     uint32_t len;              /* bytes at bytes */
 } lumo_net_data;
@@ -166,12 +165,14 @@ typedef struct lumo_net_error {
 #define LUMO_NET_MAX_POSES  (LUMO_MAX_MESHES + LUMO_MAX_LIGHTS)
 /* What a pose moves: a mesh or a light. */
 enum { LUMO_NET_POSE_MESH = 0, LUMO_NET_POSE_LIGHT = 1 };
+/* One pose of a POSES message (its 24 bytes decoded). */
 typedef struct lumo_net_pose {
     uint8_t     kind;        /* LUMO_NET_POSE_MESH or _LIGHT */
     uint32_t    index;       /* the mesh's or light's index */
     lumo_q16_16 t[3];        /* metres */
     lumo_q16_16 yaw_deg;     /* degrees about +y (meshes) */
 } lumo_net_pose;
+/* A decoded POSES message: its count and packed poses. */
 typedef struct lumo_net_poses {
     uint32_t count;          /* <= LUMO_NET_MAX_POSES */
     const uint8_t *raw;      /* decode: count packed poses, read with lumo_net_poses_get */

@@ -25,8 +25,10 @@
 #include "lumo/session.h"
 #include "lumo/status.h"
 
+/* The poller. Fields are private: read records, answers and poses for
+ * statistics. */
 typedef struct lumo_net_updates {
-    lumo_session *session;
+    lumo_session *session; /* the session the updates go to (not owned) */
     uint8_t  form;         /* IVG form asked: LUMO_IVG_FORM_QUANTIZED or _FLOAT */
     uint8_t  in_flight;    /* a request is outstanding */
     uint8_t  applied;      /* records applied in the answer in flight */
