@@ -92,7 +92,7 @@ static vec3 impact(const srv_vsl_set *set, uint32_t o, srv_rng *r)
 
 static void bench_nearest(const srv_scene *s)
 {
-    printf("\n| VSLs | queries | k-d tree | linear scan | scan / tree |\n|---|---|---|---|---|\n");
+    printf("\n| VSLs (a wall holds 1/6) | queries | srv_vsl_index_nearest (scan below 256 a object, else k-d tree) | linear scan | scan / index |\n|---|---|---|---|---|\n");
     for (size_t nv = 100; nv <= 10000; nv *= 10) {
         srv_vsl_set set;
         srv_vsl_index ix;

@@ -78,9 +78,9 @@ static void search(const srv_vsl_index *ix, size_t lo, size_t hi, vec3 p, neares
 }
 
 /* Below this many VSLs an object is scanned: the tree's descent costs more
- * than it saves (make bench-vsl: the scan wins at ~17 a object, the tree
- * at ~170 and by 4x at ~1 700). */
-#define SCAN_BELOW 48u
+ * than it saves (make bench-vsl: the scan wins by 2x at ~170 VSLs a
+ * object, the tree by 7x at ~1 700; 256 lies between). */
+#define SCAN_BELOW 256u
 
 static void scan(const srv_vsl_index *ix, size_t lo, size_t hi, vec3 p, nearest *q)
 {

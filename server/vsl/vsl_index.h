@@ -9,7 +9,7 @@
  *
  * Cost: build O(n log^2 n) once; a query O(log n) expected (descent plus
  * the few subtrees the nearest-so-far sphere crosses), no allocation; an
- * object with fewer than 48 VSLs is scanned instead (faster there:
+ * object with fewer than 256 VSLs is scanned instead (faster there:
  * docs/benchmarks.md "Dynamic scenes").
  */
 #ifndef SRV_VSL_INDEX_H

@@ -95,18 +95,22 @@ static void empty_room(srv_scene *s, int with_ball)
     assert_int_equal(srv_scene_add_light(s, &spot), 0);
 }
 
-static void test_nearest_matches_scan(void **state)
+/* The nearest VSL against a linear scan, on both sides of vsl_index.c's
+ * threshold: 500 VSLs (every object under 256: scanned) and 4 000 (every
+ * object over it: the k-d tree). */
+static void nearest_case(size_t nv, int tree)
 {
-    (void)state;
     srv_scene s;
     srv_vsl_set set;
     srv_vsl_index ix;
     char err[128];
     test_rng r = {5};
     empty_room(&s, 1);
-    srv_vsl_place_opts o = srv_vsl_place_defaults(500, 3);
+    srv_vsl_place_opts o = srv_vsl_place_defaults(nv, 3);
     assert_int_equal(srv_vsl_place(&s, &o, &set, err, sizeof err), LUMO_OK);
     assert_int_equal(srv_vsl_index_build(&ix, &set), LUMO_OK);
+    for (size_t k = 0; k < set.nobjects; k++)
+        assert_true(tree ? set.count[k] >= 256 : set.count[k] < 256);
     for (int k = 0; k < 20000; k++) {
         uint32_t ob = (uint32_t)(test_rng_next(&r) % set.nobjects);
         vec3 p = v3((float)test_rng_uniform(&r, -1.2, 1.2), (float)test_rng_uniform(&r, -0.2, 2.2),
@@ -124,6 +128,13 @@ static void test_nearest_matches_scan(void **state)
     srv_vsl_index_free(&ix);
     srv_vsl_set_free(&set);
     srv_scene_free(&s);
+}
+
+static void test_nearest_matches_scan(void **state)
+{
+    (void)state;
+    nearest_case(500, 0);
+    nearest_case(4000, 1);
 }
 
 static void test_instance_moves(void **state)
