@@ -19,3 +19,9 @@ $(VSL_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/vsl/%.o $(BUILD)/host/l
 .PHONY: test-vsl
 test-vsl: $(VSL_TESTS)
 	@for t in $(VSL_TESTS); do $$t || exit 1; done
+
+# lumo-server --dynamic and lumo-client --updates end to end.
+TEST_STEPS += test-dynamic
+.PHONY: test-dynamic
+test-dynamic: $(BIN)/lumo-server $(BIN)/lumo-client $(BIN)/lumo-bake
+	@sh tests/vsl/dynamic_test.sh $(BIN) $(BUILD)/tests/dynamic
