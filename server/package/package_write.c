@@ -1,6 +1,7 @@
 /* package_write.c — the .lumo container: header, chunk table, CRC-32 per
  * chunk (docs/package-format.md). The CRC is the client's own function, so
  * writer and reader cannot disagree. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -149,13 +150,15 @@ lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char 
         snprintf(err, errlen, "%s: package too large or out of memory", path);
         return st;
     }
+    errno = 0;
     FILE *f = fopen(path, "wb");
     int ok = f && fwrite(data, 1, len, f) == len;
     if (f && fclose(f))
         ok = 0;
+    int why = errno;
     free(data);
     if (!ok) {
-        snprintf(err, errlen, "%s: cannot write", path);
+        snprintf(err, errlen, "%s: cannot write: %s", path, why ? strerror(why) : "short write");
         return LUMO_ERR_IO;
     }
     return LUMO_OK;

@@ -20,7 +20,7 @@ $(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_
 $(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a \
               $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -pthread -o $@ $^ $(SERVER_LIBS)
+	$(CC) $(SAN_FLAGS) -pthread -o $@ $^ -lusb-1.0 $(SERVER_LIBS)
 
 # The request mapping on synthetic streams and round tables (cmocka).
 SERVE_UNIT := $(BUILD)/tests/bin/test_serve_plan
