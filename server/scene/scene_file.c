@@ -164,6 +164,8 @@ static lumo_status st_other(parser *p)
 
 static lumo_status statement(parser *p)
 {
+    if (!strcmp(p->w[0], "motion"))   /* the dynamic engine's (server/vsl/vsl_motion.c) */
+        return LUMO_OK;
     if (!strcmp(p->w[0], "mesh"))
         return st_mesh(p);
     if (!strcmp(p->w[0], "quad") || !strcmp(p->w[0], "box") || !strcmp(p->w[0], "sphere"))
