@@ -22,6 +22,10 @@ ms() {  # ms BACKEND DRIVER FRAMES ARGS... -> mean ms/frame
     LP_NUM_THREADS=0 GALLIUM_DRIVER=$drv "$bin/lumo-render" "$@" --backend "$be" --frames "$n" --orbit \
         --warmup 1 -o "$work/frame.png" | sed -n 's/.* \([0-9.]*\) ms\/frame mean.*/\1/p'
 }
+REPS=${RASTER_BENCH_REPS:-3}
+med() {  # med V... -> the median
+    printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'
+}
 
 {
 echo "## Rasterizer: soft (fixed point) vs Mesa llvmpipe and softpipe"
@@ -42,22 +46,38 @@ echo "light or the IVG changes — diffuse light does not depend on the view); \
 echo "\`--relight\` (the cost before the cache), \"soft + shadows\" adds 512² shadow maps (\`--shadows 512\`,"
 echo "drawn in the warm-up frame, once: the light does not move), which the GL backends do not draw."
 echo
-echo "| mesh | size | lighting | soft ms | soft, lit each frame ms | soft + shadows ms | llvmpipe ms | softpipe ms | llvmpipe/soft | softpipe/soft |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "Soft and llvmpipe runs alternate $REPS times per row (soft, llvmpipe, soft, llvmpipe, ...); each ms"
+echo "column is the median of its $REPS runs, and the ratio llvmpipe/soft is taken of the medians."
+echo "\"soft, IVG per vertex\" (per-pixel rows) samples the IVG once per vertex side and interpolates it"
+echo "(\`--ivg-vertex\`; direct light and shadows stay per pixel; docs/rasterizer.md \"IVG per vertex\")."
+echo
+echo "| mesh | size | lighting | soft ms | soft, lit each frame ms | soft, IVG per vertex ms | soft + shadows ms | llvmpipe ms | softpipe ms | llvmpipe/soft | llvmpipe/soft IVG per vertex | softpipe/soft |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for m in 48k 203k; do
     for size in 320x240 640x480; do
         for mode in per-vertex per-pixel; do
             a="$work/dragon_$m.lumo --size $size --$mode"
-            s=$(ms soft llvmpipe "$FRAMES" $a)
+            S=""; L=""; V=""
+            for k in $(seq "$REPS"); do
+                S="$S $(ms soft llvmpipe "$FRAMES" $a)"
+                L="$L $(ms osmesa llvmpipe "$FRAMES" $a)"
+                [ "$mode" = per-pixel ] && V="$V $(ms soft llvmpipe "$FRAMES" $a --ivg-vertex)"
+            done
+            s=$(med $S); l=$(med $L)
             r=$(ms soft llvmpipe "$FRAMES" $a --relight)
             h=$(ms soft llvmpipe "$FRAMES" $a --shadows 512)
-            l=$(ms osmesa llvmpipe "$FRAMES" $a)
             p=$(ms osmesa softpipe "$SP_FRAMES" $a)
-            [ "$mode" = per-pixel ] && r="="
-            echo "| dragon $m | $size | $mode | $s | $r | $h | $l | $p | $(awk -v a="$l" -v b="$s" 'BEGIN{printf "%.2f", a/b}') | $(awk -v a="$p" -v b="$s" 'BEGIN{printf "%.2f", a/b}') |"
+            if [ "$mode" = per-pixel ]; then
+                r="="; v=$(med $V); lv=$(awk -v a="$l" -v b="$v" 'BEGIN{printf "%.2f", a/b}')
+            else
+                v="="; lv="="
+            fi
+            echo "| dragon $m | $size | $mode | $s | $r | $v | $h | $l | $p | $(awk -v a="$l" -v b="$s" 'BEGIN{printf "%.2f", a/b}') | $lv | $(awk -v a="$p" -v b="$s" 'BEGIN{printf "%.2f", a/b}') |"
         done
     done
 done
+echo
+echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)."
 echo
 echo "### Instructions per frame (callgrind)"
 echo
@@ -71,20 +91,24 @@ cg() {  # cg LABEL BACKEND ARGS...
     n=$(LP_NUM_THREADS=0 GALLIUM_DRIVER=llvmpipe valgrind --tool=callgrind --toggle-collect=timed_frame \
         --callgrind-out-file=/dev/null "$bin/lumo-render" "$@" --backend "$be" --frames 2 --orbit --warmup 1 \
         -o "$work/cg.png" 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
-    echo "| $label | $(echo "$@" | sed 's/.*dragon_\([0-9k]*\).lumo --size \([0-9x]*\) --\(.*\)/dragon \1 | \2 | \3/') | $(awk -v n="$n" 'BEGIN{printf "%.1f M", n/2e6}') |"
+    echo "| $label | $(echo "$@" | sed 's/.*dragon_\([0-9k]*\).lumo --size \([0-9x]*\) --\([a-z-]*\).*/dragon \1 | \2 | \3/') | $(awk -v n="$n" 'BEGIN{printf "%.1f M", n/2e6}') |"
 }
-for mode in per-vertex per-pixel; do
-    cg soft soft "$work/dragon_48k.lumo" --size 320x240 --$mode
-    cg soft soft "$work/dragon_203k.lumo" --size 320x240 --$mode
+for m in 48k 203k; do
+    for size in 320x240 640x480; do
+        for mode in per-vertex per-pixel; do
+            cg soft soft "$work/dragon_$m.lumo" --size $size --$mode
+            cg "osmesa llvmpipe" osmesa "$work/dragon_$m.lumo" --size $size --$mode
+        done
+        cg "soft, IVG per vertex" soft "$work/dragon_$m.lumo" --size $size --per-pixel --ivg-vertex
+    done
 done
 cg "soft, lit each frame" soft "$work/dragon_48k.lumo" --size 320x240 --per-vertex --relight
 cg "soft + shadows 512" soft "$work/dragon_48k.lumo" --size 320x240 --per-pixel --shadows 512
-cg "osmesa llvmpipe" osmesa "$work/dragon_48k.lumo" --size 320x240 --per-vertex
 echo
 echo "### RAM of the soft rasterizer per resolution and band height"
 echo
 echo "\`lumo-raster-ram\`: colour + depth bytes of one band (lumo_raster_band_bytes); a frame is drawn"
-echo "as ceil(H / K) bands, each a pass over the mesh. Plus about 2.6 KB of stack in lumo_raster_draw on Cortex-M3"
+echo "as ceil(H / K) bands, each a pass over the mesh. Plus about 3.1 KB of stack in lumo_raster_draw on Cortex-M3"
 echo "(docs/rasterizer.md) and the mesh itself."
 echo
 "$bin/lumo-raster-ram"

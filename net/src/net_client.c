@@ -6,6 +6,7 @@
 #include <string.h>
 #include "lumo/net_client.h"
 #include "lumo/wire.h"
+#include "net_internal.h"
 
 #define DEFAULT_TARGET_MS 250u
 #define DEFAULT_PIPELINE  4u
@@ -391,16 +392,6 @@ static lumo_status on_end(lumo_net_client *c, const lumo_net_frame *f)
     return LUMO_OK;
 }
 
-static lumo_status on_error(const lumo_net_frame *f)
-{
-    lumo_net_error e;
-    lumo_status st = lumo_net_error_decode(f, &e);
-
-    if (st)
-        return st;
-    return e.status > LUMO_OK && e.status < LUMO_STATUS_COUNT ? (lumo_status)e.status : LUMO_ERR_CORRUPT;
-}
-
 lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f)
 {
     lumo_status st;
@@ -410,7 +401,7 @@ lumo_status lumo_net_client_on_frame(lumo_net_client *c, const lumo_net_frame *f
     if (c->state == LUMO_NET_FAILED)
         return c->error;
     if (f->type == LUMO_NET_ERROR)
-        return fail(c, on_error(f));
+        return fail(c, net_error_status(f));
     if (c->state == LUMO_NET_HELLO_SENT && f->type == LUMO_NET_WELCOME)
         st = on_welcome(c, f);
     else if (c->state == LUMO_NET_READY && f->type == LUMO_NET_DATA)

@@ -8,7 +8,7 @@
 /* Types 1 (HELLO) .. 7 (BYE) of docs/protocol.md §2. */
 static int net_type_known(uint8_t type)
 {
-    return type >= LUMO_NET_HELLO && type <= LUMO_NET_BYE;
+    return type >= LUMO_NET_HELLO && type <= LUMO_NET_TYPE_LAST;
 }
 
 /* The 8 header bytes: magic "LS", version, type, payload length (§1). */

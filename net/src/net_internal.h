@@ -47,14 +47,26 @@ static inline lumo_status net_exact(uint32_t len, size_t want)
     return len > want ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
-/* Channel (REQUEST, DATA, END): 0 geometry or 1 lighting; a lighting
- * message names mesh 0 (docs/protocol.md §2: "mesh index (geometry), else
- * 0"). RANGE otherwise. */
+/* Channel (REQUEST, DATA, END): 0 geometry, 1 lighting or 2 updates (§9);
+ * a lighting or updates message names mesh 0 (docs/protocol.md §2: "mesh
+ * index (geometry), else 0"). RANGE otherwise. */
 static inline lumo_status net_channel(uint8_t channel, uint32_t mesh)
 {
-    if (channel > LUMO_NET_LIGHTING)
+    if (channel > LUMO_NET_UPDATES)
         return LUMO_ERR_RANGE;
-    return channel == LUMO_NET_LIGHTING && mesh != 0 ? LUMO_ERR_RANGE : LUMO_OK;
+    return channel != LUMO_NET_GEOMETRY && mesh != 0 ? LUMO_ERR_RANGE : LUMO_OK;
+}
+
+/* The status an ERROR frame carries (a decoding failure, or a status
+ * outside lumo_status as CORRUPT): what a client driver fails with. */
+static inline lumo_status net_error_status(const lumo_net_frame *f)
+{
+    lumo_net_error e;
+    lumo_status st = lumo_net_error_decode(f, &e);
+
+    if (st)
+        return st;
+    return e.status > LUMO_OK && e.status < LUMO_STATUS_COUNT ? (lumo_status)e.status : LUMO_ERR_CORRUPT;
 }
 
 #endif /* LUMO_NET_INTERNAL_H */

@@ -84,12 +84,23 @@ static lumo_status data_check_lighting(const lumo_net_data *m)
     return m->records >= m->count ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
+/* §9 DATA, updates: an IVG form, at least one record, and the position
+ * the records bring the client to lies after the one it held. */
+static lumo_status data_check_updates(const lumo_net_data *m)
+{
+    if (m->form > LUMO_IVG_FORM_QUANTIZED || m->records == 0)
+        return LUMO_ERR_RANGE;
+    return m->count > m->first ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
 static lumo_status data_check(const lumo_net_data *m)
 {
     lumo_status st = net_channel(m->channel, m->mesh);
 
     if (st)
         return st;
+    if (m->channel == LUMO_NET_UPDATES)
+        return data_check_updates(m);
     return m->channel == LUMO_NET_GEOMETRY ? data_check_geometry(m) : data_check_lighting(m);
 }
 

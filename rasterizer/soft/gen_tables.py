@@ -23,22 +23,26 @@ for i in range(0, 91, 6):
 print("};")
 print()
 print("/* Linear value (UQ0.24) where the 8-bit sRGB code k begins: the decode of")
-print(" * (k - 0.5) / 255, rounded up; entry 0 is 0. code(v) = #{k >= 1: t[k] <= v}. */")
-print("const uint32_t lumo_raster_srgb_threshold[256] = {")
+print(" * (k - 0.5) / 255, rounded up; entry 0 is 0, entry 256 is 2^24 (no code")
+print(" * begins below 1.0 after 255). code(v) = #{1 <= k <= 255: t[k] <= v}. */")
+print("const uint32_t lumo_raster_srgb_threshold[257] = {")
 th = [0] + [math.ceil(srgb_decode((k - 0.5) / 255) * (1 << 24)) for k in range(1, 256)]
 for i in range(0, 256, 8):
     print("    " + ", ".join("%du" % v for v in th[i:i + 8]) + ",")
+print("    %du," % (1 << 24))
 print("};")
 print()
-print("/* The code at the start of each 2^-10 segment of [0, 1): a search in")
-print(" * lumo_raster_srgb_threshold starts here and moves at most 4 steps. */")
-print("const uint8_t lumo_raster_srgb_segment[1024] = {")
+print("/* The code at the start of each 2^-12 segment of [0, 1): no segment holds")
+print(" * more than one threshold (the closest two, codes 1 and 2, are 5093 apart),")
+print(" * so the code is this or one more (one comparison). 4 KB. */")
+print("const uint8_t lumo_raster_srgb_segment[4096] = {")
 seg = []
-for i in range(1024):
-    v = i << 14
+for i in range(4096):
+    v = i << 12
     code = max(k for k in range(256) if th[k] <= v)
+    assert sum(1 for k in range(1, 256) if v < th[k] <= v + 4095) <= 1
     seg.append(code)
-for i in range(0, 1024, 16):
+for i in range(0, 4096, 16):
     print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
 print("};")
 print()

@@ -20,25 +20,8 @@
 #define GUARD_PX 4096
 #define CLIP_PLANES 5
 #define MAX_POLY (3 + CLIP_PLANES)
-/* Barycentric precision of the per-pixel interpolation. */
-#define BARY_BITS 16
-/* Edge functions are scaled down to < 2^24 before the perspective products. */
-#define EDGE_BITS 24
-
-typedef struct screen_vertex {
-    int32_t x, y;           /* sub-pixels, y down */
-    uint32_t q;             /* znear / w, Q0.30 (the depth value) */
-    const int32_t *var;
-} screen_vertex;
-
-typedef struct draw_ctx {
-    const lumo_raster_view  *view;
-    const lumo_raster_scene *scene;
-    lumo_raster_target      *target;
-    lumo_raster_stats       *stats;
-    unsigned nvar;
-    int depth_only;            /* shadow maps: depth test and write only */
-} draw_ctx;
+typedef lumo_raster_sv screen_vertex;
+typedef lumo_raster_ctx draw_ctx;
 
 /* ---- vertices ------------------------------------------------------------ */
 
@@ -82,6 +65,11 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
             out->var[3 + i] = n[i];
             out->var[6 + i] = rho[i];
         }
+        if (m->indirect) {
+            const lumo_uq16_16 *ind = &m->indirect[6 * (size_t)index + (faces_away(v, p, n) ? 3 : 0)];
+            for (i = 0; i < 3; i++)
+                out->var[9 + i] = ind[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)ind[i];
+        }
     } else {
         lumo_uq16_16 l[3];
         const lumo_uq16_16 *lit = l;
@@ -90,7 +78,7 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
         else
             light_side(s, p, n, faces_away(v, p, n), rho, l);
         for (i = 0; i < 3; i++)
-            out->var[i] = lit[i] > (uint32_t)INT32_MAX ? INT32_MAX : (int32_t)lit[i];
+            out->var[i] = lumo_raster_exposed(lit[i], s->exposure);
     }
     out->outcode = outcode(v, out);
     out->screen[0] = out->screen[1] = 0;
@@ -161,6 +149,27 @@ lumo_status lumo_raster_light_vertices(const lumo_raster_scene *s, const lumo_ra
         const lumo_q1_14 *rho = m->albedo ? &m->albedo[3 * (size_t)i] : m->mesh_albedo;
         light_side(s, p, n, 0, rho, &lit[6 * (size_t)i]);
         light_side(s, p, n, 1, rho, &lit[6 * (size_t)i + 3]);
+    }
+    return LUMO_OK;
+}
+
+lumo_status lumo_raster_indirect_vertices(const lumo_raster_scene *s, const lumo_raster_mesh *m,
+                                          lumo_uq16_16 *ind)
+{
+    uint32_t i;
+    int k;
+
+    if (!s || !m || !s->indirect || (m->vertex_count && (!ind || !m->pos || !m->normal)))
+        return LUMO_ERR_ARG;
+    for (i = 0; i < m->vertex_count; i++) {
+        const lumo_q16_16 *p = &m->pos[3 * (size_t)i];
+        lumo_q1_14 n[3], back[3];
+        for (k = 0; k < 3; k++) {
+            n[k] = m->normal[3 * (size_t)i + (size_t)k];
+            back[k] = (lumo_q1_14)-n[k];
+        }
+        s->indirect(s->indirect_ctx, p, n, &ind[6 * (size_t)i]);
+        s->indirect(s->indirect_ctx, p, back, &ind[6 * (size_t)i + 3]);
     }
     return LUMO_OK;
 }
@@ -271,11 +280,6 @@ static int clip_plane(const draw_ctx *c, int k, const lumo_raster_vertex *in, in
 
 /* ---- triangle setup and scan ---------------------------------------------- */
 
-static int64_t floor_div16(int64_t v)
-{
-    return v >= 0 ? v / 16 : -((-v + 15) / 16);
-}
-
 static int32_t clamp_sub(int64_t v)
 {
     const int64_t lim = (int64_t)1 << 18;
@@ -297,194 +301,6 @@ static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, s
     s->y = clamp_sub(h8 - div_round((int64_t)v->clip[1] * h8, w));
     s->q = (uint32_t)(q > ((int64_t)1 << 30) ? ((int64_t)1 << 30) : q);
     s->var = v->var;
-}
-
-/* Top-left rule for an edge a -> b of a triangle with positive area in
- * y-down screen space: top edges are horizontal going right, left edges go up. */
-static int is_top_left(const screen_vertex *a, const screen_vertex *b)
-{
-    int32_t dx = b->x - a->x, dy = b->y - a->y;
-    return dy < 0 || (dy == 0 && dx > 0);
-}
-
-typedef struct edge {
-    int64_t a, b;      /* E(x, y) = a * (x - x0) + b * (y - y0) + e0 */
-    int32_t x0, y0;
-    int64_t bias;      /* 0 on top-left edges, 1 elsewhere */
-} edge;
-
-static void edge_setup(edge *e, const screen_vertex *p, const screen_vertex *q)
-{
-    e->a = -((int64_t)q->y - p->y);
-    e->b = (int64_t)q->x - p->x;
-    e->x0 = p->x;
-    e->y0 = p->y;
-    e->bias = is_top_left(p, q) ? 0 : 1;
-}
-
-static int64_t edge_at(const edge *e, int64_t x, int64_t y)
-{
-    return e->a * (x - e->x0) + e->b * (y - e->y0);
-}
-
-static void store_depth(lumo_raster_target *t, size_t i, uint32_t z)
-{
-    if (t->depth_bits == 16)
-        ((uint16_t *)t->depth)[i] = (uint16_t)z;
-    else
-        ((uint32_t *)t->depth)[i] = z;
-}
-
-static uint32_t load_depth(const lumo_raster_target *t, size_t i)
-{
-    return t->depth_bits == 16 ? ((const uint16_t *)t->depth)[i] : ((const uint32_t *)t->depth)[i];
-}
-
-/* Depth value in the buffer's width; 0 is reserved for "cleared". */
-static uint32_t depth_value(const lumo_raster_target *t, uint64_t z30)
-{
-    uint64_t z = t->depth_bits == 16 ? z30 >> 14 : z30 << 2;
-    uint64_t max = t->depth_bits == 16 ? 0xFFFFu : 0xFFFFFFFFu;
-
-    if (z > max) z = max;
-    return z == 0 ? 1u : (uint32_t)z;
-}
-
-static void shade_pixel(const draw_ctx *c, const screen_vertex *v, const int32_t b[3],
-                        int x, int y)
-{
-    int32_t var[LUMO_RASTER_MAX_VARYINGS];
-    lumo_uq16_16 l[3];
-    unsigned i;
-
-    for (i = 0; i < c->nvar; i++) {
-        int64_t d1 = (int64_t)v[1].var[i] - v[0].var[i], d2 = (int64_t)v[2].var[i] - v[0].var[i];
-        var[i] = lumo_sat_i32(v[0].var[i] + lumo_round_shift(d1 * b[1] + d2 * b[2], BARY_BITS));
-    }
-    if (c->scene->flags & LUMO_RASTER_PER_PIXEL) {
-        lumo_q1_14 n[3], rho[3];
-        lumo_uq16_16 e[3];
-        int32_t nv[3] = {var[3], var[4], var[5]};
-        lumo_raster_normalize_q14(nv, n);
-        lumo_raster_face_viewer(c->view, var, n, n);
-        for (i = 0; i < 3; i++)
-            rho[i] = (lumo_q1_14)(var[6 + i] < 0 ? 0 : var[6 + i] > LUMO_Q14_ONE ? LUMO_Q14_ONE : var[6 + i]);
-        lumo_raster_irradiance(c->scene, var, n, e);
-        lumo_raster_radiance(e, rho, l);
-    } else {
-        for (i = 0; i < 3; i++)
-            l[i] = var[i] < 0 ? 0u : (uint32_t)var[i];
-    }
-    lumo_raster_put_pixel(c->target, x, y, l, c->scene->exposure);
-}
-
-/* One covered pixel: depth near/w interpolated linearly in screen space
- * (exact for 1/w), depth test, perspective-correct barycentrics
- * b_i = e_i q_i / sum e_j q_j (Q0.16), shading. E are the edge functions at
- * the pixel centre, sh and qsh the triangle's scaling shifts. */
-static void fragment(const draw_ctx *c, const screen_vertex *v, const int64_t E[3], unsigned sh,
-                     unsigned qsh, size_t at, int x, int y)
-{
-    lumo_raster_target *t = c->target;
-    uint64_t w[3], p[3], se, ps, z;
-    int32_t b[3];
-    uint32_t dz;
-    int i;
-
-    for (i = 0; i < 3; i++) {
-        w[i] = (uint64_t)E[i] >> sh;
-        p[i] = w[i] * v[i].q;                /* < 2^54 */
-    }
-    se = w[0] + w[1] + w[2];
-    z = (p[0] + p[1] + p[2]) / (se ? se : 1);
-    dz = depth_value(t, z);
-    if (c->stats)
-        c->stats->pixels_tested++;
-    if (dz <= load_depth(t, at))
-        return;
-    if (c->depth_only) {
-        store_depth(t, at, dz);
-        return;
-    }
-    for (i = 0; i < 3; i++)
-        p[i] >>= qsh;
-    ps = p[0] + p[1] + p[2];
-    if (ps == 0) {                           /* only at a vertex of weight 0 */
-        p[1] = w[1];
-        p[2] = w[2];
-        ps = se ? se : 1;
-    }
-    b[1] = (int32_t)((p[1] << BARY_BITS) / ps);
-    b[2] = (int32_t)((p[2] << BARY_BITS) / ps);
-    b[0] = (1 << BARY_BITS) - b[1] - b[2];
-    store_depth(t, at, dz);
-    shade_pixel(c, v, b, x, y);
-    if (c->stats)
-        c->stats->pixels_written++;
-}
-
-/* Rasterize one screen triangle with positive area. */
-static void raster_triangle(const draw_ctx *c, const screen_vertex *v, int64_t area)
-{
-    lumo_raster_target *t = c->target;
-    edge e[3];
-    int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py;
-    uint64_t qmax, bound;
-    unsigned sh = 0, qsh = 0;
-    int i;
-
-    minx = maxx = v[0].x;
-    miny = maxy = v[0].y;
-    for (i = 1; i < 3; i++) {
-        if (v[i].x < minx) minx = v[i].x;
-        if (v[i].x > maxx) maxx = v[i].x;
-        if (v[i].y < miny) miny = v[i].y;
-        if (v[i].y > maxy) maxy = v[i].y;
-    }
-    /* Pixel centres (16 p + 8) inside the bounding box, within the band. */
-    px0 = floor_div16(minx - 8 + 15);
-    px1 = floor_div16(maxx - 8);
-    py0 = floor_div16(miny - 8 + 15);
-    py1 = floor_div16(maxy - 8);
-    if (px0 < 0) px0 = 0;
-    if (px1 > (int64_t)t->width - 1) px1 = (int64_t)t->width - 1;
-    if (py0 < t->band_y) py0 = t->band_y;
-    if (py1 > (int64_t)t->band_y + t->band_rows - 1) py1 = (int64_t)t->band_y + t->band_rows - 1;
-    if (px0 > px1 || py0 > py1)
-        return;
-    if (c->stats)
-        c->stats->tris_drawn++;
-    edge_setup(&e[0], &v[1], &v[2]);
-    edge_setup(&e[1], &v[2], &v[0]);
-    edge_setup(&e[2], &v[0], &v[1]);
-    while ((area >> sh) >= ((int64_t)1 << EDGE_BITS))
-        sh++;
-    /* Perspective weights e_i q_i are < (area >> sh) * qmax inside the
-     * triangle; shifting them by qsh keeps them under 2^46, so that the
-     * barycentric division below has 16 bits of headroom, while their
-     * smallest sum, (area >> sh) * qmin, keeps far more than 16 significant
-     * bits for any depth ratio the near plane allows. The barycentrics are
-     * ratios: a common shift cancels. */
-    qmax = v[0].q;
-    for (i = 1; i < 3; i++)
-        if (v[i].q > qmax) qmax = v[i].q;
-    for (bound = ((uint64_t)area >> sh) * qmax; bound >= ((uint64_t)1 << 46); bound >>= 1)
-        qsh++;
-
-    for (py = py0; py <= py1; py++) {
-        int64_t sy = py * 16 + 8, sx = px0 * 16 + 8;
-        int64_t E[3];
-        size_t row = (size_t)(py - t->band_y) * t->width;
-        int64_t px;
-        for (i = 0; i < 3; i++)
-            E[i] = edge_at(&e[i], sx, sy);
-        for (px = px0; px <= px1; px++) {
-            if (E[0] >= e[0].bias && E[1] >= e[1].bias && E[2] >= e[2].bias)
-                fragment(c, v, E, sh, qsh, row + (size_t)px, (int)px, (int)py);
-            for (i = 0; i < 3; i++)
-                E[i] += e[i].a * 16;
-        }
-    }
 }
 
 /* Draw a convex screen polygon as a fan. */
@@ -514,7 +330,7 @@ static void draw_fan(const draw_ctx *c, const screen_vertex *s, int n)
             tri[2] = tmp;
             area = -area;
         }
-        raster_triangle(c, tri, area);
+        lumo_raster_triangle(c, tri, area);
     }
 }
 
@@ -632,7 +448,7 @@ lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_
     c.scene = s;
     c.target = t;
     c.stats = stats;
-    c.nvar = lumo_raster_varyings(s);
+    c.nvar = lumo_raster_varyings(s, m);
     c.depth_only = 0;
     if (stats) {
         lumo_raster_stats zero = {0, 0, 0, 0, 0, 0};

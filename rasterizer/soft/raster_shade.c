@@ -150,6 +150,37 @@ void lumo_raster_normalize_q14(const int32_t v[3], lumo_q1_14 out[3])
         out[i] = lumo_sat_i16((int32_t)lumo_round_shift(c[i] * k, 28));
 }
 
+/* The interpolated normal of a pixel to unit length. Between vertex
+ * normals it is a little shorter than 1: within |v|^2 in [7/8, 9/8] two
+ * Newton steps for 1/|v| from 1 (k <- k (3 - |v|^2 k^2) / 2, Q30; error
+ * 3/8 e^2 after one step, below 2^-15 after two) replace the square root
+ * and the division; other lengths take lumo_raster_normalize_q14. */
+void lumo_raster_renormalize_q14(const int32_t v[3], lumo_q1_14 out[3])
+{
+    const uint64_t lo = (uint64_t)7 << 25, hi = (uint64_t)9 << 25;   /* 7/8, 9/8 in Q28 */
+    uint64_t s2 = 0, k = (uint64_t)1 << 30;
+    int i, step;
+
+    for (i = 0; i < 3; i++) {
+        int64_t c = v[i];
+        if (c > 32767 || c < -32768) {
+            lumo_raster_normalize_q14(v, out);
+            return;
+        }
+        s2 += (uint64_t)(c * c);                         /* Q28 */
+    }
+    if (s2 < lo || s2 > hi) {
+        lumo_raster_normalize_q14(v, out);
+        return;
+    }
+    for (step = 0; step < 2; step++) {
+        uint64_t sk2 = ((s2 << 2) * ((k * k) >> 30)) >> 30;  /* |v|^2 k^2, Q30 */
+        k = (k * (((uint64_t)3 << 30) - sk2)) >> 31;
+    }
+    for (i = 0; i < 3; i++)
+        out[i] = lumo_sat_i16((int32_t)lumo_round_shift((int64_t)v[i] * (int64_t)k, 30));
+}
+
 static void add_directional(const lumo_raster_light *L, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                             lumo_uq16_16 e[3])
 {
@@ -165,10 +196,10 @@ static void add_directional(const lumo_raster_light *L, const lumo_q16_16 p[3], 
         e[i] = sat_add_u32(e[i], (uint32_t)shadowed(lumo_uq16_mul_q14(L->value[i], (lumo_q1_14)cos_n), vis));
 }
 
-void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
-                            const lumo_q1_14 n[3], lumo_uq16_16 out[3])
+void lumo_raster_shade_point(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                             const int32_t *indirect, lumo_uq16_16 out[3])
 {
-    lumo_uq16_16 e[3] = {0, 0, 0};
+    lumo_uq16_16 e[3] = {0, 0, 0}, ind[3] = {0, 0, 0};
     uint32_t i, count = s->light_count;
 
     if (count > LUMO_MAX_LIGHTS)
@@ -180,15 +211,20 @@ void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
         else
             add_local_light(L, p, n, e);
     }
-    if (s->indirect) {
-        lumo_uq16_16 ind[3];
-        s->indirect(s->indirect_ctx, p, n, ind);
+    if (indirect) {
         for (i = 0; i < 3; i++)
-            e[i] = sat_add_u32(e[i], ind[i]);
+            ind[i] = indirect[i] < 0 ? 0u : (uint32_t)indirect[i];
+    } else if (s->indirect) {
+        s->indirect(s->indirect_ctx, p, n, ind);
     }
-    out[0] = e[0];
-    out[1] = e[1];
-    out[2] = e[2];
+    for (i = 0; i < 3; i++)
+        out[i] = sat_add_u32(e[i], ind[i]);
+}
+
+void lumo_raster_irradiance(const lumo_raster_scene *s, const lumo_q16_16 p[3],
+                            const lumo_q1_14 n[3], lumo_uq16_16 out[3])
+{
+    lumo_raster_shade_point(s, p, n, NULL, out);
 }
 
 void lumo_raster_radiance(const lumo_uq16_16 e[3], const lumo_q1_14 albedo[3],
@@ -209,43 +245,12 @@ void lumo_raster_radiance(const lumo_uq16_16 e[3], const lumo_q1_14 albedo[3],
 uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
 {
     const uint32_t lim = (uint32_t)1 << 31;
-    uint64_t v = (uint64_t)(radiance > lim ? lim : radiance) * (exposure > lim ? lim : exposure);
-    unsigned code;
 
-    v >>= 8;                                   /* UQ32 -> UQ24 */
-    if (v >= ((uint64_t)1 << 24))
-        return 255;
-    /* largest k with t[k] <= v: from the segment's first code upwards */
-    code = lumo_raster_srgb_segment[v >> 14];
-    while (code < 255 && lumo_raster_srgb_threshold[code + 1] <= v)
-        code++;
-    return (uint8_t)code;
+    return (uint8_t)lumo_raster_srgb_code(((uint64_t)(radiance > lim ? lim : radiance)
+                                           * (exposure > lim ? lim : exposure)) >> 8);
 }
 
 /* 4x4 Bayer matrix: thresholds 0..15 for the RGB565 ordered dither. */
-static const uint8_t bayer4[4][4] = {
+const uint8_t lumo_raster_bayer4[4][4] = {
     { 0,  8,  2, 10}, {12,  4, 14,  6}, { 3, 11,  1,  9}, {15,  7, 13,  5}
 };
-
-/* floor(c * maxv / 255 + (b + 1/2) / 16): an 8-bit code to `maxv` levels. */
-static uint32_t dither(unsigned c, unsigned maxv, unsigned b)
-{
-    return ((uint32_t)c * maxv * 32u + (2u * b + 1u) * 255u) / (255u * 32u);
-}
-
-void lumo_raster_put_pixel(lumo_raster_target *t, int x, int y, const lumo_uq16_16 rgb[3],
-                           lumo_uq16_16 exposure)
-{
-    unsigned r = lumo_raster_tonemap(rgb[0], exposure);
-    unsigned g = lumo_raster_tonemap(rgb[1], exposure);
-    unsigned b = lumo_raster_tonemap(rgb[2], exposure);
-    uint8_t *row = (uint8_t *)t->color + (size_t)(y - t->band_y) * t->color_stride;
-
-    if (t->format == LUMO_PIXEL_RGB565) {
-        unsigned k = bayer4[y & 3][x & 3];
-        ((uint16_t *)row)[x] = (uint16_t)((dither(r, 31, k) << 11) | (dither(g, 63, k) << 5)
-                                          | dither(b, 31, k));
-    } else {
-        ((uint32_t *)row)[x] = ((uint32_t)r << 16) | ((uint32_t)g << 8) | b;
-    }
-}

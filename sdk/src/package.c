@@ -29,6 +29,30 @@ static lumo_status check_header(const uint8_t *d, size_t size, uint32_t *count)
     return LUMO_OK;
 }
 
+/* The chunks the format allows once at most (docs/package-format.md):
+ * a second INFO or IVG descriptor would leave a reader to guess which one
+ * the writer meant. */
+static const uint32_t k_singletons[] = {LUMO_PKG_INFO, LUMO_PKG_IVGD, LUMO_PKG_IVGQ,
+                                        LUMO_PKG_IVGF, LUMO_PKG_IVGS, LUMO_PKG_ORDR};
+
+lumo_status lumo_package_table_once(const uint8_t *table, uint32_t count, uint32_t *twice)
+{
+    unsigned k;
+    uint32_t i, seen;
+    if (!table && count)
+        return LUMO_ERR_ARG;
+    for (k = 0; k < sizeof k_singletons / sizeof k_singletons[0]; k++) {
+        for (i = 0, seen = 0; i < count; i++)
+            seen += lumo_wire_le32(table + (size_t)i * LUMO_PKG_ENTRY_SIZE) == k_singletons[k];
+        if (seen > 1) {
+            if (twice)
+                *twice = k_singletons[k];
+            return LUMO_ERR_CORRUPT;
+        }
+    }
+    return LUMO_OK;
+}
+
 /* Chunks must follow the table in order, 4-byte aligned, without overlap,
  * and the last one must end the file. */
 static lumo_status check_chunks(const uint8_t *d, size_t size, uint32_t count)
@@ -54,7 +78,9 @@ static lumo_status check_chunks(const uint8_t *d, size_t size, uint32_t count)
             return LUMO_ERR_CHECKSUM;
         pos = off + len;
     }
-    return pos == (uint64_t)size ? LUMO_OK : LUMO_ERR_CORRUPT;
+    if (pos != (uint64_t)size)
+        return LUMO_ERR_CORRUPT;
+    return lumo_package_table_once(table, count, NULL);
 }
 
 lumo_status lumo_package_open(lumo_package *pkg, const uint8_t *data, size_t size)

@@ -78,6 +78,43 @@ static lumo_status check_info(const uint8_t *p, size_t len)
     return LUMO_OK;
 }
 
+/* v scaled down by a power of two until every component is below 2^14
+ * in magnitude: squares of cross products (< 3 * 2^58) and products of
+ * squared lengths (< 9 * 2^56) then fit in int64. */
+static void small_vec(const int64_t v[3], int64_t out[3])
+{
+    int64_t m = 0;
+    unsigned i, shift = 0;
+    for (i = 0; i < 3; i++)
+        m |= v[i] < 0 ? -v[i] : v[i];
+    while ((m >> shift) >= ((int64_t)1 << 14))
+        shift++;
+    for (i = 0; i < 3; i++)
+        out[i] = v[i] / ((int64_t)1 << shift);
+}
+
+/* A camera that cannot be placed: eye on the target, up zero or along the
+ * view (no frame to draw; the rasterizer would divide by zero). Along the
+ * view means sin(angle)^2 <= 2^-20 (0.06 degrees): |d x u|^2 <= |d|^2 |u|^2 / 2^20. */
+static int camera_degenerate(const lumo_pkg_info *r)
+{
+    int64_t d[3], u[3], a[3], b[3], c[3], cc, dd, uu;
+    unsigned i;
+    for (i = 0; i < 3; i++) {
+        d[i] = (int64_t)r->target[i] - r->eye[i];
+        u[i] = r->up[i];
+    }
+    small_vec(d, a);
+    small_vec(u, b);
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+    cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    dd = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    uu = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
+    return cc <= (dd * uu) >> 20;
+}
+
 lumo_status lumo_scene_info_decode(const uint8_t *p, size_t len, lumo_pkg_info *out)
 {
     lumo_pkg_info r;
@@ -102,6 +139,8 @@ lumo_status lumo_scene_info_decode(const uint8_t *p, size_t len, lumo_pkg_info *
     if (fovy <= 0 || fovy >= LUMO_Q16_FROM_INT(180))
         return LUMO_ERR_RANGE;
     r.fovy_deg = fovy;
+    if (camera_degenerate(&r))
+        return LUMO_ERR_RANGE;
     *out = r;
     return LUMO_OK;
 }

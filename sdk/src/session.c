@@ -265,8 +265,11 @@ static lumo_status feed_ivg_bundle(lumo_session *s, const uint8_t *p, size_t len
     return LUMO_OK;
 }
 
-/* IVGR: form, 3 reserved bytes, record count, then the records. */
-static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t len)
+/* IVGR (and IVGU): form, 3 reserved bytes, record count, then the records.
+ * IVGU runs are lighting updates (docs/dynamic.md): applied the same way,
+ * but not counted as records of the streaming order (the lighting
+ * channel's cursor stays the package's). */
+static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t len, int counted)
 {
     uint32_t applied;
     lumo_status st;
@@ -280,7 +283,8 @@ static lumo_status feed_ivg_records(lumo_session *s, const uint8_t *p, size_t le
     if (st)
         return st;
     s->ivg_dirty = 1;
-    s->ivg_records += applied;
+    if (counted)
+        s->ivg_records += applied;
     return LUMO_OK;
 }
 
@@ -345,7 +349,8 @@ lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, co
     case LUMO_MSG_IVGD: return feed_ivg_desc(s, p, len);
     case LUMO_MSG_IVGQ:
     case LUMO_MSG_IVGF: return feed_ivg_bundle(s, p, len);
-    case LUMO_MSG_IVGR: return feed_ivg_records(s, p, len);
+    case LUMO_MSG_IVGR: return feed_ivg_records(s, p, len, 1);
+    case LUMO_MSG_IVGU: return feed_ivg_records(s, p, len, 0);
     case LUMO_MSG_IVGS: return feed_ivg_order(s, p, len);
     case LUMO_MSG_ORDR: return feed_order(s, p, len);
     default:            return LUMO_ERR_UNSUPPORTED;
@@ -504,5 +509,43 @@ lumo_status lumo_session_stream_header(const lumo_session *s, uint32_t index, lu
     if (index >= LUMO_MAX_MESHES || s->mesh[index].kind != SLOT_PM)
         return LUMO_ERR_RANGE;
     *out = s->mesh[index].pm.h;
+    return LUMO_OK;
+}
+
+/* ---- dynamic scenes ------------------------------------------------------------ */
+
+lumo_status lumo_session_move_light(lumo_session *s, uint32_t i, const lumo_q16_16 pos[3])
+{
+    if (!s || !pos)
+        return LUMO_ERR_ARG;
+    if (!s->have_info)
+        return LUMO_ERR_STATE;
+    if (i >= s->info.light_count || i >= LUMO_MAX_LIGHTS)
+        return LUMO_ERR_RANGE;
+    memcpy(s->lights[i].pos, pos, sizeof s->lights[i].pos);
+    return LUMO_OK;
+}
+
+lumo_status lumo_session_set_mesh_pose(lumo_session *s, uint32_t i, const lumo_q16_16 t[3], lumo_q16_16 yaw_deg)
+{
+    if (!s || !t)
+        return LUMO_ERR_ARG;
+    if (!s->have_info)
+        return LUMO_ERR_STATE;
+    if (i >= s->info.mesh_count || i >= LUMO_MAX_MESHES)
+        return LUMO_ERR_RANGE;
+    memcpy(s->pose[i], t, 3 * sizeof *t);
+    s->pose[i][3] = yaw_deg;
+    return LUMO_OK;
+}
+
+lumo_status lumo_session_mesh_pose(const lumo_session *s, uint32_t i, lumo_q16_16 t[3], lumo_q16_16 *yaw_deg)
+{
+    if (!s || !t || !yaw_deg)
+        return LUMO_ERR_ARG;
+    if (i >= LUMO_MAX_MESHES)
+        return LUMO_ERR_RANGE;
+    memcpy(t, s->pose[i], 3 * sizeof *t);
+    *yaw_deg = s->pose[i][3];
     return LUMO_OK;
 }

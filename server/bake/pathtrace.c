@@ -3,6 +3,7 @@
  * that hits an emitter ends there, so no light is counted twice. */
 #include <math.h>
 #include "bake/trace.h"
+#include "common/sample.h"
 
 #define MAX_BOUNCES 512     /* safety only: roulette ends paths long before */
 #define RR_MAX_SURVIVAL 0.95f
@@ -68,17 +69,6 @@ vec3 srv_direct_irradiance(const srv_tracer *t, vec3 x, vec3 n, srv_rng *r, srv_
     return e;
 }
 
-/* Cosine-weighted direction about the unit normal n. */
-static vec3 cosine_dir(vec3 n, srv_rng *r)
-{
-    float u1 = srv_rng_float(r), u2 = srv_rng_float(r);
-    float rad = sqrtf(u1), phi = 2.0f * (float)M_PI * u2;
-    vec3 a = fabsf(n.x) > 0.5f ? v3(0, 1, 0) : v3(1, 0, 0);
-    vec3 b1 = v3_norm(v3_cross(a, n)), b2 = v3_cross(n, b1);
-    return v3_norm(v3_add(v3_add(v3_scale(b1, rad * cosf(phi)), v3_scale(b2, rad * sinf(phi))),
-                          v3_scale(n, sqrtf(fmaxf(0.0f, 1.0f - u1)))));
-}
-
 /* Outgoing radiance (no emission) of the diffuse surface at x, normal n
  * already turned towards the viewer. With cosine sampling the throughput
  * of a bounce is the albedo; roulette survives with probability max(rho). */
@@ -96,7 +86,7 @@ static vec3 outgoing(const srv_tracer *t, vec3 x, vec3 n, vec3 rho, int direct, 
         if (!(q > 0.0f) || srv_rng_float(r) >= q)
             break;
         thr = v3_scale(thr, 1.0f / q);
-        vec3 w = cosine_dir(n, r);
+        vec3 w = srv_cosine_dir(n, r);
         srv_hit h;
         st->rays++;
         if (!srv_rt_intersect(t->rt, v3_add(x, v3_scale(n, t->eps)), w, 0.0f, INFINITY, &h) || h.emitter)

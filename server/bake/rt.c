@@ -135,6 +135,7 @@ int srv_rt_intersect(const srv_rt *rt, vec3 o, vec3 d, float tnear, float tfar, 
                          v3_scale(m->albedo[ix[2]], v));
     hit->emitter = m->emitter;
     hit->light = rt->emit_light[rh.hit.geomID];
+    hit->mesh = rh.hit.geomID, hit->prim = rh.hit.primID, hit->bu = u, hit->bv = v;
     return 1;
 }
 

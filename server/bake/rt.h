@@ -16,6 +16,8 @@ typedef struct srv_hit {
     vec3  albedo;     /* interpolated vertex albedo */
     int   emitter;    /* hit the surface of an area light */
     int   light;      /* index of that light in scene->lights, or -1 */
+    unsigned mesh, prim;  /* the mesh (scene->meshes index) and its triangle */
+    float bu, bv;         /* barycentrics of corners 1 and 2 (PRT interreflection) */
 } srv_hit;
 
 /* threads: Embree's own build threads (0 = its default). NULL with err. */

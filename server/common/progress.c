@@ -18,7 +18,16 @@ void srv_progress_begin(srv_progress *p, const char *label, size_t total, int wa
     p->label = label;
     p->total = total ? total : 1;
     p->start = srv_now();
-    p->enabled = want && isatty(STDERR_FILENO);
+    p->enabled = !want ? 0 : isatty(STDERR_FILENO) ? 1 : 2;
+    p->logged = p->start;
+}
+
+static void log_line(srv_progress *p, double f, double el, double eta)
+{
+    if (el - (p->logged - p->start) < SRV_PROGRESS_LOG_SECONDS)
+        return;
+    p->logged = p->start + el;
+    fprintf(stderr, "%s: %.0f%% after %.0f s, about %.0f s left\n", p->label, 100.0 * f, el, eta);
 }
 
 void srv_progress_update(srv_progress *p, size_t done)
@@ -27,6 +36,10 @@ void srv_progress_update(srv_progress *p, size_t done)
         return;
     double f = (double)done / (double)p->total, el = srv_now() - p->start;
     double eta = done ? el * (1.0 / f - 1.0) : 0.0;
+    if (p->enabled == 2) {
+        log_line(p, f, el, eta);
+        return;
+    }
     int fill = (int)(f * BAR_WIDTH);
     char bar[BAR_WIDTH + 1];
     for (int i = 0; i < BAR_WIDTH; i++)
@@ -38,6 +51,6 @@ void srv_progress_update(srv_progress *p, size_t done)
 
 void srv_progress_end(srv_progress *p)
 {
-    if (p->enabled)
+    if (p->enabled == 1)
         fprintf(stderr, "\r%*s\r", BAR_WIDTH + 40, "");
 }

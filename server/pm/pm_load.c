@@ -54,6 +54,8 @@ lumo_status srv_pm_load(const char *path, float **xyz, uint8_t **rgb, uint32_t *
     if (rgb)
         *rgb = NULL;
     lumo_status rc = srv_import_file(&s, path, &x, NULL, err, errlen);
+    if (!rc)
+        rc = srv_scene_check_range(&s, err, errlen);   /* the mesh is named for the file */
     if (!rc && (rc = merge(&s, xyz, rgb, nv, tris, nf)))
         snprintf(err, errlen, "%s: out of memory", path);
     srv_scene_free(&s);

@@ -7,8 +7,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 #include "scene/import.h"
+#include "scene/import_io.h"
+#include "scene/model_check.h"
 
 #define DEFAULT_ALBEDO 0.8f
 #define MAX_ALBEDO 0.98f   /* reflection must never create light */
@@ -159,24 +160,70 @@ static lumo_status import_light(srv_scene *s, const struct aiScene *sc, const st
     return srv_scene_add_light(s, &l);
 }
 
+/* What came out of assimp, checked before lumo uses it: positions finite
+ * and bounded, every kept face a triangle of existing vertices (assimp's
+ * ValidateDataStructure checks the indices too; this is the backstop for
+ * every format lumo does not read through itself). */
+static lumo_status check_mesh(const char *path, unsigned i, const struct aiMesh *am, char *err, size_t errlen)
+{
+    lumo_status st = am->mVertices ? srv_model_check_positions(path, i, &am->mVertices[0].x, am->mNumVertices, err,
+                                                               errlen)
+                                   : LUMO_OK;
+    if (st)
+        return st;
+    for (unsigned f = 0; f < am->mNumFaces; f++) {
+        const struct aiFace *fc = &am->mFaces[f];
+        if (fc->mNumIndices > 3) {
+            snprintf(err, errlen, "%s: mesh %u, face %u: %u vertices after triangulation", path, i, f, fc->mNumIndices);
+            return LUMO_ERR_CORRUPT;
+        }
+        for (unsigned k = 0; k < fc->mNumIndices; k++)
+            if (fc->mIndices[k] >= am->mNumVertices) {
+                snprintf(err, errlen, "%s: mesh %u, face %u: vertex index %u is outside [0, %u)", path, i, f,
+                         fc->mIndices[k], am->mNumVertices);
+                return LUMO_ERR_RANGE;
+            }
+    }
+    return LUMO_OK;
+}
+
+/* lumo's own checks, then assimp's reader with its structure validation. */
+static lumo_status read_scene(const char *path, const struct aiScene **out, char *err, size_t errlen)
+{
+    srv_model_format fmt = SRV_MODEL_OTHER;
+    const char *dot = strrchr(path, '.');
+    lumo_status st = srv_model_check_file(path, &fmt, err, errlen);
+    if (st)
+        return st;
+    if (fmt == SRV_MODEL_OTHER && (!dot || strchr(dot, '/') || aiIsExtensionSupported(dot) != AI_TRUE)) {
+        snprintf(err, errlen, "%s: unknown model format (extension '%s'; OBJ, PLY, OFF, glTF and the other "
+                 "formats assimp reads are)", path, dot && !strchr(dot, '/') ? dot : "");
+        return LUMO_ERR_UNSUPPORTED;
+    }
+    *out = aiImportFileEx(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                                    aiProcess_ValidateDataStructure, srv_import_io());
+    if (!*out || !(*out)->mRootNode || (*out)->mNumMeshes == 0) {
+        const char *why = *out ? "no mesh in the file" : aiGetErrorString();
+        snprintf(err, errlen, "%s: cannot import: %s", path, why && *why ? why : "unknown format");
+        if (*out)
+            aiReleaseImport(*out);
+        return LUMO_ERR_CORRUPT;
+    }
+    for (unsigned i = 0; i < (*out)->mNumMeshes; i++)
+        if ((st = check_mesh(path, i, (*out)->mMeshes[i], err, errlen))) {
+            aiReleaseImport(*out);
+            return st;
+        }
+    return LUMO_OK;
+}
+
 lumo_status srv_import_file(srv_scene *s, const char *path, const srv_xform *x, const vec3 *albedo,
                             char *err, size_t errlen)
 {
-    struct stat st;
-    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
-        snprintf(err, errlen, "%s: no such file", path);
-        return LUMO_ERR_IO;
-    }
-    const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                                      aiProcess_SortByPType);
-    if (!sc || !sc->mRootNode || sc->mNumMeshes == 0) {
-        const char *why = sc ? "no mesh in the file" : aiGetErrorString();
-        snprintf(err, errlen, "%s: cannot import: %s", path, why && *why ? why : "unknown format");
-        if (sc)
-            aiReleaseImport(sc);
-        return LUMO_ERR_CORRUPT;
-    }
-    lumo_status rc = LUMO_OK;
+    const struct aiScene *sc = NULL;
+    lumo_status rc = read_scene(path, &sc, err, errlen);
+    if (rc)
+        return rc;
     size_t before = srv_scene_triangle_count(s);
     for (unsigned i = 0; i < sc->mNumMeshes && !rc; i++)
         rc = import_mesh(s, sc, sc->mMeshes[i], x, albedo, path);

@@ -122,6 +122,37 @@ static lumo_status validate_mesh(const srv_mesh *m, float min_area, char *err, s
     return LUMO_OK;
 }
 
+lumo_status srv_scene_check_range(const srv_scene *s, char *err, size_t errlen)
+{
+    for (size_t i = 0; i < s->nmeshes; i++)
+        for (uint32_t v = 0; v < s->meshes[i].nverts; v++)
+            for (int a = 0; a < 3; a++) {
+                float c = v3_get(s->meshes[i].pos[v], a);
+                if (fabsf(c) <= SRV_SCENE_MAX_COORD)
+                    continue;
+                if (!isfinite(c)) {
+                    snprintf(err, errlen, "mesh %zu (%s), vertex %u: non-finite %c", i, s->meshes[i].name, v,
+                             "xyz"[a]);
+                    return LUMO_ERR_NONFINITE;
+                }
+                snprintf(err, errlen, "mesh %zu (%s), vertex %u: %c = %.9g m is beyond the client's +-%.0f m "
+                         "(Q16.16 positions, lumo/fixed.h): scale the model down", i, s->meshes[i].name, v,
+                         "xyz"[a], c, SRV_SCENE_MAX_COORD);
+                return LUMO_ERR_RANGE;
+            }
+    for (size_t i = 0; i < s->nlights; i++) {
+        const srv_light *l = &s->lights[i];
+        vec3 far = v3_add(l->pos, v3_add(l->u, l->v));
+        if (fabsf(v3_maxc(v3(fabsf(l->pos.x), fabsf(l->pos.y), fabsf(l->pos.z)))) > SRV_SCENE_MAX_COORD ||
+            fabsf(v3_maxc(v3(fabsf(far.x), fabsf(far.y), fabsf(far.z)))) > SRV_SCENE_MAX_COORD) {
+            snprintf(err, errlen, "light %zu: at (%g, %g, %g), beyond the client's +-%.0f m (Q16.16, lumo/fixed.h)",
+                     i, l->pos.x, l->pos.y, l->pos.z, SRV_SCENE_MAX_COORD);
+            return LUMO_ERR_RANGE;
+        }
+    }
+    return LUMO_OK;
+}
+
 lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen)
 {
     vec3 lo, hi;
@@ -138,6 +169,9 @@ lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen)
                  LUMO_MAX_LIGHTS);
         return LUMO_ERR_LIMIT;
     }
+    lumo_status rc = srv_scene_check_range(s, err, errlen);
+    if (rc)
+        return rc;
     /* Zero area relative to the scene's size: float cross products of a
      * metre-sized scene cannot resolve less than ~1e-14 of its extent^2. */
     float ext = v3_len(v3_sub(hi, lo));

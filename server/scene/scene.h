@@ -66,8 +66,18 @@ int srv_scene_bounds(const srv_scene *s, vec3 *bmin, vec3 *bmax);
 
 size_t srv_scene_triangle_count(const srv_scene *s);
 
+/* Largest |coordinate| of a scene vertex after import and transforms,
+ * metres: the client holds positions in Q16.16 ([-32768, 32768),
+ * lumo/fixed.h), and the IVG box is padded beyond the bounds. */
+#define SRV_SCENE_MAX_COORD 32000.0f
+
+/* Every vertex within SRV_SCENE_MAX_COORD: LUMO_OK, or LUMO_ERR_RANGE /
+ * LUMO_ERR_NONFINITE naming the mesh, the vertex and the value. */
+lumo_status srv_scene_check_range(const srv_scene *s, char *err, size_t errlen);
+
 /* Check the scene is bakeable: geometry present, a light present, every
- * coordinate finite, every index in range, no zero-area face. On failure
+ * coordinate finite and within SRV_SCENE_MAX_COORD, every index in range,
+ * no zero-area face. On failure
  * writes a one-line reason into err and returns LUMO_ERR_ARG (no geometry,
  * no light), LUMO_ERR_LIMIT (more than LUMO_MAX_LIGHTS lights),
  * LUMO_ERR_NONFINITE (a vertex), LUMO_ERR_RANGE (a face index, a negative

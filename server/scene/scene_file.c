@@ -1,12 +1,27 @@
 /* scene_file.c — the line-based scene description (docs/scene-format.md). */
+#include <errno.h>
 #include <libgen.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include "scene/import.h"
 #include "scene/shapes.h"
 
 #define MAX_WORDS 16
+
+/* The whole description, read at once (at most SRV_SCENE_MAX_BYTES). */
+static char *read_text(const char *path, size_t size, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    char *text = f ? malloc(size ? size : 1) : NULL;
+    if (text)
+        *len = fread(text, 1, size, f);
+    if (f)
+        fclose(f);
+    return text;
+}
 
 typedef struct {
     srv_scene *s;
@@ -14,6 +29,7 @@ typedef struct {
     char *w[MAX_WORDS];
     int  n;
     char err[256];
+    uint64_t shape_tris;   /* triangles of the spheres so far */
 } parser;
 
 static int vec_arg(const char *t, vec3 *v)
@@ -23,6 +39,15 @@ static int vec_arg(const char *t, vec3 *v)
         return -1;
     *v = v3(f[0], f[1], f[2]);
     return 0;
+}
+
+/* A whole decimal integer in [0, INT_MAX], else -1. */
+static int int_arg(const char *t)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(t, &end, 10);
+    return end == t || *end || errno || v < 0 || v > INT_MAX ? -1 : (int)v;
 }
 
 /* Trailing options "albedo R,G,B", "inward", "segments N"; `from` is the
@@ -35,7 +60,7 @@ static lumo_status shape_opts(parser *p, int from, vec3 *albedo, int *inward, in
         else if (!strcmp(p->w[i], "inward") && inward)
             *inward = 1;
         else if (!strcmp(p->w[i], "segments") && segments && i + 1 < p->n)
-            *segments = atoi(p->w[++i]);
+            *segments = int_arg(p->w[++i]);
         else {
             snprintf(p->err, sizeof p->err, "unexpected '%s'", p->w[i]);
             return LUMO_ERR_CORRUPT;
@@ -99,8 +124,16 @@ static lumo_status st_shape(parser *p)
         !srv_parse_floats(p->w[2], &r, 1) && r > 0.0f) {
         if (shape_opts(p, 3, &albedo, &inward, &seg))
             return LUMO_ERR_CORRUPT;
-        if (seg < 8 || seg > 4096)
-            return snprintf(p->err, sizeof p->err, "segments must be in [8, 4096]"), LUMO_ERR_RANGE;
+        if (seg < 8 || seg > SRV_SCENE_MAX_SEGMENTS)
+            return snprintf(p->err, sizeof p->err, "segments must be in [8, %d]", SRV_SCENE_MAX_SEGMENTS),
+                   LUMO_ERR_RANGE;
+        uint64_t tris = 2 * (uint64_t)seg * (uint64_t)(seg / 2 - 1);
+        if (p->shape_tris + tris > SRV_SCENE_MAX_SHAPE_TRIS)
+            return snprintf(p->err, sizeof p->err, "the description's spheres would hold %llu triangles, more than "
+                            "%llu (SRV_SCENE_MAX_SHAPE_TRIS: text that small cannot justify more)",
+                            (unsigned long long)(p->shape_tris + tris), (unsigned long long)SRV_SCENE_MAX_SHAPE_TRIS),
+                   LUMO_ERR_LIMIT;
+        p->shape_tris += tris;
         return srv_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
     }
     snprintf(p->err, sizeof p->err, "malformed %s", k);
@@ -131,6 +164,8 @@ static lumo_status st_other(parser *p)
 
 static lumo_status statement(parser *p)
 {
+    if (!strcmp(p->w[0], "motion"))   /* the dynamic engine's (server/vsl/vsl_motion.c) */
+        return LUMO_OK;
     if (!strcmp(p->w[0], "mesh"))
         return st_mesh(p);
     if (!strcmp(p->w[0], "quad") || !strcmp(p->w[0], "box") || !strcmp(p->w[0], "sphere"))
@@ -138,41 +173,77 @@ static lumo_status statement(parser *p)
     return st_other(p);
 }
 
-lumo_status srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
+/* One line of the description (NUL-terminated in buf); LUMO_OK or the
+ * statement's status with its reason in p->err. */
+static lumo_status scene_line(parser *p, char *line)
 {
-    FILE *f = fopen(path, "r");
-    char line[2048], tmp[1024];
+    char *hash = strchr(line, '#'), *save = NULL;
+    if (hash)
+        *hash = 0;
+    p->n = 0;
+    for (char *t = strtok_r(line, " \t\r\n", &save); t; t = strtok_r(NULL, " \t\r\n", &save)) {
+        if (p->n == MAX_WORDS) {
+            snprintf(p->err, sizeof p->err, "more than %d words", MAX_WORDS);
+            return LUMO_ERR_LIMIT;
+        }
+        p->w[p->n++] = t;
+    }
+    return p->n ? statement(p) : LUMO_OK;
+}
+
+lumo_status srv_scene_parse(srv_scene *s, const char *name, const char *dir, const char *text, size_t len,
+                            char *err, size_t errlen)
+{
     parser p;
+    char line[SRV_SCENE_MAX_LINE + 2];
+    size_t at = 0;
     memset(&p, 0, sizeof p);
     p.s = s;
-    if (!f) {
+    snprintf(p.dir, sizeof p.dir, "%s", dir);
+    for (int lineno = 1; at < len; lineno++) {
+        const char *nl = memchr(text + at, '\n', len - at);
+        size_t n = (nl ? (size_t)(nl - text) : len) - at;
+        if (n > SRV_SCENE_MAX_LINE) {
+            snprintf(err, errlen, "%s:%d: line longer than %d characters", name, lineno, SRV_SCENE_MAX_LINE);
+            return LUMO_ERR_LIMIT;
+        }
+        if (memchr(text + at, 0, n)) {
+            snprintf(err, errlen, "%s:%d: a NUL byte: not a text file", name, lineno);
+            return LUMO_ERR_CORRUPT;
+        }
+        memcpy(line, text + at, n);
+        line[n] = 0;
+        at += n + 1;
+        lumo_status st = scene_line(&p, line);
+        if (st) {
+            snprintf(err, errlen, "%s:%d: %s", name, lineno, p.err);
+            return st;
+        }
+    }
+    return LUMO_OK;
+}
+
+lumo_status srv_scene_load(srv_scene *s, const char *path, char *err, size_t errlen)
+{
+    char tmp[1024];
+    struct stat st;
+    if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+        snprintf(err, errlen, "%s: %s", path, stat(path, &st) ? "cannot open" : "not a regular file");
+        return LUMO_ERR_IO;
+    }
+    if ((uint64_t)st.st_size > SRV_SCENE_MAX_BYTES) {
+        snprintf(err, errlen, "%s: %lld bytes, scene descriptions of at most 1 MiB are read", path,
+                 (long long)st.st_size);
+        return LUMO_ERR_LIMIT;
+    }
+    size_t len = 0;
+    char *text = read_text(path, (size_t)st.st_size, &len);
+    if (!text) {
         snprintf(err, errlen, "%s: cannot open", path);
         return LUMO_ERR_IO;
     }
     snprintf(tmp, sizeof tmp, "%s", path);
-    snprintf(p.dir, sizeof p.dir, "%s", dirname(tmp));
-    for (int lineno = 1; fgets(line, sizeof line, f); lineno++) {
-        char *hash = strchr(line, '#'), *save = NULL;
-        if (!strchr(line, '\n') && !feof(f)) {
-            snprintf(err, errlen, "%s:%d: line longer than %zu characters", path, lineno, sizeof line - 2);
-            fclose(f);
-            return LUMO_ERR_LIMIT;
-        }
-        if (hash)
-            *hash = 0;
-        p.n = 0;
-        for (char *t = strtok_r(line, " \t\r\n", &save); t; t = strtok_r(NULL, " \t\r\n", &save))
-            if (p.n < MAX_WORDS)
-                p.w[p.n++] = t;
-        if (p.n == 0)
-            continue;
-        lumo_status st = statement(&p);
-        if (st) {
-            snprintf(err, errlen, "%s:%d: %s", path, lineno, p.err);
-            fclose(f);
-            return st;
-        }
-    }
-    fclose(f);
-    return LUMO_OK;
+    lumo_status rc = srv_scene_parse(s, path, dirname(tmp), text, len, err, errlen);
+    free(text);
+    return rc;
 }

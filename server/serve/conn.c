@@ -12,6 +12,7 @@
 #include <sys/uio.h>
 #include <unistd.h>
 #include "lumo/ivg.h"
+#include "vsl/vsl_updates.h"
 #include "lumo/wire.h"
 #include "serve/server.h"
 
@@ -39,6 +40,8 @@ void srv_conn_free(srv_conn *c)
 {
     free(c->errframe);
     c->errframe = NULL;
+    free(c->upd);
+    c->upd = NULL;
 }
 
 static void set_reason(srv_conn *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -311,6 +314,15 @@ static void on_request(srv_conn *c, const lumo_net_frame *f, int64_t now)
         fail(c, st, "REQUEST: %s", lumo_strerror(st));
         return;
     }
+    if (r.channel == LUMO_NET_UPDATES) {   /* protocol.md §9: answered from the update log */
+        if (c->form == LUMO_NET_FORM_NONE) {
+            fail(c, LUMO_ERR_RANGE, "REQUEST: updates of the lighting need an IVG form in HELLO");
+            return;
+        }
+        c->requests++;
+        push_op(c, SRV_OP_REQUEST, &r, now);
+        return;
+    }
     /* checked when read (RANGE, LIMIT), planned again when its turn comes */
     if ((st = srv_plan_start(c->pkg, &r, c->form, c->max_payload, &a, &end, err, sizeof err))) {
         fail(c, st, "%s", err);
@@ -518,12 +530,57 @@ void srv_conn_on_readable(srv_conn *c, int64_t now)
 
 /* ---- output -------------------------------------------------------------------- */
 
+/* The next whole frame of the updates answer in c->upd (protocol.md §9). */
+static int push_update_frame(srv_conn *c)
+{
+    const uint8_t *f = c->upd + c->upd_off;
+    srv_job *j = job_push(c, f[3], c->answer_due_us);
+
+    j->body = f;
+    j->body_len = LUMO_NET_OVERHEAD + lumo_wire_le32(f + 4);
+    c->upd_off += j->body_len;
+    if (f[3] == LUMO_NET_END)
+        c->ends++;
+    else
+        c->data_bytes += j->body_len - LUMO_NET_OVERHEAD - LUMO_NET_DATA_HEAD;
+    job_damage(c, j);
+    return 1;
+}
+
+/* An updates request: its frames from the log (END alone on a server
+ * without a lighting engine), made into c->upd once the jobs of the last
+ * such answer have left (they point into it). */
+static int start_updates(srv_conn *c, const srv_op *o)
+{
+    srv_vsl_updates *u = c->srv->opt.updates;
+    int64_t due = o->due_us + link_cfg(c)->latency_us;
+    size_t len = 0;
+    lumo_status st;
+
+    free(c->upd);
+    c->upd = NULL;
+    c->upd_len = c->upd_off = 0;
+    if (!u) {
+        push_end(c, LUMO_NET_UPDATES, 0, due);
+        return 1;
+    }
+    if ((st = srv_vsl_updates_answer(u, o->r.cursor, o->r.amount, c->form, c->max_payload, &c->upd, &len))) {
+        fail(c, st, "updates: %s", lumo_strerror(st));
+        return 1;
+    }
+    c->upd_len = (uint32_t)len;
+    c->answer_due_us = due;
+    return push_update_frame(c);
+}
+
 /* Start the next op or continue the answer: at most one new job. Returns 1
  * when a job was made. */
 static int make_job(srv_conn *c, int64_t now)
 {
     if (c->job_count >= SRV_MAX_JOBS)
         return 0;
+    if (c->upd_off < c->upd_len)
+        return push_update_frame(c);
     if (c->answering) {
         lumo_net_data d;
         if (srv_plan_next(c->pkg, &c->answer, &d)) {
@@ -562,6 +619,14 @@ static int make_job(srv_conn *c, int64_t now)
             c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
             c->op_count--;
             continue;
+        }
+        if (o->kind == SRV_OP_REQUEST && o->r.channel == LUMO_NET_UPDATES) {
+            srv_op one = *o;
+            if (c->job_count)
+                return 0;   /* the last answer's frames point into c->upd */
+            c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
+            c->op_count--;
+            return start_updates(c, &one);
         }
         c->op_head = (c->op_head + 1) % SRV_MAX_OPS;
         c->op_count--;
@@ -712,7 +777,7 @@ static int write_some(srv_conn *c, int64_t now)
 
 static int idle_output(const srv_conn *c)
 {
-    return !c->job_count && !c->op_count && !c->answering;
+    return !c->job_count && !c->op_count && !c->answering && c->upd_off >= c->upd_len;
 }
 
 void srv_conn_pump(srv_conn *c, int64_t now)

@@ -23,7 +23,9 @@
  *
  * Memory: sizeof(srv_conn) (about 1.5 KiB) plus, only after an error, the
  * ERROR frame (at most 280 bytes); nothing grows with the scene or the
- * requests.
+ * requests — except an updates answer (protocol.md §9), whose frames are
+ * made when its turn comes and kept until they have left (the records
+ * asked, 46 or 148 bytes each).
  */
 #ifndef SRV_SERVE_CONN_H
 #define SRV_SERVE_CONN_H
@@ -110,6 +112,8 @@ typedef struct srv_conn {
     srv_job         jobs[SRV_MAX_JOBS];
     uint32_t        job_head, job_count;
     uint8_t        *errframe;   /* the ERROR frame, allocated on error */
+    uint8_t        *upd;        /* an updates answer's frames (protocol.md §9), allocated per answer */
+    uint32_t        upd_len, upd_off;   /* its bytes; those made into jobs */
 
     /* link emulation and timing */
     srv_link        link;

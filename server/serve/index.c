@@ -17,6 +17,7 @@
 #include "common/status_msg.h"
 #include "lumo/wire.h"
 #include "lumo_host/package_msg.h"
+#include "lumo_host/package_check.h"
 
 /* Offsets of every batch record of mesh i, walked with the SDK's one walk
  * over a stream; the walk must end exactly at the chunk's end with
@@ -183,6 +184,11 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
         srv_fail(err, errlen, st, "%s: %s", path, host_package_strerror(p->map, p->size, st, why, sizeof why));
         srv_pkg_close(p);
         return st;
+    }
+    char why[300];
+    if ((st = host_package_check(&p->pkg, HOST_PKG_NEED_INFO | HOST_PKG_DEEP, why, sizeof why))) {
+        srv_fail(err, errlen, st, "%s: %s", path, why);
+        goto failed;
     }
     p->id = lumo_wire_le32(p->map + 20);
     if ((st = lumo_package_info(&p->pkg, &info))) {

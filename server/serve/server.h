@@ -42,6 +42,8 @@ typedef struct srv_serve_options {
     int         usb;            /* also serve USB devices (serve/usb.h) */
     int         usb_any;        /* of any VID:PID, else usb_vid:usb_pid */
     uint16_t    usb_vid, usb_pid;
+    struct srv_vsl_updates *updates;   /* the updates channel's log (--dynamic), or NULL:
+                                          updates REQUESTs are answered with END */
 } srv_serve_options;
 
 typedef struct srv_heap {

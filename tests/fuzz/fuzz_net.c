@@ -157,6 +157,27 @@ static void again_bye(void)
     CHECK(lumo_net_bye_decode(&f) == LUMO_OK);
 }
 
+static void again_poses(const lumo_net_poses *m)
+{
+    static lumo_net_pose p[LUMO_NET_MAX_POSES];
+    lumo_net_poses d;
+    lumo_net_pose q;
+    lumo_net_frame f;
+    size_t n = 0;
+    uint32_t i;
+
+    for (i = 0; i < m->count; i++)
+        lumo_net_poses_get(m, i, &p[i]);
+    CHECK(lumo_net_poses_encode(p, m->count, g_out, OUT_CAP, &n) == LUMO_OK);
+    f = reframe(n, LUMO_NET_POSES);
+    CHECK(lumo_net_poses_decode(&f, &d) == LUMO_OK && d.count == m->count);
+    for (i = 0; i < d.count; i++) {
+        lumo_net_poses_get(&d, i, &q);
+        CHECK(q.kind == p[i].kind && q.index == p[i].index && q.yaw_deg == p[i].yaw_deg);
+        CHECK(q.t[0] == p[i].t[0] && q.t[1] == p[i].t[1] && q.t[2] == p[i].t[2]);
+    }
+}
+
 /* Decoder `t` on frame f; on success the round trip above. */
 static lumo_status decode_as(uint8_t t, const lumo_net_frame *f)
 {
@@ -166,9 +187,14 @@ static lumo_status decode_as(uint8_t t, const lumo_net_frame *f)
     lumo_net_data d;
     lumo_net_end e;
     lumo_net_error x;
+    lumo_net_poses ps;
     lumo_status st;
 
     switch (t) {
+    case LUMO_NET_POSES:
+        if ((st = lumo_net_poses_decode(f, &ps)) == LUMO_OK)
+            again_poses(&ps);
+        return st;
     case LUMO_NET_HELLO:
         if ((st = lumo_net_hello_decode(f, &h)) == LUMO_OK)
             again_hello(&h);
@@ -193,7 +219,7 @@ static lumo_status decode_as(uint8_t t, const lumo_net_frame *f)
         if ((st = lumo_net_error_decode(f, &x)) == LUMO_OK)
             again_error(&x);
         return st;
-    default:
+    default:   /* BYE */
         if ((st = lumo_net_bye_decode(f)) == LUMO_OK)
             again_bye();
         return st;
@@ -205,9 +231,9 @@ static void check_frame(const lumo_net_frame *f)
 {
     uint8_t t;
 
-    CHECK(f->type >= LUMO_NET_HELLO && f->type <= LUMO_NET_BYE);
+    CHECK(f->type >= LUMO_NET_HELLO && f->type <= LUMO_NET_TYPE_LAST);
     decode_as(f->type, f);
-    for (t = LUMO_NET_HELLO; t <= LUMO_NET_BYE; t++)
+    for (t = LUMO_NET_HELLO; t <= LUMO_NET_TYPE_LAST; t++)
         if (t != f->type)
             CHECK(decode_as(t, f) == LUMO_ERR_STATE);
 }
@@ -266,7 +292,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     walk_stream(g_copy, size, size ? 64u + data[0] : 0);   /* a small receiver limit too */
     if (size == 0)
         return 0;
-    f.type = (uint8_t)(LUMO_NET_HELLO + data[0] % 7u);
+    f.type = (uint8_t)(LUMO_NET_HELLO + data[0] % LUMO_NET_TYPE_LAST);
     f.len = (uint32_t)(size - 1);
     f.payload = data + 1;
     check_frame(&f);

@@ -180,8 +180,9 @@ $tmp/empty.ply|empty file, not a model file
 $tmp/adir|a directory, not a model file
 /dev/null|not a regular file
 EOF
-expect 1 "default scene: $tmp/picture.png: cannot import" "$bin/lumo-render" --default --model "$tmp/picture.png" -o "$tmp/x.png"
-expect 1 "$tmp/garbage.obj: cannot import" "$bin/lumo-bake" --default --dragon "$tmp/garbage.obj" -o "$tmp/x.lumo"
+# (the model front end's own sentences, server/scene/model_check.h)
+expect 1 "default scene: $tmp/picture.png: unknown model format (extension '.png'" "$bin/lumo-render" --default --model "$tmp/picture.png" -o "$tmp/x.png"
+expect 1 "$tmp/garbage.obj: no vertex ('v' line)" "$bin/lumo-bake" --default --dragon "$tmp/garbage.obj" -o "$tmp/x.lumo"
 expect 2 "--model $model: only with --default" "$bin/lumo-render" "$tmp/pm.lumo" --model "$model" -o "$tmp/x.png"
 expect 1 "--dragon $model: only with --default" "$bin/lumo-bake" "$model" --dragon "$model" -o "$tmp/x.lumo"
 expect 1 "$tmp/adir: a directory, not a scene or model file" "$bin/lumo-bake" "$tmp/adir" -o "$tmp/x.lumo"

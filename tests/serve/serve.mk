@@ -10,14 +10,17 @@
 SERVE_CLIENT   := $(BUILD)/tests/bin/serve_client
 SERVE_SAN      := $(BUILD)/tests/bin/lumo-server-san
 SERVE_SAN_OBJS := $(patsubst %.c,$(BUILD)/tests/%.o,$(sort $(wildcard server/serve/*.c)) server/common/status_msg.c \
-                  tools/lumo-server/main.c)
+                  tools/lumo-server/main.c tools/lumo-server/dynamic.c)
 
 $(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^
-$(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
+# --dynamic's engine (server/vsl/, Embree) comes from the release server
+# library: only what the sanitizer objects leave undefined is taken from it.
+$(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a \
+              $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -o $@ $^ -lusb-1.0 -lm
+	$(CC) $(SAN_FLAGS) -pthread -o $@ $^ -lusb-1.0 $(SERVER_LIBS)
 
 # The request mapping on synthetic streams and round tables (cmocka).
 SERVE_UNIT := $(BUILD)/tests/bin/test_serve_plan

@@ -455,10 +455,11 @@ static void test_frame_limits(void **state)
     assert_int_equal(used, 3);
 }
 
-/* Types 0 and 8..255: UNSUPPORTED once the CRC holds; a wrong CRC first. */
+/* Types 0 and 9..255 (8 is POSES, §9): UNSUPPORTED once the CRC holds; a
+ * wrong CRC first. */
 static void test_unknown_type(void **state)
 {
-    static const uint8_t types[] = {0, 8, 9, 0x7F, 0xFF};
+    static const uint8_t types[] = {0, 9, 10, 0x7F, 0xFF};
     uint8_t b[64], p[4] = {1, 2, 3, 4};
     lumo_net_frame f = {0};
     size_t i, used = 9;
@@ -672,7 +673,7 @@ static void test_encoders_refuse(void **state)
     msg.len = LUMO_NET_MAX_PAYLOAD;
     msg.data = b;
     assert_int_equal(lumo_net_welcome_encode(1, 2, &msg, 1, b, sizeof b, &n), LUMO_ERR_ARG);
-    r.channel = 2;
+    r.channel = 3;   /* past the updates channel */
     assert_int_equal(lumo_net_request_encode(&r, b, sizeof b, &n), LUMO_ERR_ARG);
     r = k_request[0];
     r.amount = 0;
@@ -858,7 +859,15 @@ static void test_data_checks(void **state)
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_CORRUPT);
     put_data(p, 0, 1, 4, 2, 2);
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);
-    put_data(p, 2, 0, 0, 2, 2);
+    put_data(p, 3, 0, 0, 2, 2);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);
+    put_data(p, 2, 1, 0, 6, 2);   /* updates (§9): from position 5 to 6 */
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_OK);
+    put_data(p, 2, 1, 0, 5, 2);   /* not past the position held */
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_CORRUPT);
+    put_data(p, 2, 1, 0, 6, 0);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);
+    put_data(p, 2, 1, 1, 6, 2);
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);
     put_data(p, 1, 1, 0, 2, 9);
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_OK);

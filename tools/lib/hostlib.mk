@@ -9,7 +9,7 @@
 # This fragment is included after the server/, boards/ and bench/ fragments,
 # so they name the archive literally, $(BUILD)/host/libhost.a, and link it
 # after their own objects and libraries, followed by -lpng -lm.
-HOST_LIB_MODULES := file_io png_io tonemap image_diff package_msg version_line options
+HOST_LIB_MODULES := file_io png_io tonemap image_diff package_msg version_line options package_check
 HOST_LIB_OBJS    := $(patsubst %,$(BUILD)/host/tools/lib/%.o,$(HOST_LIB_MODULES))
 HOST_LIB         := $(BUILD)/host/libhost.a
 

@@ -3,7 +3,7 @@
 # Archives are named literally (server/server.mk, tools/lib/hostlib.mk).
 HOST_TOOLS += $(BIN)/lumo-bake
 
-$(BIN)/lumo-bake: $(BUILD)/host/tools/lumo-bake/main.o $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
+$(BIN)/lumo-bake: $(BUILD)/host/tools/lumo-bake/main.o $(BUILD)/host/tools/lumo-bake/bake_prt.o $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
                   $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $^ $(SERVER_LIBS)

@@ -12,10 +12,12 @@
 #include "package/package_write.h"
 #include "pm/pm_stream.h"
 #include "common/progress.h"
+#include "bake/budget.h"
 #include "bake/reference.h"
 #include "scene/camera.h"
 #include "scene/shapes.h"
 #include "lumo_host/version_line.h"
+#include "bake_prt.h"
 
 #define DEFAULT_DRAGON "build/data/models/dragon_48k.ply"
 
@@ -30,7 +32,7 @@ enum { MESH_RAW = 1, MESH_PM = 2, MESH_BOTH = 3 };
 
 typedef struct {
     const char *scene, *out, *dragon;
-    int   use_default, dims[3], spp, threads, ref_w, ref_h, indirect_only, progress;
+    int   use_default, dims[3], spp, threads, ref_w, ref_h, indirect_only, progress, allow_large;
     float cell, exposure;
     uint64_t seed;
     vec3  albedo;
@@ -39,6 +41,8 @@ typedef struct {
     srv_camera camera;
     const char *lights[LUMO_MAX_LIGHTS];
     int   nlights;
+    const char *prt_spec;     /* --prt, parsed once threads are known */
+    bake_prt prt;
 } options;
 
 static const char usage[] =
@@ -65,7 +69,14 @@ static const char usage[] =
     "  --camera E:T:U:FOVY    camera (default: the scene's, else one fitted to its bounds)\n"
     "  --indirect-only        reference image of the indirect light only\n"
     "  --exposure E           PNG exposure (default 1.0)\n"
+    "  --prt N[,clusters=K,components=P,alpha=A,bounces=B,strata=S,registers=R]\n"
+    "                         also PRT: SH order N (1..6) transfer per vertex, CPCA\n"
+    "                         (defaults 64 clusters, 8 components, alpha 0, 1 bounce,\n"
+    "                         32x32 directions, super-clusters of 256 float4 registers)\n"
+    "                         into a PRTV chunk per mesh (docs/prt.md)\n"
+    "  --prt-env FILE.png     with --prt: an equirectangular environment's SH lighting (PRTL)\n"
     "  --no-progress          never draw the progress bar\n"
+    "  --allow-large          bake past the budget (64^3 vertices, 32^3 x 512 paths)\n"
     "  -h, --help             this text\n"
     "Conventions (units, lights, camera, tone mapping): docs/scene-format.md\n";
 
@@ -111,7 +122,7 @@ static int parse_grid(const char *t, int dims[3], char *err, size_t errlen)
 }
 
 enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
-       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH };
+       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH, O_ALLOW_LARGE, O_PRT, O_PRT_ENV };
 
 static const struct option k_long[] = {
     {"default", no_argument, 0, O_DEFAULT}, {"output", required_argument, 0, 'o'},
@@ -122,6 +133,8 @@ static const struct option k_long[] = {
     {"reference", required_argument, 0, O_REF}, {"camera", required_argument, 0, O_CAMERA},
     {"indirect-only", no_argument, 0, O_INDIRECT}, {"exposure", required_argument, 0, O_EXPOSURE},
     {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH},
+    {"allow-large", no_argument, 0, O_ALLOW_LARGE},
+    {"prt", required_argument, 0, O_PRT}, {"prt-env", required_argument, 0, O_PRT_ENV},
     {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
 /* The options that take a number; 0, or -1 with the refusal in err. */
@@ -188,11 +201,14 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
         return 0;
     case O_INDIRECT: o->indirect_only = 1; return 0;
     case O_NOPROGRESS: o->progress = 0; return 0;
+    case O_ALLOW_LARGE: o->allow_large = 1; return 0;
     case O_MESH:
         if (host_opt_choice("--mesh", arg, k_meshes, 3, &o->mesh_mode, err, errlen))
             return -1;
         o->mesh_mode += 1;
         return 0;
+    case O_PRT: o->prt_spec = arg; return 0;
+    case O_PRT_ENV: o->prt.env = arg; return 0;
     case 'h': return 1;
     default: return take_number(o, c, arg, err, errlen);
     }
@@ -238,6 +254,14 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     }
     if (o->spp == 0)
         o->spp = o->ref_w ? DEFAULT_REF_SPP : DEFAULT_BAKE_SPP;
+    if (o->prt_spec && bake_prt_parse(&o->prt, o->prt_spec, o->threads, o->progress)) {
+        snprintf(err, errlen, "bad value '%s' for --prt (try --help)", o->prt_spec);
+        return -1;
+    }
+    if (o->prt.env && !o->prt.on) {
+        snprintf(err, errlen, "--prt-env needs --prt");
+        return -1;
+    }
     return 0;
 }
 
@@ -358,15 +382,25 @@ static int run_reference(const options *o, const srv_scene *s, const srv_tracer 
     return 0;
 }
 
-/* Grid dims from --cell: spacing over the bounds, clamped to [2, 256]. */
-static void cell_dims(const srv_scene *s, float cell, int dims[3])
+/* The grid (--grid, or --cell over the bounds), said before anything is
+ * traced, and refused past the budget without --allow-large (bake/budget.h). */
+static lumo_status plan_bake(options *o, const srv_scene *s, char *err, size_t errlen)
 {
     vec3 lo, hi;
+    char what[160];
+    lumo_status st;
     srv_scene_bounds(s, &lo, &hi);
-    for (int a = 0; a < 3; a++) {
-        float n = ceilf((v3_get(hi, a) - v3_get(lo, a)) / cell) + 1.0f;
-        dims[a] = n < 2.0f ? 2 : n > 256.0f ? 256 : (int)n;
-    }
+    if (o->cell > 0 && (st = srv_bake_dims_for_cell(lo, hi, o->cell, o->dims, err, errlen)))
+        return st;
+    srv_bake_plan p = srv_bake_plan_of(o->dims, o->spp);
+    if ((st = srv_bake_budget_check(&p, o->allow_large, err, errlen)))
+        return st;
+    /* Said before a bake of seconds or more, and always for --cell, whose
+     * grid the user did not write; the summary line repeats it at the end. */
+    srv_bake_plan_describe(&p, what, sizeof what);
+    if (o->cell > 0 || p.paths >= SRV_BAKE_SAY_PATHS)
+        fprintf(stderr, "lumo-bake: %s\n", what);
+    return LUMO_OK;
 }
 
 /* INFO, then the meshes as --mesh asks: raw chunks and/or one progressive
@@ -390,6 +424,8 @@ static int pack_meshes(const options *o, srv_pkg_writer *w, const srv_scene *s, 
             for (int c = 0; c < 3; c++)
                 albedo[3 * v + (uint32_t)c] = (uint8_t)lrintf(255.0f * v3_get(m->albedo[v], c));
         int rc = srv_pm_pack(w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, NULL, err, errlen);
+        if (!rc)
+            rc = bake_prt_mesh(&o->prt, w, &m->pos[0].x, albedo, m->nverts, m->tris, m->ntris, err, errlen);
         free(albedo);
         if (rc)
             return -1;
@@ -402,14 +438,14 @@ static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
     char err[512];
     srv_bake_result res;
     srv_pkg_writer w;
-    if (o->cell > 0)
-        cell_dims(s, o->cell, o->dims);
     srv_grid g = srv_grid_over(s, o->dims);
     srv_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
     if (srv_bake(t, &g, &bo, &res, err, sizeof err))
         return fail(err);
     srv_pkgw_init(&w);
     int rc = pack_meshes(o, &w, s, err, sizeof err);
+    if (!rc)
+        rc = bake_prt_env(&o->prt, &w, err, sizeof err);
     if (!rc)
         rc = srv_pack_ivg(&w, &res, (uint32_t)o->spp, o->seed, err, sizeof err);
     if (!rc && (rc = srv_pack_order(&w)))
@@ -445,7 +481,7 @@ int main(int argc, char **argv)
     if (rc)
         return fail(err);
     srv_scene_init(&s);
-    if (load_scene(&o, &s, err, sizeof err)) {
+    if (load_scene(&o, &s, err, sizeof err) || (!o.ref_w && plan_bake(&o, &s, err, sizeof err))) {
         srv_scene_free(&s);
         return fail(err);
     }

@@ -25,6 +25,7 @@ typedef struct options {
     double at[64];
     int nat, quiet, no_smoothing, use_float, per_vertex, fit;
     uint32_t package, arena_mib, retries, max_payload;
+    uint32_t updates_s, update_every_ms, update_amount;   /* --updates (docs/dynamic.md) */
     lumo_net_policy policy;
     render_opts ro;
 } options;
@@ -90,13 +91,20 @@ typedef struct client {
     uint64_t garbage;          /* bytes skipped resynchronising */
     int resyncing;             /* a resync marker is in flight, nothing taken since */
     uint32_t silences;         /* silences in a row, nothing taken since */
+    int bye_held;              /* --updates: the driver's BYE waits for the updates phase */
 } client;
 
 /* converse.c: HELLO to the full scene over c->l (opened here). 0 or -1
  * (a one-line error printed). */
 int converse(client *c);
 
+/* updates.c: after the scene is complete, --updates seconds of lighting
+ * updates on the same link (rx: the receive buffer of cap bytes, *len
+ * held), frames drawn as they come, then BYE. 0 or -1 (said). */
+int updates_phase(client *c, uint8_t *rx, size_t cap, size_t *len);
+
 /* draw.c */
+int draw_update_frame(client *c, uint32_t n, double seconds, uint32_t records);   /* frame-update-NNN.png */
 int draws_open(client *c);     /* progress.csv in the output directory */
 int frames_due(client *c);     /* PNG frames for every threshold passed */
 void draws_close(client *c);

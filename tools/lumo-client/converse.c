@@ -78,6 +78,10 @@ static int send_pending(client *c)
             fprintf(stderr, "%slumo-client: error: %s\n", nl(c), lumo_strerror(st));
             return -1;
         }
+        if (n && c->drv.state == LUMO_NET_DONE && c->o.updates_s) {
+            c->bye_held = 1;   /* the updates phase ends the conversation */
+            break;
+        }
         if (n && c->l.ops->send(&c->l, out, n))
             return 1;
     } while (n && c->drv.state != LUMO_NET_DONE);
@@ -321,6 +325,8 @@ int converse(client *c)
             if (turn(c, &rx))
                 break;
         rc = c->drv.state == LUMO_NET_DONE ? frames_due(c) : -1;
+        if (rc == 0 && c->bye_held)
+            rc = updates_phase(c, rx.b, rx.cap, &rx.len);
     }
     c->l.ops->close(&c->l);
     free(rx.b);

@@ -124,6 +124,18 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
     return rc ? -1 : 0;
 }
 
+int draw_update_frame(client *c, uint32_t n, double seconds, uint32_t records)
+{
+    lumo_net_progress p;
+    char tag[32];
+
+    lumo_net_client_progress(&c->drv, &p);
+    snprintf(tag, sizeof tag, "update-%03u", n);
+    if (!c->o.quiet)
+        fprintf(stderr, "\rlumo-client: updates: %6.2f s, %u records  ", seconds, records);
+    return draw_frame(c, 100.0, &p, tag);
+}
+
 static void progress_line(const client *c, const lumo_net_progress *p)
 {
     if (c->o.quiet)

@@ -34,6 +34,7 @@
 #include "lumo/session.h"
 #include "lumo/wire.h"
 #include "lumo_host/package_msg.h"
+#include "lumo_host/package_check.h"
 #include "serve/index.h"
 #include "serve/plan.h"
 #include "client.h"
@@ -172,6 +173,11 @@ static int load_table(client_link *l)
         return -1;
     if (lumo_wire_crc32(0, table, (size_t)n * LUMO_PKG_ENTRY_SIZE) != lumo_wire_le32(head + 16))
         return fail(l, "%s: %s", l->target, "the chunk table's CRC does not match");
+    uint32_t twice = 0;
+    if (lumo_package_table_once(table, n, &twice)) {
+        char what[] = {(char)twice, (char)(twice >> 8), (char)(twice >> 16), (char)(twice >> 24), 0};
+        return fail(l, "%s: not a valid package: two %s chunks (the format allows one)", l->target, what);
+    }
     h->nchunks = n;
     for (i = 0; i < n; i++) {
         const uint8_t *e = table + (size_t)i * LUMO_PKG_ENTRY_SIZE;
@@ -237,11 +243,13 @@ static int load_ivg(client_link *l)
     lumo_ivg_order o;
     uint32_t r, f;
     lumo_status st;
+    char why[300];
 
     if (!h->desc[D_IVGD] || !h->desc[D_IVGS])
         return 0;   /* no IVG: lighting requests are RANGE */
-    if ((st = lumo_scene_ivg_desc_decode(h->desc[D_IVGD], h->desc_len[D_IVGD], &desc)) ||
-        (st = lumo_ivg_order_decode(h->desc[D_IVGS], h->desc_len[D_IVGS], &desc, &o)))
+    if (host_ivgd_check(h->desc[D_IVGD], h->desc_len[D_IVGD], &desc, why, sizeof why))
+        return fail(l, "%s: %s", l->target, why);
+    if ((st = lumo_ivg_order_decode(h->desc[D_IVGS], h->desc_len[D_IVGS], &desc, &o)))
         return fail(l, "%s: the IVG streaming order (IVGS): %s", l->target, lumo_strerror(st));
     g->rounds = o.rounds, g->records = o.records;
     g->first = malloc(((size_t)o.rounds + 1) * sizeof *g->first);
@@ -276,7 +284,7 @@ static int load_descriptors(client_link *l)
     lumo_net_msg msgs[LUMO_NET_MAX_WELCOME_MSGS];
     lumo_pkg_info info;
     uint32_t k, m, n = 0;
-    lumo_status st;
+    char why[300];
 
     for (k = 0; k < 4; k++) {
         int i = find_chunk(h, types[k], 0);
@@ -284,8 +292,10 @@ static int load_descriptors(client_link *l)
             return -1;
         h->desc_len[k] = i >= 0 ? h->chunk[i].length : 0;
     }
-    if (!h->desc[D_INFO] || (st = lumo_scene_info_decode(h->desc[D_INFO], h->desc_len[D_INFO], &info)))
-        return fail(l, "%s: %s", l->target, "no valid INFO chunk");
+    if (!h->desc[D_INFO])
+        return fail(l, "%s: %s", l->target, "no INFO chunk: a stream-only package holds no scene to draw");
+    if (host_info_check(h->desc[D_INFO], h->desc_len[D_INFO], &info, why, sizeof why))
+        return fail(l, "%s: %s", l->target, why);
     if (info.mesh_count > LUMO_MAX_MESHES)
         return fail(l, "%s: %s", l->target, "more meshes than LUMO_MAX_MESHES");
     h->pk.mesh_count = info.mesh_count;

@@ -59,6 +59,10 @@ static const char usage[] =
     "  --float                 ask for the binary32 IVG form instead of the quantized one\n"
     "  --arena MIB             arena for the scene (default 256)\n"
     "  --quiet                 no progress line\n"
+    "  --updates S             --connect: once the scene is complete, pull the lighting\n"
+    "                          updates of a dynamic scene for S seconds (docs/dynamic.md),\n"
+    "                          a frame (frame-update-NNN.png) every --update-every ms\n"
+    "  --update-every MS       poll and draw interval of --updates (default 250)\n"
     "  -h, --help              this text\n"
     "The last line on stdout sums the run up; any failure is one 'lumo-client: error:' line\n"
     "on stderr and exit status 1 (the frames drawn until then are kept).\n";
@@ -96,7 +100,7 @@ static int parse_order(const char *s, options *o)
 
 enum { O_CONNECT = 256, O_SERIAL, O_HTTP, O_REPLAY, O_RECORD, O_RETRIES, O_PACKAGE, O_OUT, O_AT, O_BACKEND,
        O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
-       O_QUIET, O_CAMERA, O_FIT };
+       O_QUIET, O_CAMERA, O_FIT, O_UPDATES, O_UPDEVERY };
 
 static int take_option(int c, const char *arg, options *o)
 {
@@ -133,6 +137,8 @@ static int take_option(int c, const char *arg, options *o)
     case O_FLOAT: o->use_float = 1; return 0;
     case O_ARENA: return parse_u32("--arena", arg, 1, 4095, &o->arena_mib);
     case O_QUIET: o->quiet = 1; return 0;
+    case O_UPDATES: return parse_u32("--updates", arg, 1, 86400, &o->updates_s);
+    case O_UPDEVERY: return parse_u32("--update-every", arg, 10, 60000, &o->update_every_ms);
     default: snprintf(g_err, sizeof g_err, "unhandled option %d", c); return -1;
     }
 }
@@ -151,12 +157,14 @@ static int parse_args(int argc, char **argv, options *o)
         {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE}, {"max-payload", 1, 0, O_MAXPAY},
         {"no-smoothing", 0, 0, O_NOSMOOTH}, {"smoothing-budget", 1, 0, O_SMOOTHB}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
         {"quiet", 0, 0, O_QUIET}, {"camera", 1, 0, O_CAMERA}, {"fit", 0, 0, O_FIT},
+        {"updates", 1, 0, O_UPDATES}, {"update-every", 1, 0, O_UPDEVERY},
         {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
 
     memset(o, 0, sizeof *o);
     o->out = ".", o->backend = "soft", o->arena_mib = 256, o->retries = 5, o->max_payload = 1u << 20;
     o->at[0] = 100, o->nat = 1;
+    o->update_every_ms = 250, o->update_amount = 65536;
     o->ro.width = 320, o->ro.height = 240, o->ro.format = LUMO_PIXEL_XRGB8888, o->ro.depth_bits = 32;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":h", longs, NULL)) != -1) {
@@ -171,6 +179,8 @@ static int parse_args(int argc, char **argv, options *o)
         snprintf(g_err, sizeof g_err, "unexpected argument '%.128s' (try --help)", argv[optind]);
     else if ((!!o->connect + !!o->serial + !!o->http + !!o->replay) != 1)
         snprintf(g_err, sizeof g_err, "give exactly one of --connect, --serial, --http or --replay (try --help)");
+    else if (o->updates_s && !o->connect)
+        snprintf(g_err, sizeof g_err, "--updates pulls from lumo-server over TCP: give --connect");
     else
         return 0;
     return -1;

@@ -5,6 +5,7 @@
 #include <string.h>
 #include "lumo_host/file_io.h"
 #include "lumo_host/options.h"
+#include "lumo_host/package_check.h"
 #include "lumo_host/package_msg.h"
 #include "inspect.h"
 
@@ -31,6 +32,13 @@ int inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pk
     if (st) {
         char why[160];
         fprintf(stderr, "lumo-inspect: error: %s: %s\n", path, host_package_strerror(*data, *len, st, why, sizeof why));
+        free(*data);
+        *data = NULL;
+        return -1;
+    }
+    char why[300];
+    if ((st = host_package_check(pkg, HOST_PKG_DEEP, why, sizeof why))) {
+        fprintf(stderr, "lumo-inspect: error: %s: %s\n", path, why);
         free(*data);
         *data = NULL;
         return -1;

@@ -11,7 +11,8 @@ RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o \
                   $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
                   $(BUILD)/host/rasterizer/egl/raster_egl.o
 RASTER_GL_LIBS := -lOSMesa -lEGL
-RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load session_scene render_backend)
+RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load session_scene render_backend \
+                  prt_render)
 
 $(BUILD)/host/rasterizer/gl/raster_gl.o: HOST_CFLAGS += -Irasterizer/gl
 

@@ -6,7 +6,7 @@
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
  *       [--no-indirect] [--frames N --orbit] [--exposure E]
  *       [--model PATH] [--light SPEC] [--bands K] [--rgb565] [--depth16]
- *       [--no-cache] [--cull] [--lod N|P%|all]
+ *       [--no-cache] [--cull] [--lod N|P%|all] [--ivg-vertex] [--prt [--env FILE] [--rotate DEG]]
  *
  * Packages with progressive meshes (PMSH) are decoded through the SDK's
  * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
@@ -30,6 +30,7 @@
 #include "scene/camera.h"
 #include "scene/shapes.h"
 #include "scene_convert.h"
+#include "prt_render.h"
 #include "lumo_host/version_line.h"
 
 /* The dragon of the default scene when neither --model nor LUMO_DRAGON names
@@ -62,17 +63,29 @@ static const char usage[] =
     "  --cull                      drop back faces\n"
     "  --relight                   soft, per vertex: light the vertices every frame (default:\n"
     "                              once, again only when the lights or the IVG change)\n"
+    "  --ivg-vertex                soft, per pixel: sample the IVG once per vertex and\n"
+    "                              interpolate it (direct light stays per pixel)\n"
     "  --shadows N                 shadow maps of N x N texels per face for every light\n"
     "                              (point: 6 faces; default 0: no shadows)\n"
     "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
     "  --lod N|P%|all              level of detail of progressive meshes: at most N vertices\n"
     "                              per mesh, or the base mesh plus P% of the vertices\n"
-    "                              streamed after it (0% = base mesh), or all (default)\n";
+    "                              streamed after it (0% = base mesh), or all (default)\n"
+    "  --prt                       soft, per vertex: relight with the package's PRT (lumo-bake\n"
+    "                              --prt; docs/prt.md) under the scene's lights as distant\n"
+    "                              lights, or the package's environment (PRTL), or --env\n"
+    "  --env FILE.png              with --prt: an equirectangular environment (y up)\n"
+    "  --rotate DEG                with --prt: turn the lighting DEG degrees about +y a frame\n"
+    "  --prt-view clusters|passes  with --prt: false colours of each vertex's cluster, or of\n"
+    "                              its cluster's draw pass (super-cluster)\n";
 
 typedef struct options {
     const char *input, *output, *backend, *camera, *model;
     const char *lights[LUMO_MAX_LIGHTS];
-    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit;
+    int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit, prt;
+    const char *env;
+    double rotate;
+    int prt_view;
     const char *lod_arg;
     host_lod lod;
     double exposure;
@@ -80,7 +93,8 @@ typedef struct options {
 } options;
 
 enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP };
+       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_IVGV, O_HELP,
+       O_PRT, O_ENV, O_ROTATE, O_PRT_VIEW };
 
 static const struct option k_longs[] = {
     {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
@@ -90,7 +104,10 @@ static const struct option k_longs[] = {
     {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
     {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
     {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
+    {"ivg-vertex", 0, 0, O_IVGV},
     {"help", 0, 0, O_HELP},
+    {"prt", 0, 0, O_PRT}, {"env", 1, 0, O_ENV}, {"rotate", 1, 0, O_ROTATE},
+    {"prt-view", 1, 0, O_PRT_VIEW},
     {"output", 1, 0, 'o'}, {0, 0, 0, 0}
 };
 
@@ -127,6 +144,16 @@ static int take_flag(options *o, int c, const char *arg, char *err, size_t errle
     case O_CULL: o->cull = 1; return 0;
     case O_RELIGHT: o->ro.relight = 1; return 0;
     case O_FIT: o->fit = 1; return 0;
+    case O_IVGV: o->ro.ivg_vertex = 1; return 0;
+    case O_PRT: o->prt = 1; return 0;
+    case O_ENV: o->env = arg; return 0;
+    case O_PRT_VIEW: {
+        static const char *const views[] = {"clusters", "passes"};
+        if (host_opt_choice("--prt-view", arg, views, 2, &o->prt_view, err, errlen))
+            return -1;
+        o->prt_view += HOST_PRT_CLUSTERS;
+        return 0;
+    }
     default: snprintf(err, errlen, "unhandled option %d", c); return -1;
     }
 }
@@ -144,6 +171,8 @@ static int check_args(const options *o, int argc, char **argv, char *err, size_t
         snprintf(err, errlen, "no output file: give -o OUT.png (try --help)");
     else if (o->model && !o->use_default)
         snprintf(err, errlen, "--model %s: only with --default (a package holds its own meshes)", o->model);
+    else if ((o->env || o->rotate != 0 || o->prt_view) && !o->prt)
+        snprintf(err, errlen, "--env, --rotate and --prt-view go with --prt (try --help)");
     else
         return 0;
     return -1;
@@ -170,6 +199,7 @@ static int take_value(options *o, int c, const char *arg, char *err, size_t errl
         o->ro.band_rows = (uint16_t)k;
         return 0;
     case O_WARMUP: return host_opt_int("--warmup", arg, 0, 1000, &o->warmup, err, errlen);
+    case O_ROTATE: return host_opt_double("--rotate", arg, -360, 360, &o->rotate, err, errlen);
     case O_LOD:
         if (host_lod_parse(arg, &o->lod, err, errlen))
             return -1;
@@ -443,12 +473,26 @@ int main(int argc, char **argv)
             }
     }
     mesh = host_mesh_raster(&scene.mesh);
+    static host_prt prt;
+    if (o.prt) {
+        if (o.use_default || strcmp(o.backend, "soft") || o.per_pixel) {
+            fprintf(stderr, "lumo-render: error: --prt needs a package, the soft backend and per-vertex lighting\n");
+            return 1;
+        }
+        if (host_prt_open(&prt, o.input, o.env, &scene, err, sizeof err)) {
+            fprintf(stderr, "lumo-render: error: --prt: %s\n", err);
+            return 1;
+        }
+        mesh.lit = prt.lit;   /* drawn as lit, relit by PRT before each frame */
+        prt.view = o.prt_view;
+        o.ro.relight = 1;
+    }
     memset(&rs, 0, sizeof rs);
     rs.lights = scene.lights;
     rs.light_count = scene.light_count;
     rs.exposure = (lumo_uq16_16)floor(o.exposure * 65536 + 0.5);
     rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL : 0) | (o.cull ? LUMO_RASTER_CULL_BACK : 0);
-    if (ivg.grid && !o.no_indirect) {
+    if (ivg.grid && !o.no_indirect && !o.prt) {   /* PRT carries its own interreflections */
         rs.indirect = lumo_raster_ivg_irradiance;
         rs.indirect_ctx = ivg.grid;
     }
@@ -467,6 +511,11 @@ int main(int argc, char **argv)
         if (o.orbit) {
             orbit_camera(&scene.camera, i, o.frames, &cam);
             cam.znear = lumo_raster_znear_for_box(&cam, scene.bmin, scene.bmax);
+        }
+        if (o.prt && host_prt_relight(&prt, &scene, i, o.rotate)) {
+            fprintf(stderr, "lumo-render: error: PRT relight of frame %d failed\n", i);
+            rc = 1;
+            break;
         }
         t0 = now_ms();
         if ((st = (lumo_status)timed_frame(r, &cam, &rs, rgb))) {
@@ -490,6 +539,11 @@ int main(int argc, char **argv)
                host_renderer_describe(r), o.ro.width, o.ro.height, mesh.tri_count,
                o.per_pixel ? "per-pixel" : "per-vertex", rs.indirect ? " + IVG" : "", o.frames,
                total / o.frames, best);
+    if (rc == 0 && o.prt)
+        printf("lumo-render: PRT order %u, %u mesh(es), %u clusters, %u components: relight %.3f ms/frame mean\n",
+               prt.mesh[0].order, prt.meshes, prt.mesh[0].clusters, prt.mesh[0].components,
+               prt.relight_ms / o.frames);
+    host_prt_close(&prt);
     free(rgb);
     host_renderer_close(r);
     host_scene_free(&scene);

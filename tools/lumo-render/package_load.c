@@ -11,22 +11,10 @@
 #include "lumo/session.h"
 #include "lumo_host/file_io.h"
 #include "lumo_host/options.h"
+#include "lumo_host/package_check.h"
 #include "lumo_host/package_msg.h"
 #include "package_load.h"
 #include "session_scene.h"
-
-/* Which message of the package failed, in words. */
-static void describe_failure(const lumo_session_where *w, lumo_status st, char *err, size_t errlen)
-{
-    if (w->type == LUMO_PKG_PMSH)
-        snprintf(err, errlen, "progressive mesh %u, batch %u: %s", w->index, w->batch, lumo_strerror(st));
-    else if (w->type == LUMO_PKG_MESH)
-        snprintf(err, errlen, "bad MESH chunk %u: %s", w->index, lumo_strerror(st));
-    else if (w->type == LUMO_PKG_INFO)
-        snprintf(err, errlen, "%s", lumo_strerror(st));
-    else
-        snprintf(err, errlen, "bad IVG chunk: %s", lumo_strerror(st));
-}
 
 /* A refusal "--lod SHOWN: why" from the parser, with its reason replaced
  * by `why` (the parser saw only the number of "P%"). */
@@ -105,7 +93,7 @@ static int run_session(const lumo_package *pkg, const host_lod *lod, lumo_sessio
     }
     lumo_arena_init(&arena, ivg->memory, bytes);
     if ((st = lumo_session_init(ses, &cfg, &arena)) || (st = lumo_session_feed_package(ses, pkg, &w))) {
-        describe_failure(&w, st, err, errlen);
+        host_package_where(&w, st, err, errlen);
         return -1;
     }
     lumo_session_update(ses);
@@ -120,7 +108,7 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
 {
     static lumo_session ses;   /* 19 KB: not on the stack */
     host_load_stats local;
-    char why[200];
+    char why[300];
     size_t size = 0;
     uint8_t *data = host_read_file(path, &size);
     lumo_package pkg;
@@ -142,10 +130,10 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
         free(data);
         return -1;
     }
-    if (lumo_package_find(&pkg, LUMO_PKG_INFO, 0, &(const uint8_t *){0}, &(uint32_t){0}) == LUMO_ERR_RANGE) {
-        snprintf(err, errlen, "%s: no INFO chunk, so no scene to draw (camera, lights); a package from "
-                              "lumo-pm build holds a mesh stream only: see it with lumo-inspect --lod N --ply "
-                              "OUT.ply, or bake the model into a scene with lumo-bake", path);
+    /* No INFO (a lumo-pm build package), a bad light or IVG descriptor:
+     * the sentence every reader says (lumo_host/package_check.h). */
+    if ((st = host_package_check(&pkg, HOST_PKG_NEED_INFO, why, sizeof why))) {
+        snprintf(err, errlen, "%s: %s", path, why);
         free(data);
         return -1;
     }

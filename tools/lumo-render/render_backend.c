@@ -34,7 +34,30 @@ struct host_renderer {
     lumo_raster_light lit_key[LUMO_MAX_LIGHTS];
     lumo_raster_scene lit_scene;
     unsigned lit_shadow_builds, lit_builds;
+    /* per-pixel lighting with the IVG per vertex: sampled once per IVG */
+    lumo_uq16_16 *ind;
+    lumo_raster_mesh ind_mesh;
+    const void *ind_ctx;
 };
+
+/* The mesh to draw per pixel with the IVG interpolated from the vertices:
+ * the renderer's with `indirect` sampled once for the scene's IVG (it
+ * depends on neither the lights nor the view). NULL on failure. */
+static const lumo_raster_mesh *ind_mesh(host_renderer *r, const lumo_raster_scene *s)
+{
+    size_t bytes = lumo_raster_lit_bytes(r->mesh->vertex_count);
+
+    if (r->ind && r->ind_ctx == s->indirect_ctx)
+        return &r->ind_mesh;
+    if (!r->ind && !(r->ind = malloc(bytes ? bytes : 1)))
+        return NULL;
+    r->ind_mesh = *r->mesh;
+    if (lumo_raster_indirect_vertices(s, &r->ind_mesh, r->ind))
+        return NULL;
+    r->ind_mesh.indirect = r->ind;
+    r->ind_ctx = s->indirect_ctx;
+    return &r->ind_mesh;
+}
 
 /* The mesh to draw per vertex: the renderer's with `lit` filled for scene
  * s, lit again only when s's lights, IVG or exposure-independent inputs
@@ -150,9 +173,10 @@ static int open_soft(host_renderer *r, char *err, size_t errlen)
         snprintf(err, errlen, "out of memory");
         return -1;
     }
-    snprintf(r->desc, sizeof r->desc, "soft (fixed point, %s, %u-bit depth, %u-row bands%s%s)",
+    snprintf(r->desc, sizeof r->desc, "soft (fixed point, %s, %u-bit depth, %u-row bands%s%s%s)",
              o->format == LUMO_PIXEL_RGB565 ? "RGB565" : "XRGB8888", o->depth_bits, rows,
-             o->no_cache ? ", no vertex cache" : "", o->relight ? ", lit every frame" : "");
+             o->no_cache ? ", no vertex cache" : "", o->relight ? ", lit every frame" : "",
+             o->ivg_vertex ? ", IVG per vertex" : "");
     return 0;
 }
 
@@ -246,6 +270,8 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
         return -1;
     if (!(s->flags & LUMO_RASTER_PER_PIXEL) && !r->o.relight && !(mesh = lit_mesh(r, s)))
         return -1;
+    if ((s->flags & LUMO_RASTER_PER_PIXEL) && r->o.ivg_vertex && s->indirect && !(mesh = ind_mesh(r, s)))
+        return -1;
     if (r->cache && lumo_raster_prepare(&v, s, mesh, r->cache))
         return -1;
     for (y0 = 0; y0 < r->o.height; y0 += r->o.band_rows) {
@@ -278,7 +304,8 @@ size_t host_renderer_soft_bytes(const host_renderer *r)
         return 0;
     return lumo_raster_band_bytes(r->o.width, r->o.band_rows, r->o.format, r->o.depth_bits)
          + (r->cache ? lumo_raster_cache_bytes(r->mesh->vertex_count) : 0)
-         + (r->lit ? lumo_raster_lit_bytes(r->mesh->vertex_count) : 0);
+         + (r->lit ? lumo_raster_lit_bytes(r->mesh->vertex_count) : 0)
+         + (r->ind ? lumo_raster_lit_bytes(r->mesh->vertex_count) : 0);
 }
 
 void host_renderer_close(host_renderer *r)
@@ -292,6 +319,7 @@ void host_renderer_close(host_renderer *r)
     for (i = 0; i < LUMO_MAX_LIGHTS; i++)
         free(r->shadow_depth[i]);
     free(r->lit);
+    free(r->ind);
     free(r->cache);
     free(r->color);
     free(r->depth);

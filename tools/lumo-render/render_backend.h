@@ -19,6 +19,9 @@ typedef struct render_opts {
     int no_cache;                 /* soft: transform per triangle */
     int relight;                  /* soft, per vertex: light the vertices every frame
                                    * (default: once per change of lights or IVG) */
+    int ivg_vertex;               /* soft, per pixel: the IVG sampled once per vertex side and
+                                   * interpolated (lumo_raster_indirect_vertices), direct light
+                                   * per pixel; 0: the IVG sampled per pixel */
     uint16_t shadow_size;         /* shadow map texels per side for every light, 0: no
                                    * shadows (docs/rasterizer.md "Shadows") */
 } render_opts;

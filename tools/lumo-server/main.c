@@ -12,6 +12,7 @@
 #include "serve/server.h"
 #include "serve/usb.h"
 #include "lumo_host/version_line.h"
+#include "dynamic.h"
 
 static const char usage[] =
     "usage: lumo-server PACKAGE.lumo... [options]\n"
@@ -39,6 +40,10 @@ static const char usage[] =
     "                             scan every 500 ms (docs/protocol.md §8 \"USB\")\n"
     "  --port-file FILE           write \"TCP_PORT SERIAL_PORT\" once listening (scripts)\n"
     "  --quiet                    no line per client (start, stop and errors only)\n"
+    "  --dynamic SCENE[,k=v...]   live lighting (docs/dynamic.md): photon streaming on\n"
+    "                             SCENE (the first package's scene, its motion lines),\n"
+    "                             changes served on the updates channel; settings\n"
+    "                             vsl=N pool=N batch=N photon-rate=R tau=T commands=FIFO\n"
     "  -h, --help                 this text\n"
     "One line per client on stderr when it ends: peer, HELLO, requests, bytes\n"
     "sent, how it ended. SIGINT/SIGTERM: finish queued output (2 s at most), exit.\n";
@@ -69,7 +74,8 @@ int main(int argc, char **argv)
 {
     if (host_version_option(argc, argv, "lumo-server"))
         return 0;
-    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET, O_USB };
+    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET, O_USB,
+           O_DYNAMIC };
     static const struct option longopts[] = {
         {"listen", required_argument, NULL, O_LISTEN},
         {"serial-listen", required_argument, NULL, O_SERIAL},
@@ -82,6 +88,7 @@ int main(int argc, char **argv)
         {"port-file", required_argument, NULL, O_PORTFILE},
         {"quiet", no_argument, NULL, O_QUIET},
         {"usb", optional_argument, NULL, O_USB},
+        {"dynamic", required_argument, NULL, O_DYNAMIC},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
@@ -89,6 +96,8 @@ int main(int argc, char **argv)
     srv_pkg *pkgs;
     char msg[512], err[400];
     uint32_t npkgs, i, seed32;
+    const char *dynamic = NULL;
+    struct dynamic *dyn = NULL;
     int c;
     lumo_status st;
 
@@ -147,6 +156,9 @@ int main(int argc, char **argv)
                 return fail(msg);
             }
             break;
+        case O_DYNAMIC:
+            dynamic = optarg;
+            break;
         default:
             host_opt_getopt_error(c, argv[optind - 1], optopt, msg, sizeof msg);
             return fail(msg);
@@ -168,7 +180,11 @@ int main(int argc, char **argv)
             return fail(err);
         }
     err[0] = 0;
-    st = srv_serve_run(pkgs, npkgs, &o, err, sizeof err);
+    if (dynamic && !(dyn = dynamic_start(dynamic, &pkgs[0], &o, err, sizeof err)))
+        st = LUMO_ERR_ARG;
+    else
+        st = srv_serve_run(pkgs, npkgs, &o, err, sizeof err);
+    dynamic_stop(dyn);
     for (i = 0; i < npkgs; i++)
         srv_pkg_close(&pkgs[i]);
     free(pkgs);

@@ -15,6 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lumo/config.h"
+#include "lumo/fixed.h"
 #include "lumo/pmesh.h"
 #include "lumo/status.h"
 
@@ -32,11 +33,17 @@
 /* Frame types (docs/protocol.md §2). */
 typedef enum lumo_net_type {
     LUMO_NET_HELLO = 1, LUMO_NET_WELCOME = 2, LUMO_NET_REQUEST = 3, LUMO_NET_DATA = 4,
-    LUMO_NET_END = 5, LUMO_NET_ERROR = 6, LUMO_NET_BYE = 7
+    LUMO_NET_END = 5, LUMO_NET_ERROR = 6, LUMO_NET_BYE = 7,
+    LUMO_NET_POSES = 8   /* updates channel: where moved lights and meshes are (§9) */
 } lumo_net_type;
+#define LUMO_NET_TYPE_LAST LUMO_NET_POSES   /* the highest frame type */
 
-/* The two channels a REQUEST, DATA or END belongs to. */
-typedef enum lumo_net_channel { LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1 } lumo_net_channel;
+/* The channels a REQUEST, DATA or END belongs to: the package's geometry
+ * and lighting, and the lighting updates of a dynamic scene
+ * (docs/protocol.md §9, docs/dynamic.md). */
+typedef enum lumo_net_channel {
+    LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1, LUMO_NET_UPDATES = 2
+} lumo_net_channel;
 
 #define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */
 #define LUMO_NET_FLAG_SMOOTHING 1u   /* HELLO: the client smooths its push-pull */
@@ -116,17 +123,19 @@ typedef struct lumo_net_welcome {
 /* REQUEST: the next part of a channel. */
 typedef struct lumo_net_request {
     uint8_t  channel;          /* lumo_net_channel */
-    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
-    uint32_t cursor;           /* the first batch / round wanted */
-    uint32_t amount;           /* vertices (geometry) or rounds (lighting) wanted */
+    uint32_t mesh;             /* geometry: which mesh; lighting, updates: 0 */
+    uint32_t cursor;           /* the first batch / round wanted; updates: the update position held */
+    uint32_t amount;           /* vertices (geometry), rounds (lighting) or records (updates) wanted */
 } lumo_net_request;
 
-/* DATA: the answer to a REQUEST (docs/protocol.md §2 DATA). */
+/* DATA: the answer to a REQUEST (docs/protocol.md §2 DATA). On the updates
+ * channel (§9) first is the position the records start after (the cursor
+ * asked) and count the position they bring the client to (> first). */
 typedef struct lumo_net_data {
     uint8_t  channel;          /* lumo_net_channel */
     uint8_t  form;             /* lighting: the records' IVG form */
-    uint32_t mesh;             /* geometry: which mesh; lighting: 0 */
-    uint32_t first, count, records;   /* first batch / round, how many, records carried */
+    uint32_t mesh;             /* geometry: which mesh; lighting, updates: 0 */
+    uint32_t first, count, records;   /* first batch / round (updates: position held), how many (updates: position reached), records carried */
     const uint8_t *bytes;      /* decode: into the frame */
     uint32_t len;              /* bytes at bytes */
 } lumo_net_data;
@@ -147,6 +156,27 @@ typedef struct lumo_net_error {
     uint32_t len;              /* bytes of text */
     const uint8_t *text;       /* len bytes without NUL, not NUL-terminated */
 } lumo_net_error;
+
+/* POSES (§9): the lights and meshes a dynamic scene has moved, in an
+ * updates answer. Each pose is 24 bytes: u8 kind, 3 reserved, u32 index,
+ * i32 x, y, z (Q16.16 m: a light's position, a mesh's translation from
+ * where the package put it), i32 yaw (Q16.16 degrees about +y; lights 0). */
+#define LUMO_NET_POSE_BYTES 24u
+#define LUMO_NET_MAX_POSES  (LUMO_MAX_MESHES + LUMO_MAX_LIGHTS)
+/* What a pose moves: a mesh or a light. */
+enum { LUMO_NET_POSE_MESH = 0, LUMO_NET_POSE_LIGHT = 1 };
+/* One pose of a POSES message (its 24 bytes decoded). */
+typedef struct lumo_net_pose {
+    uint8_t     kind;        /* LUMO_NET_POSE_MESH or _LIGHT */
+    uint32_t    index;       /* the mesh's or light's index */
+    lumo_q16_16 t[3];        /* metres */
+    lumo_q16_16 yaw_deg;     /* degrees about +y (meshes) */
+} lumo_net_pose;
+/* A decoded POSES message: its count and packed poses. */
+typedef struct lumo_net_poses {
+    uint32_t count;          /* <= LUMO_NET_MAX_POSES */
+    const uint8_t *raw;      /* decode: count packed poses, read with lumo_net_poses_get */
+} lumo_net_poses;
 
 /* Each encoder writes a whole frame (header, payload, CRC) at out[0..cap)
  * and sets *written; NOMEM when cap is too small (nothing written); ARG for
@@ -201,6 +231,15 @@ lumo_status lumo_net_error_decode(const lumo_net_frame *f, lumo_net_error *m);
 lumo_status lumo_net_bye_encode(uint8_t *out, size_t cap, size_t *written);
 /* BYE has no fields: OK for an empty payload, CORRUPT for any other. */
 lumo_status lumo_net_bye_decode(const lumo_net_frame *f);
+
+/* POSES: count poses from p (kind 0 or 1, a light's yaw 0: ARG otherwise);
+ * decode checks the count (LIMIT), the exact length (TRUNCATED /
+ * CORRUPT) and every kind and light yaw (RANGE). */
+lumo_status lumo_net_poses_encode(const lumo_net_pose *p, uint32_t count, uint8_t *out, size_t cap,
+                                  size_t *written);
+lumo_status lumo_net_poses_decode(const lumo_net_frame *f, lumo_net_poses *m);
+/* Pose i of a decoded POSES (i < count). */
+void lumo_net_poses_get(const lumo_net_poses *m, uint32_t i, lumo_net_pose *out);
 
 /* ---- planning a geometry answer (§2 DATA "Geometry") --------------------------- */
 

@@ -140,6 +140,12 @@ typedef struct lumo_raster_mesh {
                                    * vertex, the radiance of its front (n) and
                                    * back (-n) side from lumo_raster_light_vertices
                                    * for the scene drawn; NULL: lit per frame */
+    const lumo_uq16_16 *indirect; /* optional, per-pixel lighting only: 6 per
+                                   * vertex, the indirect irradiance towards n
+                                   * and -n from lumo_raster_indirect_vertices;
+                                   * interpolated across triangles instead of
+                                   * sampled per pixel (docs/rasterizer.md,
+                                   * "IVG per vertex"); NULL: sampled per pixel */
 } lumo_raster_mesh;
 
 /* Diffuse light does not depend on the view: a vertex's radiance (direct,
@@ -152,6 +158,17 @@ typedef struct lumo_raster_mesh {
 size_t lumo_raster_lit_bytes(uint32_t vertex_count);
 lumo_status lumo_raster_light_vertices(const struct lumo_raster_scene *s, const lumo_raster_mesh *m,
                                        lumo_uq16_16 *lit);
+
+/* The indirect term alone, for per-pixel lighting: the scene's indirect
+ * irradiance (the IVG) towards n and -n at every vertex into `ind`
+ * (vertex_count * 6 entries, lumo_raster_lit_bytes bytes). A mesh whose
+ * `indirect` points at it is drawn per pixel with the direct light (and
+ * shadows) per pixel and the indirect light interpolated from the vertices:
+ * one IVG sample per vertex side instead of one per pixel. It depends on
+ * the IVG and the mesh only (not on the lights nor the view). LUMO_ERR_ARG
+ * without an indirect source. */
+lumo_status lumo_raster_indirect_vertices(const struct lumo_raster_scene *s, const lumo_raster_mesh *m,
+                                          lumo_uq16_16 *ind);
 
 /* ---- target: a frame, or one band of K rows of it ------------------------ */
 
@@ -234,7 +251,7 @@ uint8_t lumo_raster_tonemap(lumo_uq16_16 radiance, lumo_uq16_16 exposure);
  * lit radiance; per-pixel mode: position, normal, albedo), and, for a vertex
  * inside every clip plane, its screen position: triangles of such vertices
  * skip projection, and each band rejects them from their rows alone. */
-#define LUMO_RASTER_MAX_VARYINGS 9
+#define LUMO_RASTER_MAX_VARYINGS 12
 /* One transformed vertex of the cache (above). */
 typedef struct lumo_raster_vertex {
     int32_t  clip[3];          /* x, y, w in scene units, Q16.16 */
@@ -319,9 +336,9 @@ uint32_t lumo_raster_shadow_visibility(const lumo_raster_shadow *sh, const lumo_
  * not depend on the band split nor on the cache.
  * Errors (nothing drawn): LUMO_ERR_ARG, LUMO_ERR_RANGE (a triangle index
  * >= vertex_count, a bad target, view size != target size). Uses about
- * 2.7 KB of stack on a Cortex-M3 (-fstack-usage: 1.6 KB for the clipped
- * polygon and the triangle, 0.7 KB for shading with the IVG; 2 720 bytes
- * peak measured on the board) and no other memory. */
+ * 3.1 KB of stack on a Cortex-M3 (the clipped polygon's vertices of 76
+ * bytes and the triangle, shading with the IVG; 3 072 bytes peak measured
+ * on the board by tests/board/golden_raster.c) and no other memory. */
 lumo_status lumo_raster_draw(const lumo_raster_view *v, const lumo_raster_scene *s,
                              const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
                              lumo_raster_target *t);

@@ -39,4 +39,16 @@
 #define LUMO_MAX_FRAME_DIM 2048
 #endif
 
+/* PRT (lumo/prt.h, docs/prt.md): clusters and principal components of a
+ * PRTV chunk. Cost: the per-frame table lumo_prt_frame fills holds
+ * 12 * clusters * (components + 1) bytes (64 clusters, 8 components:
+ * 6.9 KiB), and its computation is clusters * (components + 1) * 3 dot
+ * products of order^2 terms. */
+#ifndef LUMO_PRT_MAX_CLUSTERS
+#define LUMO_PRT_MAX_CLUSTERS 4096
+#endif
+#ifndef LUMO_PRT_MAX_COMPONENTS
+#define LUMO_PRT_MAX_COMPONENTS 36   /* order 6's 36 coefficients: all of them */
+#endif
+
 #endif /* LUMO_CONFIG_H */

@@ -59,10 +59,18 @@ typedef struct lumo_package {
     uint32_t       chunk_count;   /* entries in the chunk table */
 } lumo_package;
 
-/* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout),
+/* Validate and open. Fails with TRUNCATED, CORRUPT (bad magic, layout, a
+ * second INFO, IVGD, IVGQ, IVGF, IVGS or ORDR chunk),
  * VERSION (other major), CHECKSUM, LIMIT (too many chunks); *pkg is written
  * only on success. Work is linear in size. */
 lumo_status lumo_package_open(lumo_package *pkg, const uint8_t *data, size_t size);
+
+/* The chunk table's entries (count of them, LUMO_PKG_ENTRY_SIZE bytes
+ * each) hold INFO, IVGD, IVGQ, IVGF, IVGS and ORDR at most once: LUMO_OK,
+ * or LUMO_ERR_CORRUPT with the doubled type in *twice (may be NULL).
+ * lumo_package_open makes this check; a reader that fetches the table
+ * alone (HTTP ranges) makes it here. */
+lumo_status lumo_package_table_once(const uint8_t *table, uint32_t count, uint32_t *twice);
 
 /* The version a file claims (bytes 4..7), without validating anything
  * else: what a tool prints when lumo_package_open says VERSION. TRUNCATED

@@ -71,7 +71,9 @@ typedef struct lumo_pkg_mesh_info {
 #define LUMO_PKG_MESH_EMITTER 1u   /* the visible rectangle of an area light: not shaded */
 
 /* The INFO payload: TRUNCATED, CORRUPT (size), LIMIT (more than
- * LUMO_MAX_LIGHTS lights), NONFINITE, RANGE (field of view). */
+ * LUMO_MAX_LIGHTS lights), NONFINITE, RANGE (field of view outside
+ * (0, 180) degrees; a camera with eye on target, or up zero or parallel
+ * to the view direction). */
 lumo_status lumo_scene_info_decode(const uint8_t *p, size_t len, lumo_pkg_info *out);
 
 /* Light `index` of an INFO payload: errors as lumo_scene_info_decode, RANGE

@@ -66,6 +66,10 @@
  * then the records (lumo_ivg_apply_records). */
 #define LUMO_MSG_IVGR  LUMO_PKG_FOURCC('I', 'V', 'G', 'R')
 #define LUMO_MSG_IVGR_HEADER 8u   /* bytes of an IVGR message's head */
+/* Lighting updates of a dynamic scene (docs/dynamic.md): an IVGR run that
+ * replaces vertices already held, as a DATA frame of the updates channel
+ * carries it; not counted in lumo_session_lighting_progress. */
+#define LUMO_MSG_IVGU  LUMO_PKG_FOURCC('I', 'V', 'G', 'U')
 
 /* Level of detail: how far each progressive mesh is refined. A batch past
  * the target is not applied; the batch that crosses it is applied and the
@@ -108,6 +112,7 @@ typedef struct lumo_session {
     lumo_ivg_order ivg_order;     /* IVGS, its table copied into the arena */
     lumo_scene_order order;       /* ORDR, its steps copied into the arena */
     lumo_session_mesh_slot mesh[LUMO_MAX_MESHES];
+    lumo_q16_16    pose[LUMO_MAX_MESHES][4];   /* dynamic scenes: translation (m), yaw (deg) */
 } lumo_session;
 
 /* An empty session taking its memory from `arena` (not owned; must outlive
@@ -129,7 +134,7 @@ lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes);
  * INFO must come first (STATE otherwise) and only once; a mesh index past
  * the info's mesh count is RANGE (an info naming more than LUMO_MAX_MESHES
  * is LIMIT); NOMEM when the arena is too small for a descriptor. A PMSB past
- * the level-of-detail target is accepted and ignored. IVGQ, IVGF, IVGR and
+ * the level-of-detail target is accepted and ignored. IVGQ, IVGF, IVGR, IVGU and
  * IVGS need the IVGD first (STATE); IVGS and ORDR come once (STATE) and are
  * checked against the grid and the mesh count. On any error nothing
  * changes — except that a PMSH message carrying records acts as its header
@@ -183,6 +188,15 @@ typedef struct lumo_session_lighting {
     uint32_t records;               /* IVG records applied */
     uint32_t rounds_held, rounds;   /* 0, 0 without IVGS */
 } lumo_session_lighting;
+/* Dynamic scenes (docs/dynamic.md): a light moved to pos (RANGE past the
+ * info's lights; STATE before INFO), and a mesh's pose — translation in
+ * metres and rotation about +y in degrees, from where the package put it
+ * (RANGE past the info's meshes). A session starts with every pose zero;
+ * the caller's renderer applies them. */
+lumo_status lumo_session_move_light(lumo_session *s, uint32_t i, const lumo_q16_16 pos[3]);
+lumo_status lumo_session_set_mesh_pose(lumo_session *s, uint32_t i, const lumo_q16_16 t[3], lumo_q16_16 yaw_deg);
+lumo_status lumo_session_mesh_pose(const lumo_session *s, uint32_t i, lumo_q16_16 t[3], lumo_q16_16 *yaw_deg);
+
 /* The lighting progress (above) into *out. */
 void lumo_session_lighting_progress(const lumo_session *s, lumo_session_lighting *out);
 

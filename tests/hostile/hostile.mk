@@ -1,0 +1,42 @@
+# tests/hostile/hostile.mk — models, bakes and packages from hostile hands
+# (issue 24, part B): the generated-corpus suite tests/hostile/hostile.sh in
+# `make test`, the model front end's unit test, and the two host-side fuzz
+# targets (lumo's model checks, the scene-file parser) whose sources sit
+# with the others in tests/fuzz/ but link server code, so they get their
+# own rules here (the top Makefile's fuzz-smoke and fuzz-long run them
+# with every other target).
+
+# ---- fuzz targets over server code -----------------------------------------------
+FUZZ_HOST_CFLAGS := -std=c11 -D_GNU_SOURCE -g -O1 $(CLIENT_INC) -Iserver -Itools/lib/include \
+                    -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
+FUZZ_SCENE_SRCS  := server/scene/scene_file.c server/scene/scene.c server/scene/shapes.c \
+                    server/scene/camera.c server/scene/import.c server/scene/import_io.c \
+                    server/scene/model_check.c
+
+$(BUILD)/fuzz/bin/fuzz_model_check: tests/fuzz/fuzz_model_check.c server/scene/model_check.c \
+                                    server/scene/model_check.h
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_model_check
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_model_check.c server/scene/model_check.c -lm
+
+# The scene room calls the SDK (the camera fit): its sources, built alike.
+$(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) $(wildcard server/scene/*.h) \
+                                   $(filter sdk/%,$(CLIENT_SRCS))
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_scene_file
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) \
+	    $(filter sdk/%,$(CLIENT_SRCS)) -lassimp -lm
+
+# ---- the generated corpus ------------------------------------------------------------
+# tests/hostile/gen_hostile writes every case (models, scene files, packages
+# rewritten from a real bake with valid checksums) into a fresh directory
+# at test time; hostile.sh runs each under a memory and time limit.
+HOSTILE_GEN := $(BUILD)/tests/bin/gen_hostile
+
+$(HOSTILE_GEN): $(BUILD)/tests/tests/hostile/gen_hostile.o $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
+
+TEST_STEPS += test-hostile-input
+.PHONY: test-hostile-input
+test-hostile-input: $(HOSTILE_GEN) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render $(BIN)/lumo-inspect \
+                    $(BIN)/lumo-server
+	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input
