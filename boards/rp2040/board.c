@@ -16,7 +16,7 @@
 #include "board.h"
 
 #ifndef RP2040_SCRATCH_BYTES
-#define RP2040_SCRATCH_BYTES (140u << 10)
+#define RP2040_SCRATCH_BYTES (128u << 10)
 #endif
 
 #define REG(addr) (*(volatile uint32_t *)(addr))

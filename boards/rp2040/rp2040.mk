@@ -30,7 +30,7 @@ rp2040-sdk:
 # at most 4 KiB, 24 KiB of picture memory (one 16-row band at 320 pixels
 # is 15 KiB), no recording; board.c's scratch holds these and the scene.
 RP2040_CLIENT_FLAGS := -DCLIENT_MAX_PAYLOAD=4096u -DCLIENT_PICTURE_BYTES=24576u -DCLIENT_RECORD_BYTES=0u \
-                       -DRP2040_SCRATCH_BYTES=143360u
+                       -DRP2040_SCRATCH_BYTES=131072u
 $(BUILD)/board/obj-m0/%.o: %.c
 	@mkdir -p $(@D)
 	$(ARM_CC) $(CLIENT_CFLAGS_m0) -Iboards -Iboards/common $(RP2040_CLIENT_FLAGS) -MMD -MP -c $< -o $@
@@ -38,7 +38,11 @@ $(BUILD)/board/obj-m0/%.o: %.c
 RP2040_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m0/%.o,$(BOARD_CLIENT_SRCS) boards/rp2040/startup.c boards/common/stack_paint.c \
     boards/rp2040/board.c boards/armv7m/semihost.c boards/common/console.c)
 RP2040_LIBS := $(RP2040_SDK)/liblumo_net.a $(RP2040_SDK)/liblumo_raster.a $(RP2040_SDK)/liblumo.a
+# Only the top make asks the sub-make; inside it (CROSS set) the libraries
+# are sdk/cross.mk's own targets, or it would call itself for ever.
+ifeq ($(CROSS),)
 $(RP2040_LIBS): rp2040-sdk
+endif
 
 $(RP2040_OUT)/client.elf: $(RP2040_OBJS) $(RP2040_LIBS) boards/rp2040/rp2040.ld
 	@mkdir -p $(@D)
