@@ -76,6 +76,11 @@ void lumo_net_client_reset_link(lumo_net_client *c)
 {
     uint32_t m;
 
+    /* Ask again in the order the lost requests were first asked: the round
+     * robin resumes where it stood before the oldest of them, so a resumed
+     * session makes the requests an uncut one makes (fixed sizes). */
+    if (c->npending)
+        c->turn = c->pending[0].turn;
     c->npending = 0;
     c->partial_records = 0;
     for (m = 0; m < c->mesh_count; m++)
@@ -132,6 +137,7 @@ static void expect(lumo_net_client *c, uint8_t channel, uint32_t mesh, uint32_t 
 
     p->channel = channel, p->mesh = mesh, p->cursor = 0, p->end = end;
     p->sent_ms = c->hello_ms;   /* asked with HELLO: its round trip counts from there */
+    p->turn = c->turn;
 }
 
 /* The answers the server sends after WELCOME when HELLO asked for the first
@@ -641,7 +647,7 @@ static int all_held(const lumo_net_client *c)
 
 lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, size_t *written)
 {
-    uint32_t mesh = 0;
+    uint32_t mesh = 0, turn;
     int channel;
     lumo_status st;
 
@@ -650,6 +656,7 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
     *written = 0;
     if (c->state == LUMO_NET_FAILED)
         return c->error;
+    turn = c->turn;
     if (c->state != LUMO_NET_READY)   /* waiting for WELCOME, or done: nothing to send */
         return c->state == LUMO_NET_DONE || c->state == LUMO_NET_HELLO_SENT ? LUMO_OK : LUMO_ERR_STATE;
     if (c->npending == 0 && all_held(c)) {
@@ -664,7 +671,12 @@ lumo_status lumo_net_client_next(lumo_net_client *c, uint8_t *out, size_t cap, s
          !(c->npending < MAX_PIPELINE && link_idles(c))) ||
         (channel = pick(c, &mesh)) < 0)
         return LUMO_OK;
-    return send_request(c, channel, mesh, out, cap, written);
+    if ((st = send_request(c, channel, mesh, out, cap, written))) {
+        c->turn = turn;
+        return st;
+    }
+    c->pending[c->npending - 1].turn = turn;
+    return LUMO_OK;
 }
 
 /* ---- lossy links ------------------------------------------------------------------ */
@@ -721,6 +733,7 @@ lumo_status lumo_net_client_resync(lumo_net_client *c, uint8_t *out, size_t cap,
         return st;
     p = &c->pending[0];
     p->channel = r.channel, p->mesh = 0, p->cursor = p->end = r.cursor, p->sent_ms = now_ms(c);
+    p->turn = c->turn;
     c->npending = 1;
     c->data_bytes = 0;
     return LUMO_OK;

@@ -83,6 +83,8 @@ typedef struct lumo_net_pending {
     uint8_t  channel;              /* lumo_net_channel */
     uint32_t mesh, cursor, end;    /* batches / rounds [cursor, end) */
     uint32_t sent_ms;              /* the clock when it was written */
+    uint32_t turn;                 /* the round robin's turn before it was picked:
+                                    * a cut rewinds to the oldest lost request's */
 } lumo_net_pending;
 
 /* Per-unit costs the adaptive policy learns (fixed point: ms * 1024). */
