@@ -31,6 +31,14 @@ proxy() {
     pport=$(cat "$dir/$name.pport")
 }
 # stat NAME FIELD: the sum of a field over the proxy's connections.
+# stop_proxy NAME: the proxy logs a connection when it closes, a moment after
+# the client has gone: wait (5 s at most) for the last, uncut connection's
+# line, then stop it (stopping it first lost that line's bytes now and then).
+stop_proxy() {
+    i=0
+    while ! grep -q ' cut 0$' "$dir/$1.stats" 2>/dev/null && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+}
 stat() { awk -v k="$2" '{ for (i = 1; i < NF; i++) if ($i == k) s += $(i + 1) } END { print s + 0 }' "$dir/$1.stats"; }
 
 # lc NAME ARGS...: lumo-client into $dir/NAME (60 s at most); $st its status.
@@ -176,7 +184,7 @@ if start main "$scene" "$split"; then
     FIXED="--vertices 300 --rounds 5 --pipeline 4"
     if proxy uncut "$port" --cuts 0; then
         lc uncut --connect "127.0.0.1:$pport" --frames-at $AT $FIXED --record "$dir/uncut.rec"
-        kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+        stop_proxy uncut
         if complete uncut; then ok "uncut run through the proxy: $(sed 's/^lumo-client: //' "$dir/uncut.out")"; else bad "uncut run"; show uncut; fi
     fi
     total=$(summary_field "bytes in" uncut)
@@ -184,7 +192,7 @@ if start main "$scene" "$split"; then
         r=cut$seed
         proxy "$r" "$port" --cuts 8 --span $((total / 6)) --seed $seed || continue
         lc "$r" --connect "127.0.0.1:$pport" --frames-at $AT $FIXED --retries 5 --record "$dir/$r.rec"
-        kill "$ppid" 2>/dev/null; wait "$ppid" 2>/dev/null
+        stop_proxy "$r"
         cuts=$(stat "$r" cut); partial=$(stat "$r" partial)
         extra=$(( $(summary_field "bytes in" "$r") - total ))
         welcomes=$(( $(stat "$r" welcome) - $(stat uncut welcome) ))
