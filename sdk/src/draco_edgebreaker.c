@@ -1009,7 +1009,9 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
     for (i = 0; i < e->num_attr_data; ++i)
         if (!e->ad[i].shared)
             own[nown++] = &e->ad[i];
+    const uint32_t *c2v0;  /* the first one's in a local: one load per corner */
     memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
+    c2v0 = nown ? own[0]->c2v : NULL;
     for (v = 0; v < e->num_vertices; ++v) {
         uint32_t c = e->lmc[v], dedup, prev;
         if (c == LD_INV)
@@ -1045,11 +1047,12 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
         prev = c;
         c = ld_eb_mswing_right(e, c, packed);
         while (c != LD_INV && c != dedup) {
-            int seam = 0;
+            int seam;
             if (budget == 0)
                 return LUMO_ERR_LIMIT;
             --budget;
-            for (i = 0; i < nown && !seam; ++i)
+            seam = nown && c2v0[c] != c2v0[prev];
+            for (i = 1; i < nown && !seam; ++i)
                 seam = own[i]->c2v[c] != own[i]->c2v[prev];
             pts[c] = seam ? np++ : pts[prev];
             prev = c;
