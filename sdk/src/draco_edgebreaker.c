@@ -34,8 +34,12 @@ typedef struct ld_attr_data {
     uint8_t *seam;         /* per corner: opposite edge is a seam */
     uint8_t *vseam;        /* per mesh vertex: on a seam */
     uint32_t *c2v;         /* attribute vertex of each corner */
-    uint32_t *lmc;         /* attribute vertex -> left-most corner */
+    uint8_t *border;       /* attribute vertex -> on a border or seam (the
+                              depth-first walk's only use of a left-most
+                              corner: a byte, not a 32-bit corner) */
     uint32_t ones;         /* interior edges marked as seams */
+    uint8_t shared;        /* no interior seam: ct is the mesh's table
+                              (ld_eb_attr_table), no c2v or seam of its own */
     ld_ct ct;
 } ld_attr_data;
 
@@ -50,6 +54,8 @@ struct ld_eb {
     uint8_t *hole;
     uint8_t *lmc_top;          /* one past the left-most corners' block */
     uint8_t *o24_top;          /* one past the 24-bit opposites' block */
+    uint8_t *seam_top;         /* one past the attributes' seam flags */
+    uint32_t seam_reads;       /* seam bits read per attribute data */
     uint8_t *opp_top;          /* one past the 32-bit opposites' block */
     /* after ld_eb_pack, without seams: work memory from table_lo up to
      * lmc_top holds the packed table's escapes and indices, then from
@@ -790,6 +796,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
                 }
         }
     }
+    e->seam_reads = reads;
     return LUMO_OK;
 }
 
@@ -810,7 +817,8 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
     a->ct.opp = e->ct.opp;
     a->ct.vmask = 0xFFFFFFFFu;
     a->ct.seam = a->seam;
-    a->ct.lmc = a->lmc;
+    a->ct.lmc = NULL;
+    a->ct.border = a->border;
     a->ct.num_corners = e->num_corners;
     for (v = 0; v < e->num_vertices; ++v) {
         uint32_t c = e->lmc[v], first, act, vid;
@@ -832,7 +840,10 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
             }
         }
         a->c2v[first] = vid;
-        a->lmc[vid] = first;
+        /* Every end of a seam or border edge is in vseam (ld_add_seam),
+         * and its fan starts where the swing left ends: a border for the
+         * depth-first walk. Without one the fan is closed. */
+        a->border[vid] = a->vseam[v];
         act = ld_eb_mswing_right(e, first, packed);
         while (act != LD_INV && act != first) {
             if (budget == 0)
@@ -842,7 +853,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
                 if (n >= e->num_corners)
                     return LUMO_ERR_CORRUPT;
                 vid = n++;
-                a->lmc[vid] = act;
+                a->border[vid] = 1;  /* its left edge is a seam */
             }
             a->c2v[act] = vid;
             act = ld_eb_mswing_right(e, act, packed);
@@ -991,16 +1002,24 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
 static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, int packed)
 {
     uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
-    uint32_t v, i, np = 0;
+    uint32_t v, i, np = 0, live = 0, nown = 0;
     uint32_t *pts = d->faces;
+    /* only attributes with interior seams cut a fan (ld_eb_attr_tables) */
+    const ld_attr_data *own[LD_MAX_ATTR_DATA];
+    for (i = 0; i < e->num_attr_data; ++i)
+        if (!e->ad[i].shared)
+            own[nown++] = &e->ad[i];
+    const uint32_t *c2v0;  /* the first one's in a local: one load per corner */
     memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
+    c2v0 = nown ? own[0]->c2v : NULL;
     for (v = 0; v < e->num_vertices; ++v) {
         uint32_t c = e->lmc[v], dedup, prev;
         if (c == LD_INV)
             continue;
+        live++;
         dedup = c;
-        for (i = 0; i < e->num_attr_data && !e->hole[v]; ++i) {
-            const ld_attr_data *a = &e->ad[i];
+        for (i = 0; i < nown && !e->hole[v]; ++i) {
+            const ld_attr_data *a = own[i];
             uint32_t vid, act;
             int found = 0;
             if (!a->vseam[ld_eb_mvert(e, c, packed)])
@@ -1028,26 +1047,28 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
         prev = c;
         c = ld_eb_mswing_right(e, c, packed);
         while (c != LD_INV && c != dedup) {
-            int seam = 0;
+            int seam;
             if (budget == 0)
                 return LUMO_ERR_LIMIT;
             --budget;
-            for (i = 0; i < e->num_attr_data && !seam; ++i)
-                seam = e->ad[i].c2v[c] != e->ad[i].c2v[prev];
+            seam = nown && c2v0[c] != c2v0[prev];
+            for (i = 1; i < nown && !seam; ++i)
+                seam = own[i]->c2v[c] != own[i]->c2v[prev];
             pts[c] = seam ? np++ : pts[prev];
             prev = c;
             c = ld_eb_mswing_right(e, c, packed);
         }
     }
     {   /* at most one per corner, and at most the attribute vertices
-         * together (each cut of a fan is some attribute's cut): the
-         * bounds of the arena need */
+         * together (each cut of a fan is some attribute's cut; a shared
+         * table has one per live vertex): the bounds of the arena need */
         uint64_t sum = 0, ones = 0;
         for (i = 0; i < e->num_attr_data; ++i) {
-            sum += e->ad[i].ct.num_vertices;
+            sum += e->ad[i].shared ? live : e->ad[i].ct.num_vertices;
             ones += e->ad[i].ones;
         }
-        if (np > e->num_corners || np > sum || np > e->encoded_vertices + 2u * ones)
+        if (np > e->num_corners || np > sum || np > e->encoded_vertices + 2u * ones ||
+            live > e->encoded_vertices)
             return LUMO_ERR_CORRUPT;
     }
     d->num_points = np;
@@ -1111,20 +1132,74 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     return LUMO_OK;
 }
 
+/* The seam reading's tables: every vertex seam flag block, then every
+ * corner seam flag block (lowest), so the seam flags of attributes without
+ * interior seams can go when they are read (ld_eb_attr_tables). */
 static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        a->seam = ld_tmp(&d->mem, e->num_corners, 1);
         a->vseam = ld_tmp(&d->mem, e->num_vertices + 1u, 1);
-        a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-        a->lmc = ld_tmp(&d->mem, e->num_corners + 1u, sizeof(uint32_t));
-        if (!a->seam || !a->vseam || !a->c2v || !a->lmc)
+        if (!a->vseam)
+            return LUMO_ERR_NOMEM;
+        memset(a->vseam, 0, e->num_vertices + 1u);
+    }
+    e->seam_top = ld_tmp_mark(&d->mem);
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->seam = ld_tmp(&d->mem, e->num_corners, 1);
+        if (!a->seam)
             return LUMO_ERR_NOMEM;
         memset(a->seam, 0, e->num_corners);
-        memset(a->vseam, 0, e->num_vertices + 1u);
+    }
+    return LUMO_OK;
+}
+
+/* An attribute whose seam bits mark no interior edge splits no vertex (its
+ * seams are the mesh's borders): its corner table is the mesh's, read with
+ * its vertex seam flags as the depth-first walk's border bytes (a vertex
+ * is on a border exactly when a border edge ends there, ld_add_seam), and
+ * its seam flags go. The others keep their seam flags, moved up over the
+ * dead ones, and get a vertex per corner and border bytes of their own. */
+static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
+{
+    uint8_t *top = e->seam_top;
+    uint32_t i, j;
+    lumo_status st;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        /* Decided on the first 3F/2 bits, as the arena need (which cannot
+         * tell interior edges from borders) counts them: the bits past the
+         * interior edges' are read too (one per border edge pair; none on
+         * a closed mesh), and a one among them keeps the table apart. */
+        uint32_t ones = a->ones;
+        for (j = e->seam_reads; j < e->num_corners / 2u && ones == 0; ++j)
+            ones += ld_rabs_bit(&a->seams);
+        a->shared = ones == 0;
+        if (a->shared) {
+            a->ct = e->ct;
+            a->ct.seam = NULL;
+            a->ct.lmc = NULL;
+            a->ct.border = a->vseam;
+            a->seam = NULL;
+            continue;
+        }
+        top = ld_move_up(top, a->seam, e->num_corners);
+        a->seam = top;
+    }
+    ld_tmp_release(&d->mem, top);
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        if (a->shared)
+            continue;
+        a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
+        a->border = ld_tmp(&d->mem, e->num_corners + 1u, 1);
+        if (!a->c2v || !a->border)
+            return LUMO_ERR_NOMEM;
         memset(a->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
+        if ((st = ld_eb_attr_vertices(e, a)))
+            return st;
     }
     return LUMO_OK;
 }
@@ -1133,7 +1208,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
 {
     struct ld_eb *e;
     uint8_t *mark;
-    uint32_t verts, faces, symbols, splits, i;
+    uint32_t verts, faces, symbols, splits;
     uint8_t type, nad;
     lumo_status st;
     if ((st = ld_u8(&d->buf, &type)))
@@ -1199,9 +1274,8 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
         return st;
     if (nad && (st = ld_eb_seams(e)))
         return st;
-    for (i = 0; i < nad; ++i)
-        if ((st = ld_eb_attr_vertices(e, &e->ad[i])))
-            return st;
+    if (nad && (st = ld_eb_attr_tables(d, e)))
+        return st;
     return ld_eb_points(d, e);
 }
 
@@ -1557,8 +1631,8 @@ static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
 
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean)
 {
-    uint32_t verts, faces, symbols, splits, num_splits, i;
-    size_t mark, o24_top;
+    uint32_t verts, faces, symbols, splits, num_splits, i, own = 0;
+    size_t mark, o24_top, seam_top;
     uint8_t type, nad;
     lumo_status st;
     if ((st = ld_u8(b, &type)))
@@ -1611,11 +1685,22 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     ld_need_release(k, mark);
     if (lean && nad)
         ld_eb_need_pack(k, e, o24_top);
-    for (i = 0; i < nad; ++i) {  /* ld_eb_alloc_attr_data */
-        ld_need_tmp(k, 3u * (size_t)faces, 1);
+    for (i = 0; i < nad; ++i)  /* ld_eb_alloc_attr_data */
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
+    seam_top = k->work;
+    for (i = 0; i < nad; ++i)
+        ld_need_tmp(k, 3u * (size_t)faces, 1);
+    /* ld_eb_attr_tables: shared when the first 3F/2 seam bits hold no one */
+    for (i = 0; i < nad; ++i) {
+        e->ad_shared[i] = e->seam_ones[i] == 0;
+        own += !e->ad_shared[i];
+    }
+    ld_need_release(k, seam_top + own * ld_need_bytes(3u * (size_t)faces, 1));
+    for (i = 0; i < nad; ++i) {
+        if (e->ad_shared[i])
+            continue;
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-        ld_need_tmp(k, 3u * (size_t)faces + 1u, sizeof(uint32_t));
+        ld_need_tmp(k, 3u * (size_t)faces + 1u, 1);
     }
     e->table_live = nad == 0;
     return LUMO_OK;
@@ -1684,7 +1769,8 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
                          const ld_buf *b)
 {
     const int8_t ad = e->dec_att_data[decoder];
-    const int own = ad < 0 || e->dec_type[decoder] == 0;  /* the mesh's corner table */
+    /* the mesh's corner table, or an attribute's that shares it */
+    const int own = ad < 0 || e->dec_type[decoder] == 0 || e->ad_shared[ad];
     const uint64_t corners = 3u * (uint64_t)e->faces;
     /* vertices of the table traversed, and the vertex map's size */
     const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_eb_need_attr_vertices(k, e, ad);
@@ -1692,7 +1778,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
     int keep = 0;
-    if (ad >= 0 && ld_eb_need_attr_vertices(k, e, ad) > vmap)
+    if (ad >= 0 && !e->ad_shared[ad] && ld_eb_need_attr_vertices(k, e, ad) > vmap)
         vmap = ld_eb_need_attr_vertices(k, e, ad);
     if (!e->nad && !e->settled) {  /* ld_eb_sequence: the left-most corners */
         const size_t border = ld_eb_border_needed(e->num_decoders, e->dec_traversal)

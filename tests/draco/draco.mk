@@ -40,7 +40,7 @@ TEST_STEPS += draco-conformance
 
 # arena / output of the 48k dragon at -cl 0, 7, 10 under fixed limits
 .PHONY: draco-arena
-draco-arena: $(BIN)/lumo-draco-decode
+draco-arena: $(BIN)/lumo-draco-decode $(DRACO_GEN_ATTR)
 	@sh tests/draco/arena_check.sh $(BUILD)
 TEST_STEPS += draco-arena
 
