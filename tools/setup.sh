@@ -36,6 +36,8 @@ libcurl4-openssl-dev
 libmeshoptimizer-dev
 libcgal-demo
 doxygen
+libopenmpi-dev
+openmpi-bin
 "
 
 missing=""
