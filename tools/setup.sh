@@ -38,6 +38,7 @@ libcgal-demo
 doxygen
 libopenmpi-dev
 openmpi-bin
+time
 "
 
 missing=""

@@ -10,7 +10,7 @@
 
 size_t srv_work_chunk_items(size_t items)
 {
-    size_t c = (items + 255) / 256;
+    size_t c = (items + 1023) / 1024;
     return c < 16 ? 16 : c > 4096 ? 4096 : c;
 }
 

@@ -46,9 +46,10 @@ typedef struct srv_work_report {
     uint64_t rank_bytes[SRV_WORK_MAX_RANKS];   /* bytes each rank sent and received (rank 0: 0) */
 } srv_work_report;
 
-/* Items per chunk for n items: about 256 chunks (enough for dynamic load
- * balancing over dozens of ranks, few enough that a chunk's thread barrier
- * and its message cost nothing), at least 16 items, at most 4096. */
+/* Items per chunk for n items: about 1024 chunks (a 64^3 grid gives 16
+ * chunks to each of 64 ranks, so the last chunk out is a small tail: the
+ * model in docs/benchmarks.md), at least 16 items (so a chunk's thread
+ * barrier and message cost little), at most 4096. */
 size_t srv_work_chunk_items(size_t items);
 size_t srv_work_chunks(const srv_work *w);
 /* Chunk c's first item and item count. */

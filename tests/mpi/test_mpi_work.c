@@ -87,7 +87,7 @@ static void test_chunk_table(void **state)
         srv_work w = fake_work(&f, counts[t], 1);
         size_t next = 0, n = srv_work_chunks(&w);
         assert_true(w.chunk_items >= 16 && w.chunk_items <= 4096);
-        assert_true(n >= 1 && (n <= 256 || w.chunk_items == 4096));
+        assert_true(n >= 1 && (n <= 1024 || w.chunk_items == 4096));
         for (size_t c = 0; c < n; c++) {
             size_t first, count;
             srv_work_chunk(&w, c, &first, &count);
