@@ -79,9 +79,10 @@ echo "threads, so a run with more threads or processes can get more than its cor
 echo "above the core count: that is the other jobs' share moving to this one, not the bake scaling. The CPU"
 echo "column is the cost that does not depend on the load."
 echo
-echo "Communication, 2 ranks: chunks (bytes exchanged with rank 0) per rank: $chunks — rank 1 sent"
-echo "$bytes bytes for ${grid}³ = $((grid * grid * grid)) vertices in all, i.e. about 292 bytes (one srv_bake_record)"
-echo "per vertex it computed plus 24 bytes per chunk; rank 0 sends 8 bytes per chunk handed out."
+echo "Communication, 2 ranks: chunks (bytes exchanged with rank 0) per rank: $chunks — rank 1 exchanged"
+echo "$bytes bytes with rank 0 for its share of the ${grid}³ = $((grid * grid * grid)) vertices: 292 bytes (one"
+echo "srv_bake_record) per vertex it computed, 16 bytes of result head and 8 of assignment per chunk, 32 of"
+echo "hello. The second rank's extra CPU over the peer, $(printf %.2f "$(echo "$cpu_m2x1 - $cpu_p1" | bc -l)") s, is its own scene load and Embree build, MPI's"
+echo "start and the 200 µs polling of waiting ranks."
 echo
-outside=$(echo "$wall_p2 - $ivg_p2" | bc -l)
-"$model" "$grid" "$spp" "$outside" "$launch" "$ivg_p1" "$ivg_m2x1"
+"$model" "$grid" "$spp" "$cpu_p1" "$launch"

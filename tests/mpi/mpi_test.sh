@@ -46,6 +46,15 @@ ref="--default --dragon build/data/models/dragon_11k.ply --reference 48x40 --spp
 "$bake" $ref --threads 2 -o "$dir/ref.png" 2>/dev/null || bad "reference in one process"
 mpi 3 "$bake" $ref --threads 1 -o "$dir/ref3.png" 2>/dev/null || bad "reference over 3 ranks"
 same "mpirun -np 3: reference image byte-identical" "$dir/ref.png" "$dir/ref3.png"
+rm -rf "$dir/rck"
+mpi 2 "$bake" $ref --threads 1 --checkpoint "$dir/rck" -o "$dir/refck.png" 2>/dev/null || bad "reference over 2 ranks, checkpoint"
+"$bake" $ref --threads 2 --checkpoint "$dir/rck" -o "$dir/refck1.png" 2>"$dir/refck1.err"
+if grep -q "reference.ckpt: \([0-9]*\) of \1 chunks resumed" "$dir/refck1.err"; then
+    ok "the reference's checkpoint from 2 ranks resumes whole in one process"
+else
+    bad "reference checkpoint"; sed 's/^/    /' "$dir/refck1.err"
+fi
+same "reference from the checkpoint byte-identical" "$dir/ref.png" "$dir/refck1.png"
 
 # A rank with another scene (MPMD: rank 1 gets another model) is refused.
 mpirun $root --oversubscribe -np 1 "$bake" $scene -o "$dir/mixed.lumo" : \
