@@ -10,7 +10,9 @@
 HOST_TOOLS += $(BIN)/lumo-bake
 
 LUMO_MPI_PC ?= ompi-c
-LUMO_MPI    ?= $(if $(shell pkg-config --exists $(LUMO_MPI_PC) 2>/dev/null && echo 1),1,0)
+ifndef LUMO_MPI
+LUMO_MPI := $(if $(shell pkg-config --exists $(LUMO_MPI_PC) 2>/dev/null && echo 1),1,0)
+endif
 ifeq ($(LUMO_MPI),1)
 BAKE_CLUSTER_OBJ := $(BUILD)/host/server/bake/cluster/cluster_mpi.o
 BAKE_CLUSTER_LIBS := $(shell pkg-config --libs $(LUMO_MPI_PC))
