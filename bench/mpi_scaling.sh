@@ -22,7 +22,7 @@ run() {
         if [ "$np" -eq 0 ]; then
             /usr/bin/time -f "%e %U %S" -o "$dir/time" "$bake" $args --threads "$th" -o "$dir/$name.lumo" 2>"$dir/$name.err"
         else
-            /usr/bin/time -f "%e %U %S" -o "$dir/time" mpirun $root --oversubscribe -np "$np" "$bake" $args \
+            /usr/bin/time -f "%e %U %S" -o "$dir/time" mpirun $root --oversubscribe --bind-to none -np "$np" "$bake" $args \
                 --threads "$th" -o "$dir/$name.lumo" 2>"$dir/$name.err"
         fi
         sed -n 's/.* rays in \([0-9.]*\) s .*/\1/p' "$dir/$name.err" >>"$dir/$name.ivg"
@@ -59,7 +59,8 @@ echo "Command: \`make bench-mpi\` (bench/mpi_scaling.sh, bench/mpi_model.c). Def
 echo "${grid}³ grid, $spp spp, seed 1; Open MPI $(mpirun --version 2>/dev/null | sed -n '1s/.* //p'), shared memory between"
 echo "the ranks. **This machine has $(nproc) cores, shared with other jobs** (1-minute load $load0 at the start, $load1 at"
 echo "the end): it shows that the split works and what it costs, not how a cluster scales; 2 ranks × 2 threads"
-echo "oversubscribe the cores (\`--oversubscribe\`). Median of $reps runs. IVG stage = the bake from the first chunk"
+echo "oversubscribe the cores (\`--oversubscribe\`; every mpirun also has \`--bind-to none\`, else Open MPI would"
+echo "pin each rank, threads and all, to one core). Median of $reps runs. IVG stage = the bake from the first chunk"
 echo "handed out to the last result in (lumo-bake's summary line); whole run = wall time of the command (MPI"
 echo "launch, every rank's scene load and Embree build, rank 0's meshes and package). Speed-ups against the"
 echo "plain single-process lumo-bake with 1 thread in the same run; CPU = user + system seconds of every"
