@@ -26,15 +26,16 @@ typedef struct srv_cluster {
     int mpi;          /* MPI was initialised */
 } srv_cluster;
 
-/* The rank count an MPI launcher announced in the environment (Open MPI's
- * mpirun, Hydra, Slurm with PMI/PMIx), 0 when not started by one. */
+/* 0 when not started by an MPI launcher, else the rank count it announced
+ * in the environment (Open MPI's mpirun, Hydra, Slurm with PMI), or for a
+ * PMIx launch that gives only the rank, a lower bound of it (rank + 1). */
 static inline int srv_cluster_launched(void)
 {
-    const char *v[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"};
-    for (int i = 0; i < 3; i++)
-        if (getenv(v[i]))
-            return atoi(getenv(v[i])) > 1 ? atoi(getenv(v[i])) : 1;
-    return 0;
+    const char *size = getenv("OMPI_COMM_WORLD_SIZE") ? getenv("OMPI_COMM_WORLD_SIZE") : getenv("PMI_SIZE");
+    const char *rank = getenv("PMIX_RANK");
+    if (size)
+        return atoi(size) > 1 ? atoi(size) : 1;
+    return rank ? (atoi(rank) > 0 ? atoi(rank) + 1 : 1) : 0;
 }
 
 /* Join the job: under a launcher, initialise MPI (threads: funnelled
