@@ -69,7 +69,27 @@ int board_link_write(const uint8_t *buf, size_t n);
 
 /* Receive up to cap bytes: waits up to timeout_ms for the first one, then
  * takes what follows without waiting. Returns the bytes read (0: none came
- * within the timeout), or -1 when the board has no link or it closed. */
+ * within the timeout), -1 when the board has no link or it closed, or
+ * BOARD_LINK_NEW when the link was cut and is back as a new connection
+ * whose peer knows nothing of the conversation (a USB gadget unplugged and
+ * plugged again, boards/linux-gadget): bytes of the old one are gone, and
+ * the program starts over with HELLO and the cursors it holds. */
+#define BOARD_LINK_NEW (-2)
 int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms);
+
+/* ---- the display: a board's own screen -------------------------------------
+ * lm3s6965evb: the SSD0323 OLED (128 x 64, 16 grey levels, over SSI0);
+ * the other boards have none (their pictures are hashed and written). */
+
+/* Show rows y .. y + rows - 1 of the screen, `width` pixels each: 4-bit
+ * grey, two pixels a byte, the left one in the high nibble, width / 2 bytes
+ * a row (the SSD0323's own order). 0, or -1 when the board has no such
+ * screen or the rows do not fit it. */
+int board_display_grey4(uint16_t y, uint16_t rows, uint16_t width, const uint8_t *px);
+
+/* Keep the screen as it is and wait for ever, as a device showing its last
+ * picture (QEMU: until the test quits it through QMP). Never returns; a
+ * board without a screen (host) exits with 0. */
+void board_hold(void);
 
 #endif /* LUMO_BOARD_H */

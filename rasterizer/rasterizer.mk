@@ -21,10 +21,9 @@ raster-tables:
 RASTER_UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/bin/%,$(wildcard tests/unit/test_raster*.c))
 RASTER_UNIT_LIBS  := $(BUILD)/tests/libmesh_build.a $(BUILD)/host/libserver.a $(BUILD)/san/liblumo_raster.a \
                      $(BUILD)/san/liblumo.a
-# TODO(merge): the server library is its desktop build (-O2, no sanitizers);
-# a test build of it (server/ fragment, server branch) would put the parsers
-# and the encoder back under ASan/UBSan here, as the single test-flag object
-# did. Wherever the server branch moves them, this archive link stays as it is.
+# The server library here is its desktop build (-O2, no sanitizers), as in
+# tests/server: the scene parsers and the IVG encoder these tests call run
+# unsanitized (only the client code they drive is under ASan/UBSan).
 
 # test_raster_scene builds the server's default scene and imports an OBJ.
 RASTER_UNIT_LDLIBS_test_raster_scene = $(SERVER_LIBS)

@@ -36,6 +36,8 @@ libcurl4-openssl-dev
 libmeshoptimizer-dev
 libcgal-demo
 doxygen
+qemu-system-x86
+busybox-static
 libopenmpi-dev
 openmpi-bin
 time

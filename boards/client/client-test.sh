@@ -13,7 +13,7 @@
 #     --loss 0.2 (silences too);
 # Every run must exit 0; the HASH lines of 1-3 must be identical, and the
 # full scene's (frame-100-*) in 4. Servers and QEMU are killed on exit
-# (trap); every run is bounded by `timeout`. QEMU_CMD is the board's QEMU
+# (trap); every run is bounded in CPU time (ulimit -t) and wall time (timeout). QEMU_CMD is the board's QEMU
 # invocation without -kernel; its "-serial none" is replaced by the link.
 # Prints "RESULT: N passed, M failed". Logs: DIR/*.log.
 dir=$1; scene=$2; server=$3; host=$4; elf=$5; qemu=$6
@@ -29,11 +29,19 @@ serve() {
     serial=$(cut -d' ' -f2 "$dir/$name.port")
 }
 
-# run LOG CMD...: in the background (so the trap can end it), 60 s at most;
-# its status in $st, its HASH lines in LOG.hash.
+# run LOG CMD...: in the background (so the trap can end it); its status in
+# $st, its HASH lines in LOG.hash. Bounded by CPU time, 60 s (ulimit -t:
+# SIGXCPU, exit 152), and by wall time, 600 s, for a process that hangs
+# without computing. CPU, not wall time, because what a run needs is
+# measured in CPU and the machine is shared: QEMU spends about 30 us of host
+# CPU per byte moved through the CMSDK UART model (one byte per main-loop
+# turn), so the live session costs 13-15 s of CPU against 4.8 s for the
+# replay of the same bytes (4.39 G guest instructions either way); with 8
+# builds on 2 cores that was 50-65 s of wall time, and a 60 s wall limit
+# killed a healthy run (docs/porting.md §7).
 run() {
     log=$1; shift
-    timeout 60 "$@" </dev/null >"$log" 2>&1 &
+    timeout 600 sh -c 'ulimit -t 60; exec "$@"' run "$@" </dev/null >"$log" 2>&1 &
     p=$!
     pids="$pids $p"
     wait $p; st=$?

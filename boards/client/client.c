@@ -18,10 +18,19 @@
  * (REQUEST_VERTICES, REQUEST_ROUNDS), so what is asked, and the state the
  * scene is drawn in, depend only on the answers, never on timing.
  *
+ * A picture of the board's screen size (CLIENT_SCREEN_W x CLIENT_SCREEN_H,
+ * the lm3s6965evb's 128 x 64 OLED) is also reduced to 16 grey levels band
+ * by band (grey4.h), hashed ("HASH grey-<share>-<W>x<H>") and handed to
+ * board_display_grey4, so the screen shows the scene as it refines.
+ *
  * Command line (board_cmdline; QEMU: -append): --replay FILE applies a
  * recording (the bytes a live run received) read with board_read_file,
  * the driver in replay mode; --record FILE writes the bytes received;
- * --out DIR writes every picture as DIR/frame-<share>-<W>x<H>.ppm.
+ * --out DIR writes every picture as DIR/frame-<share>-<W>x<H>.ppm (and
+ * its grey reduction as DIR/grey-<share>-<W>x<H>.pgm); --hold keeps the
+ * last picture on the board's screen when the scene is complete
+ * (board_hold, never returns: QEMU until the test quits it);
+ * --no-pictures streams the scene and draws nothing (throughput runs).
  *
  * Client rules (docs/architecture.md): C99, no heap, no float, no stdio.
  * Memory: board_scratch() holds the receive buffer, the recording, the
@@ -38,6 +47,7 @@
 #include "lumo/session.h"
 #include "board.h"
 #include "console.h"
+#include "grey4.h"
 
 int main(void);
 
@@ -53,6 +63,21 @@ int main(void);
 #ifndef CLIENT_RECORD_BYTES
 #define CLIENT_RECORD_BYTES (2u << 20)
 #endif
+/* The pictures drawn ({W, H} each, the first also the size stated in
+ * HELLO) and the rows of one band (a band costs W x rows x 6 bytes). */
+#ifndef CLIENT_SIZES
+#define CLIENT_SIZES {320, 240}, {160, 128}
+#endif
+#ifndef CLIENT_BAND_ROWS
+#define CLIENT_BAND_ROWS 16u
+#endif
+/* A grey screen (grey4.h, board_display_grey4): pictures of this size are
+ * also reduced to its 16 grey levels, hashed ("HASH grey-..."), shown on
+ * the board's screen and, with --out, written as PGM; 0 x 0: none. */
+#ifndef CLIENT_SCREEN_W
+#define CLIENT_SCREEN_W 0u
+#define CLIENT_SCREEN_H 0u
+#endif
 #define MAX_PAYLOAD      CLIENT_MAX_PAYLOAD   /* HELLO: largest frame payload taken */
 #define RX_BYTES         (MAX_PAYLOAD + LUMO_NET_OVERHEAD)
 #define TX_BYTES         256u         /* HELLO, REQUEST, BYE */
@@ -63,13 +88,13 @@ int main(void);
 #define PIPELINE         4u
 #define SILENCE_MS       250u         /* no byte for this long: ask again */
 #define MAX_TRIES        64u          /* asked again without an answer applied */
-#define BAND_ROWS        16u
+#define BAND_ROWS        CLIENT_BAND_ROWS
 #define PICTURE_BYTES    CLIENT_PICTURE_BYTES   /* vertex caches, a band, a PPM image */
 #define RECORD_BYTES     CLIENT_RECORD_BYTES    /* a recording, to write or to replay; 0: none */
 #define DEFAULT_ALBEDO   ((lumo_q1_14)12288)   /* 0.75: lumo-render's for meshes without albedo */
 
 static const uint8_t k_shares[] = {10, 25, 50, 100};   /* percent of the scene */
-static const uint16_t k_sizes[][2] = {{320, 240}, {160, 128}};
+static const uint16_t k_sizes[][2] = {CLIENT_SIZES};
 #define NSHARES (sizeof k_shares / sizeof k_shares[0])
 #define NSIZES  (sizeof k_sizes / sizeof k_sizes[0])
 
@@ -90,10 +115,15 @@ typedef struct picture {
     uint16_t *band;
     void *depth;
     uint8_t *image;                               /* PPM, with --out */
+    uint8_t *grey;                                /* a band for the grey screen */
+    uint8_t *grey_image;                          /* PGM of it, with --out */
+    uint64_t grey_hash;
 } picture;
 
 typedef struct client {
     const char *replay, *record, *out;
+    int no_pictures;              /* --no-pictures: stream only (throughput runs) */
+    int hold;                     /* --hold: keep the last picture on the screen */
     lumo_arena work, pictures, scene_arena;
     lumo_session ses;
     lumo_net_client drv;
@@ -103,8 +133,9 @@ typedef struct client {
     unsigned next_share;
     int first_done, asked_again;
     uint32_t tries;
-    uint64_t bytes_in;
+    uint64_t bytes_in, raw_in;    /* DATA payload applied; every byte the link gave */
     uint32_t frames, stale, refused, silences, resends;
+    uint32_t cuts, cut_bytes, welcome_again;   /* new connections (BOARD_LINK_NEW) */
     cost geometry, lighting, pushpull, decode, drawing;
     uint32_t clock_ticks[8];      /* the driver's clock reads during one frame */
     unsigned clock_reads;
@@ -186,12 +217,21 @@ static int parse_args(client *c)
             p++;
     }
     for (i = 1; i < n; i++) {
-        const char **opt = !strcmp(w[i], "--replay") ? &c->replay
+        const char **opt;
+        if (!strcmp(w[i], "--no-pictures")) {
+            c->no_pictures = 1;
+            continue;
+        }
+        opt = !strcmp(w[i], "--replay") ? &c->replay
                          : !strcmp(w[i], "--record") ? &c->record
                          : !strcmp(w[i], "--out") ? &c->out : NULL;
-        if (opt == NULL || i + 1 >= n)
-            return fail("usage: client [--replay FILE] [--record FILE] [--out DIR]; not ", w[i]);
-        *opt = w[++i];
+        if (!strcmp(w[i], "--hold"))
+            c->hold = 1;
+        else if (opt == NULL || i + 1 >= n)
+            return fail("usage: client [--replay FILE] [--record FILE] [--out DIR] [--hold] [--no-pictures]; not ",
+                        w[i]);
+        else
+            *opt = w[++i];
     }
     return c->replay && c->record ? fail("--replay and --record exclude each other", NULL) : 0;
 }
@@ -240,6 +280,8 @@ static int32_t receive(client *c, uint8_t *buf, size_t cap)
         return n > 0 ? n : -1;
     }
     n = board_link_read(buf, cap, SILENCE_MS);
+    if (n > 0)
+        c->raw_in += (uint64_t)n;
     if (n > 0 && c->record) {
         if ((size_t)n > RECORD_BYTES - c->log_len)
             return fail("the recording is full", NULL);
@@ -282,6 +324,15 @@ static int reached(const lumo_net_progress *p, uint32_t percent)
 
 /* ---- drawing ----------------------------------------------------------------------- */
 
+static uint64_t fnv1a_bytes(uint64_t h, const uint8_t *p, size_t n)
+{
+    size_t i;
+
+    for (i = 0; i < n; i++)
+        h = (h ^ p[i]) * 0x100000001b3ull;
+    return h;
+}
+
 static uint64_t fnv1a(uint64_t h, const uint16_t *px, size_t n)
 {
     size_t i;
@@ -317,6 +368,23 @@ static void take_mesh(client *c, uint32_t i)
     pic->meshes++;
 }
 
+/* A picture of the grey screen's size: a band of its levels and, with
+ * --out, its PGM image (header room below, as the PPM's). */
+static int set_up_grey(client *c, uint16_t w, uint16_t h)
+{
+    picture *pic = &c->pic;
+
+    pic->grey = pic->grey_image = NULL;
+    pic->grey_hash = 0xcbf29ce484222325ull;
+    if (w != CLIENT_SCREEN_W || h != CLIENT_SCREEN_H)
+        return 0;
+    pic->grey = lumo_arena_alloc(&c->pictures, (size_t)w / 2u * BAND_ROWS);
+    pic->grey_image = c->out ? lumo_arena_alloc(&c->pictures, (size_t)w * h + 32u) : NULL;
+    if (pic->grey_image)
+        pic->grey_image += 32;
+    return !pic->grey || (c->out && !pic->grey_image) ? -1 : 0;
+}
+
 /* View, lights (per-pixel, exposure 1, the IVG once a round is in: as
  * lumo-client draws), meshes and band memory for a w x h picture. */
 static int set_up(client *c, uint16_t w, uint16_t h, const lumo_net_progress *p)
@@ -344,7 +412,7 @@ static int set_up(client *c, uint16_t w, uint16_t h, const lumo_net_progress *p)
     pic->image = c->out ? lumo_arena_alloc(&c->pictures, (size_t)w * h * 3u + 32u) : NULL;
     if (pic->image)
         pic->image += 32;
-    if (!pic->band || !pic->depth || (c->out && !pic->image))
+    if (!pic->band || !pic->depth || (c->out && !pic->image) || set_up_grey(c, w, h))
         return fail("no memory for a picture", NULL);
     pic->meshes = 0;
     for (i = 0; i < info->mesh_count; i++)
@@ -363,6 +431,26 @@ static void to_image(picture *pic, const lumo_raster_target *t)
         o[3 * i] = (uint8_t)((v >> 11 << 3) | (v >> 13));
         o[3 * i + 1] = (uint8_t)(((v >> 5 & 63u) << 2) | (v >> 9 & 3u));
         o[3 * i + 2] = (uint8_t)(((v & 31u) << 3) | (v >> 2 & 7u));
+    }
+}
+
+/* The band's grey levels: hashed, shown on the board's screen (a board
+ * without one says so and nothing is lost), kept as 0..255 (level x 17,
+ * as QEMU's SSD0323 draws them) in the PGM image. */
+static void to_grey(picture *pic, const lumo_raster_target *t)
+{
+    size_t i, n = (size_t)t->width / 2u * t->band_rows;
+    uint8_t *o;
+
+    grey4_band(pic->band, t->width, t->band_rows, t->band_y, pic->grey);
+    pic->grey_hash = fnv1a_bytes(pic->grey_hash, pic->grey, n);
+    (void)board_display_grey4(t->band_y, t->band_rows, t->width, pic->grey);
+    if (!pic->grey_image)
+        return;
+    o = pic->grey_image + (size_t)t->band_y * t->width;
+    for (i = 0; i < n; i++) {
+        o[2 * i] = (uint8_t)((pic->grey[i] >> 4) * 17u);
+        o[2 * i + 1] = (uint8_t)((pic->grey[i] & 15u) * 17u);
     }
 }
 
@@ -387,6 +475,8 @@ static int draw_bands(client *c, uint16_t w, uint16_t h, uint64_t *hash)
         *hash = fnv1a(*hash, pic->band, (size_t)w * rows);
         if (pic->image)
             to_image(pic, &t);
+        if (pic->grey)
+            to_grey(pic, &t);
     }
     return 0;
 }
@@ -413,10 +503,10 @@ static char *put_str(char *p, const char *s)
     return p + n;
 }
 
-/* "frame-<tag>-<W>x<H>" */
-static void picture_name(char *out, const char *tag, uint16_t w, uint16_t h)
+/* "<kind>-<tag>-<W>x<H>" (kind: frame, grey) */
+static void picture_name(char *out, const char *kind, const char *tag, uint16_t w, uint16_t h)
 {
-    char *p = put_str(out, "frame-");
+    char *p = put_str(put_str(out, kind), "-");
 
     p = put_str(p, tag);
     *p++ = '-';
@@ -426,24 +516,34 @@ static void picture_name(char *out, const char *tag, uint16_t w, uint16_t h)
     *p = '\0';
 }
 
-/* DIR/<name>.ppm: a binary PPM (P6), header then the image. */
-static int write_image(const client *c, const char *name, uint16_t w, uint16_t h)
+/* DIR/<name>.ppm (P6, 3 bytes a pixel) or .pgm (P5, 1 byte): header, then
+ * the image; the header goes in the 32 bytes below it. */
+static int write_image(const client *c, const char *name, uint8_t *image, unsigned bytes_px, uint16_t w, uint16_t h)
 {
     char path[256], *p;
-    uint8_t *img = c->pic.image - 32;   /* header room, below the image */
+    uint8_t *img = image - 32;
     size_t head;
 
     if (strlen(c->out) + strlen(name) + 8 > sizeof path)
         return fail("the --out path is too long", NULL);
     p = put_str(put_str(put_str(path, c->out), "/"), name);
-    put_str(p, ".ppm")[0] = '\0';
-    p = put_u32(put_str((char *)img, "P6\n"), w);
+    put_str(p, bytes_px == 3u ? ".ppm" : ".pgm")[0] = '\0';
+    p = put_u32(put_str((char *)img, bytes_px == 3u ? "P6\n" : "P5\n"), w);
     p = put_str(put_u32(put_str(p, " "), h), "\n255\n");
     head = (size_t)(p - (char *)img);
     memmove(img + 32 - head, img, head);
-    if (board_write_file(path, img + 32 - head, head + (size_t)w * h * 3u))
+    if (board_write_file(path, img + 32 - head, head + (size_t)w * h * bytes_px))
         return fail("cannot write ", path);
     return 0;
+}
+
+static void hash_line(const char *name, uint64_t hash)
+{
+    con_str("HASH ");
+    con_str(name);
+    con_str(" ");
+    con_hex(hash, 16);
+    con_nl();
 }
 
 static int draw_size(client *c, const char *tag, uint16_t w, uint16_t h, const lumo_net_progress *p)
@@ -452,23 +552,25 @@ static int draw_size(client *c, const char *tag, uint16_t w, uint16_t h, const l
     uint32_t t0 = board_ticks();
     char name[48];
     cost one = {0, 0};
-    uint64_t hash;
+    uint64_t hash = 0;
     int rc;
 
     rc = set_up(c, w, h, p) || draw_bands(c, w, h, &hash);
     one.ticks = board_ticks() - t0;
     c->drawing.ticks += one.ticks;
     c->drawing.n++;
-    picture_name(name, tag, w, h);
+    picture_name(name, "frame", tag, w, h);
     if (rc == 0) {
         cost_line(name, &one, NULL);
-        con_str("HASH ");
-        con_str(name);
-        con_str(" ");
-        con_hex(hash, 16);
-        con_nl();
+        hash_line(name, hash);
         if (c->out)
-            rc = write_image(c, name, w, h);
+            rc = write_image(c, name, c->pic.image, 3u, w, h);
+    }
+    if (rc == 0 && c->pic.grey) {
+        picture_name(name, "grey", tag, w, h);
+        hash_line(name, c->pic.grey_hash);
+        if (c->out)
+            rc = write_image(c, name, c->pic.grey_image, 1u, w, h);
     }
     lumo_arena_reset(&c->pictures, mark);
     return rc ? -1 : 0;
@@ -490,6 +592,8 @@ static int pictures_due(client *c)
     lumo_net_progress p;
     char tag[4];
 
+    if (c->no_pictures)
+        return 0;
     lumo_net_client_progress(&c->drv, &p);
     if (!c->first_done && first_picture_ready(c, &p)) {
         c->first_done = 1;
@@ -585,9 +689,9 @@ static const char *frame_name(uint8_t type)
     return type < sizeof names / sizeof names[0] ? names[type] : "unknown";
 }
 
-/* One whole frame: dropped when out of turn, else applied, then the
- * pictures now due and the requests now possible. */
-static int take_frame(client *c, const lumo_net_frame *f)
+/* One whole frame (used bytes): dropped when out of turn, else applied,
+ * then the pictures now due and the requests now possible. */
+static int take_frame(client *c, const lumo_net_frame *f, size_t used)
 {
     uint32_t t0;
     lumo_status st;
@@ -597,6 +701,8 @@ static int take_frame(client *c, const lumo_net_frame *f)
         c->stale++;
         return 0;
     }
+    if (f->type == LUMO_NET_WELCOME && c->drv.package_id)
+        c->welcome_again += (uint32_t)used;   /* a new connection's: checked, nothing applied */
     c->clock_reads = 0;
     t0 = board_ticks();
     if ((st = lumo_net_client_on_frame(&c->drv, f))) {
@@ -632,7 +738,7 @@ static int take_frames(client *c)
             continue;
         }
         at += used;
-        if (take_frame(c, &f))
+        if (take_frame(c, &f, used))
             return -1;
     }
     memmove(c->rx, c->rx + at, c->rx_len - at);
@@ -652,12 +758,32 @@ static int silence(client *c)
     return ask_again(c);
 }
 
+/* The link is back as a new connection (BOARD_LINK_NEW): the bytes of a
+ * frame the cut left unfinished are dropped, the requests in flight
+ * forgotten, and HELLO with the cursors held resumes, as a TCP client does
+ * after a cut (docs/protocol.md §8): nothing applied is sent again. */
+static int new_connection(client *c)
+{
+    c->cuts++;
+    c->cut_bytes += (uint32_t)c->rx_len;
+    c->rx_len = 0;
+    c->tries = 0;
+    c->asked_again = 0;
+    lumo_net_client_reset_link(&c->drv);
+    return say_hello(c);
+}
+
 static int converse(client *c)
 {
     if (say_hello(c))
         return -1;
     while (c->drv.state != LUMO_NET_DONE) {
         int32_t n = receive(c, c->rx + c->rx_len, RX_BYTES - c->rx_len);
+        if (n == BOARD_LINK_NEW && !c->replay) {
+            if (new_connection(c))
+                return -1;
+            continue;
+        }
         if (n < 0)
             return fail(c->replay ? "the recording ends before the scene is complete"
                                   : "the link closed before the scene was complete", NULL);
@@ -721,7 +847,15 @@ static void report_counts(const client *c)
     con_u64(c->silences);
     con_str(" silences, ");
     con_u64(c->resends);
-    con_str(" times asked again");
+    con_str(" times asked again; ");
+    con_u64(c->raw_in);
+    con_str(" bytes received, ");
+    con_u64(c->cuts);
+    con_str(" connections (");
+    con_u64(c->welcome_again);
+    con_str(" WELCOME bytes again, ");
+    con_u64(c->cut_bytes);
+    con_str(" bytes of cut frames dropped)");
     con_nl();
 }
 
@@ -776,5 +910,9 @@ int main(void)
     if (rc == 0 && c->record && board_write_file(c->record, c->log, c->log_len))
         rc = fail("cannot write the recording ", c->record);
     report(c, t0);
+    if (rc == 0 && c->hold) {
+        say("holding the last picture on the screen", NULL);
+        board_hold();
+    }
     return rc ? 1 : 0;
 }

@@ -14,10 +14,10 @@
 # fragments are included in any order.
 CLIENT_ELF  := $(BUILD)/board/mps2-an385/client.elf
 CLIENT_HOST := $(BUILD)/board/host/client
-CLIENT_M3_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3/%.o,boards/client/client.c boards/armv7m/startup.c \
+CLIENT_M3_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3/%.o,boards/client/client.c boards/client/grey4.c boards/armv7m/startup.c boards/common/stack_paint.c \
     boards/armv7m/fault.c boards/armv7m/semihost.c boards/mps2-an385/board.c boards/common/console.c)
-CLIENT_HOST_OBJS := $(patsubst %.c,$(BUILD)/board/obj-host/%.o,boards/client/client.c boards/host/board.c \
-    boards/common/console.c)
+CLIENT_HOST_OBJS := $(patsubst %.c,$(BUILD)/board/obj-host/%.o,boards/client/client.c boards/client/grey4.c \
+    boards/host/board.c boards/host/link_tcp.c boards/common/console.c)
 CLIENT_M3_LIBS := $(BUILD)/m3/liblumo_net.a $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo.a
 
 # make check-embedded proves the client rules on the image's own objects too

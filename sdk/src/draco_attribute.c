@@ -231,6 +231,16 @@ lumo_status ld_set_quantization(lumo_draco_attribute *a, unsigned bits)
     return lumo_f32bits_to_fixed(a->range_bits, a->frac_bits, &a->range_fixed);
 }
 
+/* The quantization transform's bit count, 1..30 as libdraco checks it
+ * (AttributeQuantizationTransform::IsQuantizationValid). */
+static lumo_status ld_quantization_bits(ld_buf *b, uint8_t *bits)
+{
+    lumo_status st = ld_u8(b, bits);
+    if (st)
+        return st;
+    return *bits < 1 || *bits > 30 ? LUMO_ERR_CORRUPT : LUMO_OK;
+}
+
 static lumo_status ld_decode_quantization(ld_dec *d, lumo_draco_attribute *a)
 {
     unsigned c, comps = a->num_components;
@@ -243,11 +253,22 @@ static lumo_status ld_decode_quantization(ld_dec *d, lumo_draco_attribute *a)
     for (c = 0; c < comps; ++c)
         if ((st = ld_u32(&d->buf, &a->min_bits[c])))
             return st;
-    if ((st = ld_u32(&d->buf, &a->range_bits)) || (st = ld_u8(&d->buf, &bits)))
+    if ((st = ld_u32(&d->buf, &a->range_bits)) || (st = ld_quantization_bits(&d->buf, &bits)))
         return st;
-    if (bits < 1 || bits > 30)
-        return LUMO_ERR_CORRUPT;
     return ld_set_quantization(a, bits);
+}
+
+/* The octahedral transform's bit count (AttributeOctahedronTransform):
+ * libdraco stores it unchecked and refuses it outside 2..30 only when it
+ * converts to floats (OctahedronToolBox::SetQuantizationBits); lumo hands
+ * it to the caller (lumo_draco_attribute.quant_bits, a shift count), so
+ * it refuses such a stream at once, in the decode and the scan alike. */
+static lumo_status ld_octahedral_bits(ld_buf *b, uint8_t *bits)
+{
+    lumo_status st = ld_u8(b, bits);
+    if (st)
+        return st;
+    return *bits < 2 || *bits > 30 ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
 static lumo_status ld_decode_transform_params(ld_dec *d, lumo_draco_attribute *a)
@@ -258,7 +279,7 @@ static lumo_status ld_decode_transform_params(ld_dec *d, lumo_draco_attribute *a
         return ld_decode_quantization(d, a);
     if (a->modes.seq_type != LD_SEQ_NORMALS)
         return LUMO_OK;
-    if ((st = ld_u8(&d->buf, &bits)))
+    if ((st = ld_octahedral_bits(&d->buf, &bits)))
         return st;
     a->xform = LUMO_DRACO_XFORM_OCTAHEDRAL;
     a->quant_bits = bits;
@@ -365,14 +386,14 @@ static lumo_status ld_need_transform_params(ld_buf *b, ld_need *k, const ld_need
     uint8_t bits;
     lumo_status st;
     if (a->seq_type == LD_SEQ_NORMALS)
-        return ld_u8(b, &bits);
+        return ld_octahedral_bits(b, &bits);
     if (a->seq_type != LD_SEQ_QUANTIZATION)
         return LUMO_OK;
     ld_need_out(k, a->components, sizeof(uint32_t));
     ld_need_out(k, a->components, sizeof(int32_t));
-    if ((st = ld_skip(b, 4u * (uint64_t)a->components + 4u)) || (st = ld_u8(b, &bits)))
+    if ((st = ld_skip(b, 4u * (uint64_t)a->components + 4u)))
         return st;
-    return bits < 1 || bits > 30 ? LUMO_ERR_CORRUPT : LUMO_OK;
+    return ld_quantization_bits(b, &bits);
 }
 
 lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,

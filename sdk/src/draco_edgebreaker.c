@@ -731,6 +731,27 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
 
 /* ---- attribute seams ----------------------------------------------------------- */
 
+/* The mesh's corner table once the connectivity is decoded: 32-bit
+ * opposites (default) or packed into the face words (lean, ld_eb_pack);
+ * no seams. `packed` is a constant in each instance of the walks below:
+ * the generic ld_opp tests the seam table, LD_INV and the storage at
+ * every step. */
+static LD_FORCE_INLINE uint32_t ld_eb_mopp(const struct ld_eb *e, uint32_t c, int packed)
+{
+    return packed ? ld_pot_opp(&e->ct.opp, c) : e->opp32[c];
+}
+
+static LD_FORCE_INLINE uint32_t ld_eb_mswing_right(const struct ld_eb *e, uint32_t c, int packed)
+{
+    const uint32_t o = ld_eb_mopp(e, ld_prev_v(c), packed);
+    return o == LD_INV ? LD_INV : ld_prev_v(o);
+}
+
+static LD_FORCE_INLINE uint32_t ld_eb_mvert(const struct ld_eb *e, uint32_t c, int packed)
+{
+    return packed ? e->ct.c2v[c] & e->ct.vmask : e->ct.c2v[c];
+}
+
 static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
 {
     uint32_t o = ld_opp(&e->ct, c);
@@ -744,19 +765,19 @@ static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
     }
 }
 
-static lumo_status ld_eb_seams(struct ld_eb *e)
+static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
 {
     uint32_t f, k, i, reads = 0;
     for (f = 0; f < e->num_faces; ++f) {
         const uint32_t c0 = 3u * f, cs[3] = {c0, c0 + 1u, c0 + 2u};
         for (k = 0; k < 3; ++k) {
-            uint32_t o = ld_opp(&e->ct, cs[k]);
+            uint32_t o = ld_eb_mopp(e, cs[k], packed);
             if (o == LD_INV) {
                 for (i = 0; i < e->num_attr_data; ++i)
                     ld_add_seam(e, &e->ad[i], cs[k]);
                 continue;
             }
-            if (o / 3u < f)
+            if (o < c0)  /* an earlier face's edge: its bit is read */
                 continue;
             /* one bit per interior edge: at most 3F/2 (the arena need
              * counts seams in that many) */
@@ -772,10 +793,17 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
     return LUMO_OK;
 }
 
+static lumo_status ld_eb_seams(struct ld_eb *e)
+{
+    return e->packed ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
+}
+
 /* MeshAttributeCornerTable::RecomputeVertices: split mesh vertices into
  * attribute vertices along seam edges. */
-static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
+static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_attr_data *a,
+                                                            int packed)
 {
+    uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
     uint32_t v, n = 0, live = 0;
     a->ct.c2v = a->c2v;
     a->ct.opp32 = e->ct.opp32;
@@ -794,8 +822,9 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
         if (a->vseam[v]) {
             act = ld_swing_left(&a->ct, first);
             while (act != LD_INV) {
-                if (!ld_eb_charge(e))
+                if (budget == 0)
                     return LUMO_ERR_LIMIT;
+                --budget;
                 first = act;
                 act = ld_swing_left(&a->ct, act);
                 if (act == c)
@@ -804,20 +833,22 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
         }
         a->c2v[first] = vid;
         a->lmc[vid] = first;
-        act = ld_swing_right(&e->ct, first);
+        act = ld_eb_mswing_right(e, first, packed);
         while (act != LD_INV && act != first) {
-            if (!ld_eb_charge(e))
+            if (budget == 0)
                 return LUMO_ERR_LIMIT;
-            if (a->seam[ld_next(act)]) {
+            --budget;
+            if (a->seam[ld_next_v(act)]) {
                 if (n >= e->num_corners)
                     return LUMO_ERR_CORRUPT;
                 vid = n++;
                 a->lmc[vid] = act;
             }
             a->c2v[act] = vid;
-            act = ld_swing_right(&e->ct, act);
+            act = ld_eb_mswing_right(e, act, packed);
         }
     }
+    e->budget = budget;
     /* the bounds the arena need takes: the encoded vertices live (S were
      * merged), at most one attribute vertex per corner, and a seam edge
      * splits its two end vertices once each */
@@ -825,6 +856,11 @@ static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
         return LUMO_ERR_CORRUPT;
     a->ct.num_vertices = n;
     return LUMO_OK;
+}
+
+static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
+{
+    return e->packed ? ld_eb_attr_vertices_run(e, a, 1) : ld_eb_attr_vertices_run(e, a, 0);
 }
 
 /* A vertex is on a border when it has no left-most corner or that corner
@@ -952,14 +988,11 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
 
 /* AssignPointsToCorners: one point per distinct combination of attribute
  * vertices around each mesh vertex, numbered in vertex order. */
-static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
+static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, int packed)
 {
+    uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
     uint32_t v, i, np = 0;
     uint32_t *pts = d->faces;
-    if (e->num_attr_data == 0) {  /* pts == e->c2v */
-        d->num_points = e->num_conn_vertices;
-        return LUMO_OK;
-    }
     memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
     for (v = 0; v < e->num_vertices; ++v) {
         uint32_t c = e->lmc[v], dedup, prev;
@@ -970,21 +1003,22 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
             const ld_attr_data *a = &e->ad[i];
             uint32_t vid, act;
             int found = 0;
-            if (!a->vseam[ld_vert(&e->ct, c)])
+            if (!a->vseam[ld_eb_mvert(e, c, packed)])
                 continue;
             vid = a->c2v[c];
-            act = ld_swing_right(&e->ct, c);
+            act = ld_eb_mswing_right(e, c, packed);
             while (act != c) {
                 if (act == LD_INV)
                     return LUMO_ERR_CORRUPT;
-                if (!ld_eb_charge(e))
+                if (budget == 0)
                     return LUMO_ERR_LIMIT;
+                --budget;
                 if (a->c2v[act] != vid) {
                     dedup = act;
                     found = 1;
                     break;
                 }
-                act = ld_swing_right(&e->ct, act);
+                act = ld_eb_mswing_right(e, act, packed);
             }
             if (found)
                 break;
@@ -992,16 +1026,17 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
         c = dedup;
         pts[c] = np++;
         prev = c;
-        c = ld_swing_right(&e->ct, c);
+        c = ld_eb_mswing_right(e, c, packed);
         while (c != LD_INV && c != dedup) {
             int seam = 0;
-            if (!ld_eb_charge(e))
+            if (budget == 0)
                 return LUMO_ERR_LIMIT;
+            --budget;
             for (i = 0; i < e->num_attr_data && !seam; ++i)
                 seam = e->ad[i].c2v[c] != e->ad[i].c2v[prev];
             pts[c] = seam ? np++ : pts[prev];
             prev = c;
-            c = ld_swing_right(&e->ct, c);
+            c = ld_eb_mswing_right(e, c, packed);
         }
     }
     {   /* at most one per corner, and at most the attribute vertices
@@ -1016,7 +1051,17 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
             return LUMO_ERR_CORRUPT;
     }
     d->num_points = np;
+    e->budget = budget;
     return LUMO_OK;
+}
+
+static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
+{
+    if (e->num_attr_data == 0) {  /* the output faces are the vertex map */
+        d->num_points = e->num_conn_vertices;
+        return LUMO_OK;
+    }
+    return e->packed ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
 }
 
 /* ---- entry points ----------------------------------------------------------------- */
@@ -1299,15 +1344,15 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     if (!seq->point_to_value)
         return LUMO_ERR_NOMEM;
     memset(seq->point_to_value, 0xFF, (size_t)d->num_points * sizeof(uint32_t));
-    for (c = 0; c < e->num_corners; ++c) {
-        uint32_t p = d->faces[c], v = ld_vert(ct, c);
-        int32_t entry;
-        if (v == LD_INV || v >= vmap)
+    for (c = 0; c < e->num_corners; ++c) {  /* LD_INV and -1 are huge unsigned */
+        const uint32_t p = d->faces[c], v = ct->c2v[c] & ct->vmask;
+        uint32_t entry;
+        if (v >= vmap || p >= d->num_points)
             return LUMO_ERR_CORRUPT;
-        entry = o.vertex_to_value[v];
-        if (p >= d->num_points || entry < 0 || (uint32_t)entry >= d->num_points)
+        entry = (uint32_t)o.vertex_to_value[v];
+        if (entry >= d->num_points)
             return LUMO_ERR_CORRUPT;
-        seq->point_to_value[p] = (uint32_t)entry;
+        seq->point_to_value[p] = entry;
     }
     return LUMO_OK;
 }

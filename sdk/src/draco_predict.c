@@ -674,29 +674,43 @@ static LD_NOINLINE lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, ui
     return ld_multi_run(p, v, n, 0, packed);
 }
 
-static lumo_status ld_position(const ld_pred *p, int32_t entry, int64_t out[3])
+/* The position at a corner: its point's position value. libdraco reads
+ * the position of the texture coordinate's entry (its first point); every
+ * corner of one vertex holds that vertex's position (positions are per
+ * mesh vertex), so the corner's own point gives the same value without
+ * the entry -> corner -> point steps. */
+static LD_FORCE_INLINE void ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
 {
-    uint32_t point, c;
-    if (entry < 0 || (uint32_t)entry >= p->seq->num_entries)
-        return LUMO_ERR_CORRUPT;
-    point = p->seq->faces
-                ? p->seq->faces[p->seq->value_to_corner[entry]] & p->seq->faces_mask
-                : (uint32_t)entry;
+    const uint32_t point = p->seq->faces[corner] & p->seq->faces_mask;
+    unsigned c;
     for (c = 0; c < 3; ++c)
         out[c] = lumo_draco_value(p->pos, point, c);
-    return LUMO_OK;
 }
 
-/* libdraco's IntSqrt, step for step (floor of the square root). */
+/* Bits of n (0 for 0): six halving steps. */
+static unsigned ld_bit_length64(uint64_t n)
+{
+    unsigned len = 0;
+    if (n >> 32) { len += 32; n >>= 32; }
+    if (n >> 16) { len += 16; n >>= 16; }
+    if (n >> 8) { len += 8; n >>= 8; }
+    if (n >> 4) { len += 4; n >>= 4; }
+    if (n >> 2) { len += 2; n >>= 2; }
+    if (n >> 1) { len += 1; n >>= 1; }
+    return len + (unsigned)n;
+}
+
+/* libdraco's IntSqrt (floor of the square root), the same Newton steps
+ * from the same start: libdraco doubles r while quartering n down to
+ * below 2, i.e. once for each i with n >= 2^(2i+1), so r = 2^k with
+ * k = floor((L - 2) / 2) + 1 for an L-bit n >= 2 (1 below); computed from
+ * L instead of up to 32 loop turns. */
 static uint64_t ld_int_sqrt(uint64_t n)
 {
-    uint64_t act = n, r = 1;
+    const unsigned len = ld_bit_length64(n);
+    uint64_t r = len >= 2 ? (uint64_t)1 << ((len - 2) / 2 + 1) : 1u;
     if (n == 0)
         return 0;
-    while (act >= 2) {
-        r *= 2;
-        act /= 4;
-    }
     do {
         r = (r + n / r) / 2;
     } while (r * r > n);
@@ -719,16 +733,15 @@ static lumo_status ld_tex_predict(ld_pred *p, uint32_t corner, const int32_t *da
         int64_t tip[3], nx[3], pr[3], pn[3], cn[3], xpos[3], cx[3];
         uint64_t pn2, cx2, norm;
         int64_t dot, pnu, pnv, xu, xv, absmax, pn_absmax, cxu, cxv;
-        lumo_status st;
         unsigned c;
         if (pu == nu && pv == nv) {
             out[0] = (int32_t)pu;
             out[1] = (int32_t)pv;
             return LUMO_OK;
         }
-        if ((st = ld_position(p, id, tip)) || (st = ld_position(p, nid, nx)) ||
-            (st = ld_position(p, pid, pr)))
-            return st;
+        ld_corner_position(p, corner, tip);
+        ld_corner_position(p, ld_next_v(corner), nx);
+        ld_corner_position(p, ld_prev_v(corner), pr);
         for (c = 0; c < 3; ++c)
             pn[c] = pr[c] - nx[c];  /* int32 differences: no overflow */
         pn2 = (uint64_t)ld_add64(ld_add64(ld_mul64(pn[0], pn[0]), ld_mul64(pn[1], pn[1])),
@@ -791,7 +804,7 @@ static lumo_status ld_tex_coords(ld_pred *p, int32_t *v, uint32_t n)
 {
     uint32_t i;
     lumo_status st;
-    if (p->comps != 2 || !p->pos || p->pos->num_portable != 3)
+    if (p->comps != 2 || !p->pos || p->pos->num_portable != 3 || !p->seq->faces)
         return LUMO_ERR_CORRUPT;
     for (i = 0; i < n; ++i) {
         int32_t pred[2];
@@ -802,59 +815,111 @@ static lumo_status ld_tex_coords(ld_pred *p, int32_t *v, uint32_t n)
     return LUMO_OK;
 }
 
-static lumo_status ld_corner_position(const ld_pred *p, uint32_t corner, int64_t out[3])
+/* The positions the geometric-normal fan walk reads: a corner's point
+ * from the output face array, the point's position value through the
+ * position attribute's point map. libdraco goes from the corner's vertex
+ * to the normal's entry and back to the entry's first point
+ * (GetPositionForCorner); every corner of one vertex holds that vertex's
+ * position, so the corner's own point gives the same value in one load
+ * less per indirection (positions are per mesh vertex: decoded with the
+ * connectivity, never split by seams). */
+typedef struct ld_nfan {
+    ld_fan f;                 /* the walk's corner table (seams cut fans) */
+    const uint32_t *faces;    /* corner -> point */
+    uint32_t fmask;
+    const uint32_t *pmap;     /* point -> position value; NULL: identity */
+    const int32_t *pos;       /* position values, 3 components */
+} ld_nfan;
+
+static LD_FORCE_INLINE const int32_t *ld_nfan_pos(const ld_nfan *g, uint32_t c)
 {
-    return ld_position(p, ld_value_of_vertex(p, ld_vert(p->seq->ct, corner)), out);
+    uint32_t pt = g->faces[c] & g->fmask;
+    if (g->pmap)
+        pt = g->pmap[pt];
+    return g->pos + 3u * (size_t)pt;
+}
+
+/* d = position at corner c - the fan centre */
+static LD_FORCE_INLINE void ld_nfan_rel(const ld_nfan *g, uint32_t c, const int64_t cent[3],
+                                        int64_t d[3])
+{
+    const int32_t *q = ld_nfan_pos(g, c);
+    d[0] = q[0] - cent[0];
+    d[1] = q[1] - cent[1];
+    d[2] = q[2] - cent[2];
+}
+
+/* n += a x b, wrapping (libdraco's int64 CrossProduct, summed) */
+static LD_FORCE_INLINE void ld_cross_add(uint64_t n[3], const int64_t a[3], const int64_t b[3])
+{
+    n[0] += (uint64_t)ld_sub64(ld_mul64(a[1], b[2]), ld_mul64(a[2], b[1]));
+    n[1] += (uint64_t)ld_sub64(ld_mul64(a[2], b[0]), ld_mul64(a[0], b[2]));
+    n[2] += (uint64_t)ld_sub64(ld_mul64(a[0], b[1]), ld_mul64(a[1], b[0]));
+}
+
+static LD_FORCE_INLINE void ld_copy3(int64_t d[3], const int64_t s[3])
+{
+    d[0] = s[0];
+    d[1] = s[1];
+    d[2] = s[2];
 }
 
 /* Area-weighted normal of the triangle fan around the corner's vertex
- * (MeshPredictionSchemeGeometricNormalPredictorArea), scaled below 2^29. */
-static lumo_status ld_fan_normal(const ld_pred *p, uint32_t corner, int32_t out[3])
+ * (MeshPredictionSchemeGeometricNormalPredictorArea: VertexCornersIterator
+ * swings left to a border or back to the start, then right from the
+ * start), scaled below 2^29. Each swing crosses the edge from the vertex
+ * to one of the face's other corners, so the next face shares that
+ * corner's position: one position read and one cross product per face
+ * (libdraco: two reads through the entry map and two differences; the
+ * same faces in the same order, so the same sums, on every consistent
+ * corner table). `limit`: faces a walk may visit (a crafted table cannot
+ * make it loop). */
+static LD_FORCE_INLINE lumo_status ld_fan_normal(const ld_nfan *g, uint32_t corner, uint32_t limit,
+                                                 int32_t out[3], int packed)
 {
-    const ld_ct *ct = p->seq->ct;
+    const int32_t *q = ld_nfan_pos(g, corner);
+    const int64_t cent[3] = {q[0], q[1], q[2]};
     uint64_t nrm[3] = {0, 0, 0};
-    int64_t cent[3], n[3], sum;
-    uint32_t c = corner, guard = 0;
-    int left = 1;
-    lumo_status st = ld_corner_position(p, corner, cent);
-    if (st)
-        return st;
-    while (c != LD_INV) {
-        int64_t pn[3], pp[3], a[3], b[3];
-        unsigned k;
-        if (++guard > ct->num_corners + 1u)
+    int64_t a[3], b[3], a0[3], n[3], sum;
+    uint32_t c = corner, o, steps = 1;
+    ld_nfan_rel(g, ld_next_v(c), cent, a);
+    ld_copy3(a0, a);
+    for (;;) {  /* left: the next face's next corner is this one's previous */
+        ld_nfan_rel(g, ld_prev_v(c), cent, b);
+        ld_cross_add(nrm, a, b);
+        o = ld_fan_opp(&g->f, ld_next_v(c), packed);
+        if (o == LD_INV)
+            break;
+        c = ld_next_v(o);
+        if (c == corner)
+            goto done;
+        if (++steps > limit)
             return LUMO_ERR_LIMIT;
-        if ((st = ld_corner_position(p, ld_next_v(c), pn)) ||
-            (st = ld_corner_position(p, ld_prev_v(c), pp)))
-            return st;
-        for (k = 0; k < 3; ++k) {
-            a[k] = pn[k] - cent[k];
-            b[k] = pp[k] - cent[k];
-        }
-        nrm[0] += (uint64_t)ld_sub64(ld_mul64(a[1], b[2]), ld_mul64(a[2], b[1]));
-        nrm[1] += (uint64_t)ld_sub64(ld_mul64(a[2], b[0]), ld_mul64(a[0], b[2]));
-        nrm[2] += (uint64_t)ld_sub64(ld_mul64(a[0], b[1]), ld_mul64(a[1], b[0]));
-        if (left) {  /* VertexCornersIterator */
-            c = ld_swing_left(ct, c);
-            if (c == LD_INV) {
-                c = ld_swing_right(ct, corner);
-                left = 0;
-            } else if (c == corner) {
-                c = LD_INV;
-            }
-        } else {
-            c = ld_swing_right(ct, c);
-        }
+        ld_copy3(a, b);
     }
+    c = corner;
+    ld_copy3(a, a0);
+    for (;;) {  /* right: the next face's previous corner is this one's next */
+        o = ld_fan_opp(&g->f, ld_prev_v(c), packed);
+        if (o == LD_INV)
+            break;
+        c = ld_prev_v(o);
+        if (++steps > limit)
+            return LUMO_ERR_LIMIT;
+        ld_copy3(b, a);
+        ld_nfan_rel(g, ld_next_v(c), cent, a);
+        ld_cross_add(nrm, a, b);
+    }
+done:
     n[0] = (int64_t)nrm[0];
     n[1] = (int64_t)nrm[1];
     n[2] = (int64_t)nrm[2];
     sum = ld_add64(ld_add64(ld_abs64(n[0]), ld_abs64(n[1])), ld_abs64(n[2]));
     if (sum > ((int64_t)1 << 29)) {
-        int64_t q = sum / ((int64_t)1 << 29);
-        n[0] = ld_div64(n[0], q);
-        n[1] = ld_div64(n[1], q);
-        n[2] = ld_div64(n[2], q);
+        int64_t d = sum / ((int64_t)1 << 29);
+        n[0] = ld_div64(n[0], d);
+        n[1] = ld_div64(n[1], d);
+        n[2] = ld_div64(n[2], d);
     }
     out[0] = (int32_t)n[0];
     out[1] = (int32_t)n[1];
@@ -911,15 +976,21 @@ static void ld_int_to_octa(const ld_pred *p, const int32_t v[3], int32_t out[2])
 
 /* MeshPredictionSchemeGeometricNormalDecoder: predict from the fan normal,
  * a flip bit per value says the normal points the other way. */
-static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
+static LD_FORCE_INLINE lumo_status ld_geometric_normal_run(ld_pred *p, int32_t *v, uint32_t n,
+                                                           int packed)
 {
+    const uint32_t limit = p->seq->ct->num_corners + 1u;
+    ld_nfan g;
     uint32_t i;
     lumo_status st;
-    if (!p->pos || p->pos->num_portable != 3)
-        return LUMO_ERR_CORRUPT;
+    ld_fan_init(&g.f, p, 1);
+    g.faces = p->seq->faces;
+    g.fmask = p->seq->faces_mask;
+    g.pmap = p->pos->point_to_value;
+    g.pos = p->pos->values;
     for (i = 0; i < n; ++i) {
         int32_t vec[3], oct[2];
-        if ((st = ld_fan_normal(p, p->seq->value_to_corner[i], vec)))
+        if ((st = ld_fan_normal(&g, p->seq->value_to_corner[i], limit, vec, packed)))
             return st;
         ld_canonicalize(p, vec);
         if (ld_rabs_bit(&p->flip)) {
@@ -931,6 +1002,14 @@ static lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
         ld_original(p, oct, v + 2 * (size_t)i, v + 2 * (size_t)i);
     }
     return LUMO_OK;
+}
+
+static LD_NOINLINE lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint32_t n)
+{
+    if (!p->pos || p->pos->num_portable != 3 || !p->seq->faces || p->seq->opposites)
+        return LUMO_ERR_CORRUPT;
+    return p->seq->ct->opp32 ? ld_geometric_normal_run(p, v, n, 0)
+                             : ld_geometric_normal_run(p, v, n, 1);
 }
 
 int ld_pred_needs_opposites_only(const ld_pred *p)

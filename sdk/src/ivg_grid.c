@@ -67,6 +67,23 @@ static size_t smooth_sums(const ivg_plan *p)
     return (size_t)3u * p->dims[1][0] * p->dims[1][1];
 }
 
+/* Planes of level 1 kept in each of its two rings (before and after
+ * smoothing, ivg_pushpull.c): the three a smoothing or a push reads; 0 (the
+ * level kept whole) when two rings would hold as many planes as the level
+ * (level 1 of 6 planes or fewer: grid axes of 10 or fewer along z). */
+#define IVG_RING_PLANES 3u
+
+static uint32_t ring_planes(const ivg_plan *p)
+{
+    return p->levels > 1 && p->dims[1][2] > 2u * IVG_RING_PLANES ? IVG_RING_PLANES : 0u;
+}
+
+/* Vertices a level stores: level 1 its ring's planes, the others all. */
+static uint32_t stored(const ivg_plan *p, unsigned l)
+{
+    return l == 1u && ring_planes(p) ? ring_planes(p) * p->dims[1][0] * p->dims[1][1] : p->count[l];
+}
+
 static size_t plan_bytes(const ivg_plan *p)
 {
     size_t total = lumo_arena_round(sizeof(lumo_ivg));
@@ -75,11 +92,15 @@ static size_t plan_bytes(const ivg_plan *p)
     total = lumo_size_add(total, entries_bytes(p->count[0]));
     total = lumo_size_add(total, lumo_size_mul(3, lumo_arena_round(p->bitmap_bytes)));
     for (l = 1; l < p->levels; l++) {
-        total = lumo_size_add(total, entries_bytes(p->count[l]));
-        total = lumo_size_add(total, lumo_arena_round(bits_bytes(p->count[l])));
+        total = lumo_size_add(total, entries_bytes(stored(p, l)));
+        total = lumo_size_add(total, lumo_arena_round(bits_bytes(stored(p, l))));
     }
     if (p->levels > 1)
         total = lumo_size_add(total, lumo_arena_round(lumo_size_mul(smooth_sums(p), sizeof(ivg_sum))));
+    if (ring_planes(p)) {   /* level 1 before smoothing */
+        total = lumo_size_add(total, entries_bytes(stored(p, 1)));
+        total = lumo_size_add(total, lumo_arena_round(bits_bytes(stored(p, 1))));
+    }
     return total;
 }
 
@@ -138,14 +159,20 @@ lumo_status lumo_ivg_create(lumo_ivg **out, lumo_arena *arena, const lumo_ivg_de
     for (l = 0; l < p.levels; l++) {
         memcpy(g->level[l].dims, p.dims[l], sizeof p.dims[l]);
         g->level[l].count = p.count[l];
-        g->level[l].e = alloc_entries(arena, p.count[l]);
-        g->level[l].valid = l == 0 ? NULL : lumo_arena_alloc(arena, bits_bytes(p.count[l]));
+        g->level[l].ring = l == 1u ? ring_planes(&p) : 0u;
+        g->level[l].e = alloc_entries(arena, stored(&p, l));
+        g->level[l].valid = l == 0 ? NULL : lumo_arena_alloc(arena, bits_bytes(stored(&p, l)));
     }
     g->scratch = p.levels > 1 ? lumo_arena_alloc_array(arena, smooth_sums(&p), sizeof(ivg_sum)) : NULL;
+    if (ring_planes(&p)) {
+        g->raw1 = g->level[1];
+        g->raw1.e = alloc_entries(arena, stored(&p, 1));
+        g->raw1.valid = lumo_arena_alloc(arena, bits_bytes(stored(&p, 1)));
+    }
     /* plan_bytes() was checked against the room left, so these cannot fail;
      * the check stays in case the two ever drift apart. */
     if (g->received_bits == NULL || g->solid_bits == NULL || g->seen_bits == NULL
-        || g->level[p.levels - 1].e == NULL || (p.levels > 1 && g->scratch == NULL)) {
+        || g->level[p.levels - 1].e == NULL || (p.levels > 1 && g->scratch == NULL) || (ring_planes(&p) && g->raw1.valid == NULL)) {
         lumo_arena_reset(arena, mark);
         return LUMO_ERR_NOMEM;
     }

@@ -27,13 +27,24 @@ typedef struct ivg_sum {
 #define IVG_PACKED_VERTEX (LUMO_IVG_AXES * IVG_PACKED)
 
 /* One pyramid level. Level 0 is the grid (validity = received bitmap);
- * coarser levels keep one validity bit per vertex. */
+ * coarser levels keep one validity bit per vertex. Level 1 is not kept
+ * whole but as a ring of `ring` x-y planes (plane z in slot z % ring),
+ * made again plane by plane when push-pull needs them
+ * (docs/ivg-format.md §6); ring 0: every plane is kept. */
 typedef struct ivg_level {
     uint32_t  dims[3];
     uint32_t  count;
-    uint8_t  *e;        /* count * IVG_PACKED_VERTEX bytes */
-    uint8_t  *valid;    /* count bits; NULL on level 0 */
+    uint32_t  ring;     /* planes kept; 0: all */
+    uint8_t  *e;        /* (ring ? ring x plane : count) * IVG_PACKED_VERTEX bytes */
+    uint8_t  *valid;    /* as many bits; NULL on level 0 */
 } ivg_level;
+
+/* The storage index of the first vertex of plane z: z x plane, or its
+ * slot in the ring (vertex (i, j, z) is then at that + i + dims[0] j). */
+static inline uint32_t ivg_plane_slot(const ivg_level *lv, uint32_t z)
+{
+    return (lv->ring ? z % lv->ring : z) * lv->dims[0] * lv->dims[1];
+}
 
 struct lumo_ivg {
     lumo_ivg_desc   desc;
@@ -50,6 +61,7 @@ struct lumo_ivg {
     unsigned        levels;           /* used entries of level[] */
     ivg_level       level[IVG_MAX_LEVELS];
     ivg_sum        *scratch;          /* smoothing: 3 x-y planes of level 1 */
+    ivg_level       raw1;             /* level 1 before smoothing: a ring */
 };
 
 static inline int ivg_bit(const uint8_t *bits, uint32_t i)
@@ -67,7 +79,8 @@ static inline void ivg_bit_clear(uint8_t *bits, uint32_t i)
     bits[i >> 3] = (uint8_t)(bits[i >> 3] & ~(1u << (i & 7u)));
 }
 
-/* The packed entry (vertex v, hemisphere a) of a level. */
+/* The packed entry (storage index v, hemisphere a) of a level: the vertex
+ * index itself on every level kept whole (ivg_plane_slot for a ring). */
 static inline uint8_t *ivg_packed_at(const ivg_level *lv, uint32_t v, unsigned a)
 {
     return lv->e + (size_t)v * IVG_PACKED_VERTEX + (size_t)a * IVG_PACKED;
@@ -81,17 +94,21 @@ typedef struct ivg_raw {
     int32_t  q[3];
 } ivg_raw;
 
-/* RGB9E5 to UQ16.16 as lumo_rgb9e5_to_uq16 (m * 2^(E-8), rounded half up
- * below E = 8), inline: sampling and push-pull open every tap. */
+/* RGB9E5 to UQ16.16 as lumo_rgb9e5_to_uq16: m * 2^(E-8), rounded half up
+ * below E = 8, i.e. ((m + add) >> down) << up with, per exponent, add =
+ * 2^(7-E), down = 8 - E below 8 and up = E - 8 from 8 on: one table entry
+ * per word (ivg_pack.c: add | down << 8 | up << 12), no branch per channel.
+ * Inline: sampling and push-pull open every tap. */
+extern const uint32_t ivg_e5_steps[32];
+
 static inline void ivg_rgb9e5_open(const uint8_t *p, uint32_t c[3])
 {
     uint32_t w = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-    unsigned e = w >> 27, k;
+    uint32_t t = ivg_e5_steps[w >> 27], add = t & 0xFFu, down = t >> 8 & 15u, up = t >> 12;
 
-    for (k = 0; k < 3; k++) {
-        uint32_t m = (w >> (9u * k)) & 0x1FFu;
-        c[k] = e >= 8u ? m << (e - 8u) : (m + (1u << (7u - e))) >> (8u - e);
-    }
+    c[0] = ((w & 0x1FFu) + add) >> down << up;
+    c[1] = ((w >> 9 & 0x1FFu) + add) >> down << up;
+    c[2] = ((w >> 18 & 0x1FFu) + add) >> down << up;
 }
 
 static inline void ivg_raw_open(const uint8_t *p, ivg_raw *r)

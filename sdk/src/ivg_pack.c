@@ -14,6 +14,18 @@
 #define MANT_MAX 511u
 #define EXP_MAX  31u
 
+/* The steps of opening an RGB9E5 word, per exponent E (ivg_internal.h):
+ * below 8, add 2^(7-E) and shift down by 8 - E; from 8 on, shift up by
+ * E - 8. */
+#define E5_DOWN(e) ((1u << (7u - (e))) | (8u - (e)) << 8)
+#define E5_UP(e)   (((e) - 8u) << 12)
+const uint32_t ivg_e5_steps[32] = {
+    E5_DOWN(0), E5_DOWN(1), E5_DOWN(2), E5_DOWN(3), E5_DOWN(4), E5_DOWN(5), E5_DOWN(6), E5_DOWN(7),
+    E5_UP(8), E5_UP(9), E5_UP(10), E5_UP(11), E5_UP(12), E5_UP(13), E5_UP(14), E5_UP(15),
+    E5_UP(16), E5_UP(17), E5_UP(18), E5_UP(19), E5_UP(20), E5_UP(21), E5_UP(22), E5_UP(23),
+    E5_UP(24), E5_UP(25), E5_UP(26), E5_UP(27), E5_UP(28), E5_UP(29), E5_UP(30), E5_UP(31),
+};
+
 lumo_q1_14 ivg_snorm8_to_q14(int32_t q)
 {
     int32_t mag = q < 0 ? -q : q;
@@ -48,28 +60,41 @@ static int32_t q14_to_snorm8(int32_t d)
     return d < 0 ? -(int32_t)q : (int32_t)q;
 }
 
+/* Bit lengths of 0..255. */
+static const uint8_t k_bits8[256] = {
+#define B4(n) n, n, n, n
+#define B16(n) B4(n), B4(n), B4(n), B4(n)
+    0, 1, 2, 2, B4(3), B4(4), B4(4), B16(5), B16(6), B16(6),
+    B16(7), B16(7), B16(7), B16(7),
+    B16(8), B16(8), B16(8), B16(8), B16(8), B16(8), B16(8), B16(8),
+#undef B16
+#undef B4
+};
+
 /* Bits needed for v (0 for 0), without a count-leading-zeros instruction
- * (the Cortex-M0+ has none). */
+ * (the Cortex-M0+ has none): two halvings and a table. */
 static unsigned bit_length(uint32_t v)
 {
-    unsigned b = 0, s;
+    unsigned b = 0;
 
-    for (s = 16; s > 0; s >>= 1)
-        if (v >> s) {
-            v >>= s;
-            b += s;
-        }
-    return b + (v != 0);
+    if (v >> 16) {
+        v >>= 16;
+        b = 16;
+    }
+    if (v >> 8) {
+        v >>= 8;
+        b += 8;
+    }
+    return b + k_bits8[v];
 }
 
-/* c in mantissa steps of 2^(e-8) UQ16.16 units, rounded half up. */
+/* c in mantissa steps of 2^(e-8) UQ16.16 units, rounded half up:
+ * floor((c + 2^(e-9)) / 2^(e-8)) = (floor(c / 2^(e-9)) + 1) / 2, in 32
+ * bits; below e = 9 the step divides c exactly (only for c < 2^(e+1): the
+ * result is < 512). */
 static uint32_t mantissa(uint32_t c, unsigned e)
 {
-    if (e < 8u)
-        return c << (8u - e);   /* only for c < 2^(e+1): exact, < 512 */
-    if (e == 8u)
-        return c;
-    return (uint32_t)(((uint64_t)c + (1u << (e - 9u))) >> (e - 8u));
+    return e >= 9u ? ((c >> (e - 9u)) + 1u) >> 1 : c << (8u - e);
 }
 
 /* The smallest exponent whose rounded mantissa of the largest channel fits

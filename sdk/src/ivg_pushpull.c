@@ -89,9 +89,24 @@ static void pull_taps(uint32_t f, uint32_t fine, uint32_t coarse, ivg_taps *t)
     }
 }
 
+/* Validity by storage index (ivg_plane_slot; the vertex index on level 0,
+ * where valid means received). */
+static int level_valid(const ivg_level *lv, uint32_t v)
+{
+    return ivg_bit(lv->valid, v);
+}
+
+static void level_set_valid(ivg_level *lv, uint32_t v, int on)
+{
+    if (on)
+        ivg_bit_set(lv->valid, v);
+    else
+        ivg_bit_clear(lv->valid, v);
+}
+
 static int vertex_valid(const lumo_ivg *g, unsigned l, uint32_t v)
 {
-    return ivg_bit(l == 0 ? g->received_bits : g->level[l].valid, v);
+    return l == 0 ? ivg_bit(g->received_bits, v) : level_valid(&g->level[l], v);
 }
 
 /* Add a vertex's six packed entries with weight w (d in q units). */
@@ -189,7 +204,7 @@ static void gather(const lumo_ivg *g, unsigned l, const ivg_taps t[3], int valid
     memset(acc, 0, sizeof *acc);
     for (z = 0; z < t[2].n; z++) {
         for (y = 0; y < t[1].n; y++) {
-            uint32_t row = lv->dims[0] * (t[1].idx[y] + lv->dims[1] * t[2].idx[z]);
+            uint32_t row = ivg_plane_slot(lv, t[2].idx[z]) + lv->dims[0] * t[1].idx[y];
             uint32_t wyz = t[1].w[y] * t[2].w[z];
             for (x = 0; x < t[0].n; x++) {
                 uint32_t v = row + t[0].idx[x];
@@ -201,30 +216,27 @@ static void gather(const lumo_ivg *g, unsigned l, const ivg_taps t[3], int valid
     }
 }
 
-/* Level l -> l+1: tent-weighted average of the valid fine vertices. */
-static void push(lumo_ivg *g, unsigned l)
+/* Plane k of level l+1 from level l into c (level l+1 itself, or the
+ * ring of level 1 before smoothing): tent-weighted average of the valid
+ * fine vertices. */
+static void push_plane(lumo_ivg *g, unsigned l, uint32_t k, ivg_level *c)
 {
     const ivg_level *f = &g->level[l];
-    ivg_level *c = &g->level[l + 1];
-    uint32_t i, j, k, v = 0;
+    uint32_t i, j, v = ivg_plane_slot(c, k);
     ivg_taps t[3];
     ivg_acc acc;
 
-    for (k = 0; k < c->dims[2]; k++) {
-        push_taps(k, f->dims[2], c->dims[2], &t[2]);
-        for (j = 0; j < c->dims[1]; j++) {
-            push_taps(j, f->dims[1], c->dims[1], &t[1]);
-            for (i = 0; i < c->dims[0]; i++, v++) {
-                push_taps(i, f->dims[0], c->dims[0], &t[0]);
-                gather(g, l, t, 1, &acc);
-                if (acc.w != 0u) {
-                    ivg_bit_set(c->valid, v);
-                    acc_store(&acc, ivg_packed_at(c, v, 0));
-                } else {
-                    ivg_bit_clear(c->valid, v);
-                    memset(ivg_packed_at(c, v, 0), 0, IVG_PACKED_VERTEX);
-                }
-            }
+    push_taps(k, f->dims[2], c->dims[2], &t[2]);
+    for (j = 0; j < c->dims[1]; j++) {
+        push_taps(j, f->dims[1], c->dims[1], &t[1]);
+        for (i = 0; i < c->dims[0]; i++, v++) {
+            push_taps(i, f->dims[0], c->dims[0], &t[0]);
+            gather(g, l, t, 1, &acc);
+            level_set_valid(c, v, acc.w != 0u);
+            if (acc.w != 0u)
+                acc_store(&acc, ivg_packed_at(c, v, 0));
+            else
+                memset(ivg_packed_at(c, v, 0), 0, IVG_PACKED_VERTEX);
         }
     }
 }
@@ -260,13 +272,13 @@ static void sum_pass(ivg_sum *line, uint32_t len, uint32_t stride)
  * weight x value and weight over the valid vertices only. */
 static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
 {
-    uint32_t nx = lv->dims[0], ny = lv->dims[1], i;
+    uint32_t nx = lv->dims[0], ny = lv->dims[1], base = ivg_plane_slot(lv, z), i;
     int k;
 
     for (i = 0; i < nx * ny; i++) {
-        uint32_t v = z * nx * ny + i;
+        uint32_t v = base + i;
         ivg_raw e = {{0, 0, 0}, {0, 0, 0}};
-        int on = ivg_bit(lv->valid, v);
+        int on = level_valid(lv, v);
         if (on)
             ivg_raw_open(ivg_packed_at(lv, v, (unsigned)a), &e);
         for (k = 0; k < 3; k++) {
@@ -281,11 +293,12 @@ static void smooth_plane(const ivg_level *lv, int a, uint32_t z, ivg_sum *s)
         sum_pass(&s[i], ny, nx);
 }
 
-/* The z pass writing plane z of hemisphere a: the x-y sums of planes z-1,
- * z and z+1 are in the ring (slot = plane % 3). */
+/* The z pass writing plane z of hemisphere a into lv (whose valid
+ * vertices are those to write): the x-y sums of planes z-1, z and z+1 are
+ * in the ring (slot = plane % 3). */
 static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
 {
-    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], i;
+    uint32_t plane = lv->dims[0] * lv->dims[1], nz = lv->dims[2], base = ivg_plane_slot(lv, z), i;
     const ivg_sum *lo = z > 0u ? &ring[((z - 1u) % 3u) * plane] : NULL;
     const ivg_sum *mid = &ring[(z % 3u) * plane];
     const ivg_sum *hi = z + 1u < nz ? &ring[((z + 1u) % 3u) * plane] : NULL;
@@ -293,8 +306,8 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
     ivg_raw e;
 
     for (i = 0; i < plane; i++) {
-        uint32_t v = z * plane + i;
-        if (!ivg_bit(lv->valid, v))
+        uint32_t v = base + i;
+        if (!level_valid(lv, v))
             continue;
         sum_mix(&out, lo != NULL ? lo + i : NULL, mid + i, hi != NULL ? hi + i : NULL);
         sum_store(out.c, out.d, out.w, pow2_shift(out.w), &e);
@@ -302,7 +315,8 @@ static void smooth_write(ivg_level *lv, int a, uint32_t z, const ivg_sum *ring)
     }
 }
 
-/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l:
+/* Pyramidal (1,2,1)^3 filter over the valid vertices of coarse level l
+ * kept whole (level 1 as a ring: smooth_level1_plane):
  * every valid vertex becomes the weighted average of the valid vertices
  * around it. The weights are a product, so the sums of weight x value and
  * of weight over valid neighbours are separable: x and y passes per plane
@@ -326,42 +340,205 @@ static void smooth(lumo_ivg *g, unsigned l)
     }
 }
 
-/* Level l+1 -> l: trilinear fill of the invalid vertices of level l. */
-static void pull(lumo_ivg *g, unsigned l)
+/* Plane k of level l from level l+1: trilinear fill of its invalid
+ * vertices. */
+static void pull_plane(lumo_ivg *g, unsigned l, uint32_t k)
 {
     ivg_level *f = &g->level[l];
     const ivg_level *c = &g->level[l + 1];
-    uint32_t i, j, k, v = 0;
+    uint32_t i, j, v = ivg_plane_slot(f, k);
     ivg_taps t[3];
     ivg_acc acc;
 
-    for (k = 0; k < f->dims[2]; k++) {
-        pull_taps(k, f->dims[2], c->dims[2], &t[2]);
-        for (j = 0; j < f->dims[1]; j++) {
-            pull_taps(j, f->dims[1], c->dims[1], &t[1]);
-            for (i = 0; i < f->dims[0]; i++, v++) {
-                if (vertex_valid(g, l, v))
-                    continue;
-                pull_taps(i, f->dims[0], c->dims[0], &t[0]);
-                gather(g, l + 1, t, 0, &acc);
-                acc_store(&acc, ivg_packed_at(f, v, 0));
-            }
+    pull_taps(k, f->dims[2], c->dims[2], &t[2]);
+    for (j = 0; j < f->dims[1]; j++) {
+        pull_taps(j, f->dims[1], c->dims[1], &t[1]);
+        for (i = 0; i < f->dims[0]; i++, v++) {
+            if (vertex_valid(g, l, v))
+                continue;
+            pull_taps(i, f->dims[0], c->dims[0], &t[0]);
+            gather(g, l + 1, t, 0, &acc);
+            acc_store(&acc, ivg_packed_at(f, v, 0));
         }
+    }
+}
+
+/* ---- level 1, plane by plane (docs/ivg-format.md §6) ----------------------------
+ * Level 1 has N/8 to N/6 vertices; kept whole it would cost 6 of the 48
+ * bytes a grid vertex may take. It is made in two rings of three planes
+ * instead: raw1 (the push from level 0) and level[1] itself (smoothed, and
+ * on the way down filled from level 2). A plane is made when it is first
+ * needed, in increasing z, so the rings always hold the planes a step
+ * reads: smoothing plane z reads raw planes z-1..z+1; the push into level
+ * 2 plane m reads planes 2m-1..2m+1; the pull into level 0 plane f reads
+ * planes f/2 and f/2+1. The push reads only received vertices of level 0,
+ * so the planes made again on the way down are those made on the way up,
+ * byte for byte, while level 0 is being filled. */
+typedef struct ivg_level1 {
+    lumo_ivg *g;
+    unsigned  flags;
+    uint32_t  raw_next, next;   /* next plane to make: raw, final */
+    int       fill;             /* fill invalid vertices from level 2 */
+} ivg_level1;
+
+/* The valid bits and entries of raw plane z into level 1's ring. */
+static void copy_raw_plane(lumo_ivg *g, uint32_t z)
+{
+    ivg_level *dst = &g->level[1];
+    uint32_t plane = dst->dims[0] * dst->dims[1], v = ivg_plane_slot(dst, z), i;
+
+    memcpy(ivg_packed_at(dst, v, 0), ivg_packed_at(&g->raw1, v, 0), (size_t)plane * IVG_PACKED_VERTEX);
+    for (i = 0; i < plane; i++)
+        level_set_valid(dst, v + i, level_valid(&g->raw1, v + i));
+}
+
+/* Hemisphere a of raw plane n added to the sums s with weight w (valid
+ * vertices only). */
+static void sum_raw_plane(const ivg_level *raw, int a, uint32_t n, uint32_t w, ivg_sum *s)
+{
+    uint32_t plane = raw->dims[0] * raw->dims[1], base = ivg_plane_slot(raw, n), i;
+    int k;
+
+    for (i = 0; i < plane; i++) {
+        ivg_raw e;
+        if (!level_valid(raw, base + i))
+            continue;
+        ivg_raw_open(ivg_packed_at(raw, base + i, (unsigned)a), &e);
+        for (k = 0; k < 3; k++) {
+            s[i].c[k] += (uint64_t)e.c[k] * w;
+            s[i].d[k] += e.q[k] * (int32_t)w;
+        }
+        s[i].w += w;
+    }
+}
+
+/* Smoothed plane z of level 1 from raw planes z-1..z+1: smooth() for one
+ * plane, with the passes in the other order — per hemisphere the (1,2,1)
+ * along z first, into one plane of sums, then along x and y. The sums are
+ * exact integers, so the order changes nothing (the same bytes), and each
+ * x-y pass runs once per plane as when level 1 was whole. */
+static void smooth_level1_plane(lumo_ivg *g, uint32_t z)
+{
+    ivg_level *lv = &g->level[1];
+    uint32_t nx = lv->dims[0], ny = lv->dims[1], nz = lv->dims[2], base = ivg_plane_slot(lv, z), i;
+    ivg_sum *s = g->scratch;
+    ivg_raw e;
+    int a;
+
+    copy_raw_plane(g, z);
+    for (a = 0; a < LUMO_IVG_AXES; a++) {
+        memset(s, 0, (size_t)nx * ny * sizeof *s);
+        if (z > 0u)
+            sum_raw_plane(&g->raw1, a, z - 1u, 1u, s);
+        sum_raw_plane(&g->raw1, a, z, 2u, s);
+        if (z + 1u < nz)
+            sum_raw_plane(&g->raw1, a, z + 1u, 1u, s);
+        for (i = 0; i < ny; i++)
+            sum_pass(&s[i * nx], nx, 1);
+        for (i = 0; i < nx; i++)
+            sum_pass(&s[i], ny, nx);
+        for (i = 0; i < nx * ny; i++) {
+            if (!level_valid(lv, base + i))
+                continue;
+            sum_store(s[i].c, s[i].d, s[i].w, pow2_shift(s[i].w), &e);
+            ivg_raw_pack(&e, ivg_packed_at(lv, base + i, (unsigned)a));
+        }
+    }
+}
+
+/* Make level 1's planes up to k (final: pushed, smoothed, filled). */
+static void level1_need(ivg_level1 *s, uint32_t k)
+{
+    lumo_ivg *g = s->g;
+    uint32_t nz = g->level[1].dims[2];
+
+    for (; s->next <= k; s->next++) {
+        if (s->flags & LUMO_IVG_SMOOTH) {
+            uint32_t hi = s->next + 1u < nz ? s->next + 1u : s->next;
+            for (; s->raw_next <= hi; s->raw_next++)
+                push_plane(g, 0, s->raw_next, &g->raw1);
+            smooth_level1_plane(g, s->next);
+        } else {
+            push_plane(g, 0, s->next, &g->level[1]);
+        }
+        if (s->fill)
+            pull_plane(g, 1, s->next);
+    }
+}
+
+static void level1_start(ivg_level1 *s, lumo_ivg *g, unsigned flags, int fill)
+{
+    s->g = g;
+    s->flags = flags;
+    s->raw_next = s->next = 0;
+    s->fill = fill;
+}
+
+/* The largest index among the taps along z. */
+static uint32_t last_tap(const ivg_taps *t)
+{
+    return t->idx[t->n - 1u];
+}
+
+/* Level l -> l+1, smoothed after; level 1 made as read when it is a
+ * ring (s; NULL: kept whole). */
+static void push(lumo_ivg *g, unsigned l, unsigned flags, ivg_level1 *s)
+{
+    ivg_level *c = &g->level[l + 1];
+    uint32_t k;
+    ivg_taps t;
+
+    for (k = 0; k < c->dims[2]; k++) {
+        if (l == 1u && s != NULL) {
+            push_taps(k, g->level[1].dims[2], c->dims[2], &t);
+            level1_need(s, last_tap(&t));
+        }
+        push_plane(g, l, k, c);
+    }
+    if (flags & LUMO_IVG_SMOOTH)
+        smooth(g, l + 1);
+}
+
+/* Level l from level l+1; into level 0 with level 1 made as read when it
+ * is a ring (s; NULL: kept whole). */
+static void pull(lumo_ivg *g, unsigned l, ivg_level1 *s)
+{
+    uint32_t k;
+    ivg_taps t;
+
+    for (k = 0; k < g->level[l].dims[2]; k++) {
+        if (l == 0u && s != NULL) {
+            pull_taps(k, g->level[0].dims[2], g->level[1].dims[2], &t);
+            level1_need(s, last_tap(&t));
+        }
+        pull_plane(g, l, k);
     }
 }
 
 lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags)
 {
+    ivg_level1 s;
     unsigned l;
 
     if (g == NULL || (flags & ~LUMO_IVG_SMOOTH) != 0u)
         return LUMO_ERR_ARG;
-    for (l = 0; l + 1 < g->levels; l++) {
-        push(g, l);
-        if (flags & LUMO_IVG_SMOOTH)
-            smooth(g, l + 1);
+    if (g->levels < 2u)
+        return LUMO_OK;
+    if (g->level[1].ring == 0u) {   /* a small grid: level 1 kept whole */
+        for (l = 0; l + 1 < g->levels; l++)
+            push(g, l, flags, NULL);
+        for (l = g->levels - 1; l-- > 0;)
+            pull(g, l, NULL);
+        return LUMO_OK;
     }
-    for (l = g->levels - 1; l-- > 0;)
-        pull(g, l);
+    /* up: level 1 exists only as the push into level 2 reads it */
+    level1_start(&s, g, flags, 0);
+    for (l = 1; l + 1 < g->levels; l++)
+        push(g, l, flags, &s);
+    /* down to level 2, then level 1 made again and filled as level 0 reads it */
+    for (l = g->levels - 1; l-- > 2;)
+        pull(g, l, &s);
+    level1_start(&s, g, flags, g->levels > 2u);
+    pull(g, 0, &s);
     return LUMO_OK;
 }

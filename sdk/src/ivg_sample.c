@@ -44,10 +44,6 @@ typedef struct ivg_hemi {
     int32_t  d[3];
 } ivg_hemi;
 
-/* q is offset by Q_BIAS while it is weighted so every sum is
- * non-negative (unsigned arithmetic, no shifts of negative numbers). */
-#define Q_BIAS 128
-
 /* a * t / 2^16 rounded half up; a, t <= 2^16. */
 static uint32_t part(uint32_t a, uint32_t t)
 {
@@ -90,34 +86,36 @@ static int32_t q_sum_to_q14(int32_t sum)
 /* Trilinear interpolation of one hemisphere: base is its packed entry at
  * the cell's first vertex, off[n] the byte offset of corner n; the grid
  * stays packed and each corner is opened here, on sampling: the colour as
- * UQ16.16 (exact), the direction in the wire's q units, converted to Q1.14
- * once for the sum. The colour sums stay below 2^48; the biased direction
- * sums below 2^16 * 255 < 2^24, so they fit 32 bits (cheaper on the M3). */
+ * UQ16.16 (exact, one table step per word: ivg_rgb9e5_open), the direction
+ * in the wire's q units, converted to Q1.14 once for the sum. The colour
+ * sums stay below 2^48; the direction sums within +-127 x 2^16 < 2^23, so
+ * they fit 32 bits (cheaper on the M3). */
 static void interpolate(const uint8_t *base, const uint32_t off[8], const uint32_t w[8], ivg_hemi *out)
 {
     uint64_t c0 = 0, c1 = 0, c2 = 0;
-    uint32_t d0 = 0, d1 = 0, d2 = 0;
+    int32_t d0 = 0, d1 = 0, d2 = 0;
     int n;
 
     for (n = 0; n < 8; n++) {
         const uint8_t *p = base + off[n];
-        uint32_t wn = w[n], c[3];
-        if (wn == 0u)
+        int32_t wn = (int32_t)w[n];
+        uint32_t c[3];
+        if (wn == 0)
             continue;                 /* a cell face: nothing to open */
         ivg_rgb9e5_open(p + 3, c);
-        c0 += (uint64_t)c[0] * wn;
-        c1 += (uint64_t)c[1] * wn;
-        c2 += (uint64_t)c[2] * wn;
-        d0 += (uint32_t)((int8_t)p[0] + Q_BIAS) * wn;
-        d1 += (uint32_t)((int8_t)p[1] + Q_BIAS) * wn;
-        d2 += (uint32_t)((int8_t)p[2] + Q_BIAS) * wn;
+        c0 += (uint64_t)c[0] * (uint32_t)wn;
+        c1 += (uint64_t)c[1] * (uint32_t)wn;
+        c2 += (uint64_t)c[2] * (uint32_t)wn;
+        d0 += (int8_t)p[0] * wn;
+        d1 += (int8_t)p[1] * wn;
+        d2 += (int8_t)p[2] * wn;
     }
     out->c[0] = (uint32_t)((c0 + (1u << 15)) >> 16);
     out->c[1] = (uint32_t)((c1 + (1u << 15)) >> 16);
     out->c[2] = (uint32_t)((c2 + (1u << 15)) >> 16);
-    out->d[0] = q_sum_to_q14((int32_t)d0 - (Q_BIAS << 16));
-    out->d[1] = q_sum_to_q14((int32_t)d1 - (Q_BIAS << 16));
-    out->d[2] = q_sum_to_q14((int32_t)d2 - (Q_BIAS << 16));
+    out->d[0] = q_sum_to_q14(d0);
+    out->d[1] = q_sum_to_q14(d1);
+    out->d[2] = q_sum_to_q14(d2);
 }
 
 /* Byte offsets of the eight corners of a cell (corner n = x + 2y + 4z). */

@@ -94,7 +94,13 @@ lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes)
 
     if (!pkg || !bytes)
         return LUMO_ERR_ARG;
-    if ((st = lumo_package_info(pkg, &info)) || (st = add_chunk_need(pkg, LUMO_PKG_IVGD, 0, &sum)) ||
+    if ((st = lumo_package_info(pkg, &info)))
+        return st;
+    /* A session holds at most LUMO_MAX_MESHES (feed_info refuses more): a
+     * hostile count must not make this walk billions of chunk lookups. */
+    if (info.mesh_count > LUMO_MAX_MESHES)
+        return LUMO_ERR_LIMIT;
+    if ((st = add_chunk_need(pkg, LUMO_PKG_IVGD, 0, &sum)) ||
         (st = add_chunk_need(pkg, LUMO_PKG_IVGS, 0, &sum)) || (st = add_chunk_need(pkg, LUMO_PKG_ORDR, 0, &sum)))
         return st;
     streams = stream_count(pkg);

@@ -1,6 +1,7 @@
 /* package_write.c — the .lumo container: header, chunk table, CRC-32 per
  * chunk (docs/package-format.md). The CRC is the client's own function, so
  * writer and reader cannot disagree. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -153,18 +154,20 @@ lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char 
      * (an MPI job stopped, docs/server.md) never leaves a partial package
      * under the package's name. */
     char tmp[4096];
+    errno = 0;
     int ok = snprintf(tmp, sizeof tmp, "%s.partial", path) < (int)sizeof tmp;
     FILE *f = ok ? fopen(tmp, "wb") : NULL;
     ok = f && fwrite(data, 1, len, f) == len;
     if (f && fclose(f))
         ok = 0;
-    free(data);
     if (ok && rename(tmp, path))
         ok = 0;
+    int why = errno;
+    free(data);
     if (!ok) {
         if (f)
             remove(tmp);
-        snprintf(err, errlen, "%s: cannot write", path);
+        snprintf(err, errlen, "%s: cannot write: %s", path, why ? strerror(why) : "short write");
         return LUMO_ERR_IO;
     }
     return LUMO_OK;

@@ -7,36 +7,54 @@
 #include "scene/scene.h"
 #include "lumo/scene.h"
 
-lumo_status srv_camera_parse(const char *text, srv_camera *out)
+/* A refusal: the reason into why (when there is room), then st. */
+static lumo_status refuse(lumo_status st, char *why, size_t whylen, const char *reason)
 {
+    if (whylen)
+        snprintf(why, whylen, "%s", reason);
+    return st;
+}
+
+lumo_status srv_camera_parse_why(const char *text, srv_camera *out, char *why, size_t whylen)
+{
+    static const char *const k_fields[3] = {"EYE is not x,y,z (finite numbers)",
+                                            "TARGET is not x,y,z (finite numbers)",
+                                            "UP is not x,y,z (finite numbers)"};
     char buf[256], *parts[4], *save = NULL;
     float v[4][3], fovy;
     int n = 0;
 
     if (!text)
-        return LUMO_ERR_ARG;
+        return refuse(LUMO_ERR_ARG, why, whylen, "no camera");
     if (strlen(text) >= sizeof buf)
-        return LUMO_ERR_LIMIT;
+        return refuse(LUMO_ERR_LIMIT, why, whylen, "longer than 255 characters");
     strcpy(buf, text);
     for (char *p = strtok_r(buf, ":", &save); p; p = strtok_r(NULL, ":", &save)) {
         if (n == 4)
-            return LUMO_ERR_ARG;
+            return refuse(LUMO_ERR_ARG, why, whylen, "more than 4 fields (EYE:TARGET:UP:FOVY)");
         parts[n++] = p;
     }
     if (n != 4)
-        return LUMO_ERR_ARG;
+        return refuse(LUMO_ERR_ARG, why, whylen, "not 4 fields EYE:TARGET:UP:FOVY");
     for (int i = 0; i < 3; i++)
         if (srv_parse_floats(parts[i], v[i], 3))
-            return LUMO_ERR_ARG;
+            return refuse(LUMO_ERR_ARG, why, whylen, k_fields[i]);
     if (srv_parse_floats(parts[3], &fovy, 1) || !(fovy > 0.0f && fovy < 180.0f))
-        return LUMO_ERR_ARG;
+        return refuse(LUMO_ERR_ARG, why, whylen, "FOVY must be a number of degrees above 0 and below 180");
     srv_camera c = {v3(v[0][0], v[0][1], v[0][2]), v3(v[1][0], v[1][1], v[1][2]),
                     v3(v[2][0], v[2][1], v[2][2]), fovy};
     vec3 f = v3_sub(c.target, c.eye);
-    if (v3_len(f) <= 0.0f || v3_len(v3_cross(v3_norm(f), v3_norm(c.up))) < 1e-6f)
-        return LUMO_ERR_ARG;
+    if (v3_len(f) <= 0.0f)
+        return refuse(LUMO_ERR_ARG, why, whylen, "eye and target are the same point (no view direction)");
+    if (v3_len(v3_cross(v3_norm(f), v3_norm(c.up))) < 1e-6f)
+        return refuse(LUMO_ERR_ARG, why, whylen, "UP is zero or parallel to the view direction (eye to target)");
     *out = c;
     return LUMO_OK;
+}
+
+lumo_status srv_camera_parse(const char *text, srv_camera *out)
+{
+    return srv_camera_parse_why(text, out, NULL, 0);
 }
 
 vec3 srv_camera_ray(const srv_camera *c, int w, int h, float px, float py)

@@ -7,6 +7,7 @@
 #ifndef SRV_CAMERA_H
 #define SRV_CAMERA_H
 
+#include <stddef.h>
 #include "common/vec3.h"
 #include "lumo/status.h"
 
@@ -20,6 +21,11 @@ typedef struct srv_camera {
  * target, up parallel to the view, fovy outside (0, 180)), LUMO_ERR_LIMIT
  * when the text is longer than 255 characters. */
 lumo_status srv_camera_parse(const char *text, srv_camera *out);
+
+/* The same, with the reason of a refusal in why (whylen bytes, may be 0):
+ * which field is malformed, "eye and target are the same point", "up is
+ * parallel to the view direction", the field of view's range. */
+lumo_status srv_camera_parse_why(const char *text, srv_camera *out, char *why, size_t whylen);
 
 /* Unit direction of the ray through image position (px, py) in pixels
  * (px in [0, w), py in [0, h), row 0 at the top; a pixel's centre is +0.5). */

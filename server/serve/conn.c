@@ -813,7 +813,7 @@ static const char *form_name(uint8_t f)
 
 void srv_conn_summary(const srv_conn *c, int64_t now, char *out, size_t cap)
 {
-    int n = snprintf(out, cap, "#%llu %s %s: ", (unsigned long long)c->id, c->peer, c->serial ? "serial" : "tcp");
+    int n = snprintf(out, cap, "#%llu %s %s: ", (unsigned long long)c->id, c->peer, c->serial ? "serial" : c->usb ? "usb" : "tcp");
 
     if (n < 0 || (size_t)n >= cap)
         return;

@@ -80,6 +80,7 @@ typedef struct srv_conn {
     int             kind;       /* tag for the event loop (first field) */
     int             fd;
     int             serial;     /* accepted on the serial listener */
+    int             usb;        /* a USB bridge's socket (serve/usb.h) */
     uint64_t        id;
     srv_serve      *srv;
     srv_conn_state  state;

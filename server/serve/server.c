@@ -4,6 +4,8 @@
  */
 #include "serve/server.h"
 #include "common/status_msg.h"
+#include "lumo/net_usb.h"
+#include "serve/usb.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
@@ -23,7 +25,9 @@
 #include <time.h>
 #include <unistd.h>
 
-enum { KIND_CONN = 1, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL };
+enum { KIND_CONN = 1, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL, KIND_USB };
+/* Where a client came from (the listener index, then USB). */
+enum { VIA_TCP = 0, VIA_SERIAL = 1, VIA_USB = 2 };
 
 /* Sweep for timeouts this often. */
 #define SWEEP_US 200000
@@ -275,15 +279,54 @@ static void refuse_client(srv_serve *s, int fd, const char *peer)
     srv_log(s, 0, "#- %s: refused: %s", peer, text);
 }
 
+/* A connected socket fd (non-blocking) becomes a client: TCP, serial or a
+ * USB bridge's (serve/usb.h). */
+static void adopt(srv_serve *s, int fd, int via, const char *peer, int64_t now)
+{
+    struct epoll_event e;
+    srv_conn *c;
+    int one = 1, sndbuf = SRV_SNDBUF;
+
+    if (s->nconns >= s->opt.max_clients) {
+        refuse_client(s, fd, peer);
+        return;
+    }
+    if (!(c = malloc(sizeof *c))) {
+        srv_log(s, 1, "%s: out of memory for a client", peer);
+        close(fd);
+        return;
+    }
+    if (via != VIA_USB)
+        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    /* a fixed kernel send buffer: a client that stops reading holds at
+     * most this much kernel memory and is found stalled soon */
+    setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
+    srv_conn_init(c, s, fd, via == VIA_SERIAL, ++s->next_id, peer, now);
+    c->kind = KIND_CONN;
+    c->usb = via == VIA_USB;
+    c->events = EPOLLIN;
+    e.events = EPOLLIN;
+    e.data.ptr = c;
+    if (epoll_ctl(s->epfd, EPOLL_CTL_ADD, fd, &e) < 0) {
+        srv_log(s, 1, "%s: epoll: %s", peer, strerror(errno));
+        close(fd);
+        free(c);
+        return;
+    }
+    c->next = s->conns;
+    if (s->conns)
+        s->conns->prev = c;
+    s->conns = c;
+    s->nconns++;
+    s->served++;
+}
+
 static void on_accept(srv_serve *s, int which, int64_t now)
 {
     for (;;) {
         struct sockaddr_storage ss;
         socklen_t sl = sizeof ss;
         char peer[64];
-        struct epoll_event e;
-        srv_conn *c;
-        int one = 1, sndbuf = SRV_SNDBUF;
         int fd = accept4(s->lfd[which], (struct sockaddr *)&ss, &sl, SOCK_NONBLOCK | SOCK_CLOEXEC);
 
         if (fd < 0) {
@@ -294,36 +337,19 @@ static void on_accept(srv_serve *s, int which, int64_t now)
             return;
         }
         peer_name(&ss, peer, sizeof peer);
-        if (s->nconns >= s->opt.max_clients) {
-            refuse_client(s, fd, peer);
-            continue;
-        }
-        if (!(c = malloc(sizeof *c))) {
-            srv_log(s, 1, "%s: out of memory for a client", peer);
-            close(fd);
-            continue;
-        }
-        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-        /* a fixed kernel send buffer: a client that stops reading holds at
-         * most this much kernel memory and is found stalled soon */
-        setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &sndbuf, sizeof sndbuf);
-        srv_conn_init(c, s, fd, which == 1, ++s->next_id, peer, now);
-        c->kind = KIND_CONN;
-        c->events = EPOLLIN;
-        e.events = EPOLLIN;
-        e.data.ptr = c;
-        if (epoll_ctl(s->epfd, EPOLL_CTL_ADD, fd, &e) < 0) {
-            srv_log(s, 1, "%s: epoll: %s", peer, strerror(errno));
-            close(fd);
-            free(c);
-            continue;
-        }
-        c->next = s->conns;
-        if (s->conns)
-            s->conns->prev = c;
-        s->conns = c;
-        s->nconns++;
-        s->served++;
+        adopt(s, fd, which, peer, now);
+    }
+}
+
+/* USB devices found: their bridges' sockets (serve/usb.h). */
+static void on_usb(srv_serve *s, int64_t now)
+{
+    char peer[64];
+    int fd;
+
+    while ((fd = srv_usb_take(s->usb, peer, sizeof peer)) >= 0) {
+        srv_log(s, 0, "%s: a lumo client, claimed", peer);
+        adopt(s, fd, VIA_USB, peer, now);
     }
 }
 
@@ -342,6 +368,8 @@ static void start_drain(srv_serve *s, int64_t now)
             close(s->lfd[i]);
             s->lfd[i] = -1;
         }
+    if (s->usb)
+        epoll_ctl(s->epfd, EPOLL_CTL_DEL, srv_usb_event_fd(s->usb), NULL);
     srv_log(s, 1, "shutting down: %u clients, finishing their output (at most %u ms)", s->nconns,
             s->opt.drain_ms);
     for (c = s->conns; c; c = next) {
@@ -396,7 +424,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
     sigset_t mask;
     int64_t next_sweep;
     int i;
-    static int tags[4] = {KIND_CONN, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL};
+    static int tags[5] = {KIND_CONN, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL, KIND_USB};
     lumo_status st = LUMO_OK;
 
     memset(&s, 0, sizeof s);
@@ -452,6 +480,14 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
         e.data.ptr = &tags[3];
         epoll_ctl(s.epfd, EPOLL_CTL_ADD, s.sigfd, &e);
     }
+    if (s.opt.usb) {
+        struct epoll_event e;
+        if ((st = srv_usb_start(&s.usb, s.opt.usb_any, s.opt.usb_vid, s.opt.usb_pid, err, errlen)))
+            goto out;
+        e.events = EPOLLIN;
+        e.data.ptr = &tags[4];
+        epoll_ctl(s.epfd, EPOLL_CTL_ADD, srv_usb_event_fd(s.usb), &e);
+    }
     for (i = 0; i < (int)npkgs; i++)
         srv_log(&s, 1, "package %d: %s (%u meshes, %s, %zu bytes, id %08x)", i, pkgs[i].path, pkgs[i].mesh_count,
                 pkgs[i].ivg.present ? "IVG" : "no IVG", pkgs[i].size, pkgs[i].id);
@@ -460,6 +496,13 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
     if (s.lfd[1] >= 0)
         srv_log(&s, 1, "serial line on %s (tcp port %u): resynchronised after garbage", s.opt.serial_listen,
                 s.port[1]);
+    if (s.usb) {
+        if (s.opt.usb_any)
+            srv_log(&s, 1, "USB: every device with a lumo interface (class %02x/%02x/%02x)", LUMO_USB_CLASS,
+                    LUMO_USB_SUBCLASS, LUMO_USB_PROTOCOL);
+        else
+            srv_log(&s, 1, "USB: devices %04x:%04x with a lumo interface", s.opt.usb_vid, s.opt.usb_pid);
+    }
     if (s.link.rate_bytes > 0 || s.link.latency_us || s.serial_link.loss > 0)
         srv_log(&s, 1, "link emulation per client: rate %g kbit/s, latency %u ms, serial loss %g per frame (seed %llu)",
                 s.opt.rate_kbit, s.opt.latency_ms, s.opt.loss, (unsigned long long)s.opt.seed);
@@ -491,6 +534,9 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
             if (kind == KIND_LISTEN_TCP || kind == KIND_LISTEN_SERIAL) {
                 if (!s.draining)
                     on_accept(&s, kind == KIND_LISTEN_SERIAL, now);
+            } else if (kind == KIND_USB) {
+                if (!s.draining)
+                    on_usb(&s, now);
             } else if (kind == KIND_SIGNAL) {
                 struct signalfd_siginfo si;
                 while (read(s.sigfd, &si, sizeof si) == (ssize_t)sizeof si) {
@@ -547,6 +593,7 @@ out:
             ;   /* consumed: a signal left pending would kill us when unblocked */
         close(s.sigfd);
     }
+    srv_usb_stop(s.usb);
     if (s.epfd >= 0)
         close(s.epfd);
     free(s.timers.a);

@@ -6,7 +6,8 @@
  * client) and optionally a "serial" one: TCP connections that carry a raw
  * serial line (same frames; the receive side resynchronises after garbage,
  * and --loss damages frames on the way out to exercise the client's
- * resynchronisation). Every connection is a serve/conn.h; the loop reads,
+ * resynchronisation); with --usb, USB devices too (serve/usb.h: a bridge
+ * per device hands the loop a socket, served like a TCP client). Every connection is a serve/conn.h; the loop reads,
  * pumps and times them out. SIGINT / SIGTERM: stop accepting and reading,
  * finish the queued output until the drain deadline, close, return.
  */
@@ -38,6 +39,9 @@ typedef struct srv_serve_options {
     uint32_t    drain_ms;
     int         quiet;          /* no per-client lines */
     const char *port_file;      /* write "TCP_PORT SERIAL_PORT\n" once listening */
+    int         usb;            /* also serve USB devices (serve/usb.h) */
+    int         usb_any;        /* of any VID:PID, else usb_vid:usb_pid */
+    uint16_t    usb_vid, usb_pid;
 } srv_serve_options;
 
 typedef struct srv_heap {
@@ -59,6 +63,7 @@ struct srv_serve {
     uint32_t          nconns;
     uint64_t          next_id, served, refused;
     srv_heap          timers;       /* connections waiting for a time */
+    struct srv_usb   *usb;          /* the USB watcher (--usb), or NULL */
     int               draining;
     int64_t           drain_deadline_us;
 };

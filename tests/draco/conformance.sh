@@ -16,6 +16,10 @@ lumo="$bin/lumo-draco-decode-san"
 [ -x "$lumo" ] || lumo="$bin/lumo-draco-decode"
 rm -rf "$work"; mkdir -p "$work/gen" "$work/cases"
 "$bin/gen-meshes" "$work/gen" || { echo "RESULT: 0 passed, 1 failed"; exit 1; }
+# the attribute set of issue 25 (tests/draco/gen_attr_meshes.cc)
+mkdir -p "$work/attr"
+"$bin/gen-attr-meshes" "$work/attr" "$models/bunny.obj" || { echo "RESULT: 0 passed, 1 failed"; exit 1; }
+attr_meshes="scan_20k scan_82k terrain cad holed parts bunny"
 
 gen="sphere_uv.obj small.obj cube_seams.obj torus_color.ply cornell.obj nonmanifold.ply"
 cases="$work/cases.txt"; : > "$cases"
@@ -48,6 +52,19 @@ else
     for cl in 0 7 10; do add mesh "$models/dragon_11k.ply" "-cl $cl -qp 14"; done
     for cl in 0 5 7 10; do add mesh "$models/dragon_48k.ply" "-cl $cl"; done
 fi
+# positions + normals, + texture coordinates, + colours, at the levels and
+# the two quantizations of the benchmark (bench/draco_attrs.sh): every
+# case in the full grid, one level per mesh and kind in the quick one
+i=0
+for m in $attr_meshes; do for k in n nt c; do
+    case $k in c) f="$work/attr/${m}_c.ply" ;; *) f="$work/attr/${m}_$k.obj" ;; esac
+    i=$((i + 1))
+    for cl in 4 7 10; do
+        [ "$mode" = full ] || [ $(((i + cl) % 3)) -eq 0 ] || continue
+        add mesh "$f" "-cl $cl"
+        add mesh "$f" "-cl $cl -qp 14 -qt 12 -qn 10"
+    done
+done; done
 # more than 2^16 points: sequential connectivity with varint indices, and
 # the exact rANS table of long streams (draco_rans.c LD_LUT_EXACT_BITS)
 add mesh "$models/dragon_203k.ply" "-cl 0"

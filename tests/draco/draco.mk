@@ -6,6 +6,7 @@
 #   make draco-conformance-quick  a sampled grid for quick iteration
 DRACO_ORACLE := $(BIN)/draco-oracle
 DRACO_GEN    := $(BIN)/gen-meshes
+DRACO_GEN_ATTR := $(BIN)/gen-attr-meshes
 DRACO_SAN    := $(BIN)/lumo-draco-decode-san
 DRACO_PLYCMP := $(BIN)/ply-compare
 HOST_TOOLS   += $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(DRACO_PLYCMP)
@@ -26,7 +27,7 @@ $(DRACO_SAN): $(BUILD)/tests/tools/lumo-draco-decode/main.o $(BUILD)/san/liblumo
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
-DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_SAN) $(DRACO_PLYCMP) $(BIN)/lumo-draco-decode
+DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_GEN_ATTR) $(DRACO_SAN) $(DRACO_PLYCMP) $(BIN)/lumo-draco-decode
 
 .PHONY: draco-conformance draco-conformance-quick draco-conformance-full
 draco-conformance: $(DRACO_CONF_DEPS)
@@ -42,3 +43,25 @@ TEST_STEPS += draco-conformance
 draco-arena: $(BIN)/lumo-draco-decode
 	@sh tests/draco/arena_check.sh $(BUILD)
 TEST_STEPS += draco-arena
+
+# refusal conformance (issue 24): mutated streams libdraco refuses, lumo
+# refuses too; libdraco in-process against the sanitizer build of liblumo
+DRACO_REFUSAL := $(BIN)/draco-refusal
+HOST_TOOLS    += $(DRACO_REFUSAL)
+$(BUILD)/tests/tests/draco/draco_refusal.o: tests/draco/draco_refusal.cc
+	@mkdir -p $(@D)
+	$(CXX) -std=c++17 -Wall -Wextra -Werror -Isdk/include -O1 -g $(SAN_FLAGS) -MMD -MP -c $< -o $@
+$(DRACO_REFUSAL): $(BUILD)/tests/tests/draco/draco_refusal.o $(BUILD)/san/liblumo.a
+	@mkdir -p $(@D)
+	$(CXX) $(SAN_FLAGS) -o $@ $^ -ldraco -pthread
+
+.PHONY: draco-refusal
+draco-refusal: $(DRACO_REFUSAL) $(DRACO_GEN)
+	@sh tests/draco/refusal.sh $(BUILD)
+TEST_STEPS += draco-refusal
+
+# the attribute set of issue 25 (normals from assimp, colours synthesised)
+HOST_TOOLS     += $(DRACO_GEN_ATTR)
+$(DRACO_GEN_ATTR): $(BUILD)/host/tests/draco/gen_attr_meshes.o
+	@mkdir -p $(@D)
+	$(CXX) -o $@ $^ -lassimp

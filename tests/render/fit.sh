@@ -93,7 +93,7 @@ fi
 [ $? -eq 2 ] && grep -q -- "--camera 1,1,1:1,1,1:0,1,0:40: not EYE:TARGET:UP:FOVY" "$dir/cam.txt" \
     && ok "lumo-client: eye == target refused by name" || bad "lumo-client --camera eye == target: $(cat "$dir/cam.txt")"
 "$bin/lumo-render" "$dir/model-11.lumo" --camera 1,1,1:1,1,1:0,1,0:40 -o "$dir/x.png" >"$dir/cam.txt" 2>&1
-[ $? -eq 1 ] && grep -q "bad camera '1,1,1:1,1,1:0,1,0:40'" "$dir/cam.txt" \
+[ $? -eq 1 ] && grep -q -- "--camera 1,1,1:1,1,1:0,1,0:40: " "$dir/cam.txt" \
     && ok "lumo-render: eye == target refused by name" || bad "lumo-render --camera eye == target: $(cat "$dir/cam.txt")"
 
 echo "RESULT: $pass passed, $fail failed"

@@ -17,7 +17,7 @@ $(SERVE_CLIENT): $(BUILD)/tests/tests/serve/serve_client.o $(BUILD)/san/liblumo_
 	$(CC) $(SAN_FLAGS) -o $@ $^
 $(SERVE_SAN): $(SERVE_SAN_OBJS) $(BUILD)/host/libhost.a $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lusb-1.0 -lm
 
 # The request mapping on synthetic streams and round tables (cmocka).
 SERVE_UNIT := $(BUILD)/tests/bin/test_serve_plan

@@ -60,7 +60,7 @@ dragon=$models/dragon_11k.ply
 scene="$dir/scene.lumo"; split="$dir/split.lumo"; small="$dir/small.lumo"
 "$bin/lumo-bake" --default --dragon "$dragon" --grid 12 --spp 8 --no-progress -o "$scene" 2>"$dir/bake.log" &&
 "$bin/lumo-bake" --default --dragon "$dragon" --grid 32,8,8 --spp 4 --no-progress -o "$split" 2>>"$dir/bake.log" &&
-"$bin/lumo-bake" --default --dragon /nonexistent --grid 8 --spp 4 --no-progress -o "$small" 2>>"$dir/bake.log" ||
+"$bin/lumo-bake" --default --dragon sphere --grid 8 --spp 4 --no-progress -o "$small" 2>>"$dir/bake.log" ||
     { cat "$dir/bake.log"; echo "RESULT: 0 passed, 1 failed (lumo-bake)"; exit 1; }
 
 # ---- the command line -------------------------------------------------------------

@@ -60,6 +60,28 @@ static void test_memory_large(void **state)
     assert_true(n < (size_t)704643072u / 7u * 9u);
 }
 
+/* Level 1 kept as two rings of three planes (docs/ivg-format.md §6): a 32^3
+ * grid at most 48 bytes a vertex, pyramid included; a grid with level 1 in
+ * rings is created in exactly its need, and one byte less fails. */
+static void test_memory_rings(void **state)
+{
+    lumo_ivg_desc d = {{32, 32, 32}, {0, 0, 0}, {LUMO_Q16_ONE, LUMO_Q16_ONE, LUMO_Q16_ONE}};
+    lumo_ivg_desc r = {{7, 5, 23}, {0, 0, 0}, {LUMO_Q16_ONE, LUMO_Q16_ONE, LUMO_Q16_ONE}};
+    size_t need = lumo_ivg_memory_size(&r);
+    uint64_t *mem = malloc(need + 64);
+    lumo_arena a;
+    lumo_ivg *g = NULL;
+    (void)state;
+    assert_true(lumo_ivg_memory_size(&d) <= (size_t)48u * 32u * 32u * 32u);
+    lumo_arena_init(&a, mem, need - 1);
+    assert_int_equal(lumo_ivg_create(&g, &a, &r), LUMO_ERR_NOMEM);
+    assert_int_equal(a.used, 0);
+    lumo_arena_init(&a, mem, need);
+    assert_int_equal(lumo_ivg_create(&g, &a, &r), LUMO_OK);
+    assert_int_equal(a.used, need);
+    free(mem);
+}
+
 /* ---- decoding ------------------------------------------------------------ */
 
 /* Every stored entry against the float the server meant. Quantized: q/127
@@ -614,6 +636,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_memory_and_create),
         cmocka_unit_test(test_memory_large),
+        cmocka_unit_test(test_memory_rings),
         cmocka_unit_test(test_decode_quantized),
         cmocka_unit_test(test_decode_float),
         cmocka_unit_test(test_decode_known_values),

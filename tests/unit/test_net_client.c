@@ -129,7 +129,7 @@ static int bake_split(const char *out)
         return -1;
     }
     snprintf(cmd, sizeof cmd,
-             "'%s' --default --dragon /nonexistent --grid 32,4,4 --spp 2 --threads 1 --no-progress -o '%s' "
+             "'%s' --default --dragon sphere --grid 32,4,4 --spp 2 --threads 1 --no-progress -o '%s' "
              "2>/dev/null", bin, out);
     return system(cmd) == 0 ? 0 : -1;
 }

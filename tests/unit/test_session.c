@@ -443,6 +443,26 @@ static void test_version_1_refused(void **state)
     assert_int_equal(major, 1);
 }
 
+/* An INFO claiming 2^32 - 1 meshes: the need is refused at once (it used
+ * to walk four billion chunk lookups; found by fuzz_package), and so is
+ * the package. */
+static void test_mesh_count_limit(void **state)
+{
+    static chunk c[2];
+    static bytes pkgb;
+    lumo_package pkg;
+    lumo_arena a;
+    size_t need;
+    (void)state;
+    info_chunk(&c[0]);
+    c[0].data.b[0] = c[0].data.b[1] = c[0].data.b[2] = c[0].data.b[3] = 0xff;
+    mesh_chunk(&c[1], 1);
+    assemble(&pkgb, c, 2);
+    assert_int_equal(lumo_package_open(&pkg, pkgb.b, pkgb.n), LUMO_OK);
+    assert_int_equal(lumo_session_package_need(&pkg, &need), LUMO_ERR_LIMIT);
+    assert_int_equal(open_session(&pkgb, &pkg, &a, sizeof g_mem, NULL), LUMO_ERR_LIMIT);
+}
+
 /* IVGS of another grid, ORDR naming a mesh the scene lacks: refused. */
 static void test_order_messages_checked(void **state)
 {
@@ -490,6 +510,7 @@ int main(void)
         cmocka_unit_test(test_ivgr_round_by_round),
         cmocka_unit_test(test_ivgr_from_data),
         cmocka_unit_test(test_version_1_refused),
+        cmocka_unit_test(test_mesh_count_limit),
         cmocka_unit_test(test_order_messages_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "lumo_host/options.h"
 #include "lumo_host/png_io.h"
 #include "bake/bake.h"
 #include "scene/import.h"
@@ -13,6 +14,7 @@
 #include "common/progress.h"
 #include "bake/reference.h"
 #include "bake/cluster.h"
+#include "scene/camera.h"
 #include "scene/shapes.h"
 #include "lumo_host/version_line.h"
 
@@ -36,7 +38,7 @@ typedef struct {
     int   has_albedo, has_camera;
     int   mesh_mode;          /* MESH_RAW, MESH_PM or MESH_BOTH */
     srv_camera camera;
-    const char *lights[64];
+    const char *lights[LUMO_MAX_LIGHTS];
     int   nlights;
 } options;
 
@@ -58,7 +60,9 @@ static const char usage[] =
     "                         directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
     "  --albedo R,G,B         override every material's albedo\n"
     "  --mesh pm|raw|both     mesh chunks: progressive PMSH (default), raw MESH, or both\n"
-    "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ")\n"
+    "  --dragon FILE          model for --default (default " DEFAULT_DRAGON ",\n"
+    "                         or LUMO_DRAGON); a named model that cannot be read is an error;\n"
+    "                         'sphere': the server's generated sphere instead of a model\n"
     "  --reference WxH        render a reference image instead of baking\n"
     "  --camera E:T:U:FOVY    camera (default: the scene's, else one fitted to its bounds)\n"
     "  --indirect-only        reference image of the indirect light only\n"
@@ -73,27 +77,39 @@ static int fail(const char *msg)
     return 1;
 }
 
-static int parse_int(const char *t, int lo, int hi, int *out)
+/* --grid N or NX,NY,NZ, each 2..256; a refusal names the whole value and
+ * the part. */
+static int parse_grid(const char *t, int dims[3], char *err, size_t errlen)
 {
-    char *end;
-    long v = strtol(t, &end, 10);
-    if (end == t || *end || v < lo || v > hi)
-        return -1;
-    *out = (int)v;
-    return 0;
-}
+    char part[64], why[320];
+    const char *p = t;
+    int d[3], n = 0;
 
-static int parse_grid(const char *t, int dims[3])
-{
-    char buf[64], *save = NULL;
-    int n = 0;
-    snprintf(buf, sizeof buf, "%s", t);
-    for (char *p = strtok_r(buf, ",", &save); p; p = strtok_r(NULL, ",", &save))
-        if (n == 3 || parse_int(p, 2, 256, &dims[n++]))
+    for (;;) {
+        size_t len = strcspn(p, ",");
+        snprintf(part, sizeof part, "%.*s", (int)(len < sizeof part ? len : sizeof part - 1), p);
+        if (n == 3 || len >= sizeof part || host_opt_int("--grid", part, 2, 256, &d[n], why, sizeof why)) {
+            const char *r = strstr(why, ": ");
+            char which[24] = "";
+            if (strchr(t, ','))
+                snprintf(which, sizeof which, "value %d ", n + 1);
+            snprintf(err, errlen, "--grid %.64s: %s%s (N or NX,NY,NZ)", t, n == 3 ? "more than 3 values" : which,
+                     n == 3 ? "" : len >= sizeof part ? "too long" : r ? r + 2 : why);
             return -1;
-    if (n == 1)
-        dims[1] = dims[2] = dims[0];
-    return n == 1 || n == 3 ? 0 : -1;
+        }
+        n++;
+        if (!p[len])
+            break;
+        p += len + 1;
+    }
+    if (n == 2) {
+        snprintf(err, errlen, "--grid %.64s: 1 or 3 values wanted, 2 given (N or NX,NY,NZ)", t);
+        return -1;
+    }
+    dims[0] = d[0];
+    dims[1] = n == 1 ? d[0] : d[1];
+    dims[2] = n == 1 ? d[0] : d[2];
+    return 0;
 }
 
 enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
@@ -111,55 +127,79 @@ static const struct option k_long[] = {
     {"checkpoint", required_argument, 0, O_CHECKPOINT},
     {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
+/* The options that take a number; 0, or -1 with the refusal in err. */
+static int take_number(options *o, int c, const char *arg, char *err, size_t errlen)
+{
+    double d, v[3];
+    uint32_t w, h;
+
+    switch (c) {
+    case O_GRID: return parse_grid(arg, o->dims, err, errlen);
+    case O_CELL:
+        if (host_opt_positive("--cell", arg, 1e6, &d, err, errlen))
+            return -1;
+        o->cell = (float)d;
+        return 0;
+    case O_SPP: return host_opt_int("--spp", arg, 1, 1 << 24, &o->spp, err, errlen);
+    case O_SEED: return host_opt_u64("--seed", arg, &o->seed, err, errlen);
+    case O_THREADS: return host_opt_int("--threads", arg, 1, 256, &o->threads, err, errlen);
+    case O_ALBEDO:
+        if (host_opt_vec("--albedo", arg, 3, 0, 1, v, err, errlen))
+            return -1;
+        o->albedo = v3(fminf((float)v[0], 0.98f), fminf((float)v[1], 0.98f), fminf((float)v[2], 0.98f));
+        o->has_albedo = 1;
+        return 0;
+    case O_REF:
+        if (host_opt_size("--reference", arg, 16384, 16384, &w, &h, err, errlen))
+            return -1;
+        o->ref_w = (int)w;
+        o->ref_h = (int)h;
+        return 0;
+    case O_EXPOSURE:
+        if (host_opt_double("--exposure", arg, 0, 65535, &d, err, errlen))
+            return -1;
+        o->exposure = (float)d;
+        return 0;
+    default: snprintf(err, errlen, "unhandled option %d", c); return -1;
+    }
+}
+
 /* One option; returns 0, 1 for --help, or -1 with a message in err. */
 static int take_option(options *o, int c, const char *arg, char *err, size_t errlen)
 {
-    char *end;
+    static const char *const k_meshes[] = {"raw", "pm", "both"};   /* MESH_RAW - 1, ... */
+    char why[200];
+
     switch (c) {
     case O_DEFAULT: o->use_default = 1; return 0;
     case 'o': o->out = arg; return 0;
-    case O_GRID: if (!parse_grid(arg, o->dims)) return 0; break;
-    case O_CELL: if (!srv_parse_floats(arg, &o->cell, 1) && o->cell > 0) return 0; break;
-    case O_SPP: if (!parse_int(arg, 1, 1 << 24, &o->spp)) return 0; break;
-    case O_SEED:
-        o->seed = strtoull(arg, &end, 0);
-        if (end != arg && !*end) return 0;
-        break;
-    case O_THREADS: if (!parse_int(arg, 1, 256, &o->threads)) return 0; break;
     case O_LIGHT:
-        if (o->nlights < 64) { o->lights[o->nlights++] = arg; return 0; }
-        break;
-    case O_ALBEDO: {
-        float f[3];
-        if (!srv_parse_floats(arg, f, 3) && f[0] >= 0 && f[1] >= 0 && f[2] >= 0 &&
-            f[0] <= 1 && f[1] <= 1 && f[2] <= 1) {
-            o->albedo = v3(fminf(f[0], 0.98f), fminf(f[1], 0.98f), fminf(f[2], 0.98f));
-            o->has_albedo = 1;
-            return 0;
+        if (o->nlights == LUMO_MAX_LIGHTS) {
+            snprintf(err, errlen, "--light %.64s: more than %d lights; a scene holds at most %d "
+                     "(LUMO_MAX_LIGHTS, lumo/config.h)", arg, LUMO_MAX_LIGHTS, LUMO_MAX_LIGHTS);
+            return -1;
         }
-        break;
-    }
+        o->lights[o->nlights++] = arg;
+        return 0;
     case O_DRAGON: o->dragon = arg; return 0;
-    case O_REF:
-        if (sscanf(arg, "%dx%d%c", &o->ref_w, &o->ref_h, &(char){0}) == 2 && o->ref_w > 0 &&
-            o->ref_h > 0 && o->ref_w <= 16384 && o->ref_h <= 16384)
-            return 0;
-        break;
-    case O_CAMERA: if (!srv_camera_parse(arg, &o->camera)) { o->has_camera = 1; return 0; } break;
+    case O_CAMERA:
+        if (srv_camera_parse_why(arg, &o->camera, why, sizeof why)) {
+            snprintf(err, errlen, "--camera %.128s: %s (docs/scene-format.md)", arg, why);
+            return -1;
+        }
+        o->has_camera = 1;
+        return 0;
     case O_INDIRECT: o->indirect_only = 1; return 0;
-    case O_EXPOSURE: if (!srv_parse_floats(arg, &o->exposure, 1) && o->exposure >= 0) return 0; break;
     case O_NOPROGRESS: o->progress = 0; return 0;
     case O_CHECKPOINT: o->checkpoint = arg; return 0;
     case O_MESH:
-        o->mesh_mode = !strcmp(arg, "raw") ? MESH_RAW : !strcmp(arg, "pm") ? MESH_PM
-                     : !strcmp(arg, "both") ? MESH_BOTH : 0;
-        if (o->mesh_mode) return 0;
-        break;
+        if (host_opt_choice("--mesh", arg, k_meshes, 3, &o->mesh_mode, err, errlen))
+            return -1;
+        o->mesh_mode += 1;
+        return 0;
     case 'h': return 1;
-    default: snprintf(err, errlen, "unknown option (try --help)"); return -1;
+    default: return take_number(o, c, arg, err, errlen);
     }
-    snprintf(err, errlen, "bad value '%s' for an option (try --help)", arg);
-    return -1;
 }
 
 static int parse_args(options *o, int argc, char **argv, char *err, size_t errlen)
@@ -175,11 +215,9 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     o->threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
     o->threads = o->threads < 1 ? 1 : o->threads > 256 ? 256 : o->threads;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, "o:h", k_long, NULL)) != -1) {
-        if (c == '?' || c == ':') {
-            snprintf(err, errlen, "unknown option or missing value '%s' (try --help)", argv[optind - 1]);
-            return -1;
-        }
+    while ((c = getopt_long(argc, argv, ":o:h", k_long, NULL)) != -1) {
+        if (c == '?' || c == ':')
+            return host_opt_getopt_error(c, argv[optind - 1], optopt, err, errlen);
         int rc = take_option(o, c, optarg, err, errlen);
         if (rc)
             return rc;
@@ -195,7 +233,11 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
         return -1;
     }
     if (!o->out) {
-        snprintf(err, errlen, "no output file (-o)");
+        snprintf(err, errlen, "no output file: give -o OUT.lumo, or -o OUT.png with --reference (try --help)");
+        return -1;
+    }
+    if (o->dragon && !o->use_default) {
+        snprintf(err, errlen, "--dragon %.128s: only with --default (a SCENE names its own models)", o->dragon);
         return -1;
     }
     if (o->spp == 0)
@@ -240,11 +282,48 @@ static lumo_status fit_camera(srv_scene *s, char *err, size_t errlen)
     return LUMO_OK;
 }
 
+/* The model of --default: --dragon, else LUMO_DRAGON, else the dragon;
+ * "sphere" asks for the server's generated sphere (*model NULL). A file
+ * the user named is used or refused; only the built-in dragon, when
+ * tools/setup.sh has not fetched it, gives way to the sphere (said on
+ * stderr). 0, or -1 with err set. */
+static int default_model(const options *o, const char **model, char *err, size_t errlen)
+{
+    const char *env = getenv("LUMO_DRAGON");
+
+    *model = o->dragon ? o->dragon : env;
+    if (*model && !strcmp(*model, "sphere")) {
+        *model = NULL;
+        return 0;
+    }
+    if (o->dragon)
+        return host_opt_file("--dragon", o->dragon, "model file", err, errlen);
+    if (env)
+        return host_opt_file("LUMO_DRAGON", env, "model file", err, errlen);
+    if (access(DEFAULT_DRAGON, R_OK))
+        fprintf(stderr, "lumo-bake: note: %s missing (tools/setup.sh fetches it): a sphere in its place\n",
+                DEFAULT_DRAGON);
+    *model = DEFAULT_DRAGON;
+    return 0;
+}
+
+/* SCENE or --default with its model, checked as files first (a directory
+ * or an empty file is named as such, not handed to a reader). */
+static lumo_status load_base(const options *o, srv_scene *s, char *err, size_t errlen)
+{
+    const char *dragon;
+
+    if (!o->use_default)
+        return host_opt_file(NULL, o->scene, "scene or model file", err, errlen) ? LUMO_ERR_ARG
+                                                                                 : load_file(o->scene, s, err, errlen);
+    if (default_model(o, &dragon, err, errlen))
+        return LUMO_ERR_ARG;
+    return srv_default_scene(s, dragon, err, errlen);
+}
+
 static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t errlen)
 {
-    const char *dragon = o->dragon ? o->dragon : getenv("LUMO_DRAGON") ? getenv("LUMO_DRAGON") : DEFAULT_DRAGON;
-    lumo_status st = o->use_default ? srv_default_scene(s, dragon, err, errlen)
-                                    : load_file(o->scene, s, err, errlen);
+    lumo_status st = load_base(o, s, err, errlen);
     for (int i = 0; !st && i < o->nlights; i++) {
         srv_light l;
         st = srv_light_parse(o->lights[i], &l, err, errlen);

@@ -14,6 +14,7 @@
 #include "lumo/net.h"
 #include "lumo/net_client.h"
 #include "lumo/session.h"
+#include "lumo_host/options.h"
 #include "../../net/host/net_socket.h"
 #include "client.h"
 #include "../lumo-render/scene_convert.h"
@@ -62,40 +63,19 @@ static const char usage[] =
     "The last line on stdout sums the run up; any failure is one 'lumo-client: error:' line\n"
     "on stderr and exit status 1 (the frames drawn until then are kept).\n";
 
-static int parse_percents(const char *s, options *o)
+/* The refusal of the last option, for main (one command line per run). */
+static char g_err[400];
+
+static int parse_u32(const char *opt, const char *s, uint32_t lo, uint32_t hi, uint32_t *v)
 {
-    char *end;
-
-    o->nat = 0;
-    while (*s && o->nat < 64) {
-        double p = strtod(s, &end);
-        if (end == s || !(p > 0 && p <= 100) || (o->nat && p <= o->at[o->nat - 1]))
-            return -1;
-        o->at[o->nat++] = p;
-        s = *end == ',' ? end + 1 : end;
-        if (*end && *end != ',')
-            return -1;
-    }
-    return o->nat ? 0 : -1;
-}
-
-static int parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *v)
-{
-    char *end;
-    unsigned long n = strtoul(s, &end, 10);
-
-    if (*end || end == s || n < lo || n > hi)
-        return -1;
-    *v = (uint32_t)n;
-    return 0;
+    return host_opt_u32(opt, s, lo, hi, v, g_err, sizeof g_err);
 }
 
 static int parse_size(const char *s, options *o)
 {
-    unsigned w, h;
-    char tail;
+    uint32_t w, h;
 
-    if (sscanf(s, "%ux%u%c", &w, &h, &tail) != 2 || !w || !h || w > LUMO_MAX_FRAME_DIM || h > LUMO_MAX_FRAME_DIM)
+    if (host_opt_size("--size", s, LUMO_MAX_FRAME_DIM, LUMO_MAX_FRAME_DIM, &w, &h, g_err, sizeof g_err))
         return -1;
     o->ro.width = (uint16_t)w, o->ro.height = (uint16_t)h;
     return 0;
@@ -103,14 +83,14 @@ static int parse_size(const char *s, options *o)
 
 static int parse_order(const char *s, options *o)
 {
-    if (!strcmp(s, "interleaved"))
-        o->policy.order = LUMO_NET_ORDER_INTERLEAVED;
-    else if (!strcmp(s, "geometry"))
-        o->policy.order = LUMO_NET_ORDER_GEOMETRY_FIRST;
-    else if (!strcmp(s, "lighting"))
-        o->policy.order = LUMO_NET_ORDER_LIGHTING_FIRST;
-    else
+    static const char *const k_orders[] = {"interleaved", "geometry", "lighting"};
+    static const lumo_net_order k_values[] = {LUMO_NET_ORDER_INTERLEAVED, LUMO_NET_ORDER_GEOMETRY_FIRST,
+                                              LUMO_NET_ORDER_LIGHTING_FIRST};
+    int i;
+
+    if (host_opt_choice("--order", s, k_orders, 3, &i, g_err, sizeof g_err))
         return -1;
+    o->policy.order = k_values[i];
     return 0;
 }
 
@@ -126,27 +106,34 @@ static int take_option(int c, const char *arg, options *o)
     case O_HTTP: o->http = arg; return 0;
     case O_REPLAY: o->replay = arg; return 0;
     case O_RECORD: o->record = arg; return 0;
-    case O_RETRIES: return parse_u32(arg, 0, 1000, &o->retries);
-    case O_PACKAGE: return parse_u32(arg, 0, 0x7fffffff, &o->package);
+    case O_RETRIES: return parse_u32("--retries", arg, 0, 1000, &o->retries);
+    case O_PACKAGE: return parse_u32("--package", arg, 0, 0x7fffffff, &o->package);
     case O_OUT: o->out = arg; return 0;
-    case O_AT: return parse_percents(arg, o);
+    case O_AT:
+        if (host_opt_list("--frames-at", arg, 0, 100, 1, o->at, 64, &o->nat, g_err, sizeof g_err))
+            return -1;
+        if (o->at[0] > 0)
+            return 0;
+        snprintf(g_err, sizeof g_err, "--frames-at %.64s: percentages must be above 0 (frame-first.png is "
+                 "always drawn)", arg);
+        return -1;
     case O_BACKEND: o->backend = arg; return 0;
     case O_SIZE: return parse_size(arg, o);
     case O_PV: o->per_vertex = 1; return 0;
     case O_CAMERA: o->camera = arg; return 0;
     case O_FIT: o->fit = 1; return 0;
     case O_ORDER: return parse_order(arg, o);
-    case O_VERTS: return parse_u32(arg, 1, 1u << 28, &o->policy.vertices);
-    case O_ROUNDS: return parse_u32(arg, 1, 1u << 20, &o->policy.rounds);
-    case O_TARGET: return parse_u32(arg, 1, 60000, &o->policy.target_ms);
-    case O_PIPE: return parse_u32(arg, 1, 8, &o->policy.pipeline);
-    case O_MAXPAY: return parse_u32(arg, LUMO_NET_MIN_PAYLOAD, LUMO_NET_MAX_PAYLOAD, &o->max_payload);
+    case O_VERTS: return parse_u32("--vertices", arg, 1, 1u << 28, &o->policy.vertices);
+    case O_ROUNDS: return parse_u32("--rounds", arg, 1, 1u << 20, &o->policy.rounds);
+    case O_TARGET: return parse_u32("--target-ms", arg, 1, 60000, &o->policy.target_ms);
+    case O_PIPE: return parse_u32("--pipeline", arg, 1, 8, &o->policy.pipeline);
+    case O_MAXPAY: return parse_u32("--max-payload", arg, LUMO_NET_MIN_PAYLOAD, LUMO_NET_MAX_PAYLOAD, &o->max_payload);
     case O_NOSMOOTH: o->no_smoothing = 1; return 0;
-    case O_SMOOTHB: return parse_u32(arg, 1, 60000, &o->policy.smooth_budget_ms);
+    case O_SMOOTHB: return parse_u32("--smoothing-budget", arg, 1, 60000, &o->policy.smooth_budget_ms);
     case O_FLOAT: o->use_float = 1; return 0;
-    case O_ARENA: return parse_u32(arg, 1, 4095, &o->arena_mib);
+    case O_ARENA: return parse_u32("--arena", arg, 1, 4095, &o->arena_mib);
     case O_QUIET: o->quiet = 1; return 0;
-    default: return -1;
+    default: snprintf(g_err, sizeof g_err, "unhandled option %d", c); return -1;
     }
 }
 
@@ -171,15 +158,22 @@ static int parse_args(int argc, char **argv, options *o)
     o->out = ".", o->backend = "soft", o->arena_mib = 256, o->retries = 5, o->max_payload = 1u << 20;
     o->at[0] = 100, o->nat = 1;
     o->ro.width = 320, o->ro.height = 240, o->ro.format = LUMO_PIXEL_XRGB8888, o->ro.depth_bits = 32;
-    while ((c = getopt_long(argc, argv, "h", longs, NULL)) != -1) {
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":h", longs, NULL)) != -1) {
         if (c == 'h')
             return 1;
+        if (c == '?' || c == ':')
+            return host_opt_getopt_error(c, argv[optind - 1], optopt, g_err, sizeof g_err);
         if (take_option(c, optarg, o))
             return -1;
     }
-    if (optind != argc || (!!o->connect + !!o->serial + !!o->http + !!o->replay) != 1)
-        return -1;
-    return 0;
+    if (optind != argc)
+        snprintf(g_err, sizeof g_err, "unexpected argument '%.128s' (try --help)", argv[optind]);
+    else if ((!!o->connect + !!o->serial + !!o->http + !!o->replay) != 1)
+        snprintf(g_err, sizeof g_err, "give exactly one of --connect, --serial, --http or --replay (try --help)");
+    else
+        return 0;
+    return -1;
 }
 
 static const char *source(const options *o, const link_ops **ops)
@@ -264,7 +258,10 @@ int main(int argc, char **argv)
 
     signal(SIGPIPE, SIG_IGN);   /* a dropped connection is a failed write, resumed */
     if ((rc = parse_args(argc, argv, &c.o))) {
-        fputs(usage, rc > 0 ? stdout : stderr);
+        if (rc > 0)
+            fputs(usage, stdout);
+        else
+            fprintf(stderr, "lumo-client: error: %s\n", g_err);
         return rc > 0 ? 0 : 2;
     }
     if (c.o.camera && host_camera_from_string(c.o.camera, &c.scene.camera)) {

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/image_diff.h"
+#include "lumo_host/options.h"
 #include "lumo_host/png_io.h"
 
 /* A 5x7 font for labels: upper case, digits and a little punctuation. */
@@ -107,6 +108,13 @@ static const char *base_name(const char *p)
 #define MAX_IN 8
 #define COLS   4
 
+static const char k_usage[] =
+    "usage: lumo-compare A.png B.png [C.png ... up to 8] [-o SIDE.png] [--labels A,B,...]\n"
+    "                    [--max-mean-de X] [--min-psnr DB]\n"
+    "  with three pictures or fewer every pair is compared; with more, each against the last\n"
+    "  --max-mean-de X   exit 1 when the first picture's mean Delta E76 to another passes X (0..1000)\n"
+    "  --min-psnr DB     exit 1 when its PSNR to another is below DB (0..1000)\n";
+
 int main(int argc, char **argv)
 {
     const char *in[MAX_IN], *out = NULL, *labels = NULL;
@@ -115,24 +123,39 @@ int main(int argc, char **argv)
     int w[MAX_IN], h[MAX_IN], n = 0, i, j, sw, sh, fail = 0, cols, rows;
     double max_de = -1, min_psnr = -1;
 
-    for (i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "-o") && i + 1 < argc) out = argv[++i];
-        else if (!strcmp(argv[i], "--labels") && i + 1 < argc) labels = argv[++i];
-        else if (!strcmp(argv[i], "--max-mean-de") && i + 1 < argc) max_de = atof(argv[++i]);
-        else if (!strcmp(argv[i], "--min-psnr") && i + 1 < argc) min_psnr = atof(argv[++i]);
-        else if (n < MAX_IN && argv[i][0] != '-') in[n++] = argv[i];
-        else n = 99;
+    char err[600] = "";
+    for (i = 1; i < argc && !err[0]; i++) {
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(k_usage, stdout);
+            return 0;
+        }
+        if (argv[i][0] != '-') {
+            if (n == MAX_IN)
+                snprintf(err, sizeof err, "more than %d pictures", MAX_IN);
+            else
+                in[n++] = argv[i];
+        } else if (!v && (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--labels") ||
+                          !strcmp(argv[i], "--max-mean-de") || !strcmp(argv[i], "--min-psnr")))
+            snprintf(err, sizeof err, "%s needs a value (try --help)", argv[i]);
+        else if (!strcmp(argv[i], "-o")) out = argv[++i];
+        else if (!strcmp(argv[i], "--labels")) labels = argv[++i];
+        else if (!strcmp(argv[i], "--max-mean-de")) host_opt_double("--max-mean-de", argv[++i], 0, 1000, &max_de, err, sizeof err);
+        else if (!strcmp(argv[i], "--min-psnr")) host_opt_double("--min-psnr", argv[++i], 0, 1000, &min_psnr, err, sizeof err);
+        else snprintf(err, sizeof err, "%.64s: unknown option (try --help)", argv[i]);
     }
-    if (n < 2 || n > MAX_IN) {
-        fputs("usage: lumo-compare A.png B.png [C.png ... up to 8] [-o SIDE.png] [--labels A,B,...]\n"
-              "                    [--max-mean-de X] [--min-psnr DB]\n"
-              "  with three pictures or fewer every pair is compared; with more, each against the last\n",
-              stderr);
+    if (!err[0] && n < 2)
+        snprintf(err, sizeof err, "%s (try --help)", n ? "one picture: give two or more" : "no pictures given");
+    if (err[0]) {
+        fprintf(stderr, "lumo-compare: error: %s\n", err);
         return 2;
     }
     for (i = 0; i < n; i++) {
-        if (host_png_read_rgb8(in[i], &img[i], &w[i], &h[i])) {
-            fprintf(stderr, "lumo-compare: error: cannot read %s\n", in[i]);
+        if (host_opt_file(NULL, in[i], "PNG picture", err, sizeof err) == 0 &&
+            host_png_read_rgb8(in[i], &img[i], &w[i], &h[i]))
+            snprintf(err, sizeof err, "%s: cannot read as an 8-bit PNG picture", in[i]);
+        if (err[0]) {
+            fprintf(stderr, "lumo-compare: error: %s\n", err);
             return 1;
         }
         snprintf(label[i], sizeof label[i], "%s", base_name(in[i]));
@@ -172,8 +195,9 @@ int main(int argc, char **argv)
                 memcpy(side + ((size_t)(y0 + y) * sw + x0) * 3, img[i] + (size_t)y * w[0] * 3, (size_t)w[0] * 3);
             draw_text(side, sw, sh, x0 + 4, y0 + h[0] + 4, label[i]);
         }
-        if (!side || host_png_write_rgb8(out, side, sw, sh, NULL, 0)) {
-            fprintf(stderr, "lumo-compare: error: cannot write %s\n", out);
+        snprintf(err, sizeof err, "%s: out of memory", out);
+        if (!side || host_png_write_rgb8(out, side, sw, sh, err, sizeof err)) {
+            fprintf(stderr, "lumo-compare: error: %s\n", err);
             return 1;
         }
         free(side);

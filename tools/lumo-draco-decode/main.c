@@ -11,6 +11,7 @@
  * A first argument --lean decodes with LUMO_DRACO_LEAN (same output, a
  * smaller arena, more instructions).
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,7 @@
 
 #include "lumo/draco.h"
 #include "lumo_host/file_io.h"
+#include "lumo_host/options.h"
 
 static unsigned g_flags;  /* --lean */
 
@@ -219,6 +221,11 @@ int main(int argc, char **argv)
     void *mem = NULL;
     lumo_status st;
     int i, rc = 0;
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        printf("usage: lumo-draco-decode [--lean] IN.drc OUT.ply | --info IN.drc | --dump IN.drc OUT.txt | "
+               "--bench N IN.drc\n  --bench N   decode N times, 1..1000000\n");
+        return 0;
+    }
     if (argc > 1 && !strcmp(argv[1], "--lean")) {
         g_flags = LUMO_DRACO_LEAN;
         argv++;
@@ -229,7 +236,12 @@ int main(int argc, char **argv)
     } else if (argc == 4 && !strcmp(argv[1], "--dump")) {
         mode = "dump"; in = argv[2]; out = argv[3];
     } else if (argc == 4 && !strcmp(argv[1], "--bench")) {
-        mode = "bench"; reps = atoi(argv[2]); in = argv[3];
+        char err[320];
+        mode = "bench"; in = argv[3];
+        if (host_opt_int("--bench", argv[2], 1, 1000000, &reps, err, sizeof err)) {
+            fprintf(stderr, "lumo-draco-decode: error: %s\n", err);
+            return 2;
+        }
     } else if (argc == 3 && argv[1][0] != '-') {
         in = argv[1]; out = argv[2];
     } else {
@@ -237,10 +249,12 @@ int main(int argc, char **argv)
                         "--dump IN.drc OUT.txt | --bench N IN.drc\n");
         return 2;
     }
-    data = host_read_file(in, &size);
-    if (!data) {
-        fprintf(stderr, "lumo-draco-decode: cannot read %s\n", in);
-        return 1;
+    {
+        char err[600] = "";
+        if (host_opt_file(NULL, in, "Draco file", err, sizeof err) || !(data = host_read_file(in, &size))) {
+            fprintf(stderr, "lumo-draco-decode: error: %s\n", err[0] ? err : "cannot read");
+            return 1;
+        }
     }
     for (i = 0; i < reps; ++i) {
         if (mem)
@@ -248,7 +262,7 @@ int main(int argc, char **argv)
         mem = NULL;
         st = decode(data, size, &m, &mem, &need, strcmp(mode, "bench") != 0);
         if (st) {
-            fprintf(stderr, "lumo-draco-decode: %s: %s\n", in, lumo_strerror(st));
+            fprintf(stderr, "lumo-draco-decode: error: %s: %s\n", in, lumo_strerror(st));
             free(mem);
             free(data);
             return 1;
@@ -258,16 +272,21 @@ int main(int argc, char **argv)
         lumo_draco_info info;
         write_info(&m, &need, size, lumo_draco_peek(data, size, &info) ? 0 : info.flags);
     } else if (!strcmp(mode, "dump")) {
-        FILE *f = fopen(out, "w");
-        if (!f)
+        FILE *f;
+        errno = 0;
+        if (!(f = fopen(out, "w")))
             rc = 1;
         else {
             write_dump(f, &m);
             rc = fclose(f) ? 1 : 0;
         }
     } else if (!strcmp(mode, "ply")) {
+        errno = 0;
         rc = write_ply(out, &m);
     }
+    if (rc)
+        fprintf(stderr, "lumo-draco-decode: error: %s: cannot write: %s\n", out,
+                errno ? strerror(errno) : "short write");
     free(mem);
     free(data);
     return rc;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
+#include "lumo_host/options.h"
 #include "lumo_host/package_msg.h"
 #include "inspect.h"
 
@@ -20,9 +21,10 @@ void inspect_register(const inspect_cmd *cmd)
 
 int inspect_load(const char *path, uint8_t **data, size_t *len, lumo_package *pkg)
 {
-    *data = host_read_file(path, len);
-    if (!*data) {
-        fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path);
+    char err[600] = "";
+    *data = NULL;
+    if (host_opt_file(NULL, path, "package", err, sizeof err) || !(*data = host_read_file(path, len))) {
+        fprintf(stderr, "lumo-inspect: error: %s\n", err[0] ? err : "cannot read");
         return -1;
     }
     lumo_status st = lumo_package_open(pkg, *data, *len);

@@ -9,30 +9,44 @@
  *   --mesh I                             the I-th mesh's stream (default 0)
  *
  * FILE is a .lumo package with a PMSH chunk or a raw stream (lumo-pm --raw). */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "lumo_host/file_io.h"
+#include "lumo_host/options.h"
 #include "lumo_host/package_msg.h"
 #include "inspect.h"
 #include "pm/pm_client.h"
 
 static int load(const char *path, uint8_t **data, size_t *len)
 {
-    *data = path ? host_read_file(path, len) : NULL;
-    if (*data == NULL) {
-        fprintf(stderr, "lumo-inspect: error: %s: cannot read\n", path ? path : "(no file)");
+    char err[600] = "";
+    if (!path || host_opt_file(NULL, path, "package or stream", err, sizeof err) ||
+        !(*data = host_read_file(path, len))) {
+        if (path && !err[0])
+            snprintf(err, sizeof err, "%s: cannot read", path);
+        fprintf(stderr, "lumo-inspect: error: %s\n", path ? err : "no package file given (try --help)");
         return -1;
     }
     return 0;
 }
 
-/* --mesh I: which PMSH chunk (one per mesh of the scene). */
-static uint32_t mesh_arg(int argc, char **argv)
+/* --mesh I: which PMSH chunk (one per mesh of the scene); 0 when absent.
+ * -1 after printing the refusal. */
+static int mesh_arg(int argc, char **argv, uint32_t *mesh)
 {
-    for (int i = 1; i + 1 < argc; i++)
-        if (!strcmp(argv[i], "--mesh"))
-            return (uint32_t)strtoul(argv[i + 1], NULL, 10);
+    char err[320];
+    *mesh = 0;
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--mesh")) {
+            if (i + 1 < argc && !host_opt_u32("--mesh", argv[i + 1], 0, UINT32_MAX, mesh, err, sizeof err))
+                return 0;
+            if (i + 1 == argc)
+                snprintf(err, sizeof err, "--mesh needs a value (try --help)");
+            fprintf(stderr, "lumo-inspect: error: %s\n", err);
+            return -1;
+        }
     return 0;
 }
 
@@ -64,7 +78,8 @@ static int run_stream(int argc, char **argv)
 {
     uint8_t *file;
     srv_pm_client c;
-    if (open_stream(inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
+    uint32_t mesh;
+    if (mesh_arg(argc, argv, &mesh) || open_stream(inspect_file_arg(argc, argv), mesh, &file, &c))
         return 1;
     const lumo_pmesh_header *h = &c.h;
     printf("progressive mesh: %u vertices, %u faces; base %u vertices, %u faces; %u batches of %u "
@@ -127,9 +142,24 @@ static int write_ply(const char *path, const lumo_pmesh_view *v)
     return fclose(f) ? -1 : 0;
 }
 
+/* --lod N|all: 0 with *n (UINT32_MAX for all), or -1 after the refusal. */
+static int lod_arg(const char *lod, uint32_t *n)
+{
+    char err[320];
+    if (!strcmp(lod, "all")) {
+        *n = UINT32_MAX;
+        return 0;
+    }
+    if (!host_opt_u32("--lod", lod, 1, UINT32_MAX, n, err, sizeof err))
+        return 0;
+    fprintf(stderr, "lumo-inspect: error: %s (N vertices or all)\n", err);
+    return -1;
+}
+
 static int run_lod(int argc, char **argv)
 {
     const char *lod = NULL, *out = NULL;
+    uint32_t n, mesh;
     for (int i = 1; i + 1 < argc; i++) {
         if (!strcmp(argv[i], "--lod"))
             lod = argv[++i];
@@ -140,29 +170,32 @@ static int run_lod(int argc, char **argv)
         fprintf(stderr, "lumo-inspect: error: usage: --lod N|all --ply OUT.ply FILE\n");
         return 1;
     }
+    if (lod_arg(lod, &n) || mesh_arg(argc, argv, &mesh))
+        return 1;
     uint8_t *file;
     srv_pm_client c;
-    if (open_stream(inspect_file_arg(argc, argv), mesh_arg(argc, argv), &file, &c))
+    if (open_stream(inspect_file_arg(argc, argv), mesh, &file, &c))
         return 1;
-    char *end;
-    unsigned long n = strcmp(lod, "all") ? strtoul(lod, &end, 10) : c.h.vertices;
     int rc = 1;
-    if (!strcmp(lod, "all") ? 0 : (*end || n < c.h.base_vertices || n > c.h.vertices)) {
+    if (n == UINT32_MAX)
+        n = c.h.vertices;
+    if (n < c.h.base_vertices || n > c.h.vertices) {
         fprintf(stderr, "lumo-inspect: error: --lod %s: levels go from %u to %u vertices\n", lod,
                 c.h.base_vertices, c.h.vertices);
         goto done;
     }
-    lumo_status st = srv_pm_client_until(&c, (uint32_t)n);
+    lumo_status st = srv_pm_client_until(&c, n);
     if (!st)
-        st = lumo_pmesh_rewind(&c.pm, (uint32_t)n);
+        st = lumo_pmesh_rewind(&c.pm, n);
     if (st) {
         fprintf(stderr, "lumo-inspect: error: batch %u: %s\n", lumo_pmesh_batches(&c.pm), lumo_strerror(st));
         goto done;
     }
     lumo_pmesh_view v;
     lumo_pmesh_get_view(&c.pm, &v);
+    errno = 0;
     if (write_ply(out, &v)) {
-        fprintf(stderr, "lumo-inspect: error: %s: cannot write\n", out);
+        fprintf(stderr, "lumo-inspect: error: %s: cannot write: %s\n", out, errno ? strerror(errno) : "short write");
         goto done;
     }
     printf("%s: level %u: %u vertices, %u triangles\n", out, v.vertex_count, v.vertex_count, v.face_count);

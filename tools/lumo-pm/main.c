@@ -7,11 +7,13 @@
  *                                        client (for callgrind in the bench)
  *   lumo-pm bench ...                    see bench.c
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo_host/file_io.h"
+#include "lumo_host/options.h"
 #include "package/package_write.h"
 #include "pm/pm_client.h"
 #include "pm/pm_load.h"
@@ -26,42 +28,75 @@ typedef struct {
     int raw, albedo;
 } args;
 
+static const char k_usage[] =
+    "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--albedo] [--raw]\n"
+    "       lumo-pm clean IN -o OUT.ply\n"
+    "       lumo-pm apply STREAM [RECORDS]\n"
+    "       lumo-pm bench --out SECTION.md MODEL...\n"
+    "  --batch N          vertices per batch record, 1..1048576 (default 250)\n"
+    "  --bits B           position quantization bits, 1..20 (default 12)\n"
+    "  --min-vertices N   stop simplifying at N vertices, 3.. (default 3)\n"
+    "  --rounds F         fraction of candidates per independent-set round, 0..1 (0.25; 0: one\n"
+    "                     collapse at a time)\n"
+    "  --albedo           stream the per-vertex albedo too\n"
+    "  --raw              write the bare stream, not a package (no INFO: lumo-render needs a scene\n"
+    "                     from lumo-bake; lumo-inspect --stream / --lod read both)\n";
+
 static int usage(void)
 {
-    fprintf(stderr, "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--albedo] [--raw]\n"
-                    "       lumo-pm clean IN -o OUT.ply\n"
-                    "       lumo-pm apply STREAM [RECORDS]\n"
-                    "       lumo-pm bench --out SECTION.md MODEL...\n");
+    fputs(k_usage, stderr);
     return 2;
 }
 
-static int parse(int argc, char **argv, args *a)
+/* An option that takes a value: 0, or -1 with the refusal in err. */
+static int take_value(args *a, const char *opt, const char *v, char *err, size_t errlen)
+{
+    if (!strcmp(opt, "-o")) {
+        a->out = v;
+        return 0;
+    }
+    if (!strcmp(opt, "--batch"))
+        return host_opt_u32(opt, v, 1, 1u << 20, &a->so.batch_vertices, err, errlen);
+    if (!strcmp(opt, "--bits"))
+        return host_opt_int(opt, v, 1, (int)LUMO_PMESH_MAX_QBITS, &a->so.quant_bits, err, errlen);
+    if (!strcmp(opt, "--min-vertices"))
+        return host_opt_u32(opt, v, 3, UINT32_MAX, &a->po.min_vertices, err, errlen);
+    if (!strcmp(opt, "--rounds"))
+        return host_opt_double(opt, v, 0, 1, &a->po.round_fraction, err, errlen);
+    snprintf(err, errlen, "%.64s: unknown option (try --help)", opt);
+    return -1;
+}
+
+/* build / clean: 0, or -1 with the refusal in err. */
+static int parse(int argc, char **argv, args *a, char *err, size_t errlen)
 {
     memset(a, 0, sizeof *a);
     srv_pm_stream_default_options(&a->so);
     srv_pm_default_options(&a->po);
     for (int i = 2; i < argc; i++) {
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(argv[i], "-o") && v)
-            a->out = v, i++;
-        else if (!strcmp(argv[i], "--batch") && v)
-            a->so.batch_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
-        else if (!strcmp(argv[i], "--bits") && v)
-            a->so.quant_bits = atoi(v), i++;
-        else if (!strcmp(argv[i], "--min-vertices") && v)
-            a->po.min_vertices = (uint32_t)strtoul(v, NULL, 10), i++;
-        else if (!strcmp(argv[i], "--rounds") && v)
-            a->po.round_fraction = strtod(v, NULL), i++;
-        else if (!strcmp(argv[i], "--raw"))
+        const char *o = argv[i];
+        if (!strcmp(o, "--raw"))
             a->raw = 1;
-        else if (!strcmp(argv[i], "--albedo"))
+        else if (!strcmp(o, "--albedo"))
             a->albedo = 1;  /* stream the per-vertex albedo too */
-        else if (argv[i][0] != '-' && !a->in)
-            a->in = argv[i];
-        else
+        else if (o[0] != '-' && !a->in)
+            a->in = o;
+        else if (o[0] != '-') {
+            snprintf(err, errlen, "unexpected argument '%.128s' (one input mesh)", o);
+            return -1;
+        } else if (i + 1 == argc) {
+            take_value(a, o, "", err, errlen);   /* names an unknown option */
+            if (!strstr(err, "unknown option"))
+                snprintf(err, errlen, "%.64s needs a value (try --help)", o);
+            return -1;
+        } else if (take_value(a, o, argv[++i], err, errlen))
             return -1;
     }
-    return a->in && a->out && a->so.batch_vertices ? 0 : -1;
+    if (!a->in || !a->out) {
+        snprintf(err, errlen, "%s (try --help)", a->in ? "no output file: give -o OUT" : "no input mesh");
+        return -1;
+    }
+    return host_opt_file(NULL, a->in, "mesh file", err, errlen);
 }
 
 static int write_file(const char *path, const uint8_t *d, size_t n)
@@ -70,6 +105,8 @@ static int write_file(const char *path, const uint8_t *d, size_t n)
     int ok = f && fwrite(d, 1, n, f) == n;
     if (f && fclose(f))
         ok = 0;
+    if (!ok)
+        fprintf(stderr, "lumo-pm: error: %s: cannot write: %s\n", path, strerror(errno));
     return ok ? 0 : -1;
 }
 
@@ -106,16 +143,23 @@ static int cmd_build(const args *a, int clean_only)
         goto done;
     }
     if (clean_only) {
+        errno = 0;
         rc = srv_pm_write_ply(a->out, pm.xyz, pm.vertices, pm.tris, pm.faces) ? 1 : 0;
+        if (rc)
+            fprintf(stderr, "lumo-pm: error: %s: cannot write: %s\n", a->out,
+                    errno ? strerror(errno) : "write failed");
         goto done;
     }
     srv_pm_stream_stats st;
     srv_pm_stream_options so = a->so;
     so.stats = &st;
-    if (srv_pm_stream_build(&pm, &so, &s, &n, NULL, &nb) || write_output(a, s, n)) {
-        fprintf(stderr, "lumo-pm: error: %s: cannot write the stream\n", a->out);
+    if (srv_pm_stream_build(&pm, &so, &s, &n, NULL, &nb)) {
+        fprintf(stderr, "lumo-pm: error: %s: cannot build the stream (out of memory or a mesh the stream "
+                        "cannot hold)\n", a->in);
         goto done;
     }
+    if (write_output(a, s, n))
+        goto done;
     printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
            "%u batches of %u, %zu bytes, %.2f bits/triangle\n",
            a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
@@ -141,11 +185,18 @@ done:
 static int cmd_apply(int argc, char **argv)
 {
     size_t len = 0;
-    uint8_t *d = argc > 2 ? host_read_file(argv[2], &len) : NULL;
-    if (d == NULL)
+    uint32_t records = UINT32_MAX;
+    char err[400];
+    uint8_t *d;
+    if (argc < 3 || argc > 4)
         return usage();
+    if ((argc > 3 && host_opt_u32("RECORDS", argv[3], 0, UINT32_MAX, &records, err, sizeof err)) ||
+        host_opt_file(NULL, argv[2], "stream", err, sizeof err) || !(d = host_read_file(argv[2], &len))) {
+        fprintf(stderr, "lumo-pm: error: %s\n", err);
+        return 1;
+    }
     srv_pm_client c;
-    unsigned long records = argc > 3 ? strtoul(argv[3], NULL, 10) : (unsigned long)-1, done = 0;
+    unsigned long done = 0;
     lumo_status st = srv_pm_client_open(&c, d, len);
     while (!st && done < records && !lumo_pmesh_complete(&c.pm))
         st = srv_pm_client_step(&c), done++;
@@ -161,15 +212,20 @@ static int cmd_apply(int argc, char **argv)
 int main(int argc, char **argv)
 {
     args a;
+    char err[400];
+    if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        fputs(k_usage, stdout);
+        return 0;
+    }
     if (argc >= 2 && !strcmp(argv[1], "apply"))
         return cmd_apply(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "bench"))
         return bench_main(argc - 1, argv + 1);
-    if (argc < 2 || parse(argc, argv, &a))
+    if (argc < 2 || (strcmp(argv[1], "build") && strcmp(argv[1], "clean")))
         return usage();
-    if (!strcmp(argv[1], "build"))
-        return cmd_build(&a, 0);
-    if (!strcmp(argv[1], "clean"))
-        return cmd_build(&a, 1);
-    return usage();
+    if (parse(argc, argv, &a, err, sizeof err)) {
+        fprintf(stderr, "lumo-pm: error: %s\n", err);
+        return 2;
+    }
+    return cmd_build(&a, !strcmp(argv[1], "clean"));
 }

@@ -22,10 +22,12 @@
 #include <time.h>
 #include <unistd.h>
 #include "lumo/raster.h"
+#include "lumo_host/options.h"
 #include "lumo_host/png_io.h"
 #include "mesh_build.h"
 #include "package_load.h"
 #include "render_backend.h"
+#include "scene/camera.h"
 #include "scene/shapes.h"
 #include "scene_convert.h"
 #include "lumo_host/version_line.h"
@@ -48,7 +50,8 @@ static const char usage[] =
     "  --default                   the server's built-in Cornell box (lumo-bake --default,\n"
     "                              no IVG) instead of a package\n"
     "  --model PATH                with --default: this model (any format assimp reads:\n"
-    "                              OBJ, PLY, OFF, STL, glTF, ...) instead of the dragon\n"
+    "                              OBJ, PLY, OFF, STL, glTF, ...) instead of the dragon;\n"
+    "                              a model that cannot be read is an error (LUMO_DRAGON too)\n"
     "  --light SPEC                replace the lights (repeatable): point:X,Y,Z:R,G,B |\n"
     "                              spot:X,Y,Z:DX,DY,DZ:HALF_DEG:R,G,B |\n"
     "                              directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
@@ -76,36 +79,23 @@ typedef struct options {
     render_opts ro;
 } options;
 
-static int parse_size(const char *s, uint16_t *w, uint16_t *h)
-{
-    unsigned a, b;
-    char tail;
-    if (sscanf(s, "%ux%u%c", &a, &b, &tail) != 2 || a < 1 || b < 1 || a > LUMO_MAX_FRAME_DIM
-        || b > LUMO_MAX_FRAME_DIM)
-        return -1;
-    *w = (uint16_t)a;
-    *h = (uint16_t)b;
-    return 0;
-}
+enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
+       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP };
 
-static int parse_args(int argc, char **argv, options *o)
-{
-    enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-           O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_HELP };
-    static const struct option longs[] = {
-        {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
-        {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
-        {"frames", 1, 0, O_FRAMES}, {"orbit", 0, 0, O_ORBIT}, {"exposure", 1, 0, O_EXPOSURE},
-        {"default", 0, 0, O_DEFAULT}, {"model", 1, 0, O_MODEL}, {"light", 1, 0, O_LIGHT},
-        {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
-        {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
-        {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
-        {"help", 0, 0, O_HELP},
-        {"output", 1, 0, 'o'}, {0, 0, 0, 0}
-    };
-    int c;
-    char *end;
+static const struct option k_longs[] = {
+    {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"camera", 1, 0, O_CAMERA},
+    {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP}, {"no-indirect", 0, 0, O_NOIND},
+    {"frames", 1, 0, O_FRAMES}, {"orbit", 0, 0, O_ORBIT}, {"exposure", 1, 0, O_EXPOSURE},
+    {"default", 0, 0, O_DEFAULT}, {"model", 1, 0, O_MODEL}, {"light", 1, 0, O_LIGHT},
+    {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
+    {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
+    {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
+    {"help", 0, 0, O_HELP},
+    {"output", 1, 0, 'o'}, {0, 0, 0, 0}
+};
 
+static void set_defaults(options *o)
+{
     memset(o, 0, sizeof *o);
     o->backend = "soft";
     o->frames = 1;
@@ -115,62 +105,117 @@ static int parse_args(int argc, char **argv, options *o)
     o->ro.format = LUMO_PIXEL_XRGB8888;
     o->ro.depth_bits = 32;
     o->lod_arg = "all";
-    host_lod_parse(o->lod_arg, &o->lod);
-    while ((c = getopt_long(argc, argv, "o:h", longs, NULL)) != -1) {
-        switch (c) {
-        case 'o': o->output = optarg; break;
-        case O_BACKEND: o->backend = optarg; break;
-        case O_SIZE: if (parse_size(optarg, &o->ro.width, &o->ro.height)) return -1; break;
-        case O_CAMERA: o->camera = optarg; break;
-        case O_FIT: o->fit = 1; break;
-        case O_PV: o->per_pixel = 0; break;
-        case O_PP: o->per_pixel = 1; break;
-        case O_NOIND: o->no_indirect = 1; break;
-        case O_FRAMES:
-            o->frames = (int)strtol(optarg, &end, 10);
-            if (*end || o->frames < 1 || o->frames > 100000) return -1;
-            break;
-        case O_ORBIT: o->orbit = 1; break;
-        case O_EXPOSURE:
-            o->exposure = strtod(optarg, &end);
-            if (*end || !(o->exposure >= 0 && o->exposure < 65535)) return -1;
-            break;
-        case O_DEFAULT: o->use_default = 1; break;
-        case O_MODEL: o->model = optarg; break;
-        case O_LIGHT:
-            if (o->nlights == LUMO_MAX_LIGHTS) return -1;
-            o->lights[o->nlights++] = optarg;
-            break;
-        case O_BANDS: { long k = strtol(optarg, &end, 10);
-                        if (*end || k < 1 || k > LUMO_MAX_FRAME_DIM) return -1;
-                        o->ro.band_rows = (uint16_t)k; break; }
-        case O_565: o->ro.format = LUMO_PIXEL_RGB565; break;
-        case O_D16: o->ro.depth_bits = 16; break;
-        case O_NOCACHE: o->ro.no_cache = 1; break;
-        case O_CULL: o->cull = 1; break;
-        case O_RELIGHT: o->ro.relight = 1; break;
-        case O_SHADOWS: { long k = strtol(optarg, &end, 10);
-                          if (*end || (k != 0 && (k < LUMO_RASTER_SHADOW_MIN_SIZE || k > LUMO_MAX_FRAME_DIM)))
-                              return -1;
-                          o->ro.shadow_size = (uint16_t)k; break; }
-        case O_WARMUP:
-            o->warmup = (int)strtol(optarg, &end, 10);
-            if (*end || o->warmup < 0 || o->warmup > 1000) return -1;
-            break;
-        case O_LOD:
-            if (host_lod_parse(optarg, &o->lod)) return -1;
-            o->lod_arg = optarg;
-            o->lod_set = strcmp(optarg, "all") != 0;
-            break;
-        case 'h': case O_HELP: fputs(usage, stdout); exit(0);
-        default: return -1;
+    host_lod_parse(o->lod_arg, &o->lod, NULL, 0);
+}
+
+/* The options that take no number: flags and names. */
+static int take_flag(options *o, int c, const char *arg, char *err, size_t errlen)
+{
+    switch (c) {
+    case 'o': o->output = arg; return 0;
+    case O_BACKEND: o->backend = arg; return 0;
+    case O_CAMERA: o->camera = arg; return 0;
+    case O_PV: o->per_pixel = 0; return 0;
+    case O_PP: o->per_pixel = 1; return 0;
+    case O_NOIND: o->no_indirect = 1; return 0;
+    case O_ORBIT: o->orbit = 1; return 0;
+    case O_DEFAULT: o->use_default = 1; return 0;
+    case O_MODEL: o->model = arg; return 0;
+    case O_565: o->ro.format = LUMO_PIXEL_RGB565; return 0;
+    case O_D16: o->ro.depth_bits = 16; return 0;
+    case O_NOCACHE: o->ro.no_cache = 1; return 0;
+    case O_CULL: o->cull = 1; return 0;
+    case O_RELIGHT: o->ro.relight = 1; return 0;
+    case O_FIT: o->fit = 1; return 0;
+    default: snprintf(err, errlen, "unhandled option %d", c); return -1;
+    }
+}
+
+/* What the options ask for together: one input, an output, --model and
+ * --lod only where they mean something. */
+static int check_args(const options *o, int argc, char **argv, char *err, size_t errlen)
+{
+    if (optind < argc)
+        snprintf(err, errlen, "unexpected argument '%s' (one package at a time; try --help)", argv[optind]);
+    else if (!o->input == !o->use_default)
+        snprintf(err, errlen, "give a package FILE.lumo or --default, %s (try --help)",
+                 o->input ? "not both" : "one of them");
+    else if (!o->output)
+        snprintf(err, errlen, "no output file: give -o OUT.png (try --help)");
+    else if (o->model && !o->use_default)
+        snprintf(err, errlen, "--model %s: only with --default (a package holds its own meshes)", o->model);
+    else
+        return 0;
+    return -1;
+}
+
+/* One option's value into o; 0, or -1 with the refusal in err. */
+static int take_value(options *o, int c, const char *arg, char *err, size_t errlen)
+{
+    uint32_t w, h;
+    int k;
+
+    switch (c) {
+    case O_SIZE:
+        if (host_opt_size("--size", arg, LUMO_MAX_FRAME_DIM, LUMO_MAX_FRAME_DIM, &w, &h, err, errlen))
+            return -1;
+        o->ro.width = (uint16_t)w;
+        o->ro.height = (uint16_t)h;
+        return 0;
+    case O_FRAMES: return host_opt_int("--frames", arg, 1, 100000, &o->frames, err, errlen);
+    case O_EXPOSURE: return host_opt_double("--exposure", arg, 0, 65535, &o->exposure, err, errlen);
+    case O_BANDS:
+        if (host_opt_int("--bands", arg, 1, LUMO_MAX_FRAME_DIM, &k, err, errlen))
+            return -1;
+        o->ro.band_rows = (uint16_t)k;
+        return 0;
+    case O_WARMUP: return host_opt_int("--warmup", arg, 0, 1000, &o->warmup, err, errlen);
+    case O_LOD:
+        if (host_lod_parse(arg, &o->lod, err, errlen))
+            return -1;
+        o->lod_arg = arg;
+        o->lod_set = strcmp(arg, "all") != 0;
+        return 0;
+    case O_SHADOWS:
+        if (host_opt_int("--shadows", arg, 0, LUMO_MAX_FRAME_DIM, &k, err, errlen))
+            return -1;
+        if (k != 0 && k < LUMO_RASTER_SHADOW_MIN_SIZE) {
+            snprintf(err, errlen, "--shadows %s: 0 (no shadows) or %d..%d texels per side", arg,
+                     LUMO_RASTER_SHADOW_MIN_SIZE, LUMO_MAX_FRAME_DIM);
+            return -1;
         }
+        o->ro.shadow_size = (uint16_t)k;
+        return 0;
+    case O_LIGHT:
+        if (o->nlights == LUMO_MAX_LIGHTS) {
+            snprintf(err, errlen, "--light %s: more than %d lights (LUMO_MAX_LIGHTS, lumo/config.h)", arg,
+                     LUMO_MAX_LIGHTS);
+            return -1;
+        }
+        o->lights[o->nlights++] = arg;
+        return 0;
+    default: return take_flag(o, c, arg, err, errlen);
+    }
+}
+
+/* The whole command line: 0, 1 for --help, or -1 with the refusal in err. */
+static int parse_args(int argc, char **argv, options *o, char *err, size_t errlen)
+{
+    int c;
+
+    set_defaults(o);
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, ":o:h", k_longs, NULL)) != -1) {
+        if (c == 'h' || c == O_HELP)
+            return 1;
+        if (c == '?' || c == ':')
+            return host_opt_getopt_error(c, argv[optind - 1], optopt, err, errlen);
+        if (take_value(o, c, optarg, err, errlen))
+            return -1;
     }
     if (optind < argc)
         o->input = argv[optind++];
-    if (optind != argc || !o->output || (!o->input == !o->use_default))
-        return -1;
-    return 0;
+    return check_args(o, argc, argv, err, errlen);
 }
 
 static double now_ms(void)
@@ -248,23 +293,39 @@ static int load_package(const options *o, host_scene *scene, host_ivg *ivg)
     return 0;
 }
 
+/* The model of the default scene: --model, else LUMO_DRAGON, else the
+ * dragon. A file the user named is used or refused, never replaced; only
+ * the built-in dragon, when tools/setup.sh has not fetched it, gives way
+ * to the server's sphere (said on stderr). NULL with err set on refusal. */
+static const char *default_model(const options *o, char *err, size_t errlen)
+{
+    const char *env = getenv("LUMO_DRAGON");
+
+    if (o->model)
+        return host_opt_file("--model", o->model, "model file", err, errlen) ? NULL : o->model;
+    if (env)
+        return host_opt_file("LUMO_DRAGON", env, "model file", err, errlen) ? NULL : env;
+    if (access(DEFAULT_DRAGON, R_OK))
+        fprintf(stderr, "lumo-render: note: %s missing (tools/setup.sh fetches it): a sphere in its place\n",
+                DEFAULT_DRAGON);
+    return DEFAULT_DRAGON;
+}
+
 /* The server's default scene (server/scene/default_scene.c, the scene
- * lumo-bake --default bakes): --model, else LUMO_DRAGON, else the dragon;
- * a missing default dragon gives the server's sphere, a missing --model is
- * an error. */
+ * lumo-bake --default bakes) with default_model()'s model. */
 static int build_default(const options *o, host_scene *scene)
 {
-    const char *model = o->model ? o->model : getenv("LUMO_DRAGON");
     char err[600];
+    const char *model = default_model(o, err, sizeof err);
     srv_scene s;
     lumo_status st;
 
-    if (o->model && access(o->model, R_OK)) {
-        fprintf(stderr, "lumo-render: error: %s: cannot read the model\n", o->model);
+    if (!model) {
+        fprintf(stderr, "lumo-render: error: %s\n", err);
         return -1;
     }
     srv_scene_init(&s);
-    st = srv_default_scene(&s, model ? model : DEFAULT_DRAGON, err, sizeof err);
+    st = srv_default_scene(&s, model, err, sizeof err);
     if (!st)
         st = host_scene_from_srv(scene, &s, err, sizeof err);
     srv_scene_free(&s);
@@ -273,6 +334,63 @@ static int build_default(const options *o, host_scene *scene)
         return -1;
     }
     return 0;
+}
+
+/* Why a camera the rasterizer refuses is degenerate, from its fixed-point
+ * values (two points closer than 1/65536 m are one). */
+static const char *camera_fault(const lumo_raster_camera *c)
+{
+    int64_t f[3], x[3];
+    int k;
+
+    for (k = 0; k < 3; k++)
+        f[k] = (int64_t)c->target[k] - c->eye[k];
+    if (!f[0] && !f[1] && !f[2])
+        return "eye and target are the same point";
+    if (!(c->fovy_deg >= 1 * 65536 && c->fovy_deg <= 179 * 65536))
+        return "FOVY must be 1..179 degrees";
+    x[0] = f[1] * c->up[2] - f[2] * c->up[1];
+    x[1] = f[2] * c->up[0] - f[0] * c->up[2];
+    x[2] = f[0] * c->up[1] - f[1] * c->up[0];
+    if (!x[0] && !x[1] && !x[2])
+        return "UP is zero or parallel to the view direction";
+    return "eye, target and UP too close to one another in Q16.16 fixed point";
+}
+
+/* --camera over the package's or the scene's camera, then the camera the
+ * frames use checked as the rasterizer will (lumo_raster_view_init), so a
+ * degenerate one is named here rather than failing frame 0. */
+static int set_camera(const options *o, host_scene *scene)
+{
+    const lumo_raster_camera *c = &scene->camera;
+    lumo_raster_view v;
+    char why[200];
+    srv_camera sc;
+
+    if (o->camera && host_camera_from_string(o->camera, &scene->camera)) {
+        if (srv_camera_parse_why(o->camera, &sc, why, sizeof why) == LUMO_OK)
+            snprintf(why, sizeof why, "FOVY must be 1..179 degrees");
+        fprintf(stderr, "lumo-render: error: --camera %s: %s (docs/scene-format.md)\n",
+                o->camera, why);
+        return -1;
+    }
+    /* --fit, then the near plane from the scene's bounds either way. */
+    if (host_scene_aim(scene, NULL, o->fit && !o->camera, o->ro.width, o->ro.height, why, sizeof why)) {
+        fprintf(stderr, "lumo-render: error: --fit: %s\n", why);
+        return -1;
+    }
+    if (lumo_raster_view_init(&v, c, o->ro.width, o->ro.height) == LUMO_OK)
+        return 0;
+    if (o->camera) {
+        fprintf(stderr, "lumo-render: error: --camera %s: %s in Q16.16 fixed point (points 1/65536 m apart "
+                        "at least)\n", o->camera, camera_fault(c));
+        return -1;
+    }
+    fprintf(stderr, "lumo-render: error: %s camera %g,%g,%g:%g,%g,%g:%g,%g,%g:%g: %s (give --camera)\n",
+            o->use_default ? "the default scene's" : "the package's", c->eye[0] / 65536.0, c->eye[1] / 65536.0,
+            c->eye[2] / 65536.0, c->target[0] / 65536.0, c->target[1] / 65536.0, c->target[2] / 65536.0,
+            c->up[0] / 65536.0, c->up[1] / 65536.0, c->up[2] / 65536.0, c->fovy_deg / 65536.0, camera_fault(c));
+    return -1;
 }
 
 int main(int argc, char **argv)
@@ -285,19 +403,24 @@ int main(int argc, char **argv)
     host_renderer *r;
     lumo_raster_mesh mesh;
     lumo_raster_scene rs;
-    char err[256];
+    char err[512];
     uint8_t *rgb;
     double total = 0, best = 1e300;
     lumo_status st;
     int i, rc = 0;
 
-    if (parse_args(argc, argv, &o)) {
-        fputs(usage, stderr);
+    if ((rc = parse_args(argc, argv, &o, err, sizeof err))) {
+        if (rc > 0) {
+            fputs(usage, stdout);
+            return 0;
+        }
+        fprintf(stderr, "lumo-render: error: %s\n", err);
         return 2;
     }
     memset(&ivg, 0, sizeof ivg);
     if (o.use_default && o.lod_set) {
-        fprintf(stderr, "lumo-render: error: --lod needs a package with progressive meshes\n");
+        fprintf(stderr, "lumo-render: error: --lod %s: needs a package with progressive meshes, not --default\n",
+                o.lod_arg);
         return 1;
     }
     if (o.use_default) {
@@ -305,8 +428,9 @@ int main(int argc, char **argv)
             return 1;
     } else if (load_package(&o, &scene, &ivg))
         return 1;
-    if (host_scene_aim(&scene, o.camera, o.fit, o.ro.width, o.ro.height, err, sizeof err)) {
-        fprintf(stderr, "lumo-render: error: %s\n", err);
+    if (set_camera(&o, &scene)) {
+        host_scene_free(&scene);
+        host_ivg_free(&ivg);
         return 1;
     }
     if (o.nlights) {
@@ -345,8 +469,8 @@ int main(int argc, char **argv)
             cam.znear = lumo_raster_znear_for_box(&cam, scene.bmin, scene.bmax);
         }
         t0 = now_ms();
-        if (timed_frame(r, &cam, &rs, rgb)) {
-            fprintf(stderr, "lumo-render: error: frame %d failed\n", i);
+        if ((st = (lumo_status)timed_frame(r, &cam, &rs, rgb))) {
+            fprintf(stderr, "lumo-render: error: frame %d failed: %s\n", i, lumo_strerror(st));
             rc = 1;
             break;
         }
@@ -354,8 +478,8 @@ int main(int argc, char **argv)
         total += dt;
         if (dt < best) best = dt;
         frame_name(o.output, i, o.frames, name, sizeof name);
-        if (host_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, NULL, 0)) {
-            fprintf(stderr, "lumo-render: error: cannot write %s\n", name);
+        if (host_png_write_rgb8(name, rgb, o.ro.width, o.ro.height, err, sizeof err)) {
+            fprintf(stderr, "lumo-render: error: %s\n", err);
             rc = 1;
             break;
         }

@@ -10,6 +10,7 @@
 #include "lumo/package.h"
 #include "lumo/session.h"
 #include "lumo_host/file_io.h"
+#include "lumo_host/options.h"
 #include "lumo_host/package_msg.h"
 #include "package_load.h"
 #include "session_scene.h"
@@ -27,29 +28,46 @@ static void describe_failure(const lumo_session_where *w, lumo_status st, char *
         snprintf(err, errlen, "bad IVG chunk: %s", lumo_strerror(st));
 }
 
-int host_lod_parse(const char *s, host_lod *lod)
+/* A refusal "--lod SHOWN: why" from the parser, with its reason replaced
+ * by `why` (the parser saw only the number of "P%"). */
+static void lod_refusal(char *err, size_t errlen, const char *shown_in, const char *why)
 {
-    char *end;
+    const char *r = strstr(shown_in, ": ");
+
+    snprintf(err, errlen, "%.*s: %s", (int)(r - shown_in), shown_in, why);
+}
+
+int host_lod_parse(const char *s, host_lod *lod, char *err, size_t errlen)
+{
+    size_t n = strlen(s);
+    char num[64], why[320];
+    uint32_t v;
     double p;
-    unsigned long n;
 
     memset(lod, 0, sizeof *lod);
     lod->fraction = 1;
     if (!strcmp(s, "all"))
         return 0;
-    if (*s < '0' || *s > '9')
-        return -1;
-    if (strchr(s, '%')) {
-        p = strtod(s, &end);
-        if (strcmp(end, "%") || !(p >= 0 && p <= 100))
+    if (n > 1 && s[n - 1] == '%' && n < sizeof num) {
+        memcpy(num, s, n - 1);
+        num[n - 1] = 0;
+        if (host_opt_double("--lod", num, 0, 100, &p, why, sizeof why)) {
+            const char *r = strstr(why, ": ");
+            if (errlen)
+                snprintf(err, errlen, "%.*s%%: percentage %s", (int)(r - why), why, r + 2);
             return -1;
+        }
         lod->fraction = p / 100;
         return 0;
     }
-    n = strtoul(s, &end, 10);
-    if (*end || n < 1 || n > UINT32_MAX)
+    if (host_opt_u32("--lod", s, 1, UINT32_MAX, &v, why, sizeof why)) {
+        if (errlen && strstr(why, ": not an integer"))
+            lod_refusal(err, errlen, why, "not all, N (at most N vertices) or P% (percent streamed)");
+        else if (errlen)
+            snprintf(err, errlen, "%s", why);
         return -1;
-    lod->vertices = (uint32_t)n;
+    }
+    lod->vertices = v;
     return 0;
 }
 
@@ -115,12 +133,19 @@ int host_package_load(const char *path, const host_lod *lod, host_scene *s, host
     memset(ivg, 0, sizeof *ivg);
     if (!data || size == 0) {   /* an empty file is as unreadable as a missing one */
         free(data);
-        snprintf(err, errlen, "%s: cannot read", path);
+        if (host_opt_file(NULL, path, "package", err, errlen) == 0)
+            snprintf(err, errlen, "%s: cannot read", path);
         return -1;
     }
     if ((st = lumo_package_open(&pkg, data, size))) {
-        snprintf(err, errlen, "%s: %s", path,
-                 st == LUMO_ERR_VERSION ? host_package_strerror(data, size, st, why, sizeof why) : lumo_strerror(st));
+        snprintf(err, errlen, "%s: %s", path, host_package_strerror(data, size, st, why, sizeof why));
+        free(data);
+        return -1;
+    }
+    if (lumo_package_find(&pkg, LUMO_PKG_INFO, 0, &(const uint8_t *){0}, &(uint32_t){0}) == LUMO_ERR_RANGE) {
+        snprintf(err, errlen, "%s: no INFO chunk, so no scene to draw (camera, lights); a package from "
+                              "lumo-pm build holds a mesh stream only: see it with lumo-inspect --lod N --ply "
+                              "OUT.ply, or bake the model into a scene with lumo-bake", path);
         free(data);
         return -1;
     }

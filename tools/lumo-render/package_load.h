@@ -31,9 +31,10 @@ typedef struct host_lod {
     double   fraction;
 } host_lod;
 
-/* Parse "all", a vertex count "N" (>= 1) or a percentage "P%" (0..100).
- * 0 on success. */
-int host_lod_parse(const char *s, host_lod *lod);
+/* Parse --lod: "all", a vertex count "N" (1..4294967295) or a percentage
+ * "P%" (0..100), through lumo_host/options.h. 0 on success, else -1 with
+ * "--lod VALUE: why" in err (which may be NULL). */
+int host_lod_parse(const char *s, host_lod *lod, char *err, size_t errlen);
 
 /* Load a package; lod NULL means the full meshes; stats may be NULL.
  * 0 on success; else a one-line message in err. */

@@ -7,8 +7,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo_host/options.h"
 #include "serve/index.h"
 #include "serve/server.h"
+#include "serve/usb.h"
 #include "lumo_host/version_line.h"
 
 static const char usage[] =
@@ -21,15 +23,20 @@ static const char usage[] =
     "                             port; 0.0.0.0:PORT for the whole network)\n"
     "  --serial-listen ADDR:PORT  also accept TCP connections that carry a raw serial\n"
     "                             line: the server resynchronises after garbage\n"
-    "  --rate KBIT/S              emulate a link of this rate per client (0: none)\n"
-    "  --latency MS               emulate this one-way latency per client (requests\n"
+    "  --rate KBIT/S              emulate a link of this rate per client, 0..1e9 (0: none;\n"
+    "                             115.2 for a 115200 baud line)\n"
+    "  --latency MS               emulate this one-way latency per client, 0..60000 (requests\n"
     "                             and frames each wait this long)\n"
     "  --loss P                   serial listener: damage each frame with probability\n"
     "                             P (one byte flipped or dropped), seeded\n"
-    "  --seed S                   seed of --loss (default 1)\n"
+    "  --seed S                   seed of --loss, 0..4294967295 (default 1)\n"
     "  --max-clients N            clients at once (default 1024); more get ERROR LIMIT\n"
     "  --idle-timeout S           close a client that sends nothing, or reads nothing,\n"
-    "                             for S seconds (default 30)\n"
+    "                             for S seconds, 1..86400 (default 30)\n"
+    "  --usb [VID:PID]            also serve thin clients plugged in by USB: every\n"
+    "                             device with a lumo interface (class ff/4c/01), or\n"
+    "                             those of VID:PID (hex); found by hotplug and by a\n"
+    "                             scan every 500 ms (docs/protocol.md §8 \"USB\")\n"
     "  --port-file FILE           write \"TCP_PORT SERIAL_PORT\" once listening (scripts)\n"
     "  --quiet                    no line per client (start, stop and errors only)\n"
     "  -h, --help                 this text\n"
@@ -42,35 +49,27 @@ static int fail(const char *msg)
     return 1;
 }
 
-static int parse_u32(const char *t, unsigned long lo, unsigned long hi, uint32_t *out)
+/* --usb, --usb=VID:PID or --usb VID:PID (the next word when it is one). */
+static int usb_option(srv_serve_options *o, const char *arg, int argc, char **argv)
 {
-    char *end;
-    unsigned long v;
-
-    errno = 0;
-    v = strtoul(t, &end, 10);
-    if (end == t || *end || errno || v < lo || v > hi || t[0] == '-')
-        return -1;
-    *out = (uint32_t)v;
-    return 0;
-}
-
-static int parse_double(const char *t, double lo, double hi, double *out)
-{
-    char *end;
-    double v = strtod(t, &end);
-
-    if (end == t || *end || !isfinite(v) || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
+    o->usb = 1;
+    o->usb_any = 1;
+    if (!arg && optind < argc && srv_usb_parse_id(argv[optind], &o->usb_vid, &o->usb_pid) == 0) {
+        optind++;
+        o->usb_any = 0;
+        return 0;
+    }
+    if (!arg)
+        return 0;
+    o->usb_any = 0;
+    return srv_usb_parse_id(arg, &o->usb_vid, &o->usb_pid);
 }
 
 int main(int argc, char **argv)
 {
     if (host_version_option(argc, argv, "lumo-server"))
         return 0;
-    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET };
+    enum { O_LISTEN = 256, O_SERIAL, O_RATE, O_LATENCY, O_LOSS, O_SEED, O_MAX, O_IDLE, O_PORTFILE, O_QUIET, O_USB };
     static const struct option longopts[] = {
         {"listen", required_argument, NULL, O_LISTEN},
         {"serial-listen", required_argument, NULL, O_SERIAL},
@@ -82,6 +81,7 @@ int main(int argc, char **argv)
         {"idle-timeout", required_argument, NULL, O_IDLE},
         {"port-file", required_argument, NULL, O_PORTFILE},
         {"quiet", no_argument, NULL, O_QUIET},
+        {"usb", optional_argument, NULL, O_USB},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
     };
@@ -99,7 +99,7 @@ int main(int argc, char **argv)
     o.drain_ms = SRV_DRAIN_MS;
     o.seed = 1;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, "h", longopts, NULL)) != -1) {
+    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
         switch (c) {
         case 'h':
             fputs(usage, stdout);
@@ -111,29 +111,29 @@ int main(int argc, char **argv)
             o.serial_listen = optarg;
             break;
         case O_RATE:
-            if (parse_double(optarg, 0, 1e9, &o.rate_kbit))
-                return fail("--rate wants kbit/s, a number >= 0 (e.g. 115.2 for a 115200 baud line)");
+            if (host_opt_double("--rate", optarg, 0, 1e9, &o.rate_kbit, msg, sizeof msg))
+                return fail(msg);
             break;
         case O_LATENCY:
-            if (parse_u32(optarg, 0, 60000, &o.latency_ms))
-                return fail("--latency wants milliseconds, 0..60000");
+            if (host_opt_u32("--latency", optarg, 0, 60000, &o.latency_ms, msg, sizeof msg))
+                return fail(msg);
             break;
         case O_LOSS:
-            if (parse_double(optarg, 0, 1, &o.loss))
-                return fail("--loss wants a probability per frame, 0..1");
+            if (host_opt_double("--loss", optarg, 0, 1, &o.loss, msg, sizeof msg))
+                return fail(msg);
             break;
         case O_SEED:
-            if (parse_u32(optarg, 0, 0xffffffffu, &seed32))
-                return fail("--seed wants an integer 0..4294967295");
+            if (host_opt_u32("--seed", optarg, 0, 0xffffffffu, &seed32, msg, sizeof msg))
+                return fail(msg);
             o.seed = seed32;
             break;
         case O_MAX:
-            if (parse_u32(optarg, 1, 1000000, &o.max_clients))
-                return fail("--max-clients wants 1..1000000");
+            if (host_opt_u32("--max-clients", optarg, 1, 1000000, &o.max_clients, msg, sizeof msg))
+                return fail(msg);
             break;
         case O_IDLE:
-            if (parse_u32(optarg, 1, 86400, &o.idle_timeout_s))
-                return fail("--idle-timeout wants seconds, 1..86400");
+            if (host_opt_u32("--idle-timeout", optarg, 1, 86400, &o.idle_timeout_s, msg, sizeof msg))
+                return fail(msg);
             break;
         case O_PORTFILE:
             o.port_file = optarg;
@@ -141,8 +141,14 @@ int main(int argc, char **argv)
         case O_QUIET:
             o.quiet = 1;
             break;
+        case O_USB:
+            if (usb_option(&o, optarg, argc, argv)) {
+                snprintf(msg, sizeof msg, "--usb %s: not VID:PID in hex (e.g. 1209:0001)", optarg ? optarg : "");
+                return fail(msg);
+            }
+            break;
         default:
-            snprintf(msg, sizeof msg, "unknown or incomplete option '%s' (see --help)", argv[optind - 1]);
+            host_opt_getopt_error(c, argv[optind - 1], optopt, msg, sizeof msg);
             return fail(msg);
         }
     }
@@ -154,7 +160,8 @@ int main(int argc, char **argv)
     if (!(pkgs = calloc(npkgs, sizeof *pkgs)))
         return fail("out of memory");
     for (i = 0; i < npkgs; i++)
-        if ((st = srv_pkg_open(&pkgs[i], argv[optind + (int)i], err, sizeof err))) {
+        if (host_opt_file(NULL, argv[optind + (int)i], "package", err, sizeof err) ||
+            (st = srv_pkg_open(&pkgs[i], argv[optind + (int)i], err, sizeof err))) {
             while (i--)
                 srv_pkg_close(&pkgs[i]);
             free(pkgs);

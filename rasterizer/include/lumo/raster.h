@@ -276,6 +276,7 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
  * Geometry nearer the light than this casts no shadow. */
 #define LUMO_RASTER_SHADOW_ZNEAR ((lumo_q16_16)3277)
 
+/* A light's shadow map: its views and the caller's depth texels. */
 typedef struct lumo_raster_shadow {
     lumo_raster_view face[LUMO_RASTER_SHADOW_MAX_FACES];  /* the light's views */
     uint16_t *depth;           /* faces * size * size texels, face-major, rows top first */

@@ -120,7 +120,9 @@ lumo_status lumo_session_init(lumo_session *s, const lumo_session_config *cfg, l
  * as the payload's decoder. */
 lumo_status lumo_session_message_need(uint32_t type, const uint8_t *payload, size_t len, size_t *bytes);
 
-/* Arena bytes to feed the whole package (LUMO_ARENA_SLACK included). */
+/* Arena bytes to feed the whole package (LUMO_ARENA_SLACK included).
+ * Errors as its payloads' decoders; LUMO_ERR_LIMIT for more than
+ * LUMO_MAX_MESHES meshes (what a session holds). */
 lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes);
 
 /* Feed one message. `index`: the mesh for MESH, PMSH and PMSB, else 0.

@@ -1,0 +1,242 @@
+#!/bin/sh
+# tests/hostile/cli.sh BUILD — every tool's command line as a hostile user
+# types it (issue 24, part A). The cases are generated here at test time:
+# for each numeric option of each tool, values that wrap, are not finite,
+# are garbage or sit one past a bound; named files that are missing, empty,
+# a directory, a device or not of their kind; outputs that cannot be
+# written; packages the tool cannot draw. Each case has its expected exit
+# status and refusal text: one "TOOL: error:" line on stderr that names the
+# option and the value (or the file) and says why. Never a crash, a usage
+# dump or a silent fallback. Prints "RESULT: N passed, M failed".
+set -u
+build=$1
+bin=$build/bin
+tmp=$build/tests/hostile-cli
+rm -rf "$tmp"
+mkdir -p "$tmp/adir"
+pass=0; fail=0
+
+# expect STATUS TEXT CMD...: CMD exits STATUS, its stderr is exactly one
+# line and holds "error: TEXT" (TEXT a fixed string).
+expect() {
+    want=$1 text=$2; shift 2
+    "$@" >"$tmp/out" 2>"$tmp/err" </dev/null
+    got=$?
+    lines=$(wc -l <"$tmp/err")
+    if [ "$got" -eq "$want" ] && [ "$lines" -eq 1 ] && grep -qF -- "error: $text" "$tmp/err"; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1))
+        echo "FAIL: $* -> status $got (want $want), stderr:"
+        sed 's/^/    /' "$tmp/err" | head -5
+        echo "    want: error: $text"
+    fi
+}
+
+# The files the cases name.
+: >"$tmp/empty.ply"
+printf 'not a model\n' >"$tmp/garbage.obj"
+printf '\211PNG\r\n\032\n' >"$tmp/picture.png"
+model=$build/data/models/dragon_11k.ply
+[ -f "$model" ] || { echo "RESULT: 0 passed, 1 failed ($model missing: run tools/setup.sh)"; exit 1; }
+"$bin/lumo-render" --default -o "$tmp/a.png" --size 32x24 >/dev/null 2>&1 || echo "could not render a.png"
+"$bin/lumo-pm" build "$model" -o "$tmp/pm.lumo" --batch 500 >/dev/null 2>&1 || echo "could not build pm.lumo"
+
+# ---- numbers: wrap, not finite, garbage, one past a bound ------------------
+# Each row: tool, fixed arguments, option, value, expected refusal.
+r() { expect 2 "$3 $4: $5" "$bin/lumo-render" --default -o "$tmp/x.png" "$3" "$4"; }
+while IFS='|' read -r opt val why; do
+    r - - "$opt" "$val" "$why"
+done <<'EOF'
+--size|4294967312x16|width must be 1..2048
+--size|16x4294967312|height must be 1..2048
+--size|0x16|width must be 1..2048
+--size|2049x16|width must be 1..2048
+--size|640|not WxH (e.g. 320x240)
+--size|-5x5|width must be 1..2048
+--size|5x|height is not an integer
+--frames|0|must be 1..100000
+--frames|abc|not an integer
+--frames|4294967297|must be 1..100000
+--frames|1e3|not an integer
+--bands|0|must be 1..2048
+--bands|+5|not an integer
+--warmup|-1|must be 0..1000
+--warmup|1001|must be 0..1000
+--exposure|nan|not a finite number
+--exposure|inf|not a finite number
+--exposure|1e999|not a finite number
+--exposure|-0.1|must be 0..65535
+--exposure|2x|not a number
+--lod|abc|not all, N (at most N vertices) or P% (percent streamed)
+--lod|0|must be 1..4294967295
+--lod|4294967296|must be 1..4294967295
+--lod|101%|percentage must be 0..100
+--lod|nan%|percentage not a finite number
+EOF
+
+b() { expect 1 "$1 $2: $3" "$bin/lumo-bake" --default -o "$tmp/x.lumo" --no-progress "$1" "$2"; }
+while IFS='|' read -r opt val why; do b "$opt" "$val" "$why"; done <<'EOF'
+--grid|1|must be 2..256 (N or NX,NY,NZ)
+--grid|4294967298|must be 2..256 (N or NX,NY,NZ)
+--grid|4,1,4|value 2 must be 2..256
+--grid|4,4|1 or 3 values wanted, 2 given
+--grid|4,4,4,4|more than 3 values
+--cell|0|must be above 0 and at most 1e+06
+--cell|nan|not a finite number
+--cell|-1|must be above 0 and at most 1e+06
+--spp|0|must be 1..16777216
+--spp|16777217|must be 1..16777216
+--seed|-1|must be 0..18446744073709551615
+--seed|18446744073709551616|must be 0..18446744073709551615
+--threads|0|must be 1..256
+--albedo|1,1|3 values separated by commas wanted, 2 given
+--albedo|1,nan,1|value 2: not a finite number
+--albedo|0.5,0.5,2|value 3 must be 0..1
+--reference|4294967312x16|width must be 1..16384
+--exposure|inf|not a finite number
+--mesh|foo|must be one of raw, pm, both
+--camera|0,1,2:0,1,2:0,1,0:40|eye and target are the same point
+--camera|0,1,2:0,1,3:0,0,1:40|UP is zero or parallel to the view direction
+--camera|0,1,2:0,1,3:0,1,0:180|FOVY must be a number of degrees above 0 and below 180
+--camera|a:b|not 4 fields EYE:TARGET:UP:FOVY
+EOF
+
+M=$model
+p() { expect 2 "$1 $2: $3" "$bin/lumo-pm" build "$M" -o "$tmp/p.lumo" "$1" "$2"; }
+while IFS='|' read -r opt val why; do p "$opt" "$val" "$why"; done <<'EOF'
+--batch|0|must be 1..1048576
+--batch|4294967396|must be 1..1048576
+--batch|abc|not an integer
+--bits|155|must be 1..20
+--bits|0|must be 1..20
+--min-vertices|2|must be 3..4294967295
+--rounds|nan|not a finite number
+--rounds|1.5|must be 0..1
+EOF
+
+i() { expect 1 "$1 $2: $3" "$bin/lumo-inspect" "$1" "$2" --ply "$tmp/l.ply" "$tmp/pm.lumo"; }
+i --lod abc "not an integer"
+i --lod 12x "not an integer"
+i --lod 99999999999 "must be 1..4294967295"
+expect 1 "--lod 2: levels go from" "$bin/lumo-inspect" --lod 2 --ply "$tmp/l.ply" "$tmp/pm.lumo"
+expect 1 "--mesh x: not an integer" "$bin/lumo-inspect" --stream --mesh x "$tmp/pm.lumo"
+expect 1 "--mesh 4294967296: must be 0..4294967295" "$bin/lumo-inspect" --stream --mesh 4294967296 "$tmp/pm.lumo"
+
+c() { expect 2 "$1 $2: $3" "$bin/lumo-compare" "$tmp/a.png" "$tmp/a.png" "$1" "$2"; }
+c --max-mean-de nan "not a finite number"
+c --max-mean-de inf "not a finite number"
+c --max-mean-de -1 "must be 0..1000"
+c --min-psnr abc "not a number"
+expect 2 "--min-psnr '': not a number" "$bin/lumo-compare" "$tmp/a.png" "$tmp/a.png" --min-psnr ""
+
+s() { expect 1 "$1 $2: $3" "$bin/lumo-server" "$tmp/pm.lumo" --listen 127.0.0.1:0 "$1" "$2"; }
+s --rate nan "not a finite number"
+s --rate -1 "must be 0..1e+09"
+s --latency 60001 "must be 0..60000"
+s --loss 2 "must be 0..1"
+s --seed 4294967296 "must be 0..4294967295"
+s --max-clients 0 "must be 1..1000000"
+s --idle-timeout abc "not an integer"
+
+k() { expect 2 "$1 $2: $3" "$bin/lumo-client" --connect 127.0.0.1:1 "$1" "$2"; }
+k --size 4294967312x16 "width must be 1..2048"
+k --frames-at 50,10 "values must increase (value 2 is 10 after 50)"
+k --frames-at 10,abc "value 2: not a number"
+k --frames-at 0 "percentages must be above 0"
+k --pipeline 9 "must be 1..8"
+k --order foo "must be one of interleaved, geometry, lighting"
+k --arena 0 "must be 1..4095"
+k --max-payload 1 "must be 4096..16777216"
+k --vertices 4294967296 "must be 1..268435456"
+k --retries -1 "must be 0..1000"
+
+expect 2 "--bench 0: must be 1..1000000" "$bin/lumo-draco-decode" --bench 0 "$tmp/a.png"
+expect 2 "--bench x: not an integer" "$bin/lumo-draco-decode" --bench x "$tmp/a.png"
+expect 1 "RECORDS -5: must be 0..4294967295" "$bin/lumo-pm" apply "$tmp/pm.lumo" -5
+
+# ---- option words: unknown, missing value, a value given to a flag --------
+for t in "lumo-render 2 --default -o $tmp/x.png" "lumo-bake 1 --default -o $tmp/x.lumo" \
+         "lumo-client 2 --connect 127.0.0.1:1" "lumo-server 1 $tmp/pm.lumo"; do
+    set -- $t; tool=$1 st=$2; shift 2
+    expect "$st" "--frobnicate: unknown option (try --help)" "$bin/$tool" "$@" --frobnicate
+    expect "$st" "--help=3: unknown option, or one that takes no value" "$bin/$tool" "$@" --help=3
+done
+expect 2 "--size needs a value (try --help)" "$bin/lumo-render" --default -o "$tmp/x.png" --size
+expect 1 "--grid needs a value (try --help)" "$bin/lumo-bake" --default -o "$tmp/x.lumo" --grid
+expect 2 "--bits needs a value (try --help)" "$bin/lumo-pm" build "$M" -o "$tmp/p.lumo" --bits
+expect 2 "--min-psnr needs a value (try --help)" "$bin/lumo-compare" "$tmp/a.png" "$tmp/a.png" --min-psnr
+expect 2 "--retries needs a value (try --help)" "$bin/lumo-client" --connect 127.0.0.1:1 --retries
+
+# ---- named files: used or refused, never replaced ---------------------------
+while IFS='|' read -r f why; do
+    f=$(eval echo "$f")
+    expect 1 "--model $f: $why" "$bin/lumo-render" --default --model "$f" -o "$tmp/x.png"
+    expect 1 "--dragon $f: $why" "$bin/lumo-bake" --default --dragon "$f" -o "$tmp/x.lumo" --no-progress
+    LUMO_DRAGON=$f expect 1 "LUMO_DRAGON $f: $why" "$bin/lumo-render" --default -o "$tmp/x.png"
+done <<'EOF'
+$tmp/missing.ply|cannot read: No such file or directory
+$tmp/empty.ply|empty file, not a model file
+$tmp/adir|a directory, not a model file
+/dev/null|not a regular file
+EOF
+expect 1 "default scene: $tmp/picture.png: cannot import" "$bin/lumo-render" --default --model "$tmp/picture.png" -o "$tmp/x.png"
+expect 1 "$tmp/garbage.obj: cannot import" "$bin/lumo-bake" --default --dragon "$tmp/garbage.obj" -o "$tmp/x.lumo"
+expect 2 "--model $model: only with --default" "$bin/lumo-render" "$tmp/pm.lumo" --model "$model" -o "$tmp/x.png"
+expect 1 "--dragon $model: only with --default" "$bin/lumo-bake" "$model" --dragon "$model" -o "$tmp/x.lumo"
+expect 1 "$tmp/adir: a directory, not a scene or model file" "$bin/lumo-bake" "$tmp/adir" -o "$tmp/x.lumo"
+expect 2 "$tmp/adir: a directory, not a mesh file" "$bin/lumo-pm" build "$tmp/adir" -o "$tmp/p.lumo"
+for t in lumo-render lumo-inspect lumo-server; do
+    case $t in lumo-render) a="-o $tmp/x.png" ;; lumo-server) a="--listen 127.0.0.1:0" ;; *) a="" ;; esac
+    expect 1 "$tmp/adir: a directory, not a package" "$bin/$t" "$tmp/adir" $a
+    expect 1 "$tmp/empty.ply: empty file, not a package" "$bin/$t" "$tmp/empty.ply" $a
+    expect 1 "$tmp/nope.lumo: cannot read: No such file or directory" "$bin/$t" "$tmp/nope.lumo" $a
+    expect 1 "$tmp/picture.png: not a valid package" "$bin/$t" "$tmp/picture.png" $a
+done
+expect 1 "$tmp/adir: a directory, not a PNG picture" "$bin/lumo-compare" "$tmp/a.png" "$tmp/adir"
+expect 1 "$tmp/garbage.obj: cannot read as an 8-bit PNG picture" "$bin/lumo-compare" "$tmp/a.png" "$tmp/garbage.obj"
+expect 1 "$tmp/adir: a directory, not a Draco file" "$bin/lumo-draco-decode" "$tmp/adir" "$tmp/x.ply"
+
+# ---- outputs that cannot be written: the file and errno ---------------------
+no=/nonexistent/dir
+expect 1 "$no/p.ply: cannot write: No such file or directory" "$bin/lumo-pm" clean "$M" -o "$no/p.ply"
+expect 1 "$no/p.lumo: cannot write: No such file or directory" "$bin/lumo-pm" build "$M" -o "$no/p.lumo"
+expect 1 "$no/p.bin: cannot write: No such file or directory" "$bin/lumo-pm" build "$M" --raw -o "$no/p.bin"
+expect 1 "$tmp/adir: cannot write: Is a directory" "$bin/lumo-bake" --default --grid 2 --spp 1 --no-progress -o "$tmp/adir"
+expect 1 "$no/x.png: cannot write PNG: No such file or directory" "$bin/lumo-render" --default -o "$no/x.png" --size 8x8
+expect 1 "$no/s.png: cannot write PNG: No such file or directory" "$bin/lumo-compare" "$tmp/a.png" "$tmp/a.png" -o "$no/s.png"
+expect 1 "$no/l.ply: cannot write: No such file or directory" "$bin/lumo-inspect" --lod all --ply "$no/l.ply" "$tmp/pm.lumo"
+# a Draco file the decoder takes (the conformance cases hold refusals too)
+drc=""
+for f in $(find "$build" -name '*.drc' 2>/dev/null | head -n 40); do
+    if "$bin/lumo-draco-decode" --info "$f" >/dev/null 2>&1; then drc=$f; break; fi
+done
+if [ -n "$drc" ]; then
+    expect 1 "$no/x.ply: cannot write: No such file or directory" "$bin/lumo-draco-decode" "$drc" "$no/x.ply"
+    expect 1 "$no/x.txt: cannot write: No such file or directory" "$bin/lumo-draco-decode" --dump "$drc" "$no/x.txt"
+fi
+
+# ---- what the tools cannot draw, said plainly -------------------------------
+expect 1 "$tmp/pm.lumo: no INFO chunk, so no scene to draw (camera, lights)" "$bin/lumo-render" "$tmp/pm.lumo" -o "$tmp/x.png"
+expect 1 "--camera 0,1,2:0,1,2:0,1,0:40: eye and target are the same point" \
+    "$bin/lumo-render" --default -o "$tmp/x.png" --camera 0,1,2:0,1,2:0,1,0:40
+expect 1 "--camera 0,1,2:0,1,2.000001:0,1,0:40: eye and target are the same point in Q16.16 fixed point" \
+    "$bin/lumo-render" --default -o "$tmp/x.png" --camera 0,1,2:0,1,2.000001:0,1,0:40
+expect 1 "--camera 0,1,2:0,1,3:0,1,0:179.9: FOVY must be 1..179 degrees" \
+    "$bin/lumo-render" --default -o "$tmp/x.png" --camera 0,1,2:0,1,3:0,1,0:179.9
+lights=""; n=0
+while [ $n -lt 17 ]; do lights="$lights --light point:0,1,0:1,1,1"; n=$((n + 1)); done
+expect 2 "--light point:0,1,0:1,1,1: more than 16 lights (LUMO_MAX_LIGHTS" "$bin/lumo-render" --default -o "$tmp/x.png" $lights
+expect 1 "--light point:0,1,0:1,1,1: more than 16 lights; a scene holds at most 16 (LUMO_MAX_LIGHTS" "$bin/lumo-bake" --default -o "$tmp/x.lumo" $lights
+
+# ---- --help stays clear: usage on stdout, status 0 --------------------------
+for t in lumo-render lumo-bake lumo-pm lumo-inspect lumo-server lumo-client lumo-compare lumo-draco-decode; do
+    if "$bin/$t" --help >"$tmp/out" 2>"$tmp/err" && grep -q "^usage: $t" "$tmp/out" && [ ! -s "$tmp/err" ]; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1)); echo "FAIL: $t --help"
+    fi
+done
+
+echo "RESULT: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
