@@ -13,3 +13,12 @@ bench-pm: $(BIN)/lumo-pm
 	$(BIN)/lumo-pm bench --out $(BUILD)/bench/sections/60-pm.md --fig5 $(PM_BENCH_FIG5) \
 	    --cmd "make bench-pm ($(BIN)/lumo-pm bench --fig5 $(PM_BENCH_FIG5) $(PM_BENCH_MODELS))" \
 	    $(PM_BENCH_MODELS)
+
+# The size and bit tables alone (no Fig. 5, rounds or callgrind sections):
+# minutes instead of hours on a loaded machine. Writes 60-pm-sizes.md.
+.PHONY: bench-pm-sizes
+bench-pm-sizes: $(BIN)/lumo-pm
+	@mkdir -p $(BUILD)/bench/sections
+	$(BIN)/lumo-pm bench --sizes-only --out $(BUILD)/bench/sections/60-pm-sizes.md \
+	    --cmd "make bench-pm-sizes ($(BIN)/lumo-pm bench --sizes-only $(PM_BENCH_MODELS))" \
+	    $(PM_BENCH_MODELS)

@@ -52,7 +52,7 @@ $(BUILD)/board/obj-host-lm3s/%.o: %.c boards/lm3s6965evb/client.mk
 	    -DCLIENT_PICTURE_BYTES=65536u -MMD -MP -c $< -o $@
 .PRECIOUS: $(BUILD)/board/obj-host-lm3s/%.o
 
-LM3S_CLIENT_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3s/%.o,boards/client/client.c boards/client/grey4.c \
+LM3S_CLIENT_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3s/%.o,$(BOARD_CLIENT_SRCS) \
     boards/armv7m/startup.c boards/common/stack_paint.c boards/armv7m/fault.c boards/armv7m/semihost.c boards/lm3s6965evb/board.c \
     boards/common/console.c)
 LM3S_CLIENT_LIBS := $(BUILD)/m3s/liblumo_net.a $(BUILD)/m3s/liblumo_raster.a $(BUILD)/m3s/liblumo.a
@@ -67,7 +67,7 @@ $(LM3S_CLIENT_ELF): $(LM3S_CLIENT_OBJS) $(LM3S_CLIENT_LIBS) boards/lm3s6965evb/l
 	@if $(ARM_NM) $@ | awk '{print $$NF}' | grep -Ex '$(BOARD_BANNED_SYMS)'; then \
 	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
 
-$(LM3S_CLIENT_HOST): $(patsubst %.c,$(BUILD)/board/obj-host-lm3s/%.o,boards/client/client.c boards/client/grey4.c \
+$(LM3S_CLIENT_HOST): $(patsubst %.c,$(BUILD)/board/obj-host-lm3s/%.o,$(BOARD_CLIENT_SRCS) \
                      boards/host/board.c boards/common/console.c) $(HOST_BOARD_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^

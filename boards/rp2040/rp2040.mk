@@ -40,7 +40,7 @@ $(BUILD)/board/obj-m0/%.o: %.c
 	@mkdir -p $(@D)
 	$(ARM_CC) $(CLIENT_CFLAGS_m0) -Iboards -Iboards/common $(RP2040_CLIENT_FLAGS) -MMD -MP -c $< -o $@
 .PRECIOUS: $(BUILD)/board/obj-m0/%.o
-RP2040_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m0/%.o,boards/client/client.c boards/client/grey4.c boards/rp2040/startup.c boards/common/stack_paint.c \
+RP2040_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m0/%.o,$(BOARD_CLIENT_SRCS) boards/rp2040/startup.c boards/common/stack_paint.c \
     boards/rp2040/board.c boards/armv7m/semihost.c boards/common/console.c)
 RP2040_LIBS := $(BUILD)/m0/liblumo_net.a $(BUILD)/m0/liblumo_raster.a $(BUILD)/m0/liblumo.a
 

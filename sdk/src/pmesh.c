@@ -103,7 +103,7 @@ static size_t log_words(const lumo_pmesh_header *h, size_t per)
     return lumo_size_mul(per, lumo_size_add(h->max_batch_moves, h->max_batch_faces));
 }
 
-#define NARRAYS 14
+#define NARRAYS 18
 /* Fan-rank candidates of one split (pmesh_batch.c read_arc): n^2 at most. */
 #define ARC_KEYS (LUMO_PMESH_ARC_MAX_CORNERS * LUMO_PMESH_ARC_MAX_CORNERS)
 
@@ -114,9 +114,10 @@ static void layout(const lumo_pmesh_header *h, size_t n[NARRAYS], size_t sz[NARR
     size_t splits = lumo_size_add(max_u32(h->base_vertices, h->batch_vertices), 1u);
     size_t rgb = h->flags & LUMO_PMESH_HAS_ALBEDO ? vv : 0;
     size_t cnt[NARRAYS] = {vv, vv, vv, c, c, v, v, log_words(h, 3u), log_words(h, 4u), splits, splits,
-                           scratch_bytes(h), rgb, ARC_KEYS};
+                           scratch_bytes(h), rgb, ARC_KEYS, v, splits, LUMO_PMESH_CONTEXTS,
+                           LUMO_PMESH_CONTEXTS};
     size_t el[NARRAYS] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 4, 4, 1,
-                          sizeof(lumo_q1_14), sizeof(int64_t)};
+                          sizeof(lumo_q1_14), sizeof(int64_t), 4, 4, 2, 2};
     memcpy(n, cnt, sizeof cnt);
     memcpy(sz, el, sizeof el);
 }
@@ -155,11 +156,15 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
     pm->split_log = p[9], pm->batch_parent = p[10], pm->scratch = p[11], pm->scratch_bytes = n[11];
     pm->albedo = n[12] ? p[12] : NULL;
     pm->arc_key = p[13];
+    pm->round_parent = p[14], pm->stamp_log = p[15], pm->ctx = p[16], pm->ctx_undo = p[17];
+    memset(pm->round_parent, 0, n[14] * sizeof(uint32_t));
     for (size_t i = 0; i < 3; i++)
         (void)lumo_f32bits_to_fixed(h->origin_bits[i], LUMO_Q16_SHIFT, &pm->origin[i]);
     (void)lumo_f32bits_to_fixed(h->range_bits, LUMO_Q16_SHIFT, &pm->range);
     memset(pm->head, 0xff, n[5] * sizeof(uint32_t));
     pm->last_parent = 0xffffffffu;
+    for (size_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
+        pm->ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
     return LUMO_OK;
 }
 

@@ -8,9 +8,12 @@
  * between the two wings (an interior split: only the fan's rank among
  * the fans p's ring geometry makes likely, or its first wing and length,
  * is coded) or those a bit mask selects (boundary and
- * non-manifold splits), then appends the faces that reappear. The work is
- * that of the batch:
- * its vertices, their parents' valences and the new faces, never the mesh.
+ * non-manifold splits), then appends the faces that reappear. A split
+ * record is one adaptive binary range code (pmesh_rc.h); its parents are
+ * found by a scan of the vertices that may still split in the current
+ * collapse round. The work is that of the batch: its vertices, their
+ * parents' valences, the vertices the parent scans pass and the new
+ * faces, never the mesh.
  *
  * A batch is checked whole before it is kept: the record's CRC and counts,
  * then the Draco payload is decoded into scratch memory, then the splits
@@ -21,16 +24,26 @@
 #include "lumo/pmesh.h"
 #include "lumo_shared/pmesh_shared.h"
 #include "lumo/wire.h"
+#include "pmesh_rc.h"
 
 #define NIL LUMO_PMESH_NIL
 
-/* Bit fields are LSB-first (lumo/wire.h); a read past the record's end is
- * an error (nonzero), which every caller turns into CORRUPT or TRUNCATED. */
-typedef lumo_wire_bits bitreader;
+/* The base record's fields are LSB-first bit fields (lumo/wire.h); a split
+ * record's are bits of its range code, fixed fields as direct bits (the
+ * first one the least significant). A read past the block's end is an
+ * error (nonzero), which every caller turns into CORRUPT or TRUNCATED. */
+typedef struct {
+    lumo_wire_bits wb;
+    pmesh_rc       rc;
+    int            range;   /* 1: a split record's range code */
+} bitreader;
 
 static int read_bits(bitreader *b, unsigned n, uint32_t *out)
 {
-    return lumo_wire_bits_read(b, n, out) != LUMO_OK;
+    if (!b->range)
+        return lumo_wire_bits_read(&b->wb, n, out) != LUMO_OK;
+    *out = lumo_pmesh_rc_direct(&b->rc, n);
+    return b->rc.over;
 }
 
 /* tb(c) of docs/progressive-mesh.md §2.3: a value in [0, c) in truncated
@@ -85,11 +98,18 @@ typedef struct {
     uint32_t    faces, moves;
     uint32_t    prev_parent; /* the last split's parent (also of the previous
                                 record), NIL before the first split */
-    uint32_t    rice;        /* the record's Rice parameter for parent gaps */
-    bitreader   kr;          /* the record's kind section */
-    uint32_t    fans_left;   /* fan splits left in the current run */
-    int         need_run;    /* the next split starts a run */
+    uint32_t    round_first; /* first split vertex of the current round */
+    uint32_t    last_fan;    /* the previous split was a fan split */
+    uint32_t    stamped;     /* splits whose parent's round_parent is set */
+    uint16_t   *ctx;         /* pm->ctx (pm->ctx_undo keeps the batch's start) */
 } split_ctx;
+
+/* One bit of adaptive context `c` of the split record's range code. */
+static int read_ctx(split_ctx *s, uint32_t c, uint32_t *bit)
+{
+    *bit = lumo_pmesh_rc_bit(&s->br.rc, &s->ctx[c]);
+    return s->br.rc.over;
+}
 
 /* The record's head (docs/progressive-mesh.md §2.2): what the decoder
  * cannot derive. The first vertex and the vertex count follow from the
@@ -327,7 +347,7 @@ static lumo_status move_corners(split_ctx *s, uint32_t p, uint32_t k, uint32_t *
     *lenp = 0;
     while (c != NIL) {
         uint32_t nextc = pm->next[c];
-        if (read_bits(&s->br, 1, &bit))
+        if (read_ctx(s, LUMO_PMESH_CTX_MASK, &bit))
             return LUMO_ERR_TRUNCATED;
         if (!bit) {
             prev = c, c = nextc, (*lenp)++;
@@ -389,38 +409,30 @@ static lumo_status read_third(split_ctx *s, uint32_t p, uint32_t k, uint32_t lp,
     return read_vertex(s, lists, lens, 2, k, x);
 }
 
-/* The split's kind, from the record's kind section: runs of fan splits
- * (the usual interior split), each gamma(run + 1) and, unless it reaches
- * the record's end, followed by the code of the split that ends it (bits
- * in reading order): 1 → a pair, mask split; 0 1 → one face; 0 0 + 4 bits
+/* The split's kind: an adaptive bit (context: the previous split's kind),
+ * 1 for a fan split (the usual interior split); else the code (direct bits
+ * in reading order) 1 → a pair, mask split; 0 1 → one face; 0 0 + 4 bits
  * → n faces, every flip explicit. A pair is two faces of opposite winding
- * around (k, p), (k, p, x) first, so no flip is coded. `left`: splits of
- * the record from this one on. */
-static lumo_status read_split_kind(split_ctx *s, uint32_t left, uint32_t *n, int *paired, int *fan)
+ * around (k, p), (k, p, x) first, so no flip is coded. */
+static lumo_status read_split_kind(split_ctx *s, uint32_t *n, int *paired, int *fan)
 {
-    uint32_t bit, run;
+    uint32_t bit;
     *paired = *fan = 1;
     *n = 2;
-    if (s->need_run) {
-        if (read_gamma(&s->kr, &run))
-            return LUMO_ERR_TRUNCATED;
-        if (run - 1 > left)
-            return LUMO_ERR_CORRUPT;  /* a run past the record's end */
-        s->fans_left = run - 1, s->need_run = 0;
-    }
-    if (s->fans_left) {
-        s->fans_left--;
+    if (read_ctx(s, LUMO_PMESH_CTX_KIND + s->last_fan, &bit))
+        return LUMO_ERR_TRUNCATED;
+    s->last_fan = bit;
+    if (bit)
         return LUMO_OK;
-    }
-    s->need_run = 1, *fan = 0;
-    if (read_bits(&s->kr, 1, &bit))
+    *fan = 0;
+    if (read_bits(&s->br, 1, &bit))
         return LUMO_ERR_TRUNCATED;
     if (bit)
         return LUMO_OK;
     *paired = 0, *n = 1;
-    if (read_bits(&s->kr, 1, &bit))
+    if (read_bits(&s->br, 1, &bit))
         return LUMO_ERR_TRUNCATED;
-    return bit || !read_bits(&s->kr, 4, n) ? LUMO_OK : LUMO_ERR_TRUNCATED;
+    return bit || !read_bits(&s->br, 4, n) ? LUMO_OK : LUMO_ERR_TRUNCATED;
 }
 
 /* One reappearing face: (k, p, x) or, flipped, (k, x, p). *flip is read
@@ -573,19 +585,30 @@ static void arc_select(int64_t *key, uint32_t count, uint32_t r)
     }
 }
 
-/* Exp-Golomb of order 1: gamma((v >> 1) + 1), then the low bit of v. */
-static lumo_status read_eg1(bitreader *b, uint32_t limit, uint32_t *v)
+/* The rank r <= limit (docs/progressive-mesh.md §2.3 step 3): the class
+ * b of r + 1 (its bit length less one) in unary, adaptive bits "class >
+ * c" (context by the parent's corner count n and c) while class c + 1
+ * fits the limit; then the b bits of r + 1 under its leading one, most
+ * significant first, the first two adaptive (context by b and place). */
+static lumo_status read_rank(split_ctx *s, uint32_t n, uint32_t limit, uint32_t *r)
 {
-    uint32_t u, low;
-    lumo_status st = read_gamma(b, &u);
-    if (st)
-        return st;
-    if (u - 1u > limit / 2u)
-        return LUMO_ERR_CORRUPT;
-    if (read_bits(b, 1, &low))
-        return LUMO_ERR_TRUNCATED;
-    *v = 2u * (u - 1u) + low;
-    return *v > limit ? LUMO_ERR_CORRUPT : LUMO_OK;
+    uint32_t b = 0, bit, v = 1;
+    while ((2u << b) <= limit + 1) {
+        if (read_ctx(s, lumo_pmesh_rank_ctx(n, b), &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (!bit)
+            break;
+        b++;
+    }
+    for (uint32_t j = 0; j < b; j++) {
+        int over = j < 2 ? read_ctx(s, LUMO_PMESH_CTX_RANK_LOW + 2 * b + j, &bit)
+                         : read_bits(&s->br, 1, &bit);
+        if (over)
+            return LUMO_ERR_TRUNCATED;
+        v = v << 1 | bit;
+    }
+    *r = v - 1;
+    return *r > limit ? LUMO_ERR_CORRUPT : LUMO_OK;
 }
 
 /* The fan as a rank: *xa and *m, or *m = 0 for the escape (rank equal to
@@ -599,7 +622,7 @@ static lumo_status read_arc(split_ctx *s, uint32_t p, uint32_t n, uint32_t *xa, 
     lumo_status st;
     arc_gather(pm, p, n, &g);
     uint32_t count = lumo_pmesh_fan_keys(&g, pm->arc_key);
-    if ((st = read_eg1(&s->br, count, &rank)))
+    if ((st = read_rank(s, n, count, &rank)))
         return st;
     *m = 0;
     if (rank == count)
@@ -636,31 +659,37 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
     return (st = add_face(s, k, p, xa)) ? st : add_face(s, k, xb, p);
 }
 
-/* The lookup-table parent of k. The server streams the splits of one
- * independent-set round sorted by parent, so parents mostly increase: the
- * gap d = p - prev - 1 is Rice coded (q = d >> rice zero bits, a one, the
- * rice low bits); LUMO_PMESH_PARENT_ESCAPE zero bits instead announce p in
- * w(k) bits (a new round, a record's first split). Work: bounded by the
- * escape and the record's bits. */
+/* The lookup-table parent of k (docs/progressive-mesh.md §2.3 step 1). The
+ * splits of one independent-set round come sorted by parent, so after the
+ * first split an adaptive bit says whether this one continues the round;
+ * then the vertices after the previous parent and below the round's first
+ * split vertex are scanned, each eligible one (lumo_pmesh_parent_ctx)
+ * reading an adaptive bit, until a 1 names the parent. Else (a new round)
+ * p follows as tb(k) and the round starts at k. Work: the vertices passed
+ * and their valences; a round passes each vertex once. */
 static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
 {
-    uint32_t q = 0, bit = 0, low;
-    while (!bit) {
-        if (read_bits(&s->br, 1, &bit))
-            return LUMO_ERR_TRUNCATED;
-        if (!bit && ++q == LUMO_PMESH_PARENT_ESCAPE)
-            return read_trunc(&s->br, k, p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
-    }
-    if (s->prev_parent == NIL)
-        return LUMO_ERR_CORRUPT;  /* a gap needs a previous parent */
-    if (read_bits(&s->br, s->rice, &low))
+    lumo_pmesh *pm = s->pm;
+    uint32_t bit = 0, v;
+    if (s->prev_parent != NIL && read_ctx(s, LUMO_PMESH_CTX_ROUND, &bit))
         return LUMO_ERR_TRUNCATED;
-    uint64_t v = (uint64_t)s->prev_parent + 1u + ((uint64_t)q << s->rice | low);
-    *p = v < k ? (uint32_t)v : k;  /* k: out of range below */
-    return LUMO_OK;
+    if (!bit) {
+        s->round_first = k;
+        return read_trunc(&s->br, k, p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+    }
+    for (v = s->prev_parent + 1; v < s->round_first; v++) {
+        int c = lumo_pmesh_parent_ctx(pm->tris, pm->head, pm->next, pm->round_parent, v, s->round_first);
+        if (c < 0)
+            continue;
+        if (read_ctx(s, (uint32_t)c, &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (bit)
+            return *p = v, LUMO_OK;
+    }
+    return LUMO_ERR_CORRUPT;  /* no parent before the round's first split */
 }
 
-static lumo_status split(split_ctx *s, uint32_t k, uint32_t left)
+static lumo_status split(split_ctx *s, uint32_t k)
 {
     uint32_t p, n;
     int paired, fan;
@@ -669,56 +698,55 @@ static lumo_status split(split_ctx *s, uint32_t k, uint32_t left)
         return st;
     if (p >= k)
         return LUMO_ERR_RANGE;
+    s->pm->stamp_log[s->stamped++] = s->pm->round_parent[p];
+    s->pm->round_parent[p] = s->round_first;
     s->prev_parent = p;
     s->pm->head[k] = NIL;
     s->pm->batch_parent[k - s->b->first] = p;
-    if ((st = read_split_kind(s, left, &n, &paired, &fan)))
+    if ((st = read_split_kind(s, &n, &paired, &fan)))
         return st;
     if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
         return st;
     return s->res ? predict_split(s, k) : LUMO_OK;
 }
 
-/* A split record's block starts with the Rice parameter and the kind
- * section (gamma(length + 1), then its bits); the per-vertex fields
- * follow it. */
-static lumo_status open_split_block(split_ctx *s)
+/* A split record's block is one range code (pmesh_rc.h). */
+static lumo_status run_split_block(split_ctx *s)
 {
-    uint32_t len;
-    if (read_bits(&s->br, LUMO_PMESH_RICE_BITS, &s->rice) || read_gamma(&s->br, &len))
+    lumo_status st = LUMO_OK;
+    s->br.range = 1;
+    if (lumo_pmesh_rc_init(&s->br.rc, s->b->side, s->b->side_bytes))
         return LUMO_ERR_TRUNCATED;
-    if (s->rice > LUMO_PMESH_MAX_RICE)
-        return LUMO_ERR_CORRUPT;
-    if (len - 1 > s->br.nbits - s->br.pos)
-        return LUMO_ERR_TRUNCATED;
-    s->kr = s->br;
-    s->kr.nbits = s->br.pos + (len - 1);
-    s->br.pos = s->kr.nbits;
-    s->need_run = 1;
+    for (uint32_t i = 0; i < s->b->count && !st; i++) {
+        s->pm->split_log[i] = s->log_n;
+        st = split(s, s->b->first + i);
+    }
+    if (!st && !lumo_pmesh_rc_done(&s->br.rc))
+        return LUMO_ERR_CORRUPT;  /* bytes left over, or not the writer's flush */
+    return st;
+}
+
+/* The base block: bit fields, zero padding, every byte used. */
+static lumo_status run_base_block(split_ctx *s)
+{
+    uint32_t pad;
+    lumo_status st = read_base(s);
+    if (st)
+        return st;
+    if ((s->br.wb.pos + 7) / 8 != s->b->side_bytes)
+        return LUMO_ERR_CORRUPT;  /* trailing bytes */
+    if (read_bits(&s->br, (unsigned)(s->br.wb.nbits - s->br.wb.pos), &pad) || pad)
+        return LUMO_ERR_CORRUPT;  /* padding bits must be zero */
     return LUMO_OK;
 }
 
 static lumo_status run_splits(split_ctx *s)
 {
-    lumo_status st = LUMO_OK;
-    if (s->b->first == 0)
-        st = read_base(s);
-    else if (!(st = open_split_block(s)))
-        for (uint32_t i = 0; i < s->b->count && !st; i++) {
-            s->pm->split_log[i] = s->log_n;
-            st = split(s, s->b->first + i, s->b->count - i);
-        }
+    lumo_status st = s->b->first == 0 ? run_base_block(s) : run_split_block(s);
     if (st)
         return st;
     if (s->b->first + s->b->count == s->pm->h.vertices && s->pm->face_count != s->pm->h.faces)
         return LUMO_ERR_CORRUPT;  /* the last record completes the mesh */
-    if (s->b->first && s->kr.pos != s->kr.nbits)
-        return LUMO_ERR_CORRUPT;  /* kind bits left over */
-    if ((s->br.pos + 7) / 8 != s->b->side_bytes)
-        return LUMO_ERR_CORRUPT;  /* trailing bytes */
-    uint32_t pad;
-    if (read_bits(&s->br, (unsigned)(s->br.nbits - s->br.pos), &pad) || pad)
-        return LUMO_ERR_CORRUPT;  /* padding bits must be zero */
     return LUMO_OK;
 }
 
@@ -796,15 +824,23 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
-    split_ctx s = {pm, {b.side, (size_t)b.side_bytes * 8u, 0}, &b, predicted ? pos : NULL, 0, 0, 0,
-                   pm->last_parent, 0, {NULL, 0, 0}, 0, 0};
+    split_ctx s;
+    memset(&s, 0, sizeof s);
+    s.pm = pm, s.b = &b, s.res = predicted ? pos : NULL;
+    s.br.wb = (lumo_wire_bits){b.side, (size_t)b.side_bytes * 8u, 0};
+    s.prev_parent = pm->last_parent, s.round_first = pm->round_first, s.last_fan = pm->last_fan;
+    s.ctx = pm->ctx;
+    memcpy(pm->ctx_undo, pm->ctx, LUMO_PMESH_CONTEXTS * sizeof *pm->ctx);
     /* absolute positions first: the fan ranks read the batch's earlier
      * vertices (qpos beyond vertex_count is invisible until kept) */
     if ((st = grid_positions(pm, &b, pos)) || (st = run_splits(&s))) {
         rollback_to(&s, 0);
+        while (s.stamped-- > 0)  /* newest first: a parent may repeat in new rounds */
+            pm->round_parent[pm->batch_parent[s.stamped]] = pm->stamp_log[s.stamped];
+        memcpy(pm->ctx, pm->ctx_undo, LUMO_PMESH_CONTEXTS * sizeof *pm->ctx);
         return st;
     }
-    pm->last_parent = s.prev_parent;
+    pm->last_parent = s.prev_parent, pm->round_first = s.round_first, pm->last_fan = s.last_fan;
     store_positions(pm, &b);
     store_albedo(pm, &b, rgb);
     pm->split_log[b.first ? b.count : 0] = s.log_n;
@@ -825,7 +861,9 @@ lumo_status lumo_pmesh_rewind(lumo_pmesh *pm, uint32_t vertices)
     pm->rewound = 1;
     if (vertices == pm->vertex_count)
         return LUMO_OK;
-    split_ctx s = {pm, {NULL, 0, 0}, NULL, NULL, pm->log_n, 0, 0, NIL, 0, {NULL, 0, 0}, 0, 0};
+    split_ctx s;
+    memset(&s, 0, sizeof s);
+    s.pm = pm, s.log_n = pm->log_n, s.prev_parent = NIL;
     uint32_t keep = pm->split_log[vertices - pm->last_first];
     /* Vertices of the faces about to change get fresh normals afterwards. */
     uint32_t nd = mark_log(&s, keep, pm->batches_applied + 1);

@@ -105,3 +105,28 @@ void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const u
         pred[d] = (int32_t)((sum[d] + n / 2) / n);
     }
 }
+
+/* Eligible parents of a continued round (pmesh_shared.h): a face, and no
+ * neighbour split in this round. The bucket is the valence clamped to
+ * 3 ... 3 + PARENT_CTXS - 1 (parents of a round have 7-8 faces rather
+ * than 6: the collapse took one or two). */
+static int round_end(const uint32_t *round_parent, uint32_t u, uint32_t round_first)
+{
+    return u >= round_first || round_parent[u] == round_first;
+}
+
+int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint32_t *next,
+                          const uint32_t *round_parent, uint32_t v, uint32_t round_first)
+{
+    uint32_t n = 0, c;
+    for (c = head[v]; c != LUMO_PMESH_NIL; c = next[c], n++) {
+        const uint32_t *t = tris + 3 * (size_t)(c / 3);
+        if (round_end(round_parent, t[(c % 3 + 1) % 3], round_first) ||
+            round_end(round_parent, t[(c % 3 + 2) % 3], round_first))
+            return -1;
+    }
+    if (!n)
+        return -1;
+    n = n < 3u ? 3u : n > 2u + LUMO_PMESH_PARENT_CTXS ? 2u + LUMO_PMESH_PARENT_CTXS : n;
+    return (int)(LUMO_PMESH_CTX_PARENT + n - 3u);
+}

@@ -8,10 +8,12 @@
  * which of p's corners move (one bit each) and which neighbour closes each
  * reappearing face (a short index into the corners around k and p). Seed
  * 000 §4.2 sends vertices, faces and lookup tables; here the lookup-table
- * entry of k is its parent p, Rice coded as the gap from the previous
- * split's parent (the splits of one collapse round are numbered by
- * increasing parent, pm_build.c), and the split kinds ride in a per-record
- * section of fan-split runs. */
+ * entry of k is its parent p, found by a scan of the vertices after the
+ * previous split's parent that may still split in this round (the splits
+ * of one collapse round are numbered by increasing parent, pm_build.c),
+ * an adaptive bit each. A split record is one adaptive binary range code
+ * (pm/pm_rc.h), whose probabilities the writer replays as the decoder
+ * keeps them. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,18 +24,31 @@
 #include "lumo/pmesh.h"
 #include "package/package_write.h"
 #include "lumo_shared/pmesh_shared.h"
+#include "pm/pm_rc.h"
 #include "pm/pm_stream.h"
 
 #define NIL LUMO_PMESH_NIL
 
 /* ---- bytes (srv_buf, package_write.h) and bits ----------------------------- */
-typedef struct { srv_buf b; size_t nbits; } bitwriter;
+/* The base block's bit fields, or (rc set) a split record's range code,
+ * whose fixed fields are direct bits. */
+typedef struct { srv_buf b; size_t nbits; srv_pm_rc *rc; } bitwriter;
+
+/* Bits spent so far (fractional in a range code). */
+static double spent(const bitwriter *w)
+{
+    return w->rc ? w->rc->cost : (double)w->nbits;
+}
 
 /* Grow the buffer by the zero bytes the field reaches into, then write it
  * with the wire layer's bit writer (lumo/wire.h: the reader's inverse). */
 static void put_bits(bitwriter *w, uint32_t v, unsigned n)
 {
     static const uint8_t zero[5];
+    if (w->rc) {
+        srv_pm_rc_direct(w->rc, v, n);
+        return;
+    }
     size_t bytes = (w->nbits + n + 7) >> 3;
     if (bytes > w->b.len)
         srv_buf_put(&w->b, zero, bytes - w->b.len);
@@ -45,12 +60,6 @@ static void put_bits(bitwriter *w, uint32_t v, unsigned n)
 /* tb(c) (docs/progressive-mesh.md §2.3): v in [0, c) in truncated binary.
  * With n = w(c) and u = 2^n - c, the first u values take n - 1 bits, the
  * others (v + u) >> 1 in n - 1 bits then (v + u) & 1. Mirrors read_trunc. */
-static unsigned trunc_bits(uint32_t v, uint32_t c)
-{
-    unsigned n = lumo_pmesh_field_bits(c);
-    return n == 0 ? 0 : v < (uint32_t)(((uint64_t)1 << n) - c) ? n - 1 : n;
-}
-
 static void put_trunc(bitwriter *w, uint32_t v, uint32_t c)
 {
     unsigned n = lumo_pmesh_field_bits(c);
@@ -65,13 +74,6 @@ static void put_trunc(bitwriter *w, uint32_t v, uint32_t c)
     put_bits(w, (v + u) & 1u, 1);
 }
 
-/* Append the first `nbits` bits of src (the kind section joins the block). */
-static void put_writer(bitwriter *w, const bitwriter *src)
-{
-    for (size_t i = 0; i < src->nbits; i++)
-        put_bits(w, src->b.p[i >> 3] >> (i & 7) & 1u, 1);
-}
-
 /* ---- the client's state, replayed --------------------------------------------- */
 typedef struct {
     const srv_pm *pm;
@@ -81,10 +83,19 @@ typedef struct {
     uint32_t  face_count;
     uint32_t  faces, moves;   /* of the batch being written */
     srv_pm_stream_stats st;   /* where the bits go (options->stats gets a copy) */
-    uint32_t *kinds, nkinds;  /* the record's split kinds (KIND_* or a face count) */
     unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
+    uint32_t  round_first;    /* first split vertex of the current round */
+    uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
+    uint32_t  last_fan;       /* the previous split was a fan split */
+    uint16_t  ctx[LUMO_PMESH_CONTEXTS];  /* the decoder's probabilities, replayed */
 } replay;
+
+/* One adaptive bit of context c (mirrors read_ctx in pmesh_batch.c). */
+static void put_ctx(replay *r, bitwriter *w, uint32_t c, uint32_t bit)
+{
+    srv_pm_rc_bit(w->rc, &r->ctx[c], bit);
+}
 
 /* Split kinds as the writer records them: a fan split, a pair (mask
  * split), or 1 ... 15 faces (mask split, flips coded). */
@@ -92,10 +103,10 @@ typedef struct {
 #define KIND_PAIR 16u
 
 /* Bits written since *mark go to *field of the stats. */
-static void count_bits(const bitwriter *w, size_t *mark, uint64_t *field)
+static void count_bits(const bitwriter *w, double *mark, double *field)
 {
-    *field += w->nbits - *mark;
-    *mark = w->nbits;
+    *field += spent(w) - *mark;
+    *mark = spent(w);
 }
 
 static void list_push(replay *r, uint32_t v, uint32_t c)
@@ -146,7 +157,7 @@ static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
     while (c != NIL) {
         uint32_t nextc = r->next[c];
         int move = srv_pm_resolve(r->pm, r->pm->tris[c], k + 1) == k;
-        put_bits(w, (uint32_t)move, 1);
+        put_ctx(r, w, LUMO_PMESH_CTX_MASK, (uint32_t)move);
         if (!move) {
             prev = c, c = nextc, lenp++;
             continue;
@@ -320,10 +331,27 @@ static uint32_t arc_rank(const lumo_pmesh_fan *g, uint32_t xa, uint32_t m)
     return found ? above : count;
 }
 
-static void put_eg1(bitwriter *w, uint32_t v)
+/* Mirrors read_rank() in pmesh_batch.c: the class b of r + 1 (its bit
+ * length less one) in adaptive unary while a larger class fits the limit,
+ * then the b bits of r + 1 below its leading one, most significant first,
+ * the first two adaptive. */
+static void put_rank(replay *r, bitwriter *w, uint32_t n, uint32_t limit, uint32_t rank)
 {
-    put_gamma(w, (v >> 1) + 1);
-    put_bits(w, v & 1u, 1);
+    uint32_t v = rank + 1, b = 0;
+    while ((v >> (b + 1)) != 0)
+        b++;
+    for (uint32_t c = 0; (2u << c) <= limit + 1; c++) {
+        put_ctx(r, w, lumo_pmesh_rank_ctx(n, c), c < b);
+        if (c == b)
+            break;
+    }
+    for (uint32_t i = b; i-- > 0;) {
+        uint32_t bit = v >> i & 1u, j = b - 1 - i;
+        if (j < 2)
+            put_ctx(r, w, LUMO_PMESH_CTX_RANK_LOW + 2 * b + j, bit);
+        else
+            put_bits(w, bit, 1);
+    }
 }
 
 /* The explicit fan (read_wing, read_fan_length): the first corner of
@@ -354,7 +382,7 @@ static void write_fan(replay *r, bitwriter *w, uint32_t p, uint32_t k, uint32_t 
         arc_gather(r, p, lp, &g);
         count = arc_rank(&g, NIL, 0);
         rank = r->rank_escape ? count : arc_rank(&g, xa, m);
-        put_eg1(w, rank);
+        put_rank(r, w, lp, count, rank);
     }
     if (rank < count)
         r->st.arc_ranked++;
@@ -387,57 +415,54 @@ static uint32_t third(const replay *r, uint32_t f, uint32_t k, int flip)
     return srv_pm_resolve(r->pm, r->pm->tris[3 * (size_t)f + (flip ? 1 : 2)], k + 1);
 }
 
-/* ---- parents: increasing runs, Rice-coded gaps (mirrors read_parent) ---- */
-/* Bits of parent p after prev (NIL at the start of a batch): the gap
- * d = p - prev - 1 as q = d >> rice zero bits, a one, the rice low bits of
- * d; or, when p does not follow prev or q would reach the escape, the
- * escape (LUMO_PMESH_PARENT_ESCAPE zero bits) and p as tb(k). */
-static int parent_follows(uint32_t p, uint32_t prev, unsigned rice)
+/* ---- parents (mirrors read_parent): continue the round by a scan of
+ * the eligible vertices after prev, or start a new one explicitly ---- */
+static int parent_ctx(const replay *r, uint32_t v)
 {
-    return prev != NIL && p > prev && (p - prev - 1) >> rice < LUMO_PMESH_PARENT_ESCAPE;
+    return lumo_pmesh_parent_ctx(r->disp, r->head, r->next, r->round_parent, v, r->round_first);
 }
 
-static unsigned parent_bits(uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
+static void put_parent(replay *r, bitwriter *w, uint32_t p, uint32_t prev, uint32_t k)
 {
-    if (parent_follows(p, prev, rice))
-        return ((p - prev - 1) >> rice) + 1 + rice;
-    return LUMO_PMESH_PARENT_ESCAPE + trunc_bits(p, k);
-}
-
-static void put_parent(bitwriter *w, uint32_t p, uint32_t prev, uint32_t k, unsigned rice)
-{
-    if (!parent_follows(p, prev, rice)) {
-        put_bits(w, 0, LUMO_PMESH_PARENT_ESCAPE);
+    uint32_t cont = 0;
+    if (prev != NIL) {
+        cont = p > prev && p < r->round_first && parent_ctx(r, p) >= 0;
+        put_ctx(r, w, LUMO_PMESH_CTX_ROUND, cont);
+    }
+    if (!cont) {
+        r->round_first = k;
         put_trunc(w, p, k);
-        return;
     }
-    uint32_t d = p - prev - 1;
-    put_bits(w, 0, d >> rice);
-    put_bits(w, 1, 1);
-    put_bits(w, d & (((uint32_t)1 << rice) - 1), rice);
+    for (uint32_t v = prev + 1; cont && v <= p; v++) {
+        int c = parent_ctx(r, v);
+        if (c >= 0)
+            put_ctx(r, w, (uint32_t)c, v == p);
+    }
+    r->round_parent[p] = r->round_first;
 }
 
-/* The batch's Rice parameter: the one that codes its parents shortest. */
-static unsigned choose_rice(const srv_pm *pm, uint32_t first, uint32_t count, uint32_t prev0)
+/* Mirrors read_split_kind(): the fan bit, then a mask split's kind code. */
+static void put_kind(replay *r, bitwriter *w, uint32_t kind)
 {
-    unsigned best = 0;
-    uint64_t best_bits = UINT64_MAX;
-    for (unsigned rice = 0; rice <= LUMO_PMESH_MAX_RICE; rice++) {
-        uint64_t bits = 0;
-        for (uint32_t k = first, prev = prev0; k < first + count; prev = pm->parent[k++])
-            bits += parent_bits(pm->parent[k], prev, k, rice);
-        if (bits < best_bits)
-            best_bits = bits, best = rice;
-    }
-    return best;
+    uint32_t fan = kind == KIND_FAN;
+    put_ctx(r, w, LUMO_PMESH_CTX_KIND + r->last_fan, fan);
+    r->last_fan = fan;
+    if (fan)
+        return;
+    if (kind == KIND_PAIR)
+        put_bits(w, 1, 1);
+    else if (kind == 1)
+        put_bits(w, 2, 2);
+    else
+        put_bits(w, 0, 2), put_bits(w, kind, 4);
 }
 
-static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsigned rice)
+static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
 {
     const srv_pm *pm = r->pm;
     uint32_t p = pm->parent[k], moves0 = r->moves;
-    size_t mark = w->nbits;
-    put_parent(w, p, prev, k, rice);
+    double mark = spent(w);
+    put_parent(r, w, p, prev, k);
     count_bits(w, &mark, &r->st.parent_bits);
     uint32_t f0 = r->face_count, n = 0;
     while (f0 + n < pm->faces && pm->level[f0 + n] == k + 1)
@@ -447,7 +472,8 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     uint32_t m = 0, xa = paired ? third(r, f0, k, 0) : 0;
     int fan = paired && fan_plan(r, p, k, xa, third(r, f0 + 1, k, 1), &m);
     if (fan) {
-        r->kinds[r->nkinds++] = KIND_FAN;
+        put_kind(r, w, KIND_FAN);
+        count_bits(w, &mark, &r->st.kind_bits);
         r->st.fans++;
         write_fan(r, w, p, k, f0, xa, m);
         count_bits(w, &mark, &r->st.fan_bits);
@@ -456,7 +482,8 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev, unsig
     }
     if (!paired && (n < 1 || n > 15))
         return -1;
-    r->kinds[r->nkinds++] = paired ? KIND_PAIR : n;
+    put_kind(r, w, paired ? KIND_PAIR : n);
+    count_bits(w, &mark, &r->st.kind_bits);
     uint32_t lenp = write_moves(r, w, p, k), lenk = r->moves - moves0;
     for (uint32_t i = 0; i < n; i++, lenp++, lenk++)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
@@ -562,68 +589,80 @@ static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_optio
         d[64 + k] = (uint8_t)(crc >> (8 * k));
 }
 
+/* ---- per-mesh choices (docs/progressive-mesh.md §2.1) ---- */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double srv_pm_median_edge(const srv_pm *pm)
+{
+    size_t n = 3 * (size_t)pm->faces;
+    double *len = n ? malloc(n * sizeof *len) : NULL, m;
+    if (!len)
+        return 0;
+    for (size_t c = 0; c < n; c++) {
+        const float *a = pm->xyz + 3 * (size_t)pm->tris[c];
+        const float *b = pm->xyz + 3 * (size_t)pm->tris[c - c % 3 + (c % 3 + 1) % 3];
+        double d[3] = {(double)a[0] - b[0], (double)a[1] - b[1], (double)a[2] - b[2]};
+        len[c] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    qsort(len, n, sizeof *len, cmp_double);
+    m = len[n / 2];
+    free(len);
+    return m;
+}
+
+int srv_pm_stream_auto_bits(const srv_pm *pm)
+{
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    for (size_t i = 0; i < 3 * (size_t)pm->vertices; i++) {
+        lo[i % 3] = pm->xyz[i] < lo[i % 3] ? pm->xyz[i] : lo[i % 3];
+        hi[i % 3] = pm->xyz[i] > hi[i % 3] ? pm->xyz[i] : hi[i % 3];
+    }
+    double range = 0, edge = srv_pm_median_edge(pm);
+    for (int c = 0; c < 3; c++)
+        range = hi[c] - lo[c] > range ? hi[c] - lo[c] : range;
+    int bits = SRV_PM_MIN_AUTO_BITS;
+    /* the grid step range / (2^bits - 1) at most edge / EDGE_STEPS */
+    while (bits < SRV_PM_MAX_AUTO_BITS && range * SRV_PM_EDGE_STEPS > edge * (double)((1u << bits) - 1u))
+        bits++;
+    return bits;
+}
+
+uint32_t srv_pm_stream_auto_batch(const srv_pm *pm)
+{
+    uint32_t b = SRV_PM_BATCH;
+    while (b < SRV_PM_MAX_BATCH && pm->vertices / SRV_PM_BATCHES_MAX > b)
+        b *= 2;
+    return b < SRV_PM_MAX_BATCH ? b : SRV_PM_MAX_BATCH;
+}
+
 void srv_pm_stream_default_options(srv_pm_stream_options *o)
 {
-    o->batch_vertices = 250;
-    o->quant_bits = 12;
+    o->batch_vertices = 0;  /* per mesh: srv_pm_stream_auto_batch */
+    o->quant_bits = 0;      /* per mesh: srv_pm_stream_auto_bits */
     o->draco = srv_draco_default_settings();
     o->position_coding = LUMO_PMESH_POS_PREDICTED;
     o->stats = NULL;
     o->fan_rank_escape = 0;
 }
 
-static uint64_t field_bits(const srv_pm_stream_stats *st)
+static double field_bits(const srv_pm_stream_stats *st)
 {
     return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits;
 }
 
 /* A written split record's share of the stats: fields_before is
  * field_bits() before its splits. */
-static void tally_record(srv_pm_stream_stats *st, uint64_t fields_before, uint32_t count,
+static void tally_record(srv_pm_stream_stats *st, double fields_before, uint32_t count,
                          const srv_pm_batch_info *bi)
 {
     st->splits += count;
-    st->other_bits += 8 * (uint64_t)bi->side_bytes - (field_bits(st) - fields_before);
+    st->other_bits += 8.0 * (double)bi->side_bytes - (field_bits(st) - fields_before);
     st->draco_bytes += bi->draco_bytes;
     st->frame_bytes += bi->bytes - bi->side_bytes - bi->draco_bytes;
-}
-
-/* The record's kind section (mirrors read_split_kind): runs of fan
- * splits, each gamma(run + 1), each run but one reaching the record's end
- * followed by the code of the non-fan split that ends it. */
-static void write_kinds(const replay *r, bitwriter *w)
-{
-    for (uint32_t i = 0; i < r->nkinds;) {
-        uint32_t run = 0;
-        while (i + run < r->nkinds && r->kinds[i + run] == KIND_FAN)
-            run++;
-        put_gamma(w, run + 1);
-        i += run;
-        if (i == r->nkinds)
-            break;
-        uint32_t kind = r->kinds[i++];
-        if (kind == KIND_PAIR)
-            put_bits(w, 1, 1);
-        else if (kind == 1)
-            put_bits(w, 2, 2);
-        else
-            put_bits(w, 0, 2), put_bits(w, kind, 4);
-    }
-}
-
-/* A split record's block: Rice parameter, kind section length and
- * section, then the per-vertex fields (docs/progressive-mesh.md §2.3). */
-static void join_split_block(replay *r, bitwriter *w, const bitwriter *fields, unsigned rice)
-{
-    bitwriter kinds = {{0}, 0};
-    write_kinds(r, &kinds);
-    put_bits(w, rice, LUMO_PMESH_RICE_BITS);
-    put_gamma(w, (uint32_t)kinds.nbits + 1);
-    put_writer(w, &kinds);
-    r->st.kind_bits += w->nbits - LUMO_PMESH_RICE_BITS;
-    put_writer(w, fields);
-    w->b.failed |= kinds.b.failed | fields->b.failed;
-    free(kinds.b.p);
 }
 
 static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
@@ -636,21 +675,26 @@ static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
         uint32_t count = i ? pm->vertices - first : pm->base_vertices;
         if (i && count > o->batch_vertices)
             count = o->batch_vertices;
-        bitwriter w = {{0}, 0}, fields = {{0}, 0};
-        r->faces = r->moves = r->nkinds = 0;
-        uint64_t fields_before = field_bits(&r->st);
+        bitwriter w = {{0}, 0, NULL};
+        srv_pm_rc code;
+        r->faces = r->moves = 0;
+        double fields_before = field_bits(&r->st);
         int rc = 0;   /* write_split: -1 for a level it cannot express */
         lumo_status st = LUMO_OK;
         if (!i)
             write_base(r, &w);
         /* parents run on across records: a round rarely ends at a record's end */
         uint32_t prev0 = i > 1 ? pm->parent[first - 1] : NIL;
-        unsigned rice = i ? choose_rice(pm, first, count, prev0) : 0;
+        if (i) {
+            srv_pm_rc_init(&code);
+            w.rc = &code;
+        }
         for (uint32_t k = first, prev = prev0; i && k < first + count && !rc; prev = pm->parent[k++])
-            rc = write_split(r, &fields, k, prev, rice);
-        if (i && !rc)
-            join_split_block(r, &w, &fields, rice);
-        free(fields.b.p);
+            rc = write_split(r, &w, k, prev);
+        if (i) {
+            srv_pm_rc_flush(&code);
+            w.b = code.out, w.rc = NULL;
+        }
         if (!rc && !w.b.failed)
             st = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
         if (!rc && !st && i)
@@ -672,23 +716,33 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
         srv_pm_stream_default_options(&def);
         o = &def;
     }
-    if (!pm->vertices || !o->batch_vertices || o->quant_bits < 1 ||
-        o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
+    if (!pm->vertices || o->quant_bits < 0 || o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
         return LUMO_ERR_ARG;
+    srv_pm_stream_options chosen = *o;
+    if (!chosen.batch_vertices)
+        chosen.batch_vertices = srv_pm_stream_auto_batch(pm);
+    if (!chosen.quant_bits)
+        chosen.quant_bits = srv_pm_stream_auto_bits(pm);
+    o = &chosen;
     uint32_t rest = pm->vertices - pm->base_vertices;
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
     srv_draco_quant q;
     grid_of(pm, o->quant_bits, &q);
-    replay r = {pm, malloc(12 * (size_t)pm->vertices), malloc(12 * (size_t)pm->vertices),
-                malloc(12 * (size_t)pm->faces + 4),
-                malloc(12 * (size_t)pm->faces + 4), malloc(4 * (size_t)pm->vertices), 0, 0, 0, {0},
-                malloc(4 * (size_t)o->batch_vertices), 0, 0, o->fan_rank_escape};
+    replay r;
+    memset(&r, 0, sizeof r);
+    r.pm = pm, r.rank_escape = o->fan_rank_escape;
+    r.q = malloc(12 * (size_t)pm->vertices), r.res = malloc(12 * (size_t)pm->vertices);
+    r.disp = malloc(12 * (size_t)pm->faces + 4), r.next = malloc(12 * (size_t)pm->faces + 4);
+    r.head = malloc(4 * (size_t)pm->vertices);
+    r.round_parent = calloc(pm->vertices, 4);
+    for (uint32_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
+        r.ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
     srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
     srv_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
     srv_buf_put(&s, header, sizeof header);
     lumo_status rc = LUMO_ERR_NOMEM;
-    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.kinds || !bi)
+    if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.round_parent || !bi)
         goto done;
     quantize(pm, &q, r.q);
     r.quant_bits = (unsigned)q.bits;
@@ -713,7 +767,7 @@ done:
     free(r.disp);
     free(r.next);
     free(r.head);
-    free(r.kinds);
+    free(r.round_parent);
     free(bi);
     free(s.p);
     return rc;

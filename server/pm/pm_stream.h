@@ -16,17 +16,20 @@
  * the bytes of their Draco payloads and record framing. */
 typedef struct srv_pm_stream_stats {
     uint64_t splits;                    /* split vertices */
-    uint64_t parent_bits, kind_bits;    /* lookup-table parents, kind codes */
-    uint64_t fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
+    /* bits of the range code (-log2 of each coded bit's probability) */
+    double   parent_bits, kind_bits;    /* lookup-table parents, kind codes */
+    double   fan_bits;                  /* fan splits: the fan's rank, or first wing + fan length */
     uint64_t arc_ranked, fans;          /* fan splits coded by rank; all fan splits */
-    uint64_t mask_bits;                 /* mask splits: masks, flips, third vertices */
-    uint64_t other_bits;                /* Rice parameters and padding */
+    double   mask_bits;                 /* mask splits: masks, flips, third vertices */
+    double   other_bits;                /* the code's flush and rounding */
     uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
 } srv_pm_stream_stats;
 
 typedef struct srv_pm_stream_options {
-    uint32_t            batch_vertices;  /* vertices per batch (paper: 250) */
-    int                 quant_bits;      /* position grid bits (12) */
+    uint32_t            batch_vertices;  /* vertices per batch; 0 (default): per mesh,
+                                            srv_pm_stream_auto_batch */
+    int                 quant_bits;      /* position grid bits; 0 (default): per mesh,
+                                            srv_pm_stream_auto_bits */
     srv_draco_settings  draco;           /* the payload encoder choice */
     int                 position_coding; /* LUMO_PMESH_POS_PREDICTED (default) or _ABSOLUTE */
     srv_pm_stream_stats *stats;          /* NULL (default), or filled by the build */
@@ -36,6 +39,30 @@ typedef struct srv_pm_stream_options {
 } srv_pm_stream_options;
 
 void srv_pm_stream_default_options(srv_pm_stream_options *o);
+
+/* Position precision from the mesh's error budget: the fewest grid bits
+ * (MIN_AUTO_BITS ... MAX_AUTO_BITS) whose step is at most 1/EDGE_STEPS of
+ * the full mesh's median edge, so rounding moves a vertex by at most
+ * 1/(2 EDGE_STEPS) of an edge per axis: detail finer than the mesh's own
+ * sampling is not kept, detail at its scale is. */
+#define SRV_PM_EDGE_STEPS    16.0
+#define SRV_PM_MIN_AUTO_BITS 8
+#define SRV_PM_MAX_AUTO_BITS 16
+int srv_pm_stream_auto_bits(const srv_pm *pm);
+/* Median edge length of the full mesh's faces (each face's three edges),
+ * 0 when it has none or memory runs out. */
+double srv_pm_median_edge(const srv_pm *pm);
+
+/* Vertices per batch: BATCH (the paper's 250), doubled while the mesh
+ * has more than BATCHES_MAX batches, at most MAX_BATCH: a large mesh
+ * still arrives in a few hundred levels while each Draco payload's header
+ * and tables (about 1.2 bits per vertex at 250) are shared by more
+ * vertices; the client's work and memory per batch stay bounded by
+ * MAX_BATCH vertices, whatever the mesh's size. */
+#define SRV_PM_BATCH         250u
+#define SRV_PM_MAX_BATCH     2000u
+#define SRV_PM_BATCHES_MAX   256u
+uint32_t srv_pm_stream_auto_batch(const srv_pm *pm);
 
 /* One record's place in the stream, for listings and benchmarks. */
 typedef struct srv_pm_batch_info {

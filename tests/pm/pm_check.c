@@ -508,6 +508,8 @@ int main(int argc, char **argv)
             so.quant_bits = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
             po.round_fraction = atof(argv[++i]);  /* 0: one collapse at a time */
+        else if (!strcmp(argv[i], "--max-error") && i + 1 < argc)
+            po.max_error = atof(argv[++i]);  /* 0: no limit (the seeds' small meshes split down to a few vertices) */
         else if (!strcmp(argv[i], "--base") && i + 1 < argc)
             want_base = argv[++i];  /* "V/F": the base mesh must be exactly that */
         else
@@ -542,12 +544,27 @@ int main(int argc, char **argv)
         snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
         check(streamed, "stream written", err);
         if (streamed && po.round_fraction > 0 && pm.vertices > 1000 && so.batch_vertices >= 100) {
-            /* Rounds sort each round's splits by parent: the Rice-coded
-             * gaps must stay far below w(n) (~13-19 bits on the dragons). */
+            /* Rounds sort each round's splits by parent: the scan of
+             * eligible vertices must cost far below w(n) (~13-19 bits on
+             * the dragons). */
             double pb = st.splits ? (double)st.parent_bits / st.splits : 99;
             snprintf(err, sizeof err, "%.2f bits per split vertex (w(n) = %u)", pb,
                      lumo_pmesh_field_bits(pm.vertices));
             check(pb < 6.0, "lookup-table parents coded as increasing runs", err);
+        }
+        if (streamed && !so.quant_bits) {
+            /* precision per mesh: the fewest bits whose step is at most
+             * 1/EDGE_STEPS of the median edge (docs/progressive-mesh.md §2.1) */
+            int b = s[44];
+            double range, edge = srv_pm_median_edge(&pm);
+            float rf;
+            uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
+            memcpy(&rf, &rb, 4);
+            range = rf;
+            int fine = b == SRV_PM_MAX_AUTO_BITS || range / ((1 << b) - 1) <= 1.0001 * edge / SRV_PM_EDGE_STEPS;
+            int fewest = b == SRV_PM_MIN_AUTO_BITS || range / ((1 << (b - 1)) - 1) > 0.9999 * edge / SRV_PM_EDGE_STEPS;
+            snprintf(err, sizeof err, "%d bits, step %.3g, median edge %.3g", b, range / ((1 << b) - 1), edge);
+            check(fine && fewest, "position bits from the median edge", err);
         }
         if (streamed && dump) {
             FILE *f = fopen(dump, "wb");
@@ -557,7 +574,7 @@ int main(int argc, char **argv)
             float range;
             uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
             memcpy(&range, &rb, 4);
-            double step = range / ((1 << so.quant_bits) - 1) + 2.0 / 65536;
+            double step = range / ((1 << s[44]) - 1) + 2.0 / 65536;  /* the stream's own bits */
             srv_pm_client cl;
             check_client(&pm, s, len, step, &cl);
             lumo_pmesh_view v;

@@ -80,24 +80,31 @@ static int stream_stats(const srv_pm *pm, srv_pm_stream_stats *st, uint8_t **s, 
     return srv_pm_stream_build(pm, &o, s, len, NULL, NULL);
 }
 
-static int stream(const model *m, uint32_t batch, int coding, uint8_t **s, size_t *len)
+/* A stream of m: batch 0 and bits 0 are the per-mesh choices. */
+static int stream_bits(const model *m, uint32_t batch, int bits, int coding, uint8_t **s, size_t *len)
 {
     srv_pm_stream_options o;
     srv_pm_stream_default_options(&o);
     o.batch_vertices = batch;
+    o.quant_bits = bits;
     o.position_coding = coding;
     return srv_pm_stream_build(&m->pm, &o, s, len, NULL, NULL);
 }
 
-/* Size of `draco_encoder -qp 12 -cl CL` on the cleaned mesh, or 0. */
-static long draco_cli_size(const model *m, int cl)
+static int stream(const model *m, uint32_t batch, int coding, uint8_t **s, size_t *len)
+{
+    return stream_bits(m, batch, 0, coding, s, len);
+}
+
+/* Size of `draco_encoder -qp BITS -cl CL` on the cleaned mesh, or 0. */
+static long draco_cli_size(const model *m, int bits, int cl)
 {
     char ply[64], drc[64], cmd[256];
     snprintf(ply, sizeof ply, "/tmp/lumo-pm-bench-%d.ply", (int)getpid());
     snprintf(drc, sizeof drc, "/tmp/lumo-pm-bench-%d.drc", (int)getpid());
     if (srv_pm_write_ply(ply, m->pm.xyz, m->pm.vertices, m->pm.tris, m->pm.faces))
         return 0;
-    snprintf(cmd, sizeof cmd, "draco_encoder -i %s -o %s -qp 12 -cl %d >/dev/null 2>&1", ply, drc, cl);
+    snprintf(cmd, sizeof cmd, "draco_encoder -i %s -o %s -qp %d -cl %d >/dev/null 2>&1", ply, drc, bits, cl);
     long size = 0;
     if (system(cmd) == 0) {
         FILE *f = fopen(drc, "rb");
@@ -117,26 +124,35 @@ static double bits_per_tri(size_t bytes, uint32_t faces)
 
 static void section_sizes(FILE *o, model *ms, int n)
 {
-    fprintf(o, "### Stream size against single-shot Draco (12-bit positions)\n\n"
+    fprintf(o, "### Stream size against single-shot Draco\n\n"
                "Same cleaned mesh (welded, degenerate/duplicate faces dropped) for every column; "
-               "pm = the progressive stream (batches of 250 vertices, header and record framing "
-               "included); Draco = stock `draco_encoder -qp 12`.\n\n"
-               "| model | triangles | vertices | base | pm predicted | bits/tri | pm absolute | bits/tri "
-               "| draco -cl 7 | bits/tri | draco -cl 10 | bits/tri | pm / cl 7 | build s |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+               "pm = the progressive stream (version 4, header and record framing included), "
+               "Draco = stock `draco_encoder -cl 7` at the same quantization (`-qp`). Left: 12-bit "
+               "positions and batches of 250 for every mesh (pm absolute: stock-readable positions); "
+               "right: the stream's own per-mesh choices (`lumo-pm build`'s default: position bits "
+               "from the median edge, batch size from the vertex count, docs/progressive-mesh.md "
+               "§2.1).\n\n"
+               "| model | triangles | vertices | base | pm 12 bits, 250 | bits/tri | pm absolute | "
+               "draco -qp 12 -cl 7 | bits/tri | pm / draco | bits | batch | pm per mesh | bits/tri "
+               "| draco same -qp | pm / draco | build s |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         model *m = &ms[i];
-        uint8_t *s1 = NULL, *s0 = NULL;
-        size_t l1 = 0, l0 = 0;
-        stream(m, 250, LUMO_PMESH_POS_PREDICTED, &s1, &l1);
-        stream(m, 250, LUMO_PMESH_POS_ABSOLUTE, &s0, &l0);
-        long c7 = draco_cli_size(m, 7), c10 = draco_cli_size(m, 10);
+        uint8_t *s1 = NULL, *s0 = NULL, *sa = NULL;
+        size_t l1 = 0, l0 = 0, la = 0;
+        lumo_pmesh_header h = {0};
+        stream_bits(m, 250, 12, LUMO_PMESH_POS_PREDICTED, &s1, &l1);
+        stream_bits(m, 250, 12, LUMO_PMESH_POS_ABSOLUTE, &s0, &l0);
+        if (!stream_bits(m, 0, 0, LUMO_PMESH_POS_PREDICTED, &sa, &la))
+            (void)lumo_pmesh_read_header(sa, la, &h);
+        long c7 = draco_cli_size(m, 12, 7), ca = draco_cli_size(m, (int)h.quant_bits, 7);
         uint32_t F = m->pm.faces;
-        fprintf(o, "| %s | %u | %u | %u | %zu | %.2f | %zu | %.2f | %ld | %.2f | %ld | %.2f | %.2f | %.1f |\n",
-                m->name, F, m->pm.vertices, m->pm.base_vertices, l1, bits_per_tri(l1, F), l0,
-                bits_per_tri(l0, F), c7, bits_per_tri((size_t)c7, F), c10, bits_per_tri((size_t)c10, F),
-                c7 ? (double)l1 / c7 : 0, m->build_s);
-        free(s1), free(s0);
+        fprintf(o, "| %s | %u | %u | %u | %zu | %.2f | %zu | %ld | %.2f | %.3f | %u | %u | %zu | %.2f "
+                   "| %ld | %.3f | %.1f |\n",
+                m->name, F, m->pm.vertices, m->pm.base_vertices, l1, bits_per_tri(l1, F), l0, c7,
+                bits_per_tri((size_t)c7, F), c7 ? (double)l1 / c7 : 0, h.quant_bits, h.batch_vertices,
+                la, bits_per_tri(la, F), ca, ca ? (double)la / ca : 0, m->build_s);
+        free(s1), free(s0), free(sa);
     }
     fprintf(o, "\n");
 }
@@ -248,7 +264,7 @@ static void section_scaling(FILE *o, model *ms, int n, const char *self)
     fprintf(o, "### Client time and memory per batch against mesh size (batches of 250)\n\n"
                "Apply time per batch (host, `-O2`), over all batches after the base mesh. Arena = "
                "everything the client holds, sized from the stream header; per-batch working memory = "
-               "arena minus the mesh arrays (38 B/vertex + 24 B/triangle): undo log, dirty list and "
+               "arena minus the mesh arrays (42 B/vertex + 24 B/triangle): undo log, dirty list and "
                "the Draco decoder's scratch. Flat columns are the goal.\n\n"
                "Instructions: callgrind over `lumo_pmesh_apply` for split batches 1 … 40 (the base "
                "mesh excluded), which does not depend on caches: the host times grow with the mesh "
@@ -270,7 +286,7 @@ static void section_scaling(FILE *o, model *ms, int n, const char *self)
             uint32_t k = nb - 1;
             double total = sum(split, k);
             qsort(split, k, sizeof *split, cmp_double);
-            size_t mesh = 38 * (size_t)m->pm.vertices + 24 * (size_t)m->pm.faces;
+            size_t mesh = 42 * (size_t)m->pm.vertices + 24 * (size_t)m->pm.faces;
             fprintf(o, "| %s | %u | %u | %.0f | %.0f | %.0f | %.2f | %.0f | %zu | %zu |\n", m->name,
                     m->pm.faces, nb, split[k / 2] * 1e6, split[(k * 95) / 100] * 1e6, split[k - 1] * 1e6,
                     total * 1e6 / (m->pm.vertices - m->pm.base_vertices),
@@ -372,7 +388,7 @@ static void section_bits(FILE *o, model *ms, int n)
                "Fan = the fan's geometric rank (or the escape and the explicit first wing and length); "
                "record heads = index, block and payload sizes as varints plus a CRC-32 "
                "(docs/progressive-mesh.md §2).\n\n"
-               "| model | parent | kind | fan | mask splits | Rice + padding "
+               "| model | parent | kind | fan | mask splits | code flush "
                "| Draco payload | record heads | total bits/vertex | fan splits by rank |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
@@ -401,7 +417,7 @@ int bench_main(int argc, char **argv)
     self[sl > 0 ? sl : 0] = 0;
     const char *out = NULL, *cmd = "lumo-pm bench", *fig5 = NULL;
     model ms[8];
-    int n = 0;
+    int n = 0, sizes_only = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--out") && i + 1 < argc)
             out = argv[++i];
@@ -409,6 +425,8 @@ int bench_main(int argc, char **argv)
             cmd = argv[++i];
         else if (!strcmp(argv[i], "--fig5") && i + 1 < argc)
             fig5 = argv[++i];
+        else if (!strcmp(argv[i], "--sizes-only"))
+            sizes_only = 1;  /* stream sizes and where the bits go: minutes, not hours */
         else if (n < 8 && access(argv[i], R_OK) == 0 && !load_model(argv[i], &ms[n]))
             n++;
         else
@@ -419,12 +437,16 @@ int bench_main(int argc, char **argv)
         return 1;
     fprintf(o, "## Progressive meshes\n\nMade by `%s`.\n\n", cmd);
     section_sizes(o, ms, n);
+    fflush(o);
     section_bits(o, ms, n);
-    section_rounds(o, ms, n);
-    for (int i = 0; fig5 && i < n; i++)
-        if (!strcmp(ms[i].path, fig5))
-            section_fig5(o, &ms[i]);
-    section_scaling(o, ms, n, self);
+    fflush(o);
+    if (!sizes_only) {
+        section_rounds(o, ms, n);
+        for (int i = 0; fig5 && i < n; i++)
+            if (!strcmp(ms[i].path, fig5))
+                section_fig5(o, &ms[i]);
+        section_scaling(o, ms, n, self);
+    }
     for (int i = 0; i < n; i++)
         free_model(&ms[i]);
     return o != stdout && fclose(o) ? 1 : 0;

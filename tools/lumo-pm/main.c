@@ -17,6 +17,7 @@
 #include "package/package_write.h"
 #include "pm/pm_client.h"
 #include "pm/pm_load.h"
+#include "lumo/pmesh.h"
 #include "pm/pm_stream.h"
 
 int bench_main(int argc, char **argv);
@@ -33,8 +34,8 @@ static const char k_usage[] =
     "       lumo-pm clean IN -o OUT.ply\n"
     "       lumo-pm apply STREAM [RECORDS]\n"
     "       lumo-pm bench --out SECTION.md MODEL...\n"
-    "  --batch N          vertices per batch record, 1..1048576 (default 250)\n"
-    "  --bits B           position quantization bits, 1..20 (default 12)\n"
+    "  --batch N          vertices per batch record, 1..1048576 (default: per mesh, 250 doubled up to 2000 for large meshes)\n"
+    "  --bits B           position quantization bits, 1..20 (default: per mesh, from its median edge)\n"
     "  --min-vertices N   stop simplifying at N vertices, 3.. (default 3)\n"
     "  --rounds F         fraction of candidates per independent-set round, 0..1 (0.25; 0: one\n"
     "                     collapse at a time)\n"
@@ -160,10 +161,12 @@ static int cmd_build(const args *a, int clean_only)
     }
     if (write_output(a, s, n))
         goto done;
+    lumo_pmesh_header h;
+    (void)lumo_pmesh_read_header(s, n, &h);  /* what the per-mesh choices made */
     printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
-           "%u batches of %u, %zu bytes, %.2f bits/triangle\n",
+           "%u batches of %u, %u-bit positions, %zu bytes, %.2f bits/triangle\n",
            a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
-           pm.base_faces, nb, a->so.batch_vertices, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
+           pm.base_faces, nb, h.batch_vertices, h.quant_bits, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
     double sv = st.splits ? (double)st.splits : 1.0;
     printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, other %.2f, "
            "draco payload %.2f, record heads %.2f\n",

@@ -13,16 +13,55 @@
 #include <stdint.h>
 #include "lumo/pmesh.h"
 
-/* Lookup-table parents of a split record (docs/progressive-mesh.md §2.3):
- * Rice-coded gaps of an increasing run with a parameter of RICE_BITS bits
- * (at most MAX_RICE) per record; PARENT_ESCAPE zero bits announce an
- * explicit parent. */
-#define LUMO_PMESH_RICE_BITS      5u
-#define LUMO_PMESH_MAX_RICE       24u
-#define LUMO_PMESH_PARENT_ESCAPE  16u
+/* Split records are one adaptive binary range code (docs/progressive-mesh.md
+ * §2.3, "Range code"; LZMA's coder): probabilities of PROB_BITS bits that
+ * move by 1/2^MOVE_BITS of the distance to 0 or 1 after every coded bit,
+ * renormalised a byte at a time below TOP. The decoder is
+ * sdk/src/pmesh_rc.c, the encoder server/pm/pm_rc.c. */
+#define LUMO_PMESH_RC_PROB_BITS 11u
+#define LUMO_PMESH_RC_PROB_INIT (1u << (LUMO_PMESH_RC_PROB_BITS - 1))
+#define LUMO_PMESH_RC_MOVE_BITS 5u
+#define LUMO_PMESH_RC_TOP       (1u << 24)
+/* The adaptive contexts (LUMO_PMESH_CONTEXTS of them, lumo/pmesh.h), by
+ * first index: whether a parent continues the round; whether an eligible
+ * vertex is the parent, by its valence (PARENT_CTXS); whether the split
+ * is a fan split, by the previous split's kind (2); the fan rank's class
+ * in unary, by the parent's corner count (RANK_CTXS) and place
+ * (RANK_CLASSES); the first two bits under the rank's leading one, by
+ * class (2 RANK_CLASSES); a mask bit (1). They carry over from record to
+ * record. */
+#define LUMO_PMESH_PARENT_CTXS  7u
+#define LUMO_PMESH_RANK_CTXS    5u
+#define LUMO_PMESH_RANK_CLASSES 9u
+#define LUMO_PMESH_CTX_ROUND    0u
+#define LUMO_PMESH_CTX_PARENT   1u
+#define LUMO_PMESH_CTX_KIND     (LUMO_PMESH_CTX_PARENT + LUMO_PMESH_PARENT_CTXS)
+#define LUMO_PMESH_CTX_RANK     (LUMO_PMESH_CTX_KIND + 2u)
+#define LUMO_PMESH_CTX_RANK_LOW (LUMO_PMESH_CTX_RANK + LUMO_PMESH_RANK_CTXS * LUMO_PMESH_RANK_CLASSES)
+#define LUMO_PMESH_CTX_MASK     (LUMO_PMESH_CTX_RANK_LOW + 2u * LUMO_PMESH_RANK_CLASSES)
+#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_MASK + 1u)
+typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
+/* Context of the rank's class bit c for a parent with n corners. */
+static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
+{
+    uint32_t b = n < 6u ? 0u : n > 10u ? 4u : n - 6u;
+    return LUMO_PMESH_CTX_RANK + b * LUMO_PMESH_RANK_CLASSES + c;
+}
+
+/* Parent scan (§2.3 step 1): vertex v may be the parent of a split that
+ * continues the round that began with vertex round_first when it has a
+ * face and no neighbour that is an end of a split of this round: a vertex
+ * at or above round_first, or a parent u of the round (round_parent[u] ==
+ * round_first). The server's collapses of one round are independent,
+ * their ends two edges apart. Returns the context of its flag
+ * (CTX_PARENT + its valence bucket), or -1 when it is not eligible. Work:
+ * v's corners. Shared by the writer and the decoder. */
+int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint32_t *next,
+                          const uint32_t *round_parent, uint32_t v, uint32_t round_first);
+
 /* Fan splits whose parent has at most ARC_MAX_CORNERS corners name their
  * fan (first wing and length) by its rank among p's fans ordered by a
- * geometric score, an order-1 Exp-Golomb code (§2.3 step 3). */
+ * geometric score, coded by its class in adaptive bits (§2.3 step 3). */
 #define LUMO_PMESH_ARC_MAX_CORNERS 16u
 /* The fan score sees grid integers of at most ARC_BITS bits (q >> (bits -
  * ARC_BITS) on finer grids), so a score and the candidate's id fit one
