@@ -38,6 +38,9 @@ libcgal-demo
 doxygen
 qemu-system-x86
 busybox-static
+libopenmpi-dev
+openmpi-bin
+time
 "
 
 missing=""

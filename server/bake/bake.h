@@ -12,7 +12,7 @@
  *
  * Determinism: every vertex has its own random stream seeded from (seed,
  * vertex index) and is computed by one thread, so the result is identical
- * for any thread count.
+ * for any thread count, chunking, or MPI rank count (work.h, cluster.h).
  */
 #ifndef SRV_BAKE_H
 #define SRV_BAKE_H
@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "bake/trace.h"
+#include "bake/work.h"
 #include "lumo/status.h"
 
 typedef struct srv_grid {
@@ -58,5 +59,34 @@ vec3 srv_grid_vertex(const srv_grid *g, int i, int j, int k);
 lumo_status srv_bake(const srv_tracer *t, const srv_grid *g, const srv_bake_opts *o,
                      srv_bake_result *res, char *err, size_t errlen);
 void srv_bake_result_free(srv_bake_result *res);
+
+/* One grid vertex's output as the bake's srv_work item (work.h): the bytes
+ * that travel between MPI ranks and into checkpoints. No implicit padding
+ * (pad is zeroed), so the bytes are the same wherever they were computed. */
+typedef struct srv_bake_record {
+    float   I[6 * 9];     /* SRV_BAKE_I(0, h, ch) + c order */
+    float   se[6 * 3];
+    uint8_t valid;
+    uint8_t pad[3];
+} srv_bake_record;
+_Static_assert(sizeof(srv_bake_record) == (6 * 9 + 6 * 3 + 1) * 4, "srv_bake_record has no padding");
+
+/* The bake as work: srv_bake() is srv_bake_task_init, srv_work_run_local
+ * over items * item_bytes of records, srv_bake_task_result; lumo-bake runs
+ * the same work across MPI ranks instead (cluster.h). The task holds
+ * copies of *g and *o and points at *t (which must outlive it). */
+typedef struct srv_bake_task {
+    srv_work             work;   /* key: the scene, grid, spp, seed, solid fraction */
+    struct srv_bake_job *job;
+} srv_bake_task;
+
+/* LUMO_OK, or LUMO_ERR_NOMEM (the grid would not fit in memory; err set). */
+lumo_status srv_bake_task_init(srv_bake_task *k, const srv_tracer *t, const srv_grid *g,
+                               const srv_bake_opts *o, char *err, size_t errlen);
+/* The result from the records of every vertex (res allocated here; rays
+ * and seconds left 0 for the caller). LUMO_OK or LUMO_ERR_NOMEM. */
+lumo_status srv_bake_task_result(const srv_bake_task *k, const uint8_t *records, srv_bake_result *res,
+                                 char *err, size_t errlen);
+void srv_bake_task_free(srv_bake_task *k);
 
 #endif

@@ -150,14 +150,23 @@ lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char 
         snprintf(err, errlen, "%s: package too large or out of memory", path);
         return st;
     }
+    /* Written beside and renamed into place: a writer killed half-way
+     * (an MPI job stopped, docs/server.md) never leaves a partial package
+     * under the package's name. */
+    char tmp[4096];
     errno = 0;
-    FILE *f = fopen(path, "wb");
-    int ok = f && fwrite(data, 1, len, f) == len;
+    int ok = snprintf(tmp, sizeof tmp, "%s.partial", path) < (int)sizeof tmp;
+    FILE *f = ok ? fopen(tmp, "wb") : NULL;
+    ok = f && fwrite(data, 1, len, f) == len;
     if (f && fclose(f))
+        ok = 0;
+    if (ok && rename(tmp, path))
         ok = 0;
     int why = errno;
     free(data);
     if (!ok) {
+        if (f)
+            remove(tmp);
         snprintf(err, errlen, "%s: cannot write: %s", path, why ? strerror(why) : "short write");
         return LUMO_ERR_IO;
     }

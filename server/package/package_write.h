@@ -40,7 +40,8 @@ lumo_status srv_pkgw_add(srv_pkg_writer *w, uint32_t type, const void *data, siz
 /* The whole package in one malloc'ed buffer. LUMO_OK, LUMO_ERR_LIMIT
  * (4 GiB or more) or LUMO_ERR_NOMEM. */
 lumo_status srv_pkgw_serialize(const srv_pkg_writer *w, uint8_t **out, size_t *len);
-/* The package into a file: srv_pkgw_serialize's status, or LUMO_ERR_IO
+/* The package into a file (written as PATH.partial, then renamed: never
+ * a partial file under PATH): srv_pkgw_serialize's status, or LUMO_ERR_IO
  * when the file cannot be written; a message naming path in err. */
 lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char *err,
                                 size_t errlen);

@@ -14,6 +14,7 @@
 #include "common/progress.h"
 #include "bake/budget.h"
 #include "bake/reference.h"
+#include "bake/cluster.h"
 #include "scene/camera.h"
 #include "scene/shapes.h"
 #include "lumo_host/version_line.h"
@@ -31,7 +32,7 @@ enum { MESH_RAW = 1, MESH_PM = 2, MESH_BOTH = 3 };
 #define DEFAULT_REF_SPP 64
 
 typedef struct {
-    const char *scene, *out, *dragon;
+    const char *scene, *out, *dragon, *checkpoint;
     int   use_default, dims[3], spp, threads, ref_w, ref_h, indirect_only, progress, allow_large;
     float cell, exposure;
     uint64_t seed;
@@ -56,7 +57,8 @@ static const char usage[] =
     "  --cell SIZE            or: grid spacing in metres\n"
     "  --spp N                paths per grid vertex (default 256) / per pixel (default 64)\n"
     "  --seed S               random seed; same seed, same bytes (default 1)\n"
-    "  --threads N            worker threads (default: all cores)\n"
+    "  --threads N            worker threads (per MPI rank; default: all cores)\n"
+    "  --checkpoint DIR       keep finished chunks in DIR; a re-run resumes from them\n"
     "  --light SPEC           add a light (repeatable): point:X,Y,Z:R,G,B |\n"
     "                         spot:X,Y,Z:DX,DY,DZ:HALF_DEG:R,G,B |\n"
     "                         directional:DX,DY,DZ:R,G,B | area:X,Y,Z:U..:V..:R,G,B\n"
@@ -122,7 +124,7 @@ static int parse_grid(const char *t, int dims[3], char *err, size_t errlen)
 }
 
 enum { O_DEFAULT = 256, O_GRID, O_CELL, O_SPP, O_SEED, O_THREADS, O_LIGHT, O_ALBEDO, O_DRAGON,
-       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH, O_ALLOW_LARGE, O_PRT, O_PRT_ENV };
+       O_REF, O_CAMERA, O_INDIRECT, O_EXPOSURE, O_NOPROGRESS, O_MESH, O_ALLOW_LARGE, O_PRT, O_PRT_ENV, O_CHECKPOINT };
 
 static const struct option k_long[] = {
     {"default", no_argument, 0, O_DEFAULT}, {"output", required_argument, 0, 'o'},
@@ -135,6 +137,7 @@ static const struct option k_long[] = {
     {"no-progress", no_argument, 0, O_NOPROGRESS}, {"mesh", required_argument, 0, O_MESH},
     {"allow-large", no_argument, 0, O_ALLOW_LARGE},
     {"prt", required_argument, 0, O_PRT}, {"prt-env", required_argument, 0, O_PRT_ENV},
+    {"checkpoint", required_argument, 0, O_CHECKPOINT},
     {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
 
 /* The options that take a number; 0, or -1 with the refusal in err. */
@@ -202,6 +205,7 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
     case O_INDIRECT: o->indirect_only = 1; return 0;
     case O_NOPROGRESS: o->progress = 0; return 0;
     case O_ALLOW_LARGE: o->allow_large = 1; return 0;
+    case O_CHECKPOINT: o->checkpoint = arg; return 0;
     case O_MESH:
         if (host_opt_choice("--mesh", arg, k_meshes, 3, &o->mesh_mode, err, errlen))
             return -1;
@@ -361,24 +365,57 @@ static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t 
     return fit_camera(s, err, errlen);
 }
 
-static int run_reference(const options *o, const srv_scene *s, const srv_tracer *t)
+/* "2 threads", or "3 ranks x 2 threads" under MPI. */
+static const char *workers_text(const srv_work_report *rep, int threads, char *buf, size_t len)
 {
-    char err[512];
-    srv_image img;
-    uint64_t rays = 0;
+    if (rep->ranks > 1)
+        snprintf(buf, len, "%d ranks x %d threads", rep->ranks, threads);
+    else
+        snprintf(buf, len, "%d threads", threads);
+    return buf;
+}
+
+/* Under MPI, what each rank did (chunks, bytes exchanged with rank 0);
+ * with a checkpoint, what was resumed. */
+static void report_work(const options *o, const srv_work *w, const srv_work_report *rep)
+{
+    if (o->checkpoint)
+        fprintf(stderr, "lumo-bake: checkpoint %s/%s.ckpt: %zu of %zu chunks resumed\n", o->checkpoint, w->name,
+                rep->resumed, rep->chunks);
+    if (rep->ranks < 2)
+        return;
+    fprintf(stderr, "lumo-bake: %s over %d ranks, chunks (bytes) per rank:", w->name, rep->ranks);
+    for (int r = 0; r < rep->ranks; r++)
+        fprintf(stderr, " %zu (%llu)", rep->rank_chunks[r], (unsigned long long)rep->rank_bytes[r]);
+    fputc('\n', stderr);
+}
+
+static int run_reference(const options *o, const srv_cluster *cl, const srv_scene *s, const srv_tracer *t)
+{
+    char err[512], workers[64];
+    srv_image img = {0, 0, NULL};
+    srv_render_task k;
+    srv_work_report rep;
     srv_render_opts ro = {o->spp, o->seed, o->threads, o->indirect_only, o->progress};
-    double t0 = srv_now();
-    if (srv_render_reference(t, &s->camera, o->ref_w, o->ref_h, &ro, &img, &rays))
-        return fail("cannot render (out of memory or threads)");
-    double dt = srv_now() - t0;
-    if (host_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err)) {
-        srv_image_free(&img);
-        return fail(err);
+    if (srv_render_task_init(&k, t, &s->camera, o->ref_w, o->ref_h, &ro) ||
+        (cl->rank == 0 && srv_image_alloc(&img, o->ref_w, o->ref_h))) {
+        srv_render_task_free(&k);
+        return fail("cannot render (out of memory)");
     }
+    lumo_status st = srv_cluster_run(cl, &k.work, o->checkpoint, (uint8_t *)(void *)img.rgb, &rep, err, sizeof err);
+    if (!st && cl->rank == 0) {
+        report_work(o, &k.work, &rep);
+        st = host_png_write_radiance(o->out, img.rgb, img.w, img.h, o->exposure, err, sizeof err);
+    }
+    srv_render_task_free(&k);
     srv_image_free(&img);
-    fprintf(stderr, "lumo-bake: %dx%d %s reference, %d spp, %.2f M rays in %.2f s (%.2f M rays/s, %d threads) -> %s\n",
-            o->ref_w, o->ref_h, o->indirect_only ? "indirect-only" : "full", o->spp, (double)rays * 1e-6,
-            dt, (double)rays * 1e-6 / (dt > 0 ? dt : 1e-9), o->threads, o->out);
+    if (st)
+        return fail(err);
+    if (cl->rank == 0)
+        fprintf(stderr, "lumo-bake: %dx%d %s reference, %d spp, %.2f M rays in %.2f s (%.2f M rays/s, %s) -> %s\n",
+                o->ref_w, o->ref_h, o->indirect_only ? "indirect-only" : "full", o->spp, (double)rep.rays * 1e-6,
+                rep.seconds, (double)rep.rays * 1e-6 / (rep.seconds > 0 ? rep.seconds : 1e-9),
+                workers_text(&rep, o->threads, workers, sizeof workers), o->out);
     return 0;
 }
 
@@ -433,15 +470,47 @@ static int pack_meshes(const options *o, srv_pkg_writer *w, const srv_scene *s, 
     return 0;
 }
 
-static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
+/* The IVG across the ranks (cluster.h); rank 0 gets it in *res. */
+static lumo_status bake_ivg(const options *o, const srv_cluster *cl, const srv_tracer *t, const srv_grid *g,
+                            srv_bake_result *res, int *ranks, char *err, size_t errlen)
 {
-    char err[512];
+    srv_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
+    srv_bake_task k;
+    srv_work_report rep;
+    uint8_t *records = NULL;
+    memset(res, 0, sizeof *res);
+    lumo_status st = srv_bake_task_init(&k, t, g, &bo, err, errlen);
+    if (st)
+        return st;
+    if (cl->rank == 0 && !(records = malloc(k.work.items * k.work.item_bytes))) {
+        srv_bake_task_free(&k);
+        snprintf(err, errlen, "out of memory for a %zu-vertex grid", k.work.items);
+        return LUMO_ERR_NOMEM;
+    }
+    st = srv_cluster_run(cl, &k.work, o->checkpoint, records, &rep, err, errlen);
+    if (!st && cl->rank == 0) {
+        report_work(o, &k.work, &rep);
+        st = srv_bake_task_result(&k, records, res, err, errlen);
+        res->rays = rep.rays;
+        res->seconds = rep.seconds;
+        *ranks = rep.ranks;
+    }
+    free(records);
+    srv_bake_task_free(&k);
+    return st;
+}
+
+static int run_bake(options *o, const srv_cluster *cl, const srv_scene *s, const srv_tracer *t)
+{
+    char err[512], workers[64];
     srv_bake_result res;
     srv_pkg_writer w;
     srv_grid g = srv_grid_over(s, o->dims);
-    srv_bake_opts bo = {o->spp, o->seed, o->threads, o->progress, 0.25f};
-    if (srv_bake(t, &g, &bo, &res, err, sizeof err))
+    int ranks = 1;
+    if (bake_ivg(o, cl, t, &g, &res, &ranks, err, sizeof err))
         return fail(err);
+    if (cl->rank)
+        return 0;   /* rank 0 alone writes the package */
     srv_pkgw_init(&w);
     int rc = pack_meshes(o, &w, s, err, sizeof err);
     if (!rc)
@@ -456,14 +525,37 @@ static int run_bake(options *o, const srv_scene *s, const srv_tracer *t)
     size_t solid = 0;
     for (size_t v = 0; v < res.nverts; v++)
         solid += !res.valid[v];
+    srv_work_report shown = {.ranks = ranks};
     if (!rc)
         fprintf(stderr, "lumo-bake: %dx%dx%d grid, %zu vertices (%zu solid), %d spp, %.2f M rays in %.2f s "
-                        "(%.2f M rays/s, %d threads) -> %s\n",
+                        "(%.2f M rays/s, %s) -> %s\n",
                 g.dims[0], g.dims[1], g.dims[2], res.nverts, solid, o->spp, (double)res.rays * 1e-6,
-                res.seconds, (double)res.rays * 1e-6 / (res.seconds > 0 ? res.seconds : 1e-9), o->threads,
-                o->out);
+                res.seconds, (double)res.rays * 1e-6 / (res.seconds > 0 ? res.seconds : 1e-9),
+                workers_text(&shown, o->threads, workers, sizeof workers), o->out);
     srv_bake_result_free(&res);
     return rc ? fail(err) : 0;
+}
+
+static int run(options *o, const srv_cluster *cl)
+{
+    srv_scene s;
+    char err[512];
+    srv_scene_init(&s);
+    if (load_scene(o, &s, err, sizeof err) || (!o->ref_w && plan_bake(o, &s, err, sizeof err))) {
+        srv_scene_free(&s);
+        return fail(err);
+    }
+    srv_rt *rt = srv_rt_create(&s, o->threads, err, sizeof err);
+    if (!rt) {
+        srv_scene_free(&s);
+        return fail(err);
+    }
+    srv_tracer t;
+    srv_tracer_init(&t, &s, rt);
+    int rc = o->ref_w ? run_reference(o, cl, &s, &t) : run_bake(o, cl, &s, &t);
+    srv_rt_free(rt);
+    srv_scene_free(&s);
+    return rc;
 }
 
 int main(int argc, char **argv)
@@ -471,29 +563,17 @@ int main(int argc, char **argv)
     if (host_version_option(argc, argv, "lumo-bake"))
         return 0;
     options o;
-    srv_scene s;
+    srv_cluster cl;
     char err[512];
+    if (srv_cluster_init(&cl, &argc, &argv, err, sizeof err))
+        return srv_cluster_end(&cl, fail(err));
     int rc = parse_args(&o, argc, argv, err, sizeof err);
     if (rc == 1) {
-        fputs(usage, stdout);
-        return 0;
+        if (cl.rank == 0)
+            fputs(usage, stdout);
+        return srv_cluster_end(&cl, 0);
     }
     if (rc)
-        return fail(err);
-    srv_scene_init(&s);
-    if (load_scene(&o, &s, err, sizeof err) || (!o.ref_w && plan_bake(&o, &s, err, sizeof err))) {
-        srv_scene_free(&s);
-        return fail(err);
-    }
-    srv_rt *rt = srv_rt_create(&s, o.threads, err, sizeof err);
-    if (!rt) {
-        srv_scene_free(&s);
-        return fail(err);
-    }
-    srv_tracer t;
-    srv_tracer_init(&t, &s, rt);
-    rc = o.ref_w ? run_reference(&o, &s, &t) : run_bake(&o, &s, &t);
-    srv_rt_free(rt);
-    srv_scene_free(&s);
-    return rc;
+        return srv_cluster_end(&cl, fail(err));
+    return srv_cluster_end(&cl, run(&o, &cl));
 }
