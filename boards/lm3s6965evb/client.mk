@@ -53,7 +53,7 @@ $(BUILD)/board/obj-host-lm3s/%.o: %.c boards/lm3s6965evb/client.mk
 .PRECIOUS: $(BUILD)/board/obj-host-lm3s/%.o
 
 LM3S_CLIENT_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3s/%.o,$(BOARD_CLIENT_SRCS) \
-    boards/armv7m/startup.c boards/common/stack_paint.c boards/armv7m/fault.c boards/armv7m/semihost.c boards/lm3s6965evb/board.c \
+    boards/armv7m/startup.c boards/armv7m/fault.c boards/armv7m/semihost.c boards/lm3s6965evb/board.c \
     boards/common/console.c)
 LM3S_CLIENT_LIBS := $(BUILD)/m3s/liblumo_net.a $(BUILD)/m3s/liblumo_raster.a $(BUILD)/m3s/liblumo.a
 LM3S_CLIENT_ELF  := $(LM3S_CLIENT_OUT)/client.elf
