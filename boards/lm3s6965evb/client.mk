@@ -25,7 +25,7 @@ M3S_LIMITS := -DLUMO_MAX_MESHES=1 -DLUMO_MAX_LIGHTS=1
 CLIENT_CFLAGS_m3s := $(CLIENT_CFLAGS_m3) $(M3S_LIMITS)
 LM3S_CLIENT_KNOBS := -DCLIENT_MAX_PAYLOAD=4096u -DCLIENT_PICTURE_BYTES=6144u -DCLIENT_RECORD_BYTES=0u \
     -DCLIENT_BAND_ROWS=4u "-DCLIENT_SIZES={128, 64}" -DCLIENT_SCREEN_W=128u -DCLIENT_SCREEN_H=64u
-LM3S_CLIENT_SCRATCH := 57856u
+LM3S_CLIENT_SCRATCH := 57752u
 LM3S_CLIENT_OUT := $(BUILD)/board/lm3s6965evb-client
 
 $(BUILD)/m3s/%.o: %.c
@@ -68,13 +68,13 @@ $(LM3S_CLIENT_ELF): $(LM3S_CLIENT_OBJS) $(LM3S_CLIENT_LIBS) boards/lm3s6965evb/l
 	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
 
 $(LM3S_CLIENT_HOST): $(patsubst %.c,$(BUILD)/board/obj-host-lm3s/%.o,$(BOARD_CLIENT_SRCS) \
-                     boards/host/board.c boards/common/console.c) $(HOST_BOARD_LIBS)
+                     boards/host/board.c boards/host/link_tcp.c boards/common/console.c) $(HOST_BOARD_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^
 
 # The scene: a sphere of LM3S_SEGMENTS segments and a LM3S_GRID^3 grid, the
 # largest that fit the scene arena (docs/porting.md §8, the budget).
-LM3S_SEGMENTS := 10
+LM3S_SEGMENTS := 8
 LM3S_GRID     := 4
 LM3S_SCENE    := $(LM3S_CLIENT_OUT)/scene.lumo
 $(LM3S_SCENE): $(BIN)/lumo-bake boards/lm3s6965evb/scene.sh

@@ -28,6 +28,7 @@ function quad(ox, oy, oz, ux, uy, uz, wx, wy, wz, r, g, b,   a, cx, cy, cz) {
     tri(a, a + 1, a + 2, -cx, 1 - cy, -cz); tri(a, a + 2, a + 3, -cx, 1 - cy, -cz)
 }
 BEGIN {
+    nv = 0; nf = 0   # numbers from the start: an unset awk variable indexes "" not 0
     pi = atan2(0, -1)
     quad(-1, 0, -1, 0, 0, 2, 2, 0, 0, 191, 191, 191)        # floor
     quad(-1, 2, -1, 2, 0, 0, 0, 0, 2, 191, 191, 191)        # ceiling
