@@ -71,14 +71,6 @@ void board_hold(void)
         __asm__ volatile("wfi");
 }
 
-/* Whatever the pictures' display shows stays; the core sleeps between
- * interrupts (none are enabled, so for ever). */
-void board_hold(void)
-{
-    for (;;)
-        __asm__ volatile("wfi");
-}
-
 void Reset_Handler(void)
 {
     SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;   /* the first thing in SRAM */
