@@ -7,7 +7,7 @@ $(DRACO_BENCH): $(BUILD)/host/bench/draco_bench.o $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^
 
-$(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o
+$(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o $(BUILD)/host/bench/heap_count.o
 	@mkdir -p $(@D)
 	$(CXX) -o $@ $^ -ldraco -pthread
 
@@ -23,7 +23,7 @@ HOST_TOOLS          += $(DRACO_SET_BENCH) $(DRACO_SET_BENCH_LIB)
 $(DRACO_SET_BENCH): $(BUILD)/host/bench/draco_set_bench.o $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^
-$(DRACO_SET_BENCH_LIB): $(BUILD)/host/bench/draco_set_bench_libdraco.o
+$(DRACO_SET_BENCH_LIB): $(BUILD)/host/bench/draco_set_bench_libdraco.o $(BUILD)/host/bench/heap_count.o
 	@mkdir -p $(@D)
 	$(CXX) -o $@ $^ -ldraco -pthread
 # the attribute set alone (section 41); DRACO_ATTRS=quick: 21 of its 126 rows

@@ -16,37 +16,7 @@
 #include <vector>
 
 #include "draco/compression/decode.h"
-
-static size_t g_live, g_peak, g_allocs;
-static bool g_count;
-
-void *operator new(size_t n)
-{
-    size_t *p = static_cast<size_t *>(std::malloc(n + 16));
-    if (!p)
-        throw std::bad_alloc();
-    p[0] = n;
-    if (g_count) {
-        g_live += n;
-        g_allocs++;
-        if (g_live > g_peak)
-            g_peak = g_live;
-    }
-    return p + 2;
-}
-void operator delete(void *q) noexcept
-{
-    if (!q)
-        return;
-    size_t *p = static_cast<size_t *>(q) - 2;
-    if (g_count && g_live >= p[0])
-        g_live -= p[0];
-    std::free(p);
-}
-void *operator new[](size_t n) { return operator new(n); }
-void operator delete[](void *q) noexcept { operator delete(q); }
-void operator delete(void *q, size_t) noexcept { operator delete(q); }
-void operator delete[](void *q, size_t) noexcept { operator delete(q); }
+#include "heap_count.h"
 
 int main(int argc, char **argv)
 {
@@ -63,12 +33,11 @@ int main(int argc, char **argv)
         draco::Decoder dec;
         for (int t = draco::GeometryAttribute::POSITION; !full && t <= draco::GeometryAttribute::GENERIC; ++t)
             dec.SetSkipAttributeTransform(static_cast<draco::GeometryAttribute::Type>(t));
-        g_live = g_peak = g_allocs = 0;
-        g_count = true;
+        heap_count_start();
         auto t0 = std::chrono::steady_clock::now();
         auto res = dec.DecodeMeshFromBuffer(&buf);
         auto t1 = std::chrono::steady_clock::now();
-        g_count = false;
+        g_heap.on = false;
         if (!res.ok()) {
             std::fprintf(stderr, "libdraco: %s\n", res.status().error_msg());
             return 1;
@@ -77,6 +46,6 @@ int main(int argc, char **argv)
         if (best < 0 || ns < best)
             best = ns;
     }
-    std::printf("libdraco ns=%lld heap_peak=%zu allocs=%zu\n", best, g_peak, g_allocs);
+    std::printf("libdraco ns=%lld heap_peak=%zu allocs=%zu\n", best, g_heap.peak, g_heap.allocs);
     return 0;
 }

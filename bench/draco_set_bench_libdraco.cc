@@ -16,36 +16,7 @@
 #include <valgrind/callgrind.h>
 
 #include "draco/compression/decode.h"
-
-static size_t g_live, g_peak;
-static bool g_count;
-
-void *operator new(size_t n)
-{
-    size_t *p = static_cast<size_t *>(std::malloc(n + 16));
-    if (!p)
-        throw std::bad_alloc();
-    p[0] = n;
-    if (g_count) {
-        g_live += n;
-        if (g_live > g_peak)
-            g_peak = g_live;
-    }
-    return p + 2;
-}
-void operator delete(void *q) noexcept
-{
-    if (!q)
-        return;
-    size_t *p = static_cast<size_t *>(q) - 2;
-    if (g_count && g_live >= p[0])
-        g_live -= p[0];
-    std::free(p);
-}
-void *operator new[](size_t n) { return operator new(n); }
-void operator delete[](void *q) noexcept { operator delete(q); }
-void operator delete(void *q, size_t) noexcept { operator delete(q); }
-void operator delete[](void *q, size_t) noexcept { operator delete(q); }
+#include "heap_count.h"
 
 int main(int argc, char **argv)
 {
@@ -59,18 +30,17 @@ int main(int argc, char **argv)
         draco::Decoder dec;
         for (int t = draco::GeometryAttribute::POSITION; t <= draco::GeometryAttribute::GENERIC; ++t)
             dec.SetSkipAttributeTransform(static_cast<draco::GeometryAttribute::Type>(t));
-        g_live = g_peak = 0;
-        g_count = true;
+        heap_count_start();
         CALLGRIND_TOGGLE_COLLECT;
         auto res = dec.DecodeMeshFromBuffer(&buf);
         CALLGRIND_TOGGLE_COLLECT;
         CALLGRIND_DUMP_STATS_AT(argv[i]);
-        g_count = false;
+        g_heap.on = false;
         if (!res.ok()) {
             std::fprintf(stderr, "libdraco: %s: %s\n", argv[i], res.status().error_msg());
             return 1;
         }
-        std::printf("%s heap_peak=%zu\n", argv[i], g_peak);
+        std::printf("%s heap_peak=%zu\n", argv[i], g_heap.peak);
     }
     return 0;
 }
