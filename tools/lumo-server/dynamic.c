@@ -228,10 +228,13 @@ void dynamic_stop(struct dynamic *d)
     if (d->engine) {
         srv_vsl_engine_stop(d->engine);
         srv_vsl_latency l = srv_vsl_engine_latency(d->engine);
-        if (l.changes)
+        if (l.settled)
             fprintf(stderr, "lumo-server: dynamic: %llu changes, %llu settled; latency change -> settled lighting "
                     "mean %.3f s, max %.3f s\n", (unsigned long long)l.changes, (unsigned long long)l.settled,
                     l.mean_s, l.max_s);
+        else   /* stopped before a change settled (a short run, a loaded machine) */
+            fprintf(stderr, "lumo-server: dynamic: %llu changes, none settled yet: no latency to say\n",
+                    (unsigned long long)l.changes);
         srv_vsl_engine_free(d->engine);
     }
     if (d->have_updates)
