@@ -13,7 +13,9 @@ $(MPI_TESTS): $(BUILD)/tests/bin/%: $(BUILD)/tests/tests/mpi/%.o $(BUILD)/host/l
 
 # lumo-bake as a build without MPI makes it (the single-process cluster.h),
 # to show it works as before and refuses to run as N copies under mpirun.
-$(BUILD)/tests/bin/lumo-bake-nompi: $(BUILD)/host/tools/lumo-bake/main.o \
+# (lumo-bake's objects are named by its own fragment, read after this one.)
+.SECONDEXPANSION:
+$(BUILD)/tests/bin/lumo-bake-nompi: $$(LUMO_BAKE_OBJS) \
         $(BUILD)/host/server/bake/cluster/cluster_single.o $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
         $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)

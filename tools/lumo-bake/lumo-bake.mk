@@ -22,7 +22,9 @@ BAKE_CLUSTER_OBJ := $(BUILD)/host/server/bake/cluster/cluster_single.o
 BAKE_CLUSTER_LIBS :=
 endif
 
-$(BIN)/lumo-bake: $(BUILD)/host/tools/lumo-bake/main.o $(BUILD)/host/tools/lumo-bake/bake_prt.o $(BAKE_CLUSTER_OBJ) $(BUILD)/host/libserver.a \
+# lumo-bake's own objects (tests/mpi links them with the single-process cluster too)
+LUMO_BAKE_OBJS := $(BUILD)/host/tools/lumo-bake/main.o $(BUILD)/host/tools/lumo-bake/bake_prt.o
+$(BIN)/lumo-bake: $(LUMO_BAKE_OBJS) $(BAKE_CLUSTER_OBJ) $(BUILD)/host/libserver.a \
                   $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $^ $(SERVER_LIBS) $(BAKE_CLUSTER_LIBS)
