@@ -11,17 +11,17 @@
  * exposure 1, 320x240 by default), byte for byte: `make test` checks it
  * (tests/sdk/sdk_test.sh) against the installed SDK.
  *
- * Memory, as on a device: the SDK never allocates. The session's struct and
- * the frame buffers are static arrays here; the arena is sized by the SDK
- * (lumo_session_package_need) and, on a desktop, taken from the heap — a
- * firmware gives a static array or a linker section instead. The package
- * bytes are read into memory because the package is read in place.
+ * Memory, as on a device: nothing is allocated. The session's struct, the
+ * frame buffers, the package bytes (a package is read in place) and the
+ * arena are static arrays; the SDK says how much of the arena a package
+ * needs (lumo_session_package_need) and a package that needs more, or a
+ * file larger than its buffer, is refused. Build with -DVIEW_ARENA_BYTES=N
+ * or -DVIEW_PACKAGE_BYTES=N for other sizes (a firmware: its SRAM budget).
  * The stream protocol (lumo-net.pc, lumo/net_client.h) feeds the same
  * session from a socket or a UART; docs/sdk.md shows where it plugs in.
  */
 #include <stdint.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include <lumo/arena.h>
@@ -35,7 +35,16 @@
 /* lumo-render's albedo for meshes that carry none: 0.75 (Q1.14). */
 #define DEFAULT_ALBEDO ((lumo_q1_14)(3 * LUMO_Q14_ONE / 4))
 
+#ifndef VIEW_PACKAGE_BYTES
+#define VIEW_PACKAGE_BYTES (16u << 20)
+#endif
+#ifndef VIEW_ARENA_BYTES
+#define VIEW_ARENA_BYTES (32u << 20)
+#endif
+
 static lumo_session session;             /* about 21 KB: static, not on the stack */
+static uint8_t package_bytes[VIEW_PACKAGE_BYTES];
+static uint64_t arena_bytes[VIEW_ARENA_BYTES / 8];   /* 8-byte aligned */
 static uint32_t color[MAX_W * MAX_H];    /* XRGB8888, the caller-owned frame */
 static uint32_t depth[MAX_W * MAX_H];    /* 32-bit depth */
 static uint8_t rgb[MAX_W * MAX_H * 3];   /* the picture as the PPM stores it */
@@ -46,29 +55,28 @@ static int fail(const char *what, lumo_status st)
     return 1;
 }
 
-/* The whole file in memory (the package is read in place), or NULL. */
-static uint8_t *read_file(const char *path, size_t *size)
+/* The whole file into package_bytes (the package is read in place):
+ * LUMO_OK, LUMO_ERR_IO, or LUMO_ERR_LIMIT for a file larger than it. */
+static lumo_status read_file(const char *path, size_t *size)
 {
     FILE *f = fopen(path, "rb");
-    uint8_t *data = NULL;
-    long n;
+    size_t n;
 
     if (!f)
-        return NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0
-        && (data = malloc((size_t)n)) != NULL && fread(data, 1, (size_t)n, f) != (size_t)n) {
-        free(data);
-        data = NULL;
+        return LUMO_ERR_IO;
+    n = fread(package_bytes, 1, sizeof package_bytes, f);
+    if (n == sizeof package_bytes && fgetc(f) != EOF) {
+        fclose(f);
+        return LUMO_ERR_LIMIT;
     }
-    if (data)
-        *size = (size_t)n;
     fclose(f);
-    return data;
+    *size = n;
+    return n ? LUMO_OK : LUMO_ERR_IO;
 }
 
 /* Feed the whole package to the session, in an arena of exactly the bytes
- * the SDK says it needs. The arena's buffer is returned for freeing. */
-static lumo_status load_scene(const lumo_package *pkg, lumo_arena *arena, void **memory)
+ * the SDK says it needs (LUMO_ERR_LIMIT past arena_bytes). */
+static lumo_status load_scene(const lumo_package *pkg, lumo_arena *arena)
 {
     lumo_session_where where;
     lumo_status st;
@@ -76,9 +84,9 @@ static lumo_status load_scene(const lumo_package *pkg, lumo_arena *arena, void *
 
     if ((st = lumo_session_package_need(pkg, &need)))
         return st;
-    if (!(*memory = malloc(need)))
-        return LUMO_ERR_NOMEM;
-    lumo_arena_init(arena, *memory, need);
+    if (need > sizeof arena_bytes)
+        return LUMO_ERR_LIMIT;
+    lumo_arena_init(arena, arena_bytes, need);
     if ((st = lumo_session_init(&session, NULL, arena)) || (st = lumo_session_feed_package(&session, pkg, &where)))
         return st;
     lumo_session_update(&session);   /* push-pull fills the IVG vertices not received */
@@ -161,8 +169,8 @@ static int parse_size(const char *s, uint16_t *w, uint16_t *h)
     return 0;
 }
 
-/* Open, load, draw, write; the package bytes and arena freed by main. */
-static int view(const char *in, const char *out, uint16_t w, uint16_t h, uint8_t **data, void **memory)
+/* Open, load, draw, write. */
+static int view(const char *in, const char *out, uint16_t w, uint16_t h)
 {
     lumo_raster_light lights[LUMO_MAX_LIGHTS];
     lumo_raster_scene scene;
@@ -173,11 +181,11 @@ static int view(const char *in, const char *out, uint16_t w, uint16_t h, uint8_t
     lumo_status st;
     size_t size = 0;
 
-    if (!(*data = read_file(in, &size)))
-        return fail(in, LUMO_ERR_IO);
-    if ((st = lumo_package_open(&pkg, *data, size)))
+    if ((st = read_file(in, &size)))
         return fail(in, st);
-    if ((st = load_scene(&pkg, &arena, memory)))
+    if ((st = lumo_package_open(&pkg, package_bytes, size)))
+        return fail(in, st);
+    if ((st = load_scene(&pkg, &arena)))
         return fail("loading the scene", st);
     memset(&scene, 0, sizeof scene);
     if ((st = set_up_frame(&rv, &scene, lights, w, h)))
@@ -195,9 +203,6 @@ static int view(const char *in, const char *out, uint16_t w, uint16_t h, uint8_t
 int main(int argc, char **argv)
 {
     uint16_t w = 320, h = 240;
-    uint8_t *data = NULL;
-    void *memory = NULL;
-    int rc;
 
     if (argc < 3 || argc > 4 || (argc == 4 && parse_size(argv[3], &w, &h))) {
         fprintf(stderr, "usage: lumo_view PACKAGE.lumo OUT.ppm [WIDTHxHEIGHT, at most %ux%u]\n", MAX_W, MAX_H);
@@ -208,8 +213,5 @@ int main(int argc, char **argv)
         fprintf(stderr, "lumo_view: error: library %s, headers %s\n", lumo_version_string(), LUMO_VERSION_STRING);
         return 1;
     }
-    rc = view(argv[1], argv[2], w, h, &data, &memory);
-    free(memory);
-    free(data);
-    return rc;
+    return view(argv[1], argv[2], w, h);
 }
