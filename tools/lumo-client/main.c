@@ -274,7 +274,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "lumo-client: error: %s\n", g_err);
         return rc > 0 ? 0 : 2;
     }
-    if (c.o.camera && host_camera_from_string(c.o.camera, &c.scene.camera)) {
+    if (c.o.camera && host_camera_from_string(c.o.camera, &c.o.view)) {
         fprintf(stderr, "lumo-client: error: --camera %s: not EYE:TARGET:UP:FOVY with eye != target, "
                 "UP not along the view, FOVY in [1, 179] (docs/scene-format.md)\n", c.o.camera);
         return 2;
