@@ -1362,6 +1362,47 @@ static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
     e->ct.o24 = e->o24;
 }
 
+/* The point -> value map of one attributes decoder: each point takes the
+ * value of its corner's vertex in `ct`. Every corner of a point lies in
+ * the same vertex of every table (a point is a fan segment that no seam
+ * cuts, ld_eb_points_run), so one corner per point suffices: the map
+ * first holds the last corner of each point (a pass of a load and a store
+ * per corner), then each point looks its corner's vertex up (one
+ * pass over the points, about half the corners): the per-corner vertex
+ * lookups and checks of a pass over the corners were 17 instructions a
+ * corner (callgrind, issue 25 round three). On a crafted table whose
+ * corners of one point disagree, the last corner decides, as the corner
+ * pass did. */
+static lumo_status ld_eb_point_map(const ld_ct *ct, const uint32_t *faces, uint32_t num_corners,
+                                   uint32_t num_points, uint32_t vmap,
+                                   const int32_t *vertex_to_value, uint32_t *point_to_value)
+{
+    const uint32_t *c2v = ct->c2v, vmask = ct->vmask;
+    uint32_t c, p;
+    if (num_points == 0)
+        return num_corners ? LUMO_ERR_CORRUPT : LUMO_OK;
+    memset(point_to_value, 0xFF, (size_t)num_points * sizeof(uint32_t));
+    for (c = 0; c < num_corners; ++c) {
+        if (faces[c] >= num_points)  /* kept: a write, whatever made faces */
+            return LUMO_ERR_CORRUPT;
+        point_to_value[faces[c]] = c;
+    }
+    for (p = 0; p < num_points; ++p) {  /* LD_INV and -1 are huge unsigned */
+        const uint32_t cp = point_to_value[p];
+        uint32_t v, entry;
+        if (cp >= num_corners)
+            return LUMO_ERR_CORRUPT;  /* a point without a corner */
+        v = c2v[cp] & vmask;
+        if (v >= vmap)
+            return LUMO_ERR_CORRUPT;
+        entry = (uint32_t)vertex_to_value[v];
+        if (entry >= num_points)
+            return LUMO_ERR_CORRUPT;
+        point_to_value[p] = entry;
+    }
+    return LUMO_OK;
+}
+
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
@@ -1417,18 +1458,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     seq->point_to_value = ld_out(&d->mem, d->num_points, sizeof(uint32_t));
     if (!seq->point_to_value)
         return LUMO_ERR_NOMEM;
-    memset(seq->point_to_value, 0xFF, (size_t)d->num_points * sizeof(uint32_t));
-    for (c = 0; c < e->num_corners; ++c) {  /* LD_INV and -1 are huge unsigned */
-        const uint32_t p = d->faces[c], v = ct->c2v[c] & ct->vmask;
-        uint32_t entry;
-        if (v >= vmap || p >= d->num_points)
-            return LUMO_ERR_CORRUPT;
-        entry = (uint32_t)o.vertex_to_value[v];
-        if (entry >= d->num_points)
-            return LUMO_ERR_CORRUPT;
-        seq->point_to_value[p] = entry;
-    }
-    return LUMO_OK;
+    return ld_eb_point_map(ct, d->faces, e->num_corners, d->num_points, vmap, o.vertex_to_value,
+                           seq->point_to_value);
 }
 
 /* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
