@@ -55,7 +55,6 @@ struct ld_eb {
     uint8_t *lmc_top;          /* one past the left-most corners' block */
     uint8_t *o24_top;          /* one past the 24-bit opposites' block */
     uint8_t *seam_top;         /* one past the attributes' seam flags */
-    uint32_t seam_reads;       /* seam bits read per attribute data */
     uint8_t *opp_top;          /* one past the 32-bit opposites' block */
     /* after ld_eb_pack, without seams: work memory from table_lo up to
      * lmc_top holds the packed table's escapes and indices, then from
@@ -796,7 +795,11 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
                 }
         }
     }
-    e->seam_reads = reads;
+    /* the coders end where the interior edges' bits end, as the
+     * encoder's do: the arena need counts seams up to there */
+    for (i = 0; i < e->num_attr_data; ++i)
+        if (!ld_rabs_done(&e->ad[i].seams))
+            return LUMO_ERR_CORRUPT;
     return LUMO_OK;
 }
 
@@ -1165,18 +1168,18 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
 static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
 {
     uint8_t *top = e->seam_top;
-    uint32_t i, j;
+    uint32_t i;
     lumo_status st;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        /* Decided on the first 3F/2 bits, as the arena need (which cannot
-         * tell interior edges from borders) counts them: the bits past the
-         * interior edges' are read too (one per border edge pair; none on
-         * a closed mesh), and a one among them keeps the table apart. */
-        uint32_t ones = a->ones;
-        for (j = e->seam_reads; j < e->num_corners / 2u && ones == 0; ++j)
-            ones += ld_rabs_bit(&a->seams);
-        a->shared = ones == 0;
+        /* Decided on the interior edges' bits, the only ones the encoder
+         * writes and libdraco reads. The arena need, which cannot tell
+         * interior edges from borders without the connectivity, counts
+         * the ones up to where the coder ends (ld_rabs_done, checked by
+         * ld_eb_seams_run): the same bits. (Round two counted the first
+         * 3F/2 bits: on an open mesh the coder's output past its end held
+         * ones, and colours without a seam kept a table of their own.) */
+        a->shared = a->ones == 0;
         if (a->shared) {
             a->ct = e->ct;
             a->ct.seam = NULL;
@@ -1604,8 +1607,10 @@ static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
         uint32_t j;
         if ((st = ld_rabs_start(&r, b)))
             return st;
-        /* the decode reads one bit per interior edge, at most 3F/2 */
-        for (j = 0; i > 0 && j < edges; ++j)
+        /* the decode reads one bit per interior edge, at most 3F/2, and
+         * checks that the coder ends there (ld_rabs_done): the ones of
+         * those bits are the interior seams */
+        for (j = 0; i > 0 && j < edges && !ld_rabs_done(&r); ++j)
             e->seam_ones[i - 1u] += (uint32_t)ld_rabs_bit(&r);
     }
     if (!e->valence)
@@ -1721,7 +1726,8 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     seam_top = k->work;
     for (i = 0; i < nad; ++i)
         ld_need_tmp(k, 3u * (size_t)faces, 1);
-    /* ld_eb_attr_tables: shared when the first 3F/2 seam bits hold no one */
+    /* ld_eb_attr_tables: shared when the interior edges' bits hold no
+     * one (ld_eb_need_symbols counted them) */
     for (i = 0; i < nad; ++i) {
         e->ad_shared[i] = e->seam_ones[i] == 0;
         own += !e->ad_shared[i];
