@@ -61,6 +61,9 @@ struct ld_eb {
      * table_top the border bytes */
     uint8_t *table_lo, *table_top;
     uint8_t packed;            /* words hold packed opposites (ld_pot) */
+    uint8_t vpoints;           /* attribute data, none with an interior seam:
+                                  the vertices are the points and the output
+                                  face array is the vertex map (ld_eb_renumber) */
     uint8_t released;          /* ld_eb_release_table has run */
     ld_ct ct;
     uint32_t num_attr_data;
@@ -85,6 +88,8 @@ struct ld_eb {
     /* work budget against crafted fans */
     uint64_t budget;
 };
+
+static int ld_eb_peek_vpoints(const ld_buf *at, uint32_t faces, uint32_t nad, int valence);
 
 /* Bounded work: fan walks are charged here. */
 static int ld_eb_charge(struct ld_eb *e)
@@ -1079,12 +1084,67 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
     return LUMO_OK;
 }
 
+/* No attribute data with an interior seam (vpoints): AssignPointsToCorners
+ * makes one point of each live vertex's fan, in vertex order, so the
+ * vertex ids become the point ids: the face array, which holds the vertex
+ * map (and, packed, the opposites in its high bits), is renumbered in
+ * place, fan by fan, and the left-most corners and vertex seam flags move
+ * down to the new ids. No corner table of its own and no point walk (12
+ * B/face less than a separate vertex map). A corner is renumbered only by
+ * its own vertex's fan and once (the old id is checked), and every corner
+ * must be: a crafted table cannot leave a stale id in the output. */
+static LD_FORCE_INLINE lumo_status ld_eb_renumber_run(ld_dec *d, struct ld_eb *e, int packed)
+{
+    uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
+    uint32_t *words = e->c2v;
+    const uint32_t vmask = e->ct.vmask;
+    uint32_t v, i, np = 0, written = 0;
+    for (v = 0; v < e->num_vertices; ++v) {
+        const uint32_t first = e->lmc[v];
+        uint32_t c = first;
+        if (first == LD_INV)
+            continue;
+        do {
+            if ((words[c] & vmask) != v)
+                return LUMO_ERR_CORRUPT;
+            if (budget == 0)
+                return LUMO_ERR_LIMIT;
+            --budget;
+            words[c] = (words[c] & ~vmask) | np;
+            ++written;
+            c = ld_eb_mswing_right(e, c, packed);
+        } while (c != LD_INV && c != first);
+        e->lmc[np] = first;
+        for (i = 0; i < e->num_attr_data; ++i)
+            e->ad[i].vseam[np] = e->ad[i].vseam[v];
+        ++np;
+    }
+    /* every corner renumbered; the live vertices are the header's V (the
+     * arena need takes P = V) */
+    if (written != e->num_corners || np != e->encoded_vertices)
+        return LUMO_ERR_CORRUPT;
+    e->budget = budget;
+    e->num_vertices = np;
+    e->ct.num_vertices = np;
+    d->num_points = np;
+    for (i = 0; i < e->num_attr_data; ++i) {  /* shared tables, as ld_eb_attr_tables */
+        ld_attr_data *a = &e->ad[i];
+        a->ct = e->ct;
+        a->ct.seam = NULL;
+        a->ct.lmc = NULL;
+        a->ct.border = a->vseam;
+    }
+    return LUMO_OK;
+}
+
 static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 {
     if (e->num_attr_data == 0) {  /* the output faces are the vertex map */
         d->num_points = e->num_conn_vertices;
         return LUMO_OK;
     }
+    if (e->vpoints)
+        return e->packed ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
     return e->packed ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
 }
 
@@ -1093,24 +1153,26 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
+    const int own_map = e->num_attr_data && !e->vpoints;
     e->num_corners = 3u * e->num_faces;
     d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
-    /* Without attribute seams every vertex is a point: the corner table's
-     * vertex map is the output face array itself. */
-    e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
+    /* Without attribute seams, or without an interior one (vpoints), every
+     * vertex is a point: the corner table's vertex map is the output face
+     * array itself. */
+    e->c2v = own_map ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
     if (!e->lean) {
         e->opp_top = ld_tmp_mark(&d->mem);
         e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     }
     /* hole flags are read only to assign points along seams */
-    e->hole = e->num_attr_data ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
+    e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
     if (e->lean) {
         e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
         e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
     }
-    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && e->num_attr_data) ||
+    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && own_map) ||
         !d->faces)
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and the opposites: every symbol writes the three
@@ -1180,6 +1242,8 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
          * 3F/2 bits: on an open mesh the coder's output past its end held
          * ones, and colours without a seam kept a table of their own.) */
         a->shared = a->ones == 0;
+        if (e->vpoints && !a->shared)
+            return LUMO_ERR_CORRUPT;  /* the peek saw no one (ld_eb_peek_vpoints) */
         if (a->shared) {
             a->ct = e->ct;
             a->ct.seam = NULL;
@@ -1246,6 +1310,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->num_attr_data = nad;
     e->max_vertices = verts + splits;
     e->encoded_vertices = verts;
+    e->vpoints = (uint8_t)(nad && ld_eb_peek_vpoints(&d->buf, faces, nad, e->valence));
     if ((st = ld_eb_alloc(d, e)))
         return st;
     mark = ld_tmp_mark(&d->mem);  /* symbol-phase work memory from here */
@@ -1414,6 +1479,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     int8_t ad = e->dec_att_data[decoder];
     ld_order o;
     int keep = 0;
+    /* the vertices are the points: the face array is the vertex map */
+    const int vmap_faces = !e->num_attr_data || e->vpoints;
     lumo_status st;
     if (ad >= 0) {
         if (e->dec_type[decoder] != 0)
@@ -1431,7 +1498,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
             ld_eb_keep_o24_begin(d, e);
     }
     o.vertex_to_value = NULL;
-    if (e->num_attr_data == 0) {
+    if (vmap_faces) {
         /* points are the mesh vertices: the vertex -> value map is the
          * point map, decoded straight into the output */
         o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
@@ -1447,11 +1514,11 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
-    seq->faces_mask = e->num_attr_data ? 0xFFFFFFFFu : e->ct.vmask;
+    seq->faces_mask = vmap_faces ? e->ct.vmask : 0xFFFFFFFFu;
     seq->ct = ct;
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
-    if (e->num_attr_data == 0) {
+    if (vmap_faces) {
         for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
             if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
                 return LUMO_ERR_CORRUPT;
@@ -1540,7 +1607,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
 void ld_eb_finish(ld_dec *d)
 {
     struct ld_eb *e = d->eb;
-    if (e && e->packed && !e->num_attr_data)
+    if (e && e->packed && e->c2v == d->faces)  /* no attribute data, or vpoints */
         ld_pot_strip(e->c2v, e->num_corners, e->ct.opp.vshift);
     if (e)
         e->packed = 0;
@@ -1561,7 +1628,7 @@ void ld_eb_finish(ld_dec *d)
 
 static uint32_t ld_eb_need_vertices(const ld_eb_need *e) { return e->verts + e->splits; }
 
-static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e, uint32_t *num)
+static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, uint32_t faces, uint32_t *num)
 {
     uint32_t n, i, last = 0;
     ld_bits bits;
@@ -1571,7 +1638,7 @@ static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e,
     *num = n;
     if (n == 0)
         return LUMO_OK;
-    if (n > e->faces)
+    if (n > faces)
         return LUMO_ERR_CORRUPT;
     ld_need_tmp(k, n, sizeof(uint32_t));
     ld_need_tmp(k, n, sizeof(uint32_t));
@@ -1592,6 +1659,35 @@ static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e,
         (void)ld_bits_get(&bits, 1);
     ld_bits_end(&bits, b);
     return LUMO_OK;
+}
+
+/* Whether no attribute data's seam bits, up to where its coder ends
+ * (ld_rabs_done), hold a one: no interior seam anywhere, so the decode
+ * keeps no vertex map of its own (vpoints). Asked by the decode before it
+ * allocates and by the arena need alike, on a copy of the stream at the
+ * split data; stops at the first one. A stream it cannot read answers 0
+ * (the decode then fails where it reads the same bytes). */
+static int ld_eb_peek_vpoints(const ld_buf *at, uint32_t faces, uint32_t nad, int valence)
+{
+    const uint32_t edges = (uint32_t)((3u * (uint64_t)faces) / 2u);
+    ld_buf b = *at;
+    ld_need k;
+    ld_rabs r;
+    uint64_t size;
+    uint32_t i, j, n;
+    memset(&k, 0, sizeof k);
+    if (ld_eb_need_splits(&b, &k, faces, &n))
+        return 0;
+    if (!valence && (ld_varint64(&b, &size) || ld_skip(&b, size)))
+        return 0;
+    for (i = 0; i <= nad; ++i) {  /* start faces, then one seam stream each */
+        if (ld_rabs_start(&r, &b))
+            return 0;
+        for (j = 0; i > 0 && j < edges && !ld_rabs_done(&r); ++j)
+            if (ld_rabs_bit(&r))
+                return 0;
+    }
+    return 1;
 }
 
 static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
@@ -1699,15 +1795,16 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     e->splits = splits;
     e->symbols = symbols;
     e->nad = nad;
+    e->vpoints = (uint8_t)(nad && ld_eb_peek_vpoints(b, faces, nad, e->valence));
     /* ld_eb_decode_connectivity, ld_eb_alloc */
     ld_need_tmp(k, 1, sizeof(struct ld_eb));
     ld_need_out(k, 3u * (size_t)faces, sizeof(uint32_t));
-    if (nad)
+    if (nad && !e->vpoints)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
     e->w_opp_top = k->work;
     if (!lean)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-    if (nad)
+    if (nad && !e->vpoints)
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
     e->w_lmc_top = k->work;
     ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
@@ -1715,7 +1812,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     if (lean)
         ld_need_tmp(k, 9u * (size_t)faces + 1u, 1);
     mark = k->work;
-    if ((st = ld_eb_need_splits(b, k, e, &num_splits)) || (st = ld_eb_need_symbols(b, k, e)))
+    if ((st = ld_eb_need_splits(b, k, faces, &num_splits)) || (st = ld_eb_need_symbols(b, k, e)))
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
@@ -1790,7 +1887,7 @@ uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e)
     const uint64_t corners = 3u * (uint64_t)e->faces;
     uint64_t sum = 0, max = 0, split = e->verts, a;
     uint32_t i;
-    if (e->nad == 0)
+    if (e->nad == 0 || e->vpoints)  /* vpoints: the decode checks P = V */
         return e->verts;
     for (i = 0; i < e->nad; ++i) {
         a = ld_eb_need_attr_vertices(k, e, (int)i);
@@ -1810,8 +1907,11 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const int own = ad < 0 || e->dec_type[decoder] == 0 || e->ad_shared[ad];
     const uint64_t corners = 3u * (uint64_t)e->faces;
     /* vertices of the table traversed, and the vertex map's size */
-    const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_eb_need_attr_vertices(k, e, ad);
-    uint64_t vmap = ld_eb_need_vertices(e), points = ld_eb_need_points(k, e);
+    /* vpoints: the vertices are the V points (ld_eb_renumber_run) */
+    const int vmap_faces = !e->nad || e->vpoints;
+    const uint64_t verts = e->vpoints ? e->verts : ld_eb_need_vertices(e);
+    const uint64_t nv = own ? verts : ld_eb_need_attr_vertices(k, e, ad);
+    uint64_t vmap = verts, points = ld_eb_need_points(k, e);
     const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
     int keep = 0;
@@ -1834,7 +1934,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
             ld_need_release(k, e->w_lmc_top + border + o24);
         }
     }
-    if (e->nad == 0)
+    if (vmap_faces)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));
     else
         ld_need_tmp(k, (size_t)vmap, sizeof(int32_t));
@@ -1850,12 +1950,12 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
     ld_need_release(k, mark);
-    if (e->nad)
+    if (!vmap_faces)
         ld_need_out(k, (size_t)points, sizeof(uint32_t));
     /* values: every point's value (no seams); with seams one per vertex
      * visited, learnt from a tagged stream (else at most nv) */
     s->uncertain = 0;
-    if (e->nad == 0)
+    if (vmap_faces)
         s->entries = (uint32_t)points;
     else if (e->known[decoder] != LD_NEED_UNKNOWN)
         s->entries = e->known[decoder];

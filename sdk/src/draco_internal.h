@@ -652,6 +652,8 @@ typedef struct ld_eb_need {
     uint32_t seam_ones[LD_NEED_MAX_ATTR_DATA];
     /* attribute data read through the mesh's table (no interior seam) */
     uint8_t ad_shared[LD_NEED_MAX_ATTR_DATA];
+    uint8_t vpoints;           /* no attribute data has an interior seam
+                                  (ld_eb_peek_vpoints) */
 } ld_eb_need;
 #define LD_NEED_UNKNOWN 0xFFFFFFFFu
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean);
