@@ -1127,14 +1127,41 @@ static LD_FORCE_INLINE lumo_status ld_eb_renumber_run(ld_dec *d, struct ld_eb *e
     e->num_vertices = np;
     e->ct.num_vertices = np;
     d->num_points = np;
+    return LUMO_OK;
+}
+
+/* vpoints, after the renumbering: a vertex is on a border exactly when a
+ * border edge ends there, which every attribute data's vertex seam flags
+ * mark (no interior seam: ld_add_seam marked border edges only), so the
+ * mesh's traversal reads those as its border bytes and the left-most
+ * corners go: the work below them (the packed table, lean, and the vertex
+ * seam flags) moves up over their block (4 B per vertex less next to the
+ * values). Then the attribute data's tables are the mesh's. */
+static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
+{
+    uint8_t *lo = ld_tmp_mark(&d->mem), *end = (uint8_t *)e->lmc;
+    const size_t shift = (size_t)(e->lmc_top - end);
+    ld_pot *t = &e->ct.opp;
+    uint32_t i;
+    memmove(lo + shift, lo, (size_t)(end - lo));
+    if (e->packed) {
+        t->esc += shift;
+        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
+        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
+    }
+    for (i = 0; i < e->num_attr_data; ++i)
+        e->ad[i].vseam += shift;
+    ld_tmp_release(&d->mem, lo + shift);
+    e->lmc = NULL;
+    e->ct.lmc = NULL;
+    e->ct.border = e->ad[0].vseam;
     for (i = 0; i < e->num_attr_data; ++i) {  /* shared tables, as ld_eb_attr_tables */
         ld_attr_data *a = &e->ad[i];
         a->ct = e->ct;
         a->ct.seam = NULL;
-        a->ct.lmc = NULL;
         a->ct.border = a->vseam;
     }
-    return LUMO_OK;
 }
 
 static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
@@ -1143,8 +1170,12 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
         d->num_points = e->num_conn_vertices;
         return LUMO_OK;
     }
-    if (e->vpoints)
-        return e->packed ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
+    if (e->vpoints) {
+        lumo_status st = e->packed ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
+        if (!st)
+            ld_eb_vpoints_tables(d, e);
+        return st;
+    }
     return e->packed ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
 }
 
@@ -1836,6 +1867,8 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
         ld_need_tmp(k, 3u * (size_t)faces + 1u, 1);
     }
+    if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
+        ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));
     e->table_live = nad == 0;
     return LUMO_OK;
 }
