@@ -113,7 +113,9 @@ static int same_light(const lumo_raster_light *a, const lumo_raster_light *b)
 }
 
 /* Draw the maps again only when a light moved or changed (the mesh is the
- * renderer's own and fixed); a light's power does not change its map. */
+ * renderer's own and fixed); a light's power does not change its map. The
+ * GL backends take the views only and draw their own maps from them
+ * (rasterizer/gl/raster_gl_shadow.c, again only when the views change). */
 static int shadows_update(host_renderer *r, const lumo_raster_scene *s)
 {
     lumo_q16_16 centre[3], radius;
@@ -137,6 +139,15 @@ static int shadows_update(host_renderer *r, const lumo_raster_scene *s)
         r->shadow_key[i] = s->lights[i];
         r->shadow_lights[i] = s->lights[i];
         free(r->shadow_depth[i]);
+        r->shadow_depth[i] = NULL;
+        if (r->kind != SOFT) {
+            if (!bytes || lumo_raster_shadow_views(&r->shadow[i], &s->lights[i], r->o.shadow_size, centre,
+                                                   radius, 0))
+                return -1;
+            r->shadow_lights[i].shadow = &r->shadow[i];
+            r->shadow_bytes += bytes * 2;                  /* 32-bit float texels */
+            continue;
+        }
         r->shadow_depth[i] = bytes ? malloc(bytes) : NULL;
         if (!r->shadow_depth[i]
             || lumo_raster_shadow_init(&r->shadow[i], &s->lights[i], r->o.shadow_size, r->shadow_depth[i],
@@ -288,9 +299,16 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
 int host_renderer_draw(host_renderer *r, const lumo_raster_camera *cam,
                        const lumo_raster_scene *s, uint8_t *rgb)
 {
+    lumo_raster_scene shadowed = *s;
+
     if (r->kind == SOFT)
         return draw_soft(r, cam, s, rgb);
-    return lumo_gl_draw(r->gl, cam, s, rgb);
+    if (r->o.shadow_size && s->light_count) {
+        if (shadows_update(r, s))
+            return -1;
+        shadowed.lights = r->shadow_lights;
+    }
+    return lumo_gl_draw(r->gl, cam, &shadowed, rgb);
 }
 
 const char *host_renderer_describe(const host_renderer *r)
