@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/raster_gl.h"
+#include "lumo_host/options.h"
 #include "render_backend.h"
 
 enum kind { SOFT, OSMESA, EGL };
@@ -167,6 +168,21 @@ unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes)
     if (bytes)
         *bytes = r->shadow_bytes;
     return r->shadow_builds;
+}
+
+int host_opt_shadows(const char *arg, uint16_t *size, char *err, size_t errlen)
+{
+    int k;
+
+    if (host_opt_int("--shadows", arg, 0, LUMO_MAX_FRAME_DIM, &k, err, errlen))
+        return -1;
+    if (k != 0 && k < LUMO_RASTER_SHADOW_MIN_SIZE) {
+        snprintf(err, errlen, "--shadows %s: 0 (no shadows) or %d..%d texels per side", arg,
+                 LUMO_RASTER_SHADOW_MIN_SIZE, LUMO_MAX_FRAME_DIM);
+        return -1;
+    }
+    *size = (uint16_t)k;
+    return 0;
 }
 
 static int open_soft(host_renderer *r, char *err, size_t errlen)
