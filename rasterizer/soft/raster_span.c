@@ -159,25 +159,34 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
 
 /* The covered run of a row from the edge values at its first pixel, in
  * 32-bit integers (the cheap case on a 32-bit MCU: every edge value of the
- * row within +-2^30). *x0 = first covered pixel, return the last one, or
- * x0 - 1 when none. */
+ * row within +-2^30). Each edge covers a half-line of the row (e + k s >=
+ * bias for k >= or <= a bound), so the run is their intersection, found by
+ * one 32-bit division per slanted edge instead of a scan over the pixels:
+ * the same run as scanning (the first covered pixel, then up to the first
+ * uncovered one). |s| = 16 |a| < 2^23 (the guard band), so b - e + s stays
+ * in 32 bits. *x0 = first covered pixel, return the last one, or x0 - 1
+ * when none. */
 static int64_t run_32(const tri *t, const int64_t E[3], int64_t px0, int64_t px1, int64_t *x0)
 {
-    int32_t e0 = (int32_t)E[0], e1 = (int32_t)E[1], e2 = (int32_t)E[2];
-    int32_t s0 = (int32_t)t->step[0], s1 = (int32_t)t->step[1], s2 = (int32_t)t->step[2];
-    int32_t b0 = (int32_t)t->e[0].bias, b1 = (int32_t)t->e[1].bias, b2 = (int32_t)t->e[2].bias;
-    int64_t px;
+    int32_t lo = 0, hi = (int32_t)(px1 - px0);
+    int i;
 
-    for (px = px0; px <= px1; px++, e0 += s0, e1 += s1, e2 += s2)
-        if (e0 >= b0 && e1 >= b1 && e2 >= b2)
-            break;
-    *x0 = px;
-    if (px > px1)
-        return px - 1;
-    for (px++, e0 += s0, e1 += s1, e2 += s2; px <= px1; px++, e0 += s0, e1 += s1, e2 += s2)
-        if (e0 < b0 || e1 < b1 || e2 < b2)
-            break;
-    return px - 1;
+    for (i = 0; i < 3; i++) {
+        int32_t e = (int32_t)E[i], st = (int32_t)t->step[i], b = (int32_t)t->e[i].bias;
+        if (st > 0) {
+            if (e < b) {
+                int32_t k = (b - e + st - 1) / st;          /* first k with e + k st >= b */
+                if (k > lo) lo = k;
+            }
+        } else if (e < b) {
+            lo = hi + 1;                                  /* never covered in this row */
+        } else if (st < 0) {
+            int32_t k = (e - b) / -st;                    /* last k with e + k st >= b */
+            if (k < hi) hi = k;
+        }
+    }
+    *x0 = px0 + lo;
+    return lo > hi ? *x0 - 1 : px0 + hi;
 }
 
 /* The same in 64-bit integers, for any triangle. */
