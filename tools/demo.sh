@@ -19,14 +19,16 @@ build=${1:-build}
 bin="$build/bin"
 out="$build/demo"
 GRID=${GRID:-16}
-SPP=${SPP:-256}
-REF_SPP=${REF_SPP:-256}
+# 2048 paths per grid vertex: at 256 the IVG's noise shows as blotches on the
+# walls (docs/rasterizer.md "Error against truth"); 1024-spp reference
+SPP=${SPP:-2048}
+REF_SPP=${REF_SPP:-1024}
 SIZE=${SIZE:-320x240}
 RATE=${RATE:-1000}
 LATENCY=${LATENCY:-50}
 FRAMES_AT=${FRAMES_AT:-1,2,3,5,7,10,15,20,30,40,50,60,70,80,90,100}
 # the client's shadow maps, texels per side (0: none; docs/rasterizer.md "Shadows")
-SHADOWS=${SHADOWS:-512}
+SHADOWS=${SHADOWS:-1024}
 rm -rf "$out"
 mkdir -p "$out"
 

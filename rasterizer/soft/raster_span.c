@@ -222,17 +222,29 @@ static int fits_30(int64_t v)
     return v < ((int64_t)1 << 30) && v > -((int64_t)1 << 30);
 }
 
-/* Row py's covered span [*x0, *x1] and the edge values at *x0; 0 if none. */
-static int row_span(const tri *t, int64_t px0, int64_t px1, int64_t py, int64_t E[3],
-                    int64_t *x0, int64_t *x1)
+/* The edge values at pixel (px0, py0), and whether every value of the
+ * pixel box [px0, px1] x [py0, py1] lies within +-2^30: E is linear, so its
+ * extremes over the box are at the box's corners. */
+static int box_edges(const tri *t, int64_t px0, int64_t px1, int64_t py0, int64_t py1, int64_t E[3])
 {
-    int64_t sy = py * 16 + 8, sx = px0 * 16 + 8;
+    int64_t sy = py0 * 16 + 8, sx = px0 * 16 + 8;
     int small = 1, i;
 
     for (i = 0; i < 3; i++) {
+        int64_t dx = t->step[i] * (px1 - px0), dy = t->e[i].b * 16 * (py1 - py0);
         E[i] = t->e[i].a * (sx - t->e[i].x0) + t->e[i].b * (sy - t->e[i].y0);
-        small &= fits_30(E[i]) && fits_30(E[i] + t->step[i] * (px1 - px0));
+        small &= fits_30(E[i]) && fits_30(E[i] + dx) && fits_30(E[i] + dy) && fits_30(E[i] + dx + dy);
     }
+    return small;
+}
+
+/* A row's covered span [*x0, *x1] from the edge values at its pixel px0
+ * (E: in, then the values at *x0); 0 if none. small: box_edges' answer. */
+static int row_span(const tri *t, int64_t px0, int64_t px1, int small, int64_t E[3],
+                    int64_t *x0, int64_t *x1)
+{
+    int i;
+
     *x1 = small ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
     if (*x1 < *x0)
         return 0;
@@ -478,9 +490,9 @@ static void span_color(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int
 void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int64_t area)
 {
     const lumo_raster_target *tg = c->target;
-    int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py;
+    int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py, Erow[3];
     tri t;
-    int i;
+    int i, small;
 
     minx = maxx = v[0].x;
     miny = maxy = v[0].y;
@@ -504,10 +516,12 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     if (c->stats)
         c->stats->tris_drawn++;
     tri_setup(&t, v, area);
-    for (py = py0; py <= py1; py++) {
+    small = box_edges(&t, px0, px1, py0, py1, Erow);
+    for (py = py0; py <= py1; py++, Erow[0] += t.e[0].b * 16, Erow[1] += t.e[1].b * 16, Erow[2] += t.e[2].b * 16) {
         size_t row = (size_t)(py - tg->band_y) * tg->width;
         int64_t E[3], x0, x1;
-        if (!row_span(&t, px0, px1, py, E, &x0, &x1))
+        E[0] = Erow[0], E[1] = Erow[1], E[2] = Erow[2];
+        if (!row_span(&t, px0, px1, small, E, &x0, &x1))
             continue;
         if (c->stats)
             c->stats->pixels_tested += (uint32_t)(x1 - x0 + 1);
