@@ -327,7 +327,10 @@ static void shade_pixel(const lumo_raster_ctx *c, const tri *t, const uint32_t b
 }
 
 /* Per-vertex lighting, exact at one pixel: its depth (Q0.30) and the
- * exposed radiance (UQ8.24 capped at 2^30) interpolated with perspective. */
+ * exposed radiance (UQ8.24) interpolated with perspective. The vertices'
+ * radiance lies in [0, 2^30] (capped when the vertex is made, raster_draw.c,
+ * and clipping interpolates), so the convex combination does too: no clamp
+ * per evaluation. */
 static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
 {
     const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
@@ -338,11 +341,9 @@ static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
 
     pixel_bary(t, E, p, b);
     for (i = 0; i < 3; i++) {
-        uint64_t s = (uint64_t)(uint32_t)(v0[i] < 0 ? 0 : v0[i]) * b[0]
-                   + (uint64_t)(uint32_t)(v1[i] < 0 ? 0 : v1[i]) * b[1]
-                   + (uint64_t)(uint32_t)(v2[i] < 0 ? 0 : v2[i]) * b[2];
-        s = (s + (1u << (BARY_BITS - 1))) >> BARY_BITS;
-        c[i] = (int32_t)(s > cap ? cap : s);
+        uint64_t s = (uint64_t)(uint32_t)v0[i] * b[0] + (uint64_t)(uint32_t)v1[i] * b[1]
+                   + (uint64_t)(uint32_t)v2[i] * b[2];
+        c[i] = (int32_t)((s + (1u << (BARY_BITS - 1))) >> BARY_BITS);
     }
     return (uint32_t)(z > cap ? cap : z);
 }
