@@ -35,6 +35,7 @@ typedef struct tri {
     unsigned qsh;      /* perspective weights >> qsh < 2^46 */
     unsigned zs;       /* depth: z = ((sum w q) >> zs) * zr >> 32 */
     uint64_t zr;
+    unsigned run_bits; /* Gouraud: runs end at multiples of 2^run_bits pixels */
 } tri;
 
 static int64_t floor_div16(int64_t v)
@@ -59,12 +60,12 @@ static void edge_setup(edge *e, const lumo_raster_sv *p, const lumo_raster_sv *q
     e->bias = is_top_left(p, q) ? 0 : 1;
 }
 
-/* Number of significant bits of v (< 2^32 here: the area is shifted below
- * 2^24), by halving. */
+/* Number of significant bits of v, by halving. */
 static unsigned bit_length(uint64_t v)
 {
     unsigned n = 0;
 
+    if (v >> 32) { n += 32; v >>= 32; }
     if (v >> 16) { n += 16; v >>= 16; }
     if (v >> 8)  { n += 8;  v >>= 8; }
     if (v >> 4)  { n += 4;  v >>= 4; }
@@ -348,7 +349,40 @@ static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
     return (uint32_t)(z > cap ? cap : z);
 }
 
-/* (to - from) / n rounded towards zero, n in [1, 15]. */
+/* Gouraud runs: radiance exact (perspective-correct) at both ends of a run
+ * and stepped linearly between, so the run's length bounds the error: over
+ * L pixels 1/w changes by r = L |d(1/w)/dx| / (1/w)_min, and the linear
+ * steps miss the perspective-correct values by below r / 4 of the change
+ * of radiance along the run. Runs are 16 pixels, longer (up to 2048: a
+ * whole row) while r <= 2^-RUN_PERSPECTIVE_BITS, from bit lengths (a
+ * function of the triangle alone, so bands still give the frame's bytes):
+ * a wall facing the camera is one run per row, and each run costs two
+ * exact evaluations (64-bit products and a 64-bit division, which a
+ * Cortex-M3 does in software). */
+#define RUN_MIN_BITS 4
+#define RUN_MAX_BITS 11
+#define RUN_PERSPECTIVE_BITS 7
+
+static unsigned gouraud_run_bits(const tri *t, int64_t area)
+{
+    int64_t num = 0;
+    uint64_t qmin = t->v[0].q;
+    int i, k;
+
+    for (i = 0; i < 3; i++) {
+        num += t->step[i] * (int64_t)t->v[i].q;        /* |step| < 2^23, q <= 2^30 */
+        if (t->v[i].q < qmin)
+            qmin = t->v[i].q;
+    }
+    if (num < 0)
+        num = -num;
+    /* num 2^k 2^RUN_PERSPECTIVE_BITS <= area qmin, conservatively */
+    k = (int)bit_length((uint64_t)area) + (int)bit_length(qmin) - 2 - RUN_PERSPECTIVE_BITS
+      - (int)bit_length((uint64_t)num);
+    return k < RUN_MIN_BITS ? RUN_MIN_BITS : k > RUN_MAX_BITS ? RUN_MAX_BITS : (unsigned)k;
+}
+
+/* (to - from) / n rounded towards zero, n in [1, 2^RUN_MAX_BITS). */
 static int32_t seg_step(int32_t from, int32_t to, int32_t n)
 {
     return (to - from) / n;
@@ -404,11 +438,11 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
     return written;
 }
 
-/* A Gouraud run of pixels [a, b] of a row (b - a < 16): depth and
+/* A Gouraud run of pixels [a, b] of a row (b - a < 2^run_bits): depth and
  * radiance exact (perspective-correct) at both ends and stepped linearly
  * between them, so a pixel costs additions, the depth test and three table
  * look-ups. Depth is linear in screen space (the steps only round); the
- * radiance's perspective error over 16 pixels is far below one code. */
+ * radiance's perspective error is bounded by the run's length (gouraud_run_bits). */
 static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_t Ea[3], int64_t a,
                             int64_t b, int64_t y, size_t row, uint8_t *line)
 {
@@ -436,8 +470,8 @@ static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_
                                 : run_pixels((uint32_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 0, 0);
 }
 
-/* Gouraud spans in runs ending at absolute multiples of 16 pixels (so a
- * run is a function of the triangle and the row: bands join exactly). */
+/* Gouraud spans in runs ending at absolute multiples of 2^run_bits pixels
+ * (so a run is a function of the triangle and the row: bands join exactly). */
 static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int64_t x0,
                          int64_t x1, int64_t y, size_t row)
 {
@@ -448,7 +482,7 @@ static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], i
     int i;
 
     while (a <= x1) {
-        int64_t b = a | 15;
+        int64_t b = a | (((int64_t)1 << t->run_bits) - 1);
         if (b > x1)
             b = x1;
         written += run_gouraud(c, t, E, a, b, y, row, line);
@@ -517,6 +551,10 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     if (c->stats)
         c->stats->tris_drawn++;
     tri_setup(&t, v, area);
+    /* a box up to 16 pixels wide is one run per row whatever the length */
+    t.run_bits = RUN_MIN_BITS;
+    if (!c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD && px1 - px0 >= (1 << RUN_MIN_BITS))
+        t.run_bits = gouraud_run_bits(&t, area);
     small = box_edges(&t, px0, px1, py0, py1, Erow);
     for (py = py0; py <= py1; py++, Erow[0] += t.e[0].b * 16, Erow[1] += t.e[1].b * 16, Erow[2] += t.e[2].b * 16) {
         size_t row = (size_t)(py - tg->band_y) * tg->width;
