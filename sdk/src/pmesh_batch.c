@@ -464,8 +464,8 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
 /* One residual of a CODED stream (docs/progressive-mesh.md §2.3 step 5):
  * its class c (the bit length of |r|, at most quant_bits) in unary,
  * adaptive bits "c > j" by the ring's spread class sc; then the c - 1 bits
- * under the leading one, most significant first, the first adaptive (by
- * c), the rest direct; then, for c > 0, the sign as a direct bit (1:
+ * under the leading one, most significant first, the first two adaptive
+ * (by c and place), the rest direct; then, for c > 0, the sign as a direct bit (1:
  * negative). Work: at most 2 quant_bits + 1 bits. */
 static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t *r)
 {
@@ -480,7 +480,7 @@ static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t *r)
     if (c == 0)
         return *r = 0, LUMO_OK;
     for (uint32_t j = 1; j < c; j++) {
-        int over = j == 1 ? read_ctx(s, lumo_pmesh_res_low_ctx(c), &bit) : read_bits(&s->br, 1, &bit);
+        int over = j < 3 ? read_ctx(s, lumo_pmesh_res_low_ctx(c, j - 1), &bit) : read_bits(&s->br, 1, &bit);
         if (over)
             return LUMO_ERR_TRUNCATED;
         v = v << 1 | bit;
@@ -773,11 +773,26 @@ static lumo_status run_split_block(split_ctx *s)
     return st;
 }
 
+/* CODED base positions: quant_bits per grid integer, x, y, z per vertex
+ * (every value fits the grid). */
+static lumo_status read_base_positions(split_ctx *s)
+{
+    uint32_t v;
+    for (size_t at = 0; at < 3 * (size_t)s->b->count; at++) {
+        if (read_bits(&s->br, s->pm->h.quant_bits, &v))
+            return LUMO_ERR_TRUNCATED;
+        s->pm->qpos[at] = (int32_t)v;
+    }
+    return LUMO_OK;
+}
+
 /* The base block: bit fields, zero padding, every byte used. */
 static lumo_status run_base_block(split_ctx *s)
 {
     uint32_t pad;
     lumo_status st = read_base(s);
+    if (!st && s->coded)
+        st = read_base_positions(s);
     if (st)
         return st;
     if ((s->br.wb.pos + 7) / 8 != s->b->side_bytes)
@@ -868,11 +883,11 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
         return LUMO_ERR_ARG;
     if (pm->rewound)
         return LUMO_ERR_STATE;
-    int coded = pm->h.position_coding == LUMO_PMESH_POS_CODED && pm->vertex_count > 0;
+    int coded = pm->h.position_coding == LUMO_PMESH_POS_CODED;
     if ((st = parse_record(pm, record, size, &b)))
         return st;
     if (coded && b.draco_bytes)
-        return LUMO_ERR_CORRUPT;  /* a CODED split record has no payload */
+        return LUMO_ERR_CORRUPT;  /* a CODED record has no payload */
     if (!coded && (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;

@@ -85,7 +85,7 @@ typedef struct {
     srv_pm_stream_stats st;   /* where the bits go (options->stats gets a copy) */
     unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
-    int       coded;          /* LUMO_PMESH_POS_CODED: residuals in the range code */
+    int       coded;          /* LUMO_PMESH_POS_CODED: positions in the blocks */
     uint32_t  round_first;    /* first split vertex of the current round */
     uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
     uint32_t  last_fan;       /* the previous split was a fan split */
@@ -137,6 +137,8 @@ static void write_base(replay *r, bitwriter *w)
         }
         add_face(r, t);
     }
+    for (size_t at = 0; r->coded && at < 3 * (size_t)pm->base_vertices; at++)
+        put_bits(w, (uint32_t)r->q[at], r->quant_bits);
     for (uint32_t v = 0; v < pm->base_vertices; v++)
         for (int c = 0; c < 3; c++)
             r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
@@ -144,8 +146,8 @@ static void write_base(replay *r, bitwriter *w)
 
 /* Mirrors read_residual() in pmesh_batch.c: the class c of |v| (its bit
  * length) in adaptive unary by the spread class sc (no end bit at
- * quant_bits), the c - 1 bits under the leading one (the first adaptive),
- * then the sign. */
+ * quant_bits), the c - 1 bits under the leading one (the first two
+ * adaptive), then the sign. */
 static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t v)
 {
     uint32_t a = (uint32_t)(v < 0 ? -v : v), c = 0;
@@ -156,9 +158,9 @@ static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t v)
     if (c == 0)
         return;
     for (uint32_t i = c - 1; i-- > 0;) {
-        uint32_t bit = a >> i & 1u;
-        if (i == c - 2)
-            put_ctx(r, w, lumo_pmesh_res_low_ctx(c), bit);
+        uint32_t bit = a >> i & 1u, j = c - 2 - i;
+        if (j < 2)
+            put_ctx(r, w, lumo_pmesh_res_low_ctx(c, j), bit);
         else
             put_bits(w, bit, 1);
     }
@@ -564,8 +566,8 @@ static lumo_status encode_payload(const replay *r, uint32_t first, uint32_t coun
                                   uint8_t **drc, size_t *len)
 {
     const uint8_t *rgb = r->pm->albedo ? r->pm->albedo + 3 * (size_t)first : NULL;
-    if (r->coded && first)
-        return *drc = NULL, *len = 0, LUMO_OK;  /* in the split block */
+    if (r->coded)
+        return *drc = NULL, *len = 0, LUMO_OK;  /* in the blocks */
     if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
         return srv_draco_encode_points(r->pm->xyz + 3 * (size_t)first, rgb, count, q, o->draco, drc, len);
     return srv_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);

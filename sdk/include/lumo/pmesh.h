@@ -49,10 +49,11 @@
  * about half the bytes. */
 #define LUMO_PMESH_POS_ABSOLUTE 0u
 #define LUMO_PMESH_POS_PREDICTED 1u   /* residuals from the prediction (above) */
-/* CODED (the default): the same residuals, but a split vertex's are coded
- * in its split record's range code, by classes conditioned on the spread
- * of its ring (docs/progressive-mesh.md §2.3 step 5); split records carry
- * no Draco payload. The base record is as in PREDICTED. Not with albedo. */
+/* CODED (the default): no Draco payloads; the base record's block holds
+ * its positions as plain grid integers, a split vertex's residuals from
+ * the same prediction are coded in its split record's range code, by
+ * classes conditioned on the spread of its ring (docs/progressive-mesh.md
+ * §2.3 step 5). Not with albedo (which rides in the payloads). */
 #define LUMO_PMESH_POS_CODED     2u
 /* Header flag: every payload also carries a COLOR uint8 x3 attribute, the
  * per-vertex albedo (0..255 -> 0..1). */
@@ -61,7 +62,7 @@
 #define LUMO_PMESH_MAGIC       0x314d504cu
 /* Adaptive probabilities of the split records' range code, kept from
  * record to record (layout: lumo_shared/pmesh_shared.h); in the arena. */
-#define LUMO_PMESH_CONTEXTS    240u
+#define LUMO_PMESH_CONTEXTS    256u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {

@@ -42,24 +42,25 @@
 /* Positions coded in the block (LUMO_PMESH_POS_CODED, §2.3 step 5): each
  * residual's class (its bit length) in unary, by the ring's spread class
  * (SPREAD_CTXS) and place (RES_CLASSES, the last one shared by every later
- * place); the first bit under its leading one, by class (RES_LOW_CTXS). */
+ * place); the first two bits under its leading one, by class (RES_LOW_CTXS,
+ * the last one shared by every larger class) and place. */
 #define LUMO_PMESH_SPREAD_CTXS  12u
 #define LUMO_PMESH_RES_CLASSES  12u
 #define LUMO_PMESH_RES_LOW_CTXS 16u
 #define LUMO_PMESH_CTX_RES      (LUMO_PMESH_CTX_MASK + 1u)
 #define LUMO_PMESH_CTX_RES_LOW  (LUMO_PMESH_CTX_RES + LUMO_PMESH_SPREAD_CTXS * LUMO_PMESH_RES_CLASSES)
-#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_RES_LOW + LUMO_PMESH_RES_LOW_CTXS)
+#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_RES_LOW + 2u * LUMO_PMESH_RES_LOW_CTXS)
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
 /* Context of the residual's class bit j ("class > j") under spread class
- * sc, and of the first bit under the leading one of a class-c residual. */
+ * sc, and of bit j (0 or 1) under the leading one of a class-c residual. */
 static inline uint32_t lumo_pmesh_res_ctx(uint32_t sc, uint32_t j)
 {
     return LUMO_PMESH_CTX_RES + sc * LUMO_PMESH_RES_CLASSES +
            (j < LUMO_PMESH_RES_CLASSES ? j : LUMO_PMESH_RES_CLASSES - 1u);
 }
-static inline uint32_t lumo_pmesh_res_low_ctx(uint32_t c)
+static inline uint32_t lumo_pmesh_res_low_ctx(uint32_t c, uint32_t j)
 {
-    return LUMO_PMESH_CTX_RES_LOW + (c < LUMO_PMESH_RES_LOW_CTXS ? c : LUMO_PMESH_RES_LOW_CTXS - 1u);
+    return LUMO_PMESH_CTX_RES_LOW + 2u * (c < LUMO_PMESH_RES_LOW_CTXS ? c : LUMO_PMESH_RES_LOW_CTXS - 1u) + j;
 }
 /* Context of the rank's class bit c for a parent with n corners. */
 static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
