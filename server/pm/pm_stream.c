@@ -773,8 +773,7 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
     r.disp = malloc(12 * (size_t)pm->faces + 4), r.next = malloc(12 * (size_t)pm->faces + 4);
     r.head = malloc(4 * (size_t)pm->vertices);
     r.round_parent = calloc(pm->vertices, 4);
-    for (uint32_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
-        r.ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
+    lumo_pmesh_init_contexts(r.ctx);
     srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
     srv_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
