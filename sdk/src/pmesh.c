@@ -30,8 +30,10 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
     if (h->batch_count != expected_batches(h))
         return LUMO_ERR_CORRUPT;
     if (h->quant_bits < 1 || h->quant_bits > LUMO_PMESH_MAX_QBITS ||
-        h->position_coding > LUMO_PMESH_POS_PREDICTED || (h->flags & ~LUMO_PMESH_HAS_ALBEDO))
+        h->position_coding > LUMO_PMESH_POS_CODED || (h->flags & ~LUMO_PMESH_HAS_ALBEDO))
         return LUMO_ERR_UNSUPPORTED;
+    if (h->position_coding == LUMO_PMESH_POS_CODED && (h->flags & LUMO_PMESH_HAS_ALBEDO))
+        return LUMO_ERR_UNSUPPORTED;  /* the albedo rides in the payloads CODED drops */
     return LUMO_OK;
 }
 
@@ -163,8 +165,7 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
     (void)lumo_f32bits_to_fixed(h->range_bits, LUMO_Q16_SHIFT, &pm->range);
     memset(pm->head, 0xff, n[5] * sizeof(uint32_t));
     pm->last_parent = 0xffffffffu;
-    for (size_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
-        pm->ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
+    lumo_pmesh_init_contexts(pm->ctx);
     return LUMO_OK;
 }
 

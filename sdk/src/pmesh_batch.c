@@ -94,6 +94,7 @@ typedef struct {
     bitreader   br;
     const batch *b;
     const lumo_draco_attribute *res;  /* PREDICTED coding: the residuals */
+    int         coded;       /* CODED positions: residuals in the range code */
     uint32_t    log_n;       /* journal entries (3 words each) */
     uint32_t    faces, moves;
     uint32_t    prev_parent; /* the last split's parent (also of the previous
@@ -172,7 +173,7 @@ static lumo_status check_positions(const lumo_pmesh *pm, const batch *b,
 {
     const lumo_pmesh_header *h = &pm->h;
     const lumo_draco_attribute *a = NULL;
-    int parent = h->position_coding == LUMO_PMESH_POS_PREDICTED;  /* residuals */
+    int parent = h->position_coding != LUMO_PMESH_POS_ABSOLUTE;  /* residuals */
     if (m->geometry != LUMO_DRACO_POINT_CLOUD || m->num_points != b->count || m->num_faces)
         return LUMO_ERR_CORRUPT;
     for (uint32_t i = 0; i < m->num_attributes && !a; i++)
@@ -227,12 +228,11 @@ static void store_albedo(lumo_pmesh *pm, const batch *b, const lumo_draco_attrib
  * batch is kept): absolute values, or in a PREDICTED base mesh residuals
  * from the previous vertex. Split vertices of PREDICTED streams get theirs
  * during the split (predict_split). */
-static lumo_status grid_value(lumo_pmesh *pm, uint32_t k, const int32_t *pred,
-                              const lumo_draco_attribute *a, uint32_t i)
+static lumo_status set_grid(lumo_pmesh *pm, uint32_t k, const int32_t *pred, const int32_t res[3])
 {
     int32_t qmax = (int32_t)((1u << pm->h.quant_bits) - 1u);
     for (unsigned c = 0; c < 3; c++) {
-        int32_t r = lumo_draco_value(a, i, c);
+        int32_t r = res[c];
         if (r < -qmax || r > qmax)
             return LUMO_ERR_RANGE;
         int32_t q = pred ? pred[c] + r : r;
@@ -243,9 +243,18 @@ static lumo_status grid_value(lumo_pmesh *pm, uint32_t k, const int32_t *pred,
     return LUMO_OK;
 }
 
+static lumo_status grid_value(lumo_pmesh *pm, uint32_t k, const int32_t *pred,
+                              const lumo_draco_attribute *a, uint32_t i)
+{
+    int32_t res[3];
+    for (unsigned c = 0; c < 3; c++)
+        res[c] = lumo_draco_value(a, i, c);
+    return set_grid(pm, k, pred, res);
+}
+
 static lumo_status grid_positions(lumo_pmesh *pm, const batch *b, const lumo_draco_attribute *a)
 {
-    int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
+    int predicted = pm->h.position_coding != LUMO_PMESH_POS_ABSOLUTE;
     lumo_status st = LUMO_OK;
     if (predicted && b->first)
         return LUMO_OK;
@@ -452,15 +461,53 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
     return flip ? add_face(s, k, x, p) : add_face(s, k, p, x);
 }
 
+/* One residual of a CODED stream (docs/progressive-mesh.md §2.3 step 5):
+ * its class c (the bit length of |r|, at most quant_bits) in unary,
+ * adaptive bits "c > j" by the ring's spread class sc; then the c - 1 bits
+ * under the leading one, most significant first, the first two adaptive
+ * (by c and place), the rest direct; then, for c > 0, the sign as a direct bit (1:
+ * negative). Work: at most 2 quant_bits + 1 bits. */
+static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t *r)
+{
+    uint32_t c = 0, bit = 1, v = 1, qbits = s->pm->h.quant_bits;
+    while (c < qbits) {
+        if (read_ctx(s, lumo_pmesh_res_ctx(sc, c), &bit))
+            return LUMO_ERR_TRUNCATED;
+        if (!bit)
+            break;
+        c++;
+    }
+    if (c == 0)
+        return *r = 0, LUMO_OK;
+    for (uint32_t j = 1; j < c; j++) {
+        int over = j < 3 ? read_ctx(s, lumo_pmesh_res_low_ctx(c, j - 1), &bit) : read_bits(&s->br, 1, &bit);
+        if (over)
+            return LUMO_ERR_TRUNCATED;
+        v = v << 1 | bit;
+    }
+    if (read_bits(&s->br, 1, &bit))
+        return LUMO_ERR_TRUNCATED;
+    *r = bit ? -(int32_t)v : (int32_t)v;
+    return LUMO_OK;
+}
+
 /* k appears among its neighbours: lumo_pmesh_predict_position (shared
- * with the stream writer). Work: k's valence. */
+ * with the stream writer), plus the residual from the payload or, CODED,
+ * from the range code. Work: k's valence. */
 static lumo_status predict_split(split_ctx *s, uint32_t k)
 {
     lumo_pmesh *pm = s->pm;
-    int32_t pred[3];
-    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k,
-                                pm->batch_parent[k - s->b->first], pred);
-    return grid_value(pm, k, pred, s->res, k - s->b->first);
+    int32_t pred[3], res[3];
+    uint32_t sc = lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k,
+                                              pm->batch_parent[k - s->b->first], pred);
+    if (!s->coded)
+        return grid_value(pm, k, pred, s->res, k - s->b->first);
+    for (unsigned d = 0; d < 3; d++) {
+        lumo_status st = read_residual(s, sc, &res[d]);
+        if (st)
+            return st;
+    }
+    return set_grid(pm, k, pred, res);
 }
 
 /* Explicit split: the mask over p's corners, then the faces. */
@@ -707,7 +754,7 @@ static lumo_status split(split_ctx *s, uint32_t k)
         return st;
     if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
         return st;
-    return s->res ? predict_split(s, k) : LUMO_OK;
+    return s->res || s->coded ? predict_split(s, k) : LUMO_OK;
 }
 
 /* A split record's block is one range code (pmesh_rc.h). */
@@ -726,11 +773,26 @@ static lumo_status run_split_block(split_ctx *s)
     return st;
 }
 
+/* CODED base positions: quant_bits per grid integer, x, y, z per vertex
+ * (every value fits the grid). */
+static lumo_status read_base_positions(split_ctx *s)
+{
+    uint32_t v;
+    for (size_t at = 0; at < 3 * (size_t)s->b->count; at++) {
+        if (read_bits(&s->br, s->pm->h.quant_bits, &v))
+            return LUMO_ERR_TRUNCATED;
+        s->pm->qpos[at] = (int32_t)v;
+    }
+    return LUMO_OK;
+}
+
 /* The base block: bit fields, zero padding, every byte used. */
 static lumo_status run_base_block(split_ctx *s)
 {
     uint32_t pad;
     lumo_status st = read_base(s);
+    if (!st && s->coded)
+        st = read_base_positions(s);
     if (st)
         return st;
     if ((s->br.wb.pos + 7) / 8 != s->b->side_bytes)
@@ -821,19 +883,24 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
         return LUMO_ERR_ARG;
     if (pm->rewound)
         return LUMO_ERR_STATE;
-    if ((st = parse_record(pm, record, size, &b)) || (st = decode_positions(pm, &b, &pos, &rgb, &m)))
+    int coded = pm->h.position_coding == LUMO_PMESH_POS_CODED;
+    if ((st = parse_record(pm, record, size, &b)))
+        return st;
+    if (coded && b.draco_bytes)
+        return LUMO_ERR_CORRUPT;  /* a CODED record has no payload */
+    if (!coded && (st = decode_positions(pm, &b, &pos, &rgb, &m)))
         return st;
     int predicted = pm->h.position_coding == LUMO_PMESH_POS_PREDICTED;
     split_ctx s;
     memset(&s, 0, sizeof s);
-    s.pm = pm, s.b = &b, s.res = predicted ? pos : NULL;
+    s.pm = pm, s.b = &b, s.res = predicted ? pos : NULL, s.coded = coded;
     s.br.wb = (lumo_wire_bits){b.side, (size_t)b.side_bytes * 8u, 0};
     s.prev_parent = pm->last_parent, s.round_first = pm->round_first, s.last_fan = pm->last_fan;
     s.ctx = pm->ctx;
     memcpy(pm->ctx_undo, pm->ctx, LUMO_PMESH_CONTEXTS * sizeof *pm->ctx);
     /* absolute positions first: the fan ranks read the batch's earlier
      * vertices (qpos beyond vertex_count is invisible until kept) */
-    if ((st = grid_positions(pm, &b, pos)) || (st = run_splits(&s))) {
+    if ((!coded && (st = grid_positions(pm, &b, pos))) || (st = run_splits(&s))) {
         rollback_to(&s, 0);
         while (s.stamped-- > 0)  /* newest first: a parent may repeat in new rounds */
             pm->round_parent[pm->batch_parent[s.stamped]] = pm->stamp_log[s.stamped];

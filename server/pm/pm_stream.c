@@ -85,6 +85,7 @@ typedef struct {
     srv_pm_stream_stats st;   /* where the bits go (options->stats gets a copy) */
     unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
+    int       coded;          /* LUMO_PMESH_POS_CODED: positions in the blocks */
     uint32_t  round_first;    /* first split vertex of the current round */
     uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
     uint32_t  last_fan;       /* the previous split was a fan split */
@@ -136,19 +137,51 @@ static void write_base(replay *r, bitwriter *w)
         }
         add_face(r, t);
     }
+    for (size_t at = 0; r->coded && at < 3 * (size_t)pm->base_vertices; at++)
+        put_bits(w, (uint32_t)r->q[at], r->quant_bits);
     for (uint32_t v = 0; v < pm->base_vertices; v++)
         for (int c = 0; c < 3; c++)
             r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
 }
 
+/* Mirrors read_residual() in pmesh_batch.c: the class c of |v| (its bit
+ * length) in adaptive unary by the spread class sc (no end bit at
+ * quant_bits), the c - 1 bits under the leading one (the first two
+ * adaptive), then the sign. */
+static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t v)
+{
+    uint32_t a = (uint32_t)(v < 0 ? -v : v), c = 0;
+    while (a >> c)
+        c++;
+    for (uint32_t j = 0; j < r->quant_bits && j <= c; j++)
+        put_ctx(r, w, lumo_pmesh_res_ctx(sc, j), j < c);
+    if (c == 0)
+        return;
+    for (uint32_t i = c - 1; i-- > 0;) {
+        uint32_t bit = a >> i & 1u, j = c - 2 - i;
+        if (j < 2)
+            put_ctx(r, w, lumo_pmesh_res_low_ctx(c, j), bit);
+        else
+            put_bits(w, bit, 1);
+    }
+    put_bits(w, v < 0, 1);
+}
+
 /* The residual of k from the decoder's own prediction
- * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c). */
-static void predict(replay *r, uint32_t k)
+ * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c); CODED streams
+ * write it into the range code. */
+static void predict(replay *r, bitwriter *w, uint32_t k)
 {
     int32_t pred[3];
-    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, r->pm->parent[k], pred);
-    for (int d = 0; d < 3; d++)
-        r->res[3 * (size_t)k + d] = r->q[3 * (size_t)k + d] - pred[d];
+    uint32_t sc = lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, r->pm->parent[k], pred);
+    double mark = spent(w);
+    for (int d = 0; d < 3; d++) {
+        int32_t v = r->q[3 * (size_t)k + d] - pred[d];
+        r->res[3 * (size_t)k + d] = v;
+        if (r->coded)
+            put_residual(r, w, sc, v);
+    }
+    count_bits(w, &mark, &r->st.pos_bits);
 }
 
 static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
@@ -477,7 +510,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
         r->st.fans++;
         write_fan(r, w, p, k, f0, xa, m);
         count_bits(w, &mark, &r->st.fan_bits);
-        predict(r, k);
+        predict(r, w, k);
         return 0;
     }
     if (!paired && (n < 1 || n > 15))
@@ -489,7 +522,7 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
         if (write_new_face(r, w, f0 + i, p, k, lenp, lenk, paired))
             return -1;
     count_bits(w, &mark, &r->st.mask_bits);
-    predict(r, k);
+    predict(r, w, k);
     return 0;
 }
 
@@ -533,6 +566,8 @@ static lumo_status encode_payload(const replay *r, uint32_t first, uint32_t coun
                                   uint8_t **drc, size_t *len)
 {
     const uint8_t *rgb = r->pm->albedo ? r->pm->albedo + 3 * (size_t)first : NULL;
+    if (r->coded)
+        return *drc = NULL, *len = 0, LUMO_OK;  /* in the blocks */
     if (o->position_coding == LUMO_PMESH_POS_ABSOLUTE)
         return srv_draco_encode_points(r->pm->xyz + 3 * (size_t)first, rgb, count, q, o->draco, drc, len);
     return srv_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
@@ -644,14 +679,14 @@ void srv_pm_stream_default_options(srv_pm_stream_options *o)
     o->batch_vertices = 0;  /* per mesh: srv_pm_stream_auto_batch */
     o->quant_bits = 0;      /* per mesh: srv_pm_stream_auto_bits */
     o->draco = srv_draco_default_settings();
-    o->position_coding = LUMO_PMESH_POS_PREDICTED;
+    o->position_coding = LUMO_PMESH_POS_CODED;
     o->stats = NULL;
     o->fan_rank_escape = 0;
 }
 
 static double field_bits(const srv_pm_stream_stats *st)
 {
-    return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits;
+    return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits + st->pos_bits;
 }
 
 /* A written split record's share of the stats: fields_before is
@@ -723,6 +758,8 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
         chosen.batch_vertices = srv_pm_stream_auto_batch(pm);
     if (!chosen.quant_bits)
         chosen.quant_bits = srv_pm_stream_auto_bits(pm);
+    if (chosen.position_coding == LUMO_PMESH_POS_CODED && pm->albedo)
+        chosen.position_coding = LUMO_PMESH_POS_PREDICTED;  /* the albedo needs the payloads */
     o = &chosen;
     uint32_t rest = pm->vertices - pm->base_vertices;
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
@@ -731,12 +768,12 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
     replay r;
     memset(&r, 0, sizeof r);
     r.pm = pm, r.rank_escape = o->fan_rank_escape;
+    r.coded = o->position_coding == LUMO_PMESH_POS_CODED;
     r.q = malloc(12 * (size_t)pm->vertices), r.res = malloc(12 * (size_t)pm->vertices);
     r.disp = malloc(12 * (size_t)pm->faces + 4), r.next = malloc(12 * (size_t)pm->faces + 4);
     r.head = malloc(4 * (size_t)pm->vertices);
     r.round_parent = calloc(pm->vertices, 4);
-    for (uint32_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
-        r.ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
+    lumo_pmesh_init_contexts(r.ctx);
     srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
     srv_buf s = {0};
     uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};

@@ -404,9 +404,9 @@ static int corrupt_variants(srv_pm_client *cl, const uint8_t *rec, size_t n, con
         ok &= reject(cl, rec, cut, &s, &errs, "truncation", cut), (*tried)++;
     const uint32_t fields[2] = {16, 20};             /* face and move counts, CRC fixed: */
     for (int f = 0; f < 2; f++) {                    /* fails late, after changes to undo */
-        uint32_t v = rec[fields[f]] | rec[fields[f] + 1] << 8 | rec[fields[f] + 2] << 16 | (uint32_t)rec[fields[f] + 3] << 24;
-        if (!v)
-            continue;
+        uint32_t v = n < 40 ? 0 : rec[fields[f]] | rec[fields[f] + 1] << 8 | rec[fields[f] + 2] << 16 | (uint32_t)rec[fields[f] + 3] << 24;
+        if (!v || n < 40)
+            continue;  /* a short record (CODED: no payload) has no such bytes */
         memcpy(b, rec, n);
         put32(b + fields[f], v - 1);
         fix_crc(b, n);
@@ -500,6 +500,8 @@ int main(int argc, char **argv)
             want_rgb = 1;
         else if (!strcmp(argv[i], "--absolute"))
             so.position_coding = LUMO_PMESH_POS_ABSOLUTE;
+        else if (!strcmp(argv[i], "--predicted"))  /* residuals in Draco payloads (version 4's) */
+            so.position_coding = LUMO_PMESH_POS_PREDICTED;
         else if (!strcmp(argv[i], "--rank-escape"))
             so.fan_rank_escape = 1;  /* every ranked fan coded explicitly after the escape */
         else if (!strcmp(argv[i], "--write-stream") && i + 1 < argc)
@@ -523,7 +525,11 @@ int main(int argc, char **argv)
         return 1;
     }
     snprintf(g_name, sizeof g_name, "%s/batch %u/%d bits/%s/rounds %g%s", gen ? gen : file, so.batch_vertices,
-             so.quant_bits, so.position_coding ? "parent residuals" : "absolute", po.round_fraction,
+             so.quant_bits,
+             so.position_coding == LUMO_PMESH_POS_CODED       ? "residuals in the range code"
+             : so.position_coding == LUMO_PMESH_POS_PREDICTED ? "residuals in Draco payloads"
+                                                              : "absolute",
+             po.round_fraction,
              so.fan_rank_escape ? "/fans explicit" : "");
     srv_pm pm;
     uint8_t *s = NULL;

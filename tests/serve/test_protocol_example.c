@@ -276,7 +276,7 @@ static void pmsh_header(cur *c)
     u32f(c, "max_batch_moves");
     u32f(c, "max_batch_bytes");
     field(c, 1, "quant_bits %u", c->b[c->at]);
-    field(c, 1, "position_coding %u (%s)", c->b[c->at], c->b[c->at] ? "predicted" : "absolute");
+    field(c, 1, "position_coding %u (%s)", c->b[c->at], c->b[c->at] == 2 ? "coded" : c->b[c->at] ? "predicted" : "absolute");
     field(c, 1, "flags 0x%02X (bit 0: albedo present)", c->b[c->at]);
     field(c, 1, "reserved");
     vec3(c, "grid origin, m");

@@ -126,33 +126,36 @@ static void section_sizes(FILE *o, model *ms, int n)
 {
     fprintf(o, "### Stream size against single-shot Draco\n\n"
                "Same cleaned mesh (welded, degenerate/duplicate faces dropped) for every column; "
-               "pm = the progressive stream (version 4, header and record framing included), "
+               "pm = the progressive stream (version 5, header and record framing included; "
+               "positions coded in the split records, docs/progressive-mesh.md §2.3 step 5; "
+               "v4 payload = the same stream with version 4's Draco residual payloads), "
                "Draco = stock `draco_encoder -cl 7` at the same quantization (`-qp`). Left: 12-bit "
                "positions and batches of 250 for every mesh (pm absolute: stock-readable positions); "
                "right: the stream's own per-mesh choices (`lumo-pm build`'s default: position bits "
                "from the median edge, batch size from the vertex count, docs/progressive-mesh.md "
                "§2.1).\n\n"
-               "| model | triangles | vertices | base | pm 12 bits, 250 | bits/tri | pm absolute | "
+               "| model | triangles | vertices | base | pm 12 bits, 250 | bits/tri | v4 payload | pm absolute | "
                "draco -qp 12 -cl 7 | bits/tri | pm / draco | bits | batch | pm per mesh | bits/tri "
                "| draco same -qp | pm / draco | build s |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         model *m = &ms[i];
-        uint8_t *s1 = NULL, *s0 = NULL, *sa = NULL;
-        size_t l1 = 0, l0 = 0, la = 0;
+        uint8_t *s1 = NULL, *s0 = NULL, *sa = NULL, *sp = NULL;
+        size_t l1 = 0, l0 = 0, la = 0, lp = 0;
         lumo_pmesh_header h = {0};
-        stream_bits(m, 250, 12, LUMO_PMESH_POS_PREDICTED, &s1, &l1);
+        stream_bits(m, 250, 12, LUMO_PMESH_POS_CODED, &s1, &l1);
+        stream_bits(m, 250, 12, LUMO_PMESH_POS_PREDICTED, &sp, &lp);
         stream_bits(m, 250, 12, LUMO_PMESH_POS_ABSOLUTE, &s0, &l0);
-        if (!stream_bits(m, 0, 0, LUMO_PMESH_POS_PREDICTED, &sa, &la))
+        if (!stream_bits(m, 0, 0, LUMO_PMESH_POS_CODED, &sa, &la))
             (void)lumo_pmesh_read_header(sa, la, &h);
         long c7 = draco_cli_size(m, 12, 7), ca = draco_cli_size(m, (int)h.quant_bits, 7);
         uint32_t F = m->pm.faces;
-        fprintf(o, "| %s | %u | %u | %u | %zu | %.2f | %zu | %ld | %.2f | %.3f | %u | %u | %zu | %.2f "
+        fprintf(o, "| %s | %u | %u | %u | %zu | %.2f | %zu | %zu | %ld | %.2f | %.3f | %u | %u | %zu | %.2f "
                    "| %ld | %.3f | %.1f |\n",
-                m->name, F, m->pm.vertices, m->pm.base_vertices, l1, bits_per_tri(l1, F), l0, c7,
+                m->name, F, m->pm.vertices, m->pm.base_vertices, l1, bits_per_tri(l1, F), lp, l0, c7,
                 bits_per_tri((size_t)c7, F), c7 ? (double)l1 / c7 : 0, h.quant_bits, h.batch_vertices,
                 la, bits_per_tri(la, F), ca, ca ? (double)la / ca : 0, m->build_s);
-        free(s1), free(s0), free(sa);
+        free(s1), free(s0), free(sa), free(sp);
     }
     fprintf(o, "\n");
 }
@@ -388,21 +391,21 @@ static void section_bits(FILE *o, model *ms, int n)
                "Fan = the fan's geometric rank (or the escape and the explicit first wing and length); "
                "record heads = index, block and payload sizes as varints plus a CRC-32 "
                "(docs/progressive-mesh.md §2).\n\n"
-               "| model | parent | kind | fan | mask splits | code flush "
+               "| model | parent | kind | fan | mask splits | positions | code flush "
                "| Draco payload | record heads | total bits/vertex | fan splits by rank |\n"
-               "|---|---|---|---|---|---|---|---|---|---|\n");
+               "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         srv_pm_stream_stats st;
         uint8_t *s = NULL;
         size_t len = 0;
         if (stream_stats(&ms[i].pm, &st, &s, &len) || !st.splits)
             continue;
-        double sv = (double)st.splits, fields[7] = {st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv,
-                                                     st.mask_bits / sv, st.other_bits / sv,
+        double sv = (double)st.splits, fields[8] = {st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv,
+                                                     st.mask_bits / sv, st.pos_bits / sv, st.other_bits / sv,
                                                      8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv};
         fprintf(o, "| %s |", ms[i].name);
         double total = 0;
-        for (int j = 0; j < 7; j++)
+        for (int j = 0; j < 8; j++)
             fprintf(o, " %.2f |", fields[j]), total += fields[j];
         fprintf(o, " %.2f | %.1f%% |\n", total, st.fans ? 100.0 * st.arc_ranked / st.fans : 0.0);
         free(s);

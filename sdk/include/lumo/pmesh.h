@@ -39,7 +39,7 @@
  * varints (index, side bytes, Draco bytes) and a CRC-32: 7 to 19 bytes. */
 #define LUMO_PMESH_BATCH_HEAD_MIN 7u
 #define LUMO_PMESH_BATCH_HEAD_MAX 19u   /* bytes of a record head, at most */
-#define LUMO_PMESH_VERSION     4u    /* the stream version read (docs/progressive-mesh.md) */
+#define LUMO_PMESH_VERSION     5u    /* the stream version read (docs/progressive-mesh.md) */
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
@@ -49,6 +49,12 @@
  * about half the bytes. */
 #define LUMO_PMESH_POS_ABSOLUTE 0u
 #define LUMO_PMESH_POS_PREDICTED 1u   /* residuals from the prediction (above) */
+/* CODED (the default): no Draco payloads; the base record's block holds
+ * its positions as plain grid integers, a split vertex's residuals from
+ * the same prediction are coded in its split record's range code, by
+ * classes conditioned on the spread of its ring (docs/progressive-mesh.md
+ * §2.3 step 5). Not with albedo (which rides in the payloads). */
+#define LUMO_PMESH_POS_CODED     2u
 /* Header flag: every payload also carries a COLOR uint8 x3 attribute, the
  * per-vertex albedo (0..255 -> 0..1). */
 #define LUMO_PMESH_HAS_ALBEDO 1u
@@ -56,7 +62,7 @@
 #define LUMO_PMESH_MAGIC       0x314d504cu
 /* Adaptive probabilities of the split records' range code, kept from
  * record to record (layout: lumo_shared/pmesh_shared.h); in the arena. */
-#define LUMO_PMESH_CONTEXTS    96u
+#define LUMO_PMESH_CONTEXTS    256u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {
@@ -70,7 +76,7 @@ typedef struct lumo_pmesh_header {
     uint32_t max_batch_moves;   /* largest corner-move count of one batch */
     uint32_t max_batch_bytes;   /* largest batch record, header included */
     uint32_t quant_bits;        /* position quantization (1..LUMO_PMESH_MAX_QBITS) */
-    uint32_t position_coding;   /* LUMO_PMESH_POS_ABSOLUTE or _PREDICTED */
+    uint32_t position_coding;   /* LUMO_PMESH_POS_ABSOLUTE, _PREDICTED or _CODED */
     uint32_t flags;             /* LUMO_PMESH_HAS_ALBEDO */
     uint32_t origin_bits[3];    /* grid origin, IEEE-754 binary32 bits, metres */
     uint32_t range_bits;        /* grid edge length, binary32 bits, metres */

@@ -39,8 +39,40 @@
 #define LUMO_PMESH_CTX_RANK     (LUMO_PMESH_CTX_KIND + 2u)
 #define LUMO_PMESH_CTX_RANK_LOW (LUMO_PMESH_CTX_RANK + LUMO_PMESH_RANK_CTXS * LUMO_PMESH_RANK_CLASSES)
 #define LUMO_PMESH_CTX_MASK     (LUMO_PMESH_CTX_RANK_LOW + 2u * LUMO_PMESH_RANK_CLASSES)
-#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_MASK + 1u)
+/* Positions coded in the block (LUMO_PMESH_POS_CODED, §2.3 step 5): each
+ * residual's class (its bit length) in unary, by the ring's spread class
+ * (SPREAD_CTXS) and place (RES_CLASSES, the last one shared by every later
+ * place); the first two bits under its leading one, by class (RES_LOW_CTXS,
+ * the last one shared by every larger class) and place. */
+#define LUMO_PMESH_SPREAD_CTXS  12u
+#define LUMO_PMESH_RES_CLASSES  12u
+#define LUMO_PMESH_RES_LOW_CTXS 16u
+#define LUMO_PMESH_CTX_RES      (LUMO_PMESH_CTX_MASK + 1u)
+#define LUMO_PMESH_CTX_RES_LOW  (LUMO_PMESH_CTX_RES + LUMO_PMESH_SPREAD_CTXS * LUMO_PMESH_RES_CLASSES)
+#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_RES_LOW + 2u * LUMO_PMESH_RES_LOW_CTXS)
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
+/* The contexts' probabilities at the start of a stream (every record
+ * after the base carries them on): LUMO_PMESH_RC_PROB_INIT (1/2), except
+ * the residual class bits, which start from a prior by the offset d = j -
+ * sc of the bit's place from the spread class: a residual's bit length is
+ * about sc - 5 (measured on the bunny and the 11k dragon, and it does not
+ * depend on the grid: both scale with the edges), so "class > j" is likely
+ * well below it and unlikely above. The chance of a 0, in 1/2048: 32 for
+ * d <= -10, 1024 >> (-5 - d) for -9 <= d <= -5, 1536 for d = -4, 1856 for
+ * d >= -3. Saves the code's learning on short streams. */
+void lumo_pmesh_init_contexts(uint16_t *ctx);
+
+/* Context of the residual's class bit j ("class > j") under spread class
+ * sc, and of bit j (0 or 1) under the leading one of a class-c residual. */
+static inline uint32_t lumo_pmesh_res_ctx(uint32_t sc, uint32_t j)
+{
+    return LUMO_PMESH_CTX_RES + sc * LUMO_PMESH_RES_CLASSES +
+           (j < LUMO_PMESH_RES_CLASSES ? j : LUMO_PMESH_RES_CLASSES - 1u);
+}
+static inline uint32_t lumo_pmesh_res_low_ctx(uint32_t c, uint32_t j)
+{
+    return LUMO_PMESH_CTX_RES_LOW + 2u * (c < LUMO_PMESH_RES_LOW_CTXS ? c : LUMO_PMESH_RES_LOW_CTXS - 1u) + j;
+}
 /* Context of the rank's class bit c for a parent with n corners. */
 static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
 {
@@ -98,11 +130,15 @@ static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
 /* The predicted grid point of split vertex k right after its split, with
  * parent p (docs/progressive-mesh.md §2.3 step 5; sdk/src/pmesh_predict.c):
  * L(k) is walked from head[k] through next[] until LUMO_PMESH_NIL, corner c
- * showing tris[c]; q holds 3 grid integers per vertex. Shared by the stream
- * writer and the decoder. */
+ * showing tris[c]; q holds 3 grid integers per vertex. Returns the ring's
+ * spread class (0 ... SPREAD_CTXS - 1): the bit length of the sum over the
+ * axes of the extent (max - min) of the predicting vertices, which scales
+ * with the local edge length and so with the residual (LUMO_PMESH_POS_CODED
+ * conditions the residual's class on it). Shared by the stream writer and
+ * the decoder. */
 #define LUMO_PMESH_NIL 0xffffffffu
-void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3]);
+uint32_t lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
+                                     const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3]);
 
 /* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
  * the smallest n with 2^n >= count (0 for count <= 1). The stream writer
