@@ -134,6 +134,13 @@ int host_prt_open(host_prt *p, const char *path, const char *env, const host_sce
     return lights_vector(p, s);
 }
 
+/* Host vertices mesh m's PRT relights: the scene's own count for one
+ * mesh (any level of detail), all held vertices for several. */
+static uint32_t mesh_count(const host_prt *p, const host_scene *s, uint32_t m)
+{
+    return p->meshes == 1 ? s->mesh.vertex_count : p->mesh[m].vertices_held;
+}
+
 /* A false colour for id, bright enough to tell neighbours apart. */
 static void id_colour(uint32_t id, lumo_uq16_16 *rgb)
 {
@@ -147,7 +154,7 @@ static void false_colour(host_prt *p, const host_scene *s)
     uint32_t first = 0;
     for (uint32_t m = 0; m < p->meshes; m++) {
         const lumo_prt *c = &p->mesh[m];
-        uint32_t n = p->meshes == 1 ? s->mesh.vertex_count : c->vertices_held;
+        uint32_t n = mesh_count(p, s, m);
         for (uint32_t v = 0; v < n; v++) {
             uint32_t k = lumo_wire_le16(c->vertex_data + (size_t)v * lumo_prt_vertex_bytes(c->components));
             id_colour(p->view == HOST_PRT_PASSES ? lumo_prt_pass(c, k) + (m << 16) : k + (m << 16),
@@ -155,6 +162,25 @@ static void false_colour(host_prt *p, const host_scene *s)
         }
         first += n;
     }
+}
+
+int host_prt_gl_open(host_prt *p, lumo_gl *g, const host_scene *s, const lumo_raster_mesh *m, char *err,
+                     size_t errlen)
+{
+    uint32_t counts[LUMO_MAX_MESHES];
+    if (p->view != HOST_PRT_LIGHT) {
+        snprintf(err, errlen, "--prt-view draws with the soft backend only");
+        return -1;
+    }
+    for (uint32_t i = 0; i < p->meshes; i++)
+        counts[i] = mesh_count(p, s, i);
+    p->gl = lumo_gl_prt_create(g, m, p->mesh, counts, p->meshes, err, errlen);
+    return p->gl ? 0 : -1;
+}
+
+int host_prt_gl_draw(host_prt *p, const lumo_raster_camera *cam, const lumo_raster_scene *rs, uint8_t *rgb)
+{
+    return lumo_gl_prt_draw(p->gl, cam, rs, (const lumo_q16_16 *const *)p->frame, rgb);
 }
 
 int host_prt_relight(host_prt *p, const host_scene *s, int i, double deg)
@@ -170,9 +196,10 @@ int host_prt_relight(host_prt *p, const host_scene *s, int i, double deg)
     if (lumo_prt_light_rotate(&p->base, one, b, one, &l))
         return -1;
     for (uint32_t m = 0; m < p->meshes; m++) {
-        uint32_t n = p->meshes == 1 ? s->mesh.vertex_count : p->mesh[m].vertices_held;
-        if (lumo_prt_frame(&p->mesh[m], &l, p->frame[m]) ||
-            lumo_prt_shade(&p->mesh[m], p->frame[m], s->mesh.albedo + 3u * first, 0, n, p->lit + 6u * first))
+        uint32_t n = mesh_count(p, s, m);
+        if (lumo_prt_frame(&p->mesh[m], &l, p->frame[m]))
+            return -1;
+        if (!p->gl && lumo_prt_shade(&p->mesh[m], p->frame[m], s->mesh.albedo + 3u * first, 0, n, p->lit + 6u * first))
             return -1;
         first += n;
     }
@@ -182,6 +209,7 @@ int host_prt_relight(host_prt *p, const host_scene *s, int i, double deg)
 
 void host_prt_close(host_prt *p)
 {
+    lumo_gl_prt_destroy(p->gl);
     for (uint32_t m = 0; m < p->meshes; m++)
         free(p->frame[m]);
     free(p->lit);

@@ -45,6 +45,9 @@ const char *host_renderer_describe(const host_renderer *r);
 unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes);
 /* Bytes of frame/band buffers and vertex cache the soft backend uses. */
 size_t host_renderer_soft_bytes(const host_renderer *r);
+/* The GL renderer of an osmesa or egl backend (NULL for soft): for the
+ * GL add-ons drawing in its context (PRT multipass, lumo/raster_gl_prt.h). */
+struct lumo_gl *host_renderer_gl(host_renderer *r);
 void host_renderer_close(host_renderer *r);
 
 #endif
