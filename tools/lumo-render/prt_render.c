@@ -66,17 +66,17 @@ static int env_vector(host_prt *p, const char *env, char *err, size_t errlen)
     return 0;
 }
 
-/* The package's PRTL: order, 3 zero bytes, 3 x N^2 int32 Q16.16. */
+/* The package's PRTL (lumo_prt_light_decode), when its order is the
+ * transfer's. 1 when used. */
 static int prtl_vector(host_prt *p, const lumo_package *pkg)
 {
     const uint8_t *d;
     uint32_t n;
-    if (lumo_package_find(pkg, SRV_PRT_PKG_PRTL, 0, &d, &n) || n < 4 || d[0] != p->base.order ||
-        n != 4u + 12u * d[0] * d[0])
+    lumo_prt_light l;
+    if (lumo_package_find(pkg, SRV_PRT_PKG_PRTL, 0, &d, &n) || lumo_prt_light_decode(d, n, &l) ||
+        l.order != p->base.order)
         return 0;
-    for (int ch = 0; ch < 3; ch++)
-        for (int i = 0; i < d[0] * d[0]; i++)
-            p->base.c[ch][i] = (lumo_q16_16)lumo_wire_le32(d + 4 + 4 * (ch * d[0] * d[0] + i));
+    p->base = l;
     return 1;
 }
 
