@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include "lumo/prt.h"
 #include "lumo/raster_gl_prt.h"
+#include "lumo/session.h"
 #include "mesh_build.h"
 
 typedef struct host_prt {
@@ -23,6 +24,8 @@ typedef struct host_prt {
     lumo_uq16_16  *lit;                    /* 6 per host vertex */
     double         relight_ms;             /* summed over frames */
     int            view;                   /* HOST_PRT_LIGHT, _CLUSTERS or _PASSES */
+    uint32_t       count[LUMO_MAX_MESHES]; /* host vertices of each mesh, in order */
+    uint8_t        has[LUMO_MAX_MESHES];   /* mesh[i] holds every cluster (else its vertices stay black) */
     lumo_gl_prt   *gl;                     /* GL backends: the multipass draws, lit stays unused */
 } host_prt;
 
@@ -34,6 +37,13 @@ enum { HOST_PRT_LIGHT = 0, HOST_PRT_CLUSTERS = 1, HOST_PRT_PASSES = 2 };
  * mesh: any level of detail; several: all vertices). env: PNG or NULL (then
  * the package's PRTL, else the scene's lights). 0, or -1 with err. */
 int host_prt_open(host_prt *p, const char *path, const char *env, const host_scene *s, char *err, size_t errlen);
+
+/* The same from a client session (lumo/session.h: lumo-client --prt) whose
+ * scene s was built by host_scene_from_session: each mesh's PRT as held
+ * (a mesh whose clusters have not all arrived, or vertices past the
+ * records held, stay black until they do), the session's PRTL, else the
+ * scene's lights. 0, or -1 with err. */
+int host_prt_open_session(host_prt *p, const lumo_session *ses, const host_scene *s, char *err, size_t errlen);
 
 /* Relight for frame i: lighting turned by i * deg about +y. 0 or -1. */
 int host_prt_relight(host_prt *p, const host_scene *s, int i, double deg);
