@@ -99,18 +99,13 @@ static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t fr
 
 /* ---- WELCOME ------------------------------------------------------------------ */
 
-/* A PRTV header the session took (so it is valid): where mesh m's vertex
- * records start and their size, and the cursor of its PRT requests. */
-static void take_prt(lumo_net_client *c, uint32_t m, const uint8_t *p, uint32_t len)
+/* A PRTV header the session took: the cursor of mesh m's PRT requests. */
+static void take_prt(lumo_net_client *c, uint32_t m)
 {
-    size_t total, fixed;
-
-    if (m >= LUMO_MAX_MESHES || lumo_prt_chunk_size(p, len, &total, &fixed) != LUMO_OK)
+    if (m >= LUMO_MAX_MESHES)
         return;
-    c->prt_fixed[m] = (uint32_t)fixed;
-    c->prt_vbytes[m] = (uint32_t)lumo_prt_vertex_bytes(p[2]);
     lumo_session_prt_progress(c->session, m, &c->prt_asked[m], NULL);
-    c->has_prt = 1;
+    c->has_prt = c->prt_asked[m] > 0 || c->has_prt;
 }
 
 /* Descriptors into the session, in the order WELCOME carries them. */
@@ -124,7 +119,7 @@ static lumo_status feed_welcome(lumo_net_client *c, const lumo_net_welcome *w)
         if ((st = lumo_session_feed(c->session, m.type, m.index, m.data, m.len)))
             return st;
         if (m.type == LUMO_MSG_PRTV && c->cfg.prt)
-            take_prt(c, m.index, m.data, m.len);
+            take_prt(c, m.index);
     }
     return st == LUMO_ERR_RANGE ? LUMO_OK : st;
 }
@@ -551,9 +546,10 @@ static int prt_open(const lumo_net_client *c, uint32_t m)
 static uint32_t prt_amount(const lumo_net_client *c, uint32_t m)
 {
     lumo_pmesh_header h;
-    uint32_t fixed = c->prt_fixed[m], vb = c->prt_vbytes[m], have, want;
+    uint32_t fixed, vb, have, want;
 
-    if (!prt_open(c, m) || !vb || lumo_session_stream_header(c->session, m, &h))
+    if (!prt_open(c, m) || lumo_session_prt_layout(c->session, m, &fixed, &vb) ||
+        lumo_session_stream_header(c->session, m, &h))
         return 0;
     have = c->prt_asked[m] > fixed ? (c->prt_asked[m] - fixed) / vb : 0;
     want = mesh_open(c, m) ? lumo_net_vertices_before(&h, c->asked[m]) : h.vertices;
@@ -661,9 +657,12 @@ static int pick(lumo_net_client *c, uint32_t *mesh)
  * past those held whole, within the chunk. */
 static uint32_t prt_end(const lumo_net_client *c, uint32_t m, uint32_t cursor, uint32_t amount)
 {
-    uint32_t size = 0, fixed = c->prt_fixed[m], vb = c->prt_vbytes[m];
-    uint64_t held = cursor > fixed ? (cursor - fixed) / vb : 0, end = fixed + (held + amount) * vb;
+    uint32_t size = 0, fixed = 0, vb = 1;
+    uint64_t held, end;
 
+    (void)lumo_session_prt_layout(c->session, m, &fixed, &vb);   /* asked only with a PRTV */
+    held = cursor > fixed ? (cursor - fixed) / vb : 0;
+    end = fixed + (held + amount) * vb;
     lumo_session_prt_progress(c->session, m, NULL, &size);
     return end > size ? size : (uint32_t)end;
 }

@@ -358,6 +358,17 @@ static lumo_status feed_order(lumo_session *s, const uint8_t *p, size_t len)
 
 /* ---- PRT (seed 003; docs/client-session.md "PRT") ---------------------------- */
 
+/* The whole size of the chunk whose header the slot holds (checked when
+ * its PRTV came: it fits 32 bits). */
+static uint32_t prt_size(const lumo_session_mesh_slot *slot)
+{
+    size_t total = 0, fixed = 0;
+
+    if (slot->prt)
+        (void)lumo_prt_chunk_size(slot->prt, LUMO_PRT_HEADER_SIZE, &total, &fixed);
+    return (uint32_t)total;
+}
+
 /* Bytes [held, held + n) of mesh `index`'s chunk: copied behind what is
  * held (invisible until held moves), then every pass entry and vertex
  * record they complete checked; held moves only when all are good. */
@@ -365,7 +376,7 @@ static lumo_status prt_append(lumo_session_mesh_slot *slot, const uint8_t *p, si
 {
     lumo_status st;
 
-    if (n > (size_t)(slot->prt_size - slot->prt_held))
+    if (n > (size_t)(prt_size(slot) - slot->prt_held))
         return LUMO_ERR_CORRUPT;
     memcpy(slot->prt + slot->prt_held, p, n);
     if ((st = lumo_prt_check_span(slot->prt, slot->prt_held, slot->prt_held + n)))
@@ -388,16 +399,17 @@ static lumo_status feed_prt(lumo_session *s, uint32_t index, const uint8_t *p, s
         return LUMO_ERR_STATE;
     if ((st = prt_need(p, len, &total)) || (st = lumo_prt_chunk_size(p, len, &total, &fixed)))
         return st;
-    /* The transfer is per vertex of the full progressive mesh (docs/prt.md). */
-    if (slot->kind == SLOT_PM && lumo_wire_le32(p + 8) != slot->pm.h.vertices)
+    /* The transfer is per vertex of the full mesh (docs/prt.md); checked
+     * when the mesh came first. */
+    if ((slot->kind == SLOT_PM && lumo_wire_le32(p + 8) != slot->pm.h.vertices) ||
+        (slot->kind == SLOT_RAW && lumo_wire_le32(p + 8) != slot->raw.vertex_count))
         return LUMO_ERR_CORRUPT;
     if (!(slot->prt = lumo_arena_alloc(s->arena, total)))
         return LUMO_ERR_NOMEM;
-    slot->prt_size = (uint32_t)total;
     memcpy(slot->prt, p, LUMO_PRT_HEADER_SIZE);
     slot->prt_held = LUMO_PRT_HEADER_SIZE;
     if ((st = prt_append(slot, p + LUMO_PRT_HEADER_SIZE, len - LUMO_PRT_HEADER_SIZE))) {
-        slot->prt = NULL, slot->prt_held = slot->prt_size = 0;
+        slot->prt = NULL, slot->prt_held = 0;
         lumo_arena_reset(s->arena, mark);
     }
     return st;
@@ -431,7 +443,6 @@ static lumo_status feed_prt_light(lumo_session *s, const uint8_t *p, size_t len)
     if (!(copy = keep(s, p, len)))
         return LUMO_ERR_NOMEM;
     s->prtl = copy;
-    s->prtl_len = (uint32_t)len;
     return LUMO_OK;
 }
 
@@ -625,7 +636,21 @@ void lumo_session_prt_progress(const lumo_session *s, uint32_t index, uint32_t *
     if (held)
         *held = ok ? s->mesh[index].prt_held : 0;
     if (size)
-        *size = ok ? s->mesh[index].prt_size : 0;
+        *size = ok ? prt_size(&s->mesh[index]) : 0;
+}
+
+lumo_status lumo_session_prt_layout(const lumo_session *s, uint32_t index, uint32_t *fixed, uint32_t *vertex_bytes)
+{
+    size_t total, f;
+
+    if (!s || !fixed || !vertex_bytes)
+        return LUMO_ERR_ARG;
+    if (index >= LUMO_MAX_MESHES || !s->mesh[index].prt ||
+        lumo_prt_chunk_size(s->mesh[index].prt, LUMO_PRT_HEADER_SIZE, &total, &f))
+        return LUMO_ERR_RANGE;
+    *fixed = (uint32_t)f;
+    *vertex_bytes = (uint32_t)lumo_prt_vertex_bytes(s->mesh[index].prt[2]);
+    return LUMO_OK;
 }
 
 lumo_status lumo_session_prt_light(const lumo_session *s, lumo_prt_light *out)
@@ -634,7 +659,7 @@ lumo_status lumo_session_prt_light(const lumo_session *s, lumo_prt_light *out)
         return LUMO_ERR_ARG;
     if (!s->prtl)
         return LUMO_ERR_RANGE;
-    return lumo_prt_light_decode(s->prtl, s->prtl_len, out);
+    return lumo_prt_light_decode(s->prtl, 4u + 12u * (size_t)s->prtl[0] * s->prtl[0], out);
 }
 
 lumo_status lumo_session_stream_header(const lumo_session *s, uint32_t index, lumo_pmesh_header *out)

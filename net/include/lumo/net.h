@@ -46,6 +46,7 @@ typedef enum lumo_net_type {
 typedef enum lumo_net_channel {
     LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1, LUMO_NET_UPDATES = 2, LUMO_NET_PRT = 3
 } lumo_net_channel;
+/* The highest channel a REQUEST, DATA or END may name (RANGE above). */
 #define LUMO_NET_CHANNEL_LAST LUMO_NET_PRT
 
 #define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */

@@ -123,9 +123,8 @@ typedef struct lumo_net_client {
     uint32_t rounds_held, rounds_asked, rounds_total;
     uint8_t  has_ivg;
     uint8_t  has_prt;                 /* cfg.prt and the WELCOME carried a PRTV */
-    uint32_t prt_asked[LUMO_MAX_MESHES];  /* PRTV bytes asked for (held + pending); 0: no PRT */
-    uint32_t prt_fixed[LUMO_MAX_MESHES];  /* bytes before its vertex records */
-    uint32_t prt_vbytes[LUMO_MAX_MESHES]; /* one vertex record */
+    uint32_t prt_asked[LUMO_MAX_MESHES];  /* PRTV bytes asked for (held + pending); 0: no PRT
+                                             (its layout: lumo_session_prt_layout) */
     uint32_t turn;                    /* interleaving position */
     uint8_t  pipeline_auto;           /* policy.pipeline was 0 */
     lumo_net_pending pending[LUMO_NET_MAX_PENDING];

@@ -108,9 +108,9 @@ typedef struct lumo_session_mesh_slot {
     uint32_t    target;     /* progressive: the level's vertex count */
     lumo_pmesh  pm;         /* progressive */
     lumo_pmesh_view raw;    /* raw: the arrays in the arena */
-    uint8_t    *prt;        /* PRT: the mesh's PRTV chunk in the arena, NULL before PRTV */
+    uint8_t    *prt;        /* PRT: the mesh's PRTV chunk in the arena (its size from
+                               the header), NULL before PRTV */
     uint32_t    prt_held;   /* its bytes held (checked), a prefix */
-    uint32_t    prt_size;   /* the whole chunk's */
 } lumo_session_mesh_slot;
 
 /* The session. Fields are private. */
@@ -129,8 +129,8 @@ typedef struct lumo_session {
     lumo_scene_order order;       /* ORDR, its steps copied into the arena */
     lumo_session_mesh_slot mesh[LUMO_MAX_MESHES];
     lumo_q16_16    pose[LUMO_MAX_MESHES][4];   /* dynamic scenes: translation (m), yaw (deg) */
-    const uint8_t *prtl;          /* PRTL: its checked copy in the arena, NULL before */
-    uint32_t       prtl_len;
+    const uint8_t *prtl;          /* PRTL: its checked copy in the arena (its length from
+                                   * its order), NULL before */
 } lumo_session;
 
 /* An empty session taking its memory from `arena` (not owned; must outlive
@@ -243,6 +243,10 @@ lumo_status lumo_session_prt(const lumo_session *s, uint32_t index, lumo_prt *ou
 /* Bytes of mesh `index`'s PRTV chunk held and its whole size (0, 0 before
  * its PRTV): the cursor of a PRT REQUEST (docs/protocol.md §10). */
 void lumo_session_prt_progress(const lumo_session *s, uint32_t index, uint32_t *held, uint32_t *size);
+/* The layout of mesh `index`'s PRTV chunk (from its header): the bytes
+ * before its vertex records (header, clusters, pass table) and one vertex
+ * record's. RANGE when no PRTV of that mesh arrived. */
+lumo_status lumo_session_prt_layout(const lumo_session *s, uint32_t index, uint32_t *fixed, uint32_t *vertex_bytes);
 /* The environment lighting of the PRTL message: RANGE when none arrived. */
 lumo_status lumo_session_prt_light(const lumo_session *s, lumo_prt_light *out);
 
