@@ -6,18 +6,27 @@
 PRT_BENCH := $(BIN)/prt-bench
 HOST_TOOLS += $(PRT_BENCH)
 
-$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
+# The fps column draws with the GL backends' PRT multipass on OSMesa (the
+# GL objects are lumo-render's, tools/lumo-render/lumo-render.mk; named
+# literally: fragments are included in any order).
+PRT_BENCH_GL := $(BUILD)/host/rasterizer/gl/raster_gl.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o \
+                $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o
+$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(PRT_BENCH_GL) $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a \
+              $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $^ $(SERVER_LIBS)
+	$(CC) -pthread -o $@ $^ -lOSMesa $(SERVER_LIBS)
 
 PRT_BENCH_MODELS := $(BUILD)/data/models/dragon_48k.ply $(BUILD)/data/models/bunny.obj
 PRT_BENCH_ARGS   ?= --order 6 --strata 32 --bounces 1 --components 8 --alpha 0.05 --alpha2 8 --alpha-sweep 0,0.05,0.5,2,8,32 \
-                    --clusters 64,128,192,256
+                    --clusters 64,128,192,256 --fps-frames 15 --size 640x480
+# llvmpipe's threads for the fps column: 0 draws in the calling thread, whose
+# CPU time is then the frame's whole cost (prt_bench.c gl_fps_of)
+PRT_BENCH_LP ?= 0
 
 BENCH_STEPS += bench-prt
 .PHONY: bench-prt
 bench-prt: $(PRT_BENCH)
 	@mkdir -p $(BUILD)/bench/sections
-	$(PRT_BENCH) --out $(BUILD)/bench/sections/70-prt.md --plot $(BUILD)/bench/prt-overdraw.svg \
-	    --cmd "make bench-prt ($(PRT_BENCH) $(PRT_BENCH_ARGS) $(PRT_BENCH_MODELS))" $(PRT_BENCH_ARGS) $(PRT_BENCH_MODELS)
+	LP_NUM_THREADS=$(PRT_BENCH_LP) $(PRT_BENCH) --out $(BUILD)/bench/sections/70-prt.md --plot $(BUILD)/bench/prt-overdraw.svg \
+	    --cmd "make bench-prt (LP_NUM_THREADS=$(PRT_BENCH_LP) $(PRT_BENCH) $(PRT_BENCH_ARGS) $(PRT_BENCH_MODELS))" $(PRT_BENCH_ARGS) $(PRT_BENCH_MODELS)
 	@cat $(BUILD)/bench/sections/70-prt.md

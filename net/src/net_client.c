@@ -63,6 +63,8 @@ lumo_status lumo_net_client_hello(lumo_net_client *c, uint8_t *out, size_t cap, 
     h.flags = c->cfg.smoothing ? LUMO_NET_FLAG_SMOOTHING : 0;
     if (c->cfg.first_picture && !c->package_id && !c->cfg.replay)
         h.flags |= LUMO_NET_FLAG_FIRST_PICTURE;
+    if (c->cfg.prt)
+        h.flags |= LUMO_NET_FLAG_PRT;
     c->hello_ms = now_ms(c);
     h.resume_id = c->package_id;
     h.mesh_count = c->package_id ? c->mesh_count : 0;
@@ -83,8 +85,11 @@ void lumo_net_client_reset_link(lumo_net_client *c)
         c->turn = c->pending[0].turn;
     c->npending = 0;
     c->partial_records = 0;
-    for (m = 0; m < c->mesh_count; m++)
+    for (m = 0; m < c->mesh_count; m++) {
         c->asked[m] = c->held[m];
+        if (c->prt_asked[m])
+            lumo_session_prt_progress(c->session, m, &c->prt_asked[m], NULL);
+    }
     c->rounds_asked = c->rounds_held;
     if (c->state == LUMO_NET_HELLO_SENT)
         c->state = c->package_id ? LUMO_NET_READY : LUMO_NET_START;
@@ -93,6 +98,15 @@ void lumo_net_client_reset_link(lumo_net_client *c)
 static uint32_t batch_vertices(const lumo_net_client *c, uint32_t m, uint32_t from, uint32_t to);
 
 /* ---- WELCOME ------------------------------------------------------------------ */
+
+/* A PRTV header the session took: the cursor of mesh m's PRT requests. */
+static void take_prt(lumo_net_client *c, uint32_t m)
+{
+    if (m >= LUMO_MAX_MESHES)
+        return;
+    lumo_session_prt_progress(c->session, m, &c->prt_asked[m], NULL);
+    c->has_prt = c->prt_asked[m] > 0 || c->has_prt;
+}
 
 /* Descriptors into the session, in the order WELCOME carries them. */
 static lumo_status feed_welcome(lumo_net_client *c, const lumo_net_welcome *w)
@@ -104,6 +118,8 @@ static lumo_status feed_welcome(lumo_net_client *c, const lumo_net_welcome *w)
     while ((st = lumo_net_welcome_next(w, &at, &m)) == LUMO_OK) {
         if ((st = lumo_session_feed(c->session, m.type, m.index, m.data, m.len)))
             return st;
+        if (m.type == LUMO_MSG_PRTV && c->cfg.prt)
+            take_prt(c, m.index);
     }
     return st == LUMO_ERR_RANGE ? LUMO_OK : st;
 }
@@ -258,6 +274,32 @@ static lumo_status apply_lighting(lumo_net_client *c, const lumo_net_data *d)
     return LUMO_OK;
 }
 
+/* PRT bytes of mesh m held (the session's cursor, docs/protocol.md §10). */
+static uint32_t prt_held(const lumo_net_client *c, uint32_t m)
+{
+    uint32_t held = 0;
+
+    lumo_session_prt_progress(c->session, m, &held, NULL);
+    return held;
+}
+
+/* A PRT DATA's span goes to the session as one PRTS message: the four
+ * bytes before it in the frame (records = the offset) are its head. */
+static lumo_status apply_prt(lumo_net_client *c, const lumo_net_data *d)
+{
+    return lumo_session_feed(c->session, LUMO_MSG_PRTS, d->mesh, d->bytes - LUMO_NET_PRTS_HEAD,
+                             d->len + LUMO_NET_PRTS_HEAD);
+}
+
+/* Where a channel's cursor stands now: batches of the mesh, PRTV bytes of
+ * the mesh, or lighting rounds. */
+static uint32_t held_of(const lumo_net_client *c, uint8_t channel, uint32_t mesh)
+{
+    if (channel == LUMO_NET_GEOMETRY)
+        return c->held[mesh];
+    return channel == LUMO_NET_PRT ? prt_held(c, mesh) : c->rounds_held;
+}
+
 /* The request a DATA or END answers: the oldest in flight (none in replay,
  * where the recording is taken as it comes). */
 static const lumo_net_pending *answering(const lumo_net_client *c)
@@ -277,8 +319,11 @@ static lumo_status check_data(const lumo_net_client *c, const lumo_net_data *d)
     if (!p && !c->cfg.replay)
         return LUMO_ERR_STATE;
     if (p && (p->end <= p->cursor || d->channel != p->channel ||
-              (d->channel == LUMO_NET_GEOMETRY && d->mesh != p->mesh) || (uint64_t)d->first + d->count > p->end))
+              (d->channel != LUMO_NET_LIGHTING && d->mesh != p->mesh) || (uint64_t)d->first + d->count > p->end))
         return LUMO_ERR_STATE;   /* (a request at the end, the resync marker, is answered by END) */
+    if (d->channel == LUMO_NET_PRT)
+        return c->has_prt && d->mesh < c->mesh_count && c->prt_asked[d->mesh] && d->first == prt_held(c, d->mesh)
+                   ? LUMO_OK : LUMO_ERR_STATE;
     if (d->channel == LUMO_NET_GEOMETRY) {
         if (d->mesh >= c->mesh_count || d->first != c->held[d->mesh] || d->count != d->records ||
             (uint64_t)d->first + d->count > c->batches[d->mesh])
@@ -307,7 +352,7 @@ static lumo_status check_data(const lumo_net_client *c, const lumo_net_data *d)
 static void retire(lumo_net_client *c, uint32_t t, uint32_t bytes)
 {
     lumo_net_pending *p = &c->pending[0];
-    uint32_t held = p->channel == LUMO_NET_GEOMETRY ? c->held[p->mesh] : c->rounds_held;
+    uint32_t held = held_of(c, p->channel, p->mesh);
     uint32_t took, flow, from;
 
     c->data_bytes += bytes;
@@ -339,11 +384,14 @@ static lumo_status on_data(lumo_net_client *c, const lumo_net_frame *f)
     if ((st = lumo_net_data_decode(f, &d)) || (st = check_data(c, &d)))
         return st;
     t0 = now_ms(c);
-    before = d.channel == LUMO_NET_GEOMETRY ? c->held[d.mesh] : c->rounds_held;
-    st = d.channel == LUMO_NET_GEOMETRY ? apply_geometry(c, &d) : apply_lighting(c, &d);
+    before = held_of(c, d.channel, d.mesh);
+    st = d.channel == LUMO_NET_GEOMETRY ? apply_geometry(c, &d)
+       : d.channel == LUMO_NET_PRT      ? apply_prt(c, &d) : apply_lighting(c, &d);
     if (st)
         return st;
-    if (d.channel == LUMO_NET_GEOMETRY) {
+    if (d.channel == LUMO_NET_PRT) {
+        (void)before;   /* PRT bytes are the link's and the apply's costs only */
+    } else if (d.channel == LUMO_NET_GEOMETRY) {
         uint32_t v = batch_vertices(c, d.mesh, before, c->held[d.mesh]);
         c->costs.bytes_per_vertex = v ? d.len / v + 1 : c->costs.bytes_per_vertex;
         c->mesh_bytes[d.mesh] += d.len;
@@ -376,12 +424,19 @@ static lumo_status check_end(const lumo_net_client *c, const lumo_net_end *e)
 {
     const lumo_net_pending *p = answering(c);
 
-    if (e->channel == LUMO_NET_GEOMETRY ? e->mesh >= c->mesh_count : !c->has_ivg)
+    uint32_t size = 0;
+
+    if (e->channel == LUMO_NET_PRT) {
+        if (e->mesh >= c->mesh_count || !c->prt_asked[e->mesh])
+            return LUMO_ERR_STATE;
+        lumo_session_prt_progress(c->session, e->mesh, NULL, &size);
+    } else if (e->channel == LUMO_NET_GEOMETRY ? e->mesh >= c->mesh_count : !c->has_ivg)
         return LUMO_ERR_STATE;
     if (!p)
         return c->cfg.replay ? LUMO_OK : LUMO_ERR_STATE;
-    if (e->channel != p->channel || (e->channel == LUMO_NET_GEOMETRY && e->mesh != p->mesh) ||
-        p->cursor < (e->channel == LUMO_NET_GEOMETRY ? c->batches[e->mesh] : c->rounds_total))
+    if (e->channel != p->channel || (e->channel != LUMO_NET_LIGHTING && e->mesh != p->mesh) ||
+        p->cursor < (e->channel == LUMO_NET_GEOMETRY ? c->batches[e->mesh]
+                     : e->channel == LUMO_NET_PRT    ? size : c->rounds_total))
         return LUMO_ERR_STATE;
     return LUMO_OK;
 }
@@ -426,7 +481,7 @@ static int answers_oldest(const lumo_net_client *c, uint8_t channel, uint32_t me
 {
     const lumo_net_pending *p = &c->pending[0];
 
-    return c->npending > 0 && p->channel == channel && (channel != LUMO_NET_GEOMETRY || p->mesh == mesh);
+    return c->npending > 0 && p->channel == channel && (channel == LUMO_NET_LIGHTING || p->mesh == mesh);
 }
 
 static int data_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
@@ -437,8 +492,8 @@ static int data_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
         return 1;
     if (!c->cfg.replay && !answers_oldest(c, d.channel, d.mesh))
         return 0;
-    if (d.channel == LUMO_NET_GEOMETRY)
-        return d.mesh < c->mesh_count && d.first == c->held[d.mesh];
+    if (d.channel == LUMO_NET_GEOMETRY || d.channel == LUMO_NET_PRT)
+        return d.mesh < c->mesh_count && d.first == held_of(c, d.channel, d.mesh);
     return d.first == c->rounds_held;
 }
 
@@ -471,6 +526,34 @@ int lumo_net_client_in_turn(const lumo_net_client *c, const lumo_net_frame *f)
 static int mesh_open(const lumo_net_client *c, uint32_t m)
 {
     return c->asked[m] < c->batches[m];
+}
+
+static int prt_open(const lumo_net_client *c, uint32_t m)
+{
+    uint32_t size = 0;
+
+    if (!c->has_prt || !c->prt_asked[m])
+        return 0;
+    lumo_session_prt_progress(c->session, m, NULL, &size);
+    return c->prt_asked[m] < size;
+}
+
+/* Vertex records of mesh m's PRT to ask for now: as many as the vertices
+ * its geometry requests have asked (a client relights what it holds, in
+ * the progressive order: docs/prt.md), all that is left once they have
+ * asked the whole stream; 0 while the PRT is as far as the geometry.
+ * The clusters and pass table come with the first request. */
+static uint32_t prt_amount(const lumo_net_client *c, uint32_t m)
+{
+    lumo_pmesh_header h;
+    uint32_t fixed, vb, have, want;
+
+    if (!prt_open(c, m) || lumo_session_prt_layout(c->session, m, &fixed, &vb) ||
+        lumo_session_stream_header(c->session, m, &h))
+        return 0;
+    have = c->prt_asked[m] > fixed ? (c->prt_asked[m] - fixed) / vb : 0;
+    want = mesh_open(c, m) ? lumo_net_vertices_before(&h, c->asked[m]) : h.vertices;
+    return want > have ? want - have : 0;
 }
 
 static int ivg_open(const lumo_net_client *c)
@@ -553,6 +636,9 @@ static int pick(lumo_net_client *c, uint32_t *mesh)
         return LUMO_NET_LIGHTING;
     if (c->cfg.policy.order == LUMO_NET_ORDER_LIGHTING_FIRST && ivg_open(c))
         return LUMO_NET_LIGHTING;
+    for (m = 0; m < c->mesh_count; m++)   /* PRT keeps up with the geometry asked */
+        if (prt_amount(c, m))
+            return *mesh = m, LUMO_NET_PRT;
     for (k = 0; k < n; k++) {
         uint32_t slot = (c->turn + k) % n;
         if (c->cfg.policy.order == LUMO_NET_ORDER_GEOMETRY_FIRST && slot == c->mesh_count)
@@ -566,6 +652,21 @@ static int pick(lumo_net_client *c, uint32_t *mesh)
     return ivg_open(c) ? LUMO_NET_LIGHTING : -1;
 }
 
+/* The end of a PRT answer as the server computes it (docs/protocol.md
+ * §10): the rest of the clusters and passes, then `amount` vertex records
+ * past those held whole, within the chunk. */
+static uint32_t prt_end(const lumo_net_client *c, uint32_t m, uint32_t cursor, uint32_t amount)
+{
+    uint32_t size = 0, fixed = 0, vb = 1;
+    uint64_t held, end;
+
+    (void)lumo_session_prt_layout(c->session, m, &fixed, &vb);   /* asked only with a PRTV */
+    held = cursor > fixed ? (cursor - fixed) / vb : 0;
+    end = fixed + (held + amount) * vb;
+    lumo_session_prt_progress(c->session, m, NULL, &size);
+    return end > size ? size : (uint32_t)end;
+}
+
 static lumo_status send_request(lumo_net_client *c, int channel, uint32_t mesh, uint8_t *out, size_t cap,
                                 size_t *written)
 {
@@ -575,13 +676,18 @@ static lumo_status send_request(lumo_net_client *c, int channel, uint32_t mesh, 
 
     memset(&r, 0, sizeof r);
     r.channel = (uint8_t)channel;
-    r.mesh = channel == LUMO_NET_GEOMETRY ? mesh : 0;
-    r.cursor = channel == LUMO_NET_GEOMETRY ? c->asked[mesh] : c->rounds_asked;
-    r.amount = channel == LUMO_NET_GEOMETRY ? geometry_amount(c, mesh) : lighting_amount(c);
+    r.mesh = channel == LUMO_NET_LIGHTING ? 0 : mesh;
+    r.cursor = channel == LUMO_NET_GEOMETRY ? c->asked[mesh] : channel == LUMO_NET_PRT ? c->prt_asked[mesh]
+             : c->rounds_asked;
+    r.amount = channel == LUMO_NET_GEOMETRY ? geometry_amount(c, mesh)
+             : channel == LUMO_NET_PRT      ? prt_amount(c, mesh) : lighting_amount(c);
     if ((st = lumo_net_request_encode(&r, out, cap, written)))
         return st;
     p->channel = r.channel, p->mesh = r.mesh, p->cursor = r.cursor, p->sent_ms = now_ms(c);
-    if (channel == LUMO_NET_GEOMETRY) {
+    if (channel == LUMO_NET_PRT) {
+        p->end = prt_end(c, mesh, r.cursor, r.amount);
+        c->prt_asked[mesh] = p->end;
+    } else if (channel == LUMO_NET_GEOMETRY) {
         lumo_pmesh_header h;
         lumo_session_stream_header(c->session, mesh, &h);
         p->end = lumo_net_geometry_end(&h, r.cursor, r.amount);   /* what the server sends */
@@ -627,6 +733,9 @@ static int link_idles(const lumo_net_client *c)
         if (p->channel == LUMO_NET_GEOMETRY) {
             uint32_t from = c->held[p->mesh] > p->cursor ? c->held[p->mesh] : p->cursor;
             bytes += (uint64_t)batch_vertices(c, p->mesh, from, p->end) * mesh_bytes_per_vertex(c, p->mesh);
+        } else if (p->channel == LUMO_NET_PRT) {
+            uint32_t from = prt_held(c, p->mesh) > p->cursor ? prt_held(c, p->mesh) : p->cursor;
+            bytes += p->end > from ? p->end - from : 0;
         } else {
             uint32_t from = c->rounds_held > p->cursor ? c->rounds_held : p->cursor;
             bytes += (uint64_t)(p->end > from ? p->end - from : 0) * c->costs.bytes_per_round;
@@ -639,9 +748,14 @@ static int all_held(const lumo_net_client *c)
 {
     uint32_t m;
 
-    for (m = 0; m < c->mesh_count; m++)
+    for (m = 0; m < c->mesh_count; m++) {
+        uint32_t held = 0, size = 0;
         if (c->held[m] < c->batches[m])
             return 0;
+        lumo_session_prt_progress(c->session, m, &held, &size);
+        if (c->has_prt && c->prt_asked[m] && held < size)
+            return 0;
+    }
     return !c->has_ivg || c->rounds_held >= c->rounds_total;
 }
 

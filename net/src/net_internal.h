@@ -52,9 +52,10 @@ static inline lumo_status net_exact(uint32_t len, size_t want)
  * index (geometry), else 0"). RANGE otherwise. */
 static inline lumo_status net_channel(uint8_t channel, uint32_t mesh)
 {
-    if (channel > LUMO_NET_UPDATES)
+    if (channel > LUMO_NET_CHANNEL_LAST)
         return LUMO_ERR_RANGE;
-    return channel != LUMO_NET_GEOMETRY && mesh != 0 ? LUMO_ERR_RANGE : LUMO_OK;
+    /* geometry and PRT name a mesh; lighting and updates are the scene's */
+    return channel != LUMO_NET_GEOMETRY && channel != LUMO_NET_PRT && mesh != 0 ? LUMO_ERR_RANGE : LUMO_OK;
 }
 
 /* The status an ERROR frame carries (a decoding failure, or a status

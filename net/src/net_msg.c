@@ -105,6 +105,15 @@ static lumo_status data_check_updates(const lumo_net_data *m)
     return m->count > m->first ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
+/* §10 DATA, PRT: form 0, at least one byte, records = first (the span's
+ * offset: the session's PRTS head) and count = the bytes carried. */
+static lumo_status data_check_prt(const lumo_net_data *m)
+{
+    if (m->form != 0 || m->count == 0)
+        return LUMO_ERR_RANGE;
+    return m->records == m->first && m->count == m->len ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
 static lumo_status data_check(const lumo_net_data *m)
 {
     lumo_status st = net_channel(m->channel, m->mesh);
@@ -113,6 +122,8 @@ static lumo_status data_check(const lumo_net_data *m)
         return st;
     if (m->channel == LUMO_NET_UPDATES)
         return data_check_updates(m);
+    if (m->channel == LUMO_NET_PRT)
+        return data_check_prt(m);
     return m->channel == LUMO_NET_GEOMETRY ? data_check_geometry(m) : data_check_lighting(m);
 }
 

@@ -89,6 +89,7 @@ enum { ATTR_POS = 0, ATTR_NRM = 1, ATTR_ALB = 2 };
 
 struct lumo_gl {
     gl_api gl;
+    lumo_gl_getproc_fn getproc;     /* kept for the add-ons in their own files (lumo_gl_getproc) */
     int gles, width, height;
     GLuint prog[2];                 /* per vertex, per pixel */
     lumo_gl_shadow *shadow;         /* the lights' shadow maps (raster_gl_shadow.c) */
@@ -151,15 +152,16 @@ static GLuint compile(lumo_gl *g, GLenum stage, int per_pixel, const char *body,
     return s;
 }
 
-/* A program of the two stages' bodies (after the common GLSL). */
-static GLuint build_program(lumo_gl *g, int per_pixel, const char *vbody, const char *fbody, char *err,
-                            size_t errlen)
+/* Compile and link a vertex and fragment body (after the version line and
+ * lumo_gl_common_glsl) with attribs[i] bound to location i. */
+static GLuint link_program(lumo_gl *g, int per_pixel, const char *vbody, const char *fbody,
+                           const char *const *attribs, unsigned nattribs, char *err, size_t errlen)
 {
     GLuint vs = compile(g, GL_VERTEX_SHADER, per_pixel, vbody, err, errlen);
     GLuint fs = vs ? compile(g, GL_FRAGMENT_SHADER, per_pixel, fbody, err, errlen) : 0;
     GLuint p;
     GLint ok = 0;
-    int i;
+    unsigned i;
 
     if (!fs) {
         if (vs) g->gl.DeleteShader(vs);
@@ -168,9 +170,8 @@ static GLuint build_program(lumo_gl *g, int per_pixel, const char *vbody, const 
     p = g->gl.CreateProgram();
     g->gl.AttachShader(p, vs);
     g->gl.AttachShader(p, fs);
-    g->gl.BindAttribLocation(p, ATTR_POS, "a_pos");
-    g->gl.BindAttribLocation(p, ATTR_NRM, "a_nrm");
-    g->gl.BindAttribLocation(p, ATTR_ALB, "a_alb");
+    for (i = 0; i < nattribs; i++)
+        g->gl.BindAttribLocation(p, i, attribs[i]);
     g->gl.LinkProgram(p);
     g->gl.DeleteShader(vs);
     g->gl.DeleteShader(fs);
@@ -180,6 +181,26 @@ static GLuint build_program(lumo_gl *g, int per_pixel, const char *vbody, const 
         g->gl.GetProgramInfoLog(p, sizeof log, NULL, log);
         return gl_fail(err, errlen, "program link", log, g->gl.DeleteProgram, p);
     }
+    return p;
+}
+
+unsigned lumo_gl_program(lumo_gl *g, const char *vertex, const char *fragment, const char *const *attribs,
+                         unsigned nattribs, char *err, size_t errlen)
+{
+    return link_program(g, 0, vertex, fragment, attribs, nattribs, err, errlen);
+}
+
+/* A program of lumo's own stages' bodies (after the common GLSL): the mesh's
+ * attributes bound, the IVG textures and the shadow maps on their units. */
+static GLuint build_program(lumo_gl *g, int per_pixel, const char *vbody, const char *fbody, char *err,
+                            size_t errlen)
+{
+    static const char *const attribs[] = {"a_pos", "a_nrm", "a_alb"};   /* ATTR_POS, _NRM, _ALB */
+    GLuint p = link_program(g, per_pixel, vbody, fbody, attribs, 3, err, errlen);
+    int i;
+
+    if (!p)
+        return 0;
     g->gl.UseProgram(p);
     for (i = 0; i < IVG_TEXTURES; i++)
         g->gl.Uniform1i(g->gl.GetUniformLocation(p, tex_names[i]), i);
@@ -218,6 +239,7 @@ lumo_gl *lumo_gl_create(lumo_gl_getproc_fn getproc, int gles, int width, int hei
         return NULL;
     }
     g->gles = gles;
+    g->getproc = getproc;
     g->width = width;
     g->height = height;
     g->rgba = malloc((size_t)width * height * 4);
@@ -426,7 +448,7 @@ int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_sc
 {
     GLuint p = g->prog[(s->flags & LUMO_RASTER_PER_PIXEL) ? 1 : 0];
     float mvp[16], eye[3];
-    int y, x, ind = s->indirect != NULL && g->have_ivg;
+    int x, ind = s->indirect != NULL && g->have_ivg;
 
     camera_matrix(g, cam, mvp, eye);
     if (lumo_gl_shadow_update(g->shadow, s, g->vao, g->index_count, g->scene_radius, g->mesh_gen))
@@ -462,6 +484,14 @@ int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_sc
         }
     g->gl.BindVertexArray(g->vao);
     g->gl.DrawElements(GL_TRIANGLES, g->index_count, GL_UNSIGNED_INT, (const void *)0);
+    return lumo_gl_read_rgb(g, rgb);
+}
+
+int lumo_gl_read_rgb(lumo_gl *g, uint8_t *rgb)
+{
+    int y, x;
+
+    g->gl.BindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     g->gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     g->gl.ReadPixels(0, 0, g->width, g->height, GL_RGBA, GL_UNSIGNED_BYTE, g->rgba);
     /* GL's rows go bottom-up; PNG's top-down. */
@@ -475,6 +505,34 @@ int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_sc
         }
     }
     return g->gl.GetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+void lumo_gl_bind_target(lumo_gl *g)
+{
+    g->gl.BindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    g->gl.Viewport(0, 0, g->width, g->height);
+}
+
+void lumo_gl_mvp(const lumo_gl *g, const lumo_raster_camera *cam, float mvp[16])
+{
+    float eye[3];
+    camera_matrix(g, cam, mvp, eye);
+}
+
+lumo_gl_getproc_fn lumo_gl_getproc(const lumo_gl *g)
+{
+    return g->getproc;
+}
+
+int lumo_gl_gles(const lumo_gl *g)
+{
+    return g->gles;
+}
+
+void lumo_gl_size(const lumo_gl *g, int *width, int *height)
+{
+    *width = g->width;
+    *height = g->height;
 }
 
 void lumo_gl_destroy(lumo_gl *g)

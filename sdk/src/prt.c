@@ -2,6 +2,7 @@
  * "PRTV"): header, cluster records, pass table, vertex records in the
  * progressive mesh's vertex order, so that a prefix relights the vertices
  * it holds. */
+#include "lumo/arena.h"
 #include "lumo/prt.h"
 #include "lumo/wire.h"
 
@@ -64,5 +65,63 @@ lumo_status lumo_prt_parse(lumo_prt *out, const uint8_t *data, size_t len)
         if (lumo_wire_le16(p.vertex_data + (size_t)v * vbytes) >= p.clusters)
             return LUMO_ERR_RANGE;
     *out = p;
+    return LUMO_OK;
+}
+
+lumo_status lumo_prt_chunk_size(const uint8_t *data, size_t len, size_t *total, size_t *fixed)
+{
+    lumo_prt p;
+    lumo_status st;
+    if (!data || !total || !fixed)
+        return LUMO_ERR_ARG;
+    if ((st = parse_header(&p, data, len)) != LUMO_OK)
+        return st;
+    size_t f = (size_t)LUMO_PRT_HEADER_SIZE + (size_t)p.clusters * (lumo_prt_cluster_bytes(p.order, p.components) + 2u);
+    size_t v = lumo_size_mul(p.vertices, lumo_prt_vertex_bytes(p.components));
+    if (v == SIZE_MAX || lumo_size_add(f, v) == SIZE_MAX)
+        return LUMO_ERR_OVERFLOW;
+    *fixed = f;
+    *total = f + v;
+    return LUMO_OK;
+}
+
+/* The units ending in (from, end] of one table of `n` entries of `size`
+ * bytes at `base` whose first two bytes name a cluster: all < k. */
+static lumo_status check_table(const uint8_t *data, size_t base, size_t size, size_t n, size_t from, size_t end,
+                               uint32_t k)
+{
+    size_t i = from < base + size ? 0 : (from - base - size) / size + 1;   /* first unit ending after from */
+    for (; i < n && base + (i + 1u) * size <= end; i++)
+        if (lumo_wire_le16(data + base + i * size) >= k)
+            return LUMO_ERR_RANGE;
+    return LUMO_OK;
+}
+
+lumo_status lumo_prt_check_span(const uint8_t *data, size_t from, size_t end)
+{
+    lumo_prt p;
+    if (!data || end < LUMO_PRT_HEADER_SIZE || from > end || parse_header(&p, data, end) != LUMO_OK)
+        return LUMO_ERR_ARG;
+    size_t passes = (size_t)LUMO_PRT_HEADER_SIZE + (size_t)p.clusters * lumo_prt_cluster_bytes(p.order, p.components);
+    size_t verts = passes + 2u * (size_t)p.clusters;
+    lumo_status st = check_table(data, passes, 2u, p.clusters, from, end, p.clusters);
+    return st ? st : check_table(data, verts, lumo_prt_vertex_bytes(p.components), p.vertices, from, end, p.clusters);
+}
+
+lumo_status lumo_prt_light_decode(const uint8_t *p, size_t len, lumo_prt_light *out)
+{
+    if (!p || !out)
+        return LUMO_ERR_ARG;
+    if (len < 4)
+        return LUMO_ERR_TRUNCATED;
+    if (p[0] < 1 || p[0] > LUMO_PRT_MAX_ORDER)
+        return LUMO_ERR_RANGE;
+    if (p[1] || p[2] || p[3] || len != 4u + 12u * p[0] * p[0])
+        return LUMO_ERR_CORRUPT;
+    unsigned n = (unsigned)p[0] * p[0];
+    lumo_prt_light_clear(out, p[0]);
+    for (unsigned c = 0; c < 3; c++)
+        for (unsigned i = 0; i < n; i++)
+            out->c[c][i] = (lumo_q16_16)lumo_wire_le32(p + 4u + 4u * (c * n + i));
     return LUMO_OK;
 }

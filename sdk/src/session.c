@@ -33,6 +33,20 @@ static size_t raw_mesh_bytes(const lumo_pkg_mesh_info *mi)
     return lumo_size_add(b, lumo_arena_round(lumo_size_mul(lumo_size_mul(mi->ntris, 3), sizeof(uint32_t))));
 }
 
+/* A PRTV message holds the whole chunk: its size from the header, which
+ * must fit the 32-bit cursor of the protocol. */
+static lumo_status prt_need(const uint8_t *p, size_t len, size_t *bytes)
+{
+    size_t total, fixed;
+    lumo_status st = p ? lumo_prt_chunk_size(p, len, &total, &fixed) : LUMO_ERR_ARG;
+    if (st)
+        return st;
+    if (total > UINT32_MAX || len > total)
+        return total > UINT32_MAX ? LUMO_ERR_LIMIT : LUMO_ERR_CORRUPT;
+    *bytes = lumo_arena_round(total);
+    return LUMO_OK;
+}
+
 lumo_status lumo_session_message_need(uint32_t type, const uint8_t *p, size_t len, size_t *bytes)
 {
     lumo_pkg_mesh_info mi;
@@ -40,9 +54,10 @@ lumo_status lumo_session_message_need(uint32_t type, const uint8_t *p, size_t le
     lumo_ivg_desc d;
     lumo_ivg_order io;
     lumo_scene_order so;
+    lumo_prt_light pl;
     lumo_status st = LUMO_OK;
 
-    if (!bytes)
+    if (!bytes || (!p && len))
         return LUMO_ERR_ARG;
     *bytes = 0;
     if (type == LUMO_MSG_MESH && !(st = lumo_scene_mesh_info_decode(p, len, &mi)))
@@ -54,6 +69,10 @@ lumo_status lumo_session_message_need(uint32_t type, const uint8_t *p, size_t le
     else if (type == LUMO_MSG_IVGS && !(st = lumo_ivg_order_decode(p, len, NULL, &io)))
         *bytes = lumo_arena_round(len);
     else if (type == LUMO_MSG_ORDR && !(st = lumo_scene_order_decode(p, len, UINT32_MAX, &so)))
+        *bytes = lumo_arena_round(len);
+    else if (type == LUMO_MSG_PRTV)
+        st = prt_need(p, len, bytes);
+    else if (type == LUMO_MSG_PRTL && !(st = lumo_prt_light_decode(p, len, &pl)))
         *bytes = lumo_arena_round(len);
     return st;
 }
@@ -105,8 +124,11 @@ lumo_status lumo_session_package_need(const lumo_package *pkg, size_t *bytes)
         return st;
     streams = stream_count(pkg);
     for (i = 0; i < info.mesh_count; i++)
-        if ((st = add_chunk_need(pkg, streams ? LUMO_PKG_PMSH : LUMO_PKG_MESH, i, &sum)))
+        if ((st = add_chunk_need(pkg, streams ? LUMO_PKG_PMSH : LUMO_PKG_MESH, i, &sum)) ||
+            (st = add_chunk_need(pkg, LUMO_MSG_PRTV, i, &sum)))
             return st;
+    if ((st = add_chunk_need(pkg, LUMO_MSG_PRTL, 0, &sum)))
+        return st;
     if (sum == SIZE_MAX)
         return LUMO_ERR_OVERFLOW;
     *bytes = sum;
@@ -334,6 +356,96 @@ static lumo_status feed_order(lumo_session *s, const uint8_t *p, size_t len)
     return LUMO_OK;
 }
 
+/* ---- PRT (seed 003; docs/client-session.md "PRT") ---------------------------- */
+
+/* The whole size of the chunk whose header the slot holds (checked when
+ * its PRTV came: it fits 32 bits). */
+static uint32_t prt_size(const lumo_session_mesh_slot *slot)
+{
+    size_t total = 0, fixed = 0;
+
+    if (slot->prt)
+        (void)lumo_prt_chunk_size(slot->prt, LUMO_PRT_HEADER_SIZE, &total, &fixed);
+    return (uint32_t)total;
+}
+
+/* Bytes [held, held + n) of mesh `index`'s chunk: copied behind what is
+ * held (invisible until held moves), then every pass entry and vertex
+ * record they complete checked; held moves only when all are good. */
+static lumo_status prt_append(lumo_session_mesh_slot *slot, const uint8_t *p, size_t n)
+{
+    lumo_status st;
+
+    if (n > (size_t)(prt_size(slot) - slot->prt_held))
+        return LUMO_ERR_CORRUPT;
+    memcpy(slot->prt + slot->prt_held, p, n);
+    if ((st = lumo_prt_check_span(slot->prt, slot->prt_held, slot->prt_held + n)))
+        return st;
+    slot->prt_held += (uint32_t)n;
+    return LUMO_OK;
+}
+
+static lumo_status feed_prt(lumo_session *s, uint32_t index, const uint8_t *p, size_t len)
+{
+    lumo_session_mesh_slot *slot;
+    lumo_arena_mark mark = lumo_arena_get_mark(s->arena);
+    size_t total, fixed;
+    lumo_status st;
+
+    if (index >= s->info.mesh_count)
+        return LUMO_ERR_RANGE;
+    slot = &s->mesh[index];
+    if (slot->prt)
+        return LUMO_ERR_STATE;
+    if ((st = prt_need(p, len, &total)) || (st = lumo_prt_chunk_size(p, len, &total, &fixed)))
+        return st;
+    /* The transfer is per vertex of the full mesh (docs/prt.md); checked
+     * when the mesh came first. */
+    if ((slot->kind == SLOT_PM && lumo_wire_le32(p + 8) != slot->pm.h.vertices) ||
+        (slot->kind == SLOT_RAW && lumo_wire_le32(p + 8) != slot->raw.vertex_count))
+        return LUMO_ERR_CORRUPT;
+    if (!(slot->prt = lumo_arena_alloc(s->arena, total)))
+        return LUMO_ERR_NOMEM;
+    memcpy(slot->prt, p, LUMO_PRT_HEADER_SIZE);
+    slot->prt_held = LUMO_PRT_HEADER_SIZE;
+    if ((st = prt_append(slot, p + LUMO_PRT_HEADER_SIZE, len - LUMO_PRT_HEADER_SIZE))) {
+        slot->prt = NULL, slot->prt_held = 0;
+        lumo_arena_reset(s->arena, mark);
+    }
+    return st;
+}
+
+/* PRTS: u32 offset = the bytes held, then the bytes that follow them. */
+static lumo_status feed_prt_span(lumo_session *s, uint32_t index, const uint8_t *p, size_t len)
+{
+    lumo_session_mesh_slot *slot;
+
+    if (index >= s->info.mesh_count)
+        return LUMO_ERR_RANGE;
+    slot = &s->mesh[index];
+    if (len < LUMO_MSG_PRTS_HEADER)
+        return LUMO_ERR_TRUNCATED;
+    if (!slot->prt || lumo_wire_le32(p) != slot->prt_held)
+        return LUMO_ERR_STATE;
+    return prt_append(slot, p + LUMO_MSG_PRTS_HEADER, len - LUMO_MSG_PRTS_HEADER);
+}
+
+static lumo_status feed_prt_light(lumo_session *s, const uint8_t *p, size_t len)
+{
+    lumo_prt_light l;
+    uint8_t *copy;
+    lumo_status st;
+
+    if (s->prtl)
+        return LUMO_ERR_STATE;
+    if ((st = lumo_prt_light_decode(p, len, &l)))
+        return st;
+    if (!(copy = keep(s, p, len)))
+        return LUMO_ERR_NOMEM;
+    s->prtl = copy;
+    return LUMO_OK;
+}
+
 lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, const uint8_t *p, size_t len)
 {
     if (!s || !p)
@@ -353,6 +465,9 @@ lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, co
     case LUMO_MSG_IVGU: return feed_ivg_records(s, p, len, 0);
     case LUMO_MSG_IVGS: return feed_ivg_order(s, p, len);
     case LUMO_MSG_ORDR: return feed_order(s, p, len);
+    case LUMO_MSG_PRTV: return feed_prt(s, index, p, len);
+    case LUMO_MSG_PRTS: return feed_prt_span(s, index, p, len);
+    case LUMO_MSG_PRTL: return feed_prt_light(s, p, len);
     default:            return LUMO_ERR_UNSUPPORTED;
     }
 }
@@ -409,7 +524,10 @@ lumo_status lumo_session_feed_package(lumo_session *s, const lumo_package *pkg, 
             return st;
         }
     }
-    return LUMO_OK;
+    for (i = 0; i < s->info.mesh_count; i++)
+        if ((st = feed_chunk(s, pkg, LUMO_MSG_PRTV, i, 0, w)))
+            return st;
+    return feed_chunk(s, pkg, LUMO_MSG_PRTL, 0, 0, w);
 }
 
 lumo_status lumo_session_set_ivg_flags(lumo_session *s, unsigned flags)
@@ -500,6 +618,48 @@ lumo_status lumo_session_mesh_progress(const lumo_session *s, uint32_t index, lu
     out->full_vertices = out->progressive ? slot->pm.h.vertices : v.vertex_count;
     out->batches = out->progressive ? lumo_pmesh_batches(&slot->pm) : 0;
     return LUMO_OK;
+}
+
+lumo_status lumo_session_prt(const lumo_session *s, uint32_t index, lumo_prt *out)
+{
+    if (!s || !out)
+        return LUMO_ERR_ARG;
+    if (index >= LUMO_MAX_MESHES || !s->mesh[index].prt)
+        return LUMO_ERR_RANGE;
+    /* every unit held was checked on arrival; parse again for the view */
+    return lumo_prt_parse(out, s->mesh[index].prt, s->mesh[index].prt_held);
+}
+
+void lumo_session_prt_progress(const lumo_session *s, uint32_t index, uint32_t *held, uint32_t *size)
+{
+    int ok = s && index < LUMO_MAX_MESHES && s->mesh[index].prt;
+    if (held)
+        *held = ok ? s->mesh[index].prt_held : 0;
+    if (size)
+        *size = ok ? prt_size(&s->mesh[index]) : 0;
+}
+
+lumo_status lumo_session_prt_layout(const lumo_session *s, uint32_t index, uint32_t *fixed, uint32_t *vertex_bytes)
+{
+    size_t total, f;
+
+    if (!s || !fixed || !vertex_bytes)
+        return LUMO_ERR_ARG;
+    if (index >= LUMO_MAX_MESHES || !s->mesh[index].prt ||
+        lumo_prt_chunk_size(s->mesh[index].prt, LUMO_PRT_HEADER_SIZE, &total, &f))
+        return LUMO_ERR_RANGE;
+    *fixed = (uint32_t)f;
+    *vertex_bytes = (uint32_t)lumo_prt_vertex_bytes(s->mesh[index].prt[2]);
+    return LUMO_OK;
+}
+
+lumo_status lumo_session_prt_light(const lumo_session *s, lumo_prt_light *out)
+{
+    if (!s || !out)
+        return LUMO_ERR_ARG;
+    if (!s->prtl)
+        return LUMO_ERR_RANGE;
+    return lumo_prt_light_decode(s->prtl, 4u + 12u * (size_t)s->prtl[0] * s->prtl[0], out);
 }
 
 lumo_status lumo_session_stream_header(const lumo_session *s, uint32_t index, lumo_pmesh_header *out)

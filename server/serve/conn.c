@@ -154,8 +154,8 @@ static void push_welcome(srv_conn *c, int64_t due)
 {
     srv_job *j = job_push(c, LUMO_NET_WELCOME, due);
 
-    j->body = c->pkg->welcome;
-    j->body_len = (uint32_t)c->pkg->welcome_len;
+    j->body = c->prt ? c->pkg->welcome_prt : c->pkg->welcome;
+    j->body_len = (uint32_t)(c->prt ? c->pkg->welcome_prt_len : c->pkg->welcome_len);
     job_damage(c, j);
 }
 
@@ -253,13 +253,15 @@ static void on_hello(srv_conn *c, const lumo_net_frame *f, int64_t now)
     c->resume_id = h.resume_id;
     c->resume_meshes = h.mesh_count;
     c->hello_seen = 1;
-    if (p->arena_need > h.arena_bytes) {
-        fail(c, LUMO_ERR_NOMEM, "the scene needs %u arena bytes, the client has %u", p->arena_need,
-             h.arena_bytes);
+    c->prt = (h.flags & LUMO_NET_FLAG_PRT) && p->has_prt;
+    uint32_t need = c->prt ? p->arena_need_prt : p->arena_need;
+    size_t wlen = c->prt ? p->welcome_prt_len : p->welcome_len;
+    if (need > h.arena_bytes) {
+        fail(c, LUMO_ERR_NOMEM, "the scene needs %u arena bytes, the client has %u", need, h.arena_bytes);
         return;
     }
-    if (p->welcome_len - LUMO_NET_OVERHEAD > c->max_payload) {
-        fail(c, LUMO_ERR_LIMIT, "WELCOME is %zu bytes, more than max payload %u", p->welcome_len - LUMO_NET_OVERHEAD,
+    if (wlen - LUMO_NET_OVERHEAD > c->max_payload) {
+        fail(c, LUMO_ERR_LIMIT, "WELCOME is %zu bytes, more than max payload %u", wlen - LUMO_NET_OVERHEAD,
              c->max_payload);
         return;
     }
@@ -321,6 +323,10 @@ static void on_request(srv_conn *c, const lumo_net_frame *f, int64_t now)
         }
         c->requests++;
         push_op(c, SRV_OP_REQUEST, &r, now);
+        return;
+    }
+    if (r.channel == LUMO_NET_PRT && !c->prt) {
+        fail(c, LUMO_ERR_RANGE, "REQUEST: PRT of a package without it, or not asked for in HELLO");
         return;
     }
     /* checked when read (RANGE, LIMIT), planned again when its turn comes */
@@ -640,7 +646,7 @@ static int make_job(srv_conn *c, int64_t now)
             return 1;
         }
         if (end) {
-            push_end(c, o->r.channel, o->r.channel == LUMO_NET_GEOMETRY ? o->r.mesh : 0,
+            push_end(c, o->r.channel, o->r.channel == LUMO_NET_GEOMETRY || o->r.channel == LUMO_NET_PRT ? o->r.mesh : 0,
                      o->due_us + link_cfg(c)->latency_us);
             return 1;
         }

@@ -93,6 +93,7 @@ typedef struct srv_conn {
     uint32_t        pkg_index, max_payload, arena, resume_id, resume_meshes;
     uint16_t        width, height;
     uint8_t         form, flags, hello_seen;
+    uint8_t         prt;        /* HELLO asked for PRT and the package has it (§10) */
 
     /* receive side */
     uint8_t         rx[SRV_RX_CAP];

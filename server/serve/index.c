@@ -13,6 +13,7 @@
 #include <unistd.h>
 #include "lumo/arena.h"
 #include "lumo/net.h"
+#include "lumo/prt.h"
 #include "lumo/session.h"
 #include "common/status_msg.h"
 #include "lumo/wire.h"
@@ -55,6 +56,31 @@ static lumo_status index_mesh(srv_pkg *p, uint32_t i, char *err, size_t errlen)
     if (at != m->len)
         return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: %zu bytes after the last batch record",
                     p->path, i, (size_t)m->len - at);
+    return LUMO_OK;
+}
+
+/* Mesh i's PRTV chunk, if any: whole and valid (every cluster index in
+ * range), for the mesh's full vertex count, its sizes for the plan. */
+static lumo_status index_prt(srv_pkg *p, uint32_t i, char *err, size_t errlen)
+{
+    srv_mesh_index *m = &p->mesh[i];
+    lumo_prt v;
+    size_t total, fixed;
+    lumo_status st;
+
+    if (lumo_package_find(&p->pkg, LUMO_MSG_PRTV, i, &m->prt, &m->prt_len) != LUMO_OK) {
+        m->prt = NULL;
+        return LUMO_OK;
+    }
+    if ((st = lumo_prt_parse(&v, m->prt, m->prt_len)) || (st = lumo_prt_chunk_size(m->prt, m->prt_len, &total, &fixed)))
+        return srv_fail(err, errlen, st, "%s: mesh %u: PRTV: %s", p->path, i, lumo_strerror(st));
+    if (total != m->prt_len || v.vertices != m->h.vertices)
+        return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: PRTV holds %u of %u vertex records for a "
+                        "stream of %u vertices", p->path, i, v.vertices_held, v.vertices, m->h.vertices);
+    m->prt_fixed = (uint32_t)fixed;
+    m->prt_cbytes = (uint32_t)lumo_prt_cluster_bytes(v.order, v.components);
+    m->prt_vbytes = (uint32_t)lumo_prt_vertex_bytes(v.components);
+    p->has_prt = 1;
     return LUMO_OK;
 }
 
@@ -122,8 +148,9 @@ lumo_status srv_welcome_build(srv_pkg *p, const lumo_net_msg *msgs, uint32_t cou
 }
 
 /* The descriptors of WELCOME (docs/protocol.md §2): INFO, each stream's
- * header, IVGD and IVGS, then ORDR when present. */
-static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
+ * header, IVGD and IVGS, then ORDR when present; with prt (§10) each
+ * mesh's PRTV header and the PRTL after them. */
+static lumo_status build_welcome(srv_pkg *p, int prt, char *err, size_t errlen)
 {
     lumo_net_msg msgs[LUMO_NET_MAX_WELCOME_MSGS];
     uint32_t count = 0, i;
@@ -143,7 +170,26 @@ static lumo_status build_welcome(srv_pkg *p, char *err, size_t errlen)
     }
     if (lumo_package_find(&p->pkg, LUMO_PKG_ORDR, 0, &d, &n) == LUMO_OK)
         msgs[count++] = (lumo_net_msg){LUMO_PKG_ORDR, 0, n, d};
+    for (i = 0; prt && i < p->mesh_count; i++)
+        if (p->mesh[i].prt)
+            msgs[count++] = (lumo_net_msg){LUMO_MSG_PRTV, i, LUMO_PRT_HEADER_SIZE, p->mesh[i].prt};
+    if (prt && lumo_package_find(&p->pkg, LUMO_MSG_PRTL, 0, &d, &n) == LUMO_OK)
+        msgs[count++] = (lumo_net_msg){LUMO_MSG_PRTL, 0, n, d};
     return srv_welcome_build(p, msgs, count, err, errlen);
+}
+
+/* Both WELCOMEs: the PRT one first, kept aside, then the plain one. */
+static lumo_status build_welcomes(srv_pkg *p, char *err, size_t errlen)
+{
+    lumo_status st;
+
+    if (p->has_prt) {
+        if ((st = build_welcome(p, 1, err, errlen)))
+            return st;
+        p->welcome_prt = p->welcome, p->welcome_prt_len = p->welcome_len, p->arena_need_prt = p->arena_need;
+        p->welcome = NULL;
+    }
+    return build_welcome(p, 0, err, errlen);
 }
 
 lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
@@ -206,9 +252,9 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
         goto failed;
     }
     for (i = 0; i < p->mesh_count; i++)
-        if ((st = index_mesh(p, i, err, errlen)))
+        if ((st = index_mesh(p, i, err, errlen)) || (st = index_prt(p, i, err, errlen)))
             goto failed;
-    if ((st = index_ivg(p, err, errlen)) || (st = build_welcome(p, err, errlen)))
+    if ((st = index_ivg(p, err, errlen)) || (st = build_welcomes(p, err, errlen)))
         goto failed;
     return LUMO_OK;
 failed:
@@ -228,6 +274,7 @@ void srv_pkg_close(srv_pkg *p)
     free(p->ivg.off[0]);
     free(p->ivg.off[1]);
     free(p->welcome);
+    free(p->welcome_prt);
     if (p->map)
         munmap((void *)p->map, p->size);
     free(p->path);

@@ -35,6 +35,12 @@ typedef struct srv_mesh_index {
     uint32_t         *rec;      /* batch_count + 1 offsets into stream: record b
                                    is stream[rec[b] .. rec[b + 1]) */
     uint32_t          max_record;
+    /* PRT (docs/protocol.md §10): the mesh's PRTV chunk, NULL without */
+    const uint8_t    *prt;
+    uint32_t          prt_len;     /* the whole chunk */
+    uint32_t          prt_fixed;   /* header, clusters and pass table */
+    uint32_t          prt_cbytes;  /* one cluster record */
+    uint32_t          prt_vbytes;  /* one vertex record */
 } srv_mesh_index;
 
 /* The stratified lighting order (docs/protocol.md §4, the package's IVGS):
@@ -64,6 +70,13 @@ typedef struct srv_pkg {
     uint32_t        arena_need; /* what WELCOME states */
     uint8_t        *welcome;    /* the whole WELCOME frame */
     size_t          welcome_len;
+    /* PRT (§10): for a HELLO with LUMO_NET_FLAG_PRT, the WELCOME with each
+     * mesh's PRTV header and the PRTL, and its arena need; has_prt is 0
+     * (and these the plain ones) for a package without PRTV chunks. */
+    int             has_prt;
+    uint32_t        arena_need_prt;
+    uint8_t        *welcome_prt;
+    size_t          welcome_prt_len;
 } srv_pkg;
 
 /* Map, validate and index the package at path. LUMO_ERR_IO (cannot open or

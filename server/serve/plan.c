@@ -6,8 +6,35 @@
 #include <stdio.h>
 #include <string.h>
 #include "lumo/ivg.h"
+#include "lumo/prt.h"
 #include "common/status_msg.h"
 #include "lumo/wire.h"
+
+/* PRT (§10): cursor = bytes of the mesh's PRTV chunk the client holds
+ * (at least its header, from WELCOME); the answer is the rest of the
+ * clusters and pass table, then `amount` more vertex records than the
+ * client holds whole. */
+static lumo_status plan_prt(const srv_pkg *p, const lumo_net_request *r, srv_answer *a, int *end_of_channel,
+                            char *err, size_t errlen)
+{
+    const srv_mesh_index *m;
+    uint64_t held, end;
+
+    if (r->mesh >= p->mesh_count || !p->mesh[r->mesh].prt)
+        return srv_fail(err, errlen, LUMO_ERR_RANGE, "PRT request: mesh %u has no PRTV", r->mesh);
+    m = &p->mesh[r->mesh];
+    if (r->cursor < LUMO_PRT_HEADER_SIZE || r->cursor > m->prt_len)
+        return srv_fail(err, errlen, LUMO_ERR_RANGE, "mesh %u: PRT cursor %u outside [%u, %u]", r->mesh, r->cursor,
+                        LUMO_PRT_HEADER_SIZE, m->prt_len);
+    a->mesh = r->mesh;
+    if (r->cursor == m->prt_len)
+        return *end_of_channel = 1, LUMO_OK;
+    held = r->cursor > m->prt_fixed ? (r->cursor - m->prt_fixed) / m->prt_vbytes : 0;
+    end = m->prt_fixed + (held + r->amount) * m->prt_vbytes;
+    a->next = r->cursor;
+    a->end = end > m->prt_len ? m->prt_len : (uint32_t)end;
+    return LUMO_OK;
+}
 
 lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t form, uint32_t max_payload,
                            srv_answer *a, int *end_of_channel, char *err, size_t errlen)
@@ -60,6 +87,8 @@ lumo_status srv_plan_start(const srv_pkg *p, const lumo_net_request *r, uint8_t 
         a->pos = g->off[form][a->next];
         return LUMO_OK;
     }
+    if (r->channel == LUMO_NET_PRT)
+        return plan_prt(p, r, a, end_of_channel, err, errlen);
     return srv_fail(err, errlen, LUMO_ERR_RANGE, "unknown channel %u", r->channel);
 }
 
@@ -143,10 +172,44 @@ static int next_lighting(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
     return 1;
 }
 
+/* A frame's end in a PRTV chunk: where max_data bytes from `from` reach,
+ * moved back to the last whole cluster or vertex record when that leaves
+ * some (the session takes any split: this keeps each frame's records
+ * whole for a client that relights as frames come). */
+static uint32_t prt_cut(const srv_mesh_index *m, uint32_t from, uint32_t end, uint32_t max_data)
+{
+    uint32_t cut = end - from > max_data ? from + max_data : end, c;
+
+    if (cut == end)
+        return cut;
+    if (cut > m->prt_fixed)
+        c = m->prt_fixed + (cut - m->prt_fixed) / m->prt_vbytes * m->prt_vbytes;
+    else
+        c = LUMO_PRT_HEADER_SIZE + (cut - LUMO_PRT_HEADER_SIZE) / m->prt_cbytes * m->prt_cbytes;
+    return c > from ? c : cut;
+}
+
+/* PRT DATA (§10): first = records = the span's offset, count = its bytes. */
+static int next_prt(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
+{
+    const srv_mesh_index *m = &p->mesh[a->mesh];
+    uint32_t e = prt_cut(m, a->next, a->end, a->max_data);
+
+    d->channel = LUMO_NET_PRT;
+    d->mesh = a->mesh;
+    d->first = d->records = a->next;
+    d->count = d->len = e - a->next;
+    d->bytes = m->prt + a->next;
+    a->next = e;
+    return 1;
+}
+
 int srv_plan_next(const srv_pkg *p, srv_answer *a, lumo_net_data *d)
 {
     if (a->next >= a->end)
         return 0;
     memset(d, 0, sizeof *d);
+    if (a->channel == LUMO_NET_PRT)
+        return next_prt(p, a, d);
     return a->channel == LUMO_NET_GEOMETRY ? next_geometry(p, a, d) : next_lighting(p, a, d);
 }

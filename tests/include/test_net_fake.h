@@ -8,15 +8,20 @@
  *    progressive stream's records walked with lumo_pmesh_next_record, the
  *    IVG's rounds from its IVGS (lumo_package_ivg_order);
  *  - the WELCOME of docs/protocol.md §2 (INFO, each PMSH's 68-byte header,
- *    IVGD, IVGS, ORDR) with the arena need lumo_session_message_need gives;
+ *    IVGD, IVGS, ORDR) with the arena need lumo_session_message_need gives,
+ *    and for a package with PRTV chunks the WELCOME of a client asking for
+ *    PRT (§10: each PRTV's 12-byte header and the PRTL after them);
  *  - answers planned by brute force from the protocol's words, not with
  *    lumo_net_geometry_end: geometry, as many whole batches from the cursor
  *    as hold at most the amount of vertices (counted batch by batch, the last
  *    one short), at least one; lighting, rounds [cursor, cursor + amount)
  *    cut at the last; each answer in as few DATA frames as the client's max
  *    payload allows (whole records; whole rounds, a round too large split at
- *    record boundaries with count 0 until the frame that ends it); END at
- *    the end of a channel.
+ *    record boundaries with count 0 until the frame that ends it); PRT,
+ *    bytes [C, min(S, F + (H + n) * (2 + 2P))) of the chunk in spans of the
+ *    largest size the payload takes, cut anywhere (a receiver must take
+ *    any cut; lumo-server prefers record ends); END at the end of a
+ *    channel.
  *
  * Test code: C99 (the fuzz build), heap allowed, no cmocka (callers assert).
  */
@@ -57,6 +62,12 @@ typedef struct fake_pkg {
     uint8_t       *welcome;     /* the WELCOME frame */
     size_t         welcome_len;
     uint32_t       need;        /* arena bytes it states */
+    int            has_prt;     /* PRT (§10): the PRTV chunks, the PRT WELCOME */
+    const uint8_t *prt[LUMO_MAX_MESHES];
+    uint32_t       prt_len[LUMO_MAX_MESHES];
+    uint8_t       *welcome_prt;
+    size_t         welcome_prt_len;
+    uint32_t       need_prt;
 } fake_pkg;
 
 static inline void fake_pkg_free(fake_pkg *k)
@@ -66,11 +77,12 @@ static inline void fake_pkg_free(fake_pkg *k)
     for (m = 0; m < k->meshes; m++)
         free(k->mesh[m].rec);
     free(k->welcome);
+    free(k->welcome_prt);
     free(k->data);
     memset(k, 0, sizeof *k);
 }
 
-static inline lumo_status fake_welcome(fake_pkg *k)
+static inline lumo_status fake_welcome(fake_pkg *k, int prt)
 {
     lumo_net_msg msgs[LUMO_NET_MAX_WELCOME_MSGS];
     uint32_t n = 0, m, i;
@@ -94,11 +106,22 @@ static inline lumo_status fake_welcome(fake_pkg *k)
     }
     if (lumo_package_find(&k->pkg, LUMO_PKG_ORDR, 0, &d, &len) == LUMO_OK)
         msgs[n].type = LUMO_PKG_ORDR, msgs[n].index = 0, msgs[n].len = len, msgs[n++].data = d;
+    for (m = 0; prt && m < k->meshes; m++)
+        if (k->prt[m])
+            msgs[n].type = LUMO_MSG_PRTV, msgs[n].index = m, msgs[n].len = 12, msgs[n++].data = k->prt[m];
+    if (prt && lumo_package_find(&k->pkg, LUMO_MSG_PRTL, 0, &d, &len) == LUMO_OK)
+        msgs[n].type = LUMO_MSG_PRTL, msgs[n].index = 0, msgs[n].len = len, msgs[n++].data = d;
     for (i = 0; i < n; i++) {
         if ((st = lumo_session_message_need(msgs[i].type, msgs[i].data, msgs[i].len, &b)))
             return st;
         need += b;
         cap += 12 + ((msgs[i].len + 3u) & ~3u);
+    }
+    if (prt) {
+        k->need_prt = (uint32_t)need;
+        if (!(k->welcome_prt = (uint8_t *)malloc(cap)))
+            return LUMO_ERR_NOMEM;
+        return lumo_net_welcome_encode(k->id, k->need_prt, msgs, n, k->welcome_prt, cap, &k->welcome_prt_len);
     }
     k->need = (uint32_t)need;
     if (!(k->welcome = (uint8_t *)malloc(cap)))
@@ -138,6 +161,10 @@ static inline lumo_status fake_pkg_open(fake_pkg *k, uint8_t *data, size_t size)
         fm->rec[b] = (uint32_t)at;
         if (at != fm->len)
             return LUMO_ERR_CORRUPT;
+        if (lumo_package_find(&k->pkg, LUMO_MSG_PRTV, m, &k->prt[m], &k->prt_len[m]) == LUMO_OK)
+            k->has_prt = 1;
+        else
+            k->prt[m] = NULL;
     }
     if (lumo_package_ivg_order(&k->pkg, &k->order) == LUMO_OK) {
         k->has_ivg = 1;
@@ -147,7 +174,9 @@ static inline lumo_status fake_pkg_open(fake_pkg *k, uint8_t *data, size_t size)
                                     &k->bundle_len[LUMO_IVG_FORM_QUANTIZED])))
             return st;
     }
-    return fake_welcome(k);
+    if (k->has_prt && (st = fake_welcome(k, 1)))
+        return st;
+    return fake_welcome(k, 0);
 }
 
 static inline lumo_status fake_pkg_load(fake_pkg *k, const char *path)
@@ -193,6 +222,16 @@ static inline uint32_t fake_geometry_end(const lumo_pmesh_header *h, uint32_t cu
     return e == cursor && e < h->batch_count ? e + 1 : e;
 }
 
+/* PRT (§10), from the protocol's words: the chunk's fixed part F, one
+ * vertex record's bytes, and the end of an answer to (cursor, amount). */
+static inline uint32_t fake_prt_end(const fake_pkg *k, uint32_t m, uint32_t cursor, uint32_t amount)
+{
+    const uint8_t *h = k->prt[m];
+    uint64_t N = h[1], P = h[2], K = lumo_wire_le32(h + 4), F = 12 + K * (2 * N * N * (P + 1) + 2), vb = 2 + 2 * P;
+    uint64_t held = cursor > F ? (cursor - F) / vb : 0, end = F + (held + amount) * vb;
+    return end > k->prt_len[m] ? k->prt_len[m] : (uint32_t)end;
+}
+
 static inline uint32_t fake_rounds_end(const fake_pkg *k, uint32_t cursor, uint32_t amount)
 {
     return amount >= k->order.rounds - cursor ? k->order.rounds : cursor + amount;
@@ -201,6 +240,7 @@ static inline uint32_t fake_rounds_end(const fake_pkg *k, uint32_t cursor, uint3
 /* The server's side of one connection. */
 typedef struct fake_server {
     const fake_pkg  *k;
+    int              prt;         /* the client asked for PRT in HELLO */
     uint8_t          form;
     uint32_t         max_payload;
     lumo_net_request q[FAKE_QUEUE];
@@ -223,6 +263,13 @@ static inline lumo_status fake_server_request(fake_server *s, const lumo_net_req
 {
     if (s->qn == FAKE_QUEUE)
         return LUMO_ERR_LIMIT;
+    if (r->channel == LUMO_NET_PRT) {
+        if (!s->prt || r->amount == 0 || r->mesh >= s->k->meshes || !s->k->prt[r->mesh] || r->cursor < 12 ||
+            r->cursor > s->k->prt_len[r->mesh])
+            return LUMO_ERR_RANGE;
+        s->q[(s->qh + s->qn++) % FAKE_QUEUE] = *r;
+        return LUMO_OK;
+    }
     if (r->amount == 0 || r->channel > LUMO_NET_LIGHTING ||
         (r->channel == LUMO_NET_GEOMETRY &&
          (r->mesh >= s->k->meshes || r->cursor > s->k->mesh[r->mesh].h.batch_count)) ||
@@ -287,6 +334,16 @@ static inline void fake_lighting_frame(fake_server *s, lumo_net_data *d)
     d->len = s->pos - start;
 }
 
+static inline void fake_prt_frame(fake_server *s, lumo_net_data *d)
+{
+    uint32_t max = s->max_payload - LUMO_NET_DATA_HEAD, n = s->end - s->next < max ? s->end - s->next : max;
+
+    d->channel = LUMO_NET_PRT, d->mesh = s->cur.mesh, d->form = 0;
+    d->first = d->records = s->next, d->count = d->len = n;
+    d->bytes = s->k->prt[s->cur.mesh] + s->next;
+    s->next += n;
+}
+
 /* The next frame the server sends, encoded into out (cap bytes): 1, or 0
  * when nothing is asked. */
 static inline int fake_server_frame(fake_server *s, uint8_t *out, size_t cap, size_t *written)
@@ -299,7 +356,15 @@ static inline int fake_server_frame(fake_server *s, uint8_t *out, size_t cap, si
             return 0;
         s->cur = s->q[s->qh];
         s->qh = (s->qh + 1) % FAKE_QUEUE, s->qn--;
-        if (s->cur.channel == LUMO_NET_GEOMETRY) {
+        if (s->cur.channel == LUMO_NET_PRT) {
+            if (s->cur.cursor == k->prt_len[s->cur.mesh]) {
+                lumo_net_end e;
+                e.channel = LUMO_NET_PRT, e.mesh = s->cur.mesh;
+                return lumo_net_end_encode(&e, out, cap, written) == LUMO_OK;
+            }
+            s->next = s->cur.cursor;
+            s->end = fake_prt_end(k, s->cur.mesh, s->cur.cursor, s->cur.amount);
+        } else if (s->cur.channel == LUMO_NET_GEOMETRY) {
             const lumo_pmesh_header *h = &k->mesh[s->cur.mesh].h;
             if (s->cur.cursor == h->batch_count) {
                 lumo_net_end e;
@@ -322,7 +387,9 @@ static inline int fake_server_frame(fake_server *s, uint8_t *out, size_t cap, si
         s->answering = 1;
     }
     memset(&d, 0, sizeof d);
-    if (s->cur.channel == LUMO_NET_GEOMETRY)
+    if (s->cur.channel == LUMO_NET_PRT)
+        fake_prt_frame(s, &d);
+    else if (s->cur.channel == LUMO_NET_GEOMETRY)
         fake_geometry_frame(s, &d);
     else
         fake_lighting_frame(s, &d);

@@ -14,3 +14,12 @@ TEST_STEPS += test-prt-cli
 .PHONY: test-prt-cli
 test-prt-cli: $(BIN)/lumo-bake $(BIN)/lumo-render $(BIN)/lumo-inspect $(BIN)/prt-demo
 	@sh tests/prt/prt_cli.sh $(BIN) $(BUILD)/tests/prt-cli
+
+# PRT over the protocol (docs/protocol.md §10): lumo-server to lumo-client
+# --prt, the streamed picture equal to lumo-render --prt's byte for byte,
+# cut and resumed, recorded and replayed (tests/prt/prt_stream.sh).
+TEST_STEPS += test-prt-stream
+.PHONY: test-prt-stream
+test-prt-stream: $(BIN)/lumo-bake $(BIN)/lumo-render $(BIN)/lumo-client $(BIN)/lumo-server $(BIN)/prt-demo \
+                 $(BUILD)/tests/bin/cut_proxy
+	@sh tests/prt/prt_stream.sh $(BIN) $(BUILD)/tests/bin $(BUILD)/tests/prt-stream

@@ -73,7 +73,7 @@ $render "$dir/a.lumo" --prt --env "$dir/sky.png" -o "$dir/e.png" >/dev/null 2>&1
 $render "$dir/a.lumo" --prt --prt-view passes -o "$dir/p.png" >/dev/null 2>&1 && ok "--prt-view passes" \
     || bad "--prt-view"
 expect_error "package without PRT" $render "$dir/plain.lumo" --prt -o "$dir/x.png"
-expect_error "--prt on the GL backend" $render "$dir/a.lumo" --prt --backend osmesa -o "$dir/x.png"
+expect_error "--prt-view on the GL backend" $render "$dir/a.lumo" --prt --prt-view clusters --backend osmesa -o "$dir/x.png"
 expect_error "--rotate without --prt" $render "$dir/a.lumo" --rotate 10 -o "$dir/x.png"
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

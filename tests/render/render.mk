@@ -37,3 +37,11 @@ raster-fit: $(BIN)/lumo-render $(BIN)/lumo-bake $(BIN)/lumo-client $(BIN)/lumo-s
 TEST_STEPS += raster-client-shadows
 raster-client-shadows: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake $(BIN)/lumo-client $(BIN)/lumo-server
 	sh tests/render/client_shadows.sh $(BUILD)
+
+# PRT on the GL backends (issue 19): the thesis's multipass on osmesa, egl
+# and GLES against the soft backend's PRT frame, and the measured overdraw
+# against Eq. 8's (tests/render/prt_gl.sh).
+.PHONY: raster-prt-gl
+TEST_STEPS += raster-prt-gl
+raster-prt-gl: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake $(BIN)/prt-demo
+	sh tests/render/prt_gl.sh $(BUILD)

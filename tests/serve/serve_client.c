@@ -1389,6 +1389,12 @@ static void mode_hostile(const pkg_view *v, const run_opts *o)
     run_hostile(v);
     good_step(&gc, &good);
 
+    hostile_reset("PRT REQUEST (channel 3) without HELLO's PRT flag", 1);
+    hc.len = make_request(LUMO_NET_PRT, 0, 12, 1, hc.bytes);
+    want(LUMO_ERR_RANGE, 0, 0);
+    run_hostile(v);
+    good_step(&gc, &good);
+
     hostile_reset("REQUEST of 12 bytes", 1);
     hc.len = make_raw(LUMO_NET_REQUEST, pay, 12, hc.bytes);
     want(LUMO_ERR_TRUNCATED, LUMO_ERR_CORRUPT, 0);

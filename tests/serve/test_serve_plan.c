@@ -303,6 +303,80 @@ static void test_refused(void **state)
     synth_free(&s);
 }
 
+/* The ends of whole cluster records (up to the fixed part) and of whole
+ * vertex records (from it): where the server prefers to cut. */
+static int prt_boundary(const srv_mesh_index *m, uint32_t x)
+{
+    if (x >= m->prt_fixed)
+        return (x - m->prt_fixed) % m->prt_vbytes == 0;
+    return (x - 12) % m->prt_cbytes == 0;
+}
+
+/* PRT (docs/protocol.md §10) on the committed PRT package: for cursors
+ * across the whole chunk, amounts and payloads, the frames cover exactly
+ * [C, min(S, F + (H + n) * vb)) as spans (first = records = offset, count
+ * = len), each under the payload, cut at a whole cluster or vertex record
+ * whenever one lies in the frame; and the requests refused. */
+static void test_prt_frames(void **state)
+{
+    static const uint32_t payloads[] = {4096, 4100, 9000, 65536};
+    srv_pkg p;
+    char err[200];
+    test_rng r = {0x9d7};
+    const srv_mesh_index *m;
+    uint32_t t, C;
+    (void)state;
+    assert_int_equal(srv_pkg_open(&p, "tests/fuzz/seeds/fuzz_package/prt.lumo", err, sizeof err), LUMO_OK);
+    assert_true(p.has_prt && p.welcome_prt && p.arena_need_prt > p.arena_need);
+    m = &p.mesh[6];
+    assert_non_null(m->prt);
+    for (t = 0; t < 2000; t++) {
+        lumo_net_request q = {LUMO_NET_PRT, 6, 0, 0};
+        uint32_t maxp = payloads[t % 4], at, held, n = 1 + (uint32_t)(test_rng_next(&r) % 150);
+        uint64_t e;
+        srv_answer a;
+        lumo_net_data d;
+        int end;
+        C = 12 + (uint32_t)(test_rng_next(&r) % (m->prt_len - 11));
+        q.cursor = C, q.amount = n;
+        assert_int_equal(srv_plan_start(&p, &q, LUMO_NET_FORM_NONE, maxp, &a, &end, err, sizeof err), LUMO_OK);
+        if (C == m->prt_len) {
+            assert_true(end);
+            continue;
+        }
+        held = C > m->prt_fixed ? (C - m->prt_fixed) / m->prt_vbytes : 0;
+        e = m->prt_fixed + (uint64_t)(held + n) * m->prt_vbytes;
+        if (e > m->prt_len)
+            e = m->prt_len;
+        for (at = C; srv_plan_next(&p, &a, &d);) {
+            uint32_t stop = at + d.len;
+            assert_int_equal(d.channel, LUMO_NET_PRT);
+            assert_int_equal(d.mesh, 6);
+            assert_int_equal(d.first, at);
+            assert_int_equal(d.records, at);
+            assert_int_equal(d.count, d.len);
+            assert_true(d.len >= 1 && d.len <= maxp - LUMO_NET_DATA_HEAD);
+            assert_ptr_equal(d.bytes, m->prt + at);
+            if (stop < e && !prt_boundary(m, stop)) {   /* a cut inside a record: none ends in the frame */
+                assert_int_equal(d.len, maxp - LUMO_NET_DATA_HEAD);
+                for (uint32_t x = at + 1; x <= stop; x++)
+                    assert_false(prt_boundary(m, x));
+            }
+            at = stop;
+        }
+        assert_int_equal(at, e);
+    }
+    lumo_net_request q = {LUMO_NET_PRT, 6, 11, 1};
+    srv_answer a;
+    int end;
+    assert_int_equal(srv_plan_start(&p, &q, 0, 65536, &a, &end, err, sizeof err), LUMO_ERR_RANGE);   /* below the header */
+    q.cursor = m->prt_len + 1;
+    assert_int_equal(srv_plan_start(&p, &q, 0, 65536, &a, &end, err, sizeof err), LUMO_ERR_RANGE);
+    q = (lumo_net_request){LUMO_NET_PRT, 7, 12, 1};   /* no mesh 7 */
+    assert_int_equal(srv_plan_start(&p, &q, 0, 65536, &a, &end, err, sizeof err), LUMO_ERR_RANGE);
+    srv_pkg_close(&p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -310,6 +384,7 @@ int main(void)
         cmocka_unit_test(test_geometry_frames),
         cmocka_unit_test(test_lighting_frames),
         cmocka_unit_test(test_refused),
+        cmocka_unit_test(test_prt_frames),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

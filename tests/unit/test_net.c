@@ -673,7 +673,7 @@ static void test_encoders_refuse(void **state)
     msg.len = LUMO_NET_MAX_PAYLOAD;
     msg.data = b;
     assert_int_equal(lumo_net_welcome_encode(1, 2, &msg, 1, b, sizeof b, &n), LUMO_ERR_ARG);
-    r.channel = 3;   /* past the updates channel */
+    r.channel = 4;   /* past the PRT channel */
     assert_int_equal(lumo_net_request_encode(&r, b, sizeof b, &n), LUMO_ERR_ARG);
     r = k_request[0];
     r.amount = 0;
@@ -695,7 +695,7 @@ static void test_encoders_refuse(void **state)
     d = k_data[1];
     d.form = 2;
     assert_int_equal(lumo_net_data_encode(&d, b, sizeof b, &n), LUMO_ERR_ARG);
-    e.channel = 3;
+    e.channel = 4;
     assert_int_equal(lumo_net_end_encode(&e, b, sizeof b, &n), LUMO_ERR_ARG);
     memset(text, 'y', LUMO_NET_MAX_TEXT + 1);
     assert_int_equal(lumo_net_error_encode(1, text, b, sizeof b, &n), LUMO_ERR_ARG);
@@ -830,6 +830,10 @@ static void test_request_checks(void **state)
     assert_int_equal(payload_status(LUMO_NET_REQUEST, p, 16), LUMO_ERR_RANGE);
     put_request(p, 1, 0, 1);
     assert_int_equal(payload_status(LUMO_NET_REQUEST, p, 16), LUMO_OK);
+    put_request(p, 3, 3, 1);   /* PRT names a mesh (§10) */
+    assert_int_equal(payload_status(LUMO_NET_REQUEST, p, 16), LUMO_OK);
+    put_request(p, 4, 0, 1);
+    assert_int_equal(payload_status(LUMO_NET_REQUEST, p, 16), LUMO_ERR_RANGE);
 }
 
 static void put_data(uint8_t *p, uint8_t ch, uint8_t form, uint32_t mesh, uint32_t count, uint32_t records)
@@ -859,8 +863,18 @@ static void test_data_checks(void **state)
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_CORRUPT);
     put_data(p, 0, 1, 4, 2, 2);
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);
-    put_data(p, 3, 0, 0, 2, 2);
+    put_data(p, 4, 0, 0, 2, 2);   /* no channel 4 */
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);
+    /* PRT (§10): first = records = the span's offset (5), count = its bytes */
+    put_data(p, 3, 0, 6, 4, 5);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_OK);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 27), LUMO_ERR_CORRUPT);   /* 3 bytes, count 4 */
+    put_data(p, 3, 0, 6, 4, 6);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_CORRUPT);   /* records != first */
+    put_data(p, 3, 1, 6, 4, 5);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_ERR_RANGE);     /* a form */
+    put_data(p, 3, 0, 6, 0, 5);
+    assert_int_equal(payload_status(LUMO_NET_DATA, p, 24), LUMO_ERR_RANGE);     /* no byte */
     put_data(p, 2, 1, 0, 6, 2);   /* updates (§9): from position 5 to 6 */
     assert_int_equal(payload_status(LUMO_NET_DATA, p, 28), LUMO_OK);
     put_data(p, 2, 1, 0, 5, 2);   /* not past the position held */

@@ -272,6 +272,27 @@ static void same_grid(const lumo_session *a, const lumo_session *b)
     }
 }
 
+/* Every mesh's PRT held whole and equal (the streamed spans against the
+ * package's chunks). */
+static void same_prt(const lumo_session *a, const lumo_session *b, uint32_t meshes)
+{
+    uint32_t m;
+
+    for (m = 0; m < meshes; m++) {
+        lumo_prt pa, pb;
+        uint32_t ha, sa, hb, sb;
+        lumo_session_prt_progress(a, m, &ha, &sa);
+        lumo_session_prt_progress(b, m, &hb, &sb);
+        assert_int_equal(ha, sa);
+        assert_int_equal(ha, hb);
+        assert_int_equal(sa, sb);
+        assert_int_equal(lumo_session_prt(a, m, &pa), LUMO_OK);
+        assert_int_equal(lumo_session_prt(b, m, &pb), LUMO_OK);
+        assert_int_equal(pa.vertices_held, pb.vertices_held);
+        assert_memory_equal(pa.cluster_data, pb.cluster_data, ha - LUMO_PRT_HEADER_SIZE);
+    }
+}
+
 /* ---- driving the driver ---------------------------------------------------------- */
 
 typedef struct run_cfg {
@@ -282,6 +303,8 @@ typedef struct run_cfg {
     int clock;          /* the fake clock (adaptive sizes measure it) */
     uint64_t seed;      /* interleaving of sends and receipts */
     uint32_t cuts;      /* connections cut at random frames, resumed */
+    int prt;            /* ask for PRT (HELLO flag, docs/protocol.md §10) */
+    const fake_pkg *k;  /* the package (NULL: g_pkg[pkg]) */
 } run_cfg;
 
 typedef struct run_stats {
@@ -312,6 +335,7 @@ static void driver_init(world *w, const run_cfg *r)
     cfg.smoothing = 1;
     cfg.policy = r->policy;
     cfg.clock = r->clock ? fake_clock : NULL;
+    cfg.prt = (uint8_t)r->prt;
     world_init(w, ARENA);
     assert_int_equal(lumo_net_client_init(&w->c, &w->s, &cfg), LUMO_OK);
 }
@@ -348,7 +372,11 @@ static void connect_to(world *w, fake_server *srv, const fake_pkg *k)
             assert_int_equal(lumo_net_hello_cursor(&h, m), w->c.held[m]);
     }
     fake_server_init(srv, k, h.ivg_form, h.max_payload);
-    assert_int_equal(deliver(w, k->welcome, k->welcome_len), LUMO_OK);
+    srv->prt = (h.flags & LUMO_NET_FLAG_PRT) && k->has_prt;
+    if (srv->prt)
+        assert_int_equal(deliver(w, k->welcome_prt, k->welcome_prt_len), LUMO_OK);
+    else
+        assert_int_equal(deliver(w, k->welcome, k->welcome_len), LUMO_OK);
     assert_int_equal(w->c.state, LUMO_NET_READY);
 }
 
@@ -379,6 +407,7 @@ static int send_all(world *w, fake_server *srv, run_stats *st)
         assert_int_equal(p->channel, r.channel);
         assert_int_equal(p->cursor, r.cursor);
         plan = r.channel == LUMO_NET_GEOMETRY ? fake_geometry_end(&srv->k->mesh[r.mesh].h, r.cursor, r.amount)
+             : r.channel == LUMO_NET_PRT      ? fake_prt_end(srv->k, r.mesh, r.cursor, r.amount)
                                               : fake_rounds_end(srv->k, r.cursor, r.amount);
         if (p->end != plan)
             fail_msg("%s request mesh %u cursor %u amount %u: the driver predicts end %u, the server sends "
@@ -395,7 +424,7 @@ static void run(const run_cfg *r, const world *ref, run_stats *st)
     static world w;
     fake_server srv;
     test_rng rng = {r->seed * 2654435761u + 1};
-    const fake_pkg *k = &g_pkg[r->pkg];
+    const fake_pkg *k = r->k ? r->k : &g_pkg[r->pkg];
     uint32_t steps, cuts = 0, resumes = 0;
     uint64_t cut_at = 0;
 
@@ -446,6 +475,8 @@ static void run(const run_cfg *r, const world *ref, run_stats *st)
     lumo_session_update(&w.s);
     same_meshes(&w.s, &ref->s, k->meshes);
     same_grid(&w.s, &ref->s);
+    if (r->prt)
+        same_prt(&w.s, &ref->s, k->meshes);
     world_free(&w);
 }
 
@@ -599,6 +630,43 @@ static void test_resume(void **state)
     }
     assert_true(resumes > 0);
     print_message("resume: %u cuts, every run to the full scene\n", resumes);
+}
+
+/* PRT (docs/protocol.md §10) on the committed PRT package: every order,
+ * pipelines, fixed and adaptive sizes, frames of 4 KiB (spans cut inside
+ * records) and 1 MiB, cut and resumed: each mesh's PRTV ends whole and
+ * equal to the package's, the geometry and grid as without PRT; a client
+ * that does not ask gets the plain WELCOME (its arena need smaller). */
+static void test_prt(void **state)
+{
+    static fake_pkg k;
+    static world ref;
+    uint32_t i, resumes = 0;
+    (void)state;
+    assert_int_equal(fake_pkg_load(&k, "tests/fuzz/seeds/fuzz_package/prt.lumo"), LUMO_OK);
+    assert_true(k.has_prt && k.need_prt > k.need);
+    reference(&ref, &k, LUMO_IVG_FORM_QUANTIZED);
+    for (i = 0; i < 16; i++) {
+        run_cfg r;
+        run_stats st;
+        memset(&r, 0, sizeof r);
+        r.k = &k, r.prt = 1;
+        r.form = LUMO_IVG_FORM_QUANTIZED;
+        r.max_payload = i & 1 ? LUMO_NET_MIN_PAYLOAD : 1u << 20;
+        r.policy.order = (lumo_net_order)(i % 3);
+        r.policy.pipeline = 1 + i % 8;
+        r.policy.vertices = i & 2 ? 0 : 7;
+        r.policy.rounds = i & 2 ? 0 : 1;
+        r.clock = (i & 4) != 0;
+        r.seed = 300 + i;
+        r.cuts = i & 8 ? 6 : 0;
+        run(&r, &ref, &st);
+        resumes += st.resumes;
+    }
+    assert_true(resumes > 0);
+    world_free(&ref);
+    fake_pkg_free(&k);
+    print_message("prt: 16 runs, %u cuts resumed, every PRTV whole\n", resumes);
 }
 
 /* ---- hostile frames ------------------------------------------------------------- */
@@ -1139,6 +1207,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_policies_split),
         cmocka_unit_test(test_short_last_batch),
         cmocka_unit_test(test_resume),
+        cmocka_unit_test(test_prt),
         cmocka_unit_test(test_lossy_line),
         cmocka_unit_test(test_resync_marker),
         cmocka_unit_test(test_hostile),

@@ -91,7 +91,7 @@ static void test_codec_channel_2(void **state)
     assert_int_equal(lumo_net_request_encode(&r, out, sizeof out, &n), LUMO_OK);
     r.mesh = 1;
     assert_int_equal(lumo_net_request_encode(&r, out, sizeof out, &n), LUMO_ERR_ARG);
-    r.mesh = 0, r.channel = 3;
+    r.mesh = 0, r.channel = 4;   /* past the PRT channel (§10) */
     assert_int_equal(lumo_net_request_encode(&r, out, sizeof out, &n), LUMO_ERR_ARG);
     uint8_t rec[46];
     put_record(rec, 0, 1);

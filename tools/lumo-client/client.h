@@ -25,6 +25,8 @@ typedef struct options {
     lumo_raster_camera view;   /* --camera, parsed once (when camera != NULL) */
     double at[64];
     int nat, quiet, no_smoothing, use_float, per_vertex, fit;
+    int prt;                 /* --prt: relight with the streamed PRT (docs/prt.md) */
+    double rotate;           /* --rotate: degrees about +y a frame drawn */
     uint32_t package, arena_mib, retries, max_payload;
     uint32_t updates_s, update_every_ms, update_amount;   /* --updates (docs/dynamic.md) */
     lumo_net_policy policy;

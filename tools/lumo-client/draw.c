@@ -12,6 +12,7 @@
 #include "lumo_host/png_io.h"
 #include "../../net/host/net_socket.h"
 #include "client.h"
+#include "../lumo-render/prt_render.h"
 #include "../lumo-render/scene_convert.h"
 
 int draws_open(client *c)
@@ -78,10 +79,12 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
     lumo_raster_scene rs;
     host_renderer *r;
     host_load_stats st;
-    char err[256], name[1024];
+    char err[256] = "the relight failed", name[1024];
     uint8_t *rgb;
     uint32_t t;
     int rc;
+    static host_prt prt;
+    render_opts ro = c->o.ro;
 
     if (host_scene_from_session(&c->ses, &c->scene, &st))
         return -1;
@@ -95,11 +98,21 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
     rs.light_count = c->scene.light_count;
     rs.exposure = LUMO_Q16_ONE;
     rs.flags = c->o.per_vertex ? 0 : LUMO_RASTER_PER_PIXEL;
-    if (ivg && p->rounds) {
+    if (ivg && p->rounds && !c->o.prt) {   /* PRT carries its own interreflections */
         rs.indirect = lumo_raster_ivg_irradiance;
         rs.indirect_ctx = ivg;
     }
-    if (!(r = host_renderer_open(c->o.backend, &mesh, ivg, &c->o.ro, err, sizeof err))) {
+    if (c->o.prt) {   /* relit from the session's PRT as held, the lighting turned per frame */
+        host_prt_close(&prt);
+        if (host_prt_open_session(&prt, &c->ses, &c->scene, err, sizeof err) ||
+            host_prt_relight(&prt, &c->scene, (int)c->frames_drawn, c->o.rotate)) {
+            fprintf(stderr, "lumo-client: error: --prt: %s\n", err);
+            return -1;
+        }
+        mesh.lit = prt.lit;
+        ro.relight = 1;
+    }
+    if (!(r = host_renderer_open(c->o.backend, &mesh, ivg, &ro, err, sizeof err))) {
         fprintf(stderr, "lumo-client: error: %s\n", err);
         return -1;
     }
@@ -121,6 +134,7 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
     }
     free(rgb);
     host_renderer_close(r);
+    host_prt_close(&prt);
     return rc ? -1 : 0;
 }
 

@@ -7,12 +7,13 @@
 CLIENT_TOOL_OBJS := $(patsubst %.c,$(BUILD)/host/%.o,$(sort $(wildcard tools/lumo-client/*.c))) \
                     $(BUILD)/host/net/host/net_socket.o \
                     $(BUILD)/host/tools/lumo-render/session_scene.o \
-                    $(BUILD)/host/tools/lumo-render/render_backend.o
+                    $(BUILD)/host/tools/lumo-render/render_backend.o \
+                    $(BUILD)/host/tools/lumo-render/prt_render.o
 
 HOST_TOOLS += $(BIN)/lumo-client
 
 $(BIN)/lumo-client: $(CLIENT_TOOL_OBJS) $(BUILD)/host/rasterizer/gl/raster_gl.o \
-                    $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o \
+                    $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o \
                     $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o $(BUILD)/host/rasterizer/egl/raster_egl.o \
                     $(BUILD)/host/libmesh_build.a $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
                     $(BUILD)/rel/liblumo_net.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a

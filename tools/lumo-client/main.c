@@ -65,6 +65,10 @@ static const char usage[] =
     "                          updates of a dynamic scene for S seconds (docs/dynamic.md),\n"
     "                          a frame (frame-update-NNN.png) every --update-every ms\n"
     "  --update-every MS       poll and draw interval of --updates (default 250)\n"
+    "  --prt                   with --per-vertex: stream each mesh's PRT with its geometry\n"
+    "                          (docs/protocol.md §10) and relight with it under the package's\n"
+    "                          environment (PRTL), else its lights as distant lights\n"
+    "  --rotate DEG            with --prt: turn the lighting DEG degrees about +y a frame drawn\n"
     "  -h, --help              this text\n"
     "The last line on stdout sums the run up; any failure is one 'lumo-client: error:' line\n"
     "on stderr and exit status 1 (the frames drawn until then are kept).\n";
@@ -102,7 +106,7 @@ static int parse_order(const char *s, options *o)
 
 enum { O_CONNECT = 256, O_SERIAL, O_HTTP, O_REPLAY, O_RECORD, O_RETRIES, O_PACKAGE, O_OUT, O_AT, O_BACKEND,
        O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
-       O_QUIET, O_CAMERA, O_FIT, O_UPDATES, O_UPDEVERY, O_SHADOWS };
+       O_QUIET, O_CAMERA, O_FIT, O_UPDATES, O_UPDEVERY, O_SHADOWS, O_PRT, O_ROTATE };
 
 static int take_option(int c, const char *arg, options *o)
 {
@@ -142,6 +146,8 @@ static int take_option(int c, const char *arg, options *o)
     case O_QUIET: o->quiet = 1; return 0;
     case O_UPDATES: return parse_u32("--updates", arg, 1, 86400, &o->updates_s);
     case O_UPDEVERY: return parse_u32("--update-every", arg, 10, 60000, &o->update_every_ms);
+    case O_PRT: o->prt = 1; return 0;
+    case O_ROTATE: return host_opt_double("--rotate", arg, -360, 360, &o->rotate, g_err, sizeof g_err);
     default: snprintf(g_err, sizeof g_err, "unhandled option %d", c); return -1;
     }
 }
@@ -161,6 +167,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"no-smoothing", 0, 0, O_NOSMOOTH}, {"smoothing-budget", 1, 0, O_SMOOTHB}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
         {"quiet", 0, 0, O_QUIET}, {"camera", 1, 0, O_CAMERA}, {"fit", 0, 0, O_FIT},
         {"updates", 1, 0, O_UPDATES}, {"update-every", 1, 0, O_UPDEVERY}, {"shadows", 1, 0, O_SHADOWS},
+        {"prt", 0, 0, O_PRT}, {"rotate", 1, 0, O_ROTATE},
         {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
 
@@ -184,6 +191,13 @@ static int parse_args(int argc, char **argv, options *o)
         snprintf(g_err, sizeof g_err, "give exactly one of --connect, --serial, --http or --replay (try --help)");
     else if (o->updates_s && !o->connect)
         snprintf(g_err, sizeof g_err, "--updates pulls from lumo-server over TCP: give --connect");
+    else if (o->prt && (!o->per_vertex || strcmp(o->backend, "soft")))
+        snprintf(g_err, sizeof g_err, "--prt relights per vertex on the soft backend: give --per-vertex "
+                 "(the GL multipass is lumo-render's)");
+    else if (o->rotate != 0 && !o->prt)
+        snprintf(g_err, sizeof g_err, "--rotate goes with --prt (try --help)");
+    else if (o->prt && (o->http || o->serial))
+        snprintf(g_err, sizeof g_err, "--prt streams from lumo-server: give --connect or --replay");
     else
         return 0;
     return -1;
@@ -229,6 +243,7 @@ static int start(client *c, void **arena_mem)
      * trip less); a serial line re-asks after losses and an HTTP server
      * answers only ranges, so they ask for it as any other request. */
     ncfg.first_picture = c->o.connect != NULL;
+    ncfg.prt = (uint8_t)c->o.prt;
     if (lumo_session_init(&c->ses, &scfg, &arena) || lumo_net_client_init(&c->drv, &c->ses, &ncfg))
         return -1;
     if (c->o.record && record_open(&c->record, c->o.record, err, sizeof err)) {

@@ -7,7 +7,7 @@
 #
 # The GL backends (rasterizer/gl, osmesa, egl) are desktop objects built
 # here; they reach GL through get-proc-address, so no libGL is linked.
-RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o \
+RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o \
                   $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
                   $(BUILD)/host/rasterizer/egl/raster_egl.o
 # the GL backends' shadow maps (rasterizer/gl/raster_gl_shadow.c)
@@ -16,7 +16,7 @@ RASTER_GL_LIBS := -lOSMesa -lEGL
 RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load session_scene render_backend \
                   prt_render)
 
-$(BUILD)/host/rasterizer/gl/raster_gl.o: HOST_CFLAGS += -Irasterizer/gl
+$(BUILD)/host/rasterizer/gl/raster_gl.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o: HOST_CFLAGS += -Irasterizer/gl
 
 # The scene builder (mesh_build.h: the mesh container, generated quads and
 # spheres) and the scene conversion (scene_convert.h: the server's scene

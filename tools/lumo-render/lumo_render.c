@@ -71,9 +71,10 @@ static const char usage[] =
     "  --lod N|P%|all              level of detail of progressive meshes: at most N vertices\n"
     "                              per mesh, or the base mesh plus P% of the vertices\n"
     "                              streamed after it (0% = base mesh), or all (default)\n"
-    "  --prt                       soft, per vertex: relight with the package's PRT (lumo-bake\n"
-    "                              --prt; docs/prt.md) under the scene's lights as distant\n"
-    "                              lights, or the package's environment (PRTL), or --env\n"
+    "  --prt                       per vertex: relight with the package's PRT (lumo-bake --prt;\n"
+    "                              docs/prt.md) under the scene's lights as distant lights,\n"
+    "                              or the package's environment (PRTL), or --env; osmesa and\n"
+    "                              egl draw the thesis's multipass (one pass per super-cluster)\n"
     "  --env FILE.png              with --prt: an equirectangular environment (y up)\n"
     "  --rotate DEG                with --prt: turn the lighting DEG degrees about +y a frame\n"
     "  --prt-view clusters|passes  with --prt: false colours of each vertex's cluster, or of\n"
@@ -273,9 +274,11 @@ static void orbit_camera(const lumo_raster_camera *base, int i, int n, lumo_rast
 
 /* The timed draw, a function of its own so that callgrind can count just
  * these frames (--toggle-collect=timed_frame), not warm-up ones. */
-__attribute__((noinline)) static int timed_frame(host_renderer *r, const lumo_raster_camera *cam,
+__attribute__((noinline)) static int timed_frame(host_renderer *r, host_prt *prt, const lumo_raster_camera *cam,
                                                  const lumo_raster_scene *s, uint8_t *rgb)
 {
+    if (prt->gl)   /* --prt on a GL backend: the thesis's multipass (lumo/raster_gl_prt.h) */
+        return host_prt_gl_draw(prt, cam, s, rgb) ? LUMO_ERR_STATE : LUMO_OK;
     return host_renderer_draw(r, cam, s, rgb);
 }
 
@@ -467,8 +470,8 @@ int main(int argc, char **argv)
     mesh = host_mesh_raster(&scene.mesh);
     static host_prt prt;
     if (o.prt) {
-        if (o.use_default || strcmp(o.backend, "soft") || o.per_pixel) {
-            fprintf(stderr, "lumo-render: error: --prt needs a package, the soft backend and per-vertex lighting\n");
+        if (o.use_default || o.per_pixel) {
+            fprintf(stderr, "lumo-render: error: --prt needs a package and per-vertex lighting\n");
             return 1;
         }
         if (host_prt_open(&prt, o.input, o.env, &scene, err, sizeof err)) {
@@ -493,9 +496,18 @@ int main(int argc, char **argv)
         fprintf(stderr, "lumo-render: error: %s\n", err);
         return 1;
     }
+    if (o.prt && host_renderer_gl(r) && host_prt_gl_open(&prt, host_renderer_gl(r), &scene, &mesh, err, sizeof err)) {
+        fprintf(stderr, "lumo-render: error: --prt: %s\n", err);
+        host_prt_close(&prt);
+        host_renderer_close(r);
+        return 1;
+    }
     rgb = malloc((size_t)o.ro.width * o.ro.height * 3);
-    for (i = 0; i < o.warmup && rgb; i++)
-        host_renderer_draw(r, &scene.camera, &rs, rgb);
+    for (i = 0; i < o.warmup && rgb; i++)   /* untimed, also PRT's relight (relight_ms reset below) */
+        if (o.prt ? host_prt_relight(&prt, &scene, 0, 0) || timed_frame(r, &prt, &scene.camera, &rs, rgb)
+                  : host_renderer_draw(r, &scene.camera, &rs, rgb))
+            break;
+    prt.relight_ms = 0;
     for (i = 0; i < o.frames && rgb; i++) {
         lumo_raster_camera cam = scene.camera;
         char name[1024];
@@ -510,7 +522,7 @@ int main(int argc, char **argv)
             break;
         }
         t0 = now_ms();
-        if ((st = (lumo_status)timed_frame(r, &cam, &rs, rgb))) {
+        if ((st = (lumo_status)timed_frame(r, &prt, &cam, &rs, rgb))) {
             fprintf(stderr, "lumo-render: error: frame %d failed: %s\n", i, lumo_strerror(st));
             rc = 1;
             break;
@@ -531,6 +543,14 @@ int main(int argc, char **argv)
                host_renderer_describe(r), o.ro.width, o.ro.height, mesh.tri_count,
                o.per_pixel ? "per-pixel" : "per-vertex", rs.indirect ? " + IVG" : "", o.frames,
                total / o.frames, best);
+    if (rc == 0 && prt.gl) {
+        lumo_gl_prt_stats gs;
+        lumo_gl_prt_get_stats(prt.gl, &gs);
+        printf("lumo-render: PRT multipass: %u passes, %llu of %llu triangles drawn (overdraw %.4f), "
+               "GL primitives generated %llu a frame\n", gs.passes, (unsigned long long)gs.drawn,
+               (unsigned long long)gs.triangles, gs.triangles ? (double)gs.drawn / gs.triangles : 0.0,
+               (unsigned long long)gs.generated);
+    }
     if (rc == 0 && o.prt)
         printf("lumo-render: PRT order %u, %u mesh(es), %u clusters, %u components: relight %.3f ms/frame mean\n",
                prt.mesh[0].order, prt.meshes, prt.mesh[0].clusters, prt.mesh[0].components,

@@ -11,6 +11,8 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "lumo/prt.h"
+#include "lumo/raster_gl_prt.h"
+#include "lumo/session.h"
 #include "mesh_build.h"
 
 typedef struct host_prt {
@@ -22,6 +24,9 @@ typedef struct host_prt {
     lumo_uq16_16  *lit;                    /* 6 per host vertex */
     double         relight_ms;             /* summed over frames */
     int            view;                   /* HOST_PRT_LIGHT, _CLUSTERS or _PASSES */
+    uint32_t       count[LUMO_MAX_MESHES]; /* host vertices of each mesh, in order */
+    uint8_t        has[LUMO_MAX_MESHES];   /* mesh[i] holds every cluster (else its vertices stay black) */
+    lumo_gl_prt   *gl;                     /* GL backends: the multipass draws, lit stays unused */
 } host_prt;
 
 /* What --prt draws: the relit mesh, or each vertex in a false colour of its
@@ -33,8 +38,23 @@ enum { HOST_PRT_LIGHT = 0, HOST_PRT_CLUSTERS = 1, HOST_PRT_PASSES = 2 };
  * the package's PRTL, else the scene's lights). 0, or -1 with err. */
 int host_prt_open(host_prt *p, const char *path, const char *env, const host_scene *s, char *err, size_t errlen);
 
+/* The same from a client session (lumo/session.h: lumo-client --prt) whose
+ * scene s was built by host_scene_from_session: each mesh's PRT as held
+ * (a mesh whose clusters have not all arrived, or vertices past the
+ * records held, stay black until they do), the session's PRTL, else the
+ * scene's lights. 0, or -1 with err. */
+int host_prt_open_session(host_prt *p, const lumo_session *ses, const host_scene *s, char *err, size_t errlen);
+
 /* Relight for frame i: lighting turned by i * deg about +y. 0 or -1. */
 int host_prt_relight(host_prt *p, const host_scene *s, int i, double deg);
+
+/* GL backends: draw with the thesis's multipass (lumo/raster_gl_prt.h)
+ * in the renderer's context g; host_prt_relight then only fills the
+ * per-cluster tables. 0, or -1 with err. */
+int host_prt_gl_open(host_prt *p, struct lumo_gl *g, const host_scene *s, const lumo_raster_mesh *m, char *err,
+                     size_t errlen);
+/* Draw the frame host_prt_relight prepared. 0 or -1. */
+int host_prt_gl_draw(host_prt *p, const lumo_raster_camera *cam, const lumo_raster_scene *rs, uint8_t *rgb);
 
 void host_prt_close(host_prt *p);
 

@@ -342,6 +342,11 @@ size_t host_renderer_soft_bytes(const host_renderer *r)
          + (r->ind ? lumo_raster_lit_bytes(r->mesh->vertex_count) : 0);
 }
 
+lumo_gl *host_renderer_gl(host_renderer *r)
+{
+    return r->gl;
+}
+
 void host_renderer_close(host_renderer *r)
 {
     uint32_t i;

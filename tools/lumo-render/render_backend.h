@@ -49,6 +49,9 @@ unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes);
 int host_opt_shadows(const char *arg, uint16_t *size, char *err, size_t errlen);
 /* Bytes of frame/band buffers and vertex cache the soft backend uses. */
 size_t host_renderer_soft_bytes(const host_renderer *r);
+/* The GL renderer of an osmesa or egl backend (NULL for soft): for the
+ * GL add-ons drawing in its context (PRT multipass, lumo/raster_gl_prt.h). */
+struct lumo_gl *host_renderer_gl(host_renderer *r);
 void host_renderer_close(host_renderer *r);
 
 #endif

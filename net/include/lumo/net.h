@@ -28,7 +28,8 @@
 #define LUMO_NET_MAX_PAYLOAD  (16u << 20)   /* the largest payload of any frame (16 MiB) */
 #define LUMO_NET_MIN_PAYLOAD  4096u   /* the smallest max payload a client may state */
 #define LUMO_NET_MAX_TEXT     256u    /* ERROR text bytes */
-#define LUMO_NET_MAX_WELCOME_MSGS (1u + 2u * LUMO_MAX_MESHES + 3u)   /* descriptors in a WELCOME, at most */
+#define LUMO_NET_MAX_WELCOME_MSGS (1u + 3u * LUMO_MAX_MESHES + 4u)   /* descriptors in a WELCOME, at most:
+                                                                     * INFO, PMSH and PRTV per mesh, IVGD, IVGS, ORDR, PRTL */
 
 /* Frame types (docs/protocol.md §2). */
 typedef enum lumo_net_type {
@@ -39,11 +40,14 @@ typedef enum lumo_net_type {
 #define LUMO_NET_TYPE_LAST LUMO_NET_POSES   /* the highest frame type */
 
 /* The channels a REQUEST, DATA or END belongs to: the package's geometry
- * and lighting, and the lighting updates of a dynamic scene
- * (docs/protocol.md §9, docs/dynamic.md). */
+ * and lighting, the lighting updates of a dynamic scene (docs/protocol.md
+ * §9, docs/dynamic.md), and a mesh's precomputed radiance transfer (§10,
+ * docs/prt.md: byte spans of its PRTV chunk). */
 typedef enum lumo_net_channel {
-    LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1, LUMO_NET_UPDATES = 2
+    LUMO_NET_GEOMETRY = 0, LUMO_NET_LIGHTING = 1, LUMO_NET_UPDATES = 2, LUMO_NET_PRT = 3
 } lumo_net_channel;
+/* The highest channel a REQUEST, DATA or END may name (RANGE above). */
+#define LUMO_NET_CHANNEL_LAST LUMO_NET_PRT
 
 #define LUMO_NET_FORM_NONE 0xFFu   /* HELLO: no IVG wanted */
 #define LUMO_NET_FLAG_SMOOTHING 1u   /* HELLO: the client smooths its push-pull */
@@ -51,6 +55,9 @@ typedef enum lumo_net_channel {
  * to a base-mesh request per mesh and to lighting round 0, as if asked
  * right after WELCOME): one round trip less to the first picture. */
 #define LUMO_NET_FLAG_FIRST_PICTURE 2u
+/* HELLO: the client relights with the package's PRT (§10): the WELCOME
+ * then carries each mesh's PRTV header and the PRTL, and their arena need. */
+#define LUMO_NET_FLAG_PRT 4u
 
 /* ---- frames ------------------------------------------------------------------ */
 
@@ -143,6 +150,10 @@ typedef struct lumo_net_data {
 /* The last 8 bytes of DATA's head (form, records) are the head of the
  * session's IVGR message, so the records feed the session in place. */
 #define LUMO_NET_IVGR_HEAD 8u
+/* On the PRT channel (§10) first = records = the span's byte offset in the
+ * mesh's PRTV chunk and count its bytes: the last 4 bytes of the head are
+ * the session's PRTS message's head. */
+#define LUMO_NET_PRTS_HEAD 4u
 
 /* END: a channel (of a mesh) has nothing more. */
 typedef struct lumo_net_end {

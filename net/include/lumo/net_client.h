@@ -70,6 +70,9 @@ typedef struct lumo_net_client_config {
                                 round trip less to it */
     uint8_t  replay;         /* frames come from a recording: apply them in the
                                 order they come, send nothing but HELLO */
+    uint8_t  prt;            /* relight with the package's PRT (HELLO flag PRT,
+                                docs/protocol.md §10): each mesh's PRTV streamed
+                                in step with its geometry */
     lumo_net_clock clock;    /* milliseconds, or NULL (fixed sizes) */
     void *clock_ctx;         /* handed to clock */
 } lumo_net_client_config;
@@ -119,6 +122,9 @@ typedef struct lumo_net_client {
     uint32_t mesh_bytes[LUMO_MAX_MESHES];  /* record bytes of the batches held, per mesh */
     uint32_t rounds_held, rounds_asked, rounds_total;
     uint8_t  has_ivg;
+    uint8_t  has_prt;                 /* cfg.prt and the WELCOME carried a PRTV */
+    uint32_t prt_asked[LUMO_MAX_MESHES];  /* PRTV bytes asked for (held + pending); 0: no PRT
+                                             (its layout: lumo_session_prt_layout) */
     uint32_t turn;                    /* interleaving position */
     uint8_t  pipeline_auto;           /* policy.pipeline was 0 */
     lumo_net_pending pending[LUMO_NET_MAX_PENDING];

@@ -43,6 +43,22 @@ int lumo_gl_set_ivg(lumo_gl *g, const lumo_ivg *ivg);
  * "GL shadow maps"; faces * size^2 * 4 bytes of texture). 0 on success. */
 int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_scene *s,
                  uint8_t *rgb);
+/* For GL add-ons kept in their own files (raster_gl_prt.c): the
+ * get-proc-address function and kind of the context; the off-screen
+ * frame's size; bind that frame (framebuffer and viewport); the camera's
+ * clip matrix (column-major, the far plane past the uploaded mesh); read
+ * that frame back (rgb: width*height*3, top row first; 0 on success, -1
+ * on a GL error); a program of the renderer's GLSL version and common
+ * functions (tonemap, ...) around the given vertex and fragment bodies,
+ * attribs[i] at location i (0 with a message in err on failure). */
+lumo_gl_getproc_fn lumo_gl_getproc(const lumo_gl *g);
+int lumo_gl_gles(const lumo_gl *g);
+void lumo_gl_size(const lumo_gl *g, int *width, int *height);
+void lumo_gl_bind_target(lumo_gl *g);
+void lumo_gl_mvp(const lumo_gl *g, const lumo_raster_camera *cam, float mvp[16]);
+int lumo_gl_read_rgb(lumo_gl *g, uint8_t *rgb);
+unsigned lumo_gl_program(lumo_gl *g, const char *vertex, const char *fragment, const char *const *attribs,
+                         unsigned nattribs, char *err, size_t errlen);
 /* Renderer name reported by the driver (e.g. "llvmpipe ..."). */
 const char *lumo_gl_renderer(const lumo_gl *g);
 void lumo_gl_destroy(lumo_gl *g);

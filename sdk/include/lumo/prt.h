@@ -50,6 +50,21 @@ typedef struct lumo_prt {
 size_t lumo_prt_cluster_bytes(unsigned order, unsigned components);
 size_t lumo_prt_vertex_bytes(unsigned components);
 
+/* The chunk's sizes from its header (the first LUMO_PRT_HEADER_SIZE bytes
+ * of data, len >= that): *total, the whole chunk (header, clusters, pass
+ * table, every vertex record); *fixed, the part before the vertex records.
+ * For a client that holds a streamed chunk (lumo/session.h's PRTV and PRTS
+ * messages) before its bytes arrive. Errors as lumo_prt_parse's header
+ * checks (TRUNCATED, VERSION, RANGE, LIMIT, CORRUPT); LUMO_ERR_OVERFLOW when
+ * the size does not fit a size_t. */
+lumo_status lumo_prt_chunk_size(const uint8_t *data, size_t len, size_t *total, size_t *fixed);
+
+/* Check the units of a chunk whose bytes [0, end) are at data and of which
+ * [0, from) were checked before: every pass entry and vertex record that
+ * ends in (from, end] must name a cluster < K (the header's). LUMO_OK or
+ * LUMO_ERR_RANGE; LUMO_ERR_ARG when the header is not in [0, end). */
+lumo_status lumo_prt_check_span(const uint8_t *data, size_t from, size_t end);
+
 /* Parse data[0..len): the header, every cluster record, the pass table,
  * then as many whole vertex records as len holds (a streamed prefix is
  * fine; bytes past the V-th record are LUMO_ERR_CORRUPT). Every pass and
@@ -65,6 +80,12 @@ typedef struct lumo_prt_light {
     uint8_t     order;                      /* N: coefficients 0..N*N-1 are used */
     lumo_q16_16 c[3][LUMO_PRT_MAX_COEFFS];  /* per channel (r, g, b), W/m^2/sr per basis function */
 } lumo_prt_light;
+
+/* The PRTL payload (an environment's lighting, docs/package-format.md): u8
+ * order N, 3 zero bytes, 3 x N^2 int32 Q16.16, channel-major, into *out.
+ * LUMO_ERR_TRUNCATED, LUMO_ERR_CORRUPT (length or reserved bytes),
+ * LUMO_ERR_RANGE (order), LUMO_ERR_ARG. */
+lumo_status lumo_prt_light_decode(const uint8_t *p, size_t len, lumo_prt_light *out);
 
 /* The draw pass of cluster k (< clusters): the super-cluster a multipass
  * GPU client uploads it with (seed 003 §4.3); passes are numbered from 0. */

@@ -44,6 +44,7 @@
 #include "lumo/ivg.h"
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
+#include "lumo/prt.h"
 #include "lumo/scene.h"
 #include "lumo/status.h"
 
@@ -70,6 +71,18 @@
  * replaces vertices already held, as a DATA frame of the updates channel
  * carries it; not counted in lumo_session_lighting_progress. */
 #define LUMO_MSG_IVGU  LUMO_PKG_FOURCC('I', 'V', 'G', 'U')
+/* PRT (seed 003, docs/prt.md, docs/client-session.md "PRT"): the
+ * clustered-PCA transfer of mesh `index` and an environment's lighting.
+ * PRTV: the mesh's PRTV chunk, or a prefix of it of at least its 12-byte
+ * header (the session then holds the whole chunk's size in the arena);
+ * once per mesh. PRTS: a span of that chunk continuing it, u32 byte
+ * offset (= the bytes held) then the bytes; as a DATA frame of the PRT
+ * channel carries it (docs/protocol.md §10). PRTL: the PRTL chunk (u8
+ * order, 3 zero bytes, 3 x N^2 int32 Q16.16); once. */
+#define LUMO_MSG_PRTV  LUMO_PKG_FOURCC('P', 'R', 'T', 'V')
+#define LUMO_MSG_PRTS  LUMO_PKG_FOURCC('P', 'R', 'T', 'S')
+#define LUMO_MSG_PRTL  LUMO_PKG_FOURCC('P', 'R', 'T', 'L')
+#define LUMO_MSG_PRTS_HEADER 4u   /* bytes of a PRTS message's head */
 
 /* Level of detail: how far each progressive mesh is refined. A batch past
  * the target is not applied; the batch that crosses it is applied and the
@@ -95,6 +108,9 @@ typedef struct lumo_session_mesh_slot {
     uint32_t    target;     /* progressive: the level's vertex count */
     lumo_pmesh  pm;         /* progressive */
     lumo_pmesh_view raw;    /* raw: the arrays in the arena */
+    uint8_t    *prt;        /* PRT: the mesh's PRTV chunk in the arena (its size from
+                               the header), NULL before PRTV */
+    uint32_t    prt_held;   /* its bytes held (checked), a prefix */
 } lumo_session_mesh_slot;
 
 /* The session. Fields are private. */
@@ -113,6 +129,8 @@ typedef struct lumo_session {
     lumo_scene_order order;       /* ORDR, its steps copied into the arena */
     lumo_session_mesh_slot mesh[LUMO_MAX_MESHES];
     lumo_q16_16    pose[LUMO_MAX_MESHES][4];   /* dynamic scenes: translation (m), yaw (deg) */
+    const uint8_t *prtl;          /* PRTL: its checked copy in the arena (its length from
+                                   * its order), NULL before */
 } lumo_session;
 
 /* An empty session taking its memory from `arena` (not owned; must outlive
@@ -121,7 +139,8 @@ lumo_status lumo_session_init(lumo_session *s, const lumo_session_config *cfg, l
 
 /* Arena bytes the message (type, payload) will take when fed: the arrays of
  * a raw mesh, a progressive mesh's decoder (from its stream header), the
- * IVG grid, the copy of an IVGS or ORDR payload; 0 for the others. Errors
+ * IVG grid, the copy of an IVGS or ORDR payload, a PRTV's whole chunk (from
+ * its header), a PRTL's copy; 0 for the others. Errors
  * as the payload's decoder. */
 lumo_status lumo_session_message_need(uint32_t type, const uint8_t *payload, size_t len, size_t *bytes);
 
@@ -146,7 +165,8 @@ lumo_status lumo_session_feed(lumo_session *s, uint32_t type, uint32_t index, co
 /* Feed a whole package in its stream order: INFO, the IVG (its descriptor,
  * its streaming order IVGS and the interleaving ORDR when present, then the
  * quantized bundle a client receives, else the binary32 one), then every
- * mesh (its PMSH stream, else its MESH chunk). Stops at the first error;
+ * mesh (its PMSH stream, else its MESH chunk), then each mesh's PRTV chunk
+ * and the PRTL when present. Stops at the first error;
  * *where (may be NULL) then names the failing message's type and index. */
 typedef struct lumo_session_where {
     uint32_t type, index;   /* the failing message's type (LUMO_MSG_*) and index */
@@ -213,6 +233,22 @@ typedef struct lumo_session_progress {
 } lumo_session_progress;
 /* The progress of mesh `index` (above) into *out. */
 lumo_status lumo_session_mesh_progress(const lumo_session *s, uint32_t index, lumo_session_progress *out);
+
+/* The PRT of mesh `index` as held (lumo/prt.h: a view of the session's
+ * copy; vertices_held grows as PRTS spans arrive — relight those, the
+ * first ones of the progressive order, whatever the level of detail):
+ * LUMO_OK; RANGE when no PRTV of that mesh arrived; TRUNCATED while its
+ * clusters and pass table are not all held. */
+lumo_status lumo_session_prt(const lumo_session *s, uint32_t index, lumo_prt *out);
+/* Bytes of mesh `index`'s PRTV chunk held and its whole size (0, 0 before
+ * its PRTV): the cursor of a PRT REQUEST (docs/protocol.md §10). */
+void lumo_session_prt_progress(const lumo_session *s, uint32_t index, uint32_t *held, uint32_t *size);
+/* The layout of mesh `index`'s PRTV chunk (from its header): the bytes
+ * before its vertex records (header, clusters, pass table) and one vertex
+ * record's. RANGE when no PRTV of that mesh arrived. */
+lumo_status lumo_session_prt_layout(const lumo_session *s, uint32_t index, uint32_t *fixed, uint32_t *vertex_bytes);
+/* The environment lighting of the PRTL message: RANGE when none arrived. */
+lumo_status lumo_session_prt_light(const lumo_session *s, lumo_prt_light *out);
 
 /* The stream header of progressive mesh `index` (batch sizes and counts, for
  * a client that sizes its requests); RANGE when no such stream arrived. */
