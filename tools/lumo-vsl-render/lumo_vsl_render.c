@@ -156,7 +156,7 @@ static int view_open(view *v, const options *o, char *err, size_t errlen)
     } else if (!strcmp(o->backend, "egl")) {
         if (!(v->egl = lumo_egl_open(o->w, o->h, err, errlen)))
             return -1;
-        if (!strstr(lumo_egl_describe(v->egl), "OpenGL core") && !strstr(lumo_egl_describe(v->egl), "OpenGL compat")) {
+        if (strstr(lumo_egl_describe(v->egl), "OpenGL ES")) {
             snprintf(err, errlen, "EGL gave %s: the VSL renderer needs desktop OpenGL 3.3", lumo_egl_describe(v->egl));
             return -1;
         }
