@@ -441,12 +441,13 @@ static int write_png(const options *o, const char *kind, double t, const float *
 }
 
 /* The path tracer's picture of the posed scene from the same camera. */
-static int reference_picture(const moment *m, const srv_camera *cam, const options *o, srv_image *img)
+static int reference_picture(const moment *m, const srv_camera *cam, const options *o, uint64_t seed,
+                             srv_image *img)
 {
     char err[256];
     srv_rt *rt = srv_rt_create(&m->posed, 2, err, sizeof err);
     srv_tracer tr;
-    srv_render_opts ro = {o->ref_spp, 7, 2, 0, 0};
+    srv_render_opts ro = {o->ref_spp, seed, 2, 0, 0};
     if (!rt)
         return fail(err);
     srv_tracer_init(&tr, &m->posed, rt);
@@ -474,7 +475,13 @@ static int render_moment(view *v, moment *m, const srv_vsl_engine *e, const srv_
     if (!ivg || ivg_picture(v, m, srv_vsl_engine_ivg(e), o, ivg))
         return fail("drawing the IVG picture failed");
     rc |= write_png(o, "ivg", t, ivg);
-    double worst;
+    double worst, rmin = 1e30, rmax = 0;
+    for (uint32_t i = 0; i < m->frame.nvsls; i++) {
+        const float *f = m->vsls[i].flux;
+        double r = sqrt(fmax(f[0], fmax(f[1], f[2])) / (M_PI * o->eps));
+        rmin = fmin(rmin, r), rmax = fmax(rmax, r);
+    }
+    printf("  %u VSLs, cut-off radius %.3g to %.3g m (eps %g)\n", m->frame.nvsls, rmin, rmax, (double)o->eps);
     if (check_against_engine(v, m, e, o, &worst))
         return fail("the check against the engine's VSL light drew nothing");
     printf("  %-40s largest relative difference %.2e\n", "GL deferred vs srv_vsl_irradiance", worst);
@@ -484,13 +491,17 @@ static int render_moment(view *v, moment *m, const srv_vsl_engine *e, const srv_
     diff_line("one-pass vs deferred", pic[2], pic[0], o);
     diff_line("IVG picture vs VSL picture", ivg, pic[0], o);
     if (o->ref_spp > 0) {
-        srv_image ref = {0};
-        if (reference_picture(m, cam, o, &ref))
+        /* A second reference of another seed: the references' own noise
+         * (their difference is about sqrt(2) times each one's). */
+        srv_image ref = {0}, ref2 = {0};
+        if (reference_picture(m, cam, o, 7, &ref) || reference_picture(m, cam, o, 8, &ref2))
             return 1;
         rc |= write_png(o, "reference", t, ref.rgb);
         diff_line("VSL picture vs path traced", pic[0], ref.rgb, o);
         diff_line("IVG picture vs path traced", ivg, ref.rgb, o);
+        diff_line("path traced vs path traced (seed 8)", ref2.rgb, ref.rgb, o);
         srv_image_free(&ref);
+        srv_image_free(&ref2);
     }
     for (int k = 0; k < 3; k++)
         free(pic[k]);
