@@ -345,14 +345,16 @@ static void ivg_irradiance(const srv_vsl_ivg *ivg, const float p[3], const float
         e[ch] = e[ch] > 0 ? e[ch] : 0;
 }
 
-/* direct (the GL's, shadow-mapped) + rho/pi E_IVG at every G-buffer pixel. */
-static int ivg_picture(view *v, const moment *m, const srv_vsl_ivg *ivg, const options *o, float *out)
+/* direct (the GL's, shadow-mapped; when asked) + rho/pi E_IVG at every
+ * G-buffer pixel. */
+static int ivg_picture(view *v, const moment *m, const srv_vsl_ivg *ivg, const options *o, int direct, float *out)
 {
     size_t n = (size_t)o->w * o->h;
     float *pos = malloc(n * 16), *nrm = malloc(n * 16), *alb = malloc(n * 16);
     lumo_gl_vsl_frame f = m->frame;
     int rc = -1;
     f.indirect = 0;
+    f.direct = direct;
     if (pos && nrm && alb && !lumo_gl_vsl_draw(v->r, &f) && !lumo_gl_vsl_read(v->r, out) &&
         !lumo_gl_vsl_read_surface(v->r, pos, nrm, alb)) {
         for (size_t i = 0; i < n; i++) {
@@ -442,18 +444,50 @@ static int write_png(const options *o, const char *kind, double t, const float *
 
 /* The path tracer's picture of the posed scene from the same camera. */
 static int reference_picture(const moment *m, const srv_camera *cam, const options *o, uint64_t seed,
-                             srv_image *img)
+                             int indirect_only, srv_image *img)
 {
     char err[256];
     srv_rt *rt = srv_rt_create(&m->posed, 2, err, sizeof err);
     srv_tracer tr;
-    srv_render_opts ro = {o->ref_spp, seed, 2, 0, 0};
+    srv_render_opts ro = {o->ref_spp, seed, 2, indirect_only, 0};
     if (!rt)
         return fail(err);
     srv_tracer_init(&tr, &m->posed, rt);
     lumo_status st = srv_render_reference(&tr, cam, o->w, o->h, &ro, img, NULL);
     srv_rt_free(rt);
     return st ? fail("the reference render failed") : 0;
+}
+
+/* The whole picture and the indirect part alone (the VSLs' against the
+ * path tracer's indirect_only), each beside a second reference of another
+ * seed: the references' own noise (their difference is about sqrt(2)
+ * times each one's). */
+static int compare_reference(view *v, moment *m, const srv_vsl_engine *e, const srv_camera *cam,
+                             const options *o, double t, const float *vsl, const float *ivg)
+{
+    size_t n = (size_t)o->w * o->h * 3;
+    srv_image ref[4] = {{0}};
+    float *vind = malloc(n * 4), *iind = malloc(n * 4);
+    lumo_gl_vsl_frame f = m->frame;
+    int rc = 0;
+    f.direct = 0, f.mode = LUMO_GL_VSL_DEFERRED;
+    for (int k = 0; k < 4; k++)
+        if (reference_picture(m, cam, o, 7 + (k & 1), k >= 2, &ref[k]))
+            return 1;
+    if (!vind || !iind || lumo_gl_vsl_draw(v->r, &f) || lumo_gl_vsl_read(v->r, vind) ||
+        ivg_picture(v, m, srv_vsl_engine_ivg(e), o, 0, iind))
+        return fail("drawing the indirect part failed");
+    rc |= write_png(o, "reference", t, ref[0].rgb);
+    diff_line("VSL picture vs path traced", vsl, ref[0].rgb, o);
+    diff_line("IVG picture vs path traced", ivg, ref[0].rgb, o);
+    diff_line("path traced vs path traced (seed 8)", ref[1].rgb, ref[0].rgb, o);
+    diff_line("indirect: VSLs vs path traced", vind, ref[2].rgb, o);
+    diff_line("indirect: IVG vs path traced", iind, ref[2].rgb, o);
+    diff_line("indirect: path traced vs seed 8", ref[3].rgb, ref[2].rgb, o);
+    for (int k = 0; k < 4; k++)
+        srv_image_free(&ref[k]);
+    free(vind), free(iind);
+    return rc;
 }
 
 /* Every mode's picture (they must agree: one light, three ways), the
@@ -472,7 +506,7 @@ static int render_moment(view *v, moment *m, const srv_vsl_engine *e, const srv_
             return fail("drawing failed");
         rc |= write_png(o, pic_names[k], t, pic[k]);
     }
-    if (!ivg || ivg_picture(v, m, srv_vsl_engine_ivg(e), o, ivg))
+    if (!ivg || ivg_picture(v, m, srv_vsl_engine_ivg(e), o, 1, ivg))
         return fail("drawing the IVG picture failed");
     rc |= write_png(o, "ivg", t, ivg);
     double worst, rmin = 1e30, rmax = 0;
@@ -491,17 +525,7 @@ static int render_moment(view *v, moment *m, const srv_vsl_engine *e, const srv_
     diff_line("one-pass vs deferred", pic[2], pic[0], o);
     diff_line("IVG picture vs VSL picture", ivg, pic[0], o);
     if (o->ref_spp > 0) {
-        /* A second reference of another seed: the references' own noise
-         * (their difference is about sqrt(2) times each one's). */
-        srv_image ref = {0}, ref2 = {0};
-        if (reference_picture(m, cam, o, 7, &ref) || reference_picture(m, cam, o, 8, &ref2))
-            return 1;
-        rc |= write_png(o, "reference", t, ref.rgb);
-        diff_line("VSL picture vs path traced", pic[0], ref.rgb, o);
-        diff_line("IVG picture vs path traced", ivg, ref.rgb, o);
-        diff_line("path traced vs path traced (seed 8)", ref2.rgb, ref.rgb, o);
-        srv_image_free(&ref);
-        srv_image_free(&ref2);
+        rc |= compare_reference(v, m, e, cam, o, t, pic[0], ivg);
     }
     for (int k = 0; k < 3; k++)
         free(pic[k]);
@@ -570,6 +594,22 @@ static int bench(view *v, const srv_scene *s, const srv_motion *mo, const srv_ca
 
 /* ---- main ------------------------------------------------------------------------ */
 
+/* mkdir -p */
+static int make_dirs(const char *path)
+{
+    char buf[1024];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return -1;
+    for (char *p = buf + 1; *p; p++)
+        if (*p == '/') {
+            *p = '\0';
+            if (mkdir(buf, 0777) && errno != EEXIST)
+                return -1;
+            *p = '/';
+        }
+    return mkdir(buf, 0777) && errno != EEXIST ? -1 : 0;
+}
+
 static int load_scene(const options *o, srv_scene *s, srv_motion *m, char *err, size_t errlen)
 {
     srv_scene_init(s);
@@ -621,7 +661,7 @@ int main(int argc, char **argv)
         return fail(err);
     if (view_open(&v, &o, err, sizeof err))
         return fail(err);
-    if (!o.bench && mkdir(o.out, 0777) && errno != EEXIST)
+    if (!o.bench && make_dirs(o.out))
         return fail("cannot create the output folder");
     int rc = o.bench ? bench(&v, &s, &mo, &cam, &o) : render(&v, &s, &mo, &cam, &o);
     view_close(&v);
