@@ -471,61 +471,74 @@ static int compare_reference(view *v, moment *m, const srv_vsl_engine *e, const 
     lumo_gl_vsl_frame f = m->frame;
     int rc = 0;
     f.direct = 0, f.mode = LUMO_GL_VSL_DEFERRED;
-    for (int k = 0; k < 4; k++)
-        if (reference_picture(m, cam, o, 7 + (k & 1), k >= 2, &ref[k]))
-            return 1;
-    if (!vind || !iind || lumo_gl_vsl_draw(v->r, &f) || lumo_gl_vsl_read(v->r, vind) ||
-        ivg_picture(v, m, srv_vsl_engine_ivg(e), o, 0, iind))
-        return fail("drawing the indirect part failed");
-    rc |= write_png(o, "reference", t, ref[0].rgb);
+    for (int k = 0; k < 4 && !rc; k++)
+        rc = reference_picture(m, cam, o, 7 + (k & 1), k >= 2, &ref[k]);
+    if (!rc && (!vind || !iind || lumo_gl_vsl_draw(v->r, &f) || lumo_gl_vsl_read(v->r, vind) ||
+                ivg_picture(v, m, srv_vsl_engine_ivg(e), o, 0, iind)))
+        rc = fail("drawing the indirect part failed");
+    if (rc)
+        goto out;
+    rc = write_png(o, "reference", t, ref[0].rgb);
     diff_line("VSL picture vs path traced", vsl, ref[0].rgb, o);
     diff_line("IVG picture vs path traced", ivg, ref[0].rgb, o);
     diff_line("path traced vs path traced (seed 8)", ref[1].rgb, ref[0].rgb, o);
     diff_line("indirect: VSLs vs path traced", vind, ref[2].rgb, o);
     diff_line("indirect: IVG vs path traced", iind, ref[2].rgb, o);
     diff_line("indirect: path traced vs seed 8", ref[3].rgb, ref[2].rgb, o);
+out:
     for (int k = 0; k < 4; k++)
         srv_image_free(&ref[k]);
     free(vind), free(iind);
     return rc;
 }
 
-/* Every mode's picture (they must agree: one light, three ways), the
- * direct part alone, the IVG picture and, with --reference, the path
- * tracer's, with the errors between them. */
-static int render_moment(view *v, moment *m, const srv_vsl_engine *e, const srv_camera *cam, const options *o,
-                         double t)
+/* The VSLs' cut-off radii (§0.7.3) at this moment. */
+static void radius_line(const moment *m, const options *o)
 {
-    size_t n = (size_t)o->w * o->h * 3;
-    float *pic[3], *ivg = malloc(n * 4);
-    int rc = 0;
-    for (int k = 0; k < 3; k++) {
-        pic[k] = malloc(n * 4);
-        m->frame.mode = (lumo_gl_vsl_mode)k;
-        if (!pic[k] || lumo_gl_vsl_draw(v->r, &m->frame) || lumo_gl_vsl_read(v->r, pic[k]))
-            return fail("drawing failed");
-        rc |= write_png(o, pic_names[k], t, pic[k]);
-    }
-    if (!ivg || ivg_picture(v, m, srv_vsl_engine_ivg(e), o, 1, ivg))
-        return fail("drawing the IVG picture failed");
-    rc |= write_png(o, "ivg", t, ivg);
-    double worst, rmin = 1e30, rmax = 0;
+    double rmin = 1e30, rmax = 0;
     for (uint32_t i = 0; i < m->frame.nvsls; i++) {
         const float *f = m->vsls[i].flux;
         double r = sqrt(fmax(f[0], fmax(f[1], f[2])) / (M_PI * o->eps));
         rmin = fmin(rmin, r), rmax = fmax(rmax, r);
     }
     printf("  %u VSLs, cut-off radius %.3g to %.3g m (eps %g)\n", m->frame.nvsls, rmin, rmax, (double)o->eps);
+}
+
+static int check_line(view *v, moment *m, const srv_vsl_engine *e, const options *o)
+{
+    double worst;
     if (check_against_engine(v, m, e, o, &worst))
         return fail("the check against the engine's VSL light drew nothing");
     printf("  %-40s largest relative difference %.2e\n", "GL deferred vs srv_vsl_irradiance", worst);
-    if (worst > 1e-3)
-        rc |= fail("the GL's VSL light differs from the engine's");
-    diff_line("whole-scene vs deferred", pic[1], pic[0], o);
-    diff_line("one-pass vs deferred", pic[2], pic[0], o);
-    diff_line("IVG picture vs VSL picture", ivg, pic[0], o);
-    if (o->ref_spp > 0) {
-        rc |= compare_reference(v, m, e, cam, o, t, pic[0], ivg);
+    return worst > 1e-3 ? fail("the GL's VSL light differs from the engine's") : 0;
+}
+
+/* Every mode's picture (they must agree: one light, three ways), the IVG
+ * picture, the check against the engine and, with --reference, the path
+ * tracer's pictures, with the errors between them. */
+static int render_moment(view *v, moment *m, const srv_vsl_engine *e, const srv_camera *cam, const options *o,
+                         double t)
+{
+    size_t n = (size_t)o->w * o->h * 3;
+    float *pic[3] = {malloc(n * 4), malloc(n * 4), malloc(n * 4)}, *ivg = malloc(n * 4);
+    int rc = !pic[0] || !pic[1] || !pic[2] || !ivg ? fail("out of memory") : 0;
+    for (int k = 0; k < 3 && !rc; k++) {
+        m->frame.mode = (lumo_gl_vsl_mode)k;
+        rc = lumo_gl_vsl_draw(v->r, &m->frame) || lumo_gl_vsl_read(v->r, pic[k]) ? fail("drawing failed")
+                                                                                  : write_png(o, pic_names[k], t, pic[k]);
+    }
+    if (!rc)
+        rc = ivg_picture(v, m, srv_vsl_engine_ivg(e), o, 1, ivg) ? fail("drawing the IVG picture failed")
+                                                                 : write_png(o, "ivg", t, ivg);
+    if (!rc) {
+        radius_line(m, o);
+        rc = check_line(v, m, e, o);
+    }
+    if (!rc) {
+        diff_line("whole-scene vs deferred", pic[1], pic[0], o);
+        diff_line("one-pass vs deferred", pic[2], pic[0], o);
+        diff_line("IVG picture vs VSL picture", ivg, pic[0], o);
+        rc = o->ref_spp > 0 ? compare_reference(v, m, e, cam, o, t, pic[0], ivg) : 0;
     }
     for (int k = 0; k < 3; k++)
         free(pic[k]);
