@@ -44,15 +44,16 @@ echo
 echo "Soft lights the vertices once (per-vertex rows; \`lumo_raster_light_vertices\`, again only when a"
 echo "light or the IVG changes — diffuse light does not depend on the view); \"soft, lit each frame\" is"
 echo "\`--relight\` (the cost before the cache), \"soft + shadows\" adds 512² shadow maps (\`--shadows 512\`,"
-echo "drawn in the warm-up frame, once: the light does not move), which the GL backends do not draw."
+echo "drawn in the warm-up frame, once: the light does not move); \"llvmpipe + shadows\" the GL backend's own"
+echo "maps of the same size (rasterizer/gl/raster_gl_shadow.c, also drawn once)."
 echo
 echo "Soft and llvmpipe runs alternate $REPS times per row (soft, llvmpipe, soft, llvmpipe, ...); each ms"
 echo "column is the median of its $REPS runs, and the ratio llvmpipe/soft is taken of the medians."
 echo "\"soft, IVG per vertex\" (per-pixel rows) samples the IVG once per vertex side and interpolates it"
 echo "(\`--ivg-vertex\`; direct light and shadows stay per pixel; docs/rasterizer.md \"IVG per vertex\")."
 echo
-echo "| mesh | size | lighting | soft ms | soft, lit each frame ms | soft, IVG per vertex ms | soft + shadows ms | llvmpipe ms | softpipe ms | llvmpipe/soft | llvmpipe/soft IVG per vertex | softpipe/soft |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| mesh | size | lighting | soft ms | soft, lit each frame ms | soft, IVG per vertex ms | soft + shadows ms | llvmpipe ms | llvmpipe + shadows ms | softpipe ms | llvmpipe/soft | llvmpipe/soft IVG per vertex | llvmpipe/soft with shadows | softpipe/soft |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for m in 48k 203k; do
     for size in 320x240 640x480; do
         for mode in per-vertex per-pixel; do
@@ -66,13 +67,14 @@ for m in 48k 203k; do
             s=$(med $S); l=$(med $L)
             r=$(ms soft llvmpipe "$FRAMES" $a --relight)
             h=$(ms soft llvmpipe "$FRAMES" $a --shadows 512)
+            lh=$(ms osmesa llvmpipe "$FRAMES" $a --shadows 512)
             p=$(ms osmesa softpipe "$SP_FRAMES" $a)
             if [ "$mode" = per-pixel ]; then
                 r="="; v=$(med $V); lv=$(awk -v a="$l" -v b="$v" 'BEGIN{printf "%.2f", a/b}')
             else
                 v="="; lv="="
             fi
-            echo "| dragon $m | $size | $mode | $s | $r | $v | $h | $l | $p | $(awk -v a="$l" -v b="$s" 'BEGIN{printf "%.2f", a/b}') | $lv | $(awk -v a="$p" -v b="$s" 'BEGIN{printf "%.2f", a/b}') |"
+            echo "| dragon $m | $size | $mode | $s | $r | $v | $h | $l | $lh | $p | $(awk -v a="$l" -v b="$s" 'BEGIN{printf "%.2f", a/b}') | $lv | $(awk -v a="$lh" -v b="$h" 'BEGIN{printf "%.2f", a/b}') | $(awk -v a="$p" -v b="$s" 'BEGIN{printf "%.2f", a/b}') |"
         done
     done
 done

@@ -7,7 +7,7 @@
 #      slow link (RATE kbit/s, LATENCY ms),
 #   4. stream it to lumo-client three times — interleaved, geometry first,
 #      lighting first (seed 000 §5.1) — writing a frame at growing shares
-#      of the scene,
+#      of the scene (with shadow maps of SHADOWS^2 texels per face),
 #   5. progress.png: what the client shows after growing amounts of bytes
 #      (seed 000 Fig. 1), each picture labelled with bytes, triangles, IVG %,
 #   6. error-vs-bytes.png: the client's image error against the path-traced
@@ -19,12 +19,16 @@ build=${1:-build}
 bin="$build/bin"
 out="$build/demo"
 GRID=${GRID:-16}
-SPP=${SPP:-256}
-REF_SPP=${REF_SPP:-256}
+# 2048 paths per grid vertex: at 256 the IVG's noise shows as blotches on the
+# walls (docs/rasterizer.md "Error against truth"); 1024-spp reference
+SPP=${SPP:-2048}
+REF_SPP=${REF_SPP:-1024}
 SIZE=${SIZE:-320x240}
 RATE=${RATE:-1000}
 LATENCY=${LATENCY:-50}
 FRAMES_AT=${FRAMES_AT:-1,2,3,5,7,10,15,20,30,40,50,60,70,80,90,100}
+# the client's shadow maps, texels per side (0: none; docs/rasterizer.md "Shadows")
+SHADOWS=${SHADOWS:-1024}
 rm -rf "$out"
 mkdir -p "$out"
 
@@ -53,7 +57,7 @@ head -n 3 "$out/server.log"
 step "4/6 lumo-client: stream the scene three ways, frames at $FRAMES_AT % of it"
 for order in interleaved geometry lighting; do
     "$bin/lumo-client" --connect "127.0.0.1:$port" --order "$order" --size "$SIZE" \
-        --frames-at "$FRAMES_AT" --out "$out/$order" --quiet | tee "$out/$order.log"
+        --frames-at "$FRAMES_AT" --shadows "$SHADOWS" --out "$out/$order" --quiet | tee "$out/$order.log"
 done
 kill "$server_pid" 2>/dev/null || true
 wait "$server_pid" 2>/dev/null || true

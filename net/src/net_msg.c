@@ -11,6 +11,21 @@
 #define END_LEN     8u
 #define ERROR_FIXED 8u   /* status, text length */
 
+/* Every REQUEST, DATA and END payload opens with the same 8 bytes (§2):
+ * channel, three reserved zero bytes, mesh (u32). */
+static void channel_put(uint8_t *p, uint8_t channel, uint32_t mesh)
+{
+    p[0] = channel;
+    p[1] = p[2] = p[3] = 0;   /* reserved */
+    lumo_wire_put_le32(p + 4, mesh);
+}
+
+static void channel_get(const uint8_t *p, uint8_t *channel, uint32_t *mesh)
+{
+    *channel = p[0];
+    *mesh = lumo_wire_le32(p + 4);
+}
+
 /* ---- REQUEST ------------------------------------------------------------------- */
 
 /* §2 REQUEST: a channel (lighting names mesh 0); §3: an amount of at least
@@ -35,9 +50,7 @@ lumo_status lumo_net_request_encode(const lumo_net_request *m, uint8_t *out, siz
     if (st)
         return st;
     p = out + LUMO_NET_HEADER;
-    p[0] = m->channel;
-    p[1] = p[2] = p[3] = 0;   /* reserved */
-    lumo_wire_put_le32(p + 4, m->mesh);
+    channel_put(p, m->channel, m->mesh);
     lumo_wire_put_le32(p + 8, m->cursor);
     lumo_wire_put_le32(p + 12, m->amount);
     return net_sealed(out, LUMO_NET_REQUEST, REQUEST_LEN, written);
@@ -53,8 +66,7 @@ lumo_status lumo_net_request_decode(const lumo_net_frame *f, lumo_net_request *m
     st = net_exact(f->len, REQUEST_LEN);
     if (st)
         return st;
-    r.channel = f->payload[0];
-    r.mesh = lumo_wire_le32(f->payload + 4);
+    channel_get(f->payload, &r.channel, &r.mesh);
     r.cursor = lumo_wire_le32(f->payload + 8);
     r.amount = lumo_wire_le32(f->payload + 12);
     st = request_check(&r);
@@ -108,9 +120,7 @@ static lumo_status data_check(const lumo_net_data *m)
  * head (form, records). */
 static void data_put_head(uint8_t *p, const lumo_net_data *m)
 {
-    p[0] = m->channel;
-    p[1] = p[2] = p[3] = 0;   /* reserved */
-    lumo_wire_put_le32(p + 4, m->mesh);
+    channel_put(p, m->channel, m->mesh);
     lumo_wire_put_le32(p + 8, m->first);
     lumo_wire_put_le32(p + 12, m->count);
     p[16] = m->form;
@@ -150,8 +160,7 @@ lumo_status lumo_net_data_decode(const lumo_net_frame *f, lumo_net_data *m)
     if (st)
         return st;
     p = f->payload;
-    d.channel = p[0];
-    d.mesh = lumo_wire_le32(p + 4);
+    channel_get(p, &d.channel, &d.mesh);
     d.first = lumo_wire_le32(p + 8);
     d.count = lumo_wire_le32(p + 12);
     d.form = p[16];
@@ -178,9 +187,7 @@ lumo_status lumo_net_end_encode(const lumo_net_end *m, uint8_t *out, size_t cap,
     if (st)
         return st;
     p = out + LUMO_NET_HEADER;
-    p[0] = m->channel;
-    p[1] = p[2] = p[3] = 0;   /* reserved */
-    lumo_wire_put_le32(p + 4, m->mesh);
+    channel_put(p, m->channel, m->mesh);
     return net_sealed(out, LUMO_NET_END, END_LEN, written);
 }
 
@@ -194,8 +201,7 @@ lumo_status lumo_net_end_decode(const lumo_net_frame *f, lumo_net_end *m)
     st = net_exact(f->len, END_LEN);
     if (st)
         return st;
-    e.channel = f->payload[0];
-    e.mesh = lumo_wire_le32(f->payload + 4);
+    channel_get(f->payload, &e.channel, &e.mesh);
     st = net_channel(e.channel, e.mesh);
     if (st)
         return st;

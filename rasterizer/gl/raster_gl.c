@@ -14,6 +14,7 @@
 #include <GL/glcorearb.h>
 #include "lumo/raster_gl.h"
 #include "raster_gl_shaders.h"
+#include "raster_gl_shadow.h"
 
 #define GL_FUNCS(X)                                                            \
     X(PFNGLCREATESHADERPROC, CreateShader)                                     \
@@ -84,11 +85,14 @@ typedef struct gl_api {
 
 enum { ATTR_POS = 0, ATTR_NRM = 1, ATTR_ALB = 2 };
 #define IVG_TEXTURES 12
+#define SHADOW_UNIT IVG_TEXTURES    /* the shadow maps' texture unit */
 
 struct lumo_gl {
     gl_api gl;
     int gles, width, height;
     GLuint prog[2];                 /* per vertex, per pixel */
+    lumo_gl_shadow *shadow;         /* the lights' shadow maps (raster_gl_shadow.c) */
+    unsigned mesh_gen;              /* counts lumo_gl_set_mesh: the maps follow the mesh */
     GLuint fbo, rb_color, rb_depth;
     GLuint vao, vbo, ebo;
     GLsizei index_count;
@@ -147,10 +151,12 @@ static GLuint compile(lumo_gl *g, GLenum stage, int per_pixel, const char *body,
     return s;
 }
 
-static GLuint build_program(lumo_gl *g, int per_pixel, char *err, size_t errlen)
+/* A program of the two stages' bodies (after the common GLSL). */
+static GLuint build_program(lumo_gl *g, int per_pixel, const char *vbody, const char *fbody, char *err,
+                            size_t errlen)
 {
-    GLuint vs = compile(g, GL_VERTEX_SHADER, per_pixel, lumo_gl_vertex_glsl, err, errlen);
-    GLuint fs = vs ? compile(g, GL_FRAGMENT_SHADER, per_pixel, lumo_gl_fragment_glsl, err, errlen) : 0;
+    GLuint vs = compile(g, GL_VERTEX_SHADER, per_pixel, vbody, err, errlen);
+    GLuint fs = vs ? compile(g, GL_FRAGMENT_SHADER, per_pixel, fbody, err, errlen) : 0;
     GLuint p;
     GLint ok = 0;
     int i;
@@ -177,6 +183,7 @@ static GLuint build_program(lumo_gl *g, int per_pixel, char *err, size_t errlen)
     g->gl.UseProgram(p);
     for (i = 0; i < IVG_TEXTURES; i++)
         g->gl.Uniform1i(g->gl.GetUniformLocation(p, tex_names[i]), i);
+    g->gl.Uniform1i(g->gl.GetUniformLocation(p, "u_smap"), SHADOW_UNIT);
     return p;
 }
 
@@ -204,6 +211,7 @@ lumo_gl *lumo_gl_create(lumo_gl_getproc_fn getproc, int gles, int width, int hei
 {
     lumo_gl *g = calloc(1, sizeof *g);
     const GLubyte *name;
+    GLuint depth;
 
     if (!g) {
         snprintf(err, errlen, "out of memory");
@@ -217,8 +225,15 @@ lumo_gl *lumo_gl_create(lumo_gl_getproc_fn getproc, int gles, int width, int hei
         goto fail;
     name = g->gl.GetString(GL_RENDERER);
     snprintf(g->renderer, sizeof g->renderer, "%s", name ? (const char *)name : "?");
-    if (!(g->prog[0] = build_program(g, 0, err, errlen)) || !(g->prog[1] = build_program(g, 1, err, errlen)))
+    if (!(g->prog[0] = build_program(g, 0, lumo_gl_vertex_glsl, lumo_gl_fragment_glsl, err, errlen))
+        || !(g->prog[1] = build_program(g, 1, lumo_gl_vertex_glsl, lumo_gl_fragment_glsl, err, errlen)))
         goto fail;
+    if (!(depth = build_program(g, 0, lumo_gl_depth_vertex_glsl, lumo_gl_depth_fragment_glsl, err, errlen)))
+        goto fail;
+    if (!(g->shadow = lumo_gl_shadow_create(getproc, depth, err, errlen))) {
+        g->gl.DeleteProgram(depth);
+        goto fail;
+    }
     if (make_framebuffer(g, err, errlen))
         goto fail;
     g->gl.GenVertexArrays(1, &g->vao);
@@ -256,6 +271,7 @@ int lumo_gl_set_mesh(lumo_gl *g, const lumo_raster_mesh *m)
         if (d2 > r2) r2 = d2;
     }
     g->scene_radius = sqrtf(r2);
+    g->mesh_gen++;
     g->gl.BindVertexArray(g->vao);
     g->gl.BindBuffer(GL_ARRAY_BUFFER, g->vbo);
     g->gl.BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)m->vertex_count * 9 * sizeof *v, v, GL_STATIC_DRAW);
@@ -351,10 +367,9 @@ int lumo_gl_set_ivg(lumo_gl *g, const lumo_ivg *ivg)
 /* gluLookAt x gluPerspective (docs/scene-format.md), column-major. */
 static void camera_matrix(const lumo_gl *g, const lumo_raster_camera *cam, float out[16], float eye[3])
 {
-    double e[3], f[3], u[3], r[3], up[3], l;
-    double fovy = cam->fovy_deg / 65536.0, zn = cam->znear / 65536.0, zf, ct, a;
-    double view[16], proj[16];
-    int i, j, k;
+    double e[3], rows[3][3], up[3], l, zf;
+    double *f = rows[2], *r = rows[0], *u = rows[1];
+    int k;
 
     for (k = 0; k < 3; k++) {
         e[k] = cam->eye[k] / 65536.0;
@@ -372,33 +387,10 @@ static void camera_matrix(const lumo_gl *g, const lumo_raster_camera *cam, float
     u[0] = r[1] * f[2] - r[2] * f[1];
     u[1] = r[2] * f[0] - r[0] * f[2];
     u[2] = r[0] * f[1] - r[1] * f[0];
-    memset(view, 0, sizeof view);
-    for (k = 0; k < 3; k++) {
-        view[4 * k + 0] = r[k];
-        view[4 * k + 1] = u[k];
-        view[4 * k + 2] = -f[k];
-    }
-    view[12] = -(r[0] * e[0] + r[1] * e[1] + r[2] * e[2]);
-    view[13] = -(u[0] * e[0] + u[1] * e[1] + u[2] * e[2]);
-    view[14] = f[0] * e[0] + f[1] * e[1] + f[2] * e[2];
-    view[15] = 1;
     /* Far plane beyond everything: the soft rasterizer has none. */
     zf = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + 2.0 * g->scene_radius + 1.0;
-    ct = 1.0 / tan(fovy * M_PI / 360.0);
-    a = (double)g->width / g->height;
-    memset(proj, 0, sizeof proj);
-    proj[0] = ct / a;
-    proj[5] = ct;
-    proj[10] = (zf + zn) / (zn - zf);
-    proj[11] = -1;
-    proj[14] = 2 * zf * zn / (zn - zf);
-    for (i = 0; i < 4; i++)
-        for (j = 0; j < 4; j++) {
-            double s = 0;
-            for (k = 0; k < 4; k++)
-                s += proj[4 * k + j] * view[4 * i + k];
-            out[4 * i + j] = (float)s;
-        }
+    lumo_gl_frustum(rows, e, 1.0 / tan(cam->fovy_deg / 65536.0 * M_PI / 360.0), (double)g->width / g->height,
+                    cam->znear / 65536.0, zf, out);
 }
 
 static void set_lights(lumo_gl *g, GLuint p, const lumo_raster_scene *s)
@@ -437,6 +429,8 @@ int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_sc
     int y, x, ind = s->indirect != NULL && g->have_ivg;
 
     camera_matrix(g, cam, mvp, eye);
+    if (lumo_gl_shadow_update(g->shadow, s, g->vao, g->index_count, g->scene_radius, g->mesh_gen))
+        return -1;
     g->gl.BindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     g->gl.Viewport(0, 0, g->width, g->height);
     g->gl.ClearColor(0, 0, 0, 1);
@@ -460,6 +454,7 @@ int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_sc
     g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_tscale"), 1, g->tscale);
     g->gl.Uniform3fv(g->gl.GetUniformLocation(p, "u_toff"), 1, g->toff);
     set_lights(g, p, s);
+    lumo_gl_shadow_bind(g->shadow, p, s, SHADOW_UNIT);
     if (g->have_ivg)
         for (x = 0; x < IVG_TEXTURES; x++) {
             g->gl.ActiveTexture(GL_TEXTURE0 + (GLenum)x);
@@ -489,6 +484,7 @@ void lumo_gl_destroy(lumo_gl *g)
     if (g->gl.DeleteProgram) {
         if (g->prog[0]) g->gl.DeleteProgram(g->prog[0]);
         if (g->prog[1]) g->gl.DeleteProgram(g->prog[1]);
+        lumo_gl_shadow_destroy(g->shadow);
         if (g->have_ivg) g->gl.DeleteTextures(IVG_TEXTURES, g->tex);
         if (g->vbo) g->gl.DeleteBuffers(1, &g->vbo);
         if (g->ebo) g->gl.DeleteBuffers(1, &g->ebo);

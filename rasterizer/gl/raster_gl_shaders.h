@@ -46,19 +46,74 @@ static const char lumo_gl_common_glsl[] =
     "    s += n.z * n.z * dot(d * 2.0 - 1.0, n) * c;\n"
     "    return max(s, vec3(0.0));\n"
     "}\n"
-    /* Direct diffuse light without shadows (docs/scene-format.md). */
+    /* Shadow maps (raster_gl_shadow.c): per light its first layer, faces
+     * (0: none, 1, or 6 for a cube), texels per side and far plane; the
+     * eye and near plane of its views; cot(fov/2); the basis (rows as
+     * columns) of its one face; the six cube faces' bases. */
+    "uniform highp sampler2DArray u_smap;\n"
+    "uniform vec4 u_sinfo[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform vec4 u_seye[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform float u_scot[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform mat3 u_srot[" LUMO_GL_MAX_LIGHTS "];\n"
+    "uniform mat3 u_scube[6];\n"
+    /* 1 when texel t of the layer does not hide view depth wb (stored:
+     * w / far, cleared to 1). */
+    "float shadow_texel(vec2 t, float layer, float size, float far, float wb) {\n"
+    "    ivec2 ij = ivec2(clamp(t, 0.0, size - 1.0));\n"
+    "    return texelFetch(u_smap, ivec3(ij, int(layer)), 0).r * far >= wb ? 1.0 : 0.0;\n"
+    "}\n"
+    /* The soft path's lookup (rasterizer/soft/raster_shadow.c): the cube
+     * face of the major axis, normal offset 1.5 texel footprints, depth
+     * bias one footprint, 2x2 PCF with 1/16-texel weights; a point outside
+     * a one-face map or before the near plane is lit. */
+    "float shadow_visibility(int i, vec3 p, vec3 n) {\n"
+    "    vec4 info = u_sinfo[i];\n"
+    "    if (info.y < 0.5) return 1.0;\n"
+    "    vec3 d = p - u_seye[i].xyz;\n"
+    "    mat3 r = u_srot[i];\n"
+    "    float layer = info.x, size = info.z, far = info.w, zn = u_seye[i].w, ct = u_scot[i];\n"
+    "    if (info.y > 1.5) {\n"
+    "        vec3 a = abs(d);\n"
+    "        int k = a.y > a.x ? 1 : 0;\n"
+    "        if (a.z > max(a.x, a.y)) k = 2;\n"
+    "        int f = 2 * k + (d[k] < 0.0 ? 1 : 0);\n"
+    "        r = u_scube[f];\n"
+    "        layer += float(f);\n"
+    "    }\n"
+    "    vec3 c = d * r;\n"
+    "    if (c.z < zn) return 1.0;\n"
+    "    float foot = 2.0 * c.z / (size * ct);\n"
+    "    c = (d + n * (1.5 * foot)) * r;\n"
+    "    if (c.z < zn) return 1.0;\n"
+    "    vec2 uv = size * 0.5 + c.xy * (ct * size * 0.5 / c.z) - 0.5;\n"
+    "    if (info.y < 1.5 && (min(uv.x, uv.y) < -0.5 || max(uv.x, uv.y) > size - 0.5)) return 1.0;\n"
+    "    float wb = c.z - foot;\n"
+    "    if (wb <= 0.0) return 1.0;\n"
+    "    uv = floor(uv * 16.0 + 0.5) / 16.0;\n"
+    "    vec2 t = floor(uv), w = uv - t;\n"
+    "    return mix(mix(shadow_texel(t, layer, size, far, wb),\n"
+    "                   shadow_texel(t + vec2(1.0, 0.0), layer, size, far, wb), w.x),\n"
+    "               mix(shadow_texel(t + vec2(0.0, 1.0), layer, size, far, wb),\n"
+    "                   shadow_texel(t + vec2(1.0, 1.0), layer, size, far, wb), w.x), w.y);\n"
+    "}\n"
+    /* Direct diffuse light, each light scaled by its map's visibility
+     * (docs/scene-format.md, docs/rasterizer.md "Shadows"). */
     "vec3 direct_irradiance(vec3 p, vec3 n) {\n"
     "    vec3 e = vec3(0.0);\n"
     "    for (int i = 0; i < 16; i++) {\n"
     "        if (i >= u_nlights) break;\n"
-    "        if (u_kind[i] == 2) { e += u_lval[i] * max(0.0, -dot(n, u_ldir[i])); continue; }\n"
+    "        if (u_kind[i] == 2) {\n"
+    "            float cd = -dot(n, u_ldir[i]);\n"
+    "            if (cd > 0.0) e += u_lval[i] * cd * shadow_visibility(i, p, n);\n"
+    "            continue;\n"
+    "        }\n"
     "        vec3 l = u_lpos[i] - p;\n"
     "        float d2 = max(dot(l, l), 256.0 / 65536.0);\n"
     "        vec3 w = normalize(l);\n"
     "        float c = dot(n, w);\n"
     "        if (c <= 0.0) continue;\n"
     "        if (u_kind[i] == 1 && -dot(w, u_ldir[i]) < u_lcos[i]) continue;\n"
-    "        e += u_lval[i] * c / d2;\n"
+    "        e += u_lval[i] * c / d2 * shadow_visibility(i, p, n);\n"
     "    }\n"
     "    return e;\n"
     "}\n"
@@ -108,5 +163,16 @@ static const char lumo_gl_fragment_glsl[] =
     "    o_color = vec4(tonemap(v_rad), 1.0);\n"
     "#endif\n"
     "}\n";
+
+/* Shadow maps: depth only, w / far (linear view depth) into a
+ * GL_DEPTH_COMPONENT32F layer (raster_gl_shadow.c). */
+static const char lumo_gl_depth_vertex_glsl[] =
+    "in vec3 a_pos;\n"
+    "uniform mat4 u_smvp;\n"
+    "void main() { gl_Position = u_smvp * vec4(a_pos, 1.0); }\n";
+
+static const char lumo_gl_depth_fragment_glsl[] =
+    "uniform float u_sinvfar;\n"
+    "void main() { gl_FragDepth = u_sinvfar / gl_FragCoord.w; }\n";
 
 #endif

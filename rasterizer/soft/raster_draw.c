@@ -77,8 +77,12 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
             lit = &m->lit[6 * (size_t)index + (faces_away(v, p, n) ? 3 : 0)];
         else
             light_side(s, p, n, faces_away(v, p, n), rho, l);
-        for (i = 0; i < 3; i++)
-            out->var[i] = lumo_raster_exposed(lit[i], s->exposure);
+        /* capped at 2^30 (64 x white, far past code 255): every value a
+         * Gouraud run interpolates then lies in [0, 2^30] (raster_span.c) */
+        for (i = 0; i < 3; i++) {
+            int32_t e = lumo_raster_exposed(lit[i], s->exposure);
+            out->var[i] = e > (1 << 30) ? (1 << 30) : e;
+        }
     }
     out->outcode = outcode(v, out);
     out->screen[0] = out->screen[1] = 0;

@@ -162,6 +162,31 @@ static lumo_status directional_view(lumo_raster_shadow *sh, const lumo_raster_li
                      (lumo_q16_16)(dist / DIR_DISTANCE * (DIR_DISTANCE - 2)), sh->size);
 }
 
+lumo_status lumo_raster_shadow_views(lumo_raster_shadow *sh, const lumo_raster_light *l, uint16_t size,
+                                     const lumo_q16_16 centre[3], lumo_q16_16 radius, lumo_q16_16 znear)
+{
+    lumo_status st;
+
+    if (!sh || !l)
+        return LUMO_ERR_ARG;
+    if (lumo_raster_shadow_bytes(l, size) == 0 || znear < 0)
+        return LUMO_ERR_RANGE;
+    memset(sh, 0, sizeof *sh);
+    sh->size = size;
+    sh->faces = (uint8_t)lumo_raster_shadow_faces(l);
+    if (znear == 0)
+        znear = LUMO_RASTER_SHADOW_ZNEAR;
+    if (l->kind == LUMO_LIGHT_DIRECTIONAL)
+        st = directional_view(sh, l, centre, radius);
+    else if (sh->faces == 6)
+        st = cube_views(sh, l->pos, znear);
+    else
+        st = spot_view(sh, l, znear);
+    if (st)
+        sh->faces = 0;
+    return st;
+}
+
 lumo_status lumo_raster_shadow_init(lumo_raster_shadow *sh, const lumo_raster_light *l,
                                     uint16_t size, uint16_t *depth, size_t bytes,
                                     const lumo_q16_16 centre[3], lumo_q16_16 radius,
@@ -174,22 +199,10 @@ lumo_status lumo_raster_shadow_init(lumo_raster_shadow *sh, const lumo_raster_li
         return LUMO_ERR_ARG;
     if (need == 0 || bytes < need || znear < 0)
         return LUMO_ERR_RANGE;
-    memset(sh, 0, sizeof *sh);
-    sh->depth = depth;
-    sh->size = size;
-    sh->faces = (uint8_t)lumo_raster_shadow_faces(l);
-    if (znear == 0)
-        znear = LUMO_RASTER_SHADOW_ZNEAR;
-    if (l->kind == LUMO_LIGHT_DIRECTIONAL)
-        st = directional_view(sh, l, centre, radius);
-    else if (sh->faces == 6)
-        st = cube_views(sh, l->pos, znear);
-    else
-        st = spot_view(sh, l, znear);
-    if (st) {
-        sh->faces = 0;
+    st = lumo_raster_shadow_views(sh, l, size, centre, radius, znear);
+    if (st)
         return st;
-    }
+    sh->depth = depth;
     memset(depth, 0, need);
     return LUMO_OK;
 }
@@ -279,8 +292,8 @@ uint32_t lumo_raster_shadow_visibility(const lumo_raster_shadow *sh, const lumo_
     unsigned f = 0, fu, fv;
     int i;
 
-    if (!sh || sh->faces == 0)
-        return 256;
+    if (!sh || sh->faces == 0 || !sh->depth)
+        return 256;                                       /* no map (or views only): lit */
     if (sh->faces == 6) {
         for (i = 0; i < 3; i++)
             d[i] = (int64_t)p[i] - sh->face[0].eye[i];

@@ -35,6 +35,7 @@ typedef struct tri {
     unsigned qsh;      /* perspective weights >> qsh < 2^46 */
     unsigned zs;       /* depth: z = ((sum w q) >> zs) * zr >> 32 */
     uint64_t zr;
+    unsigned run_bits; /* Gouraud: runs end at multiples of 2^run_bits pixels */
 } tri;
 
 static int64_t floor_div16(int64_t v)
@@ -59,12 +60,12 @@ static void edge_setup(edge *e, const lumo_raster_sv *p, const lumo_raster_sv *q
     e->bias = is_top_left(p, q) ? 0 : 1;
 }
 
-/* Number of significant bits of v (< 2^32 here: the area is shifted below
- * 2^24), by halving. */
+/* Number of significant bits of v, by halving. */
 static unsigned bit_length(uint64_t v)
 {
     unsigned n = 0;
 
+    if (v >> 32) { n += 32; v >>= 32; }
     if (v >> 16) { n += 16; v >>= 16; }
     if (v >> 8)  { n += 8;  v >>= 8; }
     if (v >> 4)  { n += 4;  v >>= 4; }
@@ -159,25 +160,34 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
 
 /* The covered run of a row from the edge values at its first pixel, in
  * 32-bit integers (the cheap case on a 32-bit MCU: every edge value of the
- * row within +-2^30). *x0 = first covered pixel, return the last one, or
- * x0 - 1 when none. */
+ * row within +-2^30). Each edge covers a half-line of the row (e + k s >=
+ * bias for k >= or <= a bound), so the run is their intersection, found by
+ * one 32-bit division per slanted edge instead of a scan over the pixels:
+ * the same run as scanning (the first covered pixel, then up to the first
+ * uncovered one). |s| = 16 |a| < 2^23 (the guard band), so b - e + s stays
+ * in 32 bits. *x0 = first covered pixel, return the last one, or x0 - 1
+ * when none. */
 static int64_t run_32(const tri *t, const int64_t E[3], int64_t px0, int64_t px1, int64_t *x0)
 {
-    int32_t e0 = (int32_t)E[0], e1 = (int32_t)E[1], e2 = (int32_t)E[2];
-    int32_t s0 = (int32_t)t->step[0], s1 = (int32_t)t->step[1], s2 = (int32_t)t->step[2];
-    int32_t b0 = (int32_t)t->e[0].bias, b1 = (int32_t)t->e[1].bias, b2 = (int32_t)t->e[2].bias;
-    int64_t px;
+    int32_t lo = 0, hi = (int32_t)(px1 - px0);
+    int i;
 
-    for (px = px0; px <= px1; px++, e0 += s0, e1 += s1, e2 += s2)
-        if (e0 >= b0 && e1 >= b1 && e2 >= b2)
-            break;
-    *x0 = px;
-    if (px > px1)
-        return px - 1;
-    for (px++, e0 += s0, e1 += s1, e2 += s2; px <= px1; px++, e0 += s0, e1 += s1, e2 += s2)
-        if (e0 < b0 || e1 < b1 || e2 < b2)
-            break;
-    return px - 1;
+    for (i = 0; i < 3; i++) {
+        int32_t e = (int32_t)E[i], st = (int32_t)t->step[i], b = (int32_t)t->e[i].bias;
+        if (st > 0) {
+            if (e < b) {
+                int32_t k = (b - e + st - 1) / st;          /* first k with e + k st >= b */
+                if (k > lo) lo = k;
+            }
+        } else if (e < b) {
+            lo = hi + 1;                                  /* never covered in this row */
+        } else if (st < 0) {
+            int32_t k = (e - b) / -st;                    /* last k with e + k st >= b */
+            if (k < hi) hi = k;
+        }
+    }
+    *x0 = px0 + lo;
+    return lo > hi ? *x0 - 1 : px0 + hi;
 }
 
 /* The same in 64-bit integers, for any triangle. */
@@ -213,17 +223,29 @@ static int fits_30(int64_t v)
     return v < ((int64_t)1 << 30) && v > -((int64_t)1 << 30);
 }
 
-/* Row py's covered span [*x0, *x1] and the edge values at *x0; 0 if none. */
-static int row_span(const tri *t, int64_t px0, int64_t px1, int64_t py, int64_t E[3],
-                    int64_t *x0, int64_t *x1)
+/* The edge values at pixel (px0, py0), and whether every value of the
+ * pixel box [px0, px1] x [py0, py1] lies within +-2^30: E is linear, so its
+ * extremes over the box are at the box's corners. */
+static int box_edges(const tri *t, int64_t px0, int64_t px1, int64_t py0, int64_t py1, int64_t E[3])
 {
-    int64_t sy = py * 16 + 8, sx = px0 * 16 + 8;
+    int64_t sy = py0 * 16 + 8, sx = px0 * 16 + 8;
     int small = 1, i;
 
     for (i = 0; i < 3; i++) {
+        int64_t dx = t->step[i] * (px1 - px0), dy = t->e[i].b * 16 * (py1 - py0);
         E[i] = t->e[i].a * (sx - t->e[i].x0) + t->e[i].b * (sy - t->e[i].y0);
-        small &= fits_30(E[i]) && fits_30(E[i] + t->step[i] * (px1 - px0));
+        small &= fits_30(E[i]) && fits_30(E[i] + dx) && fits_30(E[i] + dy) && fits_30(E[i] + dx + dy);
     }
+    return small;
+}
+
+/* A row's covered span [*x0, *x1] from the edge values at its pixel px0
+ * (E: in, then the values at *x0); 0 if none. small: box_edges' answer. */
+static int row_span(const tri *t, int64_t px0, int64_t px1, int small, int64_t E[3],
+                    int64_t *x0, int64_t *x1)
+{
+    int i;
+
     *x1 = small ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
     if (*x1 < *x0)
         return 0;
@@ -306,7 +328,10 @@ static void shade_pixel(const lumo_raster_ctx *c, const tri *t, const uint32_t b
 }
 
 /* Per-vertex lighting, exact at one pixel: its depth (Q0.30) and the
- * exposed radiance (UQ8.24 capped at 2^30) interpolated with perspective. */
+ * exposed radiance (UQ8.24) interpolated with perspective. The vertices'
+ * radiance lies in [0, 2^30] (capped when the vertex is made, raster_draw.c,
+ * and clipping interpolates), so the convex combination does too: no clamp
+ * per evaluation. */
 static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
 {
     const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
@@ -317,16 +342,47 @@ static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
 
     pixel_bary(t, E, p, b);
     for (i = 0; i < 3; i++) {
-        uint64_t s = (uint64_t)(uint32_t)(v0[i] < 0 ? 0 : v0[i]) * b[0]
-                   + (uint64_t)(uint32_t)(v1[i] < 0 ? 0 : v1[i]) * b[1]
-                   + (uint64_t)(uint32_t)(v2[i] < 0 ? 0 : v2[i]) * b[2];
-        s = (s + (1u << (BARY_BITS - 1))) >> BARY_BITS;
-        c[i] = (int32_t)(s > cap ? cap : s);
+        uint64_t s = (uint64_t)(uint32_t)v0[i] * b[0] + (uint64_t)(uint32_t)v1[i] * b[1]
+                   + (uint64_t)(uint32_t)v2[i] * b[2];
+        c[i] = (int32_t)((s + (1u << (BARY_BITS - 1))) >> BARY_BITS);
     }
     return (uint32_t)(z > cap ? cap : z);
 }
 
-/* (to - from) / n rounded towards zero, n in [1, 15]. */
+/* Gouraud runs: radiance exact (perspective-correct) at both ends of a run
+ * and stepped linearly between, so the run's length bounds the error: over
+ * L pixels 1/w changes by r = L |d(1/w)/dx| / (1/w)_min, and the linear
+ * steps miss the perspective-correct values by below r / 4 of the change
+ * of radiance along the run. Runs are 16 pixels, longer (up to 2048: a
+ * whole row) while r <= 2^-RUN_PERSPECTIVE_BITS, from bit lengths (a
+ * function of the triangle alone, so bands still give the frame's bytes):
+ * a wall facing the camera is one run per row, and each run costs two
+ * exact evaluations (64-bit products and a 64-bit division, which a
+ * Cortex-M3 does in software). */
+#define RUN_MIN_BITS 4
+#define RUN_MAX_BITS 11
+#define RUN_PERSPECTIVE_BITS 7
+
+static unsigned gouraud_run_bits(const tri *t, int64_t area)
+{
+    int64_t num = 0;
+    uint64_t qmin = t->v[0].q;
+    int i, k;
+
+    for (i = 0; i < 3; i++) {
+        num += t->step[i] * (int64_t)t->v[i].q;        /* |step| < 2^23, q <= 2^30 */
+        if (t->v[i].q < qmin)
+            qmin = t->v[i].q;
+    }
+    if (num < 0)
+        num = -num;
+    /* num 2^k 2^RUN_PERSPECTIVE_BITS <= area qmin, conservatively */
+    k = (int)bit_length((uint64_t)area) + (int)bit_length(qmin) - 2 - RUN_PERSPECTIVE_BITS
+      - (int)bit_length((uint64_t)num);
+    return k < RUN_MIN_BITS ? RUN_MIN_BITS : k > RUN_MAX_BITS ? RUN_MAX_BITS : (unsigned)k;
+}
+
+/* (to - from) / n rounded towards zero, n in [1, 2^RUN_MAX_BITS). */
 static int32_t seg_step(int32_t from, int32_t to, int32_t n)
 {
     return (to - from) / n;
@@ -382,11 +438,11 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
     return written;
 }
 
-/* A Gouraud run of pixels [a, b] of a row (b - a < 16): depth and
+/* A Gouraud run of pixels [a, b] of a row (b - a < 2^run_bits): depth and
  * radiance exact (perspective-correct) at both ends and stepped linearly
  * between them, so a pixel costs additions, the depth test and three table
  * look-ups. Depth is linear in screen space (the steps only round); the
- * radiance's perspective error over 16 pixels is far below one code. */
+ * radiance's perspective error is bounded by the run's length (gouraud_run_bits). */
 static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_t Ea[3], int64_t a,
                             int64_t b, int64_t y, size_t row, uint8_t *line)
 {
@@ -414,8 +470,8 @@ static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_
                                 : run_pixels((uint32_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 0, 0);
 }
 
-/* Gouraud spans in runs ending at absolute multiples of 16 pixels (so a
- * run is a function of the triangle and the row: bands join exactly). */
+/* Gouraud spans in runs ending at absolute multiples of 2^run_bits pixels
+ * (so a run is a function of the triangle and the row: bands join exactly). */
 static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int64_t x0,
                          int64_t x1, int64_t y, size_t row)
 {
@@ -426,7 +482,7 @@ static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], i
     int i;
 
     while (a <= x1) {
-        int64_t b = a | 15;
+        int64_t b = a | (((int64_t)1 << t->run_bits) - 1);
         if (b > x1)
             b = x1;
         written += run_gouraud(c, t, E, a, b, y, row, line);
@@ -469,9 +525,9 @@ static void span_color(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int
 void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int64_t area)
 {
     const lumo_raster_target *tg = c->target;
-    int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py;
+    int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py, Erow[3];
     tri t;
-    int i;
+    int i, small;
 
     minx = maxx = v[0].x;
     miny = maxy = v[0].y;
@@ -495,10 +551,16 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     if (c->stats)
         c->stats->tris_drawn++;
     tri_setup(&t, v, area);
-    for (py = py0; py <= py1; py++) {
+    /* a box up to 16 pixels wide is one run per row whatever the length */
+    t.run_bits = RUN_MIN_BITS;
+    if (!c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD && px1 - px0 >= (1 << RUN_MIN_BITS))
+        t.run_bits = gouraud_run_bits(&t, area);
+    small = box_edges(&t, px0, px1, py0, py1, Erow);
+    for (py = py0; py <= py1; py++, Erow[0] += t.e[0].b * 16, Erow[1] += t.e[1].b * 16, Erow[2] += t.e[2].b * 16) {
         size_t row = (size_t)(py - tg->band_y) * tg->width;
         int64_t E[3], x0, x1;
-        if (!row_span(&t, px0, px1, py, E, &x0, &x1))
+        E[0] = Erow[0], E[1] = Erow[1], E[2] = Erow[2];
+        if (!row_span(&t, px0, px1, small, E, &x0, &x1))
             continue;
         if (c->stats)
             c->stats->pixels_tested += (uint32_t)(x1 - x0 + 1);

@@ -55,13 +55,15 @@ struct ld_eb {
     uint8_t *lmc_top;          /* one past the left-most corners' block */
     uint8_t *o24_top;          /* one past the 24-bit opposites' block */
     uint8_t *seam_top;         /* one past the attributes' seam flags */
-    uint32_t seam_reads;       /* seam bits read per attribute data */
     uint8_t *opp_top;          /* one past the 32-bit opposites' block */
     /* after ld_eb_pack, without seams: work memory from table_lo up to
      * lmc_top holds the packed table's escapes and indices, then from
      * table_top the border bytes */
     uint8_t *table_lo, *table_top;
     uint8_t packed;            /* words hold packed opposites (ld_pot) */
+    uint8_t vpoints;           /* attribute data, none with an interior seam:
+                                  the vertices are the points and the output
+                                  face array is the vertex map (ld_eb_renumber) */
     uint8_t released;          /* ld_eb_release_table has run */
     ld_ct ct;
     uint32_t num_attr_data;
@@ -86,6 +88,8 @@ struct ld_eb {
     /* work budget against crafted fans */
     uint64_t budget;
 };
+
+static int ld_eb_peek_vpoints(const ld_buf *at, uint32_t faces, uint32_t nad, int valence);
 
 /* Bounded work: fan walks are charged here. */
 static int ld_eb_charge(struct ld_eb *e)
@@ -796,7 +800,11 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
                 }
         }
     }
-    e->seam_reads = reads;
+    /* the coders end where the interior edges' bits end, as the
+     * encoder's do: the arena need counts seams up to there */
+    for (i = 0; i < e->num_attr_data; ++i)
+        if (!ld_rabs_done(&e->ad[i].seams))
+            return LUMO_ERR_CORRUPT;
     return LUMO_OK;
 }
 
@@ -1076,11 +1084,97 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
     return LUMO_OK;
 }
 
+/* No attribute data with an interior seam (vpoints): AssignPointsToCorners
+ * makes one point of each live vertex's fan, in vertex order, so the
+ * vertex ids become the point ids: the face array, which holds the vertex
+ * map (and, packed, the opposites in its high bits), is renumbered in
+ * place, fan by fan, and the left-most corners and vertex seam flags move
+ * down to the new ids. No corner table of its own and no point walk (12
+ * B/face less than a separate vertex map). A corner is renumbered only by
+ * its own vertex's fan and once (the old id is checked), and every corner
+ * must be: a crafted table cannot leave a stale id in the output. */
+static LD_FORCE_INLINE lumo_status ld_eb_renumber_run(ld_dec *d, struct ld_eb *e, int packed)
+{
+    uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
+    uint32_t *words = e->c2v;
+    const uint32_t vmask = e->ct.vmask;
+    uint32_t v, i, np = 0, written = 0;
+    for (v = 0; v < e->num_vertices; ++v) {
+        const uint32_t first = e->lmc[v];
+        uint32_t c = first;
+        if (first == LD_INV)
+            continue;
+        do {
+            if ((words[c] & vmask) != v)
+                return LUMO_ERR_CORRUPT;
+            if (budget == 0)
+                return LUMO_ERR_LIMIT;
+            --budget;
+            words[c] = (words[c] & ~vmask) | np;
+            ++written;
+            c = ld_eb_mswing_right(e, c, packed);
+        } while (c != LD_INV && c != first);
+        e->lmc[np] = first;
+        for (i = 0; i < e->num_attr_data; ++i)
+            e->ad[i].vseam[np] = e->ad[i].vseam[v];
+        ++np;
+    }
+    /* every corner renumbered; the live vertices are the header's V (the
+     * arena need takes P = V) */
+    if (written != e->num_corners || np != e->encoded_vertices)
+        return LUMO_ERR_CORRUPT;
+    e->budget = budget;
+    e->num_vertices = np;
+    e->ct.num_vertices = np;
+    d->num_points = np;
+    return LUMO_OK;
+}
+
+/* vpoints, after the renumbering: a vertex is on a border exactly when a
+ * border edge ends there, which every attribute data's vertex seam flags
+ * mark (no interior seam: ld_add_seam marked border edges only), so the
+ * mesh's traversal reads those as its border bytes and the left-most
+ * corners go: the work below them (the packed table, lean, and the vertex
+ * seam flags) moves up over their block (4 B per vertex less next to the
+ * values). Then the attribute data's tables are the mesh's. */
+static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
+{
+    uint8_t *lo = ld_tmp_mark(&d->mem), *end = (uint8_t *)e->lmc;
+    const size_t shift = (size_t)(e->lmc_top - end);
+    ld_pot *t = &e->ct.opp;
+    uint32_t i;
+    memmove(lo + shift, lo, (size_t)(end - lo));
+    if (e->packed) {
+        t->esc += shift;
+        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
+        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
+    }
+    for (i = 0; i < e->num_attr_data; ++i)
+        e->ad[i].vseam += shift;
+    ld_tmp_release(&d->mem, lo + shift);
+    e->lmc = NULL;
+    e->ct.lmc = NULL;
+    e->ct.border = e->ad[0].vseam;
+    for (i = 0; i < e->num_attr_data; ++i) {  /* shared tables, as ld_eb_attr_tables */
+        ld_attr_data *a = &e->ad[i];
+        a->ct = e->ct;
+        a->ct.seam = NULL;
+        a->ct.border = a->vseam;
+    }
+}
+
 static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 {
     if (e->num_attr_data == 0) {  /* the output faces are the vertex map */
         d->num_points = e->num_conn_vertices;
         return LUMO_OK;
+    }
+    if (e->vpoints) {
+        lumo_status st = e->packed ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
+        if (!st)
+            ld_eb_vpoints_tables(d, e);
+        return st;
     }
     return e->packed ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
 }
@@ -1090,24 +1184,26 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
+    const int own_map = e->num_attr_data && !e->vpoints;
     e->num_corners = 3u * e->num_faces;
     d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
-    /* Without attribute seams every vertex is a point: the corner table's
-     * vertex map is the output face array itself. */
-    e->c2v = e->num_attr_data ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
+    /* Without attribute seams, or without an interior one (vpoints), every
+     * vertex is a point: the corner table's vertex map is the output face
+     * array itself. */
+    e->c2v = own_map ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
     if (!e->lean) {
         e->opp_top = ld_tmp_mark(&d->mem);
         e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     }
     /* hole flags are read only to assign points along seams */
-    e->hole = e->num_attr_data ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
+    e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
     if (e->lean) {
         e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
         e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
     }
-    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && e->num_attr_data) ||
+    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && own_map) ||
         !d->faces)
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and the opposites: every symbol writes the three
@@ -1165,18 +1261,20 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
 static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
 {
     uint8_t *top = e->seam_top;
-    uint32_t i, j;
+    uint32_t i;
     lumo_status st;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        /* Decided on the first 3F/2 bits, as the arena need (which cannot
-         * tell interior edges from borders) counts them: the bits past the
-         * interior edges' are read too (one per border edge pair; none on
-         * a closed mesh), and a one among them keeps the table apart. */
-        uint32_t ones = a->ones;
-        for (j = e->seam_reads; j < e->num_corners / 2u && ones == 0; ++j)
-            ones += ld_rabs_bit(&a->seams);
-        a->shared = ones == 0;
+        /* Decided on the interior edges' bits, the only ones the encoder
+         * writes and libdraco reads. The arena need, which cannot tell
+         * interior edges from borders without the connectivity, counts
+         * the ones up to where the coder ends (ld_rabs_done, checked by
+         * ld_eb_seams_run): the same bits. (Round two counted the first
+         * 3F/2 bits: on an open mesh the coder's output past its end held
+         * ones, and colours without a seam kept a table of their own.) */
+        a->shared = a->ones == 0;
+        if (e->vpoints && !a->shared)
+            return LUMO_ERR_CORRUPT;  /* the peek saw no one (ld_eb_peek_vpoints) */
         if (a->shared) {
             a->ct = e->ct;
             a->ct.seam = NULL;
@@ -1243,6 +1341,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->num_attr_data = nad;
     e->max_vertices = verts + splits;
     e->encoded_vertices = verts;
+    e->vpoints = (uint8_t)(nad && ld_eb_peek_vpoints(&d->buf, faces, nad, e->valence));
     if ((st = ld_eb_alloc(d, e)))
         return st;
     mark = ld_tmp_mark(&d->mem);  /* symbol-phase work memory from here */
@@ -1362,6 +1461,47 @@ static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
     e->ct.o24 = e->o24;
 }
 
+/* The point -> value map of one attributes decoder: each point takes the
+ * value of its corner's vertex in `ct`. Every corner of a point lies in
+ * the same vertex of every table (a point is a fan segment that no seam
+ * cuts, ld_eb_points_run), so one corner per point suffices: the map
+ * first holds the last corner of each point (a pass of a load and a store
+ * per corner), then each point looks its corner's vertex up (one
+ * pass over the points, about half the corners): the per-corner vertex
+ * lookups and checks of a pass over the corners were 17 instructions a
+ * corner (callgrind, issue 25 round three). On a crafted table whose
+ * corners of one point disagree, the last corner decides, as the corner
+ * pass did. */
+static lumo_status ld_eb_point_map(const ld_ct *ct, const uint32_t *faces, uint32_t num_corners,
+                                   uint32_t num_points, uint32_t vmap,
+                                   const int32_t *vertex_to_value, uint32_t *point_to_value)
+{
+    const uint32_t *c2v = ct->c2v, vmask = ct->vmask;
+    uint32_t c, p;
+    if (num_points == 0)
+        return num_corners ? LUMO_ERR_CORRUPT : LUMO_OK;
+    memset(point_to_value, 0xFF, (size_t)num_points * sizeof(uint32_t));
+    for (c = 0; c < num_corners; ++c) {
+        if (faces[c] >= num_points)  /* kept: a write, whatever made faces */
+            return LUMO_ERR_CORRUPT;
+        point_to_value[faces[c]] = c;
+    }
+    for (p = 0; p < num_points; ++p) {  /* LD_INV and -1 are huge unsigned */
+        const uint32_t cp = point_to_value[p];
+        uint32_t v, entry;
+        if (cp >= num_corners)
+            return LUMO_ERR_CORRUPT;  /* a point without a corner */
+        v = c2v[cp] & vmask;
+        if (v >= vmap)
+            return LUMO_ERR_CORRUPT;
+        entry = (uint32_t)vertex_to_value[v];
+        if (entry >= num_points)
+            return LUMO_ERR_CORRUPT;
+        point_to_value[p] = entry;
+    }
+    return LUMO_OK;
+}
+
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
@@ -1370,6 +1510,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     int8_t ad = e->dec_att_data[decoder];
     ld_order o;
     int keep = 0;
+    /* the vertices are the points: the face array is the vertex map */
+    const int vmap_faces = !e->num_attr_data || e->vpoints;
     lumo_status st;
     if (ad >= 0) {
         if (e->dec_type[decoder] != 0)
@@ -1387,7 +1529,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
             ld_eb_keep_o24_begin(d, e);
     }
     o.vertex_to_value = NULL;
-    if (e->num_attr_data == 0) {
+    if (vmap_faces) {
         /* points are the mesh vertices: the vertex -> value map is the
          * point map, decoded straight into the output */
         o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
@@ -1403,11 +1545,11 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
-    seq->faces_mask = e->num_attr_data ? 0xFFFFFFFFu : e->ct.vmask;
+    seq->faces_mask = vmap_faces ? e->ct.vmask : 0xFFFFFFFFu;
     seq->ct = ct;
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
-    if (e->num_attr_data == 0) {
+    if (vmap_faces) {
         for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
             if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
                 return LUMO_ERR_CORRUPT;
@@ -1417,18 +1559,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     seq->point_to_value = ld_out(&d->mem, d->num_points, sizeof(uint32_t));
     if (!seq->point_to_value)
         return LUMO_ERR_NOMEM;
-    memset(seq->point_to_value, 0xFF, (size_t)d->num_points * sizeof(uint32_t));
-    for (c = 0; c < e->num_corners; ++c) {  /* LD_INV and -1 are huge unsigned */
-        const uint32_t p = d->faces[c], v = ct->c2v[c] & ct->vmask;
-        uint32_t entry;
-        if (v >= vmap || p >= d->num_points)
-            return LUMO_ERR_CORRUPT;
-        entry = (uint32_t)o.vertex_to_value[v];
-        if (entry >= d->num_points)
-            return LUMO_ERR_CORRUPT;
-        seq->point_to_value[p] = entry;
-    }
-    return LUMO_OK;
+    return ld_eb_point_map(ct, d->faces, e->num_corners, d->num_points, vmap, o.vertex_to_value,
+                           seq->point_to_value);
 }
 
 /* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
@@ -1506,7 +1638,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
 void ld_eb_finish(ld_dec *d)
 {
     struct ld_eb *e = d->eb;
-    if (e && e->packed && !e->num_attr_data)
+    if (e && e->packed && e->c2v == d->faces)  /* no attribute data, or vpoints */
         ld_pot_strip(e->c2v, e->num_corners, e->ct.opp.vshift);
     if (e)
         e->packed = 0;
@@ -1527,7 +1659,7 @@ void ld_eb_finish(ld_dec *d)
 
 static uint32_t ld_eb_need_vertices(const ld_eb_need *e) { return e->verts + e->splits; }
 
-static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e, uint32_t *num)
+static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, uint32_t faces, uint32_t *num)
 {
     uint32_t n, i, last = 0;
     ld_bits bits;
@@ -1537,7 +1669,7 @@ static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e,
     *num = n;
     if (n == 0)
         return LUMO_OK;
-    if (n > e->faces)
+    if (n > faces)
         return LUMO_ERR_CORRUPT;
     ld_need_tmp(k, n, sizeof(uint32_t));
     ld_need_tmp(k, n, sizeof(uint32_t));
@@ -1560,6 +1692,35 @@ static lumo_status ld_eb_need_splits(ld_buf *b, ld_need *k, const ld_eb_need *e,
     return LUMO_OK;
 }
 
+/* Whether no attribute data's seam bits, up to where its coder ends
+ * (ld_rabs_done), hold a one: no interior seam anywhere, so the decode
+ * keeps no vertex map of its own (vpoints). Asked by the decode before it
+ * allocates and by the arena need alike, on a copy of the stream at the
+ * split data; stops at the first one. A stream it cannot read answers 0
+ * (the decode then fails where it reads the same bytes). */
+static int ld_eb_peek_vpoints(const ld_buf *at, uint32_t faces, uint32_t nad, int valence)
+{
+    const uint32_t edges = (uint32_t)((3u * (uint64_t)faces) / 2u);
+    ld_buf b = *at;
+    ld_need k;
+    ld_rabs r;
+    uint64_t size;
+    uint32_t i, j, n;
+    memset(&k, 0, sizeof k);
+    if (ld_eb_need_splits(&b, &k, faces, &n))
+        return 0;
+    if (!valence && (ld_varint64(&b, &size) || ld_skip(&b, size)))
+        return 0;
+    for (i = 0; i <= nad; ++i) {  /* start faces, then one seam stream each */
+        if (ld_rabs_start(&r, &b))
+            return 0;
+        for (j = 0; i > 0 && j < edges && !ld_rabs_done(&r); ++j)
+            if (ld_rabs_bit(&r))
+                return 0;
+    }
+    return 1;
+}
+
 static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
 {
     ld_rabs r;
@@ -1573,8 +1734,10 @@ static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
         uint32_t j;
         if ((st = ld_rabs_start(&r, b)))
             return st;
-        /* the decode reads one bit per interior edge, at most 3F/2 */
-        for (j = 0; i > 0 && j < edges; ++j)
+        /* the decode reads one bit per interior edge, at most 3F/2, and
+         * checks that the coder ends there (ld_rabs_done): the ones of
+         * those bits are the interior seams */
+        for (j = 0; i > 0 && j < edges && !ld_rabs_done(&r); ++j)
             e->seam_ones[i - 1u] += (uint32_t)ld_rabs_bit(&r);
     }
     if (!e->valence)
@@ -1663,15 +1826,16 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     e->splits = splits;
     e->symbols = symbols;
     e->nad = nad;
+    e->vpoints = (uint8_t)(nad && ld_eb_peek_vpoints(b, faces, nad, e->valence));
     /* ld_eb_decode_connectivity, ld_eb_alloc */
     ld_need_tmp(k, 1, sizeof(struct ld_eb));
     ld_need_out(k, 3u * (size_t)faces, sizeof(uint32_t));
-    if (nad)
+    if (nad && !e->vpoints)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
     e->w_opp_top = k->work;
     if (!lean)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-    if (nad)
+    if (nad && !e->vpoints)
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
     e->w_lmc_top = k->work;
     ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
@@ -1679,7 +1843,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     if (lean)
         ld_need_tmp(k, 9u * (size_t)faces + 1u, 1);
     mark = k->work;
-    if ((st = ld_eb_need_splits(b, k, e, &num_splits)) || (st = ld_eb_need_symbols(b, k, e)))
+    if ((st = ld_eb_need_splits(b, k, faces, &num_splits)) || (st = ld_eb_need_symbols(b, k, e)))
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
@@ -1690,7 +1854,8 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     seam_top = k->work;
     for (i = 0; i < nad; ++i)
         ld_need_tmp(k, 3u * (size_t)faces, 1);
-    /* ld_eb_attr_tables: shared when the first 3F/2 seam bits hold no one */
+    /* ld_eb_attr_tables: shared when the interior edges' bits hold no
+     * one (ld_eb_need_symbols counted them) */
     for (i = 0; i < nad; ++i) {
         e->ad_shared[i] = e->seam_ones[i] == 0;
         own += !e->ad_shared[i];
@@ -1702,6 +1867,8 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
         ld_need_tmp(k, 3u * (size_t)faces + 1u, 1);
     }
+    if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
+        ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));
     e->table_live = nad == 0;
     return LUMO_OK;
 }
@@ -1753,7 +1920,7 @@ uint64_t ld_eb_need_points(ld_need *k, const ld_eb_need *e)
     const uint64_t corners = 3u * (uint64_t)e->faces;
     uint64_t sum = 0, max = 0, split = e->verts, a;
     uint32_t i;
-    if (e->nad == 0)
+    if (e->nad == 0 || e->vpoints)  /* vpoints: the decode checks P = V */
         return e->verts;
     for (i = 0; i < e->nad; ++i) {
         a = ld_eb_need_attr_vertices(k, e, (int)i);
@@ -1773,8 +1940,11 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const int own = ad < 0 || e->dec_type[decoder] == 0 || e->ad_shared[ad];
     const uint64_t corners = 3u * (uint64_t)e->faces;
     /* vertices of the table traversed, and the vertex map's size */
-    const uint64_t nv = own ? ld_eb_need_vertices(e) : ld_eb_need_attr_vertices(k, e, ad);
-    uint64_t vmap = ld_eb_need_vertices(e), points = ld_eb_need_points(k, e);
+    /* vpoints: the vertices are the V points (ld_eb_renumber_run) */
+    const int vmap_faces = !e->nad || e->vpoints;
+    const uint64_t verts = e->vpoints ? e->verts : ld_eb_need_vertices(e);
+    const uint64_t nv = own ? verts : ld_eb_need_attr_vertices(k, e, ad);
+    uint64_t vmap = verts, points = ld_eb_need_points(k, e);
     const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
     int keep = 0;
@@ -1797,7 +1967,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
             ld_need_release(k, e->w_lmc_top + border + o24);
         }
     }
-    if (e->nad == 0)
+    if (vmap_faces)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));
     else
         ld_need_tmp(k, (size_t)vmap, sizeof(int32_t));
@@ -1813,12 +1983,12 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
     ld_need_release(k, mark);
-    if (e->nad)
+    if (!vmap_faces)
         ld_need_out(k, (size_t)points, sizeof(uint32_t));
     /* values: every point's value (no seams); with seams one per vertex
      * visited, learnt from a tagged stream (else at most nv) */
     s->uncertain = 0;
-    if (e->nad == 0)
+    if (vmap_faces)
         s->entries = (uint32_t)points;
     else if (e->known[decoder] != LD_NEED_UNKNOWN)
         s->entries = e->known[decoder];

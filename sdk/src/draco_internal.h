@@ -264,6 +264,16 @@ static inline int ld_rabs_bit(ld_rabs *d)
     return 0;
 }
 
+/* The coder is back where the encoder began (state 4096, every byte read):
+ * after the last bit of an encoder's stream, and never before it (while
+ * bits remain the state is the encoder's, at least 4096, and without bytes
+ * left it only falls). With p0 == 0 the state never moves (zeros only):
+ * any count of bits is "done". */
+static inline int ld_rabs_done(const ld_rabs *d)
+{
+    return d->p0 == 0 || (d->state == 4096u && d->offset == 0);
+}
+
 /* Draco's zig-zag: even symbols are >= 0, odd ones negative
  * (odd s: -(s >> 1) - 1). */
 static inline int32_t ld_zigzag(uint32_t s)
@@ -642,6 +652,8 @@ typedef struct ld_eb_need {
     uint32_t seam_ones[LD_NEED_MAX_ATTR_DATA];
     /* attribute data read through the mesh's table (no interior seam) */
     uint8_t ad_shared[LD_NEED_MAX_ATTR_DATA];
+    uint8_t vpoints;           /* no attribute data has an interior seam
+                                  (ld_eb_peek_vpoints) */
 } ld_eb_need;
 #define LD_NEED_UNKNOWN 0xFFFFFFFFu
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean);

@@ -141,18 +141,21 @@ static lumo_status ld_rans_read_table(ld_rans *r, ld_buf *b, ld_mem *m, ld_need 
     return ld_rans_table(r, b, r->tab, zz);
 }
 
-/* The lookup table has at most 2^LD_LUT_BITS buckets and, for short
- * streams, about two per value: a 200-value batch on a small board gets a
- * 2 KB table, not 64 KB. */
+/* The lookup table has at most 2^LD_LUT_BITS buckets and at least 256,
+ * about one per four values between: 4 bytes a bucket, a quarter of the
+ * values' own output at most (it is live next to them, and at the last
+ * attribute's values it decides the arena's peak; two buckets per value
+ * before issue 25 round three made it twice the values' bytes on a small
+ * mesh's colours). Coarser buckets cost a short scan per symbol. */
 static unsigned ld_rans_lut_bits(const ld_rans *r, uint32_t num_values)
 {
     unsigned bits = 8;
-    while (bits < LD_LUT_BITS && (1u << bits) < 2u * num_values)
+    while (bits < LD_LUT_BITS && (8u << bits) <= num_values)
         ++bits;
     /* A long stream at up to 16-bit precision gets the exact table (one
      * bucket per probability unit, no scan): at most 256 KB, and only
-     * with more than 2^15 values to decode. */
-    if (r->prec_bits <= LD_LUT_EXACT_BITS && (1u << r->prec_bits) <= 2u * num_values)
+     * with four values or more per bucket. */
+    if (r->prec_bits <= LD_LUT_EXACT_BITS && (4u << r->prec_bits) <= num_values)
         bits = r->prec_bits;
     if (bits > r->prec_bits)
         bits = r->prec_bits;

@@ -421,7 +421,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
 {
     srv_serve s;
     struct epoll_event ev[MAX_EVENTS];
-    sigset_t mask;
+    sigset_t mask, caller_mask;
     int64_t next_sweep;
     int i;
     static int tags[5] = {KIND_CONN, KIND_LISTEN_TCP, KIND_LISTEN_SERIAL, KIND_SIGNAL, KIND_USB};
@@ -449,6 +449,7 @@ lumo_status srv_serve_run(srv_pkg *pkgs, uint32_t npkgs, const srv_serve_options
     raise_fd_limit(&s);
 
     signal(SIGPIPE, SIG_IGN);
+    sigprocmask(SIG_BLOCK, NULL, &caller_mask);
     sigemptyset(&mask);
     sigaddset(&mask, SIGINT);
     sigaddset(&mask, SIGTERM);
@@ -597,6 +598,11 @@ out:
     if (s.epfd >= 0)
         close(s.epfd);
     free(s.timers.a);
-    sigprocmask(SIG_UNBLOCK, &mask, NULL);
+    /* The caller's mask back, not an unblock: `timeout` and shells send a
+     * stop signal to the process and again to its group, and the second
+     * copy may land after the drain above. A caller that blocked the signals
+     * itself (lumo-server --dynamic: its engine must be stopped and summed
+     * up first) keeps them blocked until it exits. */
+    sigprocmask(SIG_SETMASK, &caller_mask, NULL);
     return st;
 }

@@ -5,6 +5,11 @@
 # match each GL image within mean CIE Lab Delta E <= 2 and PSNR >= 38 dB (measured: 41-50 dB).
 # Scenes: the baked default package (direct + IVG), the generated Cornell
 # box (direct only), the bunny under point + spot + directional lights.
+# With shadow maps (--shadows N: the soft path's maps and the GL backends'
+# own, drawn from the same views with the same biases and 2x2 PCF) the
+# bound is mean Delta E <= 0.5 (measured 0.04-0.10), and the shadows must
+# show: the GL picture without shadows is beyond these bounds (mean or
+# PSNR) from soft's with them.
 set -u
 build=$1
 bin=$build/bin
@@ -42,6 +47,25 @@ check() {  # check NAME ARGS... : render with the three backends and compare
     done
 }
 
+# check_shadows NAME ARGS... : check with the bound for shadows, and the
+# shadows must matter (osmesa without them beyond the bound).
+check_shadows() {
+    name=$1; shift
+    MAX_DE=0.5
+    check "$name" "$@"
+    MAX_DE=2
+    if ! "$bin/lumo-render" $(echo "$@" | sed 's/--shadows [0-9]*//') --backend osmesa \
+            -o "$out/$name-noshadow.png" >"$out/$name-noshadow.log" 2>&1; then
+        echo "FAIL $name: osmesa without shadows did not render"; fail=$((fail + 1)); return
+    fi
+    if "$bin/lumo-compare" "$out/$name-soft.png" "$out/$name-noshadow.png" --max-mean-de 0.5 --min-psnr $MIN_PSNR >/dev/null; then
+        echo "FAIL $name: the shadows do not show (soft with them ~ osmesa without)"
+        fail=$((fail + 1))
+    else
+        pass=$((pass + 1))
+    fi
+}
+
 pkg=$build/render/default.lumo
 check pkg-pixel "$pkg" --per-pixel --size 320x240
 check pkg-vertex "$pkg" --per-vertex --size 320x240
@@ -53,6 +77,13 @@ check bunny-vertex --default --model build/data/models/bunny.obj --per-vertex --
     --light directional:0.2,-1,-0.4:0.4,0.4,0.5
 check bunny-pixel-exposure --default --model build/data/models/bunny.obj --per-pixel --size 320x240 \
     --camera 0.4,1.1,2.6:0,0.7,0:0,1,0:45 --exposure 2.5 --light point:0.8,1.6,1.2:12,10,8
+
+check_shadows pkg-pixel-shadows "$pkg" --per-pixel --size 320x240 --shadows 512
+check_shadows pkg-vertex-shadows "$pkg" --per-vertex --size 320x240 --shadows 256
+check_shadows bunny-pixel-shadows --default --model build/data/models/bunny.obj --per-pixel --size 320x240 \
+    --camera 0.4,1.1,2.6:0,0.7,0:0,1,0:45 --shadows 256 \
+    --light point:0.8,1.6,1.2:12,10,8 --light spot:-0.9,1.8,0.5:0.7,-1,-0.3:30:30,30,40 \
+    --light directional:0.2,-1,-0.4:0.4,0.4,0.5
 
 echo "RESULT: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -88,6 +88,15 @@ if spawn "lumo-server" "$dir/server.port" "$dir/server.log" \
             --out "$dir/client" >"$dir/client.txt" 2>&1; then
         framed "lumo-client --fit, 120x160" "$dir/client/frame-100.00.png"
     else bad "lumo-client --fit: $(cat "$dir/client.txt")"; fi
+    # --camera (parsed once, applied to every frame) draws what lumo-render draws from it
+    cam=0.3,0.2,2:0,0,0:0,1,0:50
+    rm -rf "$dir/client-cam" && mkdir -p "$dir/client-cam"
+    if timeout 120 "$bin/lumo-client" --connect "127.0.0.1:$port" --camera "$cam" --size 120x160 --quiet \
+            --frames-at 10,100 --out "$dir/client-cam" >"$dir/client.txt" 2>&1 &&
+        "$bin/lumo-render" "$dir/model-23.lumo" --camera "$cam" --size 120x160 -o "$dir/render-cam.png" \
+            >/dev/null 2>&1 && cmp -s "$dir/client-cam/frame-100.00.png" "$dir/render-cam.png"; then
+        ok "lumo-client --camera: the streamed scene equals lumo-render --camera's picture"
+    else bad "lumo-client --camera: $(cat "$dir/client.txt")"; fi
 fi
 "$bin/lumo-client" --connect 127.0.0.1:1 --camera 1,1,1:1,1,1:0,1,0:40 >"$dir/cam.txt" 2>&1
 [ $? -eq 2 ] && grep -q -- "--camera 1,1,1:1,1,1:0,1,0:40: not EYE:TARGET:UP:FOVY" "$dir/cam.txt" \

@@ -30,3 +30,10 @@ $(FRAMED): $(BUILD)/host/tests/render/framed.o $(BUILD)/host/libhost.a
 TEST_STEPS += raster-fit
 raster-fit: $(BIN)/lumo-render $(BIN)/lumo-bake $(BIN)/lumo-client $(BIN)/lumo-server $(FRAMED)
 	sh tests/render/fit.sh $(BUILD) $(BUILD)/tests/bin
+
+# lumo-client --shadows N: streamed and drawn with shadow maps, soft == lumo-render,
+# GL ~ soft, the shadows show (tests/render/client_shadows.sh).
+.PHONY: raster-client-shadows
+TEST_STEPS += raster-client-shadows
+raster-client-shadows: $(BIN)/lumo-render $(BIN)/lumo-compare $(BIN)/lumo-bake $(BIN)/lumo-client $(BIN)/lumo-server
+	sh tests/render/client_shadows.sh $(BUILD)

@@ -310,6 +310,41 @@ static void test_bytes_and_errors(void **state)
     }
 }
 
+/* lumo_raster_shadow_views (what the GL backends draw their maps from):
+ * the views of lumo_raster_shadow_init for every kind of light, no depth
+ * (a lookup is lit), the same refusals. */
+static void test_views_only(void **state)
+{
+    lumo_raster_light lights[3] = {
+        {LUMO_LIGHT_POINT, {0, 2 << 16, 0}, {0, 0, 0}, 0, {1 << 16, 1 << 16, 1 << 16}, NULL},
+        {LUMO_LIGHT_SPOT, {0, 2 << 16, 0}, {0, -16384, 0}, 8192, {1 << 16, 1 << 16, 1 << 16}, NULL},
+        {LUMO_LIGHT_DIRECTIONAL, {0, 0, 0}, {0, -16384, 0}, 0, {1 << 16, 1 << 16, 1 << 16}, NULL}};
+    static const lumo_q16_16 c[3] = {0, 1 << 16, 0};
+    lumo_raster_shadow a, b;
+    int i;
+    (void)state;
+
+    for (i = 0; i < 3; i++) {
+        lumo_q16_16 p[3] = {0, 0, 0};
+        lumo_q1_14 n[3] = {0, 16384, 0};
+        assert_int_equal(lumo_raster_shadow_init(&a, &lights[i], 64, map_mem, sizeof map_mem, c, 2 << 16, 0),
+                         LUMO_OK);
+        memset(&b, 0x5a, sizeof b);
+        assert_int_equal(lumo_raster_shadow_views(&b, &lights[i], 64, c, 2 << 16, 0), LUMO_OK);
+        assert_null(b.depth);
+        assert_int_equal(b.faces, a.faces);
+        assert_int_equal(b.size, 64);
+        assert_memory_equal(b.face, a.face, a.faces * sizeof a.face[0]);
+        assert_int_equal(lumo_raster_shadow_visibility(&b, p, n), 256);
+    }
+    assert_int_equal(lumo_raster_shadow_views(NULL, &lights[0], 64, c, 0, 0), LUMO_ERR_ARG);
+    assert_int_equal(lumo_raster_shadow_views(&b, NULL, 64, c, 0, 0), LUMO_ERR_ARG);
+    assert_int_equal(lumo_raster_shadow_views(&b, &lights[0], 4, c, 0, 0), LUMO_ERR_RANGE);
+    assert_int_equal(lumo_raster_shadow_views(&b, &lights[0], 64, c, 0, -1), LUMO_ERR_RANGE);
+    assert_int_equal(lumo_raster_shadow_views(&b, &lights[2], 64, NULL, 0, 0), LUMO_ERR_ARG);
+    assert_int_equal(b.faces, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -317,6 +352,7 @@ int main(void)
         cmocka_unit_test(test_bands_cache_with_shadows),
         cmocka_unit_test(test_directional_shadow),
         cmocka_unit_test(test_bytes_and_errors),
+        cmocka_unit_test(test_views_only),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

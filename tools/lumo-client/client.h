@@ -22,6 +22,7 @@
 typedef struct options {
     const char *connect, *serial, *replay, *http;   /* exactly one: the source */
     const char *record, *out, *backend, *camera;
+    lumo_raster_camera view;   /* --camera, parsed once (when camera != NULL) */
     double at[64];
     int nat, quiet, no_smoothing, use_float, per_vertex, fit;
     uint32_t package, arena_mib, retries, max_payload;

@@ -85,7 +85,7 @@ static int draw_frame(client *c, double percent, const lumo_net_progress *p, con
 
     if (host_scene_from_session(&c->ses, &c->scene, &st))
         return -1;
-    if (host_scene_aim(&c->scene, c->o.camera, c->o.fit, c->o.ro.width, c->o.ro.height, err, sizeof err)) {
+    if (host_scene_aim(&c->scene, c->o.camera ? &c->o.view : NULL, c->o.fit, c->o.ro.width, c->o.ro.height, err, sizeof err)) {
         fprintf(stderr, "lumo-client: error: %s\n", err);
         return -1;
     }

@@ -44,6 +44,8 @@ static const char usage[] =
     "  --backend soft|osmesa|egl  renderer (default soft)\n"
     "  --size WxH              frame size (default 320x240)\n"
     "  --per-vertex            light per vertex, as a weak device would (default: per pixel)\n"
+    "  --shadows N             shadow maps of N x N texels per face for every light\n"
+    "                          (point: 6 faces; default 0: no shadows; any backend)\n"
     "  --camera EYE:TARGET:UP:FOVY  draw from this camera (default: the package's)\n"
     "  --fit                   draw from a camera fitted to the scene's bounds\n"
     "  --order interleaved|geometry|lighting  what to ask for first (default interleaved)\n"
@@ -100,7 +102,7 @@ static int parse_order(const char *s, options *o)
 
 enum { O_CONNECT = 256, O_SERIAL, O_HTTP, O_REPLAY, O_RECORD, O_RETRIES, O_PACKAGE, O_OUT, O_AT, O_BACKEND,
        O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
-       O_QUIET, O_CAMERA, O_FIT, O_UPDATES, O_UPDEVERY };
+       O_QUIET, O_CAMERA, O_FIT, O_UPDATES, O_UPDEVERY, O_SHADOWS };
 
 static int take_option(int c, const char *arg, options *o)
 {
@@ -124,6 +126,7 @@ static int take_option(int c, const char *arg, options *o)
     case O_BACKEND: o->backend = arg; return 0;
     case O_SIZE: return parse_size(arg, o);
     case O_PV: o->per_vertex = 1; return 0;
+    case O_SHADOWS: return host_opt_shadows(arg, &o->ro.shadow_size, g_err, sizeof g_err);
     case O_CAMERA: o->camera = arg; return 0;
     case O_FIT: o->fit = 1; return 0;
     case O_ORDER: return parse_order(arg, o);
@@ -157,7 +160,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE}, {"max-payload", 1, 0, O_MAXPAY},
         {"no-smoothing", 0, 0, O_NOSMOOTH}, {"smoothing-budget", 1, 0, O_SMOOTHB}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
         {"quiet", 0, 0, O_QUIET}, {"camera", 1, 0, O_CAMERA}, {"fit", 0, 0, O_FIT},
-        {"updates", 1, 0, O_UPDATES}, {"update-every", 1, 0, O_UPDEVERY},
+        {"updates", 1, 0, O_UPDATES}, {"update-every", 1, 0, O_UPDEVERY}, {"shadows", 1, 0, O_SHADOWS},
         {"help", 0, 0, 'h'}, {0, 0, 0, 0}};
     int c;
 
@@ -274,7 +277,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "lumo-client: error: %s\n", g_err);
         return rc > 0 ? 0 : 2;
     }
-    if (c.o.camera && host_camera_from_string(c.o.camera, &c.scene.camera)) {
+    if (c.o.camera && host_camera_from_string(c.o.camera, &c.o.view)) {
         fprintf(stderr, "lumo-client: error: --camera %s: not EYE:TARGET:UP:FOVY with eye != target, "
                 "UP not along the view, FOVY in [1, 179] (docs/scene-format.md)\n", c.o.camera);
         return 2;

@@ -10,6 +10,8 @@
 RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o \
                   $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
                   $(BUILD)/host/rasterizer/egl/raster_egl.o
+# the GL backends' shadow maps (rasterizer/gl/raster_gl_shadow.c)
+RASTER_GL_OBJS += $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o
 RASTER_GL_LIBS := -lOSMesa -lEGL
 RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load session_scene render_backend \
                   prt_render)

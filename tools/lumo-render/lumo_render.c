@@ -66,7 +66,7 @@ static const char usage[] =
     "  --ivg-vertex                soft, per pixel: sample the IVG once per vertex and\n"
     "                              interpolate it (direct light stays per pixel)\n"
     "  --shadows N                 shadow maps of N x N texels per face for every light\n"
-    "                              (point: 6 faces; default 0: no shadows)\n"
+    "                              (point: 6 faces; default 0: no shadows; every backend)\n"
     "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
     "  --lod N|P%|all              level of detail of progressive meshes: at most N vertices\n"
     "                              per mesh, or the base mesh plus P% of the vertices\n"
@@ -207,15 +207,7 @@ static int take_value(options *o, int c, const char *arg, char *err, size_t errl
         o->lod_set = strcmp(arg, "all") != 0;
         return 0;
     case O_SHADOWS:
-        if (host_opt_int("--shadows", arg, 0, LUMO_MAX_FRAME_DIM, &k, err, errlen))
-            return -1;
-        if (k != 0 && k < LUMO_RASTER_SHADOW_MIN_SIZE) {
-            snprintf(err, errlen, "--shadows %s: 0 (no shadows) or %d..%d texels per side", arg,
-                     LUMO_RASTER_SHADOW_MIN_SIZE, LUMO_MAX_FRAME_DIM);
-            return -1;
-        }
-        o->ro.shadow_size = (uint16_t)k;
-        return 0;
+        return host_opt_shadows(arg, &o->ro.shadow_size, err, errlen);
     case O_LIGHT:
         if (o->nlights == LUMO_MAX_LIGHTS) {
             snprintf(err, errlen, "--light %s: more than %d lights (LUMO_MAX_LIGHTS, lumo/config.h)", arg,

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "lumo/raster_gl.h"
+#include "lumo_host/options.h"
 #include "render_backend.h"
 
 enum kind { SOFT, OSMESA, EGL };
@@ -113,7 +114,9 @@ static int same_light(const lumo_raster_light *a, const lumo_raster_light *b)
 }
 
 /* Draw the maps again only when a light moved or changed (the mesh is the
- * renderer's own and fixed); a light's power does not change its map. */
+ * renderer's own and fixed); a light's power does not change its map. The
+ * GL backends take the views only and draw their own maps from them
+ * (rasterizer/gl/raster_gl_shadow.c, again only when the views change). */
 static int shadows_update(host_renderer *r, const lumo_raster_scene *s)
 {
     lumo_q16_16 centre[3], radius;
@@ -137,6 +140,15 @@ static int shadows_update(host_renderer *r, const lumo_raster_scene *s)
         r->shadow_key[i] = s->lights[i];
         r->shadow_lights[i] = s->lights[i];
         free(r->shadow_depth[i]);
+        r->shadow_depth[i] = NULL;
+        if (r->kind != SOFT) {
+            if (!bytes || lumo_raster_shadow_views(&r->shadow[i], &s->lights[i], r->o.shadow_size, centre,
+                                                   radius, 0))
+                return -1;
+            r->shadow_lights[i].shadow = &r->shadow[i];
+            r->shadow_bytes += bytes * 2;                  /* 32-bit float texels */
+            continue;
+        }
         r->shadow_depth[i] = bytes ? malloc(bytes) : NULL;
         if (!r->shadow_depth[i]
             || lumo_raster_shadow_init(&r->shadow[i], &s->lights[i], r->o.shadow_size, r->shadow_depth[i],
@@ -156,6 +168,21 @@ unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes)
     if (bytes)
         *bytes = r->shadow_bytes;
     return r->shadow_builds;
+}
+
+int host_opt_shadows(const char *arg, uint16_t *size, char *err, size_t errlen)
+{
+    int k;
+
+    if (host_opt_int("--shadows", arg, 0, LUMO_MAX_FRAME_DIM, &k, err, errlen))
+        return -1;
+    if (k != 0 && k < LUMO_RASTER_SHADOW_MIN_SIZE) {
+        snprintf(err, errlen, "--shadows %s: 0 (no shadows) or %d..%d texels per side", arg,
+                 LUMO_RASTER_SHADOW_MIN_SIZE, LUMO_MAX_FRAME_DIM);
+        return -1;
+    }
+    *size = (uint16_t)k;
+    return 0;
 }
 
 static int open_soft(host_renderer *r, char *err, size_t errlen)
@@ -288,9 +315,16 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
 int host_renderer_draw(host_renderer *r, const lumo_raster_camera *cam,
                        const lumo_raster_scene *s, uint8_t *rgb)
 {
+    lumo_raster_scene shadowed = *s;
+
     if (r->kind == SOFT)
         return draw_soft(r, cam, s, rgb);
-    return lumo_gl_draw(r->gl, cam, s, rgb);
+    if (r->o.shadow_size && s->light_count) {
+        if (shadows_update(r, s))
+            return -1;
+        shadowed.lights = r->shadow_lights;
+    }
+    return lumo_gl_draw(r->gl, cam, &shadowed, rgb);
 }
 
 const char *host_renderer_describe(const host_renderer *r)

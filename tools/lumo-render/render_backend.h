@@ -43,6 +43,10 @@ const char *host_renderer_describe(const host_renderer *r);
 /* Shadow maps drawn so far (once per change of the lights; the mesh is
  * fixed for a renderer) and their bytes. */
 unsigned host_renderer_shadow_builds(const host_renderer *r, size_t *bytes);
+/* The --shadows N option of lumo-render and lumo-client: 0 (no shadows) or
+ * LUMO_RASTER_SHADOW_MIN_SIZE..LUMO_MAX_FRAME_DIM texels per side into
+ * *size. 0, or -1 with a message in err. */
+int host_opt_shadows(const char *arg, uint16_t *size, char *err, size_t errlen);
 /* Bytes of frame/band buffers and vertex cache the soft backend uses. */
 size_t host_renderer_soft_bytes(const host_renderer *r);
 void host_renderer_close(host_renderer *r);

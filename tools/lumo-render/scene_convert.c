@@ -227,17 +227,14 @@ lumo_status host_scene_from_srv(host_scene *out, const srv_scene *s, char *err, 
     return LUMO_OK;
 }
 
-lumo_status host_scene_aim(host_scene *s, const char *text, int fit, uint32_t width, uint32_t height,
-                           char *err, size_t errlen)
+lumo_status host_scene_aim(host_scene *s, const lumo_raster_camera *view, int fit, uint32_t width,
+                           uint32_t height, char *err, size_t errlen)
 {
     lumo_status st;
 
-    if (text && (st = host_camera_from_string(text, &s->camera))) {
-        snprintf(err, errlen, "bad camera '%s': %s (EYE:TARGET:UP:FOVY, eye != target, UP not along the "
-                 "view, FOVY in [1, 179]; docs/scene-format.md)", text, lumo_strerror(st));
-        return st;
-    }
-    if (!text && fit) {
+    if (view)
+        s->camera = *view;
+    else if (fit) {
         lumo_pkg_info box;
         memset(&box, 0, sizeof box);
         memcpy(box.bmin, s->bmin, sizeof box.bmin);

@@ -52,12 +52,12 @@ lumo_status host_light_from_string(const char *text, lumo_raster_light *out);
  * vertex; the camera's field of view), LUMO_ERR_NOMEM. */
 lumo_status host_scene_from_srv(host_scene *out, const srv_scene *s, char *err, size_t errlen);
 
-/* Aim s->camera for a width x height frame: the camera `text`
- * (EYE:TARGET:UP:FOVY) when not NULL, else with `fit` one fitted to the
+/* Aim s->camera for a width x height frame: the camera `view` (already
+ * checked, e.g. by host_camera_from_string) when not NULL, else with `fit` one fitted to the
  * scene's bounds (lumo_scene_camera_fit), else the scene's own; then its
  * near plane from the bounds (lumo_raster_znear_for_box). LUMO_OK, or an
  * error with a one-line reason in err. */
-lumo_status host_scene_aim(host_scene *s, const char *text, int fit, uint32_t width, uint32_t height,
+lumo_status host_scene_aim(host_scene *s, const lumo_raster_camera *view, int fit, uint32_t width, uint32_t height,
                            char *err, size_t errlen);
 
 #endif

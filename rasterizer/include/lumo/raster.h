@@ -319,6 +319,13 @@ lumo_status lumo_raster_shadow_init(lumo_raster_shadow *sh, const lumo_raster_li
                                     const lumo_q16_16 centre[3], lumo_q16_16 radius,
                                     lumo_q16_16 znear);
 
+/* The light's views only (sh->depth NULL, nothing to draw into): for a
+ * renderer that keeps the depth itself (the GL backends draw their own maps
+ * from these very views, lumo/raster_gl.h). Arguments and errors as
+ * lumo_raster_shadow_init. */
+lumo_status lumo_raster_shadow_views(lumo_raster_shadow *sh, const lumo_raster_light *l, uint16_t size,
+                                     const lumo_q16_16 centre[3], lumo_q16_16 radius, lumo_q16_16 znear);
+
 /* Add a mesh's triangles (both sides) to the map. Call for every mesh that
  * casts shadows after lumo_raster_shadow_init. Errors as lumo_raster_draw. */
 lumo_status lumo_raster_shadow_draw(lumo_raster_shadow *sh, const lumo_raster_mesh *m);
@@ -337,7 +344,7 @@ uint32_t lumo_raster_shadow_visibility(const lumo_raster_shadow *sh, const lumo_
  * Errors (nothing drawn): LUMO_ERR_ARG, LUMO_ERR_RANGE (a triangle index
  * >= vertex_count, a bad target, view size != target size). Uses about
  * 3.1 KB of stack on a Cortex-M3 (the clipped polygon's vertices of 76
- * bytes and the triangle, shading with the IVG; 3 072 bytes peak measured
+ * bytes and the triangle, shading with the IVG; 3 160 bytes peak measured
  * on the board by tests/board/golden_raster.c) and no other memory. */
 lumo_status lumo_raster_draw(const lumo_raster_view *v, const lumo_raster_scene *s,
                              const lumo_raster_mesh *m, const lumo_raster_vertex *cache,

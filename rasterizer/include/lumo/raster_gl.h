@@ -36,7 +36,11 @@ int lumo_gl_set_mesh(lumo_gl *g, const lumo_raster_mesh *m);
 int lumo_gl_set_ivg(lumo_gl *g, const lumo_ivg *ivg);
 /* Draw one frame and read it back: rgb gets width*height*3 bytes, top row
  * first. The scene's indirect term is used when s->indirect is set and an
- * IVG was uploaded. 0 on success. */
+ * IVG was uploaded. A light whose `shadow` is set (its views:
+ * lumo_raster_shadow_views or _init; the depth pointer is not read) is
+ * shadowed by the backend's own depth maps, drawn from those views again
+ * only when they change or a new mesh is uploaded (docs/rasterizer.md,
+ * "GL shadow maps"; faces * size^2 * 4 bytes of texture). 0 on success. */
 int lumo_gl_draw(lumo_gl *g, const lumo_raster_camera *cam, const lumo_raster_scene *s,
                  uint8_t *rgb);
 /* Renderer name reported by the driver (e.g. "llvmpipe ..."). */
