@@ -6,6 +6,7 @@
 VSL_RENDER_OBJS := $(BUILD)/host/tools/lumo-vsl-render/lumo_vsl_render.o \
                    $(BUILD)/host/rasterizer/gl/raster_gl_vsl.o \
                    $(BUILD)/host/rasterizer/gl/raster_gl.o \
+                   $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o \
                    $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
                    $(BUILD)/host/rasterizer/egl/raster_egl.o
 
