@@ -30,7 +30,13 @@
  * its grey reduction as DIR/grey-<share>-<W>x<H>.pgm); --hold keeps the
  * last picture on the board's screen when the scene is complete
  * (board_hold, never returns: QEMU until the test quits it);
- * --no-pictures streams the scene and draws nothing (throughput runs).
+ * --no-pictures streams the scene and draws nothing (throughput runs);
+ * --updates N keeps the connection once the scene is complete and pulls
+ * the lighting updates of a dynamic scene (docs/dynamic.md §6, protocol
+ * §9) with the updates poller (lumo/net_updates.h) as lumo-client
+ * --updates does: IVGU records and POSES applied to the session, a
+ * picture ("frame-update-NNN") after each answer that changed something,
+ * until N pictures are drawn, then BYE.
  *
  * Client rules (docs/architecture.md): C99, no heap, no float, no stdio.
  * Memory: board_scratch() holds the receive buffer, the recording, the
@@ -43,6 +49,7 @@
 #include "lumo/arena.h"
 #include "lumo/net.h"
 #include "lumo/net_client.h"
+#include "lumo/net_updates.h"
 #include "lumo/raster.h"
 #include "lumo/session.h"
 #include "board.h"
@@ -92,6 +99,12 @@ int main(void);
 #define PICTURE_BYTES    CLIENT_PICTURE_BYTES   /* vertex caches, a band, a PPM image */
 #define RECORD_BYTES     CLIENT_RECORD_BYTES    /* a recording, to write or to replay; 0: none */
 #define DEFAULT_ALBEDO   ((lumo_q1_14)12288)   /* 0.75: lumo-render's for meshes without albedo */
+/* The updates phase: records asked per request (the server splits an
+ * answer into frames under MAX_PAYLOAD), the wait after an answer that
+ * brought nothing new, and the silences tolerated while one is due. */
+#define UPDATE_RECORDS   256u
+#define UPDATE_POLL_MS   SILENCE_MS
+#define UPDATE_MAX_SILENCES 40u
 
 static const uint8_t k_shares[] = {10, 25, 50, 100};   /* percent of the scene */
 static const uint16_t k_sizes[][2] = {CLIENT_SIZES};
@@ -132,11 +145,16 @@ typedef struct client {
     uint8_t tx[TX_BYTES];
     unsigned next_share;
     int first_done, asked_again;
+    uint32_t updates_wanted;      /* --updates N: pictures of the updates phase */
+    lumo_net_updates upd;         /* the updates poller (no buffer of its own: rx, tx) */
+    uint32_t upd_clock;           /* its clock, ms (see update_ask) */
+    uint32_t upd_pictures, upd_silences, upd_seen;
+    int upd_asked, bye_held;
     uint32_t tries;
     uint64_t bytes_in, raw_in;    /* DATA payload applied; every byte the link gave */
     uint32_t frames, stale, refused, silences, resends;
     uint32_t cuts, cut_bytes, welcome_again;   /* new connections (BOARD_LINK_NEW) */
-    cost geometry, lighting, pushpull, decode, drawing;
+    cost geometry, lighting, pushpull, decode, drawing, updating;
     uint32_t clock_ticks[8];      /* the driver's clock reads during one frame */
     unsigned clock_reads;
     picture pic;
@@ -199,6 +217,22 @@ static void cost_line(const char *label, const cost *k, const char *what)
 
 /* ---- the command line ----------------------------------------------------------- */
 
+/* A decimal count 1..9999 into *out: 1, else 0. */
+static int parse_count(const char *s, uint32_t *out)
+{
+    uint32_t v = 0;
+
+    if (!*s)
+        return 0;
+    for (; *s; s++) {
+        if (*s < '0' || *s > '9' || v > 999u)
+            return 0;
+        v = v * 10u + (uint32_t)(*s - '0');
+    }
+    *out = v;
+    return v > 0;
+}
+
 static int parse_args(client *c)
 {
     static char line[512];
@@ -227,9 +261,11 @@ static int parse_args(client *c)
                          : !strcmp(w[i], "--out") ? &c->out : NULL;
         if (!strcmp(w[i], "--hold"))
             c->hold = 1;
+        else if (!strcmp(w[i], "--updates") && i + 1 < n && parse_count(w[i + 1], &c->updates_wanted))
+            i++;
         else if (opt == NULL || i + 1 >= n)
-            return fail("usage: client [--replay FILE] [--record FILE] [--out DIR] [--hold] [--no-pictures]; not ",
-                        w[i]);
+            return fail("usage: client [--replay FILE] [--record FILE] [--out DIR] [--hold] [--no-pictures] "
+                        "[--updates N]; not ", w[i]);
         else
             *opt = w[++i];
     }
@@ -632,6 +668,10 @@ static int send_pending(client *c)
     do {
         if ((st = lumo_net_client_next(&c->drv, c->tx, sizeof c->tx, &n)))
             return fail("the driver: ", lumo_strerror(st));
+        if (n && c->drv.state == LUMO_NET_DONE && c->updates_wanted) {
+            c->bye_held = 1;   /* the updates phase ends the conversation */
+            break;
+        }
         if (n && transmit(c, c->tx, n))
             return -1;
     } while (n && c->drv.state != LUMO_NET_DONE);
@@ -793,6 +833,139 @@ static int converse(client *c)
     return 0;
 }
 
+/* ---- the updates phase (docs/dynamic.md §6) ------------------------------------------ */
+
+/* The next REQUEST of the poller, when one is due. Its clock is the
+ * board's link, not a timer (a board may have none): it advances by
+ * SILENCE_MS at each silence, so "again UPDATE_POLL_MS after an answer
+ * with nothing new" is "after a silence"; a replay moves it to where the
+ * request is due (the recording holds the answer that followed). */
+static int update_ask(client *c)
+{
+    int tries;
+
+    for (tries = 0; tries < 2 && !c->upd_asked; tries++) {
+        size_t n = 0;
+        lumo_status st = lumo_net_updates_next(&c->upd, c->upd_clock, c->tx, sizeof c->tx, &n);
+        if (st)
+            return fail("updates: ", lumo_strerror(st));
+        if (n) {
+            c->upd_asked = 1;
+            return transmit(c, c->tx, n);
+        }
+        if (!c->replay)
+            return 0;
+        c->upd_clock += UPDATE_POLL_MS;
+    }
+    return 0;
+}
+
+/* After an answer: a picture when it changed the lighting or the poses. */
+static int update_picture(client *c)
+{
+    lumo_net_progress p;
+    uint32_t seen = c->upd.records + c->upd.poses;
+    char tag[16], *t;
+
+    if (seen == c->upd_seen || c->no_pictures)
+        return 0;
+    c->upd_seen = seen;
+    t = put_str(tag, "update-");
+    if (c->upd_pictures < 100u)
+        *t++ = '0';
+    if (c->upd_pictures < 10u)
+        *t++ = '0';
+    put_u32(t, c->upd_pictures++)[0] = '\0';
+    lumo_net_client_progress(&c->drv, &p);
+    return draw_picture(c, tag, &p);
+}
+
+/* One frame of the updates channel to the poller (anything else there is
+ * out of place: STATE). A refused frame fails the phase; the session keeps
+ * its last good lighting (the poller applies all or nothing). */
+static int take_update(client *c, const lumo_net_frame *f)
+{
+    uint32_t t0 = board_ticks(), answers = c->upd.answers;
+    lumo_status st = lumo_net_updates_takes(f) || f->type == LUMO_NET_ERROR ? LUMO_OK : LUMO_ERR_STATE;
+
+    c->frames++;
+    if (!st && (st = update_ask(c)) == LUMO_OK)
+        st = lumo_net_updates_on_frame(&c->upd, f, c->upd_clock);
+    if (st) {
+        con_str("client: error: updates: ");
+        con_str(frame_name(f->type));
+        return fail(" frame: ", lumo_strerror(st));
+    }
+    c->updating.ticks += board_ticks() - t0;
+    if (c->upd.answers == answers)
+        return 0;
+    c->updating.n++;
+    c->upd_asked = 0;
+    c->upd_silences = 0;
+    return update_picture(c);
+}
+
+static int take_update_frames(client *c)
+{
+    size_t at = 0, used;
+    lumo_net_frame f;
+    lumo_status st;
+
+    while (c->upd_pictures < c->updates_wanted) {
+        st = lumo_net_frame_decode(c->rx + at, c->rx_len - at, MAX_PAYLOAD, &f, &used);
+        if (st == LUMO_ERR_TRUNCATED)
+            break;
+        if (st)
+            return fail("updates: a refused frame: ", lumo_strerror(st));
+        at += used;
+        if (take_update(c, &f))
+            return -1;
+    }
+    memmove(c->rx, c->rx + at, c->rx_len - at);
+    c->rx_len -= at;
+    return 0;
+}
+
+/* Pull updates until --updates N pictures are drawn, then the BYE held. */
+static int updates_phase(client *c)
+{
+    lumo_status st = lumo_net_updates_init(&c->upd, &c->ses, LUMO_IVG_FORM_QUANTIZED, UPDATE_RECORDS,
+                                           UPDATE_POLL_MS);
+    uint8_t bye[16];
+    size_t n;
+
+    if (st)
+        return fail("updates: ", lumo_strerror(st));
+    say("pulling lighting updates", NULL);
+    /* What followed the scene's last frame in rx (a replay reads ahead) is
+     * the updates channel's. */
+    if (take_update_frames(c))
+        return -1;
+    while (c->upd_pictures < c->updates_wanted) {
+        int32_t got;
+        if (update_ask(c))
+            return -1;
+        got = receive(c, c->rx + c->rx_len, RX_BYTES - c->rx_len);
+        if (got == BOARD_LINK_NEW && !c->replay)
+            return fail("updates: the link was cut (the updates phase does not resume)", NULL);
+        if (got < 0)
+            return fail(c->replay ? "updates: the recording ends before the pictures asked for"
+                                  : "updates: the link closed", NULL);
+        if (got == 0) {
+            c->upd_clock += SILENCE_MS;
+            if (c->upd_asked && ++c->upd_silences > UPDATE_MAX_SILENCES)
+                return fail("updates: the server does not answer", NULL);
+            continue;
+        }
+        c->rx_len += (size_t)got;
+        if (take_update_frames(c))
+            return -1;
+    }
+    if (c->bye_held && lumo_net_bye_encode(bye, sizeof bye, &n) == LUMO_OK)
+        return transmit(c, bye, n);
+    return 0;
+}
+
 /* ---- start and end ------------------------------------------------------------------ */
 
 static int start(client *c)
@@ -857,6 +1030,18 @@ static void report_counts(const client *c)
     con_u64(c->cut_bytes);
     con_str(" bytes of cut frames dropped)");
     con_nl();
+    if (!c->updates_wanted)
+        return;
+    con_str("client: updates: ");
+    con_u64(c->upd.records);
+    con_str(" records, ");
+    con_u64(c->upd.poses);
+    con_str(" poses in ");
+    con_u64(c->upd.answers);
+    con_str(" answers, ");
+    con_u64(c->upd_pictures);
+    con_str(" pictures");
+    con_nl();
 }
 
 static void report_memory(const client *c)
@@ -892,6 +1077,8 @@ static void report(const client *c, uint32_t t0)
     decode.n = c->frames;
     cost_line("frame.decode", &decode, "frames, CRC and checks");
     cost_line("picture", &c->drawing, "pictures");
+    if (c->updates_wanted)
+        cost_line("updates.answer", &c->updating, "answers, records and push-pull");
     total.ticks = board_ticks() - t0;
     cost_line(c->replay ? "session.total" : "session.total.with-waiting", &total, NULL);
     report_memory(c);
@@ -907,6 +1094,8 @@ int main(void)
         return 2;
     say(c->replay ? "replaying " : "streaming over the board's link", c->replay);
     rc = converse(c);
+    if (rc == 0 && c->updates_wanted)
+        rc = updates_phase(c);
     if (rc == 0 && c->record && board_write_file(c->record, c->log, c->log_len))
         rc = fail("cannot write the recording ", c->record);
     report(c, t0);

@@ -63,3 +63,13 @@ bench-client: $(CLIENT_ELF) $(CLIENT_HOST) $(CLIENT_SCENE) $(BIN)/lumo-server
 	@sh boards/client/client-bench.sh $(CLIENT_DIR) $(CLIENT_SCENE) $(BIN)/lumo-server $(CLIENT_HOST) \
 	    $(CLIENT_ELF) "$(MPS2_QEMU_CMD) -icount shift=0" $(CLIENT_BENCH_MD)
 BENCH_STEPS += bench-client
+
+# The updates phase (--updates N, docs/dynamic.md §6): lumo-server --dynamic
+# on the demo's moving Cornell box; live, replayed on the host and under
+# QEMU, live under QEMU over the UART, and a damaged recording refused
+# (boards/client/client-updates-test.sh).
+.PHONY: board-client-updates
+board-client-updates: $(CLIENT_ELF) $(CLIENT_HOST) $(BIN)/lumo-server $(BIN)/lumo-bake
+	@sh boards/client/client-updates-test.sh $(BUILD)/board/client-updates $(BIN)/lumo-server $(BIN)/lumo-bake \
+	    $(CLIENT_HOST) $(CLIENT_ELF) "$(MPS2_QEMU_CMD) -icount shift=0"
+TEST_STEPS += board-client-updates

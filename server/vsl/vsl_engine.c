@@ -355,3 +355,39 @@ const srv_vsl_lit *srv_vsl_engine_lit(const srv_vsl_engine *e, size_t *n)
     *n = e->set.n;
     return e->lit;
 }
+
+int srv_vsl_engine_settle(srv_vsl_engine *e, double t, int max_steps)
+{
+    int steps = 1;
+    srv_vsl_engine_step(e, t);
+    while (srv_vsl_engine_latency(e).settled < srv_vsl_engine_latency(e).changes && steps < max_steps)
+        srv_vsl_engine_step(e, t), steps++;
+    srv_vsl_engine_step(e, t);
+    return steps + 1;
+}
+
+lumo_status srv_vsl_engine_posed_scene(const srv_vsl_engine *e, const srv_scene *s, srv_scene *out)
+{
+    const srv_photon_tracer *pt = srv_vsl_engine_tracer(e);
+    srv_scene_init(out);
+    for (size_t i = 0; i < s->nmeshes; i++) {
+        const srv_mesh *m = &s->meshes[i];
+        const srv_pose *p = srv_vsl_engine_pose(e, (uint32_t)i);
+        srv_mesh *d = srv_scene_add_mesh(out, m->name, m->nverts, m->ntris);
+        if (!d)
+            return LUMO_ERR_NOMEM;
+        for (uint32_t v = 0; v < m->nverts; v++)
+            d->pos[v] = srv_pose_point(p, m->pos[v]), d->albedo[v] = m->albedo[v];
+        memcpy(d->tris, m->tris, 3u * m->ntris * sizeof *m->tris);
+        d->emitter = m->emitter;
+    }
+    for (size_t i = 0; i < s->nlights; i++) {
+        srv_light l = s->lights[i];
+        if (i < pt->nlights)
+            l.pos = pt->lights[i].pos;
+        if (srv_scene_add_light(out, &l))
+            return LUMO_ERR_NOMEM;
+    }
+    out->camera = s->camera, out->has_camera = s->has_camera;
+    return LUMO_OK;
+}

@@ -89,4 +89,14 @@ const srv_photon_tracer *srv_vsl_engine_tracer(const srv_vsl_engine *e);
 const srv_pose *srv_vsl_engine_pose(const srv_vsl_engine *e, uint32_t o);
 srv_vsl_latency srv_vsl_engine_latency(const srv_vsl_engine *e);
 
+/* Steps at scene time t until every change so far has settled, then one
+ * more (the IVG from a pool without the old photons); at most max_steps.
+ * Returns the steps run. Offline runs (dyn-error, lumo-vsl-render). */
+int srv_vsl_engine_settle(srv_vsl_engine *e, double t, int max_steps);
+
+/* A copy of s (the engine's scene) posed as the engine has it now: meshes
+ * moved by their poses, lights at their current positions. out is
+ * initialised here (free with srv_scene_free). LUMO_OK or LUMO_ERR_NOMEM. */
+lumo_status srv_vsl_engine_posed_scene(const srv_vsl_engine *e, const srv_scene *s, srv_scene *out);
+
 #endif

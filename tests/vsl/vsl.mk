@@ -25,3 +25,9 @@ TEST_STEPS += test-dynamic
 .PHONY: test-dynamic
 test-dynamic: $(BIN)/lumo-server $(BIN)/lumo-client $(BIN)/lumo-bake
 	@sh tests/vsl/dynamic_test.sh $(BIN) $(BUILD)/tests/dynamic
+
+# seed 004's GL renderer (lumo-vsl-render) on OSMesa.
+TEST_STEPS += test-vsl-render
+.PHONY: test-vsl-render
+test-vsl-render: $(BIN)/lumo-vsl-render
+	@sh tests/vsl/vsl_render_test.sh $(BIN) $(BUILD)/tests/vsl-render

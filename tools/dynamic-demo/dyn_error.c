@@ -29,33 +29,6 @@ static int fail(const char *m)
     return 1;
 }
 
-/* The scene posed as the engine has it now: meshes moved, lights placed. */
-static int posed_copy(const srv_scene *s, const srv_vsl_engine *e, srv_scene *out)
-{
-    const srv_photon_tracer *pt = srv_vsl_engine_tracer(e);
-    srv_scene_init(out);
-    for (size_t i = 0; i < s->nmeshes; i++) {
-        const srv_mesh *m = &s->meshes[i];
-        const srv_pose *p = srv_vsl_engine_pose(e, (uint32_t)i);
-        srv_mesh *d = srv_scene_add_mesh(out, m->name, m->nverts, m->ntris);
-        if (!d)
-            return -1;
-        for (uint32_t v = 0; v < m->nverts; v++)
-            d->pos[v] = srv_pose_point(p, m->pos[v]), d->albedo[v] = m->albedo[v];
-        memcpy(d->tris, m->tris, 3u * m->ntris * sizeof *m->tris);
-        d->emitter = m->emitter;
-    }
-    for (size_t i = 0; i < s->nlights; i++) {
-        srv_light l = s->lights[i];
-        if (i < pt->nlights)
-            l.pos = pt->lights[i].pos;
-        if (srv_scene_add_light(out, &l))
-            return -1;
-    }
-    out->camera = s->camera, out->has_camera = s->has_camera;
-    return 0;
-}
-
 static double normal_part(const float *I, const double *J, size_t v, int h, int ch)
 {
     size_t at = I ? SRV_BAKE_I(v, h, ch) + (size_t)(h / 2) : v * SRV_VSL_IVG_VALUES + (size_t)((h * 3 + ch) * 3 + h / 2);
@@ -79,18 +52,6 @@ static void compare(const srv_bake_result *ref, const srv_vsl_ivg *ivg, double *
     }
     *err = sum > 0 ? diff / sum : 0;
     *noise = sum > 0 ? se / sum : 0;
-}
-
-/* Steps at scene time t until every change so far has settled, and one
- * more (the IVG from a pool without the old photons). */
-static int settle(srv_vsl_engine *e, double t)
-{
-    int steps = 0;
-    srv_vsl_engine_step(e, t), steps++;
-    while (srv_vsl_engine_latency(e).settled < srv_vsl_engine_latency(e).changes && steps < 10000)
-        srv_vsl_engine_step(e, t), steps++;
-    srv_vsl_engine_step(e, t);
-    return steps + 1;
 }
 
 static int parse_times(const char *t, double *out, int max)
@@ -141,14 +102,14 @@ int main(int argc, char **argv)
            o.pool, (unsigned long long)o.batch, grid, spp);
     printf("  time s | steps to settle | latency paths | latency s | IVG error vs path traced | reference noise\n");
     for (int k = 0; k < ntimes; k++) {
-        int steps = settle(e, times[k]);
+        int steps = srv_vsl_engine_settle(e, times[k], 10000);
         srv_vsl_latency lat = srv_vsl_engine_latency(e);
         srv_scene posed;
         srv_bake_result ref;
         srv_bake_opts bo = {spp, 1, 2, 0, 0.25f};
         srv_tracer tr;
         double er, noise;
-        if (posed_copy(&s, e, &posed))
+        if (srv_vsl_engine_posed_scene(e, &s, &posed))
             return fail("out of memory");
         srv_rt *rt = srv_rt_create(&posed, 2, err, sizeof err);
         if (!rt)
