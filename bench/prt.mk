@@ -6,12 +6,10 @@
 PRT_BENCH := $(BIN)/prt-bench
 HOST_TOOLS += $(PRT_BENCH)
 
-# The fps column draws with the GL backends' PRT multipass on OSMesa (the
-# GL objects are lumo-render's, tools/lumo-render/lumo-render.mk; named
-# literally: fragments are included in any order).
-PRT_BENCH_GL := $(BUILD)/host/rasterizer/gl/raster_gl.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o \
-                $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o
-$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(PRT_BENCH_GL) $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a \
+# The fps column draws with the GL backends' PRT multipass on OSMesa
+# (build/host/libraster_gl.a, rasterizer/gl/gl.mk; named literally:
+# fragments are included in any order).
+$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/libraster_gl.a $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a \
               $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $^ -lOSMesa $(SERVER_LIBS)

@@ -1,7 +1,7 @@
 # rasterizer/rasterizer.mk — the soft rasterizer (client rules: C99, no heap,
 # no float), built into liblumo_raster.a by the top Makefile (clients that
-# draw link it before liblumo.a). The GL backends are desktop objects linked by
-# tools/lumo-render/lumo-render.mk.
+# draw link it before liblumo.a). The GL backends are a desktop library of
+# their own (rasterizer/gl/gl.mk).
 CLIENT_SRCS += $(sort $(wildcard rasterizer/soft/*.c))
 
 # The sRGB and sine tables are data generated once by a committed script.

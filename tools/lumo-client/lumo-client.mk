@@ -12,9 +12,7 @@ CLIENT_TOOL_OBJS := $(patsubst %.c,$(BUILD)/host/%.o,$(sort $(wildcard tools/lum
 
 HOST_TOOLS += $(BIN)/lumo-client
 
-$(BIN)/lumo-client: $(CLIENT_TOOL_OBJS) $(BUILD)/host/rasterizer/gl/raster_gl.o \
-                    $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o \
-                    $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o $(BUILD)/host/rasterizer/egl/raster_egl.o \
+$(BIN)/lumo-client: $(CLIENT_TOOL_OBJS) $(BUILD)/host/libraster_gl.a \
                     $(BUILD)/host/libmesh_build.a $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
                     $(BUILD)/rel/liblumo_net.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)

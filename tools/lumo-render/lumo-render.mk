@@ -5,18 +5,10 @@
 # library build/host/libserver.a (server/server.mk). Fragments are included
 # in any order, so other fragments' outputs are named literally here.
 #
-# The GL backends (rasterizer/gl, osmesa, egl) are desktop objects built
-# here; they reach GL through get-proc-address, so no libGL is linked.
-RASTER_GL_OBJS := $(BUILD)/host/rasterizer/gl/raster_gl.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o \
-                  $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
-                  $(BUILD)/host/rasterizer/egl/raster_egl.o
-# the GL backends' shadow maps (rasterizer/gl/raster_gl_shadow.c)
-RASTER_GL_OBJS += $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o
-RASTER_GL_LIBS := -lOSMesa -lEGL
+# The GL backends (rasterizer/gl, osmesa, egl) are the desktop library
+# build/host/libraster_gl.a (rasterizer/gl/gl.mk).
 RENDER_OBJS    := $(patsubst %,$(BUILD)/host/tools/lumo-render/%.o,lumo_render package_load session_scene render_backend \
                   prt_render)
-
-$(BUILD)/host/rasterizer/gl/raster_gl.o $(BUILD)/host/rasterizer/gl/raster_gl_prt.o: HOST_CFLAGS += -Irasterizer/gl
 
 # The scene builder (mesh_build.h: the mesh container, generated quads and
 # spheres) and the scene conversion (scene_convert.h: the server's scene
@@ -34,7 +26,7 @@ $(BUILD)/tests/libmesh_build.a: $(patsubst %,$(BUILD)/tests/tools/lumo-render/%.
 
 HOST_TOOLS += $(BIN)/lumo-render
 
-$(BIN)/lumo-render: $(RENDER_OBJS) $(RASTER_GL_OBJS) $(BUILD)/host/libmesh_build.a $(BUILD)/host/libserver.a \
+$(BIN)/lumo-render: $(RENDER_OBJS) $(BUILD)/host/libraster_gl.a $(BUILD)/host/libmesh_build.a $(BUILD)/host/libserver.a \
                     $(BUILD)/host/libhost.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
-	$(CC) -pthread -o $@ $^ $(RASTER_GL_LIBS) $(SERVER_LIBS)
+	$(CC) -pthread -o $@ $^ -lOSMesa -lEGL $(SERVER_LIBS)

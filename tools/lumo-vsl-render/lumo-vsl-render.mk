@@ -1,16 +1,9 @@
 # tools/lumo-vsl-render/lumo-vsl-render.mk — seed 004's renderer driven by
 # the dynamic engine (docs/dynamic.md §8): rasterizer/gl/raster_gl_vsl.c on
-# the OSMesa or EGL backend (their contexts from rasterizer/osmesa, egl;
-# lumo-render.mk builds those objects), the engine from the server library.
-# Other fragments' outputs are named literally (any include order).
-VSL_RENDER_OBJS := $(BUILD)/host/tools/lumo-vsl-render/lumo_vsl_render.o \
-                   $(BUILD)/host/rasterizer/gl/raster_gl_vsl.o \
-                   $(BUILD)/host/rasterizer/gl/raster_gl.o \
-                   $(BUILD)/host/rasterizer/gl/raster_gl_shadow.o \
-                   $(BUILD)/host/rasterizer/osmesa/raster_osmesa.o \
-                   $(BUILD)/host/rasterizer/egl/raster_egl.o
-
-$(BUILD)/host/rasterizer/gl/raster_gl_vsl.o: HOST_CFLAGS += -Irasterizer/gl
+# the OSMesa or EGL backend (build/host/libraster_gl.a, rasterizer/gl/gl.mk),
+# the engine from the server library. Other fragments' outputs are named
+# literally (any include order).
+VSL_RENDER_OBJS := $(BUILD)/host/tools/lumo-vsl-render/lumo_vsl_render.o $(BUILD)/host/libraster_gl.a
 
 HOST_TOOLS += $(BIN)/lumo-vsl-render
 $(BIN)/lumo-vsl-render: $(VSL_RENDER_OBJS) $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
