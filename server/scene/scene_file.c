@@ -146,6 +146,10 @@ static lumo_status st_other(parser *p)
     vec3 a;
     if (!strcmp(k, "light") && p->n == 2) {
         srv_light l;
+        if (p->s->nlights >= LUMO_MAX_LIGHTS)
+            return snprintf(p->err, sizeof p->err, "light '%.64s': more than %d lights; a scene holds at most %d "
+                            "(LUMO_MAX_LIGHTS, lumo/config.h)", p->w[1], LUMO_MAX_LIGHTS, LUMO_MAX_LIGHTS),
+                   LUMO_ERR_LIMIT;
         if (srv_light_parse(p->w[1], &l, p->err, sizeof p->err))
             return LUMO_ERR_CORRUPT;
         return l.kind == LUMO_LIGHT_AREA ? srv_add_area_light(p->s, &l) : srv_scene_add_light(p->s, &l);
