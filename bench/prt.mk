@@ -6,7 +6,8 @@
 PRT_BENCH := $(BIN)/prt-bench
 HOST_TOOLS += $(PRT_BENCH)
 
-$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
+$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/tools/lib/options.o $(BUILD)/host/libserver.a \
+              $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $^ $(SERVER_LIBS)
 

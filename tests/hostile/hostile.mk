@@ -42,8 +42,16 @@ $(HOSTILE_GEN): $(BUILD)/tests/tests/hostile/gen_hostile.o $(BUILD)/san/liblumo.
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
+# tests/hostile/gen_formats adds STL, glTF, GLB, the formats refused by
+# name and the scene files' lights (round three) to the same corpus.
+HOSTILE_GEN_FORMATS := $(BUILD)/tests/bin/gen_formats
+
+$(HOSTILE_GEN_FORMATS): $(BUILD)/tests/tests/hostile/gen_formats.o
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^
+
 TEST_STEPS += test-hostile-input
 .PHONY: test-hostile-input
-test-hostile-input: $(HOSTILE_GEN) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render $(BIN)/lumo-inspect \
-                    $(BIN)/lumo-server
-	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input
+test-hostile-input: $(HOSTILE_GEN) $(HOSTILE_GEN_FORMATS) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render \
+                    $(BIN)/lumo-inspect $(BIN)/lumo-server
+	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input $(HOSTILE_GEN_FORMATS)

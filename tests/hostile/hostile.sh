@@ -1,20 +1,22 @@
 #!/bin/sh
-# tests/hostile/hostile.sh BIN GEN WORK — models, scene files, packages and
+# tests/hostile/hostile.sh BIN GEN WORK [GEN_FORMATS] — models, scene files, packages and
 # bakes from hostile hands (issue 24, part B). GEN (gen_hostile) writes the
 # corpus into WORK at test time from tests/fuzz/seeds/fuzz_package/lights.lumo
-# (a real bake: 3 lights, raw meshes, an IVG); every case runs each tool
+# (a real bake: 3 lights, raw meshes, an IVG), and GEN_FORMATS adds STL,
+# glTF and GLB, the formats refused by name, lights field by field; every case runs each tool
 # that reads it under a memory limit (ulimit -v, MEM_KB) and a time limit
 # (timeout, SECS): a declared 10^9 faces over a few bytes must be refused
 # within both, never crash (status > 1), and say the expected text. Good
 # files of every reader must still pass. Prints "RESULT: N passed, M failed".
-bin=$1; gen=$2; work=$3
+bin=$1; gen=$2; work=$3; gen_formats=${4:-}
 MEM_KB=${MEM_KB:-1048576}   # 1 GiB of address space per tool run
 SECS=${SECS:-20}
 . tests/lib/background.sh
 rm -rf "$work"; mkdir -p "$work/corpus" "$work/out"
 corpus=$work/corpus; out=$work/out; log=$work/last.log
 
-if ! "$gen" "$corpus" tests/fuzz/seeds/fuzz_package/lights.lumo; then
+if ! "$gen" "$corpus" tests/fuzz/seeds/fuzz_package/lights.lumo ||
+   { [ -n "$gen_formats" ] && ! "$gen_formats" "$corpus"; }; then
     bad "gen_hostile: cannot make the corpus"
     echo "RESULT: $pass passed, $fail failed"; exit 1
 fi

@@ -261,10 +261,8 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     }
     if (o->spp == 0)
         o->spp = o->ref_w ? DEFAULT_REF_SPP : DEFAULT_BAKE_SPP;
-    if (o->prt_spec && bake_prt_parse(&o->prt, o->prt_spec, o->threads, o->progress)) {
-        snprintf(err, errlen, "bad value '%s' for --prt (try --help)", o->prt_spec);
+    if (o->prt_spec && bake_prt_parse(&o->prt, o->prt_spec, o->threads, o->progress, err, errlen))
         return -1;
-    }
     if (o->prt.env && !o->prt.on) {
         snprintf(err, errlen, "--prt-env needs --prt");
         return -1;
