@@ -53,5 +53,5 @@ $(HOSTILE_GEN_FORMATS): $(BUILD)/tests/tests/hostile/gen_formats.o
 TEST_STEPS += test-hostile-input
 .PHONY: test-hostile-input
 test-hostile-input: $(HOSTILE_GEN) $(HOSTILE_GEN_FORMATS) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render \
-                    $(BIN)/lumo-inspect $(BIN)/lumo-server
+                    $(BIN)/lumo-inspect $(BIN)/lumo-server $(BIN)/lumo-client
 	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input $(HOSTILE_GEN_FORMATS)

@@ -90,6 +90,29 @@ printf '%s' '{"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"pipe.
 run "lumo-pm build a glTF whose buffer is a FIFO" "buffer 0: 'pipe.mtl' is not a regular file" \
     "$bin/lumo-pm" build "$corpus/pipe.gltf" -o "$out/d.lumo"
 
+# A hostile HTTP server (lumo-client --http): a Content-Range whose total is
+# "-1" (sscanf's %llu read it as 2^64 - 1) or past 64 bits is not a size.
+# busybox nc answers the first request with the canned response.
+http_case() {  # http_case NAME TOTAL
+    http_n=$((${http_n:-0} + 1)); port=$((20000 + ($$ * 3 + http_n) % 20000))
+    printf 'HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 0-23/%s\r\nContent-Length: 24\r\n' "$2" \
+        >"$corpus/http.resp"
+    printf 'Connection: close\r\n\r\nLUMO0123456789abcdefghij' >>"$corpus/http.resp"
+    busybox nc -l -p "$port" <"$corpus/http.resp" >/dev/null 2>&1 &
+    nc_pid=$!
+    sleep 0.3
+    run "lumo-client --http $1" "the server did not say the file's size (Content-Range)" \
+        "$bin/lumo-client" --http "http://127.0.0.1:$port/x.lumo" --out "$out"
+    kill "$nc_pid" 2>/dev/null; wait "$nc_pid" 2>/dev/null
+}
+if command -v busybox >/dev/null; then
+    http_case "Content-Range total -1" -1
+    http_case "Content-Range total past 64 bits" 99999999999999999999999
+    http_case "Content-Range total 1x" 1x
+else
+    bad "busybox (tools/setup.sh: busybox-static) is missing: no hostile HTTP server"
+fi
+
 # The bake's budget: said, refused past it, taken with --allow-large.
 scene=tests/fuzz/package_seeds/tiny.txt
 run "bake --cell 0.000001" "asks for a 2000002x600002x2000002 grid; the most is 256 per axis" \
