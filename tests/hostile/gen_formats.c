@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <zlib.h>
 
 static const char *g_dir;
 static FILE *g_manifest;
@@ -239,6 +240,50 @@ static void glb_cases(void)
     put_case("model", "json_huge.glb", b, n, "the first GLB chunk is not JSON of 4000000000 bytes");
 }
 
+/* ---- PNG pictures (lumo-compare, --env, --prt-env) -------------------------------------- */
+
+static void png_chunk(FILE *f, const char *type, const uint8_t *data, uint32_t n)
+{
+    uint8_t be[4] = {(uint8_t)(n >> 24), (uint8_t)(n >> 16), (uint8_t)(n >> 8), (uint8_t)n};
+    uLong crc = crc32(crc32(0, (const Bytef *)type, 4), data, n);
+    uint8_t c[4] = {(uint8_t)(crc >> 24), (uint8_t)(crc >> 16), (uint8_t)(crc >> 8), (uint8_t)crc};
+    fwrite(be, 1, 4, f), fwrite(type, 1, 4, f), fwrite(data, 1, n, f), fwrite(c, 1, 4, f);
+}
+
+/* A whole, valid RGB8 PNG of side x side black pixels: 243 MB of pixels
+ * in a quarter of a megabyte of deflate. */
+static void black_png(const char *name, uint32_t side, const char *expect)
+{
+    static uint8_t row[3 * 9000 + 1], out[1 << 20];
+    uint8_t ihdr[13] = {(uint8_t)(side >> 24), (uint8_t)(side >> 16), (uint8_t)(side >> 8), (uint8_t)side, 0, 0, 0, 0,
+                        8, 2, 0, 0, 0};
+    char path[512];
+    z_stream z;
+    FILE *f;
+    memcpy(ihdr + 4, ihdr, 4);
+    snprintf(path, sizeof path, "%s/%s", g_dir, name);
+    memset(&z, 0, sizeof z);
+    if (side > 9000 || !(f = fopen(path, "wb")) || deflateInit(&z, 1) != Z_OK)
+        exit(1);
+    fwrite("\x89PNG\r\n\x1a\n", 1, 8, f);
+    png_chunk(f, "IHDR", ihdr, 13);
+    for (uint32_t y = 0; y <= side; y++) {
+        z.next_in = row, z.avail_in = y < side ? 3 * side + 1 : 0;
+        do {
+            z.next_out = out, z.avail_out = sizeof out;
+            deflate(&z, y < side ? Z_NO_FLUSH : Z_FINISH);
+            if (sizeof out - z.avail_out)
+                png_chunk(f, "IDAT", out, (uint32_t)(sizeof out - z.avail_out));
+        } while (z.avail_out == 0);
+    }
+    deflateEnd(&z);
+    png_chunk(f, "IEND", out, 0);
+    if (fclose(f))
+        exit(1);
+    fprintf(g_manifest, "png\t%s\t%s\n", path, expect);
+    g_count++;
+}
+
 /* ---- formats lumo refuses, and the lights of scene files ----------------------------- */
 
 static void other_cases(void)
@@ -308,6 +353,8 @@ int main(int argc, char **argv)
     glb_cases();
     other_cases();
     light_scene_cases();
+    black_png("black_9000.png", 9000, "cannot read as an 8-bit PNG picture (of at most 2^26 pixels)");
+    black_png("black_8192.png", 8192, "OK");
     fclose(g_manifest);
     fprintf(stderr, "gen_formats: %u cases in %s\n", g_count, g_dir);
     return 0;

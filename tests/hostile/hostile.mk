@@ -48,10 +48,10 @@ HOSTILE_GEN_FORMATS := $(BUILD)/tests/bin/gen_formats
 
 $(HOSTILE_GEN_FORMATS): $(BUILD)/tests/tests/hostile/gen_formats.o
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) -o $@ $^
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lz
 
 TEST_STEPS += test-hostile-input
 .PHONY: test-hostile-input
 test-hostile-input: $(HOSTILE_GEN) $(HOSTILE_GEN_FORMATS) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render \
-                    $(BIN)/lumo-inspect $(BIN)/lumo-server $(BIN)/lumo-client
+                    $(BIN)/lumo-inspect $(BIN)/lumo-server $(BIN)/lumo-client $(BIN)/lumo-compare
 	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input $(HOSTILE_GEN_FORMATS)

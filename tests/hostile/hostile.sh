@@ -72,6 +72,7 @@ while IFS="$tab" read -r kind file expect; do
     scene) run "lumo-bake $(basename "$file")" "$expect" "$bin/lumo-bake" "$file" --grid 2 --spp 1 \
                --no-progress -o "$out/scene.lumo" ;;
     package) package_case "$file" "$expect" ;;
+    png) run "lumo-compare $(basename "$file")" "$expect" "$bin/lumo-compare" "$file" "$file" ;;
     esac
 done <"$corpus/manifest"
 

@@ -110,7 +110,7 @@ int bake_prt_env(const bake_prt *p, srv_pkg_writer *w, char *err, size_t errlen)
     if (!p->env)
         return 0;
     if (host_png_read_rgb8(p->env, &rgb, &iw, &ih)) {
-        snprintf(err, errlen, "cannot read the environment map %s (8-bit PNG)", p->env);
+        snprintf(err, errlen, "cannot read the environment map %s (an 8-bit PNG of at most 2^26 pixels)", p->env);
         return -1;
     }
     float *f = malloc(3u * (size_t)iw * (size_t)ih * sizeof *f);
