@@ -283,6 +283,18 @@ expect 2 "CLIENTS -5: must be 1..100000" "$bin/lumo-bench-stream" load 127.0.0.1
 expect 1 "--grid 1e2: not an integer" "$bin/dyn-error" "$scene" --grid 1e2
 expect 1 "--times 0,3,2: values must increase" "$bin/dyn-error" "$scene" --times 0,3,2
 expect 2 "W 0: must be 1..16384" "$bin/prt-demo" env "$tmp/e.png" 0 10
+# motion lines (scene files of lumo-server --dynamic and dyn-error): the key,
+# its number and the part that is wrong.
+mo() {  # mo NAME LINE EXPECT
+    printf 'quad -1,0,-1 0,0,2 2,0,0\nlight point:0,1,0:1,1,1\nmotion %s\n' "$2" >"$tmp/$1.txt"
+    expect 1 "$tmp/$1.txt:3: motion: $3" "$bin/dyn-error" "$tmp/$1.txt" --grid 4 --spp 1
+}
+mo m_pos "light 0 0:0,1,0 1:0,x,0" "key 2 '1:0,x,0': position '0,x,0' is not 3 finite numbers X,Y,Z"
+mo m_far "light 0 0:0,1e9,0" "key 1 '0:0,1e9,0': position Y = 1e+09 is beyond"
+mo m_time "light 0 0:0,1,0 -1:0,1,0" "key 2 '-1:0,1,0': time '-1' is not a number of seconds in [0, 1e9]"
+mo m_order "light 0 2:0,1,0 1:0,1,0" "key 2 '1:0,1,0': time 1 does not follow 2 (times increase)"
+mo m_yaw "light 0 0:0,1,0:30" "key 1 '0:0,1,0:30': a light has no yaw ('30')"
+mo m_oyaw "object 0 0:0,0,0:nan" "key 1 '0:0,0,0:nan': yaw 'nan' is not a number of degrees"
 
 # ---- --help stays clear: usage on stdout, status 0 --------------------------
 for t in lumo-render lumo-bake lumo-pm lumo-inspect lumo-server lumo-client lumo-compare lumo-draco-decode; do

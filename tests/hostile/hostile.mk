@@ -25,6 +25,13 @@ $(BUILD)/fuzz/bin/fuzz_light_parse: tests/fuzz/fuzz_light_parse.c server/scene/l
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_light_parse
 	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_light_parse.c server/scene/light_parse.c -lm
 
+# The motion parser (motion lines, lumo-server --dynamic's move commands).
+$(BUILD)/fuzz/bin/fuzz_motion: tests/fuzz/fuzz_motion.c server/vsl/vsl_motion.c server/scene/scene.c \
+                               server/scene/camera.c $(wildcard server/scene/*.h) $(filter sdk/%,$(CLIENT_SRCS))
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_motion
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_motion.c server/vsl/vsl_motion.c server/scene/scene.c \
+	    server/scene/camera.c $(filter sdk/%,$(CLIENT_SRCS)) -lm
+
 # The scene room calls the SDK (the camera fit): its sources, built alike.
 $(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) $(wildcard server/scene/*.h) \
                                    $(filter sdk/%,$(CLIENT_SRCS))

@@ -102,15 +102,16 @@ static void command(struct dynamic *d, char *line)
     char key[96];
     if (n == 4 && !strcmp(w[0], "move") && snprintf(key, sizeof key, "0:%s", w[3]) < (int)sizeof key) {
         char *words[3] = {w[1], w[2], key};
-        if (srv_motion_parse_words(&one, &d->scene, words, 3, err, sizeof err) == LUMO_OK) {
-            const srv_motion_track *tr = &one.tracks[0];
-            srv_pose p = srv_pose_make(tr->keys[0].p, tr->keys[0].yaw_deg);
-            lumo_status st = tr->light ? srv_vsl_engine_move_light(d->engine, tr->target, tr->keys[0].p)
-                                       : srv_vsl_engine_move_object(d->engine, tr->target, &p);
-            fprintf(stderr, "lumo-server: dynamic: %s %s %s: %s\n", w[1], w[2], w[3],
-                    st ? lumo_strerror(st) : "moved");
+        if (srv_motion_parse_words(&one, &d->scene, words, 3, err, sizeof err) != LUMO_OK) {
+            fprintf(stderr, "lumo-server: dynamic: refused 'move %.32s %.32s %.64s': %s\n", w[1], w[2], w[3], err);
             return;
         }
+        const srv_motion_track *tr = &one.tracks[0];
+        srv_pose p = srv_pose_make(tr->keys[0].p, tr->keys[0].yaw_deg);
+        lumo_status st = tr->light ? srv_vsl_engine_move_light(d->engine, tr->target, tr->keys[0].p)
+                                   : srv_vsl_engine_move_object(d->engine, tr->target, &p);
+        fprintf(stderr, "lumo-server: dynamic: %s %s %s: %s\n", w[1], w[2], w[3], st ? lumo_strerror(st) : "moved");
+        return;
     }
     fprintf(stderr, "lumo-server: dynamic: ignored '%s ...': want 'move object NAME|INDEX X,Y,Z[:YAW]' or "
             "'move light INDEX X,Y,Z'\n", w[0]);
@@ -137,7 +138,9 @@ static void *read_commands(void *arg)
         len += (size_t)got;
         buf[len] = 0;
         char *nl;
-        while ((nl = strchr(buf, '\n'))) {
+        /* memchr, not strchr: a NUL byte in a line must not hide the lines
+         * after it (the line itself ends at the NUL for command()). */
+        while ((nl = memchr(buf, '\n', len))) {
             *nl = 0;
             command(d, buf);
             len -= (size_t)(nl + 1 - buf);
