@@ -3,11 +3,14 @@ DRACO_BENCH     := $(BIN)/draco-bench
 DRACO_BENCH_LIB := $(BIN)/draco-bench-libdraco
 HOST_TOOLS      += $(DRACO_BENCH) $(DRACO_BENCH_LIB)
 
-$(DRACO_BENCH): $(BUILD)/host/bench/draco_bench.o $(BUILD)/rel/liblumo.a
+$(DRACO_BENCH): $(BUILD)/host/bench/draco_bench.o $(BUILD)/host/tools/lib/options.o $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^
 
-$(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o $(BUILD)/host/bench/heap_count.o
+# REPS through the strict option parser (C, lumo_host/options.h).
+$(BUILD)/host/bench/draco_bench_libdraco.o: HOST_CXXFLAGS += -Itools/lib/include
+$(DRACO_BENCH_LIB): $(BUILD)/host/bench/draco_bench_libdraco.o $(BUILD)/host/bench/heap_count.o \
+                    $(BUILD)/host/tools/lib/options.o
 	@mkdir -p $(@D)
 	$(CXX) -o $@ $^ -ldraco -pthread
 

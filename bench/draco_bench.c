@@ -17,6 +17,7 @@
 #include <string.h>
 #include <time.h>
 #include "lumo/draco.h"
+#include "lumo_host/options.h"
 
 static uint64_t now_ns(void)
 {
@@ -31,15 +32,25 @@ int main(int argc, char **argv)
     uint8_t *data, *mem;
     long size;
     int reps, i;
+    char why[160];
     unsigned flags;
     uint64_t best = UINT64_MAX;
     lumo_draco_need need;
     lumo_draco_mesh m;
     size_t bytes;
-    if ((argc != 3 && argc != 4) || !(f = fopen(argv[1], "rb")))
+    if (argc != 3 && argc != 4) {
+        fprintf(stderr, "usage: draco-bench FILE.drc REPS [lean]\n");
         return 2;
+    }
+    if (!(f = fopen(argv[1], "rb"))) {
+        fprintf(stderr, "draco-bench: error: %s: cannot open\n", argv[1]);
+        return 2;
+    }
     flags = argc == 4 && !strcmp(argv[3], "lean") ? LUMO_DRACO_LEAN : 0u;
-    reps = atoi(argv[2]);
+    if (host_opt_int("REPS", argv[2], 1, 1000000, &reps, why, sizeof why)) {
+        fprintf(stderr, "draco-bench: error: %s\n", why);
+        return 2;
+    }
     fseek(f, 0, SEEK_END);
     size = ftell(f);
     fseek(f, 0, SEEK_SET);

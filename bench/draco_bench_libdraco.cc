@@ -17,15 +17,27 @@
 
 #include "draco/compression/decode.h"
 #include "heap_count.h"
+#include "lumo_host/options.h"
 
 int main(int argc, char **argv)
 {
-    if (argc != 3 && argc != 4)
+    if (argc != 3 && argc != 4) {
+        std::fprintf(stderr, "usage: draco-bench-libdraco FILE.drc REPS [full]\n");
         return 2;
+    }
     const bool full = argc == 4;
     std::ifstream in(argv[1], std::ios::binary);
+    if (!in) {
+        std::fprintf(stderr, "draco-bench-libdraco: error: %s: cannot open\n", argv[1]);
+        return 2;
+    }
     std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    int reps = std::atoi(argv[2]);
+    int reps;
+    char why[160];
+    if (host_opt_int("REPS", argv[2], 1, 1000000, &reps, why, sizeof why)) {
+        std::fprintf(stderr, "draco-bench-libdraco: error: %s\n", why);
+        return 2;
+    }
     long long best = -1;
     for (int i = 0; i < reps; ++i) {
         draco::DecoderBuffer buf;

@@ -10,7 +10,8 @@ $(IVG_TEST_BINS): $(BUILD)/tests/server/package/ivg_encode.o
 # Benchmark: build/bin/lumo-bench-ivg (host -O2 against the rel library).
 IVG_BENCH := $(BIN)/lumo-bench-ivg
 HOST_TOOLS += $(IVG_BENCH)
-$(IVG_BENCH): $(BUILD)/host/bench/ivg_bench.o $(BUILD)/host/server/package/ivg_encode.o $(BUILD)/rel/liblumo.a
+$(IVG_BENCH): $(BUILD)/host/bench/ivg_bench.o $(BUILD)/host/server/package/ivg_encode.o $(BUILD)/host/tools/lib/options.o \
+              $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lm
 

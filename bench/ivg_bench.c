@@ -20,6 +20,7 @@
 #include <math.h>
 #include <time.h>
 #include "lumo/ivg.h"
+#include "lumo_host/options.h"
 #include "package/ivg_encode.h"
 
 static uint64_t g_rng = 0x9E3779B97F4A7C15ull;
@@ -231,11 +232,17 @@ int main(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "time") == 0)
         return run_time();
+    char why[160];
     if (argc == 5 && strcmp(argv[1], "pushpull") == 0) {
         bgrid b;
-        if (make_grid(&b, (unsigned)atoi(argv[2]), (unsigned)atoi(argv[3])))
+        uint32_t n, pct, flags;
+        if (host_opt_u32("N", argv[2], 2, 256, &n, why, sizeof why) ||
+            host_opt_u32("PCT", argv[3], 0, 100, &pct, why, sizeof why) ||
+            host_opt_u32("FLAGS", argv[4], 0, 0xffff, &flags, why, sizeof why))
+            return fprintf(stderr, "lumo-bench-ivg pushpull: error: %s\n", why), 2;
+        if (make_grid(&b, n, pct))
             return 1;
-        lumo_ivg_pushpull(b.g, (unsigned)atoi(argv[4]));
+        lumo_ivg_pushpull(b.g, flags);
         free(b.mem);
         return 0;
     }
@@ -245,7 +252,13 @@ int main(int argc, char **argv)
         if (make_grid(&b, 32, 25))
             return 1;
         lumo_ivg_pushpull(b.g, LUMO_IVG_SMOOTH);
-        make_samples(&s, atoi(argv[2]), atoi(argv[3]));
+        int count, mode;
+        if (host_opt_int("COUNT", argv[2], 1, 1 << 24, &count, why, sizeof why) ||
+            host_opt_int("MODE", argv[3], 0, SAMPLE_MODES - 1, &mode, why, sizeof why)) {
+            free(b.mem);
+            return fprintf(stderr, "lumo-bench-ivg sample: error: %s\n", why), 2;
+        }
+        make_samples(&s, count, mode);
         printf("%u\n", shade_all(b.g, &s) & 1u);
         free(b.mem);
         return 0;

@@ -20,6 +20,7 @@
 #include "bake/bake.h"
 #include "common/progress.h"
 #include "scene/shapes.h"
+#include "lumo_host/options.h"
 
 #define DRAGON48 "build/data/models/dragon_48k.ply"
 
@@ -146,9 +147,15 @@ int main(int argc, char **argv)
     inputs in;
     if (argc != 5)
         return fprintf(stderr, "usage: lumo-bench-mpi-model GRID SPP PEER_CPU_S LAUNCH_S\n"), 2;
-    int grid = atoi(argv[1]), spp = atoi(argv[2]);
-    double peer_cpu = atof(argv[3]), launch = atof(argv[4]);
-    if (grid < 2 || grid > 256 || spp < 1 || measure(grid, spp, &in))
+    int grid, spp;
+    double peer_cpu, launch;
+    char why[160];
+    if (host_opt_int("GRID", argv[1], 2, 256, &grid, why, sizeof why) ||
+        host_opt_int("SPP", argv[2], 1, 1 << 20, &spp, why, sizeof why) ||
+        host_opt_double("PEER_CPU_S", argv[3], 0, 1e9, &peer_cpu, why, sizeof why) ||
+        host_opt_double("LAUNCH_S", argv[4], 0, 1e9, &launch, why, sizeof why))
+        return fprintf(stderr, "lumo-bench-mpi-model: error: %s\n", why), 2;
+    if (measure(grid, spp, &in))
         return 1;
     double bake = (double)grid * grid * grid * spp * in.vertex_path_s;
     double pack = peer_cpu - bake - in.setup_s;

@@ -9,8 +9,8 @@ HOST_TOOLS += $(PRT_BENCH)
 # The fps column draws with the GL backends' PRT multipass on OSMesa
 # (build/host/libraster_gl.a, rasterizer/gl/gl.mk; named literally:
 # fragments are included in any order).
-$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/libraster_gl.a $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a \
-              $(BUILD)/rel/liblumo.a
+$(PRT_BENCH): $(BUILD)/host/bench/prt_bench.o $(BUILD)/host/tools/lib/options.o $(BUILD)/host/libraster_gl.a \
+              $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_raster.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $^ -lOSMesa $(SERVER_LIBS)
 

@@ -11,6 +11,7 @@
  * OSMesa for frames per second and the measured overdraw, against a
  * single-pass GL draw of the same mesh in the same run. Markdown to --out. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +20,7 @@
 #include "lumo/raster.h"
 #include "lumo/raster_gl.h"
 #include "lumo/raster_gl_prt.h"
+#include "lumo_host/options.h"
 #include "pm/pm.h"
 #include "pm/pm_load.h"
 #include "prt/cpca.h"
@@ -281,6 +283,57 @@ static void usage(void)
     exit(2);
 }
 
+/* One value of the integer and number options, strictly (lumo_host/options.h):
+ * 1 taken, 0 not one of them; a refusal names option and value and exits. */
+static int take_number(bench_opts *o, const char *a, const char *v)
+{
+    static const struct { const char *name; int lo, hi; size_t at; } ints[] = {
+        {"--order", 1, LUMO_PRT_MAX_ORDER, offsetof(bench_opts, order)},
+        {"--strata", 2, 256, offsetof(bench_opts, strata)},
+        {"--bounces", 0, 8, offsetof(bench_opts, bounces)},
+        {"--components", 0, LUMO_PRT_MAX_COMPONENTS, offsetof(bench_opts, npc)},
+        {"--registers", 0, 65536, offsetof(bench_opts, registers)},
+        {"--threads", 1, 256, offsetof(bench_opts, threads)},
+        {"--fps-frames", 0, 100000, offsetof(bench_opts, fps_frames)},
+    };
+    char why[200];
+    double d[8];
+    int n, rc = 0;
+    for (size_t k = 0; k < sizeof ints / sizeof ints[0]; k++)
+        if (!strcmp(a, ints[k].name))
+            rc = host_opt_int(a, v, ints[k].lo, ints[k].hi, (int *)(void *)((char *)o + ints[k].at), why,
+                              sizeof why) ? -1 : 1;
+    if (!rc && !strcmp(a, "--size")) {
+        uint32_t w = 0, h = 0;
+        rc = host_opt_size(a, v, 8192, 8192, &w, &h, why, sizeof why) ? -1 : 1;
+        if (rc > 0 && (w < 16 || h < 16))
+            rc = -1, snprintf(why, sizeof why, "%s %s: at least 16x16", a, v);
+        o->width = (int)w, o->height = (int)h;
+    }
+    if (!rc && (!strcmp(a, "--alpha") || !strcmp(a, "--alpha2")))
+        rc = host_opt_double(a, v, 0, 1e6, a[7] ? &o->alpha2 : &o->alpha, why, sizeof why) ? -1 : 1;
+    if (!rc && !strcmp(a, "--alpha-sweep")) {
+        rc = host_opt_list(a, v, 0, 1e6, 0, d, 8, &n, why, sizeof why) ? -1 : 1;
+        for (o->nsweep = 0; rc > 0 && o->nsweep < n; o->nsweep++)
+            o->sweep[o->nsweep] = d[o->nsweep];
+    }
+    if (!rc && !strcmp(a, "--clusters")) {
+        rc = host_opt_list(a, v, 1, LUMO_PRT_MAX_CLUSTERS, 0, d, 8, &n, why, sizeof why) ? -1 : 1;
+        for (o->nk = 0; rc > 0 && o->nk < n; o->nk++)
+            o->ks[o->nk] = (int)d[o->nk];
+        for (int k = 0; rc > 0 && k < n; k++)
+            if (d[k] != (double)(int)d[k]) {
+                snprintf(why, sizeof why, "%s %s: value %d is not an integer", a, v, k + 1);
+                rc = -1;
+            }
+    }
+    if (rc < 0) {
+        fprintf(stderr, "lumo-bench-prt: error: %s\n", why);
+        exit(2);
+    }
+    return rc;
+}
+
 static int parse(bench_opts *o, int argc, char **argv)
 {
     *o = (bench_opts){.cmd = "", .order = 6, .strata = 32, .bounces = 1, .npc = 8, .registers = 256, .threads = 2,
@@ -293,28 +346,7 @@ static int parse(bench_opts *o, int argc, char **argv)
         if (!strcmp(a, "--out")) o->out = v;
         else if (!strcmp(a, "--cmd")) o->cmd = v;
         else if (!strcmp(a, "--plot")) o->plot = v;
-        else if (!strcmp(a, "--order")) o->order = atoi(v);
-        else if (!strcmp(a, "--strata")) o->strata = atoi(v);
-        else if (!strcmp(a, "--bounces")) o->bounces = atoi(v);
-        else if (!strcmp(a, "--components")) o->npc = atoi(v);
-        else if (!strcmp(a, "--alpha")) o->alpha = atof(v);
-        else if (!strcmp(a, "--alpha2")) o->alpha2 = atof(v);
-        else if (!strcmp(a, "--registers")) o->registers = atoi(v);
-        else if (!strcmp(a, "--threads")) o->threads = atoi(v);
-        else if (!strcmp(a, "--fps-frames")) o->fps_frames = atoi(v);
-        else if (!strcmp(a, "--size")) {
-            if (sscanf(v, "%dx%d", &o->width, &o->height) != 2 || o->width < 16 || o->height < 16)
-                usage();
-        }
-        else if (!strcmp(a, "--alpha-sweep")) {
-            o->nsweep = 0;
-            for (char *s = (char *)v; *s && o->nsweep < 8; s += strcspn(s, ","), s += *s == ',')
-                o->sweep[o->nsweep++] = atof(s);
-        } else if (!strcmp(a, "--clusters")) {
-            o->nk = 0;
-            for (char *s = (char *)v; *s && o->nk < 8; s += strcspn(s, ","), s += *s == ',')
-                o->ks[o->nk++] = atoi(s);
-        } else
+        else if (!take_number(o, a, v))
             usage();
     }
     if (!o->out || i >= argc)

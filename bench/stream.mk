@@ -8,7 +8,8 @@
 STREAM_BENCH := $(BIN)/lumo-bench-stream
 HOST_TOOLS   += $(STREAM_BENCH)
 
-$(STREAM_BENCH): $(BUILD)/host/bench/stream_client.o $(BUILD)/host/net/host/net_socket.o $(BUILD)/rel/liblumo_net.a $(BUILD)/rel/liblumo.a
+$(STREAM_BENCH): $(BUILD)/host/bench/stream_client.o $(BUILD)/host/net/host/net_socket.o $(BUILD)/host/tools/lib/options.o \
+                 $(BUILD)/rel/liblumo_net.a $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -Wl,--wrap=lumo_session_update
 

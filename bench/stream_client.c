@@ -32,6 +32,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -42,6 +43,7 @@
 #include <time.h>
 #include <unistd.h>
 #include "../net/host/net_socket.h"
+#include "lumo_host/options.h"
 #include "lumo/arena.h"
 #include "lumo/ivg.h"
 #include "lumo/package.h"
@@ -126,26 +128,43 @@ typedef struct run_opts {
     uint32_t max_payload, arena_mib, package;
 } run_opts;
 
-static int parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *v)
-{
-    char *end;
-    unsigned long n = strtoul(s, &end, 10);
+/* The numeric options of run, each a u32 in [lo, hi] of run_opts. */
+static const struct u32_opt {
+    const char *name;
+    uint32_t    lo, hi;
+    size_t      at;   /* offsetof in run_opts */
+} k_u32_opts[] = {
+    {"--vertices", 1, 1u << 28, offsetof(run_opts, policy.vertices)},
+    {"--rounds", 1, 1u << 20, offsetof(run_opts, policy.rounds)},
+    {"--pipeline", 1, 8, offsetof(run_opts, policy.pipeline)},
+    {"--target-ms", 1, 60000, offsetof(run_opts, policy.target_ms)},
+    {"--max-payload", 4096, 1u << 24, offsetof(run_opts, max_payload)},
+    {"--package", 0, 0x7fffffff, offsetof(run_opts, package)},
+    {"--arena", 1, 4095, offsetof(run_opts, arena_mib)},
+};
 
-    if (*end || end == s || n < lo || n > hi)
-        return -1;
-    *v = (uint32_t)n;
+/* Option a with value v when it is one of k_u32_opts: 1 taken, 0 not one
+ * of them, -1 refused (through the strict parser, lumo_host/options.h). */
+static int take_u32(run_opts *o, const char *a, const char *v, char *err, size_t errlen)
+{
+    for (size_t k = 0; k < sizeof k_u32_opts / sizeof k_u32_opts[0]; k++) {
+        const struct u32_opt *u = &k_u32_opts[k];
+        uint32_t *field = (uint32_t *)(void *)((char *)o + u->at);
+        if (!strcmp(a, u->name))
+            return host_opt_u32(u->name, v, u->lo, u->hi, field, err, errlen) ? -1 : 1;
+    }
     return 0;
 }
 
-static int parse_run(int argc, char **argv, run_opts *o)
+static int parse_run(int argc, char **argv, run_opts *o, char *err, size_t errlen)
 {
-    int i;
+    int i, k;
 
     memset(o, 0, sizeof *o);
     o->max_payload = 1u << 20;
     o->arena_mib = 256;
     if (argc < 3)
-        return -1;
+        return snprintf(err, errlen, "run needs the server's HOST:PORT"), -1;
     o->addr = argv[2];
     for (i = 3; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -153,21 +172,22 @@ static int parse_run(int argc, char **argv, run_opts *o)
         else if (!strcmp(a, "--no-ivg")) o->no_ivg = 1;
         else if (!strcmp(a, "--no-smoothing")) o->no_smoothing = 1;
         else if (!strcmp(a, "--trace")) o->trace = 1;
-        else if (!v) return -1;
+        else if (!v) return snprintf(err, errlen, "%s: unknown option or one without its value", a), -1;
         else if (!strcmp(a, "--order")) {
-            if (!strcmp(v, "interleaved")) o->policy.order = LUMO_NET_ORDER_INTERLEAVED;
-            else if (!strcmp(v, "geometry")) o->policy.order = LUMO_NET_ORDER_GEOMETRY_FIRST;
-            else if (!strcmp(v, "lighting")) o->policy.order = LUMO_NET_ORDER_LIGHTING_FIRST;
-            else return -1;
+            static const char *const orders[] = {"interleaved", "geometry", "lighting"};
+            static const lumo_net_order order_of[] = {LUMO_NET_ORDER_INTERLEAVED, LUMO_NET_ORDER_GEOMETRY_FIRST,
+                                                      LUMO_NET_ORDER_LIGHTING_FIRST};
+            if (host_opt_choice("--order", v, orders, 3, &k, err, errlen))
+                return -1;
+            o->policy.order = order_of[k];
             i++;
-        } else if (!strcmp(a, "--vertices")) { if (parse_u32(v, 1, 1u << 28, &o->policy.vertices)) return -1; i++; }
-        else if (!strcmp(a, "--rounds")) { if (parse_u32(v, 1, 1u << 20, &o->policy.rounds)) return -1; i++; }
-        else if (!strcmp(a, "--pipeline")) { if (parse_u32(v, 1, 8, &o->policy.pipeline)) return -1; i++; }
-        else if (!strcmp(a, "--target-ms")) { if (parse_u32(v, 1, 60000, &o->policy.target_ms)) return -1; i++; }
-        else if (!strcmp(a, "--max-payload")) { if (parse_u32(v, 4096, 1u << 24, &o->max_payload)) return -1; i++; }
-        else if (!strcmp(a, "--package")) { if (parse_u32(v, 0, 0x7fffffff, &o->package)) return -1; i++; }
-        else if (!strcmp(a, "--arena")) { if (parse_u32(v, 1, 4095, &o->arena_mib)) return -1; i++; }
-        else return -1;
+        }
+        else if ((k = take_u32(o, a, v, err, errlen)) != 0) {
+            if (k < 0)
+                return -1;
+            i++;
+        }
+        else return snprintf(err, errlen, "%s: unknown option", a), -1;
     }
     return 0;
 }
@@ -212,9 +232,10 @@ static int mode_run(int argc, char **argv)
     uint32_t requests = 0, frames = 0, data_frames = 0;
     int64_t t0, t_welcome = -1, t_first = -1, t_geo = -1, t_light = -1, t_full = -1, apply_us = 0;
     int fd, rc = 1;
+    char err[256];
 
-    if (parse_run(argc, argv, &o)) {
-        fprintf(stderr, "lumo-bench-stream run: bad arguments\n");
+    if (parse_run(argc, argv, &o, err, sizeof err)) {
+        fprintf(stderr, "lumo-bench-stream run: error: %s\n", err);
         return 2;
     }
     bytes = (size_t)o.arena_mib << 20;
@@ -559,11 +580,23 @@ static int mode_load(int argc, char **argv)
     int ep;
     struct rlimit rl;
 
-    if (argc < 5 || parse_u32(argv[3], 1, 100000, &count) || parse_u32(argv[4], 1, 100000, &reps))
+    char err[256];
+
+    if (argc < 5) {
+        fprintf(stderr, "lumo-bench-stream load: error: load HOST:PORT CLIENTS REPS [--max-payload N]\n");
         return 2;
+    }
+    if (host_opt_u32("CLIENTS", argv[3], 1, 100000, &count, err, sizeof err) ||
+        host_opt_u32("REPS", argv[4], 1, 100000, &reps, err, sizeof err)) {
+        fprintf(stderr, "lumo-bench-stream load: error: %s\n", err);
+        return 2;
+    }
     for (i = 5; (int)i + 1 < argc; i += 2)
-        if (!strcmp(argv[i], "--max-payload") && parse_u32(argv[i + 1], 4096, 1u << 24, &max_payload))
+        if (!strcmp(argv[i], "--max-payload") &&
+            host_opt_u32("--max-payload", argv[i + 1], 4096, 1u << 24, &max_payload, err, sizeof err)) {
+            fprintf(stderr, "lumo-bench-stream load: error: %s\n", err);
             return 2;
+        }
     if (getrlimit(RLIMIT_NOFILE, &rl) == 0 && rl.rlim_cur < count + 64) {
         rl.rlim_cur = rl.rlim_max < count + 64 ? rl.rlim_max : count + 64;
         setrlimit(RLIMIT_NOFILE, &rl);

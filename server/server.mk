@@ -14,7 +14,7 @@
 SERVER_SRCS := $(sort $(wildcard server/*/*.c server/*/*.cc))
 SERVER_OBJS := $(patsubst %,$(BUILD)/host/%.o,$(basename $(SERVER_SRCS)))
 SERVER_LIB  := $(BUILD)/host/libserver.a
-SERVER_LIBS := -lembree3 -lassimp -ldraco -lstdc++ -lpng -llapacke -lm -pthread
+SERVER_LIBS := -lembree3 -lassimp -ljansson -ldraco -lstdc++ -lpng -llapacke -lm -pthread
 
 $(BUILD)/host/libserver.a: $(SERVER_OBJS)
 	rm -f $@ && ar rcs $@ $^

@@ -23,6 +23,7 @@ libdraco-dev
 draco
 libembree-dev
 libassimp-dev
+libjansson-dev
 libosmesa6-dev
 libegl-dev
 libegl-mesa0

@@ -187,19 +187,14 @@ static lumo_status check_mesh(const char *path, unsigned i, const struct aiMesh 
     return LUMO_OK;
 }
 
-/* lumo's own checks, then assimp's reader with its structure validation. */
+/* lumo's own checks (which refuse every format they do not check), then
+ * assimp's reader with its structure validation. */
 static lumo_status read_scene(const char *path, const struct aiScene **out, char *err, size_t errlen)
 {
     srv_model_format fmt = SRV_MODEL_OTHER;
-    const char *dot = strrchr(path, '.');
     lumo_status st = srv_model_check_file(path, &fmt, err, errlen);
     if (st)
         return st;
-    if (fmt == SRV_MODEL_OTHER && (!dot || strchr(dot, '/') || aiIsExtensionSupported(dot) != AI_TRUE)) {
-        snprintf(err, errlen, "%s: unknown model format (extension '%s'; OBJ, PLY, OFF, glTF and the other "
-                 "formats assimp reads are)", path, dot && !strchr(dot, '/') ? dot : "");
-        return LUMO_ERR_UNSUPPORTED;
-    }
     *out = aiImportFileEx(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
                                     aiProcess_ValidateDataStructure, srv_import_io());
     if (!*out || !(*out)->mRootNode || (*out)->mNumMeshes == 0) {

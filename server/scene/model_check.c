@@ -12,18 +12,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "scene/model_check.h"
+#include "scene/model_check_internal.h"
 
-/* What every check carries: the bytes, where it is, where to say why. */
-typedef struct mc {
-    const char    *name;
-    const uint8_t *base;      /* the file's first byte */
-    const uint8_t *p, *end;   /* the unread rest */
-    uint32_t       line;      /* of the last line taken (text formats) */
-    char          *err;
-    size_t         errlen;
-} mc;
+typedef srv_mc mc;
 
-static lumo_status fail(mc *c, lumo_status st, const char *fmt, ...)
+lumo_status srv_mc_fail(mc *c, lumo_status st, const char *fmt, ...)
 {
     char why[200];
     va_list ap;
@@ -50,6 +43,14 @@ srv_model_format srv_model_format_of(const char *name, const uint8_t *data, size
         return SRV_MODEL_PLY;
     if (name && has_ext(name, "off"))
         return SRV_MODEL_OFF;
+    if (name && has_ext(name, "stl"))
+        return SRV_MODEL_STL;
+    if (name && has_ext(name, "gltf"))
+        return SRV_MODEL_GLTF;
+    if (name && has_ext(name, "glb"))
+        return SRV_MODEL_GLB;
+    if (size >= 4 && !memcmp(data, "glTF", 4))
+        return SRV_MODEL_GLB;
     if (size >= 4 && !memcmp(data, "ply", 3) && (data[3] == '\n' || data[3] == '\r'))
         return SRV_MODEL_PLY;
     if (size >= 3 && memmem(data, size < 8 ? size : 8, "OFF", 3))
@@ -61,11 +62,11 @@ srv_model_format srv_model_format_of(const char *name, const uint8_t *data, size
 
 /* Text has no NUL and no control byte but tab, CR, LF, FF, VT (a PNG or
  * a binary file named .obj stops here, not in assimp). */
-static lumo_status check_text(mc *c, const uint8_t *p, const uint8_t *end)
+lumo_status srv_mc_check_text(mc *c, const uint8_t *p, const uint8_t *end)
 {
     for (const uint8_t *q = p; q < end; q++)
         if (*q < 0x20 && !(*q >= '\t' && *q <= '\r'))
-            return fail(c, LUMO_ERR_CORRUPT, "byte %zu is 0x%02x: not a text file", (size_t)(q - c->base), *q);
+            return srv_mc_fail(c, LUMO_ERR_CORRUPT, "byte %zu is 0x%02x: not a text file", (size_t)(q - c->base), *q);
     return LUMO_OK;
 }
 
@@ -143,12 +144,12 @@ static int blank(span l)
 
 /* ---- a coordinate ----------------------------------------------------------- */
 
-static lumo_status coord_status(double v)
+lumo_status srv_mc_coord_status(double v)
 {
     return isfinite(v) ? LUMO_ERR_RANGE : LUMO_ERR_NONFINITE;
 }
 
-static const char *coord_problem(double v)
+const char *srv_mc_coord_problem(double v)
 {
     if (!isfinite(v))
         return "is not finite";
@@ -166,10 +167,11 @@ static lumo_status text_vertex(mc *c, span *l, unsigned long long v)
         double d;
         const char *why;
         if (!next_tok(l, &t) || tok_double(t, &d))
-            return fail(c, LUMO_ERR_CORRUPT, "line %u: vertex %llu: %c is missing or not a number", c->line,
+            return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: vertex %llu: %c is missing or not a number", c->line,
                         v, axis[k]);
-        if ((why = coord_problem(d)))
-            return fail(c, coord_status(d), "line %u: vertex %llu: %c = %.9g %s", c->line, v, axis[k], d, why);
+        if ((why = srv_mc_coord_problem(d)))
+            return srv_mc_fail(c, srv_mc_coord_status(d), "line %u: vertex %llu: %c = %.9g %s", c->line, v, axis[k],
+                               d, why);
     }
     return LUMO_OK;
 }
@@ -202,12 +204,12 @@ static lumo_status off_magic(mc *c, span t, span *l)
     if (s < t.e && *s == 'N')
         s++;
     if (s < t.e && (*s == '4' || *s == 'n'))
-        return fail(c, LUMO_ERR_UNSUPPORTED, "line %u: '%.*s': homogeneous or n-dimensional OFF is not read",
+        return srv_mc_fail(c, LUMO_ERR_UNSUPPORTED, "line %u: '%.*s': homogeneous or n-dimensional OFF is not read",
                     c->line, (int)(t.e - t.s), t.s);
     if (t.e - s != 3 || memcmp(s, "OFF", 3))
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: no OFF header", c->line);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: no OFF header", c->line);
     if (next_tok(&rest, &b) && tok_is(b, "BINARY"))
-        return fail(c, LUMO_ERR_UNSUPPORTED, "line %u: binary OFF is not read", c->line);
+        return srv_mc_fail(c, LUMO_ERR_UNSUPPORTED, "line %u: binary OFF is not read", c->line);
     return LUMO_OK;
 }
 
@@ -218,12 +220,13 @@ static lumo_status off_counts(mc *c, span *l, unsigned long long n[3])
         span t;
         long long v;
         if (!off_tok(c, l, &t) || tok_int(t, &v) || v < 0 || v > UINT32_MAX)
-            return fail(c, LUMO_ERR_CORRUPT, "line %u: the header's %s is missing or not a count in [0, 2^32)",
+            return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: the header's %s is missing or not a count in [0, 2^32)",
                         c->line, what[k]);
         n[k] = (unsigned long long)v;
     }
     if (n[0] == 0 || n[1] == 0)
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: the header declares %llu vertices and %llu faces: nothing to draw",
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT,
+                           "line %u: the header declares %llu vertices and %llu faces: nothing to draw",
                     c->line, n[0], n[1]);
     return LUMO_OK;
 }
@@ -235,7 +238,8 @@ static lumo_status off_fits(mc *c, const unsigned long long n[3])
 {
     unsigned long long need = 6 * n[0] + 8 * n[1], have = (unsigned long long)(c->end - c->p) + 1;
     if (need > have)
-        return fail(c, LUMO_ERR_TRUNCATED, "the header declares %llu vertices and %llu faces: at least %llu bytes, "
+        return srv_mc_fail(c, LUMO_ERR_TRUNCATED,
+                           "the header declares %llu vertices and %llu faces: at least %llu bytes, "
                     "the file holds %llu after it", n[0], n[1], need, have - 1);
     return LUMO_OK;
 }
@@ -245,16 +249,19 @@ static lumo_status off_face(mc *c, span *l, unsigned long long f, unsigned long 
     span t;
     long long n, idx;
     if (!next_tok(l, &t) || tok_int(t, &n))
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: face %llu: no vertex count", c->line, f);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: face %llu: no vertex count", c->line, f);
     if (n < 3 || n > OFF_MAX_FACE_VERTS)
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: face %llu has %lld vertices (3 to %d are read)", c->line, f, n,
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: face %llu has %lld vertices (3 to %d are read)", c->line,
+                           f, n,
                     OFF_MAX_FACE_VERTS);
     for (long long k = 0; k < n; k++) {
         if (!next_tok(l, &t) || tok_int(t, &idx))
-            return fail(c, LUMO_ERR_CORRUPT, "line %u: face %llu: index %lld is missing or not an integer", c->line,
+            return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: face %llu: index %lld is missing or not an integer",
+                               c->line,
                         f, k);
         if (idx < 0 || (unsigned long long)idx >= nv)
-            return fail(c, LUMO_ERR_RANGE, "line %u: face %llu: vertex index %lld is outside [0, %llu)", c->line, f,
+            return srv_mc_fail(c, LUMO_ERR_RANGE, "line %u: face %llu: vertex index %lld is outside [0, %llu)",
+                               c->line, f,
                         idx, nv);
     }
     return LUMO_OK;
@@ -272,7 +279,7 @@ static lumo_status off_body(mc *c, const unsigned long long n[3])
         st = v < n[0] ? text_vertex(c, &l, v++) : off_face(c, &l, f++, n[0]);
     }
     if (!st && v + f < n[0] + n[1])
-        return fail(c, LUMO_ERR_TRUNCATED, "the file ends after %llu of %llu vertices and %llu of %llu faces", v,
+        return srv_mc_fail(c, LUMO_ERR_TRUNCATED, "the file ends after %llu of %llu vertices and %llu of %llu faces", v,
                     n[0], f, n[1]);
     return st;
 }
@@ -281,11 +288,11 @@ static lumo_status check_off(mc *c)
 {
     span l = {NULL, NULL}, t;
     unsigned long long n[3];
-    lumo_status st = check_text(c, c->p, c->end);
+    lumo_status st = srv_mc_check_text(c, c->p, c->end);
     if (st)
         return st;
     if (!off_tok(c, &l, &t))
-        return fail(c, LUMO_ERR_CORRUPT, "no OFF header");
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "no OFF header");
     if ((st = off_magic(c, t, &l)) || (st = off_counts(c, &l, n)) || (st = off_fits(c, n)))
         return st;
     return off_body(c, n);
@@ -307,9 +314,10 @@ static lumo_status obj_index(mc *c, const char *s, const char *e, unsigned long 
     if (s == e && !required)
         return LUMO_OK;
     if (tok_int(t, &i))
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: '%.*s' is not a %s index", c->line, (int)(e - s), s, kind);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: '%.*s' is not a %s index", c->line, (int)(e - s), s, kind);
     if (i == 0 || (i > 0 && (unsigned long long)i > n) || (i < 0 && (unsigned long long)-i > n))
-        return fail(c, LUMO_ERR_RANGE, "line %u: %s index %lld: only %llu %ss so far", c->line, kind, i, n, kind);
+        return srv_mc_fail(c, LUMO_ERR_RANGE, "line %u: %s index %lld: only %llu %ss so far", c->line, kind, i, n,
+                           kind);
     return LUMO_OK;
 }
 
@@ -328,7 +336,7 @@ static lumo_status obj_corner(mc *c, span t, const obj_counts *n)
             return LUMO_OK;
         s = e + 1;
     }
-    return s <= t.e ? fail(c, LUMO_ERR_CORRUPT, "line %u: '%.*s' has more than three slots", c->line,
+    return s <= t.e ? srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: '%.*s' has more than three slots", c->line,
                            (int)(t.e - t.s), t.s)
                     : LUMO_OK;
 }
@@ -343,12 +351,12 @@ static lumo_status obj_element(mc *c, span *l, const obj_counts *n, unsigned min
         if (*t.s == '#')
             break;
         if (++k > SRV_MODEL_MAX_FACE_VERTS)
-            return fail(c, LUMO_ERR_CORRUPT, "line %u: more than %u corners", c->line, SRV_MODEL_MAX_FACE_VERTS);
+            return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: more than %u corners", c->line, SRV_MODEL_MAX_FACE_VERTS);
         if ((st = obj_corner(c, t, n)))
             return st;
     }
     if (k < min)
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: %u corner(s), a face needs 3", c->line, k);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: %u corner(s), a face needs 3", c->line, k);
     return LUMO_OK;
 }
 
@@ -374,11 +382,11 @@ static lumo_status check_obj(mc *c)
 {
     span l;
     obj_counts n = {0, 0, 0};
-    lumo_status st = check_text(c, c->p, c->end);
+    lumo_status st = srv_mc_check_text(c, c->p, c->end);
     while (!st && next_line(c, &l))
         st = obj_line(c, l, &n);
     if (!st && n.v == 0)
-        return fail(c, LUMO_ERR_CORRUPT, "no vertex ('v' line)");
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "no vertex ('v' line)");
     return st;
 }
 
@@ -434,7 +442,7 @@ static lumo_status ply_format_line(mc *c, ply *y, span *l)
 {
     span t;
     if (!next_tok(l, &t))
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: format without a value", c->line);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: format without a value", c->line);
     if (tok_is(t, "ascii"))
         y->format = PLY_ASCII;
     else if (tok_is(t, "binary_little_endian"))
@@ -442,7 +450,7 @@ static lumo_status ply_format_line(mc *c, ply *y, span *l)
     else if (tok_is(t, "binary_big_endian"))
         y->format = PLY_BE;
     else
-        return fail(c, LUMO_ERR_UNSUPPORTED, "line %u: unknown format '%.*s'", c->line, (int)(t.e - t.s), t.s);
+        return srv_mc_fail(c, LUMO_ERR_UNSUPPORTED, "line %u: unknown format '%.*s'", c->line, (int)(t.e - t.s), t.s);
     return LUMO_OK;
 }
 
@@ -452,9 +460,9 @@ static lumo_status ply_element_line(mc *c, ply *y, span *l)
     long long n;
     ply_elem *e;
     if (y->nelems == PLY_MAX_ELEMENTS)
-        return fail(c, LUMO_ERR_LIMIT, "line %u: more than %d elements", c->line, PLY_MAX_ELEMENTS);
+        return srv_mc_fail(c, LUMO_ERR_LIMIT, "line %u: more than %d elements", c->line, PLY_MAX_ELEMENTS);
     if (!next_tok(l, &name) || !next_tok(l, &cnt) || tok_int(cnt, &n) || n < 0 || n > UINT32_MAX)
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: an element needs a name and a count in [0, 2^32)", c->line);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: an element needs a name and a count in [0, 2^32)", c->line);
     e = &y->elem[y->nelems++];
     memset(e, 0, sizeof *e);
     snprintf(e->name, sizeof e->name, "%.*s", (int)(name.e - name.s), name.s);
@@ -479,20 +487,20 @@ static lumo_status ply_property_line(mc *c, ply *y, span *l)
     ply_elem *e = y->nelems ? &y->elem[y->nelems - 1] : NULL;
     ply_prop p = {NULL, NULL, PROP_OTHER};
     if (!e)
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: a property before any element", c->line);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: a property before any element", c->line);
     if (e->nprops == PLY_MAX_PROPS)
-        return fail(c, LUMO_ERR_LIMIT, "line %u: element '%s' has more than %d properties", c->line, e->name,
+        return srv_mc_fail(c, LUMO_ERR_LIMIT, "line %u: element '%s' has more than %d properties", c->line, e->name,
                     PLY_MAX_PROPS);
     if (next_tok(l, &t) && tok_is(t, "list")) {
         if (!next_tok(l, &t) || !(p.count = ply_type_of(t)) || p.count->is_float)
-            return fail(c, LUMO_ERR_CORRUPT, "line %u: a list needs an integer count type", c->line);
+            return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: a list needs an integer count type", c->line);
         next_tok(l, &t);
     }
     if (!(p.type = ply_type_of(t)) || !next_tok(l, &name))
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: a property needs a known type and a name", c->line);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: a property needs a known type and a name", c->line);
     p.role = prop_role(e, name);
     if (p.role == PROP_INDICES && (!p.count || p.type->is_float))
-        return fail(c, LUMO_ERR_CORRUPT, "line %u: face indices must be a list of integers", c->line);
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: face indices must be a list of integers", c->line);
     e->prop[e->nprops++] = p;
     return LUMO_OK;
 }
@@ -510,7 +518,7 @@ static lumo_status ply_header_line(mc *c, ply *y, span l, int *done)
         return ply_property_line(c, y, &l);
     if (tok_is(t, "end_header"))
         return *done = 1, LUMO_OK;
-    return fail(c, LUMO_ERR_CORRUPT, "line %u: unknown header line '%.*s'", c->line, (int)(t.e - t.s), t.s);
+    return srv_mc_fail(c, LUMO_ERR_CORRUPT, "line %u: unknown header line '%.*s'", c->line, (int)(t.e - t.s), t.s);
 }
 
 static lumo_status ply_header(mc *c, ply *y)
@@ -520,21 +528,21 @@ static lumo_status ply_header(mc *c, ply *y)
     lumo_status st = LUMO_OK;
     memset(y, 0, sizeof *y);
     if (!next_line(c, &l) || !next_tok(&l, &t) || !tok_is(t, "ply"))
-        return fail(c, LUMO_ERR_CORRUPT, "no 'ply' magic on line 1");
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "no 'ply' magic on line 1");
     while (!st && !done && next_line(c, &l)) {
         const char *s = l.s;
-        if ((st = check_text(c, (const uint8_t *)l.s, (const uint8_t *)l.e)))
+        if ((st = srv_mc_check_text(c, (const uint8_t *)l.s, (const uint8_t *)l.e)))
             return st;
         have_format |= next_tok(&l, &t) && tok_is(t, "format");
         l.s = s;
         st = ply_header_line(c, y, l, &done);
     }
     if (!st && !done)
-        return fail(c, LUMO_ERR_TRUNCATED, "the header has no end_header");
+        return srv_mc_fail(c, LUMO_ERR_TRUNCATED, "the header has no end_header");
     if (!st && !have_format)
-        return fail(c, LUMO_ERR_CORRUPT, "the header has no format line");
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "the header has no format line");
     if (!st && y->nverts == 0)
-        return fail(c, LUMO_ERR_CORRUPT, "the header declares no vertex");
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "the header declares no vertex");
     return st;
 }
 
@@ -555,7 +563,7 @@ static lumo_status ply_fits(mc *c, const ply *y)
     for (unsigned i = 0; i < y->nelems; i++) {
         need += y->elem[i].count * ply_min_bytes(y, &y->elem[i]);
         if (need > have)
-            return fail(c, LUMO_ERR_TRUNCATED, "element '%s' declares %llu items: with those before it at least "
+            return srv_mc_fail(c, LUMO_ERR_TRUNCATED, "element '%s' declares %llu items: with those before it at least "
                         "%llu bytes, the file holds %llu after its header", y->elem[i].name, y->elem[i].count,
                         need, have);
     }
@@ -604,9 +612,9 @@ static lumo_status ply_unread(mc *c, lumo_status st, const ply_elem *e, unsigned
                               span bad)
 {
     if (st == LUMO_ERR_CORRUPT)
-        return fail(c, st, "%s %llu: '%.*s' is not a number", e->name, item, (int)(bad.e - bad.s > 40 ? 40 :
+        return srv_mc_fail(c, st, "%s %llu: '%.*s' is not a number", e->name, item, (int)(bad.e - bad.s > 40 ? 40 :
                     bad.e - bad.s), bad.s);
-    return fail(c, st, "%s %llu: the data ends %s", e->name, item, where);
+    return srv_mc_fail(c, st, "%s %llu: the data ends %s", e->name, item, where);
 }
 
 static lumo_status ply_list(mc *c, const ply *y, const ply_elem *e, const ply_prop *p, unsigned long long item)
@@ -618,14 +626,15 @@ static lumo_status ply_list(mc *c, const ply *y, const ply_elem *e, const ply_pr
     if (st)
         return ply_unread(c, st, e, item, "before its list", bad);
     if (n != floor(n) || n < 0 || n > SRV_MODEL_MAX_FACE_VERTS || (p->role == PROP_INDICES && n < 3))
-        return fail(c, LUMO_ERR_CORRUPT, "%s %llu: a list of %.0f items (%s)", e->name, item, n,
+        return srv_mc_fail(c, LUMO_ERR_CORRUPT, "%s %llu: a list of %.0f items (%s)", e->name, item, n,
                     p->role == PROP_INDICES ? "a face has 3 to 1024 vertices" : "at most 1024");
     snprintf(where, sizeof where, "inside its list of %.0f items", n);
     for (unsigned k = 0; k < (unsigned)n; k++) {
         if ((st = ply_read(c, y, p->type, &v, &bad)))
             return ply_unread(c, st, e, item, where, bad);
         if (p->role == PROP_INDICES && (v < 0 || v >= (double)y->nverts || v != floor(v)))
-            return fail(c, LUMO_ERR_RANGE, "face %llu: vertex index %.12g is outside [0, %llu)", item, v, y->nverts);
+            return srv_mc_fail(c, LUMO_ERR_RANGE, "face %llu: vertex index %.12g is outside [0, %llu)", item, v,
+                               y->nverts);
     }
     return LUMO_OK;
 }
@@ -638,8 +647,9 @@ static lumo_status ply_scalar(mc *c, const ply *y, const ply_elem *e, const ply_
     lumo_status st = ply_read(c, y, p->type, &v, &bad);
     if (st)
         return ply_unread(c, st, e, item, "inside it", bad);
-    if (p->role >= PROP_X && p->role <= PROP_Z && (why = coord_problem(v)))
-        return fail(c, coord_status(v), "vertex %llu: %c = %.9g %s", item, "xyz"[p->role - PROP_X], v, why);
+    if (p->role >= PROP_X && p->role <= PROP_Z && (why = srv_mc_coord_problem(v)))
+        return srv_mc_fail(c, srv_mc_coord_status(v), "vertex %llu: %c = %.9g %s", item, "xyz"[p->role - PROP_X], v,
+                           why);
     return LUMO_OK;
 }
 
@@ -663,7 +673,7 @@ static lumo_status check_ply(mc *c)
     ply y;   /* 13 KB */
     lumo_status st = ply_header(c, &y);
     if (!st && y.format == PLY_ASCII)
-        st = check_text(c, c->p, c->end);
+        st = srv_mc_check_text(c, c->p, c->end);
     if (!st)
         st = ply_fits(c, &y);
     return st ? st : ply_body(c, &y);
@@ -671,23 +681,37 @@ static lumo_status check_ply(mc *c)
 
 /* ---- the entry points ------------------------------------------------------- */
 
+/* Formats lumo does not check itself: assimp would read many of them
+ * (Collada, 3DS, FBX, X, Blender, ...), trusting the counts they declare. */
+static lumo_status refuse_format(mc *c)
+{
+    const char *dot = strrchr(c->name, '.');
+    if (!dot || strchr(dot, '/'))
+        dot = "";
+    return srv_mc_fail(c, LUMO_ERR_UNSUPPORTED, "unknown model format (extension '%.16s'): lumo reads "
+                       SRV_MODEL_FORMATS, dot);
+}
+
 lumo_status srv_model_check_bytes(const char *name, const uint8_t *data, size_t size, srv_model_format fmt,
                                   char *err, size_t errlen)
 {
     mc c = {name, data, data, data + size, 0, err, errlen};
     if (size == 0)
-        return fail(&c, LUMO_ERR_CORRUPT, "empty file");
+        return srv_mc_fail(&c, LUMO_ERR_CORRUPT, "empty file");
     switch (fmt) {
     case SRV_MODEL_OBJ: return check_obj(&c);
     case SRV_MODEL_PLY: return check_ply(&c);
     case SRV_MODEL_OFF: return check_off(&c);
-    default: return LUMO_OK;
+    case SRV_MODEL_STL: return srv_mc_check_stl(&c);
+    case SRV_MODEL_GLTF: return srv_mc_check_gltf(&c, 0);
+    case SRV_MODEL_GLB: return srv_mc_check_gltf(&c, 1);
+    default: return refuse_format(&c);
     }
 }
 
 static lumo_status read_all(mc *c, FILE *f, uint8_t *buf, size_t size)
 {
-    return fread(buf, 1, size, f) == size ? LUMO_OK : fail(c, LUMO_ERR_IO, "cannot read it");
+    return fread(buf, 1, size, f) == size ? LUMO_OK : srv_mc_fail(c, LUMO_ERR_IO, "cannot read it");
 }
 
 /* One name of an "mtllib" line: a regular file or nothing. */
@@ -703,7 +727,7 @@ static lumo_status mtllib_name(mc *c, const char *dir, span t)
     else
         snprintf(lib, sizeof lib, "%s/%.*s", dir, n, t.s);
     if (n > 0 && stat(lib, &st) == 0 && !S_ISREG(st.st_mode))
-        return fail(c, LUMO_ERR_IO, "line %u: mtllib '%.*s' is not a regular file", c->line, n, t.s);
+        return srv_mc_fail(c, LUMO_ERR_IO, "line %u: mtllib '%.*s' is not a regular file", c->line, n, t.s);
     return LUMO_OK;
 }
 
@@ -740,15 +764,15 @@ static lumo_status open_model(mc *c, const char *path, FILE **f, size_t *size)
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     lumo_status rc = LUMO_OK;
     if (fd < 0 || fstat(fd, &st))
-        rc = fail(c, LUMO_ERR_IO, errno == ENOENT ? "no such file" : "cannot open it");
+        rc = srv_mc_fail(c, LUMO_ERR_IO, errno == ENOENT ? "no such file" : "cannot open it");
     else if (!S_ISREG(st.st_mode))
-        rc = fail(c, LUMO_ERR_IO, S_ISDIR(st.st_mode) ? "a directory, not a model file" : "not a regular file");
+        rc = srv_mc_fail(c, LUMO_ERR_IO, S_ISDIR(st.st_mode) ? "a directory, not a model file" : "not a regular file");
     else if (st.st_size == 0)
-        rc = fail(c, LUMO_ERR_CORRUPT, "empty file");
+        rc = srv_mc_fail(c, LUMO_ERR_CORRUPT, "empty file");
     else if ((uint64_t)st.st_size > SRV_MODEL_MAX_BYTES)
-        rc = fail(c, LUMO_ERR_LIMIT, "%lld bytes, models of at most 1 GiB are read", (long long)st.st_size);
+        rc = srv_mc_fail(c, LUMO_ERR_LIMIT, "%lld bytes, models of at most 1 GiB are read", (long long)st.st_size);
     else if (fcntl(fd, F_SETFL, 0) || !(*f = fdopen(fd, "rb")))
-        rc = fail(c, LUMO_ERR_IO, "cannot open it");
+        rc = srv_mc_fail(c, LUMO_ERR_IO, "cannot open it");
     if (rc && fd >= 0)
         close(fd);
     *size = rc ? 0 : (size_t)st.st_size;
@@ -766,7 +790,7 @@ lumo_status srv_model_check_file(const char *path, srv_model_format *fmt, char *
         return rc;
     if (!(buf = malloc(size))) {
         fclose(f);
-        return fail(&c, LUMO_ERR_NOMEM, "no memory to check %zu bytes", size);
+        return srv_mc_fail(&c, LUMO_ERR_NOMEM, "no memory to check %zu bytes", size);
     }
     rc = read_all(&c, f, buf, size);
     fclose(f);
@@ -787,9 +811,9 @@ lumo_status srv_model_check_positions(const char *name, unsigned mesh, const flo
     mc c = {name, NULL, NULL, NULL, 0, err, errlen};
     for (uint32_t v = 0; v < nverts; v++)
         for (int k = 0; k < 3; k++) {
-            const char *why = coord_problem(xyz[3 * (size_t)v + k]);
+            const char *why = srv_mc_coord_problem(xyz[3 * (size_t)v + k]);
             if (why)
-                return fail(&c, coord_status(xyz[3 * (size_t)v + k]),
+                return srv_mc_fail(&c, srv_mc_coord_status(xyz[3 * (size_t)v + k]),
                             "mesh %u, vertex %u: %c = %.9g %s", mesh, v, "xyz"[k], xyz[3 * (size_t)v + k], why);
         }
     return LUMO_OK;

@@ -1,5 +1,5 @@
-/* scene.c — scene container, validation and light parsing
- * (docs/scene-format.md). */
+/* scene.c — scene container and validation (docs/scene-format.md); the
+ * light syntax is light_parse.c's. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -209,66 +209,4 @@ lumo_status srv_parse_floats(const char *text, float *out, int n)
         }
     }
     return *p ? LUMO_ERR_ARG : LUMO_OK;
-}
-
-/* Split "kind:a:b:..." into at most 6 fields; returns the field count. */
-static int split_fields(char *buf, char **f, int max)
-{
-    int n = 0;
-    char *save = NULL;
-    for (char *p = strtok_r(buf, ":", &save); p; p = strtok_r(NULL, ":", &save)) {
-        if (n == max)
-            return max + 1;
-        f[n++] = p;
-    }
-    return n;
-}
-
-static int parse_vec(const char *t, vec3 *v)
-{
-    float f[3];
-    if (srv_parse_floats(t, f, 3))
-        return -1;
-    *v = v3(f[0], f[1], f[2]);
-    return 0;
-}
-
-lumo_status srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen)
-{
-    char buf[512], *f[7];
-    srv_light l;
-    float ha = 0.0f;
-    memset(&l, 0, sizeof l);
-    if (strlen(text) >= sizeof buf) {
-        snprintf(err, errlen, "light '%s': too long", text);
-        return LUMO_ERR_LIMIT;
-    }
-    strcpy(buf, text);
-    int n = split_fields(buf, f, 6);
-    int ok = 0;
-    if (n == 3 && !strcmp(f[0], "point")) {
-        l.kind = LUMO_LIGHT_POINT;
-        ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.power);
-    } else if (n == 5 && !strcmp(f[0], "spot")) {
-        l.kind = LUMO_LIGHT_SPOT;
-        ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.dir) &&
-             !srv_parse_floats(f[3], &ha, 1) && !parse_vec(f[4], &l.power) &&
-             ha > 0.0f && ha <= 180.0f && v3_len(l.dir) > 0.0f;
-    } else if (n == 3 && !strcmp(f[0], "directional")) {
-        l.kind = LUMO_LIGHT_DIRECTIONAL;
-        ok = !parse_vec(f[1], &l.dir) && !parse_vec(f[2], &l.power) && v3_len(l.dir) > 0.0f;
-    } else if (n == 5 && !strcmp(f[0], "area")) {
-        l.kind = LUMO_LIGHT_AREA;
-        ok = !parse_vec(f[1], &l.pos) && !parse_vec(f[2], &l.u) && !parse_vec(f[3], &l.v) &&
-             !parse_vec(f[4], &l.power) && v3_len(v3_cross(l.u, l.v)) > 0.0f;
-    }
-    if (!ok || l.power.x < 0 || l.power.y < 0 || l.power.z < 0) {
-        snprintf(err, errlen, "bad light '%s' (see docs/scene-format.md)", text);
-        return LUMO_ERR_ARG;
-    }
-    l.dir = v3_norm(l.kind == LUMO_LIGHT_AREA ? v3_cross(l.u, l.v) : l.dir);
-    l.half_angle_deg = ha;
-    l.cos_half = cosf(ha * (float)M_PI / 180.0f);
-    *out = l;
-    return LUMO_OK;
 }

@@ -85,9 +85,16 @@ lumo_status srv_scene_check_range(const srv_scene *s, char *err, size_t errlen);
 lumo_status srv_scene_validate(const srv_scene *s, char *err, size_t errlen);
 
 /* Parse a light in the command-line syntax of docs/scene-format.md
- * ("point:X,Y,Z:R,G,B", "spot:...", "directional:...", "area:...").
- * LUMO_OK, or with a reason in err LUMO_ERR_LIMIT (text too long) or
- * LUMO_ERR_ARG (malformed). */
+ * ("point:X,Y,Z:R,G,B", "spot:...", "directional:...", "area:...")
+ * (light_parse.c). LUMO_OK, or with "OPT 'TEXT': why" in err naming the
+ * field (kind, position, direction, cone half-angle, corner, edge U/V,
+ * power, irradiance) and its value, e.g. "--light 'point:0,1:1,1,1':
+ * position needs 3 numbers, got 2": LUMO_ERR_LIMIT (text longer than 511
+ * bytes) or LUMO_ERR_ARG. Positions within ±SRV_SCENE_MAX_COORD m, powers
+ * in [0, 1e9]. `opt` is how the caller names it ("--light"); *out is
+ * untouched on failure. */
+lumo_status srv_light_parse_as(const char *opt, const char *text, srv_light *out, char *err, size_t errlen);
+/* srv_light_parse_as("light", ...). */
 lumo_status srv_light_parse(const char *text, srv_light *out, char *err, size_t errlen);
 
 /* Parse "R,G,B" (or N comma-separated floats) strictly: LUMO_OK, or

@@ -2,6 +2,7 @@
 #include <errno.h>
 #include <libgen.h>
 #include <limits.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,13 +33,28 @@ typedef struct {
     uint64_t shape_tris;   /* triangles of the spheres so far */
 } parser;
 
-static int vec_arg(const char *t, vec3 *v)
+/* A refusal of the current statement: "WHAT: why" into p->err. */
+__attribute__((format(printf, 3, 4))) static lumo_status refuse(parser *p, lumo_status st, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(p->err, sizeof p->err, fmt, ap);
+    va_end(ap);
+    return st;
+}
+
+/* Word i of the statement as 3 finite numbers; `what` names it (and its
+ * syntax, "X,Y,Z") in the refusal. */
+static lumo_status vec_word(parser *p, int i, const char *what, const char *syntax, vec3 *v)
 {
     float f[3];
-    if (!t || srv_parse_floats(t, f, 3))
-        return -1;
+    if (i >= p->n)
+        return refuse(p, LUMO_ERR_CORRUPT, "%s: %s is missing (%s)", p->w[0], what, syntax);
+    if (srv_parse_floats(p->w[i], f, 3))
+        return refuse(p, LUMO_ERR_CORRUPT, "%s: %s '%.48s' is not 3 finite numbers %s", p->w[0], what, p->w[i],
+                      syntax);
     *v = v3(f[0], f[1], f[2]);
-    return 0;
+    return LUMO_OK;
 }
 
 /* A whole decimal integer in [0, INT_MAX], else -1. */
@@ -47,7 +63,7 @@ static int int_arg(const char *t)
     char *end;
     errno = 0;
     long v = strtol(t, &end, 10);
-    return end == t || *end || errno || v < 0 || v > INT_MAX ? -1 : (int)v;
+    return end == t || *end || errno || v < 0 || v > INT_MAX || *t == ' ' || *t == '+' ? -1 : (int)v;
 }
 
 /* Trailing options "albedo R,G,B", "inward", "segments N"; `from` is the
@@ -55,18 +71,41 @@ static int int_arg(const char *t)
 static lumo_status shape_opts(parser *p, int from, vec3 *albedo, int *inward, int *segments)
 {
     for (int i = from; i < p->n; i++) {
-        if (!strcmp(p->w[i], "albedo") && i + 1 < p->n && !vec_arg(p->w[i + 1], albedo))
-            i++;
-        else if (!strcmp(p->w[i], "inward") && inward)
+        lumo_status st;
+        if (!strcmp(p->w[i], "albedo")) {
+            if ((st = vec_word(p, ++i, "albedo", "R,G,B", albedo)))
+                return st;
+        } else if (!strcmp(p->w[i], "inward") && inward) {
             *inward = 1;
-        else if (!strcmp(p->w[i], "segments") && segments && i + 1 < p->n)
-            *segments = int_arg(p->w[++i]);
-        else {
-            snprintf(p->err, sizeof p->err, "unexpected '%s'", p->w[i]);
-            return LUMO_ERR_CORRUPT;
+        } else if (!strcmp(p->w[i], "segments") && segments) {
+            if (++i >= p->n || (*segments = int_arg(p->w[i])) < 8 || *segments > SRV_SCENE_MAX_SEGMENTS)
+                return refuse(p, LUMO_ERR_RANGE, "%s: segments '%.32s' must be in [8, %d]", p->w[0],
+                              i < p->n ? p->w[i] : "", SRV_SCENE_MAX_SEGMENTS);
+        } else {
+            return refuse(p, LUMO_ERR_CORRUPT, "%s: unexpected '%.48s'", p->w[0], p->w[i]);
         }
     }
     return LUMO_OK;
+}
+
+/* One transform or albedo option of a mesh line at word i (its value at i + 1). */
+static lumo_status mesh_opt(parser *p, int i, srv_xform *x, vec3 *albedo, int *has_albedo)
+{
+    const char *o = p->w[i], *a = i + 1 < p->n ? p->w[i + 1] : NULL;
+    float f[4];
+    if (!strcmp(o, "translate"))
+        return vec_word(p, i + 1, "translate", "X,Y,Z", &x->translate);
+    if (!strcmp(o, "albedo"))
+        return *has_albedo = 1, vec_word(p, i + 1, "albedo", "R,G,B", albedo);
+    if (!strcmp(o, "scale") && a && !srv_parse_floats(a, f, 1))
+        return x->scale = v3(f[0], f[0], f[0]), LUMO_OK;
+    if (!strcmp(o, "scale"))
+        return vec_word(p, i + 1, "scale", "S or SX,SY,SZ", &x->scale);
+    if (!strcmp(o, "rotate") && a && !srv_parse_floats(a, f, 4))
+        return x->axis = v3(f[0], f[1], f[2]), x->angle_deg = f[3], LUMO_OK;
+    if (!strcmp(o, "rotate"))
+        return refuse(p, LUMO_ERR_CORRUPT, "mesh: rotate '%.48s' is not 4 finite numbers AX,AY,AZ,DEG", a ? a : "");
+    return refuse(p, LUMO_ERR_CORRUPT, "mesh: unknown option '%.48s' (translate, scale, rotate, albedo)", o);
 }
 
 static lumo_status st_mesh(parser *p)
@@ -76,28 +115,11 @@ static lumo_status st_mesh(parser *p)
     int has_albedo = 0;
     char path[2048];
     if (p->n < 2)
-        return snprintf(p->err, sizeof p->err, "mesh needs a file"), LUMO_ERR_CORRUPT;
-    for (int i = 2; i < p->n; i++) {
-        const char *a = i + 1 < p->n ? p->w[i + 1] : NULL;
-        float f[4];
-        int ok = a != NULL;
-        if (ok && !strcmp(p->w[i], "translate"))
-            ok = !vec_arg(a, &x.translate);
-        else if (ok && !strcmp(p->w[i], "scale") && !srv_parse_floats(a, f, 1))
-            x.scale = v3(f[0], f[0], f[0]);
-        else if (ok && !strcmp(p->w[i], "scale"))
-            ok = !vec_arg(a, &x.scale);
-        else if (ok && !strcmp(p->w[i], "rotate") && !srv_parse_floats(a, f, 4))
-            x.axis = v3(f[0], f[1], f[2]), x.angle_deg = f[3];
-        else if (ok && !strcmp(p->w[i], "albedo"))
-            ok = !vec_arg(a, &albedo) && (has_albedo = 1);
-        else
-            ok = 0;
-        if (!ok) {
-            snprintf(p->err, sizeof p->err, "bad mesh option '%s'", p->w[i]);
-            return LUMO_ERR_CORRUPT;
-        }
-        i++;
+        return refuse(p, LUMO_ERR_CORRUPT, "mesh needs a file");
+    for (int i = 2; i < p->n; i += 2) {
+        lumo_status st = mesh_opt(p, i, &x, &albedo, &has_albedo);
+        if (st)
+            return st;
     }
     if (p->w[1][0] == '/')
         snprintf(path, sizeof path, "%s", p->w[1]);
@@ -106,60 +128,83 @@ static lumo_status st_mesh(parser *p)
     return srv_import_file(p->s, path, &x, has_albedo ? &albedo : NULL, p->err, sizeof p->err);
 }
 
-static lumo_status st_shape(parser *p)
+static lumo_status st_quad(parser *p)
 {
     vec3 a, b, c, albedo = v3(0.8f, 0.8f, 0.8f);
+    lumo_status st;
+    if ((st = vec_word(p, 1, "corner", "X,Y,Z", &a)) || (st = vec_word(p, 2, "edge U", "UX,UY,UZ", &b)) ||
+        (st = vec_word(p, 3, "edge V", "VX,VY,VZ", &c)) || (st = shape_opts(p, 4, &albedo, NULL, NULL)))
+        return st;
+    return srv_add_quad(p->s, "quad", a, b, c, albedo);
+}
+
+static lumo_status st_box(parser *p)
+{
+    vec3 a, b, albedo = v3(0.8f, 0.8f, 0.8f);
+    int inward = 0;
+    lumo_status st;
+    if ((st = vec_word(p, 1, "corner 0", "X0,Y0,Z0", &a)) || (st = vec_word(p, 2, "corner 1", "X1,Y1,Z1", &b)))
+        return st;
+    if (!(a.x < b.x && a.y < b.y && a.z < b.z))
+        return refuse(p, LUMO_ERR_CORRUPT, "box: corner 0 %s must lie below corner 1 %s on every axis", p->w[1],
+                      p->w[2]);
+    if ((st = shape_opts(p, 3, &albedo, &inward, NULL)))
+        return st;
+    return srv_add_box(p->s, "box", a, b, albedo, inward);
+}
+
+static lumo_status st_sphere(parser *p)
+{
+    vec3 a, albedo = v3(0.8f, 0.8f, 0.8f);
     int inward = 0, seg = 64;
-    const char *k = p->w[0];
-    if (!strcmp(k, "quad") && p->n >= 4 && !vec_arg(p->w[1], &a) && !vec_arg(p->w[2], &b) &&
-        !vec_arg(p->w[3], &c))
-        return shape_opts(p, 4, &albedo, NULL, NULL) ? LUMO_ERR_CORRUPT
-               : srv_add_quad(p->s, "quad", a, b, c, albedo);
-    if (!strcmp(k, "box") && p->n >= 3 && !vec_arg(p->w[1], &a) && !vec_arg(p->w[2], &b) &&
-        a.x < b.x && a.y < b.y && a.z < b.z)
-        return shape_opts(p, 3, &albedo, &inward, NULL) ? LUMO_ERR_CORRUPT
-               : srv_add_box(p->s, "box", a, b, albedo, inward);
     float r;
-    if (!strcmp(k, "sphere") && p->n >= 3 && !vec_arg(p->w[1], &a) &&
-        !srv_parse_floats(p->w[2], &r, 1) && r > 0.0f) {
-        if (shape_opts(p, 3, &albedo, &inward, &seg))
-            return LUMO_ERR_CORRUPT;
-        if (seg < 8 || seg > SRV_SCENE_MAX_SEGMENTS)
-            return snprintf(p->err, sizeof p->err, "segments must be in [8, %d]", SRV_SCENE_MAX_SEGMENTS),
-                   LUMO_ERR_RANGE;
-        uint64_t tris = 2 * (uint64_t)seg * (uint64_t)(seg / 2 - 1);
-        if (p->shape_tris + tris > SRV_SCENE_MAX_SHAPE_TRIS)
-            return snprintf(p->err, sizeof p->err, "the description's spheres would hold %llu triangles, more than "
-                            "%llu (SRV_SCENE_MAX_SHAPE_TRIS: text that small cannot justify more)",
-                            (unsigned long long)(p->shape_tris + tris), (unsigned long long)SRV_SCENE_MAX_SHAPE_TRIS),
-                   LUMO_ERR_LIMIT;
-        p->shape_tris += tris;
-        return srv_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
-    }
-    snprintf(p->err, sizeof p->err, "malformed %s", k);
-    return LUMO_ERR_CORRUPT;
+    lumo_status st;
+    if ((st = vec_word(p, 1, "centre", "X,Y,Z", &a)))
+        return st;
+    if (p->n < 3 || srv_parse_floats(p->w[2], &r, 1) || !(r > 0.0f))
+        return refuse(p, LUMO_ERR_CORRUPT, "sphere: radius '%.32s' is not a finite number above 0",
+                      p->n < 3 ? "" : p->w[2]);
+    if ((st = shape_opts(p, 3, &albedo, &inward, &seg)))
+        return st;
+    uint64_t tris = 2 * (uint64_t)seg * (uint64_t)(seg / 2 - 1);
+    if (p->shape_tris + tris > SRV_SCENE_MAX_SHAPE_TRIS)
+        return refuse(p, LUMO_ERR_LIMIT, "the description's spheres would hold %llu triangles, more than %llu "
+                      "(SRV_SCENE_MAX_SHAPE_TRIS: text that small cannot justify more)",
+                      (unsigned long long)(p->shape_tris + tris), (unsigned long long)SRV_SCENE_MAX_SHAPE_TRIS);
+    p->shape_tris += tris;
+    return srv_add_sphere(p->s, "sphere", a, r, seg, albedo, inward);
 }
 
 static lumo_status st_other(parser *p)
 {
     const char *k = p->w[0];
+    char why[200];
     vec3 a;
+    lumo_status st;
     if (!strcmp(k, "light") && p->n == 2) {
         srv_light l;
+        if (p->s->nlights >= LUMO_MAX_LIGHTS)
+            return refuse(p, LUMO_ERR_LIMIT, "light '%.64s': more than %d lights; a scene holds at most %d "
+                          "(LUMO_MAX_LIGHTS, lumo/config.h)", p->w[1], LUMO_MAX_LIGHTS, LUMO_MAX_LIGHTS);
         if (srv_light_parse(p->w[1], &l, p->err, sizeof p->err))
             return LUMO_ERR_CORRUPT;
         return l.kind == LUMO_LIGHT_AREA ? srv_add_area_light(p->s, &l) : srv_scene_add_light(p->s, &l);
     }
-    if (!strcmp(k, "albedo") && p->n == 2 && !vec_arg(p->w[1], &a)) {
+    if (!strcmp(k, "albedo") && p->n == 2) {
+        if ((st = vec_word(p, 1, "albedo", "R,G,B", &a)))
+            return st;
         srv_scene_override_albedo(p->s, a);
         return LUMO_OK;
     }
-    if (!strcmp(k, "camera") && p->n == 2 && !srv_camera_parse(p->w[1], &p->s->camera)) {
+    if (!strcmp(k, "camera") && p->n == 2) {
+        if (srv_camera_parse_why(p->w[1], &p->s->camera, why, sizeof why))
+            return refuse(p, LUMO_ERR_CORRUPT, "camera '%.64s': %s", p->w[1], why);
         p->s->has_camera = 1;
         return LUMO_OK;
     }
-    snprintf(p->err, sizeof p->err, "unknown or malformed statement '%s'", k);
-    return LUMO_ERR_CORRUPT;
+    if (!strcmp(k, "light") || !strcmp(k, "albedo") || !strcmp(k, "camera"))
+        return refuse(p, LUMO_ERR_CORRUPT, "%s takes one word, got %d", k, p->n - 1);
+    return refuse(p, LUMO_ERR_CORRUPT, "unknown or malformed statement '%.48s'", k);
 }
 
 static lumo_status statement(parser *p)
@@ -168,8 +213,12 @@ static lumo_status statement(parser *p)
         return LUMO_OK;
     if (!strcmp(p->w[0], "mesh"))
         return st_mesh(p);
-    if (!strcmp(p->w[0], "quad") || !strcmp(p->w[0], "box") || !strcmp(p->w[0], "sphere"))
-        return st_shape(p);
+    if (!strcmp(p->w[0], "quad"))
+        return st_quad(p);
+    if (!strcmp(p->w[0], "box"))
+        return st_box(p);
+    if (!strcmp(p->w[0], "sphere"))
+        return st_sphere(p);
     return st_other(p);
 }
 

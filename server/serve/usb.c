@@ -50,15 +50,32 @@ struct srv_usb {
     bridge         *bridges;
 };
 
+/* Four hex digits at t, nothing else (sscanf's %4x took a sign, blanks and
+ * "0x": "-fff:+fff" read as f001:0fff). */
+static int hex4(const char *t, uint16_t *out)
+{
+    unsigned v = 0;
+
+    for (int i = 0; i < 4; i++) {
+        char c = t[i];
+        unsigned d = c >= '0' && c <= '9' ? (unsigned)(c - '0') : c >= 'a' && c <= 'f' ? (unsigned)(c - 'a' + 10)
+                   : c >= 'A' && c <= 'F' ? (unsigned)(c - 'A' + 10) : 16u;
+        if (d > 15)
+            return -1;
+        v = v << 4 | d;
+    }
+    *out = (uint16_t)v;
+    return 0;
+}
+
 int srv_usb_parse_id(const char *t, uint16_t *vid, uint16_t *pid)
 {
-    unsigned v, p;
-    int n = 0;
+    uint16_t v, p;
 
-    if (!t || sscanf(t, "%4x:%4x%n", &v, &p, &n) != 2 || t[n] || strlen(t) != 9)
+    if (!t || strlen(t) != 9 || t[4] != ':' || hex4(t, &v) || hex4(t + 5, &p))
         return -1;
-    *vid = (uint16_t)v;
-    *pid = (uint16_t)p;
+    *vid = v;
+    *pid = p;
     return 0;
 }
 

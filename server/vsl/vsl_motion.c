@@ -1,4 +1,5 @@
 /* vsl_motion.c — motion scripts (vsl_motion.h, docs/dynamic.md). */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,27 +38,41 @@ static int parse_target(srv_motion_track *tr, const srv_scene *s, char **w)
     return 0;
 }
 
-/* "T:X,Y,Z[:YAW]" */
-static int parse_key(const char *text, int light, srv_motion_key *k)
+/* Bounds of a key: scene time in seconds, a position within the scene's
+ * coordinate bound (an object's offset or a light's position: beyond it
+ * the engine's photon tracing overflows), a yaw in degrees. */
+#define MOTION_MAX_TIME 1.0e9f
+#define MOTION_MAX_YAW  1.0e6f
+
+/* "T:X,Y,Z[:YAW]": LUMO_OK, or why the key is refused in why (the part
+ * that is wrong and its value). */
+static lumo_status parse_key(const char *text, int light, srv_motion_key *k, char *why, size_t whylen)
 {
-    char buf[128], *a, *b, *c;
+    char buf[128], *a, *b;
     float f[3];
     if (strlen(text) >= sizeof buf)
-        return -1;
+        return snprintf(why, whylen, "longer than %zu characters", sizeof buf - 1), LUMO_ERR_LIMIT;
     strcpy(buf, text);
-    a = strchr(buf, ':');
-    if (!a)
-        return -1;
+    if (!(a = strchr(buf, ':')))
+        return snprintf(why, whylen, "no ':' after the time (T:X,Y,Z[:YAW])"), LUMO_ERR_ARG;
     *a++ = 0;
-    b = strchr(a, ':');
-    if (b)
+    if ((b = strchr(a, ':')))
         *b++ = 0;
-    if (srv_parse_floats(buf, &k->t, 1) || srv_parse_floats(a, f, 3) || (b && light))
-        return -1;
+    if (srv_parse_floats(buf, &k->t, 1) || !(k->t >= 0.0f && k->t <= MOTION_MAX_TIME))
+        return snprintf(why, whylen, "time '%.32s' is not a number of seconds in [0, 1e9]", buf), LUMO_ERR_ARG;
+    if (srv_parse_floats(a, f, 3))
+        return snprintf(why, whylen, "position '%.48s' is not 3 finite numbers X,Y,Z", a), LUMO_ERR_ARG;
+    for (int i = 0; i < 3; i++)
+        if (!(fabsf(f[i]) <= SRV_SCENE_MAX_COORD))
+            return snprintf(why, whylen, "position %c = %g is beyond ±%g m (SRV_SCENE_MAX_COORD)", "XYZ"[i], f[i],
+                            SRV_SCENE_MAX_COORD), LUMO_ERR_RANGE;
     k->p = v3(f[0], f[1], f[2]);
     k->yaw_deg = 0.0f;
-    c = b;
-    return c && srv_parse_floats(c, &k->yaw_deg, 1) ? -1 : 0;
+    if (b && light)
+        return snprintf(why, whylen, "a light has no yaw ('%.32s')", b), LUMO_ERR_ARG;
+    if (b && (srv_parse_floats(b, &k->yaw_deg, 1) || !(fabsf(k->yaw_deg) <= MOTION_MAX_YAW)))
+        return snprintf(why, whylen, "yaw '%.32s' is not a number of degrees in [-1e6, 1e6]", b), LUMO_ERR_ARG;
+    return LUMO_OK;
 }
 
 lumo_status srv_motion_parse_words(srv_motion *m, const srv_scene *s, char **w, int n, char *err,
@@ -82,10 +97,15 @@ lumo_status srv_motion_parse_words(srv_motion *m, const srv_scene *s, char **w, 
             return LUMO_ERR_LIMIT;
         }
         srv_motion_key *k = &tr->keys[tr->nkeys];
-        if (parse_key(w[i], tr->light, k) || !(k->t >= 0.0f) ||
-            (tr->nkeys && !(k->t > tr->keys[tr->nkeys - 1].t))) {
-            snprintf(err, errlen, "motion: bad key '%s' (T:X,Y,Z[:YAW], times increasing from 0)", w[i]);
-            return LUMO_ERR_ARG;
+        char why[160];
+        lumo_status st = parse_key(w[i], tr->light, k, why, sizeof why);
+        if (!st && tr->nkeys && !(k->t > tr->keys[tr->nkeys - 1].t)) {
+            snprintf(why, sizeof why, "time %g does not follow %g (times increase)", k->t, tr->keys[tr->nkeys - 1].t);
+            st = LUMO_ERR_ARG;
+        }
+        if (st) {
+            snprintf(err, errlen, "motion: key %zu '%.64s': %s", tr->nkeys + 1, w[i], why);
+            return st;
         }
         tr->nkeys++;
     }

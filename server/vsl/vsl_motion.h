@@ -43,8 +43,12 @@ typedef struct srv_motion {
 
 /* Parse one motion line's words after "motion" (words[0] is "object" or
  * "light") against scene s (names, index ranges). LUMO_OK, or with a
- * reason LUMO_ERR_ARG (malformed, unknown target, times not increasing)
- * or LUMO_ERR_LIMIT (too many keys or tracks). */
+ * reason LUMO_ERR_ARG (malformed, unknown target, times not increasing;
+ * the key, its number and the part that is wrong named: "motion: key 2
+ * '1:0,x,0': position '0,x,0' is not 3 finite numbers X,Y,Z"),
+ * LUMO_ERR_RANGE (a position beyond ±SRV_SCENE_MAX_COORD) or
+ * LUMO_ERR_LIMIT (too many keys or tracks, a key over 127 characters).
+ * Times lie in [0, 1e9] s, yaws in [-1e6, 1e6] degrees. */
 lumo_status srv_motion_parse_words(srv_motion *m, const srv_scene *s, char **words, int n,
                                    char *err, size_t errlen);
 

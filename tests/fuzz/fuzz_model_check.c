@@ -1,11 +1,14 @@
 /* fuzz_model_check.c — hostile bytes into lumo's own model checks, the
  * front end every model passes before assimp (server/scene/model_check.h).
- * The first byte picks the reader (OBJ, PLY, OFF, by name or by content);
+ * The first byte picks the reader (OBJ, PLY, OFF, STL, glTF, GLB, by name
+ * or by content);
  * the rest is the file. Nothing may read out of bounds or overflow, the
  * reason must be one terminated line naming the file, and an accepted PLY
  * or OFF must declare no more than its bytes can hold. Host code: built
  * by tests/hostile/hostile.mk with the server's flags. Seeds in
- * tests/fuzz/seeds/fuzz_model_check/ (first byte 'o', 'p', 'f' or 'x'). */
+ * tests/fuzz/seeds/fuzz_model_check/ (first byte 'o', 'p', 'f', 's', 'g',
+ * 'b' or 'x'). A glTF's external buffers are looked up beside "fuzz.gltf"
+ * (the working directory): only stat'ed, never read. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +22,9 @@ static const char *name_of(uint8_t pick)
     case 'o': return "fuzz.obj";
     case 'p': return "fuzz.ply";
     case 'f': return "fuzz.off";
+    case 's': return "fuzz.stl";
+    case 'g': return "fuzz.gltf";
+    case 'b': return "fuzz.glb";
     default: return "fuzz";   /* by content */
     }
 }

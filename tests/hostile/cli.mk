@@ -24,5 +24,7 @@ $(BUILD)/fuzz/bin/fuzz_cli_options: tests/fuzz/fuzz_cli_options.c tools/lib/opti
 TEST_STEPS += test-hostile-cli
 .PHONY: test-hostile-cli
 test-hostile-cli: $(BIN)/lumo-render $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-inspect $(BIN)/lumo-server \
-                  $(BIN)/lumo-client $(BIN)/lumo-compare $(BIN)/lumo-draco-decode
+                  $(BIN)/lumo-client $(BIN)/lumo-compare $(BIN)/lumo-draco-decode \
+                  $(BIN)/draco-bench $(BIN)/draco-bench-libdraco $(BIN)/lumo-bench-ivg $(BIN)/prt-bench \
+                  $(BIN)/lumo-bench-stream $(BIN)/dyn-error $(BIN)/prt-demo $(BUILD)/host/bench/lumo-bench-mpi-model
 	@sh tests/hostile/cli.sh $(BUILD)

@@ -230,6 +230,72 @@ while [ $n -lt 17 ]; do lights="$lights --light point:0,1,0:1,1,1"; n=$((n + 1))
 expect 2 "--light point:0,1,0:1,1,1: more than 16 lights (LUMO_MAX_LIGHTS" "$bin/lumo-render" --default -o "$tmp/x.png" $lights
 expect 1 "--light point:0,1,0:1,1,1: more than 16 lights; a scene holds at most 16 (LUMO_MAX_LIGHTS" "$bin/lumo-bake" --default -o "$tmp/x.lumo" $lights
 
+# ---- round three: lights field by field, --prt, --dynamic, the benchmarks ---
+# (issue 24): a light's refusal names the field and its value; every
+# number of --prt and --dynamic, and of the benchmark and demo programs,
+# goes through the one strict parser.
+lr() { expect 2 "--light '$1': $2" "$bin/lumo-render" --default -o "$tmp/x.png" --light "$1"; }
+lb() { expect 1 "--light '$1': $2" "$bin/lumo-bake" --default -o "$tmp/x.lumo" --light "$1"; }
+for t in lr lb; do
+    $t 'point:0,1:1,1,1' "position needs 3 numbers, got 2"
+    $t 'point:0,1,0:1,1' "power needs 3 numbers, got 2"
+    $t 'point:0,1,0:1,-1,1' "power value 2 = -1 is outside [0, 1e+09] W"
+    $t 'point:0,x,0:1,1,1' "position value 2 'x' is not a finite number"
+    $t 'point:0,1e9,0:1,1,1' "position value 2 = 1e+09 is outside [-32000, 32000] m"
+    $t 'laser:0,1,0:1,1,1' "kind 'laser' is not point, spot, directional or area"
+    $t 'point:0,1,0:1,1,1:4' "a point light is point:X,Y,Z:R,G,B (3 fields), got 4"
+    $t 'spot:0,1,0:0,0,0:30:1,1,1' "direction 0,0,0 has no length"
+    $t 'spot:0,1,0:0,-1,0:200:1,1,1' "cone half-angle = 200 is outside [0, 180] degrees"
+    $t 'spot:0,1,0:0,-1,0:nan:1,1,1' "cone half-angle 'nan' is not a finite number"
+    $t 'directional:0,-1,0:1,1,inf' "irradiance value 3 'inf' is not a finite number"
+    $t 'area:0,1,0:1,0,0:2,0,0:1,1,1' "edges U 1,0,0 and V 2,0,0 are parallel or zero: no area"
+    $t 'area:0,1,0:1,0,0:0,0' "a area light is"
+done
+pr() { expect 1 "$2" "$bin/lumo-bake" --default -o "$tmp/x.lumo" --prt "$1"; }
+pr 4,clusters=1.5 "--prt clusters 1.5: not an integer"
+pr 4,clusters=0 "--prt clusters 0: must be 1.."
+pr 4,alpha=nan "--prt alpha nan: not a finite number"
+pr 4,teapot=1 "--prt: unknown setting 'teapot'"
+pr 4,strata "--prt: 'strata' needs a value (strata=N)"
+pr 99 "--prt ORDER 99: must be 1..6"
+pr x "--prt ORDER x: not an integer"
+scene=tests/fuzz/package_seeds/tiny.txt
+"$bin/lumo-bake" "$scene" --grid 4 --spp 4 --mesh pm --no-progress -o "$tmp/dyn.lumo" >/dev/null 2>&1 ||
+    echo "could not bake dyn.lumo"
+dy() { expect 1 "$2" timeout 20 "$bin/lumo-server" "$tmp/dyn.lumo" --listen 127.0.0.1:0 --dynamic "$scene,$1"; }
+dy vsl=1.5 "--dynamic vsl 1.5: not an integer"
+dy pool=0 "--dynamic pool 0: must be 1..1000000000000"
+dy tau=2 "--dynamic tau 2: must be 0..1"
+dy seed=-1 "--dynamic seed -1: must be 0..18446744073709551615"
+dy photon-rate=inf "--dynamic photon-rate inf: not a finite number"
+dy teapot=1 "--dynamic: unknown setting 'teapot'"
+dy vsl "--dynamic: setting 'vsl' has no '='"
+expect 2 "REPS 1e3: not an integer" "$bin/draco-bench" "$model" 1e3
+expect 2 "REPS -1: must be 1..1000000" "$bin/draco-bench-libdraco" "$model" -1
+expect 2 "FLAGS x: not an integer" "$bin/lumo-bench-ivg" pushpull 8 25 x
+expect 2 "N 4294967304: must be 2..256" "$bin/lumo-bench-ivg" pushpull 4294967304 25 0
+expect 2 "MODE 7: must be 0..2" "$bin/lumo-bench-ivg" sample 10 7
+expect 2 "PEER_CPU_S nan: not a finite number" "$build/host/bench/lumo-bench-mpi-model" 8 1 nan 0
+expect 2 "--order 9: must be 1..6" "$bin/prt-bench" --order 9 --out "$tmp/p.md" "$model"
+expect 2 "--clusters 64,1.5: value 2 is not an integer" "$bin/prt-bench" --clusters 64,1.5 --out "$tmp/p.md" "$model"
+expect 2 "--rounds 1.5: not an integer" "$bin/lumo-bench-stream" run 127.0.0.1:1 --rounds 1.5
+expect 2 "CLIENTS -5: must be 1..100000" "$bin/lumo-bench-stream" load 127.0.0.1:1 -5 3
+expect 1 "--grid 1e2: not an integer" "$bin/dyn-error" "$scene" --grid 1e2
+expect 1 "--times 0,3,2: values must increase" "$bin/dyn-error" "$scene" --times 0,3,2
+expect 2 "W 0: must be 1..16384" "$bin/prt-demo" env "$tmp/e.png" 0 10
+# motion lines (scene files of lumo-server --dynamic and dyn-error): the key,
+# its number and the part that is wrong.
+mo() {  # mo NAME LINE EXPECT
+    printf 'quad -1,0,-1 0,0,2 2,0,0\nlight point:0,1,0:1,1,1\nmotion %s\n' "$2" >"$tmp/$1.txt"
+    expect 1 "$tmp/$1.txt:3: motion: $3" "$bin/dyn-error" "$tmp/$1.txt" --grid 4 --spp 1
+}
+mo m_pos "light 0 0:0,1,0 1:0,x,0" "key 2 '1:0,x,0': position '0,x,0' is not 3 finite numbers X,Y,Z"
+mo m_far "light 0 0:0,1e9,0" "key 1 '0:0,1e9,0': position Y = 1e+09 is beyond"
+mo m_time "light 0 0:0,1,0 -1:0,1,0" "key 2 '-1:0,1,0': time '-1' is not a number of seconds in [0, 1e9]"
+mo m_order "light 0 2:0,1,0 1:0,1,0" "key 2 '1:0,1,0': time 1 does not follow 2 (times increase)"
+mo m_yaw "light 0 0:0,1,0:30" "key 1 '0:0,1,0:30': a light has no yaw ('30')"
+mo m_oyaw "object 0 0:0,0,0:nan" "key 1 '0:0,0,0:nan': yaw 'nan' is not a number of degrees"
+
 # ---- --help stays clear: usage on stdout, status 0 --------------------------
 for t in lumo-render lumo-bake lumo-pm lumo-inspect lumo-server lumo-client lumo-compare lumo-draco-decode; do
     if "$bin/$t" --help >"$tmp/out" 2>"$tmp/err" && grep -q "^usage: $t" "$tmp/out" && [ ! -s "$tmp/err" ]; then

@@ -9,21 +9,35 @@
 # ---- fuzz targets over server code -----------------------------------------------
 FUZZ_HOST_CFLAGS := -std=c11 -D_GNU_SOURCE -g -O1 $(CLIENT_INC) -Iserver -Itools/lib/include \
                     -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
-FUZZ_SCENE_SRCS  := server/scene/scene_file.c server/scene/scene.c server/scene/shapes.c \
-                    server/scene/camera.c server/scene/import.c server/scene/import_io.c \
-                    server/scene/model_check.c
+# lumo's model checks: one file per format family (model_check.c: OBJ,
+# PLY, OFF; stl_check.c; gltf_check.c, over jansson).
+MODEL_CHECK_SRCS := server/scene/model_check.c server/scene/stl_check.c server/scene/gltf_check.c
+FUZZ_SCENE_SRCS  := server/scene/scene_file.c server/scene/scene.c server/scene/light_parse.c \
+                    server/scene/shapes.c server/scene/camera.c server/scene/import.c \
+                    server/scene/import_io.c $(MODEL_CHECK_SRCS)
 
-$(BUILD)/fuzz/bin/fuzz_model_check: tests/fuzz/fuzz_model_check.c server/scene/model_check.c \
-                                    server/scene/model_check.h
+$(BUILD)/fuzz/bin/fuzz_model_check: tests/fuzz/fuzz_model_check.c $(MODEL_CHECK_SRCS) \
+                                    server/scene/model_check.h server/scene/model_check_internal.h
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_model_check
-	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_model_check.c server/scene/model_check.c -lm
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_model_check.c $(MODEL_CHECK_SRCS) -ljansson -lm
+
+$(BUILD)/fuzz/bin/fuzz_light_parse: tests/fuzz/fuzz_light_parse.c server/scene/light_parse.c server/scene/scene.h
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_light_parse
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_light_parse.c server/scene/light_parse.c -lm
+
+# The motion parser (motion lines, lumo-server --dynamic's move commands).
+$(BUILD)/fuzz/bin/fuzz_motion: tests/fuzz/fuzz_motion.c server/vsl/vsl_motion.c server/scene/scene.c \
+                               server/scene/camera.c $(wildcard server/scene/*.h) $(filter sdk/%,$(CLIENT_SRCS))
+	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_motion
+	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_motion.c server/vsl/vsl_motion.c server/scene/scene.c \
+	    server/scene/camera.c $(filter sdk/%,$(CLIENT_SRCS)) -lm
 
 # The scene room calls the SDK (the camera fit): its sources, built alike.
 $(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) $(wildcard server/scene/*.h) \
                                    $(filter sdk/%,$(CLIENT_SRCS))
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_scene_file
 	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) \
-	    $(filter sdk/%,$(CLIENT_SRCS)) -lassimp -lm
+	    $(filter sdk/%,$(CLIENT_SRCS)) -lassimp -ljansson -lm
 
 # ---- the generated corpus ------------------------------------------------------------
 # tests/hostile/gen_hostile writes every case (models, scene files, packages
@@ -35,8 +49,16 @@ $(HOSTILE_GEN): $(BUILD)/tests/tests/hostile/gen_hostile.o $(BUILD)/san/liblumo.
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
+# tests/hostile/gen_formats adds STL, glTF, GLB, the formats refused by
+# name and the scene files' lights (round three) to the same corpus.
+HOSTILE_GEN_FORMATS := $(BUILD)/tests/bin/gen_formats
+
+$(HOSTILE_GEN_FORMATS): $(BUILD)/tests/tests/hostile/gen_formats.o
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lz
+
 TEST_STEPS += test-hostile-input
 .PHONY: test-hostile-input
-test-hostile-input: $(HOSTILE_GEN) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render $(BIN)/lumo-inspect \
-                    $(BIN)/lumo-server
-	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input
+test-hostile-input: $(HOSTILE_GEN) $(HOSTILE_GEN_FORMATS) $(BIN)/lumo-bake $(BIN)/lumo-pm $(BIN)/lumo-render \
+                    $(BIN)/lumo-inspect $(BIN)/lumo-server $(BIN)/lumo-client $(BIN)/lumo-compare
+	@sh tests/hostile/hostile.sh $(BIN) $(HOSTILE_GEN) $(BUILD)/tests/hostile-input $(HOSTILE_GEN_FORMATS)

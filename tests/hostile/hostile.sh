@@ -1,20 +1,22 @@
 #!/bin/sh
-# tests/hostile/hostile.sh BIN GEN WORK — models, scene files, packages and
+# tests/hostile/hostile.sh BIN GEN WORK [GEN_FORMATS] — models, scene files, packages and
 # bakes from hostile hands (issue 24, part B). GEN (gen_hostile) writes the
 # corpus into WORK at test time from tests/fuzz/seeds/fuzz_package/lights.lumo
-# (a real bake: 3 lights, raw meshes, an IVG); every case runs each tool
+# (a real bake: 3 lights, raw meshes, an IVG), and GEN_FORMATS adds STL,
+# glTF and GLB, the formats refused by name, lights field by field; every case runs each tool
 # that reads it under a memory limit (ulimit -v, MEM_KB) and a time limit
 # (timeout, SECS): a declared 10^9 faces over a few bytes must be refused
 # within both, never crash (status > 1), and say the expected text. Good
 # files of every reader must still pass. Prints "RESULT: N passed, M failed".
-bin=$1; gen=$2; work=$3
+bin=$1; gen=$2; work=$3; gen_formats=${4:-}
 MEM_KB=${MEM_KB:-1048576}   # 1 GiB of address space per tool run
 SECS=${SECS:-20}
 . tests/lib/background.sh
 rm -rf "$work"; mkdir -p "$work/corpus" "$work/out"
 corpus=$work/corpus; out=$work/out; log=$work/last.log
 
-if ! "$gen" "$corpus" tests/fuzz/seeds/fuzz_package/lights.lumo; then
+if ! "$gen" "$corpus" tests/fuzz/seeds/fuzz_package/lights.lumo ||
+   { [ -n "$gen_formats" ] && ! "$gen_formats" "$corpus"; }; then
     bad "gen_hostile: cannot make the corpus"
     echo "RESULT: $pass passed, $fail failed"; exit 1
 fi
@@ -70,6 +72,7 @@ while IFS="$tab" read -r kind file expect; do
     scene) run "lumo-bake $(basename "$file")" "$expect" "$bin/lumo-bake" "$file" --grid 2 --spp 1 \
                --no-progress -o "$out/scene.lumo" ;;
     package) package_case "$file" "$expect" ;;
+    png) run "lumo-compare $(basename "$file")" "$expect" "$bin/lumo-compare" "$file" "$file" ;;
     esac
 done <"$corpus/manifest"
 
@@ -85,8 +88,31 @@ printf '%s' '{"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"pipe.
     '"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],' \
     '"max":[1,1,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],' \
     '"scenes":[{"nodes":[0]}]}' >"$corpus/pipe.gltf"
-run "lumo-pm build a glTF whose buffer is a FIFO" "could not open referenced file" \
+run "lumo-pm build a glTF whose buffer is a FIFO" "buffer 0: 'pipe.mtl' is not a regular file" \
     "$bin/lumo-pm" build "$corpus/pipe.gltf" -o "$out/d.lumo"
+
+# A hostile HTTP server (lumo-client --http): a Content-Range whose total is
+# "-1" (sscanf's %llu read it as 2^64 - 1) or past 64 bits is not a size.
+# busybox nc answers the first request with the canned response.
+http_case() {  # http_case NAME TOTAL
+    http_n=$((${http_n:-0} + 1)); port=$((20000 + ($$ * 3 + http_n) % 20000))
+    printf 'HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 0-23/%s\r\nContent-Length: 24\r\n' "$2" \
+        >"$corpus/http.resp"
+    printf 'Connection: close\r\n\r\nLUMO0123456789abcdefghij' >>"$corpus/http.resp"
+    busybox nc -l -p "$port" <"$corpus/http.resp" >/dev/null 2>&1 &
+    nc_pid=$!
+    sleep 0.3
+    run "lumo-client --http $1" "the server did not say the file's size (Content-Range)" \
+        "$bin/lumo-client" --http "http://127.0.0.1:$port/x.lumo" --out "$out"
+    kill "$nc_pid" 2>/dev/null; wait "$nc_pid" 2>/dev/null
+}
+if command -v busybox >/dev/null; then
+    http_case "Content-Range total -1" -1
+    http_case "Content-Range total past 64 bits" 99999999999999999999999
+    http_case "Content-Range total 1x" 1x
+else
+    bad "busybox (tools/setup.sh: busybox-static) is missing: no hostile HTTP server"
+fi
 
 # The bake's budget: said, refused past it, taken with --allow-large.
 scene=tests/fuzz/package_seeds/tiny.txt

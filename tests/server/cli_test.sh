@@ -50,7 +50,7 @@ expect_error "unknown statement"    "$bake" "$dir/unknown.txt" -o "$dir/x.lumo"
 awk 'BEGIN { printf "quad"; for (i = 0; i < 600; i++) printf " 0,0,0"; print "" }' >"$dir/long.txt"
 expect_error "overlong line"        "$bake" "$dir/long.txt" -o "$dir/x.lumo"
 expect_error "unknown option"       "$bake" --default --frobnicate -o "$dir/x.lumo"
-expect_error "bad light"            "$bake" --default --light point:1,2 -o "$dir/x.lumo"
+expect_error "position needs 3 numbers, got 2" "$bake" --default --light point:1,2 -o "$dir/x.lumo"
 expect_error "bad grid"             "$bake" --default --grid 1 -o "$dir/x.lumo"
 expect_error "bad camera"           "$bake" --default --reference 8x8 --camera 0,0,0:0,0,0:0,1,0:40 -o "$dir/x.png"
 expect_error "no output"            "$bake" --default

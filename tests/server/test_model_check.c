@@ -99,7 +99,9 @@ static void test_formats(void **state)
     assert_int_equal(srv_model_format_of("X.OBJ", NULL, 0), SRV_MODEL_OBJ);
     assert_int_equal(srv_model_format_of("x", (const uint8_t *)"ply\nformat", 10), SRV_MODEL_PLY);
     assert_int_equal(srv_model_format_of("x", (const uint8_t *)"OFF\n", 4), SRV_MODEL_OFF);
-    assert_int_equal(srv_model_format_of("x.glb", (const uint8_t *)"glTF", 4), SRV_MODEL_OTHER);
+    assert_int_equal(srv_model_format_of("x.glb", (const uint8_t *)"glTF", 4), SRV_MODEL_GLB);
+    assert_int_equal(srv_model_format_of("x", (const uint8_t *)"glTF", 4), SRV_MODEL_GLB);
+    assert_int_equal(srv_model_format_of("x.dae", (const uint8_t *)"<?xml", 5), SRV_MODEL_OTHER);
     assert_int_equal(check("e.obj", ""), LUMO_ERR_CORRUPT);
     assert_says("e.obj: empty file");
     assert_int_equal(check("t.obj", "v 0 0 0\n\x1a\n"), LUMO_ERR_CORRUPT);

@@ -241,6 +241,11 @@ static void test_parse_id(void **state)
     assert_int_equal(srv_usb_parse_id("12090001", &v, &p), -1);
     assert_int_equal(srv_usb_parse_id("zz09:0001", &v, &p), -1);
     assert_int_equal(srv_usb_parse_id("", &v, &p), -1);
+    /* whole hex digits only: no sign, blank or 0x (sscanf's %4x took them) */
+    assert_int_equal(srv_usb_parse_id("-fff:+fff", &v, &p), -1);
+    assert_int_equal(srv_usb_parse_id(" 209:0001", &v, &p), -1);
+    assert_int_equal(srv_usb_parse_id("0x12:0001", &v, &p), -1);
+    assert_int_equal(srv_usb_parse_id("1209:000g", &v, &p), -1);
     assert_int_equal(srv_usb_parse_id(NULL, &v, &p), -1);
 }
 

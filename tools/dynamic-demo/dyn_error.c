@@ -22,6 +22,7 @@
 #include "bake/bake.h"
 #include "scene/import.h"
 #include "vsl/vsl_engine.h"
+#include "lumo_host/options.h"
 
 static int fail(const char *m)
 {
@@ -54,14 +55,29 @@ static void compare(const srv_bake_result *ref, const srv_vsl_ivg *ivg, double *
     *noise = sum > 0 ? se / sum : 0;
 }
 
-static int parse_times(const char *t, double *out, int max)
+/* One option and its value, strictly (lumo_host/options.h): 0, or -1 with
+ * the refusal naming both in err. */
+static int take(const char *a, const char *v, srv_vsl_engine_opts *o, double *times, int *ntimes, int *grid,
+                int *spp, char *err, size_t errlen)
 {
-    int n = 0;
-    char buf[512], *save = NULL;
-    snprintf(buf, sizeof buf, "%s", t);
-    for (char *w = strtok_r(buf, ",", &save); w && n < max; w = strtok_r(NULL, ",", &save))
-        out[n++] = atof(w);
-    return n;
+    int64_t n;
+    if (!strcmp(a, "--times"))
+        return host_opt_list(a, v, 0, 1e6, 1, times, 16, ntimes, err, errlen);
+    if (!strcmp(a, "--grid"))
+        return host_opt_int(a, v, 2, 256, grid, err, errlen);
+    if (!strcmp(a, "--spp"))
+        return host_opt_int(a, v, 1, 1 << 20, spp, err, errlen);
+    if (strcmp(a, "--vsl") && strcmp(a, "--pool") && strcmp(a, "--batch"))
+        return snprintf(err, errlen, "%s: unknown option", a), -1;
+    if (host_opt_i64(a, v, 1, (int64_t)1e12, &n, err, errlen))
+        return -1;
+    if (a[2] == 'v')
+        o->nv = (size_t)n;
+    else if (a[2] == 'p')
+        o->pool = (size_t)n;
+    else
+        o->batch = (uint64_t)n;
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -72,21 +88,11 @@ int main(int argc, char **argv)
     char err[400];
     if (argc < 2)
         return fail("usage: dyn-error SCENE [--times T,..] [--vsl N] [--pool N] [--batch N] [--grid N] [--spp N]");
-    for (int i = 2; i + 1 < argc; i += 2) {
-        if (!strcmp(argv[i], "--times"))
-            ntimes = parse_times(argv[i + 1], times, 16);
-        else if (!strcmp(argv[i], "--vsl"))
-            o.nv = (size_t)atol(argv[i + 1]);
-        else if (!strcmp(argv[i], "--pool"))
-            o.pool = (size_t)atol(argv[i + 1]);
-        else if (!strcmp(argv[i], "--batch"))
-            o.batch = (uint64_t)atol(argv[i + 1]);
-        else if (!strcmp(argv[i], "--grid"))
-            grid = atoi(argv[i + 1]);
-        else if (!strcmp(argv[i], "--spp"))
-            spp = atoi(argv[i + 1]);
-        else
-            return fail("unknown option");
+    for (int i = 2; i < argc; i += 2) {
+        if (i + 1 == argc)
+            return fail("an option without its value (try: dyn-error SCENE --times 0,3,6)");
+        if (take(argv[i], argv[i + 1], &o, times, &ntimes, &grid, &spp, err, sizeof err))
+            return fail(err);
     }
     srv_scene s;
     srv_motion m = {0};

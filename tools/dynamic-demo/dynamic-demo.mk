@@ -6,7 +6,8 @@
 # change to settled lighting printed by the server, and dyn-error: the IVG
 # from the VSLs against a path-traced bake of the same moment.
 HOST_TOOLS += $(BIN)/dyn-error
-$(BIN)/dyn-error: $(BUILD)/host/tools/dynamic-demo/dyn_error.o $(BUILD)/host/libserver.a $(BUILD)/rel/liblumo_net.a \
+$(BIN)/dyn-error: $(BUILD)/host/tools/dynamic-demo/dyn_error.o $(BUILD)/host/libserver.a $(BUILD)/host/libhost.a \
+                  $(BUILD)/rel/liblumo_net.a \
                   $(BUILD)/rel/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) -pthread -o $@ $^ $(SERVER_LIBS)

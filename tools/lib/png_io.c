@@ -58,6 +58,10 @@ int host_png_read_rgb8(const char *path, uint8_t **rgb, int *w, int *h)
     if (!png_image_begin_read_from_file(&pi, path))
         return -1;
     pi.format = PNG_FORMAT_RGB;
+    if ((uint64_t)pi.width * pi.height > HOST_PNG_MAX_PIXELS) {
+        png_image_free(&pi);
+        return -1;
+    }
     buf = malloc(PNG_IMAGE_SIZE(pi));
     if (!buf || !png_image_finish_read(&pi, NULL, buf, 0, NULL)) {
         free(buf);

@@ -4,54 +4,83 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo_host/options.h"
 #include "lumo_host/png_io.h"
 #include "lumo/prt.h"
 #include "bake_prt.h"
 
-static int kv(const char *tok, const char *key, double lo, double hi, double *out)
+/* One "key=value" of the spec, each value through the strict option
+ * parser (integers whole, numbers finite, both in range): the message
+ * names the spec, the key and the value. */
+typedef struct prt_key {
+    const char *key;
+    int         is_int;
+    double      lo, hi;
+} prt_key;
+
+static const prt_key k_keys[] = {
+    {"clusters", 1, 1, LUMO_PRT_MAX_CLUSTERS}, {"components", 1, 0, LUMO_PRT_MAX_COMPONENTS},
+    {"alpha", 0, 0, 1e6},                      {"bounces", 1, 0, 8},
+    {"strata", 1, 2, 256},                     {"registers", 1, 0, 65536},
+};
+
+static void set_key(bake_prt *p, int k, double v)
 {
-    size_t n = strlen(key);
-    char *end;
-    if (strncmp(tok, key, n) || tok[n] != '=')
-        return 0;
-    *out = strtod(tok + n + 1, &end);
-    return *end || !(*out >= lo && *out <= hi) ? -1 : 1;
+    switch (k) {
+    case 0: p->o.cpca.clusters = (int)v; break;
+    case 1: p->o.cpca.components = (int)v; break;
+    case 2: p->o.cpca.alpha = v; break;
+    case 3: p->o.transfer.bounces = (int)v; break;
+    case 4: p->o.transfer.strata = (int)v; break;
+    default: p->o.registers = (int)v; break;
+    }
 }
 
-static int take(bake_prt *p, const char *tok)
+static int take(bake_prt *p, const char *tok, char *err, size_t errlen)
 {
-    double v;
-    int r;
-    if ((r = kv(tok, "clusters", 1, LUMO_PRT_MAX_CLUSTERS, &v)) != 0)
-        return r < 0 ? -1 : (p->o.cpca.clusters = (int)v, 0);
-    if ((r = kv(tok, "components", 0, LUMO_PRT_MAX_COMPONENTS, &v)) != 0)
-        return r < 0 ? -1 : (p->o.cpca.components = (int)v, 0);
-    if ((r = kv(tok, "alpha", 0, 1e6, &v)) != 0)
-        return r < 0 ? -1 : (p->o.cpca.alpha = v, 0);
-    if ((r = kv(tok, "bounces", 0, 8, &v)) != 0)
-        return r < 0 ? -1 : (p->o.transfer.bounces = (int)v, 0);
-    if ((r = kv(tok, "strata", 2, 256, &v)) != 0)
-        return r < 0 ? -1 : (p->o.transfer.strata = (int)v, 0);
-    if ((r = kv(tok, "registers", 0, 65536, &v)) != 0)
-        return r < 0 ? -1 : (p->o.registers = (int)v, 0);
+    const char *eq = strchr(tok, '=');
+    char opt[64];
+    size_t n = eq ? (size_t)(eq - tok) : strlen(tok);
+    for (int k = 0; k < (int)(sizeof k_keys / sizeof k_keys[0]); k++) {
+        int iv;
+        double v;
+        if (strlen(k_keys[k].key) != n || strncmp(tok, k_keys[k].key, n))
+            continue;
+        snprintf(opt, sizeof opt, "--prt %s", k_keys[k].key);
+        if (!eq) {
+            snprintf(err, errlen, "--prt: '%.40s' needs a value (%s=N)", tok, k_keys[k].key);
+            return -1;
+        }
+        if (k_keys[k].is_int ? host_opt_int(opt, eq + 1, (int)k_keys[k].lo, (int)k_keys[k].hi, &iv, err, errlen)
+                             : host_opt_double(opt, eq + 1, k_keys[k].lo, k_keys[k].hi, &v, err, errlen))
+            return -1;
+        set_key(p, k, k_keys[k].is_int ? iv : v);
+        return 0;
+    }
+    snprintf(err, errlen, "--prt: unknown setting '%.*s' (clusters, components, alpha, bounces, strata, registers)",
+             (int)(n > 40 ? 40 : n), tok);
     return -1;
 }
 
-int bake_prt_parse(bake_prt *p, const char *spec, int threads, int progress)
+int bake_prt_parse(bake_prt *p, const char *spec, int threads, int progress, char *err, size_t errlen)
 {
-    char buf[256], *save = NULL, *end;
+    char buf[256], *save = NULL;
+    int order;
+    if (strlen(spec) >= sizeof buf) {
+        snprintf(err, errlen, "--prt: a spec of %zu characters, at most %zu", strlen(spec), sizeof buf - 1);
+        return -1;
+    }
     snprintf(buf, sizeof buf, "%s", spec);
     srv_prt_default_options(&p->o);
     p->o.transfer.bounces = 1;
     p->o.transfer.threads = p->o.cpca.threads = threads;
     p->o.transfer.progress = progress;
     char *tok = strtok_r(buf, ",", &save);
-    long order = tok ? strtol(tok, &end, 10) : 0;
-    if (!tok || *end || order < 1 || order > LUMO_PRT_MAX_ORDER)
+    if (host_opt_int("--prt ORDER", tok ? tok : "", 1, LUMO_PRT_MAX_ORDER, &order, err, errlen))
         return -1;
-    p->o.transfer.order = (int)order;
+    p->o.transfer.order = order;
     while ((tok = strtok_r(NULL, ",", &save)))
-        if (take(p, tok))
+        if (take(p, tok, err, errlen))
             return -1;
     p->on = 1;
     return 0;
@@ -81,7 +110,7 @@ int bake_prt_env(const bake_prt *p, srv_pkg_writer *w, char *err, size_t errlen)
     if (!p->env)
         return 0;
     if (host_png_read_rgb8(p->env, &rgb, &iw, &ih)) {
-        snprintf(err, errlen, "cannot read the environment map %s (8-bit PNG)", p->env);
+        snprintf(err, errlen, "cannot read the environment map %s (an 8-bit PNG of at most 2^26 pixels)", p->env);
         return -1;
     }
     float *f = malloc(3u * (size_t)iw * (size_t)ih * sizeof *f);

@@ -14,8 +14,9 @@ typedef struct bake_prt {
 } bake_prt;
 
 /* "ORDER[,clusters=K][,components=P][,alpha=A][,bounces=B][,strata=S][,registers=R]":
- * 0, or -1 for a malformed or out-of-range spec. */
-int bake_prt_parse(bake_prt *p, const char *spec, int threads, int progress);
+ * 0, or -1 with the refusal in err naming the setting and its value
+ * ("--prt clusters 1.5: not an integer"). */
+int bake_prt_parse(bake_prt *p, const char *spec, int threads, int progress, char *err, size_t errlen);
 
 /* After the PMSH chunk of mesh (xyz, albedo, tris): its PRTV chunk, and a
  * line of seed 003's metrics (time, overdraw, squared error) on stderr. */

@@ -182,6 +182,7 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
 {
     static const char *const k_meshes[] = {"raw", "pm", "both"};   /* MESH_RAW - 1, ... */
     char why[200];
+    srv_light light;
 
     switch (c) {
     case O_DEFAULT: o->use_default = 1; return 0;
@@ -192,6 +193,8 @@ static int take_option(options *o, int c, const char *arg, char *err, size_t err
                      "(LUMO_MAX_LIGHTS, lumo/config.h)", arg, LUMO_MAX_LIGHTS, LUMO_MAX_LIGHTS);
             return -1;
         }
+        if (srv_light_parse_as("--light", arg, &light, err, errlen))
+            return -1;
         o->lights[o->nlights++] = arg;
         return 0;
     case O_DRAGON: o->dragon = arg; return 0;
@@ -258,10 +261,8 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     }
     if (o->spp == 0)
         o->spp = o->ref_w ? DEFAULT_REF_SPP : DEFAULT_BAKE_SPP;
-    if (o->prt_spec && bake_prt_parse(&o->prt, o->prt_spec, o->threads, o->progress)) {
-        snprintf(err, errlen, "bad value '%s' for --prt (try --help)", o->prt_spec);
+    if (o->prt_spec && bake_prt_parse(&o->prt, o->prt_spec, o->threads, o->progress, err, errlen))
         return -1;
-    }
     if (o->prt.env && !o->prt.on) {
         snprintf(err, errlen, "--prt-env needs --prt");
         return -1;
@@ -350,7 +351,7 @@ static lumo_status load_scene(const options *o, srv_scene *s, char *err, size_t 
     lumo_status st = load_base(o, s, err, errlen);
     for (int i = 0; !st && i < o->nlights; i++) {
         srv_light l;
-        st = srv_light_parse(o->lights[i], &l, err, errlen);
+        st = srv_light_parse_as("--light", o->lights[i], &l, err, errlen);
         if (!st)
             st = l.kind == LUMO_LIGHT_AREA ? srv_add_area_light(s, &l) : srv_scene_add_light(s, &l);
     }

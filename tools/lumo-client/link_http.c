@@ -92,14 +92,42 @@ static size_t on_body(char *p, size_t size, size_t n, void *ctx)
     return take == k ? k : 0;   /* more than asked: abort the transfer */
 }
 
+/* Decimal digits at *s into *v (at most 19: no wrap); 0, or -1 when none. */
+static int header_number(const char **s, uint64_t *v)
+{
+    int k = 0;
+
+    for (*v = 0; **s >= '0' && **s <= '9' && k < 19; (*s)++, k++)
+        *v = *v * 10 + (uint64_t)(**s - '0');
+    return k == 0 || (**s >= '0' && **s <= '9') ? -1 : 0;
+}
+
+/* "Content-Range: bytes A-B/TOTAL" from the server, whose bytes are hostile:
+ * curl's header line is not NUL-terminated, so it is copied first, and the
+ * numbers are read whole (sscanf's %llu would take "-1" as 2^64 - 1). A
+ * line that does not parse leaves the size unknown (load_table refuses). */
 static size_t on_header(char *p, size_t size, size_t n, void *ctx)
 {
     http_link *h = ctx;
-    unsigned long long a, b, total;
+    char line[160];
+    const char *s = line;
+    size_t len = size * n;
+    uint64_t a, b, total;
 
-    if (!strncasecmp(p, "Content-Range:", 14) && sscanf(p + 14, " bytes %llu-%llu/%llu", &a, &b, &total) == 3)
-        h->file_size = total;
-    return size * n;
+    if (len < 14 || len >= sizeof line || strncasecmp(p, "Content-Range:", 14))
+        return len;
+    memcpy(line, p, len);
+    line[len] = 0;
+    for (s += 14; *s == ' ' || *s == '\t'; s++)
+        ;
+    if (strncmp(s, "bytes ", 6))
+        return len;
+    s += 6;
+    if (header_number(&s, &a) || *s++ != '-' || header_number(&s, &b) || *s++ != '/' ||
+        header_number(&s, &total) || strspn(s, "\r\n") != strlen(s) || a > b || b >= total)
+        return len;
+    h->file_size = total;
+    return len;
 }
 
 /* Bytes [off, off + len) of the package into dst: a 206 answer of exactly

@@ -153,7 +153,7 @@ int main(int argc, char **argv)
     for (i = 0; i < n; i++) {
         if (host_opt_file(NULL, in[i], "PNG picture", err, sizeof err) == 0 &&
             host_png_read_rgb8(in[i], &img[i], &w[i], &h[i]))
-            snprintf(err, sizeof err, "%s: cannot read as an 8-bit PNG picture", in[i]);
+            snprintf(err, sizeof err, "%s: cannot read as an 8-bit PNG picture (of at most 2^26 pixels)", in[i]);
         if (err[0]) {
             fprintf(stderr, "lumo-compare: error: %s\n", err);
             return 1;

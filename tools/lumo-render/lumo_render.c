@@ -182,6 +182,7 @@ static int check_args(const options *o, int argc, char **argv, char *err, size_t
 /* One option's value into o; 0, or -1 with the refusal in err. */
 static int take_value(options *o, int c, const char *arg, char *err, size_t errlen)
 {
+    lumo_raster_light light;
     uint32_t w, h;
     int k;
 
@@ -215,6 +216,8 @@ static int take_value(options *o, int c, const char *arg, char *err, size_t errl
                      LUMO_MAX_LIGHTS);
             return -1;
         }
+        if (host_light_parse("--light", arg, &light, err, errlen))
+            return -1;
         o->lights[o->nlights++] = arg;
         return 0;
     default: return take_flag(o, c, arg, err, errlen);
@@ -428,7 +431,7 @@ int main(int argc, char **argv)
     host_renderer *r;
     lumo_raster_mesh mesh;
     lumo_raster_scene rs;
-    char err[512];
+    char err[512], why[600];
     uint8_t *rgb;
     double total = 0, best = 1e300;
     lumo_status st;
@@ -461,9 +464,9 @@ int main(int argc, char **argv)
     if (o.nlights) {
         scene.light_count = 0;
         for (i = 0; i < o.nlights; i++)
-            if ((st = host_light_from_string(o.lights[i], &scene.lights[scene.light_count++]))) {
-                fprintf(stderr, "lumo-render: error: bad light '%s': %s (docs/scene-format.md)\n",
-                        o.lights[i], lumo_strerror(st));
+            if ((st = host_light_parse("--light", o.lights[i], &scene.lights[scene.light_count++], why,
+                                       sizeof why))) {
+                fprintf(stderr, "lumo-render: error: %s (docs/scene-format.md)\n", why);
                 return 1;
             }
     }

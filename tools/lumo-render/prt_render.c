@@ -49,7 +49,7 @@ static int env_vector(host_prt *p, const char *env, char *err, size_t errlen)
     int w, h;
     double c[3 * LUMO_PRT_MAX_COEFFS];
     if (host_png_read_rgb8(env, &rgb, &w, &h)) {
-        snprintf(err, errlen, "%s: cannot read the environment map (8-bit PNG)", env);
+        snprintf(err, errlen, "%s: cannot read the environment map (an 8-bit PNG of at most 2^26 pixels)", env);
         return -1;
     }
     float *f = malloc(3u * (size_t)w * (size_t)h * sizeof *f);

@@ -81,13 +81,21 @@ lumo_status host_camera_from_string(const char *text, lumo_raster_camera *out)
     return st ? st : host_camera_from_srv(&c, out);
 }
 
+lumo_status host_light_parse(const char *opt, const char *text, lumo_raster_light *out, char *err, size_t errlen)
+{
+    srv_light l;
+    lumo_status st = srv_light_parse_as(opt, text, &l, err, errlen);
+
+    if (!st && (st = host_light_from_srv(&l, out)))
+        snprintf(err, errlen, "%s '%.200s': %s in the renderer's fixed point", opt, text, lumo_strerror(st));
+    return st;
+}
+
 lumo_status host_light_from_string(const char *text, lumo_raster_light *out)
 {
     char why[600];
-    srv_light l;
-    lumo_status st = text ? srv_light_parse(text, &l, why, sizeof why) : LUMO_ERR_ARG;
 
-    return st ? st : host_light_from_srv(&l, out);
+    return text ? host_light_parse("light", text, out, why, sizeof why) : LUMO_ERR_ARG;
 }
 
 /* ---- meshes -------------------------------------------------------------- */

@@ -40,6 +40,9 @@ lumo_status host_camera_from_string(const char *text, lumo_raster_camera *out);
  * srv_light_parse, then host_light_from_srv. LUMO_OK, or the parser's
  * status (LUMO_ERR_ARG, LUMO_ERR_LIMIT); *out is written only on success. */
 lumo_status host_light_from_string(const char *text, lumo_raster_light *out);
+/* The same with the parser's reason in err ("OPT 'TEXT': position needs 3
+ * numbers, got 2", srv_light_parse_as); `opt` names the source ("--light"). */
+lumo_status host_light_parse(const char *opt, const char *text, lumo_raster_light *out, char *err, size_t errlen);
 
 /* A whole server scene into *out (initialised here; free it with
  * host_scene_free): every mesh appended in order, with area-weighted vertex

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "lumo/fixed.h"
+#include "lumo_host/options.h"
 #include "scene/import.h"
 #include "serve/index.h"
 #include "vsl/vsl_engine.h"
@@ -29,38 +30,47 @@ struct dynamic {
     int             cmd_running, stop;
 };
 
-/* "key=value" settings after the scene file's name. */
+/* "key=value" settings after the scene file's name, each value through
+ * the strict option parser: the refusal names the setting and the value
+ * ("--dynamic vsl 1.5: not an integer"). */
 static int setting(srv_vsl_engine_opts *o, const char **commands, char *kv, char *err, size_t errlen)
 {
-    char *eq = strchr(kv, '='), *end;
-    if (!eq)
-        goto bad;
+    char *eq = strchr(kv, '=');
+    int64_t n;
+    double v;
+    if (!eq) {
+        snprintf(err, errlen, "--dynamic: setting '%.64s' has no '=' (vsl=N, pool=N, batch=N, photon-rate=R, tau=T, "
+                 "seed=S, commands=FILE)", kv);
+        return -1;
+    }
     *eq++ = 0;
-    double v = strtod(eq, &end);
-    if (!strcmp(kv, "commands")) {
-        *commands = eq;
+    if (!strcmp(kv, "commands"))
+        return *commands = eq, 0;
+    if (!strcmp(kv, "vsl") || !strcmp(kv, "pool") || !strcmp(kv, "batch")) {
+        char opt[32];
+        snprintf(opt, sizeof opt, "--dynamic %s", kv);
+        if (host_opt_i64(opt, eq, 1, (int64_t)1e12, &n, err, errlen))
+            return -1;
+        if (kv[0] == 'v')
+            o->nv = (size_t)n;
+        else if (kv[0] == 'p')
+            o->pool = (size_t)n;
+        else
+            o->batch = (uint64_t)n;
         return 0;
     }
-    if (end == eq || *end || !(v >= 0) || v > 1e12)
-        goto bad;
-    if (!strcmp(kv, "vsl") && v >= 1)
-        o->nv = (size_t)v;
-    else if (!strcmp(kv, "pool") && v >= 1)
-        o->pool = (size_t)v;
-    else if (!strcmp(kv, "batch") && v >= 1)
-        o->batch = (uint64_t)v;
-    else if (!strcmp(kv, "photon-rate"))
-        o->rate = v;
-    else if (!strcmp(kv, "tau") && v <= 1)
+    if (!strcmp(kv, "photon-rate"))
+        return host_opt_double("--dynamic photon-rate", eq, 0, 1e12, &o->rate, err, errlen);
+    if (!strcmp(kv, "tau")) {
+        if (host_opt_double("--dynamic tau", eq, 0, 1, &v, err, errlen))
+            return -1;
         o->tau = (float)v;
-    else if (!strcmp(kv, "seed"))
-        o->seed = (uint64_t)v;
-    else
-        goto bad;
-    return 0;
-bad:
-    snprintf(err, errlen, "--dynamic: bad setting '%s' (vsl=N, pool=N, batch=N, photon-rate=R, tau=T, seed=S, "
-             "commands=FILE)", kv);
+        return 0;
+    }
+    if (!strcmp(kv, "seed"))
+        return host_opt_u64("--dynamic seed", eq, &o->seed, err, errlen);
+    snprintf(err, errlen, "--dynamic: unknown setting '%.64s' (vsl=N, pool=N, batch=N, photon-rate=R, tau=T, "
+             "seed=S, commands=FILE)", kv);
     return -1;
 }
 
@@ -92,15 +102,16 @@ static void command(struct dynamic *d, char *line)
     char key[96];
     if (n == 4 && !strcmp(w[0], "move") && snprintf(key, sizeof key, "0:%s", w[3]) < (int)sizeof key) {
         char *words[3] = {w[1], w[2], key};
-        if (srv_motion_parse_words(&one, &d->scene, words, 3, err, sizeof err) == LUMO_OK) {
-            const srv_motion_track *tr = &one.tracks[0];
-            srv_pose p = srv_pose_make(tr->keys[0].p, tr->keys[0].yaw_deg);
-            lumo_status st = tr->light ? srv_vsl_engine_move_light(d->engine, tr->target, tr->keys[0].p)
-                                       : srv_vsl_engine_move_object(d->engine, tr->target, &p);
-            fprintf(stderr, "lumo-server: dynamic: %s %s %s: %s\n", w[1], w[2], w[3],
-                    st ? lumo_strerror(st) : "moved");
+        if (srv_motion_parse_words(&one, &d->scene, words, 3, err, sizeof err) != LUMO_OK) {
+            fprintf(stderr, "lumo-server: dynamic: refused 'move %.32s %.32s %.64s': %s\n", w[1], w[2], w[3], err);
             return;
         }
+        const srv_motion_track *tr = &one.tracks[0];
+        srv_pose p = srv_pose_make(tr->keys[0].p, tr->keys[0].yaw_deg);
+        lumo_status st = tr->light ? srv_vsl_engine_move_light(d->engine, tr->target, tr->keys[0].p)
+                                   : srv_vsl_engine_move_object(d->engine, tr->target, &p);
+        fprintf(stderr, "lumo-server: dynamic: %s %s %s: %s\n", w[1], w[2], w[3], st ? lumo_strerror(st) : "moved");
+        return;
     }
     fprintf(stderr, "lumo-server: dynamic: ignored '%s ...': want 'move object NAME|INDEX X,Y,Z[:YAW]' or "
             "'move light INDEX X,Y,Z'\n", w[0]);
@@ -127,7 +138,9 @@ static void *read_commands(void *arg)
         len += (size_t)got;
         buf[len] = 0;
         char *nl;
-        while ((nl = strchr(buf, '\n'))) {
+        /* memchr, not strchr: a NUL byte in a line must not hide the lines
+         * after it (the line itself ends at the NUL for command()). */
+        while ((nl = memchr(buf, '\n', len))) {
             *nl = 0;
             command(d, buf);
             len -= (size_t)(nl + 1 - buf);

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "lumo_host/options.h"
 #include "lumo_host/png_io.h"
 
 static void sky(double th, double ph, double *rgb)
@@ -64,8 +65,16 @@ static int stack(const char *out, int n, char **in)
 
 int main(int argc, char **argv)
 {
-    if (argc == 5 && !strcmp(argv[1], "env"))
-        return env(argv[2], atoi(argv[3]) > 0 ? atoi(argv[3]) : 256, atoi(argv[4]) > 0 ? atoi(argv[4]) : 128);
+    if (argc == 5 && !strcmp(argv[1], "env")) {
+        char why[160];
+        int w, h;
+        if (host_opt_int("W", argv[3], 1, 16384, &w, why, sizeof why) ||
+            host_opt_int("H", argv[4], 1, 16384, &h, why, sizeof why)) {
+            fprintf(stderr, "prt-demo: error: %s\n", why);
+            return 2;
+        }
+        return env(argv[2], w, h);
+    }
     if (argc >= 4 && !strcmp(argv[1], "stack"))
         return stack(argv[2], argc - 3, argv + 3);
     fputs("usage: prt-demo env OUT.png W H | prt-demo stack OUT.png IN.png...\n", stderr);

@@ -31,6 +31,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {   /* the C++ benchmarks (bench/draco_bench_libdraco.cc) parse their numbers here too */
+#endif
+
 /* Integers in [lo, hi] (inclusive). */
 int host_opt_i64(const char *opt, const char *text, int64_t lo, int64_t hi, int64_t *out, char *err,
                  size_t errlen);
@@ -77,5 +81,9 @@ int host_opt_file(const char *opt, const char *path, const char *kind, char *err
  * value, '?' otherwise), `arg` the word it stopped at (argv[optind - 1]),
  * optopt_ the short option it names (0 for long ones). Always -1. */
 int host_opt_getopt_error(int c, const char *arg, int optopt_, char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -19,8 +19,14 @@ int host_png_write_rgb8(const char *path, const uint8_t *rgb, int w, int h, char
 int host_png_write_radiance(const char *path, const float *rgb, int w, int h, float exposure, char *err,
                             size_t errlen);
 
+/* Most pixels of a PNG read: 2^26 (an 8192 x 8192 picture, 192 MiB as
+ * RGB8). A PNG header may declare up to 2^31 - 1 per side over a few
+ * hundred bytes of deflated zeros; the buffer is sized from the header. */
+#define HOST_PNG_MAX_PIXELS ((uint64_t)1 << 26)
+
 /* Read any 8-bit PNG (grey, RGB, alpha dropped) as RGB8 into *rgb
- * (malloc'ed, w*h*3, caller frees). 0 on success, -1 otherwise. */
+ * (malloc'ed, w*h*3, caller frees). 0 on success, -1 otherwise (not a
+ * PNG, damaged, or more than HOST_PNG_MAX_PIXELS pixels). */
 int host_png_read_rgb8(const char *path, uint8_t **rgb, int *w, int *h);
 
 #endif
