@@ -2,9 +2,9 @@
  * raster_gl.c — the shared GL renderer of the OSMesa and EGL backends
  * (lumo/raster_gl.h). Desktop code: floats and heap are fine here.
  *
- * GL entry points come from the backend's get-proc-address function into a
- * table, so the renderer never links a GL library itself: OSMesa and EGL
- * (libglvnd) can live in one program. Frames go to an off-screen
+ * GL entry points come from the backend's get-proc-address function into
+ * the backends' one table (raster_gl_api.h), so the renderer never links a
+ * GL library itself: OSMesa and EGL (libglvnd) can live in one program. Frames go to an off-screen
  * framebuffer object (RGBA8 + 24-bit depth) and are read back.
  */
 #include <math.h>
@@ -13,82 +13,16 @@
 #include <string.h>
 #include <GL/glcorearb.h>
 #include "lumo/raster_gl.h"
+#include "raster_gl_api.h"
 #include "raster_gl_shaders.h"
 #include "raster_gl_shadow.h"
-
-#define GL_FUNCS(X)                                                            \
-    X(PFNGLCREATESHADERPROC, CreateShader)                                     \
-    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \
-    X(PFNGLCOMPILESHADERPROC, CompileShader)                                   \
-    X(PFNGLGETSHADERIVPROC, GetShaderiv)                                       \
-    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                             \
-    X(PFNGLDELETESHADERPROC, DeleteShader)                                     \
-    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                   \
-    X(PFNGLATTACHSHADERPROC, AttachShader)                                     \
-    X(PFNGLBINDATTRIBLOCATIONPROC, BindAttribLocation)                         \
-    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                       \
-    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                     \
-    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                           \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                   \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                         \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                                           \
-    X(PFNGLUNIFORM1IVPROC, Uniform1iv)                                         \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                                           \
-    X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                         \
-    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                                         \
-    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
-    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                               \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
-    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                         \
-    X(PFNGLGENBUFFERSPROC, GenBuffers)                                         \
-    X(PFNGLBINDBUFFERPROC, BindBuffer)                                         \
-    X(PFNGLBUFFERDATAPROC, BufferData)                                         \
-    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
-    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                       \
-    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)               \
-    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
-    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
-    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)               \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
-    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                             \
-    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                             \
-    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                       \
-    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                       \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
-    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                         \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
-    X(PFNGLVIEWPORTPROC, Viewport)                                             \
-    X(PFNGLCLEARCOLORPROC, ClearColor)                                         \
-    X(PFNGLCLEARPROC, Clear)                                                   \
-    X(PFNGLENABLEPROC, Enable)                                                 \
-    X(PFNGLDISABLEPROC, Disable)                                               \
-    X(PFNGLCULLFACEPROC, CullFace)                                             \
-    X(PFNGLFRONTFACEPROC, FrontFace)                                           \
-    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
-    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
-    X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
-    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \
-    X(PFNGLGETSTRINGPROC, GetString)                                           \
-    X(PFNGLGETERRORPROC, GetError)                                             \
-    X(PFNGLFINISHPROC, Finish)
-
-typedef struct gl_api {
-#define GL_MEMBER(type, name) type name;
-    GL_FUNCS(GL_MEMBER)
-#undef GL_MEMBER
-} gl_api;
 
 enum { ATTR_POS = 0, ATTR_NRM = 1, ATTR_ALB = 2 };
 #define IVG_TEXTURES 12
 #define SHADOW_UNIT IVG_TEXTURES    /* the shadow maps' texture unit */
 
 struct lumo_gl {
-    gl_api gl;
+    lumo_gl_api gl;
     lumo_gl_getproc_fn getproc;     /* kept for the add-ons in their own files (lumo_gl_getproc) */
     int gles, width, height;
     GLuint prog[2];                 /* per vertex, per pixel */
@@ -109,19 +43,6 @@ static const char *const tex_names[IVG_TEXTURES] = {
     "u_cpx", "u_cnx", "u_cpy", "u_cny", "u_cpz", "u_cnz",
     "u_dpx", "u_dnx", "u_dpy", "u_dny", "u_dpz", "u_dnz"
 };
-
-static int load_api(gl_api *gl, lumo_gl_getproc_fn getproc, char *err, size_t errlen)
-{
-#define GL_LOAD(type, name)                                                    \
-    gl->name = (type)getproc("gl" #name);                                      \
-    if (!gl->name) {                                                           \
-        snprintf(err, errlen, "GL entry point gl%s missing", #name);           \
-        return -1;                                                             \
-    }
-    GL_FUNCS(GL_LOAD)
-#undef GL_LOAD
-    return 0;
-}
 
 /* Report a failed compile or link with the driver's log, delete the
  * object, return 0 (no object). */
@@ -243,7 +164,7 @@ lumo_gl *lumo_gl_create(lumo_gl_getproc_fn getproc, int gles, int width, int hei
     g->width = width;
     g->height = height;
     g->rgba = malloc((size_t)width * height * 4);
-    if (!g->rgba || load_api(&g->gl, getproc, err, errlen))
+    if (!g->rgba || lumo_gl_api_load(&g->gl, getproc, err, errlen))
         goto fail;
     name = g->gl.GetString(GL_RENDERER);
     snprintf(g->renderer, sizeof g->renderer, "%s", name ? (const char *)name : "?");

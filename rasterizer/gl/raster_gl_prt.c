@@ -18,72 +18,10 @@
 #include <GL/glcorearb.h>
 #include "lumo/raster_gl_prt.h"
 #include "lumo/wire.h"
+#include "raster_gl_api.h"
 #include "raster_gl_prt_shaders.h"
 
-#define PRT_GL_FUNCS(X)                                                        \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                   \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                         \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                                           \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                                           \
-    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                                         \
-    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                                         \
-    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
-    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                               \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
-    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                         \
-    X(PFNGLGENBUFFERSPROC, GenBuffers)                                         \
-    X(PFNGLBINDBUFFERPROC, BindBuffer)                                         \
-    X(PFNGLBUFFERDATAPROC, BufferData)                                         \
-    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
-    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                       \
-    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)               \
-    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
-    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
-    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)                     \
-    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)               \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
-    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                             \
-    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                             \
-    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                       \
-    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                       \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
-    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
-    X(PFNGLVIEWPORTPROC, Viewport)                                             \
-    X(PFNGLCLEARCOLORPROC, ClearColor)                                         \
-    X(PFNGLCLEARPROC, Clear)                                                   \
-    X(PFNGLENABLEPROC, Enable)                                                 \
-    X(PFNGLDISABLEPROC, Disable)                                               \
-    X(PFNGLCULLFACEPROC, CullFace)                                             \
-    X(PFNGLFRONTFACEPROC, FrontFace)                                           \
-    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
-    X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
-    X(PFNGLCOLORMASKPROC, ColorMask)                                           \
-    X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
-    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
-    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                         \
-    X(PFNGLGETERRORPROC, GetError)
-
 /* Query objects: GL 3.3 has GL_PRIMITIVES_GENERATED, GLES 3.0 does not. */
-#define PRT_GL_QUERY_FUNCS(X)                                                  \
-    X(PFNGLGENQUERIESPROC, GenQueries)                                         \
-    X(PFNGLBEGINQUERYPROC, BeginQuery)                                         \
-    X(PFNGLENDQUERYPROC, EndQuery)                                             \
-    X(PFNGLGETQUERYOBJECTUIVPROC, GetQueryObjectuiv)                           \
-    X(PFNGLDELETEQUERIESPROC, DeleteQueries)
-
-typedef struct prt_gl_api {
-#define PRT_GL_MEMBER(type, name) type name;
-    PRT_GL_FUNCS(PRT_GL_MEMBER)
-    PRT_GL_QUERY_FUNCS(PRT_GL_MEMBER)
-#undef PRT_GL_MEMBER
-} prt_gl_api;
-
 enum { ATTR_POS, ATTR_NRM, ATTR_ALB, ATTR_PS, ATTR_W0 };
 #define MAX_WVEC ((LUMO_PRT_MAX_COMPONENTS + 3) / 4)
 
@@ -99,7 +37,7 @@ typedef struct prt_pass {
 } prt_pass;
 
 struct lumo_gl_prt {
-    prt_gl_api gl;
+    lumo_gl_api gl;
     lumo_gl *g;
     int width, height, has_query;
     unsigned np;                  /* registers per cluster: P + 1 */
@@ -111,18 +49,11 @@ struct lumo_gl_prt {
     uint64_t drawn, generated;
 };
 
-static int load_api(prt_gl_api *gl, lumo_gl_getproc_fn getproc, int *has_query, char *err, size_t errlen)
+/* The table, and whether the context counts primitives (query objects). */
+static int load_api(lumo_gl_api *gl, lumo_gl_getproc_fn getproc, int *has_query, char *err, size_t errlen)
 {
-#define PRT_GL_LOAD(type, name)                                                \
-    if (!(gl->name = (type)getproc("gl" #name))) {                             \
-        snprintf(err, errlen, "GL entry point gl%s missing", #name);           \
-        return -1;                                                             \
-    }
-    PRT_GL_FUNCS(PRT_GL_LOAD)
-#undef PRT_GL_LOAD
-#define PRT_GL_TRY(type, name) gl->name = (type)getproc("gl" #name);
-    PRT_GL_QUERY_FUNCS(PRT_GL_TRY)
-#undef PRT_GL_TRY
+    if (lumo_gl_api_load(gl, getproc, err, errlen))
+        return -1;
     *has_query = gl->GenQueries && gl->BeginQuery && gl->EndQuery && gl->GetQueryObjectuiv && gl->DeleteQueries;
     return 0;
 }
@@ -174,7 +105,7 @@ static int build_programs(lumo_gl_prt *p, unsigned components, char *err, size_t
 /* The float target the passes add into, with its own depth buffer. */
 static int make_target(lumo_gl_prt *p, char *err, size_t errlen)
 {
-    prt_gl_api *gl = &p->gl;
+    lumo_gl_api *gl = &p->gl;
 
     gl->GenFramebuffers(1, &p->fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, p->fbo);
@@ -346,7 +277,7 @@ static int check_meshes(const lumo_raster_mesh *m, const lumo_prt *prt, const ui
 static int upload(lumo_gl_prt *p, const lumo_raster_mesh *m, const lumo_prt *prt, const uint32_t *counts,
                   uint32_t meshes, const uint32_t *ps)
 {
-    prt_gl_api *gl = &p->gl;
+    lumo_gl_api *gl = &p->gl;
     uint32_t *vpass = malloc((size_t)m->vertex_count * sizeof *vpass + 1), *idx = NULL, a;
     size_t stride = 0, nidx = 0;
     float *v = vpass ? vertex_data(m, prt, counts, meshes, ps, vpass, &stride) : NULL;
@@ -440,7 +371,7 @@ static void upload_pass(lumo_gl_prt *p, GLint loc, uint32_t q, const lumo_q16_16
 
 static void draw_passes(lumo_gl_prt *p, const lumo_q16_16 *const *frame)
 {
-    prt_gl_api *gl = &p->gl;
+    lumo_gl_api *gl = &p->gl;
     GLint pass = gl->GetUniformLocation(p->prog, "u_pass"), reg = gl->GetUniformLocation(p->prog, "u_reg");
     GLuint generated = 0;
     uint32_t q;
@@ -475,7 +406,7 @@ static void draw_passes(lumo_gl_prt *p, const lumo_q16_16 *const *frame)
 int lumo_gl_prt_draw(lumo_gl_prt *p, const lumo_raster_camera *cam, const lumo_raster_scene *s,
                      const lumo_q16_16 *const *frame, uint8_t *rgb)
 {
-    prt_gl_api *gl = &p->gl;
+    lumo_gl_api *gl = &p->gl;
     float mvp[16], eye[3] = {(float)(cam->eye[0] / 65536.0), (float)(cam->eye[1] / 65536.0),
                              (float)(cam->eye[2] / 65536.0)};
 
@@ -527,7 +458,7 @@ void lumo_gl_prt_get_stats(const lumo_gl_prt *p, lumo_gl_prt_stats *st)
 
 void lumo_gl_prt_destroy(lumo_gl_prt *p)
 {
-    prt_gl_api *gl;
+    lumo_gl_api *gl;
 
     if (!p)
         return;

@@ -7,51 +7,14 @@
  * eye, basis, cot(fov/2), near plane), both sides of every triangle, depth
  * = w / far written by the fragment shader (linear, so the lookup compares
  * view depths as the soft path does, without its 16-bit step). The GL
- * entry points come through the backend's get-proc-address function, as in
- * raster_gl.c.
+ * entry points are the backends' one table (raster_gl_api.h).
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "raster_gl_api.h"
 #include "raster_gl_shadow.h"
-
-#define SHADOW_FUNCS(X)                                                        \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                         \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                   \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                                           \
-    X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                         \
-    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                                         \
-    X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                             \
-    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
-    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                         \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
-    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
-    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
-    X(PFNGLFRAMEBUFFERTEXTURELAYERPROC, FramebufferTextureLayer)               \
-    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                       \
-    X(PFNGLREADBUFFERPROC, ReadBuffer)                                         \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
-    X(PFNGLVIEWPORTPROC, Viewport)                                             \
-    X(PFNGLCLEARPROC, Clear)                                                   \
-    X(PFNGLENABLEPROC, Enable)                                                 \
-    X(PFNGLDISABLEPROC, Disable)                                               \
-    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
-    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
-    X(PFNGLGETERRORPROC, GetError)
-
-typedef struct shadow_api {
-#define SHADOW_MEMBER(type, name) type name;
-    SHADOW_FUNCS(SHADOW_MEMBER)
-#undef SHADOW_MEMBER
-} shadow_api;
 
 /* What a light's maps were drawn from: its views, compared whole. */
 typedef struct drawn_key {
@@ -61,7 +24,7 @@ typedef struct drawn_key {
 } drawn_key;
 
 struct lumo_gl_shadow {
-    shadow_api gl;
+    lumo_gl_api gl;
     GLuint prog, tex, fbo;
     GLsizei tex_size, tex_layers;          /* the texture's allocation */
     uint32_t count;                        /* lights of the drawn scene */
@@ -72,19 +35,6 @@ struct lumo_gl_shadow {
     int drawn;
     size_t bytes;
 };
-
-static int load_api(shadow_api *gl, lumo_gl_getproc_fn getproc, char *err, size_t errlen)
-{
-#define SHADOW_LOAD(type, name)                                                \
-    gl->name = (type)getproc("gl" #name);                                      \
-    if (!gl->name) {                                                           \
-        snprintf(err, errlen, "GL entry point gl%s missing", #name);           \
-        return -1;                                                             \
-    }
-    SHADOW_FUNCS(SHADOW_LOAD)
-#undef SHADOW_LOAD
-    return 0;
-}
 
 void lumo_gl_frustum(const double rows[3][3], const double eye[3], double cot_half, double aspect,
                      double znear, double zfar, float out[16])
@@ -128,7 +78,7 @@ lumo_gl_shadow *lumo_gl_shadow_create(lumo_gl_getproc_fn getproc, GLuint depth_p
         snprintf(err, errlen, "out of memory");
         return NULL;
     }
-    if (load_api(&sh->gl, getproc, err, errlen)) {
+    if (lumo_gl_api_load(&sh->gl, getproc, err, errlen)) {
         free(sh);
         return NULL;
     }

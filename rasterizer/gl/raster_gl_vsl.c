@@ -5,8 +5,8 @@
  *
  * Its shadow maps are its own (a depth-texture array, one layer per spot
  * light, six per point light) so that it does not wait on raster_gl.c's;
- * the GL entry points come through the backend's get-proc-address into a
- * table of this file, as raster_gl.c does, so no libGL is linked.
+ * the GL entry points come through the backend's get-proc-address into the
+ * backends' one table (raster_gl_api.h), so no libGL is linked.
  */
 #include <math.h>
 #include <stdio.h>
@@ -14,83 +14,8 @@
 #include <string.h>
 #include <GL/glcorearb.h>
 #include "lumo/raster_gl_vsl.h"
+#include "raster_gl_api.h"
 #include "raster_gl_vsl_shaders.h"
-
-#define VSL_GL_FUNCS(X)                                                        \
-    X(PFNGLCREATESHADERPROC, CreateShader)                                     \
-    X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \
-    X(PFNGLCOMPILESHADERPROC, CompileShader)                                   \
-    X(PFNGLGETSHADERIVPROC, GetShaderiv)                                       \
-    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                             \
-    X(PFNGLDELETESHADERPROC, DeleteShader)                                     \
-    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                   \
-    X(PFNGLATTACHSHADERPROC, AttachShader)                                     \
-    X(PFNGLBINDATTRIBLOCATIONPROC, BindAttribLocation)                         \
-    X(PFNGLLINKPROGRAMPROC, LinkProgram)                                       \
-    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                     \
-    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                           \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                   \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                         \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                                           \
-    X(PFNGLUNIFORM1IVPROC, Uniform1iv)                                         \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                                           \
-    X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                         \
-    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                                         \
-    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
-    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                               \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
-    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                         \
-    X(PFNGLGENBUFFERSPROC, GenBuffers)                                         \
-    X(PFNGLBINDBUFFERPROC, BindBuffer)                                         \
-    X(PFNGLBUFFERDATAPROC, BufferData)                                         \
-    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
-    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                       \
-    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)               \
-    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
-    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
-    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)                     \
-    X(PFNGLFRAMEBUFFERTEXTURELAYERPROC, FramebufferTextureLayer)               \
-    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)               \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)                 \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
-    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                             \
-    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                             \
-    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                       \
-    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                       \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
-    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
-    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                         \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
-    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                       \
-    X(PFNGLDRAWBUFFERPROC, DrawBuffer)                                         \
-    X(PFNGLREADBUFFERPROC, ReadBuffer)                                         \
-    X(PFNGLVIEWPORTPROC, Viewport)                                             \
-    X(PFNGLCLEARCOLORPROC, ClearColor)                                         \
-    X(PFNGLCLEARPROC, Clear)                                                   \
-    X(PFNGLENABLEPROC, Enable)                                                 \
-    X(PFNGLDISABLEPROC, Disable)                                               \
-    X(PFNGLCULLFACEPROC, CullFace)                                             \
-    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
-    X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
-    X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
-    X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
-    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
-    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                         \
-    X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
-    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \
-    X(PFNGLGETSTRINGPROC, GetString)                                           \
-    X(PFNGLGETERRORPROC, GetError)                                             \
-    X(PFNGLFINISHPROC, Finish)
-
-typedef struct vsl_gl_api {
-#define VSL_GL_MEMBER(type, name) type name;
-    VSL_GL_FUNCS(VSL_GL_MEMBER)
-#undef VSL_GL_MEMBER
-} vsl_gl_api;
 
 enum { ATTR_POS = 0, ATTR_NRM = 1, ATTR_ALB = 2 };
 enum { P_DEPTH, P_GBUFFER, P_DIRECT, P_DEFERRED, P_WHOLE, P_ONEPASS, P_COUNT };
@@ -100,7 +25,7 @@ enum { T_GPOS, T_GNRM, T_GALB, T_SHADOW, T_VSLS, T_ACC, T_COUNT };
 #define ZNEAR 0.05f
 
 struct lumo_gl_vsl {
-    vsl_gl_api gl;
+    lumo_gl_api gl;
     int width, height;
     GLuint prog[P_COUNT];
     GLuint tex[T_COUNT];
@@ -307,13 +232,8 @@ lumo_gl_vsl *lumo_gl_vsl_create(lumo_gl_getproc_fn getproc, int width, int heigh
         return NULL;
     }
     r->width = width, r->height = height;
-#define VSL_GL_LOAD(type, name)                                                \
-    if (!(r->gl.name = (type)getproc("gl" #name))) {                           \
-        snprintf(err, errlen, "GL entry point gl%s missing", #name);           \
-        goto fail;                                                             \
-    }
-    VSL_GL_FUNCS(VSL_GL_LOAD)
-#undef VSL_GL_LOAD
+    if (lumo_gl_api_load(&r->gl, getproc, err, errlen))
+        goto fail;
     const GLubyte *name = r->gl.GetString(GL_RENDERER), *ver = r->gl.GetString(GL_VERSION);
     snprintf(r->describe, sizeof r->describe, "%s; OpenGL %s; G-buffer RGBA32F x3, accumulation RGBA32F",
              name ? (const char *)name : "?", ver ? (const char *)ver : "?");
