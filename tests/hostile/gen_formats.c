@@ -19,48 +19,9 @@
 #include <string.h>
 #include <unistd.h>
 #include <zlib.h>
+#include "lumo/wire.h"
+#include "corpus.h"
 
-static const char *g_dir;
-static FILE *g_manifest;
-static unsigned g_count;
-
-static void put_case(const char *kind, const char *name, const void *bytes, size_t n, const char *expect)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", g_dir, name);
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(bytes, 1, n, f) != n || fclose(f)) {
-        fprintf(stderr, "gen_formats: cannot write %s\n", path);
-        exit(1);
-    }
-    if (kind) {
-        fprintf(g_manifest, "%s\t%s\t%s\n", kind, path, expect);
-        g_count++;
-    }
-}
-
-static void text_case(const char *kind, const char *name, const char *expect, const char *fmt, ...)
-{
-    static char buf[1 << 16];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    put_case(kind, name, buf, (size_t)n, expect);
-}
-
-static void put_le32(uint8_t *p, uint32_t v)
-{
-    for (int i = 0; i < 4; i++)
-        p[i] = (uint8_t)(v >> 8 * i);
-}
-
-static void put_f32(uint8_t *p, float f)
-{
-    uint32_t w;
-    memcpy(&w, &f, 4);
-    put_le32(p, w);
-}
 
 /* ---- STL ------------------------------------------------------------------------ */
 
@@ -71,10 +32,10 @@ static size_t binary_stl(uint8_t *buf, const char *head, uint32_t declared, floa
     static const float corners[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     memset(buf, 0, 134);
     memcpy(buf, head, strlen(head));
-    put_le32(buf + 80, declared);
-    put_f32(buf + 84 + 8, 1.0f);   /* the normal, (0, 0, 1) */
+    lumo_wire_put_le32(buf + 80, declared);
+    corpus_put_f32(buf + 84 + 8, 1.0f);   /* the normal, (0, 0, 1) */
     for (int k = 0; k < 9; k++)
-        put_f32(buf + 96 + 4 * k, k == 4 && bad != 0.0f ? bad : corners[k]);
+        corpus_put_f32(buf + 96 + 4 * k, k == 4 && bad != 0.0f ? bad : corners[k]);
     return 134;
 }
 
@@ -82,37 +43,37 @@ static void stl_cases(void)
 {
     uint8_t b[134];
     const char *facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
-    put_case("model", "good_b.stl", b, binary_stl(b, "lumo", 1, 0), "OK");
+    corpus_put("model", "good_b.stl", b, binary_stl(b, "lumo", 1, 0), "OK");
     /* Exporters often begin a binary header with "solid": the size decides. */
-    put_case("model", "good_solid_b.stl", b, binary_stl(b, "solid by an exporter", 1, 0), "OK");
-    put_case("model", "huge_b.stl", b, binary_stl(b, "lumo", 1000000000u, 0),
+    corpus_put("model", "good_solid_b.stl", b, binary_stl(b, "solid by an exporter", 1, 0), "OK");
+    corpus_put("model", "huge_b.stl", b, binary_stl(b, "lumo", 1000000000u, 0),
              "the binary STL header declares 1000000000 triangles: 84 + 50 x 1000000000 = 50000000084 bytes, the "
              "file holds 134");
-    put_case("model", "max_b.stl", b, binary_stl(b, "lumo", 0xffffffffu, 0), "declares 4294967295 triangles");
-    put_case("model", "zero_b.stl", b, binary_stl(b, "lumo", 0, 0), "declares 0 triangles: 84 + 50 x 0 = 84 bytes, "
+    corpus_put("model", "max_b.stl", b, binary_stl(b, "lumo", 0xffffffffu, 0), "declares 4294967295 triangles");
+    corpus_put("model", "zero_b.stl", b, binary_stl(b, "lumo", 0, 0), "declares 0 triangles: 84 + 50 x 0 = 84 bytes, "
              "the file holds 134");
-    put_case("model", "short_b.stl", b, 60, "60 bytes: too short for a binary STL (84-byte header)");
+    corpus_put("model", "short_b.stl", b, 60, "60 bytes: too short for a binary STL (84-byte header)");
     binary_stl(b, "lumo", 1, 0);
-    put_case("model", "cut_b.stl", b, 120, "declares 1 triangles: 84 + 50 x 1 = 134 bytes, the file holds 120");
-    put_case("model", "nan_b.stl", b, binary_stl(b, "lumo", 1, NAN), "triangle 0, corner 1: y = nan is not "
+    corpus_put("model", "cut_b.stl", b, 120, "declares 1 triangles: 84 + 50 x 1 = 134 bytes, the file holds 120");
+    corpus_put("model", "nan_b.stl", b, binary_stl(b, "lumo", 1, NAN), "triangle 0, corner 1: y = nan is not "
              "finite");
-    put_case("model", "far_b.stl", b, binary_stl(b, "lumo", 1, 1e7f), "triangle 0, corner 1: y = 10000000 is beyond "
+    corpus_put("model", "far_b.stl", b, binary_stl(b, "lumo", 1, 1e7f), "triangle 0, corner 1: y = 10000000 is beyond "
              "the 1e6 m coordinate bound");
-    text_case("model", "good_a.stl", "OK", "solid t\n%sendsolid t\n", facet);
-    text_case("model", "four_a.stl", "line 7: a facet with more than 3 vertices", "solid t\nfacet normal 0 0 1\n"
+    corpus_text("model", "good_a.stl", "OK", "solid t\n%sendsolid t\n", facet);
+    corpus_text("model", "four_a.stl", "line 7: a facet with more than 3 vertices", "solid t\nfacet normal 0 0 1\n"
               "outer loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 1 1 0\nendloop\nendfacet\n");
-    text_case("model", "two_a.stl", "line 7: facet 0 has 2 vertices, a facet has 3", "solid t\nfacet normal 0 0 1\n"
+    corpus_text("model", "two_a.stl", "line 7: facet 0 has 2 vertices, a facet has 3", "solid t\nfacet normal 0 0 1\n"
               "outer loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n");
-    text_case("model", "cut_a.stl", "the file ends inside facet 1", "solid t\n%sfacet normal 0 0 1\nouter loop\n"
+    corpus_text("model", "cut_a.stl", "the file ends inside facet 1", "solid t\n%sfacet normal 0 0 1\nouter loop\n"
               "vertex 0 0 0\n", facet);
-    text_case("model", "cut_word_a.stl", "line 11: facet 1, vertex 0: z is missing", "solid t\n%sfacet normal 0 0 1\n"
+    corpus_text("model", "cut_word_a.stl", "line 11: facet 1, vertex 0: z is missing", "solid t\n%sfacet normal 0 0 1\n"
               "outer loop\nvertex 0 0", facet);
-    text_case("model", "word_a.stl", "line 4: facet 0, vertex 0: y 'one' is not a number", "solid t\nfacet normal "
+    corpus_text("model", "word_a.stl", "line 4: facet 0, vertex 0: y 'one' is not a number", "solid t\nfacet normal "
               "0 0 1\nouter loop\nvertex 0 one 0\n");
-    text_case("model", "inf_a.stl", "facet 0, vertex 2: z = inf is not finite", "solid t\nfacet normal 0 0 1\n"
+    corpus_text("model", "inf_a.stl", "facet 0, vertex 2: z = inf is not finite", "solid t\nfacet normal 0 0 1\n"
               "outer loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 inf\n");
-    text_case("model", "empty_a.stl", "an ASCII STL without a facet", "solid t\nendsolid t\n");
-    text_case("model", "bytes_a.stl", "not an ASCII one", "solid\x01\x02");
+    corpus_text("model", "empty_a.stl", "an ASCII STL without a facet", "solid t\nendsolid t\n");
+    corpus_text("model", "bytes_a.stl", "not an ASCII one", "solid\x01\x02");
 }
 
 /* ---- glTF ------------------------------------------------------------------------- */
@@ -126,7 +87,7 @@ static void stl_cases(void)
 static void gltf_case(const char *name, const char *expect, const char *blen, const char *uri, const char *vlen,
                       const char *count, const char *acc_extra, const char *tail)
 {
-    text_case("model", name, expect,
+    corpus_text("model", name, expect,
               "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%s,\"uri\":\"%s\"}],"
               "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%s}],\"accessors\":[{\"bufferView\":0,"
               "\"componentType\":5126,\"count\":%s,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]%s}],"
@@ -155,7 +116,7 @@ static void gltf_cases(void)
               "36", "3", "", ONE_NODE);
     gltf_case("buffer_none.gltf", "buffer 0: 'lumo-none.bin': No such file or directory", "36", "lumo-none.bin",
               "36", "3", "", ONE_NODE);
-    put_case(NULL, "short.bin", "0123456789", 10, NULL);
+    corpus_put(NULL, "short.bin", "0123456789", 10, NULL);
     gltf_case("buffer_short.gltf", "buffer 0 declares 36 bytes, its uri holds 10", "36", "short.bin", "36", "3", "",
               ONE_NODE);
     gltf_case("buffer_dir.gltf", "buffer 0: '.' is not a regular file", "36", ".", "36", "3", "", ONE_NODE);
@@ -167,18 +128,18 @@ static void gltf_cases(void)
               ",\"nodes\":[{\"mesh\":5}]");
     snprintf(roots, sizeof roots, ",\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0,0,0]}]");
     /* 96 MB of positions (a sparse file: no disk) drawn three times. */
-    text_case("model", "instances.gltf", "mesh 0: the geometry assimp would expand passes 256 MiB",
+    corpus_text("model", "instances.gltf", "mesh 0: the geometry assimp would expand passes 256 MiB",
               "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":96000000,\"uri\":\"big.bin\"}],"
               "\"bufferViews\":[{\"buffer\":0,\"byteLength\":96000000}],\"accessors\":[{\"bufferView\":0,"
               "\"componentType\":5126,\"count\":8000000,\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":"
               "[{\"attributes\":{\"POSITION\":0}}]}]%s}", roots);
-    text_case("model", "no_view.gltf", "accessor 0 has no bufferView (zeros or Draco-compressed data): not read",
+    corpus_text("model", "no_view.gltf", "accessor 0 has no bufferView (zeros or Draco-compressed data): not read",
               "{\"asset\":{\"version\":\"2.0\"},\"accessors\":[{\"componentType\":5126,\"count\":1000000000,"
               "\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]" ONE_NODE "}");
-    text_case("model", "v1.gltf", "glTF version '1.0': only glTF 2.0 is read", "{\"asset\":{\"version\":\"1.0\"}}");
-    text_case("model", "noversion.gltf", "no asset.version: not a glTF file", "{\"meshes\":[]}");
-    text_case("model", "json.gltf", "JSON line 1", "{\"asset\":{\"version\":\"2.0\"},");
-    text_case("model", "dup.gltf", "JSON line 1", "{\"asset\":{\"version\":\"2.0\"},\"asset\":{}}");
+    corpus_text("model", "v1.gltf", "glTF version '1.0': only glTF 2.0 is read", "{\"asset\":{\"version\":\"1.0\"}}");
+    corpus_text("model", "noversion.gltf", "no asset.version: not a glTF file", "{\"meshes\":[]}");
+    corpus_text("model", "json.gltf", "JSON line 1", "{\"asset\":{\"version\":\"2.0\"},");
+    corpus_text("model", "dup.gltf", "JSON line 1", "{\"asset\":{\"version\":\"2.0\"},\"asset\":{}}");
 }
 
 /* JSON nested 100,000 deep, and JSON past SRV_GLTF_MAX_JSON. */
@@ -190,10 +151,10 @@ static void gltf_size_cases(void)
         exit(1);
     memset(s, '[', n);
     memset(s + n, ']', n);
-    put_case("model", "deep.gltf", s, 2 * n, "JSON line 1");
+    corpus_put("model", "deep.gltf", s, 2 * n, "JSON line 1");
     memset(s, ' ', big);
     memcpy(s, "{\"asset\":{\"version\":\"2.0\"}}", 27);
-    put_case("model", "big_json.gltf", s, big, "17825792 bytes of JSON, at most 16 MiB are read");
+    corpus_put("model", "big_json.gltf", s, big, "17825792 bytes of JSON, at most 16 MiB are read");
     free(s);
 }
 
@@ -210,16 +171,16 @@ static size_t glb(uint8_t *out, uint32_t version, uint32_t bin_declared, const c
     static const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     memset(out, ' ', n);
     memcpy(out, "glTF", 4);
-    put_le32(out + 4, version);
-    put_le32(out + 8, (uint32_t)n);
-    put_le32(out + 12, (uint32_t)jp);
+    lumo_wire_put_le32(out + 4, version);
+    lumo_wire_put_le32(out + 8, (uint32_t)n);
+    lumo_wire_put_le32(out + 12, (uint32_t)jp);
     memcpy(out + 16, "JSON", 4);
     memcpy(out + 20, json, (size_t)jl);
-    put_le32(out + 20 + jp, bin_declared);
+    lumo_wire_put_le32(out + 20 + jp, bin_declared);
     memcpy(out + 24 + jp, "BIN", 4);
     out[27 + jp] = 0;
     for (int k = 0; k < 9; k++)
-        put_f32(out + 28 + jp + 4 * k, tri[k]);
+        corpus_put_f32(out + 28 + jp + 4 * k, tri[k]);
     return n;
 }
 
@@ -227,17 +188,17 @@ static void glb_cases(void)
 {
     uint8_t b[1024];
     size_t n = glb(b, 2, 36, "3");
-    put_case("model", "good.glb", b, n, "OK");
-    put_case("model", "cut.glb", b, n - 20, "the GLB header declares");
-    put_case("model", "head.glb", b, 12, "no GLB header");
-    put_case("model", "bin_huge.glb", b, glb(b, 2, 4000000000u, "3"), "the BIN chunk declares 4000000000 bytes, 36 "
+    corpus_put("model", "good.glb", b, n, "OK");
+    corpus_put("model", "cut.glb", b, n - 20, "the GLB header declares");
+    corpus_put("model", "head.glb", b, 12, "no GLB header");
+    corpus_put("model", "bin_huge.glb", b, glb(b, 2, 4000000000u, "3"), "the BIN chunk declares 4000000000 bytes, 36 "
              "follow it");
-    put_case("model", "bin_short.glb", b, glb(b, 2, 12, "3"), "buffer 0 declares 36 bytes, the BIN chunk holds 12");
-    put_case("model", "acc_past.glb", b, glb(b, 2, 36, "1000000000"), "accessor 0: 1000000000 items");
-    put_case("model", "v1.glb", b, glb(b, 1, 36, "3"), "GLB version 1: only version 2 (glTF 2.0) is read");
+    corpus_put("model", "bin_short.glb", b, glb(b, 2, 12, "3"), "buffer 0 declares 36 bytes, the BIN chunk holds 12");
+    corpus_put("model", "acc_past.glb", b, glb(b, 2, 36, "1000000000"), "accessor 0: 1000000000 items");
+    corpus_put("model", "v1.glb", b, glb(b, 1, 36, "3"), "GLB version 1: only version 2 (glTF 2.0) is read");
     n = glb(b, 2, 36, "3");
-    put_le32(b + 12, 4000000000u);
-    put_case("model", "json_huge.glb", b, n, "the first GLB chunk is not JSON of 4000000000 bytes");
+    lumo_wire_put_le32(b + 12, 4000000000u);
+    corpus_put("model", "json_huge.glb", b, n, "the first GLB chunk is not JSON of 4000000000 bytes");
 }
 
 /* ---- PNG pictures (lumo-compare, --env, --prt-env) -------------------------------------- */
@@ -257,13 +218,11 @@ static void black_png(const char *name, uint32_t side, const char *expect)
     static uint8_t row[3 * 9000 + 1], out[1 << 20];
     uint8_t ihdr[13] = {(uint8_t)(side >> 24), (uint8_t)(side >> 16), (uint8_t)(side >> 8), (uint8_t)side, 0, 0, 0, 0,
                         8, 2, 0, 0, 0};
-    char path[512];
     z_stream z;
     FILE *f;
     memcpy(ihdr + 4, ihdr, 4);
-    snprintf(path, sizeof path, "%s/%s", g_dir, name);
     memset(&z, 0, sizeof z);
-    if (side > 9000 || !(f = fopen(path, "wb")) || deflateInit(&z, 1) != Z_OK)
+    if (side > 9000 || !(f = fopen(corpus_path(name), "wb")) || deflateInit(&z, 1) != Z_OK)
         exit(1);
     fwrite("\x89PNG\r\n\x1a\n", 1, 8, f);
     png_chunk(f, "IHDR", ihdr, 13);
@@ -280,8 +239,7 @@ static void black_png(const char *name, uint32_t side, const char *expect)
     png_chunk(f, "IEND", out, 0);
     if (fclose(f))
         exit(1);
-    fprintf(g_manifest, "png\t%s\t%s\n", path, expect);
-    g_count++;
+    corpus_note("png", name, expect);
 }
 
 /* ---- formats lumo refuses, and the lights of scene files ----------------------------- */
@@ -294,7 +252,7 @@ static void other_cases(void)
         snprintf(name, sizeof name, "model.%s", ext[i]);
         snprintf(expect, sizeof expect, "unknown model format (extension '.%s'): lumo reads OBJ, PLY, OFF, STL and "
                  "glTF 2.0", ext[i]);
-        put_case("model", name, "\x4d\x4d\x10\x00\x00\x00", 6, expect);
+        corpus_put("model", name, "\x4d\x4d\x10\x00\x00\x00", 6, expect);
     }
 }
 
@@ -316,35 +274,29 @@ static void light_scene_cases(void)
     static char text[4096];
     size_t o = 0;
     for (size_t i = 0; i < sizeof k / sizeof *k; i++)
-        text_case("scene", k[i].name, k[i].expect, "quad 0,0,0 1,0,0 0,0,1\nlight %s\n", k[i].light);
+        corpus_text("scene", k[i].name, k[i].expect, "quad 0,0,0 1,0,0 0,0,1\nlight %s\n", k[i].light);
     o += (size_t)snprintf(text + o, sizeof text - o, "quad 0,0,0 1,0,0 0,0,1\n");
     for (int i = 0; i < 17; i++)
         o += (size_t)snprintf(text + o, sizeof text - o, "light point:0,%d,0:1,1,1\n", i + 1);
-    put_case("scene", "l_count.txt", text, o, ":18: light 'point:0,17,0:1,1,1': more than 16 lights; a scene holds "
+    corpus_put("scene", "l_count.txt", text, o, ":18: light 'point:0,17,0:1,1,1': more than 16 lights; a scene holds "
              "at most 16 (LUMO_MAX_LIGHTS");
-    text_case("scene", "l_dae.txt", "model.dae: unknown model format", "mesh model.dae\nlight point:0,1,0:1,1,1\n");
-    text_case("scene", "l_stl.txt", "huge_b.stl: the binary STL header declares 1000000000 triangles",
+    corpus_text("scene", "l_dae.txt", "model.dae: unknown model format", "mesh model.dae\nlight point:0,1,0:1,1,1\n");
+    corpus_text("scene", "l_stl.txt", "huge_b.stl: the binary STL header declares 1000000000 triangles",
               "mesh huge_b.stl\nlight point:0,1,0:1,1,1\n");
 }
 
 int main(int argc, char **argv)
 {
-    char path[512];
     if (argc != 2) {
         fprintf(stderr, "usage: gen_formats OUTDIR\n");
         return 2;
     }
-    g_dir = argv[1];
-    snprintf(path, sizeof path, "%s/manifest", g_dir);
-    if (!(g_manifest = fopen(path, "a"))) {
-        fprintf(stderr, "gen_formats: cannot write %s\n", path);
+    if (corpus_open(argv[1], "a", "gen_formats"))
         return 1;
-    }
     /* The 96 MB buffer of instances.gltf: a sparse file, no disk. */
-    snprintf(path, sizeof path, "%s/big.bin", g_dir);
-    FILE *big = fopen(path, "wb");
+    FILE *big = fopen(corpus_path("big.bin"), "wb");
     if (!big || ftruncate(fileno(big), 96000000) || fclose(big)) {
-        fprintf(stderr, "gen_formats: cannot write %s\n", path);
+        fprintf(stderr, "gen_formats: cannot write %s\n", corpus_path("big.bin"));
         return 1;
     }
     stl_cases();
@@ -355,7 +307,6 @@ int main(int argc, char **argv)
     light_scene_cases();
     black_png("black_9000.png", 9000, "cannot read as an 8-bit PNG picture (of at most 2^26 pixels)");
     black_png("black_8192.png", 8192, "OK");
-    fclose(g_manifest);
-    fprintf(stderr, "gen_formats: %u cases in %s\n", g_count, g_dir);
+    corpus_close();
     return 0;
 }

@@ -19,36 +19,8 @@
 #include <string.h>
 #include "lumo/package.h"
 #include "lumo/wire.h"
+#include "corpus.h"
 
-static const char *g_dir;
-static FILE *g_manifest;
-static unsigned g_count;
-
-/* ---- writing a case ------------------------------------------------------- */
-
-static void put_case(const char *kind, const char *name, const void *bytes, size_t n, const char *expect)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", g_dir, name);
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(bytes, 1, n, f) != n || fclose(f)) {
-        fprintf(stderr, "gen_hostile: cannot write %s\n", path);
-        exit(1);
-    }
-    fprintf(g_manifest, "%s\t%s\t%s\n", kind, path, expect);
-    g_count++;
-}
-
-/* A text case from a printf format. */
-static void text_case(const char *kind, const char *name, const char *expect, const char *fmt, ...)
-{
-    static char buf[1 << 16];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    put_case(kind, name, buf, (size_t)n, expect);
-}
 
 /* ---- models ------------------------------------------------------------------ */
 
@@ -66,7 +38,7 @@ static void off_coords(void)
                 c[3 * v + a] = k_bad_values[b];
                 snprintf(name, sizeof name, "coord_%u_%d_%d.off", b, v, a);
                 snprintf(expect, sizeof expect, "vertex %d: %c = ", v, "xyz"[a]);
-                text_case("model", name, expect, "OFF\n3 1 0\n%s %s %s\n%s %s %s\n%s %s %s\n3 0 1 2\n", c[0], c[1],
+                corpus_text("model", name, expect, "OFF\n3 1 0\n%s %s %s\n%s %s %s\n%s %s %s\n3 0 1 2\n", c[0], c[1],
                           c[2], c[3], c[4], c[5], c[6], c[7], c[8]);
                 (void)k_bad_why;
             }
@@ -99,7 +71,7 @@ static void off_headers(void)
          "the file ends after 3 of 3 vertices and 1 of 2 faces"},
     };
     for (size_t i = 0; i < sizeof k / sizeof *k; i++)
-        text_case("model", k[i].name, k[i].expect, "%s", k[i].text);
+        corpus_text("model", k[i].name, k[i].expect, "%s", k[i].text);
 }
 
 /* Every prefix of a valid OFF that cuts into its data is refused. */
@@ -110,7 +82,7 @@ static void off_truncated(void)
     size_t n = sizeof full - 1;
     for (size_t cut = 1; cut + 2 < n; cut += 2) {
         snprintf(name, sizeof name, "cut_%02zu.off", cut);
-        put_case("model", name, full, cut, "cut_");
+        corpus_put("model", name, full, cut, "cut_");
     }
 }
 
@@ -135,13 +107,13 @@ static void ply_ascii(void)
     char head[512];
     for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
         snprintf(head, sizeof head, k_ply_head, "ascii", k[i].nv, k[i].nf, "uchar");
-        text_case("model", k[i].name, k[i].expect, "%s%s", head, k[i].body);
+        corpus_text("model", k[i].name, k[i].expect, "%s%s", head, k[i].body);
     }
-    text_case("model", "no_end_a.ply", "no end_header", "ply\nformat ascii 1.0\nelement vertex 3\n");
-    text_case("model", "no_format_a.ply", "no format line", "ply\nelement vertex 0\nend_header\n");
-    text_case("model", "bad_type_a.ply", "a known type", "ply\nformat ascii 1.0\nelement vertex 1\n"
+    corpus_text("model", "no_end_a.ply", "no end_header", "ply\nformat ascii 1.0\nelement vertex 3\n");
+    corpus_text("model", "no_format_a.ply", "no format line", "ply\nelement vertex 0\nend_header\n");
+    corpus_text("model", "bad_type_a.ply", "a known type", "ply\nformat ascii 1.0\nelement vertex 1\n"
               "property quad x\nend_header\n0\n");
-    text_case("model", "no_magic_a.ply", "no 'ply' magic", "plx\nformat ascii 1.0\nend_header\n");
+    corpus_text("model", "no_magic_a.ply", "no 'ply' magic", "plx\nformat ascii 1.0\nend_header\n");
 }
 
 /* Binary PLY: three float vertices, one face whose list count byte is
@@ -163,7 +135,7 @@ static void ply_binary_face(const char *name, const char *fmt, unsigned count, u
     for (unsigned k = 0; k < held; k++)
         for (int b = 0; b < 4; b++)
             buf[n++] = (uint8_t)((uint32_t)idx[k] >> (be ? 24 - 8 * b : 8 * b));
-    put_case("model", name, buf, n, expect);
+    corpus_put("model", name, buf, n, expect);
 }
 
 static void ply_binary(void)
@@ -201,9 +173,9 @@ static void ply_binary(void)
     }
     char head[512];
     snprintf(head, sizeof head, k_ply_head, "binary_little_endian", "1000000000", "1000000000", "uchar");
-    text_case("model", "huge_b.ply", "'vertex' declares 1000000000 items", "%s%s", head, "\1\2\3\4\5\6\7\10");
+    corpus_text("model", "huge_b.ply", "'vertex' declares 1000000000 items", "%s%s", head, "\1\2\3\4\5\6\7\10");
     snprintf(head, sizeof head, k_ply_head, "binary_little_endian", "3", "4000000000", "uint");
-    text_case("model", "huge_faces_b.ply", "'face' declares 4000000000", "%s%036d", head, 0);
+    corpus_text("model", "huge_faces_b.ply", "'face' declares 4000000000", "%s%036d", head, 0);
 }
 
 static void obj_cases(void)
@@ -230,15 +202,15 @@ static void obj_cases(void)
     };
     static const char nul[] = "v 0 0 0\nv 1 0\0 0\n", png[] = "\x89PNG\r\n\x1a\n\0\0\0\rIHDR";
     for (size_t i = 0; i < sizeof k / sizeof *k; i++)
-        put_case("model", k[i].name, k[i].text, strlen(k[i].text), k[i].expect);
-    put_case("model", "nul.obj", nul, sizeof nul - 1, "byte 13 is 0x00: not a text file");
-    put_case("model", "png.obj", png, sizeof png - 1, "byte 6 is 0x1a: not a text file");
+        corpus_put("model", k[i].name, k[i].text, strlen(k[i].text), k[i].expect);
+    corpus_put("model", "nul.obj", nul, sizeof nul - 1, "byte 13 is 0x00: not a text file");
+    corpus_put("model", "png.obj", png, sizeof png - 1, "byte 6 is 0x1a: not a text file");
     char big[8192];
     size_t n = (size_t)snprintf(big, sizeof big, "v 0 0 0\nf");
     for (int i = 0; i < 1100 && n + 4 < sizeof big; i++)
         n += (size_t)snprintf(big + n, sizeof big - n, " 1");
     big[n++] = '\n';
-    put_case("model", "corners.obj", big, n, "more than 1024 corners");
+    corpus_put("model", "corners.obj", big, n, "more than 1024 corners");
 }
 
 /* Sound models of every reader: each tool must still take them. */
@@ -247,29 +219,29 @@ static void good_cases(void)
     static const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     static const int32_t tri[3] = {0, 1, 2};
     char head[512];
-    text_case("model", "good.off", "OK", "OFF\n# a quad\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n"
+    corpus_text("model", "good.off", "OK", "OFF\n# a quad\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n"
               "4 0 1 2 3\n");
-    text_case("model", "good_c.off", "OK", "COFF 3 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n");
-    text_case("model", "good.obj", "OK", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
+    corpus_text("model", "good_c.off", "OK", "COFF 3 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n");
+    corpus_text("model", "good.obj", "OK", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
               "f 1/1/1 2/1/1 3/1/1\nf -4//-1 -2//-1 -1//-1\n");
     /* 1255 m: past 16 m, steps of 1e-6 vanish in single precision (the
      * Draco grid of lumo-pm build stepped forever); 40000 m: past Q16.16. */
-    text_case("model", "far_ok.off", "OK", "OFF\n3 1 0\n0 0 0\n1255 0 0\n0 1 -900\n3 0 1 2\n");
-    text_case("model", "far_q16.off", "x = 40000 m is beyond the client's", "OFF\n3 1 0\n0 0 0\n40000 0 0\n"
+    corpus_text("model", "far_ok.off", "OK", "OFF\n3 1 0\n0 0 0\n1255 0 0\n0 1 -900\n3 0 1 2\n");
+    corpus_text("model", "far_q16.off", "x = 40000 m is beyond the client's", "OFF\n3 1 0\n0 0 0\n40000 0 0\n"
               "0 1 0\n3 0 1 2\n");
     snprintf(head, sizeof head, k_ply_head, "ascii", "3", "1", "uchar");
-    text_case("model", "good_a.ply", "OK", "%s0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", head);
+    corpus_text("model", "good_a.ply", "OK", "%s0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", head);
     ply_binary_face("good_le.ply", "binary_little_endian", 3, 3, tri, xyz, "OK");
     ply_binary_face("good_be.ply", "binary_big_endian", 3, 3, tri, xyz, "OK");
 }
 
 static void file_cases(void)
 {
-    put_case("model", "empty.obj", "", 0, "empty file");
-    put_case("model", "empty.ply", "", 0, "empty file");
-    put_case("model", "model.xyz", "1 2 3\n", 6, "unknown model format");
-    put_case("model", "noext", "1 2 3\n", 6, "unknown model format");
-    put_case("model", "image.png", "\x89PNG\r\n\x1a\n", 8, "unknown model format");
+    corpus_put("model", "empty.obj", "", 0, "empty file");
+    corpus_put("model", "empty.ply", "", 0, "empty file");
+    corpus_put("model", "model.xyz", "1 2 3\n", 6, "unknown model format");
+    corpus_put("model", "noext", "1 2 3\n", 6, "unknown model format");
+    corpus_put("model", "image.png", "\x89PNG\r\n\x1a\n", 8, "unknown model format");
 }
 
 /* ---- scene files ------------------------------------------------------------ */
@@ -307,12 +279,12 @@ static void scene_cases(void)
     };
     static const char nul[] = "quad 0,0,0 1,0,0 0,0,1\nbox\0 0,0,0 1,1,1\n";
     for (size_t i = 0; i < sizeof k / sizeof *k; i++)
-        put_case("scene", k[i].name, k[i].text, strlen(k[i].text), k[i].expect);
-    put_case("scene", "s_nul.txt", nul, sizeof nul - 1, ":2: a NUL byte");
+        corpus_put("scene", k[i].name, k[i].text, strlen(k[i].text), k[i].expect);
+    corpus_put("scene", "s_nul.txt", nul, sizeof nul - 1, ":2: a NUL byte");
     static char longline[4096];
     memset(longline, 'x', sizeof longline - 2);
     longline[sizeof longline - 2] = '\n';
-    put_case("scene", "s_long.txt", longline, sizeof longline - 1, "line longer than 2046");
+    corpus_put("scene", "s_long.txt", longline, sizeof longline - 1, "line longer than 2046");
 }
 
 /* ---- packages ---------------------------------------------------------------- */
@@ -395,14 +367,7 @@ static void pkg_write(const pkg *k, const char *name, const char *expect)
     }
     lumo_wire_put_le32(out + 16, lumo_wire_crc32(0, out + LUMO_PKG_HEADER_SIZE, (size_t)k->n * LUMO_PKG_ENTRY_SIZE));
     lumo_wire_put_le32(out + 20, lumo_wire_crc32(0, out, 20));
-    put_case("package", name, out, pos, expect);
-}
-
-static void put_f32(uint8_t *p, float f)
-{
-    uint32_t w;
-    memcpy(&w, &f, 4);
-    lumo_wire_put_le32(p, w);
+    corpus_put("package", name, out, pos, expect);
 }
 
 /* Light l's field at byte `off` of its record set to f (or, off 0, the kind to u). */
@@ -415,7 +380,7 @@ static void light_case(const pkg *base, uint32_t l, unsigned off, float f, uint3
     if (off == 0)
         lumo_wire_put_le32(rec, u);
     else
-        put_f32(rec + off, f);
+        corpus_put_f32(rec + off, f);
     snprintf(name, sizeof name, "light_%u_%02u_%s.lumo", l, off, tag);
     snprintf(expect, sizeof expect, off == 0 ? "INFO light %u of 3: unknown kind" : "INFO light %u of 3 (", l);
     pkg_write(&k, name, expect);
@@ -448,7 +413,7 @@ static void ivgd_case(const pkg *base, unsigned off, int is_dim, uint32_t u, flo
     if (is_dim)
         lumo_wire_put_le16(d + off, (uint16_t)u);
     else
-        put_f32(d + off, f);
+        corpus_put_f32(d + off, f);
     pkg_write(&k, name, "IVGD: grid ");
     pkg_free(&k);
 }
@@ -507,7 +472,7 @@ static void info_cases(const pkg *base)
     for (size_t i = 0; i < sizeof k / sizeof *k; i++) {
         pkg p;
         pkg_copy(&p, base);
-        put_f32(pkg_find(&p, LUMO_PKG_INFO)->p + k[i].off, k[i].f);
+        corpus_put_f32(pkg_find(&p, LUMO_PKG_INFO)->p + k[i].off, k[i].f);
         pkg_write(&p, k[i].name, "INFO (");
         pkg_free(&p);
     }
@@ -522,11 +487,11 @@ static void info_cases(const pkg *base)
             memcpy(&eye, &w, 4);
             memcpy(&target, &t, 4);
             if (c == 0)
-                put_f32(in + 64 + 4 * a, 0.0f);
+                corpus_put_f32(in + 64 + 4 * a, 0.0f);
             else if (c == 1)
                 lumo_wire_put_le32(in + 40 + 4 * a, t);
             else
-                put_f32(in + 64 + 4 * a, 2.0f * (target - eye));
+                corpus_put_f32(in + 64 + 4 * a, 2.0f * (target - eye));
         }
         pkg_write(&p, names[c], "eye off the target");
         pkg_free(&p);
@@ -564,17 +529,12 @@ static void package_cases(const char *src)
 
 int main(int argc, char **argv)
 {
-    char path[512];
     if (argc != 3) {
         fprintf(stderr, "usage: gen_hostile OUTDIR LIGHTS.lumo\n");
         return 2;
     }
-    g_dir = argv[1];
-    snprintf(path, sizeof path, "%s/manifest", g_dir);
-    if (!(g_manifest = fopen(path, "w"))) {
-        fprintf(stderr, "gen_hostile: cannot write %s\n", path);
+    if (corpus_open(argv[1], "w", "gen_hostile"))
         return 1;
-    }
     off_coords();
     off_headers();
     off_truncated();
@@ -585,7 +545,6 @@ int main(int argc, char **argv)
     good_cases();
     scene_cases();
     package_cases(argv[2]);
-    fclose(g_manifest);
-    fprintf(stderr, "gen_hostile: %u cases in %s\n", g_count, g_dir);
+    corpus_close();
     return 0;
 }

@@ -42,10 +42,11 @@ $(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRC
 # ---- the generated corpus ------------------------------------------------------------
 # tests/hostile/gen_hostile writes every case (models, scene files, packages
 # rewritten from a real bake with valid checksums) into a fresh directory
-# at test time; hostile.sh runs each under a memory and time limit.
+# at test time, through corpus.c as gen_formats does; hostile.sh runs each
+# under a memory and time limit.
 HOSTILE_GEN := $(BUILD)/tests/bin/gen_hostile
 
-$(HOSTILE_GEN): $(BUILD)/tests/tests/hostile/gen_hostile.o $(BUILD)/san/liblumo.a
+$(HOSTILE_GEN): $(BUILD)/tests/tests/hostile/gen_hostile.o $(BUILD)/tests/tests/hostile/corpus.o $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
@@ -53,7 +54,8 @@ $(HOSTILE_GEN): $(BUILD)/tests/tests/hostile/gen_hostile.o $(BUILD)/san/liblumo.
 # name and the scene files' lights (round three) to the same corpus.
 HOSTILE_GEN_FORMATS := $(BUILD)/tests/bin/gen_formats
 
-$(HOSTILE_GEN_FORMATS): $(BUILD)/tests/tests/hostile/gen_formats.o
+$(HOSTILE_GEN_FORMATS): $(BUILD)/tests/tests/hostile/gen_formats.o $(BUILD)/tests/tests/hostile/corpus.o \
+                        $(BUILD)/san/liblumo.a
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lz
 
