@@ -31,7 +31,7 @@ typedef struct ld_attr_data {
     int32_t decoder_id;
     uint8_t connectivity_used;
     ld_rabs seams;
-    uint8_t *seam;         /* per corner: opposite edge is a seam (bits, ld_seam_at) */
+    uint8_t *seam;         /* per corner: opposite edge is a seam */
     uint8_t *vseam;        /* per mesh vertex: on a seam */
     uint32_t *c2v;         /* attribute vertex of each corner */
     uint8_t *border;       /* attribute vertex -> on a border or seam (the
@@ -765,11 +765,11 @@ static LD_FORCE_INLINE uint32_t ld_eb_mvert(const struct ld_eb *e, uint32_t c, i
 static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
 {
     uint32_t o = ld_opp(&e->ct, c);
-    a->seam[c >> 3] |= (uint8_t)(1u << (c & 7u));
+    a->seam[c] = 1;
     a->vseam[ld_vert(&e->ct, ld_next(c))] = 1;
     a->vseam[ld_vert(&e->ct, ld_prev(c))] = 1;
     if (o != LD_INV) {
-        a->seam[o >> 3] |= (uint8_t)(1u << (o & 7u));
+        a->seam[o] = 1;
         a->vseam[ld_vert(&e->ct, ld_next(o))] = 1;
         a->vseam[ld_vert(&e->ct, ld_prev(o))] = 1;
     }
@@ -870,7 +870,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
             if (budget == 0)
                 return LUMO_ERR_LIMIT;
             --budget;
-            if (ld_seam_at(a->seam, ld_next_v(act))) {
+            if (a->seam[ld_next_v(act)]) {
                 if (n >= cap)
                     return LUMO_ERR_CORRUPT;
                 vid = n++;
@@ -1257,10 +1257,10 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
     e->seam_top = ld_tmp_mark(&d->mem);
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        a->seam = ld_tmp(&d->mem, ld_seam_bytes(e->num_corners), 1);
+        a->seam = ld_tmp(&d->mem, e->num_corners, 1);
         if (!a->seam)
             return LUMO_ERR_NOMEM;
-        memset(a->seam, 0, ld_seam_bytes(e->num_corners));
+        memset(a->seam, 0, e->num_corners);
     }
     return LUMO_OK;
 }
@@ -1296,16 +1296,17 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
             a->seam = NULL;
             continue;
         }
-        top = ld_move_up(top, a->seam, ld_seam_bytes(e->num_corners));
+        top = ld_move_up(top, a->seam, e->num_corners);
         a->seam = top;
     }
     ld_tmp_release(&d->mem, top);
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
+        const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
         if (a->shared)
             continue;
         a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-        a->border = ld_tmp(&d->mem, (size_t)ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones) + 1u, 1);
+        a->border = ld_tmp(&d->mem, (size_t)cap + 1u, 1);
         if (!a->c2v || !a->border)
             return LUMO_ERR_NOMEM;
         memset(a->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
@@ -1866,14 +1867,14 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
     seam_top = k->work;
     for (i = 0; i < nad; ++i)
-        ld_need_tmp(k, ld_seam_bytes(3u * faces), 1);
+        ld_need_tmp(k, 3u * (size_t)faces, 1);
     /* ld_eb_attr_tables: shared when the interior edges' bits hold no
      * one (ld_eb_need_symbols counted them) */
     for (i = 0; i < nad; ++i) {
         e->ad_shared[i] = e->seam_ones[i] == 0;
         own += !e->ad_shared[i];
     }
-    ld_need_release(k, seam_top + own * ld_need_bytes(ld_seam_bytes(3u * faces), 1));
+    ld_need_release(k, seam_top + own * ld_need_bytes(3u * (size_t)faces, 1));
     for (i = 0; i < nad; ++i) {
         if (e->ad_shared[i])
             continue;

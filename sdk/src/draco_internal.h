@@ -574,8 +574,7 @@ typedef struct ld_ct {
                                  the table (ld_o24_mark), border vertices
                                  -2 in the unvisited vertex map, and each
                                  value keeps its corner's opposite */
-    const uint8_t  *seam;     /* corner -> edge opposite is a seam, a bit
-                                 per corner (ld_seam_at); NULL: none */
+    const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner
                                  has no swing left); NULL: ask lmc */
@@ -594,16 +593,9 @@ static inline uint32_t ld_prev_v(uint32_t c) { return ld_mul3(c) ? c + 2u : c - 
 /* ... and for any corner, LD_INV staying LD_INV. */
 static inline uint32_t ld_next(uint32_t c) { return c == LD_INV ? c : ld_next_v(c); }
 static inline uint32_t ld_prev(uint32_t c) { return c == LD_INV ? c : ld_prev_v(c); }
-/* Seam flags are bits, corner c in bit c % 8 of byte c / 8: 3F/8 bytes a
- * seamed attribute, not 3F (issue 25 round four). */
-static inline int ld_seam_at(const uint8_t *seam, uint32_t c)
-{
-    return seam[c >> 3] >> (c & 7u) & 1u;
-}
-static inline size_t ld_seam_bytes(uint32_t corners) { return ((size_t)corners + 7u) >> 3; }
 static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
 {
-    if (c == LD_INV || (t->seam && ld_seam_at(t->seam, c)))
+    if (c == LD_INV || (t->seam && t->seam[c]))
         return LD_INV;
     return t->opp32 ? t->opp32[c] : ld_pot_opp(&t->opp, c);
 }
