@@ -819,8 +819,11 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
  * checks and the arena need takes; a byte per corner before, 3 B/face). */
 static uint32_t ld_eb_attr_vertex_cap(uint32_t corners, uint32_t verts, uint32_t ones)
 {
-    const uint64_t split = verts + 2u * (uint64_t)ones;
-    return split < corners ? (uint32_t)split : corners;
+    /* verts <= corners < 2^28 (the header checks): 32 bits do once ones
+     * is below corners / 2 */
+    if (ones >= corners / 2u || verts + 2u * ones > corners)
+        return corners;
+    return verts + 2u * ones;
 }
 
 /* MeshAttributeCornerTable::RecomputeVertices: split mesh vertices into
