@@ -813,12 +813,26 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
     return e->packed ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
 }
 
+/* The attribute vertices a table may have, which its border bytes are
+ * sized by: at most one per corner, and the V encoded vertices with each
+ * seam edge splitting its two end vertices once (the bound the decode
+ * checks and the arena need takes; a byte per corner before, 3 B/face). */
+static uint32_t ld_eb_attr_vertex_cap(uint32_t corners, uint32_t verts, uint32_t ones)
+{
+    /* verts <= corners < 2^28 (the header checks): 32 bits do once ones
+     * is below corners / 2 */
+    if (ones >= corners / 2u || verts + 2u * ones > corners)
+        return corners;
+    return verts + 2u * ones;
+}
+
 /* MeshAttributeCornerTable::RecomputeVertices: split mesh vertices into
  * attribute vertices along seam edges. */
 static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_attr_data *a,
                                                             int packed)
 {
     uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
+    const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
     uint32_t v, n = 0, live = 0;
     a->ct.c2v = a->c2v;
     a->ct.opp32 = e->ct.opp32;
@@ -833,6 +847,8 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
         if (c == LD_INV)
             continue;
         live++;
+        if (n >= cap)
+            return LUMO_ERR_CORRUPT;
         vid = n++;
         first = c;
         if (a->vseam[v]) {
@@ -858,7 +874,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
                 return LUMO_ERR_LIMIT;
             --budget;
             if (a->seam[ld_next_v(act)]) {
-                if (n >= e->num_corners)
+                if (n >= cap)
                     return LUMO_ERR_CORRUPT;
                 vid = n++;
                 a->border[vid] = 1;  /* its left edge is a seam */
@@ -1289,10 +1305,11 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
     ld_tmp_release(&d->mem, top);
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
+        const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
         if (a->shared)
             continue;
         a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-        a->border = ld_tmp(&d->mem, e->num_corners + 1u, 1);
+        a->border = ld_tmp(&d->mem, (size_t)cap + 1u, 1);
         if (!a->c2v || !a->border)
             return LUMO_ERR_NOMEM;
         memset(a->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
@@ -1865,7 +1882,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         if (e->ad_shared[i])
             continue;
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-        ld_need_tmp(k, 3u * (size_t)faces + 1u, 1);
+        ld_need_tmp(k, (size_t)ld_eb_attr_vertex_cap(3u * faces, e->verts, e->seam_ones[i]) + 1u, 1);
     }
     if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
         ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));

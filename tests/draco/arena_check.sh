@@ -37,8 +37,8 @@ done
 # seams keep a table of their own, limits just above today's ratios.
 mkdir -p "$work/attr"
 if "$bin/gen-attr-meshes" "$work/attr" "$build/data/models/bunny.obj" > /dev/null; then
-    for spec in scan_20k_c.ply:1250 terrain_c.ply:1250 holed_n.obj:1250 scan_20k_n.obj:2460 \
-                scan_20k_nt.obj:2730; do
+    for spec in scan_20k_c.ply:1250 terrain_c.ply:1250 holed_n.obj:1250 scan_20k_n.obj:2370 \
+                scan_20k_nt.obj:2590; do
         src=${spec%%:*}; limit=${spec#*:}; drc="$work/${src%.*}_cl7.drc"
         draco_encoder -i "$work/attr/$src" -o "$drc" -cl 7 -qp 14 -qt 12 -qn 10 > /dev/null 2>&1
         ratio=$("$bin/lumo-draco-decode" --lean --info "$drc" |
