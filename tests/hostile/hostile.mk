@@ -27,17 +27,18 @@ $(BUILD)/fuzz/bin/fuzz_light_parse: tests/fuzz/fuzz_light_parse.c server/scene/l
 
 # The motion parser (motion lines, lumo-server --dynamic's move commands).
 $(BUILD)/fuzz/bin/fuzz_motion: tests/fuzz/fuzz_motion.c server/vsl/vsl_motion.c server/scene/scene.c \
-                               server/scene/camera.c $(wildcard server/scene/*.h) $(filter sdk/%,$(CLIENT_SRCS))
+                               server/scene/camera.c $(wildcard server/scene/*.h) $(BUILD)/fuzz/liblumo.a
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_motion
 	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_motion.c server/vsl/vsl_motion.c server/scene/scene.c \
-	    server/scene/camera.c $(filter sdk/%,$(CLIENT_SRCS)) -lm
+	    server/scene/camera.c $(BUILD)/fuzz/liblumo.a -lm
 
-# The scene room calls the SDK (the camera fit): its sources, built alike.
+# The scene room calls the SDK (the camera fit): the fuzz build of the
+# client code (build/fuzz/liblumo.a, the top Makefile's).
 $(BUILD)/fuzz/bin/fuzz_scene_file: tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) $(wildcard server/scene/*.h) \
-                                   $(filter sdk/%,$(CLIENT_SRCS))
+                                   $(BUILD)/fuzz/liblumo.a
 	@mkdir -p $(@D) $(BUILD)/fuzz/corpus/fuzz_scene_file
 	$(CLANG) $(FUZZ_HOST_CFLAGS) -o $@ tests/fuzz/fuzz_scene_file.c $(FUZZ_SCENE_SRCS) \
-	    $(filter sdk/%,$(CLIENT_SRCS)) -lassimp -ljansson -lm
+	    $(BUILD)/fuzz/liblumo.a -lassimp -ljansson -lm
 
 # ---- the generated corpus ------------------------------------------------------------
 # tests/hostile/gen_hostile writes every case (models, scene files, packages
