@@ -128,6 +128,17 @@ awk -v q="$qlen" -v f="$flen" '!/^#/ { if ($1 != r || $2 != rec || $4 != qo || $
     BEGIN { qo = 16; fo = 16 } END { exit bad || r != 37 || rec != 216 || qo != q || fo != f }' "$dir/order.txt" \
     && ok "--order: 37 contiguous rounds ending at the bundles' ends" || bad "--order"
 "$inspect" --help | grep -q -- "--order" && ok "lumo-inspect --help lists --order" || bad "--help --order"
+# Each light listed with what its kind has (lights.lumo: area, spot, directional)
+"$inspect" tests/fuzz/seeds/fuzz_package/lights.lumo >"$dir/lights.txt" 2>&1 &&
+    grep -q "^light 0   area at (-0.200, 1.990, -0.200) dir (0.000, -1.000, 0.000) power (10.000" "$dir/lights.txt" &&
+    grep -q "^light 1   spot at (0.500, 1.500, 0.000) dir (0.000, -1.000, 0.000) power .* half-angle 45.00 deg" \
+        "$dir/lights.txt" &&
+    grep -q "^light 2   directional dir (0.000, -0.981, 0.196) irradiance (0.500" "$dir/lights.txt" &&
+    "$bake" tests/fuzz/package_seeds/tiny.txt --mesh raw --grid 2 --spp 1 --light point:0,2,0:5,5,5 \
+        -o "$dir/point.lumo" >/dev/null 2>&1 &&
+    "$inspect" "$dir/point.lumo" | grep "^light" | grep -v "dir (" | grep -q "point at (0.000, 2.000, 0.000) power" \
+    && ok "lumo-inspect lists each light by what its kind has (a point light without a direction)" \
+    || bad "lumo-inspect light lines: $(cat "$dir/lights.txt")"
 
 # Reference images: full and indirect-only, PNG signature.
 "$bake" --default --reference 32x24 --spp 4 -o "$dir/ref.png" 2>/dev/null && \

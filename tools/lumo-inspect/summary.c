@@ -50,12 +50,14 @@ static int print_scene(const lumo_package *pkg)
             fprintf(stderr, "lumo-inspect: error: light %u: %s\n", i, lumo_strerror(st));
             return -1;
         }
-        /* A directional light has no position: only its direction. */
+        /* Only what the kind has: a directional light no position, a
+         * point light no direction. */
         printf("light %u   %s", i, k_kinds[l.kind]);
         if (l.kind != LUMO_LIGHT_DIRECTIONAL)
             printf(" at (%.3f, %.3f, %.3f)", q16(l.pos[0]), q16(l.pos[1]), q16(l.pos[2]));
-        printf(" dir (%.3f, %.3f, %.3f) %s (%.3f, %.3f, %.3f)", l.dir[0] / 16384.0, l.dir[1] / 16384.0,
-               l.dir[2] / 16384.0, l.kind == LUMO_LIGHT_DIRECTIONAL ? "irradiance" : "power",
+        if (l.kind != LUMO_LIGHT_POINT)
+            printf(" dir (%.3f, %.3f, %.3f)", l.dir[0] / 16384.0, l.dir[1] / 16384.0, l.dir[2] / 16384.0);
+        printf(" %s (%.3f, %.3f, %.3f)", l.kind == LUMO_LIGHT_DIRECTIONAL ? "irradiance" : "power",
                q16((int32_t)l.power[0]), q16((int32_t)l.power[1]), q16((int32_t)l.power[2]));
         if (l.kind == LUMO_LIGHT_SPOT)
             printf(" half-angle %.2f deg", q16(l.half_angle_deg));
