@@ -108,16 +108,24 @@ static int tok_is(span t, const char *word)
     return (size_t)(t.e - t.s) == n && !memcmp(t.s, word, n);
 }
 
+/* The token as a C string in buf (strtod and strtoll need the NUL the
+ * mapped file lacks): 0, or -1 when it is empty or longer than cap - 1. */
+static int tok_cstr(span t, char *buf, size_t cap)
+{
+    size_t n = (size_t)(t.e - t.s);
+    if (n == 0 || n >= cap)
+        return -1;
+    memcpy(buf, t.s, n);
+    buf[n] = 0;
+    return 0;
+}
+
 /* A whole token as a number: 0 on success. */
 static int tok_double(span t, double *out)
 {
     char buf[64], *end;
-    size_t n = (size_t)(t.e - t.s);
-    if (n == 0 || n >= sizeof buf)
+    if (tok_cstr(t, buf, sizeof buf))
         return -1;
-    memcpy(buf, t.s, n);
-    buf[n] = 0;
-    errno = 0;
     *out = strtod(buf, &end);
     return *end ? -1 : 0;
 }
@@ -125,11 +133,8 @@ static int tok_double(span t, double *out)
 static int tok_int(span t, long long *out)
 {
     char buf[32], *end;
-    size_t n = (size_t)(t.e - t.s);
-    if (n == 0 || n >= sizeof buf)
+    if (tok_cstr(t, buf, sizeof buf))
         return -1;
-    memcpy(buf, t.s, n);
-    buf[n] = 0;
     errno = 0;
     *out = strtoll(buf, &end, 10);
     return *end || errno ? -1 : 0;
