@@ -116,6 +116,17 @@ static double cpu_s(void)
  * measured swings of 2x under a load of 6 on 2 cores).
  * Each frame turns the lighting 7 degrees about +y (a moving environment:
  * the per-cluster table is recomputed every frame, as on a client). */
+/* The bench's lighting: two directional lights of 3 W/m², from above and
+ * from the side (the same as the rasterizer's Lambert peer below). */
+static void bench_light(lumo_prt_light *l, int order)
+{
+    static const lumo_q1_14 d1[3] = {0, 16384, 0}, d2[3] = {11585, 0, 11585};
+    static const lumo_uq16_16 e[3] = {3 << 16, 3 << 16, 3 << 16};
+    lumo_prt_light_clear(l, (unsigned)order);
+    lumo_prt_light_add_directional(l, d1, e);
+    lumo_prt_light_add_directional(l, d2, e);
+}
+
 static double gl_fps_of(const bench_opts *o, lumo_gl_prt *gp, const lumo_prt *p, const lumo_prt_light *base,
                         lumo_q16_16 *frame, uint8_t *rgb)
 {
@@ -160,11 +171,7 @@ static double gl_fps(const srv_cpca *c, const uint32_t *pass, const bench_opts *
     }
     lumo_q16_16 *frame = malloc(lumo_prt_frame_entries(&p) * sizeof *frame);
     lumo_prt_light base;
-    lumo_q1_14 d1[3] = {0, 16384, 0}, d2[3] = {11585, 0, 11585};
-    lumo_uq16_16 e[3] = {3 << 16, 3 << 16, 3 << 16};
-    lumo_prt_light_clear(&base, (unsigned)o->order);
-    lumo_prt_light_add_directional(&base, d1, e);
-    lumo_prt_light_add_directional(&base, d2, e);
+    bench_light(&base, o->order);
     uint32_t count = g_gl.rm.vertex_count;
     lumo_gl_prt *gp = frame ? lumo_gl_prt_create(g_gl.g, &g_gl.rm, &p, &count, 1, err, sizeof err) : NULL;
     if (!gp) {
@@ -447,11 +454,7 @@ static void client_cost(FILE *f, const srv_pm *pm, const double *x, int nc, cons
     lumo_raster_mesh rm;
     raster_mesh(pm, &rm);
     lumo_prt_light L;
-    lumo_q1_14 d1[3] = {0, 16384, 0}, d2[3] = {11585, 0, 11585};
-    lumo_uq16_16 e[3] = {3 << 16, 3 << 16, 3 << 16};
-    lumo_prt_light_clear(&L, (unsigned)o->order);
-    lumo_prt_light_add_directional(&L, d1, e);
-    lumo_prt_light_add_directional(&L, d2, e);
+    bench_light(&L, o->order);
     lumo_raster_light rl[2] = {{.kind = LUMO_LIGHT_DIRECTIONAL, .dir = {0, -16384, 0}, .value = {3 << 16, 3 << 16, 3 << 16}},
                                {.kind = LUMO_LIGHT_DIRECTIONAL, .dir = {-11585, 0, -11585}, .value = {3 << 16, 3 << 16, 3 << 16}}};
     lumo_raster_scene rs = {.lights = rl, .light_count = 2, .exposure = LUMO_Q16_ONE};
