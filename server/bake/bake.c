@@ -5,10 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "bake/bake.h"
-#include "common/parallel.h"
 #include "common/progress.h"
-
-#define MAX_WORKERS 256
 
 /* The bake as srv_work: run() computes the vertices [first, first+count)
  * into records at out. */
@@ -18,7 +15,7 @@ struct srv_bake_job {
     srv_bake_opts         o;
     size_t                first;
     srv_bake_record      *out;
-    srv_trace_stats       stats[MAX_WORKERS];
+    srv_trace_stats       stats[SRV_TRACE_MAX_WORKERS];
 };
 typedef struct srv_bake_job bake_job;
 
@@ -114,12 +111,7 @@ static lumo_status bake_run(void *ctx, size_t first, size_t count, uint8_t *out,
     bake_job *j = ctx;
     j->first = first;
     j->out = (srv_bake_record *)(void *)out;
-    memset(j->stats, 0, sizeof j->stats);
-    int threads = j->o.threads > MAX_WORKERS ? MAX_WORKERS : j->o.threads;
-    lumo_status st = srv_parallel_for(count, threads, bake_vertex, j, "bake", 0);
-    for (int w = 0; w < MAX_WORKERS; w++)
-        *rays += j->stats[w].rays;
-    return st;
+    return srv_trace_parallel(count, j->o.threads, bake_vertex, j, "bake", j->stats, rays);
 }
 
 /* Refuse up front what would only be killed later: calloc of a huge grid

@@ -2,6 +2,7 @@
  * roulette. Light sources are reached only by next-event estimation: a path
  * that hits an emitter ends there, so no light is counted twice. */
 #include <math.h>
+#include <string.h>
 #include "bake/trace.h"
 #include "common/sample.h"
 
@@ -13,6 +14,18 @@ void srv_tracer_init(srv_tracer *t, const srv_scene *s, const srv_rt *rt)
     t->s = s;
     t->rt = rt;
     t->eps = srv_rt_epsilon(rt);
+}
+
+lumo_status srv_trace_parallel(size_t count, int threads, srv_item_fn fn, void *ctx, const char *label,
+                               srv_trace_stats stats[SRV_TRACE_MAX_WORKERS], uint64_t *rays)
+{
+    memset(stats, 0, SRV_TRACE_MAX_WORKERS * sizeof *stats);
+    if (threads > SRV_TRACE_MAX_WORKERS)
+        threads = SRV_TRACE_MAX_WORKERS;
+    lumo_status st = srv_parallel_for(count, threads, fn, ctx, label, 0);
+    for (int w = 0; w < SRV_TRACE_MAX_WORKERS; w++)
+        *rays += stats[w].rays;
+    return st;
 }
 
 static int visible(const srv_tracer *t, vec3 x, vec3 n, vec3 w, float dist, srv_trace_stats *st)

@@ -4,10 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "common/parallel.h"
 #include "bake/reference.h"
-
-#define MAX_WORKERS 256
 
 struct srv_render_job {
     const srv_tracer *t;
@@ -16,7 +13,7 @@ struct srv_render_job {
     srv_render_opts   o;
     size_t            first;    /* the run's first row */
     float            *out;      /* its rows, w*3 floats each */
-    srv_trace_stats   stats[MAX_WORKERS];
+    srv_trace_stats   stats[SRV_TRACE_MAX_WORKERS];
 };
 typedef struct srv_render_job render_job;
 
@@ -45,12 +42,7 @@ static lumo_status render_run(void *ctx, size_t first, size_t count, uint8_t *ou
     render_job *j = ctx;
     j->first = first;
     j->out = (float *)(void *)out;
-    memset(j->stats, 0, sizeof j->stats);
-    int threads = j->o.threads > MAX_WORKERS ? MAX_WORKERS : j->o.threads;
-    lumo_status st = srv_parallel_for(count, threads, render_row, j, "render", 0);
-    for (int i = 0; i < MAX_WORKERS; i++)
-        *rays += j->stats[i].rays;
-    return st;
+    return srv_trace_parallel(count, j->o.threads, render_row, j, "render", j->stats, rays);
 }
 
 static uint64_t key_vec3(uint64_t h, vec3 v)

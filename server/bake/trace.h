@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include "common/rng.h"
 #include "bake/rt.h"
+#include "common/parallel.h"
 
 typedef struct srv_tracer {
     const srv_scene *s;
@@ -19,6 +20,15 @@ typedef struct srv_tracer {
 /* Per-thread counter of rays cast (for rays/s), one cache line each so
  * that workers counting side by side do not share a line. */
 typedef struct { uint64_t rays; uint8_t pad[56]; } srv_trace_stats;
+
+/* The most worker threads a traced job runs (more asked for are clamped). */
+#define SRV_TRACE_MAX_WORKERS 256
+
+/* Runs fn over count items on `threads` workers (clamped to
+ * SRV_TRACE_MAX_WORKERS) with a progress bar named label; stats holds one
+ * counter per worker, zeroed here, and their sum is added to *rays. */
+lumo_status srv_trace_parallel(size_t count, int threads, srv_item_fn fn, void *ctx, const char *label,
+                               srv_trace_stats stats[SRV_TRACE_MAX_WORKERS], uint64_t *rays);
 
 void srv_tracer_init(srv_tracer *t, const srv_scene *s, const srv_rt *rt);
 
