@@ -28,36 +28,6 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The naive removal: all two nearest distances from scratch per removal. */
-static void naive_thin(const vec3 *p, size_t n, size_t keep, uint8_t *alive)
-{
-    size_t count = n;
-    memset(alive, 1, n);
-    while (count > keep) {
-        size_t best = n;
-        float bd1 = INFINITY, bd2 = INFINITY;
-        for (size_t i = 0; i < n; i++) {
-            float d1 = INFINITY, d2 = INFINITY;
-            if (!alive[i])
-                continue;
-            for (size_t j = 0; j < n; j++) {
-                if (j == i || !alive[j])
-                    continue;
-                vec3 d = v3_sub(p[i], p[j]);
-                float e = v3_dot(d, d);
-                if (e < d1)
-                    d2 = d1, d1 = e;
-                else if (e < d2)
-                    d2 = e;
-            }
-            if (best == n || d1 < bd1 || (d1 == bd1 && d2 < bd2))
-                best = i, bd1 = d1, bd2 = d2;
-        }
-        alive[best] = 0;
-        count--;
-    }
-}
-
 static void bench_thin(void)
 {
     printf("\n| N_v (candidates +10%%) | Algorithm 1 | naive removal | naive / Algorithm 1 | same survivors |\n");
@@ -73,7 +43,7 @@ static void bench_thin(void)
         double t0 = now_s();
         srv_vsl_thin(p, NULL, n, nv, a);
         double t1 = now_s();
-        naive_thin(p, n, nv, b);
+        srv_vsl_thin_naive(p, NULL, n, nv, b);
         double t2 = now_s();
         printf("| %zu (%zu) | %.2f ms | %.2f ms | %.0f | %s |\n", nv, n, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
                (t2 - t1) / (t1 - t0), memcmp(a, b, n) ? "no" : "yes");

@@ -65,4 +65,9 @@ void srv_vsl_set_free(srv_vsl_set *set);
  * to one). LUMO_ERR_NOMEM is reported as (size_t)-1. */
 size_t srv_vsl_thin(const vec3 *p, const uint32_t *group, size_t n, size_t keep, uint8_t *alive);
 
+/* The same removal done naively (every distance recomputed for every
+ * removal, O(n^3) in all): the same survivors as srv_vsl_thin, for tests
+ * and the benchmark only. */
+size_t srv_vsl_thin_naive(const vec3 *p, const uint32_t *group, size_t n, size_t keep, uint8_t *alive);
+
 #endif

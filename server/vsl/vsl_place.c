@@ -73,6 +73,47 @@ static uint32_t *group_counts(const uint32_t *group, size_t n)
     return left;
 }
 
+/* The naive process Algorithm 1 is measured against (§0.4.2): every
+ * removal recomputes every living removable point's two nearest distances
+ * from scratch, O(n^2) each. The tests' oracle and the bench's peer. */
+size_t srv_vsl_thin_naive(const vec3 *p, const uint32_t *group, size_t n, size_t keep, uint8_t *alive)
+{
+    size_t count = n;
+    uint32_t *left = group_counts(group, n);
+    if (!left)
+        return (size_t)-1;
+    memset(alive, 1, n);
+    while (count > keep) {
+        size_t best = n;
+        float bd1 = INFINITY, bd2 = INFINITY;
+        for (size_t i = 0; i < n; i++) {
+            if (!alive[i] || (group && left[group[i]] < 2))
+                continue;
+            float d1 = INFINITY, d2 = INFINITY;
+            for (size_t j = 0; j < n; j++) {
+                if (j == i || !alive[j])
+                    continue;
+                vec3 d = v3_sub(p[i], p[j]);
+                float e = v3_dot(d, d);
+                if (e < d1)
+                    d2 = d1, d1 = e;
+                else if (e < d2)
+                    d2 = e;
+            }
+            if (best == n || d1 < bd1 || (d1 == bd1 && d2 < bd2))
+                best = i, bd1 = d1, bd2 = d2;
+        }
+        if (best == n)
+            break;
+        alive[best] = 0;
+        count--;
+        if (group)
+            left[group[best]]--;
+    }
+    free(left);
+    return count;
+}
+
 size_t srv_vsl_thin(const vec3 *p, const uint32_t *group, size_t n, size_t keep, uint8_t *alive)
 {
     near2 *q = malloc((n ? n : 1) * sizeof *q);

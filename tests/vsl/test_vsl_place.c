@@ -14,45 +14,6 @@
 #include "scene/shapes.h"
 #include "vsl/vsl.h"
 
-/* The naive removal: for every step, every living removable point's two
- * nearest distances from scratch; remove the smallest (d1, d2), ties to
- * the lower index. */
-static size_t brute_thin(const vec3 *p, const uint32_t *group, size_t n, size_t keep, uint8_t *alive)
-{
-    size_t count = n, left[64] = {0};
-    memset(alive, 1, n);
-    for (size_t i = 0; group && i < n; i++)
-        left[group[i]]++;
-    while (count > keep) {
-        size_t best = n;
-        float bd1 = INFINITY, bd2 = INFINITY;
-        for (size_t i = 0; i < n; i++) {
-            if (!alive[i] || (group && left[group[i]] < 2))
-                continue;
-            float d1 = INFINITY, d2 = INFINITY;
-            for (size_t j = 0; j < n; j++) {
-                if (j == i || !alive[j])
-                    continue;
-                vec3 d = v3_sub(p[i], p[j]);
-                float e = v3_dot(d, d);
-                if (e < d1)
-                    d2 = d1, d1 = e;
-                else if (e < d2)
-                    d2 = e;
-            }
-            if (best == n || d1 < bd1 || (d1 == bd1 && d2 < bd2))
-                best = i, bd1 = d1, bd2 = d2;
-        }
-        if (best == n)
-            break;
-        alive[best] = 0;
-        count--;
-        if (group)
-            left[group[best]]--;
-    }
-    return count;
-}
-
 static void random_set(test_rng *r, vec3 *p, uint32_t *g, size_t n, int kind, int ngroups)
 {
     for (size_t i = 0; i < n; i++) {
@@ -86,7 +47,7 @@ static void test_thin_matches_brute_force(void **state)
                 size_t keep = 1 + test_rng_next(&r) % n;
                 random_set(&r, p, grouped ? g : NULL, n, kind, 1 + rep * 7);
                 size_t ca = srv_vsl_thin(p, grouped ? g : NULL, n, keep, a);
-                size_t cb = brute_thin(p, grouped ? g : NULL, n, keep, b);
+                size_t cb = srv_vsl_thin_naive(p, grouped ? g : NULL, n, keep, b);
                 assert_int_equal(ca, cb);
                 assert_memory_equal(a, b, n);
                 assert_true(ca >= keep);
