@@ -281,6 +281,54 @@ static void test_getopt_errors(void **state)
     assert_msg("-z: unknown option (try --help)");
 }
 
+/* Runs host_getopt over argv to its end; returns the options taken as
+ * letters ('p' --port-file, 'q' --quiet, 'r' --rate) and, on a refusal,
+ * '?' with the word host_opt_getopt_error is given (argv[optind - 1]). */
+static const char *getopt_run(int argc, char **argv, const char **word)
+{
+    static char taken[16];
+    static const struct option longs[] = {
+        {"port-file", required_argument, NULL, 'p'}, {"quiet", no_argument, NULL, 'q'},
+        {"rate", required_argument, NULL, 'r'}, {NULL, 0, NULL, 0},
+    };
+    int c, n = 0;
+    optind = 0;
+    opterr = 0;
+    *word = NULL;
+    while ((c = host_getopt(argc, argv, ":h", longs)) != -1 && n < 15) {
+        taken[n++] = (char)c;
+        if (c == '?' || c == ':') {
+            *word = argv[optind - 1];
+            break;
+        }
+    }
+    taken[n] = 0;
+    return taken;
+}
+
+/* Long options only when typed whole: a unique prefix is refused, by the
+ * word typed (not the value after it). */
+static void test_getopt_whole_names(void **state)
+{
+    const char *w;
+    char *whole[] = {"t", "--port-file", "f", "--quiet", "--rate=3", "--", "x", NULL};
+    char *prefix[] = {"t", "--port", "7791", NULL};
+    char *prefix_eq[] = {"t", "--qu", NULL};
+    char *prefix_val[] = {"t", "--quiet", "--rat=3", NULL};
+    char *ambiguous[] = {"t", "--r", "1", NULL};
+    (void)state;
+    assert_string_equal(getopt_run(7, whole, &w), "pqr");
+    assert_string_equal(getopt_run(3, prefix, &w), "?");
+    assert_string_equal(w, "--port");
+    host_opt_getopt_error('?', w, optopt, g_err, sizeof g_err);
+    assert_msg("--port: unknown option (try --help)");
+    assert_string_equal(getopt_run(2, prefix_eq, &w), "?");
+    assert_string_equal(w, "--qu");
+    assert_string_equal(getopt_run(3, prefix_val, &w), "q?");
+    assert_string_equal(w, "--rat=3");
+    assert_string_equal(getopt_run(3, ambiguous, &w), "?");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -290,7 +338,7 @@ int main(void)
         cmocka_unit_test(test_sizes),           cmocka_unit_test(test_vectors),
         cmocka_unit_test(test_lists),           cmocka_unit_test(test_choice),
         cmocka_unit_test(test_message_escaping), cmocka_unit_test(test_files),
-        cmocka_unit_test(test_getopt_errors),
+        cmocka_unit_test(test_getopt_errors),  cmocka_unit_test(test_getopt_whole_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

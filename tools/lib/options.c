@@ -318,6 +318,24 @@ int host_opt_choice(const char *opt, const char *text, const char *const *names,
     return refuse(opt, text, err, errlen, "must be one of %s", list);
 }
 
+int host_getopt(int argc, char *const argv[], const char *shorts, const struct option *longs)
+{
+    int idx = -1, c = getopt_long(argc, argv, shorts, longs, &idx);
+    if (c == -1 || c == '?' || c == ':' || idx < 0)
+        return c;
+    int at = optind - 1;   /* the word that named the option */
+    if (optarg && at > 0 && argv[at] == optarg)
+        at--;
+    const char *w = argv[at];
+    size_t len = strlen(longs[idx].name);
+    if (w[0] == '-' && w[1] == '-' && (strncmp(w + 2, longs[idx].name, len) || (w[2 + len] && w[2 + len] != '='))) {
+        optind = at + 1;
+        optopt = 0;
+        return '?';
+    }
+    return c;
+}
+
 int host_opt_getopt_error(int c, const char *arg, int optopt_, char *err, size_t errlen)
 {
     char shown[4 * SHOWN_MAX + 8], opt[8];

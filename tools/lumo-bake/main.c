@@ -234,7 +234,7 @@ static int parse_args(options *o, int argc, char **argv, char *err, size_t errle
     o->threads = (int)sysconf(_SC_NPROCESSORS_ONLN);
     o->threads = o->threads < 1 ? 1 : o->threads > 256 ? 256 : o->threads;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, ":o:h", k_long, NULL)) != -1) {
+    while ((c = host_getopt(argc, argv, ":o:h", k_long)) != -1) {
         if (c == '?' || c == ':')
             return host_opt_getopt_error(c, argv[optind - 1], optopt, err, errlen);
         int rc = take_option(o, c, optarg, err, errlen);

@@ -177,7 +177,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->update_every_ms = 250, o->update_amount = 65536;
     o->ro.width = 320, o->ro.height = 240, o->ro.format = LUMO_PIXEL_XRGB8888, o->ro.depth_bits = 32;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", longs, NULL)) != -1) {
+    while ((c = host_getopt(argc, argv, ":h", longs)) != -1) {
         if (c == 'h')
             return 1;
         if (c == '?' || c == ':')

@@ -231,7 +231,7 @@ static int parse_args(int argc, char **argv, options *o, char *err, size_t errle
 
     set_defaults(o);
     opterr = 0;
-    while ((c = getopt_long(argc, argv, ":o:h", k_longs, NULL)) != -1) {
+    while ((c = host_getopt(argc, argv, ":o:h", k_longs)) != -1) {
         if (c == 'h' || c == O_HELP)
             return 1;
         if (c == '?' || c == ':')

@@ -108,7 +108,7 @@ int main(int argc, char **argv)
     o.drain_ms = SRV_DRAIN_MS;
     o.seed = 1;
     opterr = 0;
-    while ((c = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
+    while ((c = host_getopt(argc, argv, ":h", longopts)) != -1) {
         switch (c) {
         case 'h':
             fputs(usage, stdout);

@@ -28,6 +28,7 @@
 #ifndef HOST_OPTIONS_H
 #define HOST_OPTIONS_H
 
+#include <getopt.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -75,6 +76,13 @@ int host_opt_choice(const char *opt, const char *text, const char *const *names,
  *   --model /tmp/m: a directory, not a model file
  *   scene.txt: cannot read: No such file or directory */
 int host_opt_file(const char *opt, const char *path, const char *kind, char *err, size_t errlen);
+
+/* getopt_long without abbreviations: a long option is taken only when
+ * typed whole ("--port 7791" is refused, not read as --port-file), because
+ * a prefix that happens to be unique does something the user did not ask
+ * for. An abbreviation is returned as '?' with optind set so that
+ * argv[optind - 1] is the word typed, as host_opt_getopt_error wants it. */
+int host_getopt(int argc, char *const argv[], const char *shorts, const struct option *longs);
 
 /* The line for an option getopt_long refused (opterr = 0 and an optstring
  * starting with ':'): c is what getopt_long returned (':' for a missing
