@@ -389,32 +389,47 @@ static int32_t seg_step(int32_t from, int32_t to, int32_t n)
 }
 
 /* Depth value of z (Q0.30, in [0, 2^30]) in 16 or 32 bits, 0 kept for
- * "cleared": depth16 and depth32 in 32-bit arithmetic. */
-LUMO_RASTER_HOT uint32_t depth_of(uint32_t z, int d16)
+ * "cleared": depth16 and depth32 in 32-bit arithmetic. With `plain` the
+ * caller knows z in [2^14, 2^30) (both ends of the run are, and the steps
+ * stay between them), where both are a shift. */
+LUMO_RASTER_HOT uint32_t depth_of(uint32_t z, int d16, int plain)
 {
+    if (plain)
+        return d16 ? z >> 14 : z << 2;
     if (d16)
         return z >= ((uint32_t)1 << 30) ? 0xFFFFu : (z >> 14) | ((z >> 14) == 0);
     return z >= ((uint32_t)1 << 30) ? 0xFFFFFFFFu : (z << 2) | (z == 0);
 }
 
+/* The sRGB code of a run's value: without clamp when the run's values are
+ * known below 2^24 (`plain`). */
+LUMO_RASTER_HOT unsigned run_code(uint32_t v, int plain)
+{
+    return plain ? lumo_raster_srgb_code24(v) : lumo_raster_srgb_code32(v);
+}
+
 /* The pixels of a Gouraud run in 32-bit arithmetic, inlined once per pixel
- * format (rgb565) and depth width (d16) so that the loop holds no format
- * test: depth and radiance stepped, depth test, three code look-ups. */
+ * format (rgb565), depth width (d16) and range (plain: every depth in
+ * [2^14, 2^30) and every radiance below 2^24, so neither the depth nor the
+ * codes need a clamp) so that the loop holds no test but the depth test:
+ * depth and radiance stepped, three code look-ups, the pixel. */
 LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z0,
-                                    int32_t dz, const int32_t c0[3], const int32_t dc[3], int rgb565, int d16)
+                                    int32_t dz, const int32_t c0[3], const int32_t dc[3], int rgb565, int d16,
+                                    int plain)
 {
     /* Unsigned accumulators: every value the run uses lies in [0, 2^30];
      * the step past its last pixel may wrap, which unsigned arithmetic
      * defines. */
     uint32_t written = 0, z = (uint32_t)z0, c[3];
+    const uint8_t *bayer = lumo_raster_bayer4[y & 3];
     int32_t k;
 
     c[0] = (uint32_t)c0[0];
     c[1] = (uint32_t)c0[1];
     c[2] = (uint32_t)c0[2];
-    for (k = 0; k < count; k++, x++, z += (uint32_t)dz, c[0] += (uint32_t)dc[0], c[1] += (uint32_t)dc[1],
+    for (k = 0; k < count; k++, z += (uint32_t)dz, c[0] += (uint32_t)dc[0], c[1] += (uint32_t)dc[1],
          c[2] += (uint32_t)dc[2]) {
-        uint32_t dv = depth_of(z, d16);
+        uint32_t dv = depth_of(z, d16, plain);
         unsigned r, g, b;
         if (d16 ? dv <= ((uint16_t *)depth)[k] : dv <= ((uint32_t *)depth)[k])
             continue;
@@ -422,11 +437,11 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
             ((uint16_t *)depth)[k] = (uint16_t)dv;
         else
             ((uint32_t *)depth)[k] = dv;
-        r = lumo_raster_srgb_code32(c[0]);
-        g = lumo_raster_srgb_code32(c[1]);
-        b = lumo_raster_srgb_code32(c[2]);
+        r = run_code(c[0], plain);
+        g = run_code(c[1], plain);
+        b = run_code(c[2], plain);
         if (rgb565) {
-            unsigned t = lumo_raster_bayer4[y & 3][x & 3];
+            unsigned t = bayer[(x + k) & 3];
             ((uint16_t *)(void *)line)[k] = (uint16_t)((lumo_raster_dither(r, 31, t) << 11)
                                                        | (lumo_raster_dither(g, 63, t) << 5)
                                                        | lumo_raster_dither(b, 31, t));
@@ -438,6 +453,38 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
     return written;
 }
 
+/* Whether a run from (za, ca) to (zb, cb) needs no clamp (run_pixels'
+ * `plain`): linear steps rounded towards zero stay between the ends. */
+static int run_plain(uint32_t za, uint32_t zb, const int32_t ca[3], const int32_t cb[3])
+{
+    const uint32_t zlo = (uint32_t)1 << 14, zhi = (uint32_t)1 << 30, chi = (uint32_t)1 << 24;
+
+    return za >= zlo && zb >= zlo && za < zhi && zb < zhi
+        && (uint32_t)(ca[0] | cb[0] | ca[1] | cb[1] | ca[2] | cb[2]) < chi;
+}
+
+/* run_pixels for the target's format and depth width. */
+static uint32_t run_target(const lumo_raster_target *tg, size_t at, uint8_t *line, int32_t count, int x,
+                           int y, int32_t z, int32_t dz, const int32_t c0[3], const int32_t dc[3], int plain)
+{
+    void *d = tg->depth_bits == 16 ? (void *)((uint16_t *)tg->depth + at) : (void *)((uint32_t *)tg->depth + at);
+
+    if (tg->format == LUMO_PIXEL_RGB565) {
+        line += (size_t)x * 2u;
+        if (tg->depth_bits == 16)
+            return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 1, 1)
+                         : run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 1, 0);
+        return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 0, 1)
+                     : run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 0, 0);
+    }
+    line += (size_t)x * 4u;
+    if (tg->depth_bits == 16)
+        return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 1, 1)
+                     : run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 1, 0);
+    return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 0, 1)
+                 : run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 0, 0);
+}
+
 /* A Gouraud run of pixels [a, b] of a row (b - a < 2^run_bits): depth and
  * radiance exact (perspective-correct) at both ends and stepped linearly
  * between them, so a pixel costs additions, the depth test and three table
@@ -446,28 +493,22 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
 static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_t Ea[3], int64_t a,
                             int64_t b, int64_t y, size_t row, uint8_t *line)
 {
-    lumo_raster_target *tg = c->target;
     int64_t Eb[3];
     int32_t ca[3], cb[3], dc[3], n = (int32_t)(b - a);
     uint32_t za, zb;
-    int32_t z, dz;
     int i;
 
     za = gouraud_at(t, Ea, ca);
     for (i = 0; i < 3; i++)
         Eb[i] = Ea[i] + t->step[i] * n;
     zb = n ? gouraud_at(t, Eb, cb) : za;
-    for (i = 0; i < 3; i++)
+    for (i = 0; i < 3; i++) {
+        if (!n)
+            cb[i] = ca[i];
         dc[i] = n ? seg_step(ca[i], cb[i], n) : 0;
-    z = (int32_t)za;
-    dz = n ? seg_step((int32_t)za, (int32_t)zb, n) : 0;
-    row += (size_t)a;
-    line += (size_t)a * (tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u);
-    if (tg->format == LUMO_PIXEL_RGB565)
-        return tg->depth_bits == 16 ? run_pixels((uint16_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 1, 1)
-                                    : run_pixels((uint32_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 1, 0);
-    return tg->depth_bits == 16 ? run_pixels((uint16_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 0, 1)
-                                : run_pixels((uint32_t *)tg->depth + row, line, n + 1, (int)a, (int)y, z, dz, ca, dc, 0, 0);
+    }
+    return run_target(c->target, row + (size_t)a, line, n + 1, (int)a, (int)y, (int32_t)za,
+                      n ? seg_step((int32_t)za, (int32_t)zb, n) : 0, ca, dc, run_plain(za, zb, ca, cb));
 }
 
 /* Gouraud spans in runs ending at absolute multiples of 2^run_bits pixels
