@@ -22,25 +22,31 @@ for i in range(0, 91, 6):
     print("    " + ", ".join("%du" % v for v in vals[i:i + 6]) + ",")
 print("};")
 print()
-th = [0] + [math.ceil(srgb_decode((k - 0.5) / 255) * (1 << 24)) for k in range(1, 256)] + [1 << 24]
-print("/* The 8-bit sRGB code of a linear value v in UQ0.24 by v's 2^-12 segment:")
-print(" * entry = code | next << 8, where code is the code at the segment's start")
-print(" * and next the linear value (UQ0.24, rounded up from the decode of")
-print(" * (code + 1/2) / 255) where code + 1 begins; no segment holds two such")
-print(" * thresholds (the closest two, codes 1 and 2, are 5093 apart), so")
-print(" * code(v) = code + (next <= v). Segments wholly in code 255 hold")
-print(" * 254 | start << 8 (next <= v always). One load per channel (16 KB). */")
-print("const uint32_t lumo_raster_srgb_pair[4096] = {")
-pair = []
-for i in range(4096):
-    v = i << 12
+print("/* Linear value (UQ0.24) where the 8-bit sRGB code k begins: the decode of")
+print(" * (k - 0.5) / 255, rounded up; entry 0 is 0, entry 256 is 2^24 (no code")
+print(" * begins below 1.0 after 255). code(v) = #{1 <= k <= 255: t[k] <= v}. */")
+print("const uint32_t lumo_raster_srgb_threshold[257] = {")
+th = [0] + [math.ceil(srgb_decode((k - 0.5) / 255) * (1 << 24)) for k in range(1, 256)]
+for i in range(0, 256, 8):
+    print("    " + ", ".join("%du" % v for v in th[i:i + 8]) + ",")
+print("    %du," % (1 << 24))
+print("};")
+th.append(1 << 24)
+print()
+print("/* The code at the start of each 2^-14 segment of [0, 1], and 255 for the")
+print(" * one past it: no segment holds more than one threshold (the closest two,")
+print(" * codes 1 and 2, are 5093 apart), so the code is this or one more (one")
+print(" * comparison). Per-vertex runs read the entry of the nearest segment start")
+print(" * alone (within one code, docs/rasterizer.md). 16 KB. */")
+print("const uint8_t lumo_raster_srgb_segment[16385] = {")
+seg = []
+for i in range(16385):
+    v = i << 10
     code = max(k for k in range(256) if th[k] <= v)
-    assert sum(1 for k in range(1, 256) if v < th[k] <= v + 4095) <= 1
-    assert th[code + 1] > v
-    pair.append(code | th[code + 1] << 8 if code < 255 else 254 | v << 8)
-    assert pair[-1] < 1 << 32
-for i in range(0, 4096, 6):
-    print("    " + ", ".join("%du" % c for c in pair[i:i + 6]) + ",")
+    assert sum(1 for k in range(1, 256) if v < th[k] <= v + 1023) <= 1
+    seg.append(code)
+for i in range(0, 16385, 16):
+    print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
 print("};")
 print()
 print("/* ceil(16 sqrt(i + 1)) for i = 0..255: an over-estimate of the square root")

@@ -36,6 +36,8 @@ typedef struct tri {
     unsigned zs;       /* depth: z = ((sum w q) >> zs) * zr >> 32 */
     uint64_t zr;
     unsigned run_bits; /* Gouraud: runs end at multiples of 2^run_bits pixels */
+    int edges32;       /* sh == 0 and every edge value of the box within +-2^30 */
+    int32_t st32[3], bias32[3];   /* step and bias as 32-bit values (edges32) */
 } tri;
 
 static int64_t floor_div16(int64_t v)
@@ -165,29 +167,40 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
  * one 32-bit division per slanted edge instead of a scan over the pixels:
  * the same run as scanning (the first covered pixel, then up to the first
  * uncovered one). |s| = 16 |a| < 2^23 (the guard band), so b - e + s stays
- * in 32 bits. *x0 = first covered pixel, return the last one, or x0 - 1
- * when none. */
-static int64_t run_32(const tri *t, const int64_t E[3], int64_t px0, int64_t px1, int64_t *x0)
+ * in 32 bits. run32: the run [*lo, returned] of pixels 0..len of the
+ * row (empty when *lo is greater); run_32: *x0 = first covered pixel,
+ * return the last one, or x0 - 1 when none. */
+static int32_t run32(const tri *t, const int32_t E[3], int32_t len, int32_t *lo)
 {
-    int32_t lo = 0, hi = (int32_t)(px1 - px0);
+    int32_t hi = len;
     int i;
 
+    *lo = 0;
     for (i = 0; i < 3; i++) {
-        int32_t e = (int32_t)E[i], st = (int32_t)t->step[i], b = (int32_t)t->e[i].bias;
+        int32_t e = E[i], st = t->st32[i], b = t->bias32[i];
         if (st > 0) {
             if (e < b) {
                 int32_t k = (b - e + st - 1) / st;          /* first k with e + k st >= b */
-                if (k > lo) lo = k;
+                if (k > *lo) *lo = k;
             }
         } else if (e < b) {
-            lo = hi + 1;                                  /* never covered in this row */
+            *lo = hi + 1;                                 /* never covered in this row */
         } else if (st < 0) {
             int32_t k = (e - b) / -st;                    /* last k with e + k st >= b */
             if (k < hi) hi = k;
         }
     }
+    return *lo > hi ? *lo - 1 : hi;
+}
+
+static int64_t run_32(const tri *t, const int64_t E[3], int64_t px0, int64_t px1, int64_t *x0)
+{
+    int32_t e[3], lo, hi;
+
+    e[0] = (int32_t)E[0], e[1] = (int32_t)E[1], e[2] = (int32_t)E[2];
+    hi = run32(t, e, (int32_t)(px1 - px0), &lo);
     *x0 = px0 + lo;
-    return lo > hi ? *x0 - 1 : px0 + hi;
+    return px0 + hi;
 }
 
 /* The same in 64-bit integers, for any triangle. */
@@ -349,6 +362,56 @@ static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
     return (uint32_t)(z > cap ? cap : z);
 }
 
+/* Leading zeros of v != 0 (one CLZ instruction on the Cortex-M3). */
+LUMO_RASTER_HOT unsigned clz32(uint32_t v)
+{
+#if defined(__GNUC__)
+    return (unsigned)__builtin_clz(v);
+#else
+    return 32u - bit_length(v);
+#endif
+}
+
+/* gouraud_at for a triangle whose edge values fit 32 bits unscaled
+ * (edges32), in the Cortex-M3's own arithmetic: the same depth (one
+ * 32 x 32 multiply per weight), and the perspective barycentrics
+ * b_i = e_i q_i / sum e_j q_j from the weights' top 32 bits (sum
+ * normalised by one CLZ: it is below 2^62) and a reciprocal r = 2^63 / d
+ * of the sum's top 32 bits d: one 32-bit division gives r0 = 2^48 / d to
+ * 16 bits (2 below, so that e = 2^48 - d r0 > 0), one Newton step
+ * r = 2^15 r0 + r0 e / 2^33 the rest (relative error below 2^-29, from
+ * below: b_1 + b_2 <= 1), where gouraud_at truncates b to Q0.16 and calls
+ * a 64-bit division. The radiance b_0 c_0 + b_1 c_1 + b_2 c_2 is a convex
+ * combination of values in [0, 2^30]: no clamp. A sum below 2^32 (a
+ * sub-pixel triangle, or a vertex of weight 0) takes gouraud_at. */
+static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
+{
+    const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
+    uint64_t p1 = (uint64_t)(uint32_t)E[1] * t->v[1].q, p2 = (uint64_t)(uint32_t)E[2] * t->v[2].q;
+    uint64_t ps = (uint64_t)(uint32_t)E[0] * t->v[0].q + p1 + p2, r;
+    uint32_t hi = (uint32_t)(ps >> 32), d, r0, b0, b1, b2, z;
+    unsigned sh;
+    int i;
+
+    if (hi == 0) {
+        int64_t e[3];
+        e[0] = E[0], e[1] = E[1], e[2] = E[2];
+        return gouraud_at(t, e, c);
+    }
+    z = (uint32_t)(((uint64_t)(uint32_t)(ps >> t->zs) * (uint32_t)t->zr) >> 32);
+    sh = clz32(hi);                                  /* 2..31 */
+    d = (hi << sh) | ((uint32_t)ps >> (32 - sh));    /* [2^31, 2^32) */
+    r0 = 0xFFFFFFFFu / (d >> 16) - 2u;
+    r = ((uint64_t)r0 << 15) + (((uint64_t)r0 * (((uint64_t)1 << 48) - (uint64_t)d * r0)) >> 33);
+    b1 = (uint32_t)(((uint64_t)(((uint32_t)(p1 >> 32) << sh) | ((uint32_t)p1 >> (32 - sh))) * r) >> 32);
+    b2 = (uint32_t)(((uint64_t)(((uint32_t)(p2 >> 32) << sh) | ((uint32_t)p2 >> (32 - sh))) * r) >> 32);
+    b0 = ((uint32_t)1 << 31) - b1 - b2;              /* Q0.31 */
+    for (i = 0; i < 3; i++)
+        c[i] = (int32_t)(((uint64_t)(uint32_t)v0[i] * b0 + (uint64_t)(uint32_t)v1[i] * b1
+                          + (uint64_t)(uint32_t)v2[i] * b2 + ((uint64_t)1 << 30)) >> 31);
+    return z > ((uint32_t)1 << 30) ? (uint32_t)1 << 30 : z;
+}
+
 /* Gouraud runs: radiance exact (perspective-correct) at both ends of a run
  * and stepped linearly between, so the run's length bounds the error: over
  * L pixels 1/w changes by r = L |d(1/w)/dx| / (1/w)_min, and the linear
@@ -401,11 +464,14 @@ LUMO_RASTER_HOT uint32_t depth_of(uint32_t z, int d16, int plain)
     return z >= ((uint32_t)1 << 30) ? 0xFFFFFFFFu : (z << 2) | (z == 0);
 }
 
-/* The sRGB code of a run's value: without clamp when the run's values are
- * known below 2^24 (`plain`). */
+/* The sRGB code of a run's value v (the radiance plus half a code-table
+ * segment, lumo_raster_srgb_near), clamped to 1.0 unless the run's values
+ * are known below it (`plain`). */
 LUMO_RASTER_HOT unsigned run_code(uint32_t v, int plain)
 {
-    return plain ? lumo_raster_srgb_code24(v) : lumo_raster_srgb_code32(v);
+    const uint32_t one = (uint32_t)1 << 24;
+
+    return lumo_raster_srgb_near(plain || v < one ? v : one);
 }
 
 /* The pixels of a Gouraud run in 32-bit arithmetic, inlined once per pixel
@@ -419,70 +485,94 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
 {
     /* Unsigned accumulators: every value the run uses lies in [0, 2^30];
      * the step past its last pixel may wrap, which unsigned arithmetic
-     * defines. */
-    uint32_t written = 0, z = (uint32_t)z0, c[3];
+     * defines. The steps are locals (stores to the target could alias
+     * dc[] and reload them every pixel), the loop runs on the two
+     * pointers, and the pixels that fail the depth test are counted
+     * instead of those written (fewer registers in the loop). */
+    const uint32_t half = (uint32_t)1 << (LUMO_RASTER_SRGB_SEG_BITS - 1);
+    uint32_t fails = 0, z = (uint32_t)z0, r = (uint32_t)c0[0] + half, g = (uint32_t)c0[1] + half,
+             b = (uint32_t)c0[2] + half;
+    const uint32_t dzu = (uint32_t)dz, dr = (uint32_t)dc[0], dg = (uint32_t)dc[1], db = (uint32_t)dc[2];
     const uint8_t *bayer = lumo_raster_bayer4[y & 3];
-    int32_t k;
+    uint8_t *d = (uint8_t *)depth, *end = d + (size_t)count * (d16 ? 2u : 4u);
 
-    c[0] = (uint32_t)c0[0];
-    c[1] = (uint32_t)c0[1];
-    c[2] = (uint32_t)c0[2];
-    for (k = 0; k < count; k++, z += (uint32_t)dz, c[0] += (uint32_t)dc[0], c[1] += (uint32_t)dc[1],
-         c[2] += (uint32_t)dc[2]) {
+    for (; d != end; d += d16 ? 2 : 4, line += rgb565 ? 2 : 4, x++, z += dzu, r += dr, g += dg, b += db) {
         uint32_t dv = depth_of(z, d16, plain);
-        unsigned r, g, b;
-        if (d16 ? dv <= ((uint16_t *)depth)[k] : dv <= ((uint32_t *)depth)[k])
+        unsigned cr, cg, cb;
+        if (d16 ? dv <= *(uint16_t *)(void *)d : dv <= *(uint32_t *)(void *)d) {
+            fails++;
             continue;
-        if (d16)
-            ((uint16_t *)depth)[k] = (uint16_t)dv;
-        else
-            ((uint32_t *)depth)[k] = dv;
-        r = run_code(c[0], plain);
-        g = run_code(c[1], plain);
-        b = run_code(c[2], plain);
-        if (rgb565) {
-            unsigned t = bayer[(x + k) & 3];
-            ((uint16_t *)(void *)line)[k] = (uint16_t)((lumo_raster_dither(r, 31, t) << 11)
-                                                       | (lumo_raster_dither(g, 63, t) << 5)
-                                                       | lumo_raster_dither(b, 31, t));
-        } else {
-            ((uint32_t *)(void *)line)[k] = ((uint32_t)r << 16) | ((uint32_t)g << 8) | b;
         }
-        written++;
+        if (d16)
+            *(uint16_t *)(void *)d = (uint16_t)dv;
+        else
+            *(uint32_t *)(void *)d = dv;
+        cr = run_code(r, plain);
+        cg = run_code(g, plain);
+        cb = run_code(b, plain);
+        if (rgb565) {
+            unsigned t = bayer[x & 3];
+            *(uint16_t *)(void *)line = (uint16_t)((lumo_raster_dither(cr, 31, t) << 11)
+                                                   | (lumo_raster_dither(cg, 63, t) << 5)
+                                                   | lumo_raster_dither(cb, 31, t));
+        } else {
+            *(uint32_t *)(void *)line = ((uint32_t)cr << 16) | ((uint32_t)cg << 8) | cb;
+        }
     }
-    return written;
+    return (uint32_t)count - fails;
 }
 
 /* Whether a run from (za, ca) to (zb, cb) needs no clamp (run_pixels'
  * `plain`): linear steps rounded towards zero stay between the ends. */
 static int run_plain(uint32_t za, uint32_t zb, const int32_t ca[3], const int32_t cb[3])
 {
-    const uint32_t zlo = (uint32_t)1 << 14, zhi = (uint32_t)1 << 30, chi = (uint32_t)1 << 24;
+    const uint32_t zlo = (uint32_t)1 << 14, zhi = (uint32_t)1 << 30;
+    const uint32_t chi = ((uint32_t)1 << 24) - ((uint32_t)1 << (LUMO_RASTER_SRGB_SEG_BITS - 1));
 
     return za >= zlo && zb >= zlo && za < zhi && zb < zhi
         && (uint32_t)(ca[0] | cb[0] | ca[1] | cb[1] | ca[2] | cb[2]) < chi;
 }
 
-/* run_pixels for the target's format and depth width. */
-static uint32_t run_target(const lumo_raster_target *tg, size_t at, uint8_t *line, int32_t count, int x,
-                           int y, int32_t z, int32_t dz, const int32_t c0[3], const int32_t dc[3], int plain)
-{
-    void *d = tg->depth_bits == 16 ? (void *)((uint16_t *)tg->depth + at) : (void *)((uint32_t *)tg->depth + at);
-
-    if (tg->format == LUMO_PIXEL_RGB565) {
-        line += (size_t)x * 2u;
-        if (tg->depth_bits == 16)
-            return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 1, 1)
-                         : run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 1, 0);
-        return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 0, 1)
-                     : run_pixels(d, line, count, x, y, z, dz, c0, dc, 1, 0, 0);
+/* run_pixels once per pixel format, depth width and range, each its own
+ * function (called once per run): the loop gets the registers to itself
+ * instead of sharing them with the triangle's set-up. */
+typedef uint32_t (*run_fn)(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z, int32_t dz,
+                           const int32_t c0[3], const int32_t dc[3]);
+#define RUN_VARIANT(name, rgb565, d16, plain)                                                          \
+    static uint32_t name(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z, int32_t dz, \
+                         const int32_t c0[3], const int32_t dc[3])                                     \
+    {                                                                                                  \
+        return run_pixels(depth, line, count, x, y, z, dz, c0, dc, rgb565, d16, plain);                 \
     }
-    line += (size_t)x * 4u;
-    if (tg->depth_bits == 16)
-        return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 1, 1)
-                     : run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 1, 0);
-    return plain ? run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 0, 1)
-                 : run_pixels(d, line, count, x, y, z, dz, c0, dc, 0, 0, 0);
+RUN_VARIANT(run_xrgb_d32, 0, 0, 1)
+RUN_VARIANT(run_xrgb_d16, 0, 1, 1)
+RUN_VARIANT(run_565_d32, 1, 0, 1)
+RUN_VARIANT(run_565_d16, 1, 1, 1)
+RUN_VARIANT(run_xrgb_d32_clamp, 0, 0, 0)
+RUN_VARIANT(run_xrgb_d16_clamp, 0, 1, 0)
+RUN_VARIANT(run_565_d32_clamp, 1, 0, 0)
+RUN_VARIANT(run_565_d16_clamp, 1, 1, 0)
+
+/* The run function for a target: [plain][rgb565][d16]. */
+static run_fn run_for(const lumo_raster_target *tg, int plain)
+{
+    static const run_fn fns[2][2][2] = {
+        {{run_xrgb_d32_clamp, run_xrgb_d16_clamp}, {run_565_d32_clamp, run_565_d16_clamp}},
+        {{run_xrgb_d32, run_xrgb_d16}, {run_565_d32, run_565_d16}}};
+
+    return fns[plain != 0][tg->format == LUMO_PIXEL_RGB565][tg->depth_bits == 16];
+}
+
+/* Pixel x of the target's band row `row` (row = band row times width):
+ * its depth and colour addresses. */
+static void *depth_at(const lumo_raster_target *tg, size_t at)
+{
+    return tg->depth_bits == 16 ? (void *)((uint16_t *)tg->depth + at) : (void *)((uint32_t *)tg->depth + at);
+}
+
+static uint8_t *color_at(const lumo_raster_target *tg, uint8_t *line, int32_t x)
+{
+    return line + (size_t)x * (tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u);
 }
 
 /* A Gouraud run of pixels [a, b] of a row (b - a < 2^run_bits): depth and
@@ -507,8 +597,10 @@ static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_
             cb[i] = ca[i];
         dc[i] = n ? seg_step(ca[i], cb[i], n) : 0;
     }
-    return run_target(c->target, row + (size_t)a, line, n + 1, (int)a, (int)y, (int32_t)za,
-                      n ? seg_step((int32_t)za, (int32_t)zb, n) : 0, ca, dc, run_plain(za, zb, ca, cb));
+    return run_for(c->target, run_plain(za, zb, ca, cb))(depth_at(c->target, row + (size_t)a),
+                                                           color_at(c->target, line, (int32_t)a), n + 1, (int)a,
+                                                           (int)y, (int32_t)za,
+                                                           n ? seg_step((int32_t)za, (int32_t)zb, n) : 0, ca, dc);
 }
 
 /* Gouraud spans in runs ending at absolute multiples of 2^run_bits pixels
@@ -533,6 +625,73 @@ static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], i
     }
     if (c->stats)
         c->stats->pixels_written += written;
+}
+
+/* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic, E
+ * the edge values at a: the same pieces (ending at absolute multiples of
+ * 2^run_bits), each stepped from its first pixel's exact value towards
+ * the next piece's first pixel (the row's last pixel for the last piece),
+ * so that neighbouring pieces share one exact evaluation. */
+static uint32_t span_gouraud32(const lumo_raster_ctx *c, const tri *t, int32_t E[3], int32_t a, int32_t x1,
+                               int32_t y, size_t row, uint8_t *line)
+{
+    const lumo_raster_target *tg = c->target;
+    const int32_t mask = ((int32_t)1 << t->run_bits) - 1;
+    int32_t ca[3], cb[3], dc[3];
+    uint32_t za = gouraud_at32(t, E, ca), zb, written = 0;
+    int i;
+
+    while (a <= x1) {
+        int32_t b = (a | mask) < x1 ? a | mask : x1, e = b < x1 ? b - a + 1 : b - a;
+        for (i = 0; i < 3; i++)
+            E[i] += t->st32[i] * e;
+        zb = e ? gouraud_at32(t, E, cb) : za;
+        for (i = 0; i < 3; i++) {
+            if (!e)
+                cb[i] = ca[i];
+            dc[i] = e ? seg_step(ca[i], cb[i], e) : 0;
+        }
+        written += run_for(tg, run_plain(za, zb, ca, cb))(
+            depth_at(tg, row + (size_t)a), color_at(tg, line, a), b - a + 1, a, y, (int32_t)za,
+            e ? seg_step((int32_t)za, (int32_t)zb, e) : 0, ca, dc);
+        za = zb;
+        for (i = 0; i < 3; i++)
+            ca[i] = cb[i];
+        a = b + 1;
+    }
+    return written;
+}
+
+/* The rows of an edges32 Gouraud triangle (every triangle of a board's
+ * frame) in 32-bit arithmetic: edge values stepped from row to row, the
+ * run of each row from run32, its pieces from span_gouraud32. */
+static void rows_gouraud32(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+                           int32_t px1, int32_t py0, int32_t py1)
+{
+    const lumo_raster_target *tg = c->target;
+    int32_t Er[3], dy[3], py;
+    uint32_t tested = 0, written = 0;
+    int i;
+
+    for (i = 0; i < 3; i++) {
+        Er[i] = (int32_t)Erow[i];
+        dy[i] = (int32_t)(t->e[i].b * 16);
+    }
+    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2]) {
+        int32_t E[3], lo, hi = run32(t, Er, px1 - px0, &lo);
+        uint8_t *line;
+        if (hi < lo)
+            continue;
+        for (i = 0; i < 3; i++)
+            E[i] = Er[i] + t->st32[i] * lo;
+        line = (uint8_t *)tg->color + (size_t)(py - tg->band_y) * tg->color_stride;
+        tested += (uint32_t)(hi - lo + 1);
+        written += span_gouraud32(c, t, E, px0 + lo, px0 + hi, py, (size_t)(py - tg->band_y) * tg->width, line);
+    }
+    if (c->stats) {
+        c->stats->pixels_tested += tested;
+        c->stats->pixels_written += written;
+    }
 }
 
 /* Per-pixel colour spans: depth test, barycentrics, shading, pixel. */
@@ -597,6 +756,15 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     if (!c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD && px1 - px0 >= (1 << RUN_MIN_BITS))
         t.run_bits = gouraud_run_bits(&t, area);
     small = box_edges(&t, px0, px1, py0, py1, Erow);
+    t.edges32 = small && t.sh == 0;
+    for (i = 0; i < 3; i++) {
+        t.st32[i] = (int32_t)t.step[i];
+        t.bias32[i] = (int32_t)t.e[i].bias;
+    }
+    if (t.edges32 && !c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD) {
+        rows_gouraud32(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1);
+        return;
+    }
     for (py = py0; py <= py1; py++, Erow[0] += t.e[0].b * 16, Erow[1] += t.e[1].b * 16, Erow[2] += t.e[2].b * 16) {
         size_t row = (size_t)(py - tg->band_y) * tg->width;
         int64_t E[3], x0, x1;
