@@ -384,6 +384,14 @@ LUMO_RASTER_HOT unsigned clz32(uint32_t v)
  * a 64-bit division. The radiance b_0 c_0 + b_1 c_1 + b_2 c_2 is a convex
  * combination of values in [0, 2^30]: no clamp. A sum below 2^32 (a
  * sub-pixel triangle, or a vertex of weight 0) takes gouraud_at. */
+/* b0 a0 + b1 a1 + b2 a2 rounded, a_i in [0, 2^30], b_i in Q0.31 summing to
+ * at most 1. */
+LUMO_RASTER_HOT int32_t convex3(int32_t a0, int32_t a1, int32_t a2, uint32_t b0, uint32_t b1, uint32_t b2)
+{
+    return (int32_t)(((uint64_t)(uint32_t)a0 * b0 + (uint64_t)(uint32_t)a1 * b1 + (uint64_t)(uint32_t)a2 * b2
+                      + ((uint64_t)1 << 30)) >> 31);
+}
+
 static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
 {
     const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
@@ -391,7 +399,6 @@ static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
     uint64_t ps = (uint64_t)(uint32_t)E[0] * t->v[0].q + p1 + p2, r;
     uint32_t hi = (uint32_t)(ps >> 32), d, r0, b0, b1, b2, z;
     unsigned sh;
-    int i;
 
     if (hi == 0) {
         int64_t e[3];
@@ -406,9 +413,9 @@ static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
     b1 = (uint32_t)(((uint64_t)(((uint32_t)(p1 >> 32) << sh) | ((uint32_t)p1 >> (32 - sh))) * r) >> 32);
     b2 = (uint32_t)(((uint64_t)(((uint32_t)(p2 >> 32) << sh) | ((uint32_t)p2 >> (32 - sh))) * r) >> 32);
     b0 = ((uint32_t)1 << 31) - b1 - b2;              /* Q0.31 */
-    for (i = 0; i < 3; i++)
-        c[i] = (int32_t)(((uint64_t)(uint32_t)v0[i] * b0 + (uint64_t)(uint32_t)v1[i] * b1
-                          + (uint64_t)(uint32_t)v2[i] * b2 + ((uint64_t)1 << 30)) >> 31);
+    c[0] = convex3(v0[0], v1[0], v2[0], b0, b1, b2);
+    c[1] = convex3(v0[1], v1[1], v2[1], b0, b1, b2);
+    c[2] = convex3(v0[2], v1[2], v2[2], b0, b1, b2);
     return z > ((uint32_t)1 << 30) ? (uint32_t)1 << 30 : z;
 }
 
@@ -627,36 +634,43 @@ static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], i
         c->stats->pixels_written += written;
 }
 
+/* What the 32-bit Gouraud rows of one triangle share: the run functions
+ * of the target (no clamp, clamp) and its pixel sizes. */
+typedef struct rows32 {
+    const tri *t;
+    run_fn plain, clamp;
+    unsigned dbytes, cbytes;
+    int32_t mask;          /* 2^run_bits - 1 */
+} rows32;
+
 /* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic, E
- * the edge values at a: the same pieces (ending at absolute multiples of
- * 2^run_bits), each stepped from its first pixel's exact value towards
- * the next piece's first pixel (the row's last pixel for the last piece),
- * so that neighbouring pieces share one exact evaluation. */
-static uint32_t span_gouraud32(const lumo_raster_ctx *c, const tri *t, int32_t E[3], int32_t a, int32_t x1,
-                               int32_t y, size_t row, uint8_t *line)
+ * the edge values at a, drow and crow the depth and colour of the row's
+ * pixel 0: the same pieces (ending at absolute multiples of 2^run_bits),
+ * each stepped from its first pixel's exact value towards the next
+ * piece's first pixel (the row's last pixel for the last piece), so that
+ * neighbouring pieces share one exact evaluation. */
+static uint32_t span_gouraud32(const rows32 *g, int32_t E[3], int32_t a, int32_t x1, int32_t y, uint8_t *drow,
+                               uint8_t *crow)
 {
-    const lumo_raster_target *tg = c->target;
-    const int32_t mask = ((int32_t)1 << t->run_bits) - 1;
+    const tri *t = g->t;
     int32_t ca[3], cb[3], dc[3];
     uint32_t za = gouraud_at32(t, E, ca), zb, written = 0;
-    int i;
 
     while (a <= x1) {
-        int32_t b = (a | mask) < x1 ? a | mask : x1, e = b < x1 ? b - a + 1 : b - a;
-        for (i = 0; i < 3; i++)
-            E[i] += t->st32[i] * e;
-        zb = e ? gouraud_at32(t, E, cb) : za;
-        for (i = 0; i < 3; i++) {
-            if (!e)
-                cb[i] = ca[i];
-            dc[i] = e ? seg_step(ca[i], cb[i], e) : 0;
+        int32_t b = (a | g->mask) < x1 ? a | g->mask : x1, e = b < x1 ? b - a + 1 : b - a, dz = 0;
+        if (e) {
+            E[0] += t->st32[0] * e, E[1] += t->st32[1] * e, E[2] += t->st32[2] * e;
+            zb = gouraud_at32(t, E, cb);
+            dz = seg_step((int32_t)za, (int32_t)zb, e);
+            dc[0] = seg_step(ca[0], cb[0], e), dc[1] = seg_step(ca[1], cb[1], e), dc[2] = seg_step(ca[2], cb[2], e);
+        } else {
+            zb = za, cb[0] = ca[0], cb[1] = ca[1], cb[2] = ca[2];
+            dc[0] = dc[1] = dc[2] = 0;
         }
-        written += run_for(tg, run_plain(za, zb, ca, cb))(
-            depth_at(tg, row + (size_t)a), color_at(tg, line, a), b - a + 1, a, y, (int32_t)za,
-            e ? seg_step((int32_t)za, (int32_t)zb, e) : 0, ca, dc);
-        za = zb;
-        for (i = 0; i < 3; i++)
-            ca[i] = cb[i];
+        written += (run_plain(za, zb, ca, cb) ? g->plain : g->clamp)(drow + (size_t)a * g->dbytes,
+                                                                    crow + (size_t)a * g->cbytes, b - a + 1, a,
+                                                                    y, (int32_t)za, dz, ca, dc);
+        za = zb, ca[0] = cb[0], ca[1] = cb[1], ca[2] = cb[2];
         a = b + 1;
     }
     return written;
@@ -671,22 +685,30 @@ static void rows_gouraud32(const lumo_raster_ctx *c, const tri *t, const int64_t
     const lumo_raster_target *tg = c->target;
     int32_t Er[3], dy[3], py;
     uint32_t tested = 0, written = 0;
+    uint8_t *drow, *crow;
+    rows32 g;
     int i;
 
+    g.t = t;
+    g.plain = run_for(tg, 1);
+    g.clamp = run_for(tg, 0);
+    g.dbytes = tg->depth_bits == 16 ? 2u : 4u;
+    g.cbytes = tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u;
+    g.mask = ((int32_t)1 << t->run_bits) - 1;
+    drow = (uint8_t *)tg->depth + (size_t)(py0 - tg->band_y) * tg->width * g.dbytes;
+    crow = (uint8_t *)tg->color + (size_t)(py0 - tg->band_y) * tg->color_stride;
     for (i = 0; i < 3; i++) {
         Er[i] = (int32_t)Erow[i];
         dy[i] = (int32_t)(t->e[i].b * 16);
     }
-    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2]) {
+    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2],
+         drow += (size_t)tg->width * g.dbytes, crow += tg->color_stride) {
         int32_t E[3], lo, hi = run32(t, Er, px1 - px0, &lo);
-        uint8_t *line;
         if (hi < lo)
             continue;
-        for (i = 0; i < 3; i++)
-            E[i] = Er[i] + t->st32[i] * lo;
-        line = (uint8_t *)tg->color + (size_t)(py - tg->band_y) * tg->color_stride;
+        E[0] = Er[0] + t->st32[0] * lo, E[1] = Er[1] + t->st32[1] * lo, E[2] = Er[2] + t->st32[2] * lo;
         tested += (uint32_t)(hi - lo + 1);
-        written += span_gouraud32(c, t, E, px0 + lo, px0 + hi, py, (size_t)(py - tg->band_y) * tg->width, line);
+        written += span_gouraud32(&g, E, px0 + lo, px0 + hi, py, drow, crow);
     }
     if (c->stats) {
         c->stats->pixels_tested += tested;
