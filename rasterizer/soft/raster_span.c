@@ -378,9 +378,10 @@ LUMO_RASTER_HOT unsigned clz32(uint32_t v)
  * b_i = e_i q_i / sum e_j q_j from the weights' top 32 bits (sum
  * normalised by one CLZ: it is below 2^62) and a reciprocal r = 2^63 / d
  * of the sum's top 32 bits d: one 32-bit division gives r0 = 2^48 / d to
- * 16 bits (2 below, so that e = 2^48 - d r0 > 0), one Newton step
- * r = 2^15 r0 + r0 e / 2^33 the rest (relative error below 2^-29, from
- * below: b_1 + b_2 <= 1), where gouraud_at truncates b to Q0.16 and calls
+ * 16 bits (the division by d's top 16 bits is up to 4 above it: 5 below,
+ * so that 0 < e = 2^48 - d r0 <= 6 d), one Newton step r = 2^15 r0 +
+ * r0 e / 2^33 the rest (relative error below 2^-26, from below:
+ * b_1 + b_2 <= 1), where gouraud_at truncates b to Q0.16 and calls
  * a 64-bit division. The radiance b_0 c_0 + b_1 c_1 + b_2 c_2 is a convex
  * combination of values in [0, 2^30]: no clamp. A sum below 2^32 (a
  * sub-pixel triangle, or a vertex of weight 0) takes gouraud_at. */
@@ -408,7 +409,7 @@ static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
     z = (uint32_t)(((uint64_t)(uint32_t)(ps >> t->zs) * (uint32_t)t->zr) >> 32);
     sh = clz32(hi);                                  /* 2..31 */
     d = (hi << sh) | ((uint32_t)ps >> (32 - sh));    /* [2^31, 2^32) */
-    r0 = 0xFFFFFFFFu / (d >> 16) - 2u;
+    r0 = 0xFFFFFFFFu / (d >> 16) - 5u;
     r = ((uint64_t)r0 << 15) + (((uint64_t)r0 * (((uint64_t)1 << 48) - (uint64_t)d * r0)) >> 33);
     b1 = (uint32_t)(((uint64_t)(((uint32_t)(p1 >> 32) << sh) | ((uint32_t)p1 >> (32 - sh))) * r) >> 32);
     b2 = (uint32_t)(((uint64_t)(((uint32_t)(p2 >> 32) << sh) | ((uint32_t)p2 >> (32 - sh))) * r) >> 32);
