@@ -20,6 +20,7 @@ extern const uint32_t lumo_raster_sin_deg[91];
 extern const uint32_t lumo_raster_srgb_threshold[257];
 extern const uint8_t lumo_raster_srgb_segment[16385];
 extern const uint16_t lumo_raster_sqrt_seed[256];
+extern const uint32_t lumo_raster_rsqrt_seed[256];
 
 /* Segments of the sRGB code table: 2^-14 of [0, 1] each. */
 #define LUMO_RASTER_SRGB_SEG_BITS 10
@@ -54,6 +55,21 @@ LUMO_RASTER_HOT unsigned lumo_raster_srgb_code(uint64_t v)
 LUMO_RASTER_HOT unsigned lumo_raster_srgb_code32(uint32_t v)
 {
     return v >= ((uint32_t)1 << 24) ? 255 : lumo_raster_srgb_code24(v);
+}
+
+/* Leading zeros of v != 0 (one CLZ instruction on the Cortex-M3). */
+LUMO_RASTER_HOT unsigned lumo_raster_clz32(uint32_t v)
+{
+#if defined(__GNUC__)
+    return (unsigned)__builtin_clz(v);
+#else
+    unsigned n = 0;
+    while (!(v & 0x80000000u)) {
+        v <<= 1;
+        n++;
+    }
+    return n;
+#endif
 }
 
 /* floor(sqrt(v)) for every v: same result as lumo_isqrt64, faster. */
@@ -106,6 +122,11 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
  * scene's indirect callback (raster_shade.c). */
 void lumo_raster_shade_point(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                              const int32_t *indirect, lumo_uq16_16 out[3]);
+
+/* The codes of one per-pixel-lit pixel from its nvar varyings (above), in
+ * 32-bit steps without division (raster_shade.c; round four). */
+void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s, unsigned nvar,
+                               const int32_t var[], unsigned code[3]);
 
 /* Transform (and, per vertex, light) vertex `index` of the mesh; a pure
  * function of its arguments, so cached and uncached draws agree. */

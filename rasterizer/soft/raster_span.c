@@ -362,18 +362,10 @@ static uint32_t gouraud_at(const tri *t, const int64_t E[3], int32_t c[3])
     return (uint32_t)(z > cap ? cap : z);
 }
 
-/* Leading zeros of v != 0 (one CLZ instruction on the Cortex-M3). */
-LUMO_RASTER_HOT unsigned clz32(uint32_t v)
-{
-#if defined(__GNUC__)
-    return (unsigned)__builtin_clz(v);
-#else
-    return 32u - bit_length(v);
-#endif
-}
-
-/* gouraud_at for a triangle whose edge values fit 32 bits unscaled
- * (edges32), in the Cortex-M3's own arithmetic: the same depth (one
+/* The depth and perspective barycentrics (Q0.31) of one pixel of a
+ * triangle whose edge values fit 32 bits unscaled (edges32), in the
+ * Cortex-M3's own arithmetic; gouraud_at32 is gouraud_at from them, the
+ * radiance a convex combination. The same depth as pixel_depth (one
  * 32 x 32 multiply per weight), and the perspective barycentrics
  * b_i = e_i q_i / sum e_j q_j from the weights' top 32 bits (sum
  * normalised by one CLZ: it is below 2^62) and a reciprocal r = 2^63 / d
@@ -393,31 +385,57 @@ LUMO_RASTER_HOT int32_t convex3(int32_t a0, int32_t a1, int32_t a2, uint32_t b0,
                       + ((uint64_t)1 << 30)) >> 31);
 }
 
-static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
+static uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
 {
-    const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
     uint64_t p1 = (uint64_t)(uint32_t)E[1] * t->v[1].q, p2 = (uint64_t)(uint32_t)E[2] * t->v[2].q;
     uint64_t ps = (uint64_t)(uint32_t)E[0] * t->v[0].q + p1 + p2, r;
-    uint32_t hi = (uint32_t)(ps >> 32), d, r0, b0, b1, b2, z;
+    uint32_t hi = (uint32_t)(ps >> 32), d, r0, z;
     unsigned sh;
 
     if (hi == 0) {
         int64_t e[3];
+        uint64_t p[3];
         e[0] = E[0], e[1] = E[1], e[2] = E[2];
-        return gouraud_at(t, e, c);
+        z = (uint32_t)pixel_depth(t, e, p);
+        pixel_bary(t, e, p, b);
+        b[0] <<= 31 - BARY_BITS, b[1] <<= 31 - BARY_BITS, b[2] <<= 31 - BARY_BITS;
+    } else {
+        z = (uint32_t)(((uint64_t)(uint32_t)(ps >> t->zs) * (uint32_t)t->zr) >> 32);
+        sh = lumo_raster_clz32(hi);                  /* 2..31 */
+        d = (hi << sh) | ((uint32_t)ps >> (32 - sh));    /* [2^31, 2^32) */
+        r0 = 0xFFFFFFFFu / (d >> 16) - 5u;
+        r = ((uint64_t)r0 << 15) + (((uint64_t)r0 * (((uint64_t)1 << 48) - (uint64_t)d * r0)) >> 33);
+        b[1] = (uint32_t)(((uint64_t)(((uint32_t)(p1 >> 32) << sh) | ((uint32_t)p1 >> (32 - sh))) * r) >> 32);
+        b[2] = (uint32_t)(((uint64_t)(((uint32_t)(p2 >> 32) << sh) | ((uint32_t)p2 >> (32 - sh))) * r) >> 32);
+        b[0] = ((uint32_t)1 << 31) - b[1] - b[2];
     }
-    z = (uint32_t)(((uint64_t)(uint32_t)(ps >> t->zs) * (uint32_t)t->zr) >> 32);
-    sh = clz32(hi);                                  /* 2..31 */
-    d = (hi << sh) | ((uint32_t)ps >> (32 - sh));    /* [2^31, 2^32) */
-    r0 = 0xFFFFFFFFu / (d >> 16) - 5u;
-    r = ((uint64_t)r0 << 15) + (((uint64_t)r0 * (((uint64_t)1 << 48) - (uint64_t)d * r0)) >> 33);
-    b1 = (uint32_t)(((uint64_t)(((uint32_t)(p1 >> 32) << sh) | ((uint32_t)p1 >> (32 - sh))) * r) >> 32);
-    b2 = (uint32_t)(((uint64_t)(((uint32_t)(p2 >> 32) << sh) | ((uint32_t)p2 >> (32 - sh))) * r) >> 32);
-    b0 = ((uint32_t)1 << 31) - b1 - b2;              /* Q0.31 */
-    c[0] = convex3(v0[0], v1[0], v2[0], b0, b1, b2);
-    c[1] = convex3(v0[1], v1[1], v2[1], b0, b1, b2);
-    c[2] = convex3(v0[2], v1[2], v2[2], b0, b1, b2);
     return z > ((uint32_t)1 << 30) ? (uint32_t)1 << 30 : z;
+}
+
+static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
+{
+    const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
+    uint32_t b[3], z = bary32(t, E, b);
+
+    c[0] = convex3(v0[0], v1[0], v2[0], b[0], b[1], b[2]);
+    c[1] = convex3(v0[1], v1[1], v2[1], b[0], b[1], b[2]);
+    c[2] = convex3(v0[2], v1[2], v2[2], b[0], b[1], b[2]);
+    return z;
+}
+
+/* The nvar varyings of any sign at one pixel of an edges32 triangle whose
+ * varyings differ by less than 2^30 between its vertices (pixel_ok):
+ * v_0 + b_1 (v_1 - v_0) + b_2 (v_2 - v_0) rounded, from bary32. */
+static uint32_t vary_at32(const tri *t, const int32_t E[3], unsigned nvar, int32_t out[])
+{
+    const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
+    uint32_t b[3], z = bary32(t, E, b);
+    unsigned i;
+
+    for (i = 0; i < nvar; i++)
+        out[i] = v0[i] + (int32_t)lumo_round_shift((int64_t)(v1[i] - v0[i]) * b[1]
+                                                   + (int64_t)(v2[i] - v0[i]) * b[2], 31);
+    return z;
 }
 
 /* Gouraud runs: radiance exact (perspective-correct) at both ends of a run
@@ -638,6 +656,7 @@ static void span_gouraud(const lumo_raster_ctx *c, const tri *t, int64_t E[3], i
 /* What the 32-bit Gouraud rows of one triangle share: the run functions
  * of the target (no clamp, clamp) and its pixel sizes. */
 typedef struct rows32 {
+    const lumo_raster_ctx *c;
     const tri *t;
     run_fn plain, clamp;
     unsigned dbytes, cbytes;
@@ -677,11 +696,100 @@ static uint32_t span_gouraud32(const rows32 *g, int32_t E[3], int32_t a, int32_t
     return written;
 }
 
-/* The rows of an edges32 Gouraud triangle (every triangle of a board's
- * frame) in 32-bit arithmetic: edge values stepped from row to row, the
- * run of each row from run32, its pieces from span_gouraud32. */
-static void rows_gouraud32(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
-                           int32_t px1, int32_t py0, int32_t py1)
+/* A per-pixel-lit span [a, x1] of an edges32 triangle (pixel32_ok): the
+ * Gouraud pieces again, but what is stepped between the exact
+ * (perspective-correct) ends is the varyings (position, normal, albedo,
+ * per-vertex indirect light), and each pixel that passes the depth test
+ * is shaded from them by lumo_raster_shade_pixel32. */
+static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x1, int32_t y, uint8_t *drow,
+                             uint8_t *crow)
+{
+    const tri *t = g->t;
+    const lumo_raster_ctx *c = g->c;
+    const lumo_raster_target *tg = c->target;
+    const unsigned nvar = c->nvar;
+    const int d16 = tg->depth_bits == 16;
+    int32_t va[LUMO_RASTER_MAX_VARYINGS], vb[LUMO_RASTER_MAX_VARYINGS], dv[LUMO_RASTER_MAX_VARYINGS];
+    uint32_t za = vary_at32(t, E, nvar, va), zb, written = 0;
+    unsigned i, code[3];
+
+    while (a <= x1) {
+        int32_t b = (a | g->mask) < x1 ? a | g->mask : x1, e = b < x1 ? b - a + 1 : b - a, dz = 0, x;
+        uint32_t z = za;
+        if (e) {
+            E[0] += t->st32[0] * e, E[1] += t->st32[1] * e, E[2] += t->st32[2] * e;
+            zb = vary_at32(t, E, nvar, vb);
+            dz = seg_step((int32_t)za, (int32_t)zb, e);
+            for (i = 0; i < nvar; i++)
+                dv[i] = seg_step(va[i], vb[i], e);
+        } else {
+            zb = za;
+            for (i = 0; i < nvar; i++)
+                vb[i] = va[i], dv[i] = 0;
+        }
+        for (x = a; x <= b; x++, z += (uint32_t)dz) {
+            uint32_t dz_x = depth_of(z, d16, 0);
+            uint8_t *dp = drow + (size_t)x * g->dbytes;
+            if (d16 ? dz_x > *(uint16_t *)(void *)dp : dz_x > *(uint32_t *)(void *)dp) {
+                if (d16)
+                    *(uint16_t *)(void *)dp = (uint16_t)dz_x;
+                else
+                    *(uint32_t *)(void *)dp = dz_x;
+                lumo_raster_shade_pixel32(c->view, c->scene, nvar, va, code);
+                lumo_raster_put_codes(tg, crow, (int)x, (int)y, code[0], code[1], code[2]);
+                written++;
+            }
+            for (i = 0; i < nvar; i++)
+                va[i] += dv[i];
+        }
+        za = zb;
+        for (i = 0; i < nvar; i++)
+            va[i] = vb[i];
+        a = b + 1;
+    }
+    return written;
+}
+
+/* Whether span_pixel32 may draw an edges32 triangle: its varyings differ
+ * by less than 2^30 between its vertices (the interpolation's products
+ * then fit 64 bits and the steps 32), and every point and spot light is
+ * within 2^30 (16384 units) of its vertices per axis (add_local_light32's
+ * light vector fits 32 bits; a point of the triangle is a convex
+ * combination of them). Anything else takes span_color. */
+static int pixel32_ok(const lumo_raster_ctx *c, const tri *t)
+{
+    const int64_t lim = (int64_t)1 << 30;
+    const lumo_raster_scene *s = c->scene;
+    uint32_t l, count = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
+    unsigned i;
+    int j;
+
+    for (i = 0; i < c->nvar; i++) {
+        int64_t a = t->v[0].var[i], b = t->v[1].var[i], d = t->v[2].var[i];
+        if (a - b >= lim || b - a >= lim || a - d >= lim || d - a >= lim || b - d >= lim || d - b >= lim)
+            return 0;
+    }
+    for (l = 0; l < count; l++) {
+        if (s->lights[l].kind == LUMO_LIGHT_DIRECTIONAL)
+            continue;
+        for (j = 0; j < 3; j++)
+            for (i = 0; i < 3; i++) {
+                int64_t d = (int64_t)s->lights[l].pos[i] - t->v[j].var[i];
+                if (d >= lim || d <= -lim)
+                    return 0;
+            }
+    }
+    return 1;
+}
+
+/* The rows of an edges32 triangle (every triangle of a board's frame) in
+ * 32-bit arithmetic: edge values stepped from row to row, the run of each
+ * row from run32, its pixels from `span` (span_gouraud32 or span_pixel32). */
+typedef uint32_t (*span32_fn)(const rows32 *g, int32_t E[3], int32_t a, int32_t x1, int32_t y, uint8_t *drow,
+                              uint8_t *crow);
+
+static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+                        int32_t px1, int32_t py0, int32_t py1, span32_fn span)
 {
     const lumo_raster_target *tg = c->target;
     int32_t Er[3], dy[3], py;
@@ -690,6 +798,7 @@ static void rows_gouraud32(const lumo_raster_ctx *c, const tri *t, const int64_t
     rows32 g;
     int i;
 
+    g.c = c;
     g.t = t;
     g.plain = run_for(tg, 1);
     g.clamp = run_for(tg, 0);
@@ -709,7 +818,7 @@ static void rows_gouraud32(const lumo_raster_ctx *c, const tri *t, const int64_t
             continue;
         E[0] = Er[0] + t->st32[0] * lo, E[1] = Er[1] + t->st32[1] * lo, E[2] = Er[2] + t->st32[2] * lo;
         tested += (uint32_t)(hi - lo + 1);
-        written += span_gouraud32(&g, E, px0 + lo, px0 + hi, py, drow, crow);
+        written += span(&g, E, px0 + lo, px0 + hi, py, drow, crow);
     }
     if (c->stats) {
         c->stats->pixels_tested += tested;
@@ -776,7 +885,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     tri_setup(&t, v, area);
     /* a box up to 16 pixels wide is one run per row whatever the length */
     t.run_bits = RUN_MIN_BITS;
-    if (!c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD && px1 - px0 >= (1 << RUN_MIN_BITS))
+    if (!c->depth_only && px1 - px0 >= (1 << RUN_MIN_BITS))
         t.run_bits = gouraud_run_bits(&t, area);
     small = box_edges(&t, px0, px1, py0, py1, Erow);
     t.edges32 = small && t.sh == 0;
@@ -784,8 +893,9 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         t.st32[i] = (int32_t)t.step[i];
         t.bias32[i] = (int32_t)t.e[i].bias;
     }
-    if (t.edges32 && !c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD) {
-        rows_gouraud32(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1);
+    if (t.edges32 && !c->depth_only && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_ok(c, &t))) {
+        rows32_draw(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1,
+                    c->nvar == LUMO_RASTER_VAR_GOURAUD ? span_gouraud32 : span_pixel32);
         return;
     }
     for (py = py0; py <= py1; py++, Erow[0] += t.e[0].b * 16, Erow[1] += t.e[1].b * 16, Erow[2] += t.e[2].b * 16) {
