@@ -124,9 +124,17 @@ void lumo_raster_shade_point(const lumo_raster_scene *s, const lumo_q16_16 p[3],
                              const int32_t *indirect, lumo_uq16_16 out[3]);
 
 /* The codes of one per-pixel-lit pixel from its nvar varyings (above), in
- * 32-bit steps without division (raster_shade.c; round four). */
+ * 32-bit steps without division (raster_shade.c; round four); nfix: the
+ * shading normal when it is the same at every pixel of the triangle
+ * (lumo_raster_fixed_normal), else NULL. */
 void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s, unsigned nvar,
-                               const int32_t var[], unsigned code[3]);
+                               const int32_t var[], const lumo_q1_14 *nfix, unsigned code[3]);
+
+/* A triangle whose vertices share one normal (varyings v0, v1, v2): that
+ * normal renormalised and turned towards the eye into out, and 1 when it is
+ * turned the same way at every point of the triangle (0: decide per pixel). */
+int lumo_raster_fixed_normal(const lumo_raster_view *view, const int32_t *v0, const int32_t *v1,
+                             const int32_t *v2, lumo_q1_14 out[3]);
 
 /* Transform (and, per vertex, light) vertex `index` of the mesh; a pure
  * function of its arguments, so cached and uncached draws agree. */

@@ -302,8 +302,10 @@ static void renormalize32(const int32_t v[3], lumo_q1_14 out[3])
     k = (3 * one - s2) / 2;                                           /* first step from 1 */
     t = (uint32_t)(((uint64_t)s2 * (uint32_t)(((uint64_t)k * k) >> 28)) >> 28);
     k = (uint32_t)(((uint64_t)k * (3 * one - t)) >> 29);
+    /* v k rounded, made positive by 2^60 before the shift (|v k| < 2^45) */
     for (i = 0; i < 3; i++)
-        out[i] = lumo_sat_i16((int32_t)lumo_round_shift((int64_t)v[i] * k, 28));
+        out[i] = lumo_sat_i16((int32_t)((int64_t)((uint64_t)((int64_t)v[i] * k + ((int64_t)1 << 60)
+                                                              + ((int64_t)1 << 27)) >> 28) - ((int64_t)1 << 32)));
 }
 
 /* One pixel of per-pixel lighting from its varyings (position, normal,
@@ -311,19 +313,48 @@ static void renormalize32(const int32_t v[3], lumo_q1_14 out[3])
  * shading of lumo_raster_shade_point, lumo_raster_radiance and the tone
  * map, with the normal renormalised and the point and spot lights
  * evaluated in 32-bit steps (no division), the sRGB codes exact. */
+/* (eye - p) . n, Q30: the side of n the eye is on. */
+static int64_t facing(const lumo_raster_view *view, const int32_t p[3], const lumo_q1_14 n[3])
+{
+    return ((int64_t)view->eye[0] - p[0]) * n[0] + ((int64_t)view->eye[1] - p[1]) * n[1]
+         + ((int64_t)view->eye[2] - p[2]) * n[2];
+}
+
+int lumo_raster_fixed_normal(const lumo_raster_view *view, const int32_t *v0, const int32_t *v1,
+                             const int32_t *v2, lumo_q1_14 out[3])
+{
+    /* (eye - p) . n is affine in p: the same sign at the three vertices
+     * (with a margin of 2^20, far more than the interpolation's rounding of
+     * p by a unit times |n| < 2^15) is the same sign everywhere between. */
+    const int64_t margin = (int64_t)1 << 20;
+    int64_t f0, f1, f2;
+
+    renormalize32(&v0[3], out);
+    f0 = facing(view, v0, out), f1 = facing(view, v1, out), f2 = facing(view, v2, out);
+    if (f0 > margin && f1 > margin && f2 > margin)
+        return 1;
+    if (f0 < -margin && f1 < -margin && f2 < -margin) {
+        out[0] = (lumo_q1_14)-out[0], out[1] = (lumo_q1_14)-out[1], out[2] = (lumo_q1_14)-out[2];
+        return 1;
+    }
+    return 0;
+}
+
 void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s, unsigned nvar,
-                               const int32_t var[], unsigned code[3])
+                               const int32_t var[], const lumo_q1_14 *nfix, unsigned code[3])
 {
     lumo_q1_14 n[3];
     lumo_uq16_16 e[3] = {0, 0, 0}, ind[3] = {0, 0, 0};
-    uint32_t i, count = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
-    int64_t facing;
+    const uint32_t lim = (uint32_t)1 << 31;
+    uint32_t i, k, count = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
 
-    renormalize32(&var[3], n);
-    facing = ((int64_t)view->eye[0] - var[0]) * n[0] + ((int64_t)view->eye[1] - var[1]) * n[1]
-           + ((int64_t)view->eye[2] - var[2]) * n[2];
-    if (facing < 0)
-        n[0] = (lumo_q1_14)-n[0], n[1] = (lumo_q1_14)-n[1], n[2] = (lumo_q1_14)-n[2];
+    if (nfix) {
+        n[0] = nfix[0], n[1] = nfix[1], n[2] = nfix[2];
+    } else {
+        renormalize32(&var[3], n);
+        if (facing(view, var, n) < 0)
+            n[0] = (lumo_q1_14)-n[0], n[1] = (lumo_q1_14)-n[1], n[2] = (lumo_q1_14)-n[2];
+    }
     for (i = 0; i < count; i++) {
         const lumo_raster_light *L = &s->lights[i];
         if (L->kind == LUMO_LIGHT_DIRECTIONAL)
@@ -337,11 +368,14 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
     } else if (s->indirect) {
         s->indirect(s->indirect_ctx, var, n, ind);
     }
+    /* rho / pi and the exposure in one factor: exposure / pi (Q16), then
+     * E rho (UQ16.16, < 2^32 for rho <= 1) times it is L exposure in
+     * UQ8.24 (the exact path rounds after each of the three products) */
+    k = (uint32_t)(((uint64_t)(s->exposure > lim ? lim : s->exposure) * INV_PI_Q32 + ((uint64_t)1 << 31)) >> 32);
     for (i = 0; i < 3; i++) {
-        uint64_t rho = var[6 + i] < 0 ? 0 : var[6 + i] > LUMO_Q14_ONE ? LUMO_Q14_ONE : (uint64_t)var[6 + i];
-        uint64_t er = ((uint64_t)sat_add_u32(e[i], ind[i]) * rho + ((uint64_t)1 << 13)) >> LUMO_Q14_SHIFT;
-        lumo_uq16_16 l = (lumo_uq16_16)((er * INV_PI_Q32 + ((uint64_t)1 << 31)) >> 32);
-        code[i] = lumo_raster_srgb_code((uint64_t)lumo_raster_exposed(l, s->exposure));
+        uint32_t rho = var[6 + i] < 0 ? 0u : var[6 + i] > LUMO_Q14_ONE ? LUMO_Q14_ONE : (uint32_t)var[6 + i];
+        uint32_t er = (uint32_t)(((uint64_t)sat_add_u32(e[i], ind[i]) * rho) >> LUMO_Q14_SHIFT);
+        code[i] = lumo_raster_srgb_code(((uint64_t)er * k) >> 8);
     }
 }
 

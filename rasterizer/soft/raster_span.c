@@ -661,7 +661,33 @@ typedef struct rows32 {
     run_fn plain, clamp;
     unsigned dbytes, cbytes;
     int32_t mask;          /* 2^run_bits - 1 */
+    /* per pixel: the groups of three varyings that differ between the
+     * vertices (a group equal at all three interpolates to that value
+     * exactly: it is not stepped), and the normal when it is the same at
+     * every pixel (lumo_raster_fixed_normal) */
+    unsigned group[4], ngroups;
+    int nfixed;
+    lumo_q1_14 n[3];
 } rows32;
+
+/* rows32's per-pixel fields for triangle t. */
+static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t)
+{
+    const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
+    unsigned i, k;
+
+    g->ngroups = 0;
+    for (i = 0; i < c->nvar; i += 3) {
+        int same = 1;
+        for (k = i; k < i + 3; k++)
+            same &= v0[k] == v1[k] && v0[k] == v2[k];
+        if (!same)
+            g->group[g->ngroups++] = i;
+    }
+    g->nfixed = 0;
+    if (v0[3] == v1[3] && v0[3] == v2[3] && v0[4] == v1[4] && v0[4] == v2[4] && v0[5] == v1[5] && v0[5] == v2[5])
+        g->nfixed = lumo_raster_fixed_normal(c->view, v0, v1, v2, g->n);
+}
 
 /* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic, E
  * the edge values at a, drow and crow the depth and colour of the row's
@@ -711,7 +737,7 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
     const int d16 = tg->depth_bits == 16;
     int32_t va[LUMO_RASTER_MAX_VARYINGS], vb[LUMO_RASTER_MAX_VARYINGS], dv[LUMO_RASTER_MAX_VARYINGS];
     uint32_t za = vary_at32(t, E, nvar, va), zb, written = 0;
-    unsigned i, code[3];
+    unsigned i, k, code[3];
 
     while (a <= x1) {
         int32_t b = (a | g->mask) < x1 ? a | g->mask : x1, e = b < x1 ? b - a + 1 : b - a, dz = 0, x;
@@ -735,12 +761,14 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
                     *(uint16_t *)(void *)dp = (uint16_t)dz_x;
                 else
                     *(uint32_t *)(void *)dp = dz_x;
-                lumo_raster_shade_pixel32(c->view, c->scene, nvar, va, code);
+                lumo_raster_shade_pixel32(c->view, c->scene, nvar, va, g->nfixed ? g->n : NULL, code);
                 lumo_raster_put_codes(tg, crow, (int)x, (int)y, code[0], code[1], code[2]);
                 written++;
             }
-            for (i = 0; i < nvar; i++)
-                va[i] += dv[i];
+            for (k = 0; k < g->ngroups; k++) {           /* the varyings that change */
+                i = g->group[k];
+                va[i] += dv[i], va[i + 1] += dv[i + 1], va[i + 2] += dv[i + 2];
+            }
         }
         za = zb;
         for (i = 0; i < nvar; i++)
@@ -805,6 +833,8 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
     g.dbytes = tg->depth_bits == 16 ? 2u : 4u;
     g.cbytes = tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u;
     g.mask = ((int32_t)1 << t->run_bits) - 1;
+    if (span == span_pixel32)
+        pixel_groups(&g, c, t);
     drow = (uint8_t *)tg->depth + (size_t)(py0 - tg->band_y) * tg->width * g.dbytes;
     crow = (uint8_t *)tg->color + (size_t)(py0 - tg->band_y) * tg->color_stride;
     for (i = 0; i < 3; i++) {
