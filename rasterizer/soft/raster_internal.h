@@ -123,18 +123,28 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
 void lumo_raster_shade_point(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                              const int32_t *indirect, lumo_uq16_16 out[3]);
 
-/* The codes of one per-pixel-lit pixel from its nvar varyings (above), in
- * 32-bit steps without division (raster_shade.c; round four); nfix: the
- * shading normal when it is the same at every pixel of the triangle
- * (lumo_raster_fixed_normal), else NULL. */
-void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s, unsigned nvar,
-                               const int32_t var[], const lumo_q1_14 *nfix, unsigned code[3]);
+/* What the per-pixel shading of one triangle shares (raster_shade.c,
+ * round four): each light's intensity Phi / (4 pi) (UQ16.16), exposure / pi
+ * (Q16), the normal when the three vertices share it and it faces the eye
+ * the same way everywhere (nfixed), rho exposure / pi when they share the
+ * albedo (rfixed). */
+typedef struct lumo_raster_pixel_fixed {
+    uint32_t inten[LUMO_MAX_LIGHTS][3];
+    uint32_t count, k, rk[3];
+    int nfixed, rfixed;
+    lumo_q1_14 n[3];
+} lumo_raster_pixel_fixed;
 
-/* A triangle whose vertices share one normal (varyings v0, v1, v2): that
- * normal renormalised and turned towards the eye into out, and 1 when it is
- * turned the same way at every point of the triangle (0: decide per pixel). */
-int lumo_raster_fixed_normal(const lumo_raster_view *view, const int32_t *v0, const int32_t *v1,
-                             const int32_t *v2, lumo_q1_14 out[3]);
+/* pf for the triangle with vertex varyings v0, v1, v2 (per-pixel layout). */
+void lumo_raster_pixel_fixed_init(lumo_raster_pixel_fixed *pf, const lumo_raster_view *view,
+                                  const lumo_raster_scene *s, const int32_t *v0, const int32_t *v1,
+                                  const int32_t *v2);
+
+/* The codes of one per-pixel-lit pixel from its nvar varyings (above), in
+ * 32-bit steps without division (raster_shade.c; round four). */
+void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s,
+                               const lumo_raster_pixel_fixed *pf, unsigned nvar, const int32_t var[],
+                               unsigned code[3]);
 
 /* Transform (and, per vertex, light) vertex `index` of the mesh; a pure
  * function of its arguments, so cached and uncached draws agree. */

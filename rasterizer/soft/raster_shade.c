@@ -243,14 +243,14 @@ static uint32_t rsqrt32(uint32_t v)
  * the exact path's square root and divisions (the same MIN_DIST2 clamp,
  * cone test and shadow). |pos - p| < 2^30 per axis (the caller checks the
  * triangle's vertices). */
-static void add_local_light32(const lumo_raster_light *L, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
-                              lumo_uq16_16 e[3])
+static void add_local_light32(const lumo_raster_light *L, const uint32_t inten[3], const lumo_q16_16 p[3],
+                              const lumo_q1_14 n[3], lumo_uq16_16 e[3])
 {
     int32_t d0 = L->pos[0] - p[0], d1 = L->pos[1] - p[1], d2 = L->pos[2] - p[2];
     int64_t ln = (int64_t)d0 * n[0] + (int64_t)d1 * n[1] + (int64_t)d2 * n[2];
     uint64_t dist2 = (uint64_t)((int64_t)d0 * d0) + (uint64_t)((int64_t)d1 * d1) + (uint64_t)((int64_t)d2 * d2);
     uint32_t vis = 256, top, u, l32, cos_n, f;
-    unsigned sh;
+    unsigned sh, shift;
     int h, i;
 
     if (ln <= 0 || dist2 == 0)
@@ -271,12 +271,13 @@ static void add_local_light32(const lumo_raster_light *L, const lumo_q16_16 p[3]
     cos_n = (uint32_t)(((uint64_t)l32 * u) >> 45);                    /* Q14 */
     if (cos_n > 2 * LUMO_Q14_ONE)
         cos_n = 2 * LUMO_Q14_ONE;
-    f = (uint32_t)(((uint64_t)cos_n * (uint32_t)(((uint64_t)u * u) >> 32)) >> 15);
+    /* E = I cos / |l|^2 = (I f) >> shift; |l|^2 clamped to MIN_DIST2 */
+    if (dist2 < ((uint64_t)MIN_DIST2 << 16))
+        f = cos_n, shift = 6;
+    else
+        f = (uint32_t)(((uint64_t)cos_n * (uint32_t)(((uint64_t)u * u) >> 32)) >> 15), shift = 59 - sh;
     for (i = 0; i < 3; i++) {
-        uint64_t inten = ((uint64_t)L->value[i] * INV_4PI_Q32 + ((uint64_t)1 << 31)) >> 32;
-        uint64_t q = dist2 < ((uint64_t)MIN_DIST2 << 16) ? (inten * cos_n + 32) >> 6   /* |l|^2 clamped */
-                                                         : (inten * f) >> (59 - sh);
-        q = shadowed(q, vis);
+        uint64_t q = shadowed(((uint64_t)inten[i] * f) >> shift, vis);
         e[i] = sat_add_u32(e[i], q > UINT32_MAX ? UINT32_MAX : (uint32_t)q);
     }
 }
@@ -320,15 +321,21 @@ static int64_t facing(const lumo_raster_view *view, const int32_t p[3], const lu
          + ((int64_t)view->eye[2] - p[2]) * n[2];
 }
 
-int lumo_raster_fixed_normal(const lumo_raster_view *view, const int32_t *v0, const int32_t *v1,
-                             const int32_t *v2, lumo_q1_14 out[3])
+/* A normal shared by the three vertices, renormalised and turned to the
+ * eye: 1 when it is turned the same way at every point of the triangle.
+ * (eye - p) . n is affine in p: the same sign at the three vertices (with a
+ * margin of 2^20, far more than the interpolation's rounding of p by a
+ * unit times |n| < 2^15) is the same sign everywhere between. */
+static int fixed_normal(const lumo_raster_view *view, const int32_t *v0, const int32_t *v1,
+                        const int32_t *v2, lumo_q1_14 out[3])
 {
-    /* (eye - p) . n is affine in p: the same sign at the three vertices
-     * (with a margin of 2^20, far more than the interpolation's rounding of
-     * p by a unit times |n| < 2^15) is the same sign everywhere between. */
     const int64_t margin = (int64_t)1 << 20;
     int64_t f0, f1, f2;
+    int k;
 
+    for (k = 3; k < 6; k++)
+        if (v0[k] != v1[k] || v0[k] != v2[k])
+            return 0;
     renormalize32(&v0[3], out);
     f0 = facing(view, v0, out), f1 = facing(view, v1, out), f2 = facing(view, v2, out);
     if (f0 > margin && f1 > margin && f2 > margin)
@@ -340,27 +347,60 @@ int lumo_raster_fixed_normal(const lumo_raster_view *view, const int32_t *v0, co
     return 0;
 }
 
-void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s, unsigned nvar,
-                               const int32_t var[], const lumo_q1_14 *nfix, unsigned code[3])
+/* rho (Q1.14, clamped to [0, 1]) times exposure / pi (Q16): Q16. */
+static uint32_t rho_k(int32_t rho, uint32_t k)
+{
+    uint32_t r = rho < 0 ? 0u : rho > LUMO_Q14_ONE ? (uint32_t)LUMO_Q14_ONE : (uint32_t)rho;
+
+    return (uint32_t)(((uint64_t)r * k) >> LUMO_Q14_SHIFT);
+}
+
+void lumo_raster_pixel_fixed_init(lumo_raster_pixel_fixed *pf, const lumo_raster_view *view,
+                                  const lumo_raster_scene *s, const int32_t *v0, const int32_t *v1,
+                                  const int32_t *v2)
+{
+    const uint32_t lim = (uint32_t)1 << 31;
+    uint32_t i, l;
+
+    pf->count = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
+    for (l = 0; l < pf->count; l++)
+        for (i = 0; i < 3; i++)
+            pf->inten[l][i] = (uint32_t)(((uint64_t)s->lights[l].value[i] * INV_4PI_Q32 + ((uint64_t)1 << 31)) >> 32);
+    pf->k = (uint32_t)(((uint64_t)(s->exposure > lim ? lim : s->exposure) * INV_PI_Q32 + ((uint64_t)1 << 31)) >> 32);
+    pf->nfixed = fixed_normal(view, v0, v1, v2, pf->n);
+    pf->rfixed = v0[6] == v1[6] && v0[6] == v2[6] && v0[7] == v1[7] && v0[7] == v2[7] && v0[8] == v1[8]
+              && v0[8] == v2[8];
+    for (i = 0; i < 3; i++)
+        pf->rk[i] = rho_k(v0[6 + i], pf->k);
+}
+
+/* One pixel of per-pixel lighting from its varyings (position, normal,
+ * albedo, and the per-vertex indirect light when nvar says so): the
+ * shading of lumo_raster_shade_point, lumo_raster_radiance and the tone
+ * map, with the normal renormalised and the point and spot lights
+ * evaluated in 32-bit steps (no division), the light intensities and
+ * rho exposure / pi from the triangle's constants, the sRGB codes exact. */
+void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_scene *s,
+                               const lumo_raster_pixel_fixed *pf, unsigned nvar, const int32_t var[],
+                               unsigned code[3])
 {
     lumo_q1_14 n[3];
     lumo_uq16_16 e[3] = {0, 0, 0}, ind[3] = {0, 0, 0};
-    const uint32_t lim = (uint32_t)1 << 31;
-    uint32_t i, k, count = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
+    uint32_t i;
 
-    if (nfix) {
-        n[0] = nfix[0], n[1] = nfix[1], n[2] = nfix[2];
+    if (pf->nfixed) {
+        n[0] = pf->n[0], n[1] = pf->n[1], n[2] = pf->n[2];
     } else {
         renormalize32(&var[3], n);
         if (facing(view, var, n) < 0)
             n[0] = (lumo_q1_14)-n[0], n[1] = (lumo_q1_14)-n[1], n[2] = (lumo_q1_14)-n[2];
     }
-    for (i = 0; i < count; i++) {
+    for (i = 0; i < pf->count; i++) {
         const lumo_raster_light *L = &s->lights[i];
         if (L->kind == LUMO_LIGHT_DIRECTIONAL)
             add_directional(L, var, n, e);
         else
-            add_local_light32(L, var, n, e);
+            add_local_light32(L, pf->inten[i], var, n, e);
     }
     if (nvar > LUMO_RASTER_VAR_PIXEL) {
         for (i = 0; i < 3; i++)
@@ -368,14 +408,11 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
     } else if (s->indirect) {
         s->indirect(s->indirect_ctx, var, n, ind);
     }
-    /* rho / pi and the exposure in one factor: exposure / pi (Q16), then
-     * E rho (UQ16.16, < 2^32 for rho <= 1) times it is L exposure in
-     * UQ8.24 (the exact path rounds after each of the three products) */
-    k = (uint32_t)(((uint64_t)(s->exposure > lim ? lim : s->exposure) * INV_PI_Q32 + ((uint64_t)1 << 31)) >> 32);
+    /* E rho exposure / pi: Q32 from E (UQ16.16) and rho exposure / pi
+     * (Q16), UQ8.24 after >> 8; code 255 from 1.0 (2^32 before the shift) up */
     for (i = 0; i < 3; i++) {
-        uint32_t rho = var[6 + i] < 0 ? 0u : var[6 + i] > LUMO_Q14_ONE ? LUMO_Q14_ONE : (uint32_t)var[6 + i];
-        uint32_t er = (uint32_t)(((uint64_t)sat_add_u32(e[i], ind[i]) * rho) >> LUMO_Q14_SHIFT);
-        code[i] = lumo_raster_srgb_code(((uint64_t)er * k) >> 8);
+        uint64_t v = (uint64_t)sat_add_u32(e[i], ind[i]) * (pf->rfixed ? pf->rk[i] : rho_k(var[6 + i], pf->k));
+        code[i] = v >> 32 ? 255u : lumo_raster_srgb_code24((uint32_t)v >> 8);
     }
 }
 

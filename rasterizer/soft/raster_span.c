@@ -663,11 +663,9 @@ typedef struct rows32 {
     int32_t mask;          /* 2^run_bits - 1 */
     /* per pixel: the groups of three varyings that differ between the
      * vertices (a group equal at all three interpolates to that value
-     * exactly: it is not stepped), and the normal when it is the same at
-     * every pixel (lumo_raster_fixed_normal) */
+     * exactly: it is not stepped), and the shading's constants */
     unsigned group[4], ngroups;
-    int nfixed;
-    lumo_q1_14 n[3];
+    lumo_raster_pixel_fixed pf;
 } rows32;
 
 /* rows32's per-pixel fields for triangle t. */
@@ -684,9 +682,7 @@ static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t)
         if (!same)
             g->group[g->ngroups++] = i;
     }
-    g->nfixed = 0;
-    if (v0[3] == v1[3] && v0[3] == v2[3] && v0[4] == v1[4] && v0[4] == v2[4] && v0[5] == v1[5] && v0[5] == v2[5])
-        g->nfixed = lumo_raster_fixed_normal(c->view, v0, v1, v2, g->n);
+    lumo_raster_pixel_fixed_init(&g->pf, c->view, c->scene, v0, v1, v2);
 }
 
 /* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic, E
@@ -761,7 +757,7 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
                     *(uint16_t *)(void *)dp = (uint16_t)dz_x;
                 else
                     *(uint32_t *)(void *)dp = dz_x;
-                lumo_raster_shade_pixel32(c->view, c->scene, nvar, va, g->nfixed ? g->n : NULL, code);
+                lumo_raster_shade_pixel32(c->view, c->scene, &g->pf, nvar, va, code);
                 lumo_raster_put_codes(tg, crow, (int)x, (int)y, code[0], code[1], code[2]);
                 written++;
             }
