@@ -124,12 +124,14 @@ void lumo_raster_shade_point(const lumo_raster_scene *s, const lumo_q16_16 p[3],
                              const int32_t *indirect, lumo_uq16_16 out[3]);
 
 /* What the per-pixel shading of one triangle shares (raster_shade.c,
- * round four): each light's intensity Phi / (4 pi) (UQ16.16), exposure / pi
+ * round four): each light's intensity Phi / (4 pi) (UQ16.16) and the
+ * scale of its light vectors over the triangle, exposure / pi
  * (Q16), the normal when the three vertices share it and it faces the eye
  * the same way everywhere (nfixed), rho exposure / pi when they share the
  * albedo (rfixed). */
 typedef struct lumo_raster_pixel_fixed {
     uint32_t inten[LUMO_MAX_LIGHTS][3];
+    uint8_t dsh[LUMO_MAX_LIGHTS];      /* light vectors in units of 2^dsh (< 2^15) */
     uint32_t count, k, rk[3];
     int nfixed, rfixed;
     lumo_q1_14 n[3];

@@ -235,51 +235,69 @@ static uint32_t rsqrt32(uint32_t v)
     return (uint32_t)(((uint64_t)u * (((uint32_t)3 << 30) - g)) >> 31);
 }
 
-/* add_local_light without a division: l = pos - p, |l|^2 (Q32) normalised
- * by an even CLZ shift s to t in [2^30, 2^32), u = rsqrt32(t); then
- * 1/|l| = u 2^-(46 + h) with h = (32 - s) / 2, cos = (n . l) u / 2^(46 + h)
- * (n . l pre-shifted by h + 1 to 32 bits: |n . l| < 2^(31.8 + h)) and
- * 1/|l|^2 = (u^2 / 2^32) 2^-(92 - s). Relative error below 2^-14 against
- * the exact path's square root and divisions (the same MIN_DIST2 clamp,
- * cone test and shadow). |pos - p| < 2^30 per axis (the caller checks the
- * triangle's vertices). */
-static void add_local_light32(const lumo_raster_light *L, const uint32_t inten[3], const lumo_q16_16 p[3],
-                              const lumo_q1_14 n[3], lumo_uq16_16 e[3])
+/* (a b) >> s saturated to 32 bits, from the product's two words (a 64-bit
+ * shift by a variable amount is a branchy sequence on the Cortex-M3). */
+static uint32_t mul_shift_sat(uint32_t a, uint32_t b, unsigned s)
 {
-    int32_t d0 = L->pos[0] - p[0], d1 = L->pos[1] - p[1], d2 = L->pos[2] - p[2];
-    int64_t ln = (int64_t)d0 * n[0] + (int64_t)d1 * n[1] + (int64_t)d2 * n[2];
-    uint64_t dist2 = (uint64_t)((int64_t)d0 * d0) + (uint64_t)((int64_t)d1 * d1) + (uint64_t)((int64_t)d2 * d2);
-    uint32_t vis = 256, top, u, l32, cos_n, f;
-    unsigned sh, shift;
-    int h, i;
+    uint64_t w = (uint64_t)a * b;
+    uint32_t hi = (uint32_t)(w >> 32), lo = (uint32_t)w;
+
+    if (s >= 32)
+        return s >= 64 ? 0 : hi >> (s - 32);
+    if (s == 0 || hi >> s)
+        return s == 0 && hi == 0 ? lo : UINT32_MAX;
+    return (hi << (32 - s)) | (lo >> s);
+}
+
+/* floor(v / 2^s) for |v| < 2^30 without shifting a negative value. */
+static int32_t floor_shift(int32_t v, unsigned s)
+{
+    return (int32_t)(((uint32_t)v + ((uint32_t)1 << 31)) >> s) - (int32_t)(((uint32_t)1 << 31) >> s);
+}
+
+/* add_local_light in 32-bit steps and without a division. The light
+ * vector l = pos - p is taken in units of 2^dsh (the triangle's shift,
+ * lumo_raster_pixel_fixed_init: every component then below 2^15), so
+ * |l|^2, n . l and the cone's l . axis are 32-bit sums; |l|^2 is
+ * normalised by an even CLZ shift z to t in [2^30, 2^32) and u =
+ * rsqrt32(t) ~ 2^46 / sqrt(t) gives cos = (n . l) u / 2^(46 - z/2) (Q14)
+ * and 1/|l|^2 from u^2: E = (I f) >> (27 + 2 dsh - z), f = cos u^2 / 2^47.
+ * The same MIN_DIST2 clamp, cone test and shadow as the exact path;
+ * relative error about 2^-14 (the seed's Newton step and the 15 bits of
+ * the shortest l over the triangle). */
+static void add_local_light32(const lumo_raster_light *L, const uint32_t inten[3], unsigned dsh,
+                              const lumo_q16_16 p[3], const lumo_q1_14 n[3], lumo_uq16_16 e[3])
+{
+    int32_t d0 = floor_shift(L->pos[0] - p[0], dsh), d1 = floor_shift(L->pos[1] - p[1], dsh);
+    int32_t d2 = floor_shift(L->pos[2] - p[2], dsh), ln = d0 * n[0] + d1 * n[1] + d2 * n[2];
+    uint32_t dist2 = (uint32_t)(d0 * d0) + (uint32_t)(d1 * d1) + (uint32_t)(d2 * d2);
+    uint32_t vis = 256, top, u, cos_n, f;
+    unsigned z, shift;
+    int i;
 
     if (ln <= 0 || dist2 == 0)
         return;
-    sh = (dist2 >> 32 ? lumo_raster_clz32((uint32_t)(dist2 >> 32)) : 32u + lumo_raster_clz32((uint32_t)dist2)) & ~1u;
-    top = (uint32_t)((dist2 << sh) >> 32);
+    z = lumo_raster_clz32(dist2) & ~1u;
+    top = dist2 << z;
     u = rsqrt32(top);
-    h = (32 - (int)sh) / 2;
     if (L->kind == LUMO_LIGHT_SPOT) {
-        int64_t la = (int64_t)d0 * L->dir[0] + (int64_t)d1 * L->dir[1] + (int64_t)d2 * L->dir[2];
-        uint64_t dist = ((uint64_t)top * u) >> (46 - h);              /* Q16 */
-        if (-la < (int64_t)L->cos_cutoff * (int64_t)dist)
+        int32_t la = d0 * L->dir[0] + d1 * L->dir[1] + d2 * L->dir[2];
+        uint64_t dist = ((uint64_t)top * u) >> (46 - dsh + z / 2);    /* Q16 */
+        if (-((int64_t)la << dsh) < (int64_t)L->cos_cutoff * (int64_t)dist)
             return;
     }
     if (L->shadow && (vis = lumo_raster_shadow_visibility(L->shadow, p, n)) == 0)
         return;
-    l32 = h + 1 >= 0 ? (uint32_t)((uint64_t)ln >> (h + 1)) : (uint32_t)ln << -(h + 1);
-    cos_n = (uint32_t)(((uint64_t)l32 * u) >> 45);                    /* Q14 */
+    cos_n = (uint32_t)(((uint64_t)(uint32_t)ln * u) >> 32) >> (14 - z / 2);    /* Q14 */
     if (cos_n > 2 * LUMO_Q14_ONE)
         cos_n = 2 * LUMO_Q14_ONE;
-    /* E = I cos / |l|^2 = (I f) >> shift; |l|^2 clamped to MIN_DIST2 */
-    if (dist2 < ((uint64_t)MIN_DIST2 << 16))
+    /* |l|^2 (Q32) = dist2 2^(2 dsh) clamped to MIN_DIST2 << 16 */
+    if (2 * dsh < 24 && dist2 < ((uint32_t)1 << (24 - 2 * dsh)))
         f = cos_n, shift = 6;
     else
-        f = (uint32_t)(((uint64_t)cos_n * (uint32_t)(((uint64_t)u * u) >> 32)) >> 15), shift = 59 - sh;
-    for (i = 0; i < 3; i++) {
-        uint64_t q = shadowed(((uint64_t)inten[i] * f) >> shift, vis);
-        e[i] = sat_add_u32(e[i], q > UINT32_MAX ? UINT32_MAX : (uint32_t)q);
-    }
+        f = (uint32_t)(((uint64_t)cos_n * (uint32_t)(((uint64_t)u * u) >> 32)) >> 15), shift = 27 + 2 * dsh - z;
+    for (i = 0; i < 3; i++)
+        e[i] = sat_add_u32(e[i], (uint32_t)shadowed(mul_shift_sat(inten[i], f, shift), vis));
 }
 
 /* lumo_raster_renormalize_q14 in 32 bits: |v|^2 (Q28) within [7/8, 9/8],
@@ -355,6 +373,35 @@ static uint32_t rho_k(int32_t rho, uint32_t k)
     return (uint32_t)(((uint64_t)r * k) >> LUMO_Q14_SHIFT);
 }
 
+/* The shift that brings pos - p below 2^15 per axis for every p of the
+ * triangle (v0, v1, v2: a pixel's position is a convex combination of
+ * theirs, give or take the interpolation's rounding by a unit). The caller
+ * keeps |pos - v| < 2^30. */
+static unsigned light_shift(const lumo_q16_16 pos[3], const int32_t *v0, const int32_t *v1, const int32_t *v2)
+{
+    int64_t m = 0;
+    unsigned sh = 0;
+    int k;
+
+    for (k = 0; k < 3; k++) {
+        int64_t a = (int64_t)pos[k] - v0[k], b = (int64_t)pos[k] - v1[k], c = (int64_t)pos[k] - v2[k];
+        a = a < 0 ? -a : a, b = b < 0 ? -b : b, c = c < 0 ? -c : c;
+        m = a > m ? a : m, m = b > m ? b : m, m = c > m ? c : m;
+    }
+    while ((m + 2) >> sh >= ((int64_t)1 << 15))
+        sh++;
+    return sh;
+}
+
+/* The sRGB code of E rho exposure / pi from E (UQ16.16) and rho exposure /
+ * pi (Q16): Q32, UQ8.24 after >> 8; code 255 from 1.0 (2^32) up. */
+static unsigned tone32(uint32_t e, uint32_t rk)
+{
+    uint64_t v = (uint64_t)e * rk;
+
+    return v >> 32 ? 255u : lumo_raster_srgb_code24((uint32_t)v >> 8);
+}
+
 void lumo_raster_pixel_fixed_init(lumo_raster_pixel_fixed *pf, const lumo_raster_view *view,
                                   const lumo_raster_scene *s, const int32_t *v0, const int32_t *v1,
                                   const int32_t *v2)
@@ -363,9 +410,11 @@ void lumo_raster_pixel_fixed_init(lumo_raster_pixel_fixed *pf, const lumo_raster
     uint32_t i, l;
 
     pf->count = s->light_count > LUMO_MAX_LIGHTS ? LUMO_MAX_LIGHTS : s->light_count;
-    for (l = 0; l < pf->count; l++)
+    for (l = 0; l < pf->count; l++) {
         for (i = 0; i < 3; i++)
             pf->inten[l][i] = (uint32_t)(((uint64_t)s->lights[l].value[i] * INV_4PI_Q32 + ((uint64_t)1 << 31)) >> 32);
+        pf->dsh[l] = light_shift(s->lights[l].pos, v0, v1, v2);
+    }
     pf->k = (uint32_t)(((uint64_t)(s->exposure > lim ? lim : s->exposure) * INV_PI_Q32 + ((uint64_t)1 << 31)) >> 32);
     pf->nfixed = fixed_normal(view, v0, v1, v2, pf->n);
     pf->rfixed = v0[6] == v1[6] && v0[6] == v2[6] && v0[7] == v1[7] && v0[7] == v2[7] && v0[8] == v1[8]
@@ -400,7 +449,7 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
         if (L->kind == LUMO_LIGHT_DIRECTIONAL)
             add_directional(L, var, n, e);
         else
-            add_local_light32(L, pf->inten[i], var, n, e);
+            add_local_light32(L, pf->inten[i], pf->dsh[i], var, n, e);
     }
     if (nvar > LUMO_RASTER_VAR_PIXEL) {
         for (i = 0; i < 3; i++)
@@ -408,11 +457,13 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
     } else if (s->indirect) {
         s->indirect(s->indirect_ctx, var, n, ind);
     }
-    /* E rho exposure / pi: Q32 from E (UQ16.16) and rho exposure / pi
-     * (Q16), UQ8.24 after >> 8; code 255 from 1.0 (2^32 before the shift) up */
-    for (i = 0; i < 3; i++) {
-        uint64_t v = (uint64_t)sat_add_u32(e[i], ind[i]) * (pf->rfixed ? pf->rk[i] : rho_k(var[6 + i], pf->k));
-        code[i] = v >> 32 ? 255u : lumo_raster_srgb_code24((uint32_t)v >> 8);
+    if (pf->rfixed) {
+        code[0] = tone32(sat_add_u32(e[0], ind[0]), pf->rk[0]);
+        code[1] = tone32(sat_add_u32(e[1], ind[1]), pf->rk[1]);
+        code[2] = tone32(sat_add_u32(e[2], ind[2]), pf->rk[2]);
+    } else {
+        for (i = 0; i < 3; i++)
+            code[i] = tone32(sat_add_u32(e[i], ind[i]), rho_k(var[6 + i], pf->k));
     }
 }
 
