@@ -423,18 +423,21 @@ static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
     return z;
 }
 
-/* The nvar varyings of any sign at one pixel of an edges32 triangle whose
- * varyings differ by less than 2^30 between its vertices (pixel_ok):
- * v_0 + b_1 (v_1 - v_0) + b_2 (v_2 - v_0) rounded, from bary32. */
-static uint32_t vary_at32(const tri *t, const int32_t E[3], unsigned nvar, int32_t out[])
+/* The varyings of any sign at one pixel of an edges32 triangle whose
+ * varyings differ by less than 2^30 between its vertices (pixel32_ok):
+ * v_0 + b_1 (v_1 - v_0) + b_2 (v_2 - v_0) rounded, from bary32, for the
+ * groups of three listed (the others are the same at every vertex). */
+static uint32_t vary_at32(const tri *t, const int32_t E[3], const unsigned *group, unsigned ngroups,
+                          int32_t out[])
 {
     const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
     uint32_t b[3], z = bary32(t, E, b);
-    unsigned i;
+    unsigned g, i;
 
-    for (i = 0; i < nvar; i++)
-        out[i] = v0[i] + (int32_t)lumo_round_shift((int64_t)(v1[i] - v0[i]) * b[1]
-                                                   + (int64_t)(v2[i] - v0[i]) * b[2], 31);
+    for (g = 0; g < ngroups; g++)
+        for (i = group[g]; i < group[g] + 3; i++)
+            out[i] = v0[i] + (int32_t)lumo_round_shift((int64_t)(v1[i] - v0[i]) * b[1]
+                                                       + (int64_t)(v2[i] - v0[i]) * b[2], 31);
     return z;
 }
 
@@ -732,22 +735,28 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
     const unsigned nvar = c->nvar;
     const int d16 = tg->depth_bits == 16;
     int32_t va[LUMO_RASTER_MAX_VARYINGS], vb[LUMO_RASTER_MAX_VARYINGS], dv[LUMO_RASTER_MAX_VARYINGS];
-    uint32_t za = vary_at32(t, E, nvar, va), zb, written = 0;
+    uint32_t za, zb, written = 0;
     unsigned i, k, code[3];
+
+    for (i = 0; i < nvar; i++)                       /* the groups that do not change */
+        va[i] = vb[i] = t->v[0].var[i], dv[i] = 0;
+    za = vary_at32(t, E, g->group, g->ngroups, va);
 
     while (a <= x1) {
         int32_t b = (a | g->mask) < x1 ? a | g->mask : x1, e = b < x1 ? b - a + 1 : b - a, dz = 0, x;
         uint32_t z = za;
         if (e) {
             E[0] += t->st32[0] * e, E[1] += t->st32[1] * e, E[2] += t->st32[2] * e;
-            zb = vary_at32(t, E, nvar, vb);
+            zb = vary_at32(t, E, g->group, g->ngroups, vb);
             dz = seg_step((int32_t)za, (int32_t)zb, e);
-            for (i = 0; i < nvar; i++)
-                dv[i] = seg_step(va[i], vb[i], e);
+            for (k = 0; k < g->ngroups; k++)
+                for (i = g->group[k]; i < g->group[k] + 3; i++)
+                    dv[i] = seg_step(va[i], vb[i], e);
         } else {
             zb = za;
-            for (i = 0; i < nvar; i++)
-                vb[i] = va[i], dv[i] = 0;
+            for (k = 0; k < g->ngroups; k++)
+                for (i = g->group[k]; i < g->group[k] + 3; i++)
+                    vb[i] = va[i], dv[i] = 0;
         }
         for (x = a; x <= b; x++, z += (uint32_t)dz) {
             uint32_t dz_x = depth_of(z, d16, 0);
@@ -767,8 +776,9 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
             }
         }
         za = zb;
-        for (i = 0; i < nvar; i++)
-            va[i] = vb[i];
+        for (k = 0; k < g->ngroups; k++)
+            for (i = g->group[k]; i < g->group[k] + 3; i++)
+                va[i] = vb[i];
         a = b + 1;
     }
     return written;
