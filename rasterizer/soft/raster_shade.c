@@ -283,7 +283,7 @@ static void add_local_light32(const lumo_raster_light *L, const uint32_t inten[3
     if (L->kind == LUMO_LIGHT_SPOT) {
         int32_t la = d0 * L->dir[0] + d1 * L->dir[1] + d2 * L->dir[2];
         uint64_t dist = ((uint64_t)top * u) >> (46 - dsh + z / 2);    /* Q16 */
-        if (-((int64_t)la << dsh) < (int64_t)L->cos_cutoff * (int64_t)dist)
+        if (-(int64_t)la * ((int64_t)1 << dsh) < (int64_t)L->cos_cutoff * (int64_t)dist)
             return;
     }
     if (L->shadow && (vis = lumo_raster_shadow_visibility(L->shadow, p, n)) == 0)
