@@ -221,7 +221,11 @@ static int shadow_frames(const lumo_raster_light *plain)
 /* Where a frame's instructions go (docs/rasterizer.md, "Cost on the
  * Cortex-M3"): clearing the band, transforming the vertices (the cache),
  * and drawing, with the draw's triangle and pixel counts, so that the draw
- * can be divided into per-triangle set-up and per-pixel work. */
+ * can be divided into per-triangle set-up and per-pixel work; then the
+ * same draw again over its own depth ("redraw": every pixel fails the
+ * depth test, so it costs the set-up, the rows, the pieces' exact ends and
+ * the depth tests, and draw - redraw is the shading and writing of the
+ * pixels). */
 static int frame_parts(const lumo_raster_scene *s, const char *label)
 {
     static const lumo_raster_camera cam = {
@@ -230,7 +234,7 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     lumo_raster_view view;
     lumo_raster_target t;
     lumo_raster_stats st;
-    uint32_t t0, t1, t2, t3, hz = board_tick_hz();
+    uint32_t t0, t1, t2, t3, t4, hz = board_tick_hz();
 
     init_target(&t, LUMO_PIXEL_XRGB8888, g_color, 0, H, 32);
     if (lumo_raster_view_init(&view, &cam, W, H) != LUMO_OK)
@@ -245,6 +249,9 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     if (lumo_raster_draw_stats(&view, s, &g_mesh, g_cache, &t, &st) != LUMO_OK)
         return 1;
     t3 = board_ticks();
+    if (lumo_raster_draw(&view, s, &g_mesh, g_cache, &t) != LUMO_OK)
+        return 1;
+    t4 = board_ticks();
     if (hz == 0)
         return 0;
     con_str("PARTS ");
@@ -255,6 +262,8 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     con_u64((uint64_t)(t2 - t1) * (1000000000u / hz));
     con_str(" draw ");
     con_u64((uint64_t)(t3 - t2) * (1000000000u / hz));
+    con_str(" redraw ");
+    con_u64((uint64_t)(t4 - t3) * (1000000000u / hz));
     con_str(" triangles ");
     con_u64(st.tris_drawn);
     con_str(" pixels_tested ");
