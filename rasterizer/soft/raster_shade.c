@@ -395,7 +395,7 @@ static unsigned light_shift(const lumo_q16_16 pos[3], const int32_t *v0, const i
 
 /* The sRGB code of E rho exposure / pi from E (UQ16.16) and rho exposure /
  * pi (Q16): Q32, UQ8.24 after >> 8; code 255 from 1.0 (2^32) up. */
-static unsigned tone32(uint32_t e, uint32_t rk)
+LUMO_RASTER_HOT unsigned tone32(uint32_t e, uint32_t rk)
 {
     uint64_t v = (uint64_t)e * rk;
 
