@@ -434,10 +434,14 @@ static uint32_t vary_at32(const tri *t, const int32_t E[3], const unsigned *grou
     uint32_t b[3], z = bary32(t, E, b);
     unsigned g, i;
 
+    /* |v_j - v_0| < 2^30 and b < 2^31: the sum lies within +-2^62, made
+     * positive by 2^62 before the rounding shift */
     for (g = 0; g < ngroups; g++)
         for (i = group[g]; i < group[g] + 3; i++)
-            out[i] = v0[i] + (int32_t)lumo_round_shift((int64_t)(v1[i] - v0[i]) * b[1]
-                                                       + (int64_t)(v2[i] - v0[i]) * b[2], 31);
+            out[i] = v0[i] + (int32_t)((int64_t)((uint64_t)((int64_t)(v1[i] - v0[i]) * b[1]
+                                                            + (int64_t)(v2[i] - v0[i]) * b[2]
+                                                            + ((int64_t)1 << 62) + ((int64_t)1 << 30)) >> 31)
+                                       - ((int64_t)1 << 31));
     return z;
 }
 
@@ -678,17 +682,19 @@ typedef struct rows32 {
     lumo_raster_pixel_fixed pf;
 } rows32;
 
-/* v += dv for the groups of three varyings in `groups` (bit k: group k). */
-LUMO_RASTER_HOT void step_groups(int32_t *v, const int32_t *dv, unsigned groups)
+/* v = va + k dv for the groups of three varyings in `groups` (bit j:
+ * group j): the varyings of a piece's k-th pixel, made only for the pixels
+ * that pass the depth test (k dv stays between the piece's ends). */
+LUMO_RASTER_HOT void piece_groups(int32_t *v, const int32_t *va, const int32_t *dv, int32_t k, unsigned groups)
 {
     if (groups & 1u)
-        v[0] += dv[0], v[1] += dv[1], v[2] += dv[2];
+        v[0] = va[0] + k * dv[0], v[1] = va[1] + k * dv[1], v[2] = va[2] + k * dv[2];
     if (groups & 2u)
-        v[3] += dv[3], v[4] += dv[4], v[5] += dv[5];
+        v[3] = va[3] + k * dv[3], v[4] = va[4] + k * dv[4], v[5] = va[5] + k * dv[5];
     if (groups & 4u)
-        v[6] += dv[6], v[7] += dv[7], v[8] += dv[8];
+        v[6] = va[6] + k * dv[6], v[7] = va[7] + k * dv[7], v[8] = va[8] + k * dv[8];
     if (groups & 8u)
-        v[9] += dv[9], v[10] += dv[10], v[11] += dv[11];
+        v[9] = va[9] + k * dv[9], v[10] = va[10] + k * dv[10], v[11] = va[11] + k * dv[11];
 }
 
 /* rows32's per-pixel fields for triangle t. */
@@ -758,11 +764,12 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
     const unsigned nvar = c->nvar;
     const int d16 = tg->depth_bits == 16;
     int32_t va[LUMO_RASTER_MAX_VARYINGS], vb[LUMO_RASTER_MAX_VARYINGS], dv[LUMO_RASTER_MAX_VARYINGS];
+    int32_t cur[LUMO_RASTER_MAX_VARYINGS];
     uint32_t za, zb, written = 0;
     unsigned i, k, code[3];
 
     for (i = 0; i < nvar; i++)                       /* the groups that do not change */
-        va[i] = t->v[0].var[i];
+        cur[i] = t->v[0].var[i];
     za = vary_at32(t, E, g->group, g->ngroups, va);
 
     while (a <= x1) {
@@ -789,11 +796,11 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
                     *(uint16_t *)(void *)dp = (uint16_t)dz_x;
                 else
                     *(uint32_t *)(void *)dp = dz_x;
-                lumo_raster_shade_pixel32(c->view, c->scene, &g->pf, nvar, va, code);
+                piece_groups(cur, va, dv, x - a, g->mask_groups);
+                lumo_raster_shade_pixel32(c->view, c->scene, &g->pf, nvar, cur, code);
                 lumo_raster_put_codes(tg, crow, (int)x, (int)y, code[0], code[1], code[2]);
                 written++;
             }
-            step_groups(va, dv, g->mask_groups);
         }
         za = zb;
         for (k = 0; k < g->ngroups; k++)
