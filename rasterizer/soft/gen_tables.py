@@ -33,19 +33,19 @@ print("    %du," % (1 << 24))
 print("};")
 th.append(1 << 24)
 print()
-print("/* The code at the start of each 2^-14 segment of [0, 1], and 255 for the")
+print("/* The code at the start of each 2^-12 segment of [0, 1], and 255 for the")
 print(" * one past it: no segment holds more than one threshold (the closest two,")
 print(" * codes 1 and 2, are 5093 apart), so the code is this or one more (one")
 print(" * comparison). Per-vertex runs read the entry of the nearest segment start")
-print(" * alone (within one code, docs/rasterizer.md). 16 KB. */")
-print("const uint8_t lumo_raster_srgb_segment[16385] = {")
+print(" * alone (within one code, docs/rasterizer.md). 4 KB. */")
+print("const uint8_t lumo_raster_srgb_segment[4097] = {")
 seg = []
-for i in range(16385):
-    v = i << 10
+for i in range(4097):
+    v = i << 12
     code = max(k for k in range(256) if th[k] <= v)
-    assert sum(1 for k in range(1, 256) if v < th[k] <= v + 1023) <= 1
+    assert sum(1 for k in range(1, 256) if v < th[k] <= v + 4095) <= 1
     seg.append(code)
-for i in range(0, 16385, 16):
+for i in range(0, 4097, 16):
     print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
 print("};")
 print()

@@ -577,30 +577,42 @@ static int run_plain(uint32_t za, uint32_t zb, const int32_t ca[3], const int32_
  * function (called once per run): the loop gets the registers to itself
  * instead of sharing them with the triangle's set-up. */
 typedef uint32_t (*run_fn)(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z, int32_t dz,
-                           const int32_t c0[3], const int32_t dc[3]);
-#define RUN_VARIANT(name, rgb565, d16, plain)                                                          \
+                           const int32_t c0[3], const int32_t dc[3], unsigned fmt);
+#define RUN_VARIANT(name, rgb565, d16)                                                                 \
     static uint32_t name(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z, int32_t dz, \
-                         const int32_t c0[3], const int32_t dc[3])                                     \
+                         const int32_t c0[3], const int32_t dc[3], unsigned fmt)                       \
     {                                                                                                  \
-        return run_pixels(depth, line, count, x, y, z, dz, c0, dc, rgb565, d16, plain);                 \
+        (void)fmt;                                                                                     \
+        return run_pixels(depth, line, count, x, y, z, dz, c0, dc, rgb565, d16, 1);                     \
     }
-RUN_VARIANT(run_xrgb_d32, 0, 0, 1)
-RUN_VARIANT(run_xrgb_d16, 0, 1, 1)
-RUN_VARIANT(run_565_d32, 1, 0, 1)
-RUN_VARIANT(run_565_d16, 1, 1, 1)
-RUN_VARIANT(run_xrgb_d32_clamp, 0, 0, 0)
-RUN_VARIANT(run_xrgb_d16_clamp, 0, 1, 0)
-RUN_VARIANT(run_565_d32_clamp, 1, 0, 0)
-RUN_VARIANT(run_565_d16_clamp, 1, 1, 0)
+RUN_VARIANT(run_xrgb_d32, 0, 0)
+RUN_VARIANT(run_xrgb_d16, 0, 1)
+RUN_VARIANT(run_565_d32, 1, 0)
+RUN_VARIANT(run_565_d16, 1, 1)
 
-/* The run function for a target: [plain][rgb565][d16]. */
+/* The runs that need clamps (a piece reaching code 255 or the depth
+ * range's ends: rare) share one function, the format a run-time argument
+ * (fmt: bit 0 RGB565, bit 1 16-bit depth), which keeps the image small:
+ * the RP2040 port runs from its 264 KiB of SRAM. */
+static uint32_t run_clamp(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z, int32_t dz,
+                          const int32_t c0[3], const int32_t dc[3], unsigned fmt)
+{
+    return run_pixels(depth, line, count, x, y, z, dz, c0, dc, (int)(fmt & 1u), (int)(fmt >> 1), 0);
+}
+
+/* The target's fmt for run functions. */
+static unsigned run_fmt(const lumo_raster_target *tg)
+{
+    return (tg->format == LUMO_PIXEL_RGB565 ? 1u : 0u) | (tg->depth_bits == 16 ? 2u : 0u);
+}
+
+/* The run function for a target: one per format without clamps, run_clamp
+ * with them. */
 static run_fn run_for(const lumo_raster_target *tg, int plain)
 {
-    static const run_fn fns[2][2][2] = {
-        {{run_xrgb_d32_clamp, run_xrgb_d16_clamp}, {run_565_d32_clamp, run_565_d16_clamp}},
-        {{run_xrgb_d32, run_xrgb_d16}, {run_565_d32, run_565_d16}}};
+    static const run_fn fns[4] = {run_xrgb_d32, run_565_d32, run_xrgb_d16, run_565_d16};
 
-    return fns[plain != 0][tg->format == LUMO_PIXEL_RGB565][tg->depth_bits == 16];
+    return plain ? fns[run_fmt(tg)] : run_clamp;
 }
 
 /* Pixel x of the target's band row `row` (row = band row times width):
@@ -640,7 +652,8 @@ static uint32_t run_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_
     return run_for(c->target, run_plain(za, zb, ca, cb))(depth_at(c->target, row + (size_t)a),
                                                            color_at(c->target, line, (int32_t)a), n + 1, (int)a,
                                                            (int)y, (int32_t)za,
-                                                           n ? seg_step((int32_t)za, (int32_t)zb, n) : 0, ca, dc);
+                                                           n ? seg_step((int32_t)za, (int32_t)zb, n) : 0, ca, dc,
+                                                           run_fmt(c->target));
 }
 
 /* Gouraud spans in runs ending at absolute multiples of 2^run_bits pixels
@@ -673,7 +686,7 @@ typedef struct rows32 {
     const lumo_raster_ctx *c;
     const tri *t;
     run_fn plain, clamp;
-    unsigned dbytes, cbytes;
+    unsigned dbytes, cbytes, fmt;
     int32_t mask;          /* 2^run_bits - 1 */
     /* per pixel: the groups of three varyings that differ between the
      * vertices (a group equal at all three interpolates to that value
@@ -743,7 +756,7 @@ static uint32_t span_gouraud32(const rows32 *g, int32_t E[3], int32_t a, int32_t
         }
         written += (run_plain(za, zb, ca, cb) ? g->plain : g->clamp)(drow + (size_t)a * g->dbytes,
                                                                     crow + (size_t)a * g->cbytes, b - a + 1, a,
-                                                                    y, (int32_t)za, dz, ca, dc);
+                                                                    y, (int32_t)za, dz, ca, dc, g->fmt);
         za = zb, ca[0] = cb[0], ca[1] = cb[1], ca[2] = cb[2];
         a = b + 1;
     }
@@ -863,6 +876,7 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
     g.t = t;
     g.plain = run_for(tg, 1);
     g.clamp = run_for(tg, 0);
+    g.fmt = run_fmt(tg);
     g.dbytes = tg->depth_bits == 16 ? 2u : 4u;
     g.cbytes = tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u;
     g.mask = ((int32_t)1 << t->run_bits) - 1;
