@@ -49,6 +49,18 @@ for i in range(0, 4097, 16):
     print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
 print("};")
 print()
+print("/* The code at each multiple of 2^-13 of [0, 1]: the nearest-entry code of")
+print(" * per-vertex runs (lumo_raster_srgb_near, raster_internal.h): the exact code")
+print(" * but where a threshold lies within 2^-14 of the value. 8 KB. */")
+print("const uint8_t lumo_raster_srgb_near_code[8193] = {")
+near = []
+for i in range(8193):
+    v = i << 11
+    near.append(max(k for k in range(256) if th[k] <= v))
+for i in range(0, 8193, 16):
+    print("    " + ", ".join("%d" % c for c in near[i:i + 16]) + ",")
+print("};")
+print()
 print("/* ceil(16 sqrt(i + 1)) for i = 0..255: an over-estimate of the square root")
 print(" * of any number whose top 8 bits are i, the start of lumo_raster_isqrt. */")
 print("const uint16_t lumo_raster_sqrt_seed[256] = {")

@@ -19,6 +19,7 @@
 extern const uint32_t lumo_raster_sin_deg[91];
 extern const uint32_t lumo_raster_srgb_threshold[257];
 extern const uint8_t lumo_raster_srgb_segment[4097];
+extern const uint8_t lumo_raster_srgb_near_code[8193];
 extern const uint16_t lumo_raster_sqrt_seed[256];
 extern const uint32_t lumo_raster_rsqrt_seed[256];
 
@@ -35,13 +36,16 @@ LUMO_RASTER_HOT unsigned lumo_raster_srgb_code24(uint32_t v)
     return code + (lumo_raster_srgb_threshold[code + 1] <= v);
 }
 
-/* The code at the segment start nearest to v - 2^11 (callers add the half
- * segment once, to a run's first value): one load, and the exact code
- * but where a threshold lies within half a segment (2^-13) of v, one off
- * there. v <= 2^24. */
+/* Steps of the nearest-entry code table: 2^-13 of [0, 1] each. */
+#define LUMO_RASTER_SRGB_NEAR_BITS 11
+
+/* The code at the table step nearest to v - 2^10 (callers add the half
+ * step once, to a run's first value): one load, and the exact code but
+ * where a threshold lies within half a step (2^-14) of v, one off there.
+ * v <= 2^24. */
 LUMO_RASTER_HOT unsigned lumo_raster_srgb_near(uint32_t v)
 {
-    return lumo_raster_srgb_segment[v >> LUMO_RASTER_SRGB_SEG_BITS];
+    return lumo_raster_srgb_near_code[v >> LUMO_RASTER_SRGB_NEAR_BITS];
 }
 
 /* The same for any v in UQ.24 (radiance times exposure), clamped to

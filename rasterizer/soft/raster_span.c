@@ -529,7 +529,7 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
      * dc[] and reload them every pixel), the loop runs on the two
      * pointers, and the pixels that fail the depth test are counted
      * instead of those written (fewer registers in the loop). */
-    const uint32_t half = (uint32_t)1 << (LUMO_RASTER_SRGB_SEG_BITS - 1);
+    const uint32_t half = (uint32_t)1 << (LUMO_RASTER_SRGB_NEAR_BITS - 1);
     uint32_t fails = 0, z = (uint32_t)z0, r = (uint32_t)c0[0] + half, g = (uint32_t)c0[1] + half,
              b = (uint32_t)c0[2] + half;
     const uint32_t dzu = (uint32_t)dz, dr = (uint32_t)dc[0], dg = (uint32_t)dc[1], db = (uint32_t)dc[2];
@@ -567,7 +567,7 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
 static int run_plain(uint32_t za, uint32_t zb, const int32_t ca[3], const int32_t cb[3])
 {
     const uint32_t zlo = (uint32_t)1 << 14, zhi = (uint32_t)1 << 30;
-    const uint32_t chi = ((uint32_t)1 << 24) - ((uint32_t)1 << (LUMO_RASTER_SRGB_SEG_BITS - 1));
+    const uint32_t chi = ((uint32_t)1 << 24) - ((uint32_t)1 << (LUMO_RASTER_SRGB_NEAR_BITS - 1));
 
     return za >= zlo && zb >= zlo && za < zhi && zb < zhi
         && (uint32_t)(ca[0] | cb[0] | ca[1] | cb[1] | ca[2] | cb[2]) < chi;
