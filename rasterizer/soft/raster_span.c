@@ -573,9 +573,9 @@ static int run_plain(uint32_t za, uint32_t zb, const int32_t ca[3], const int32_
         && (uint32_t)(ca[0] | cb[0] | ca[1] | cb[1] | ca[2] | cb[2]) < chi;
 }
 
-/* run_pixels once per pixel format, depth width and range, each its own
- * function (called once per run): the loop gets the registers to itself
- * instead of sharing them with the triangle's set-up. */
+/* run_pixels once per pixel format and depth width for the runs without
+ * clamps, each its own function (called once per run): the loop gets the
+ * registers to itself instead of sharing them with the triangle's set-up. */
 typedef uint32_t (*run_fn)(void *depth, uint8_t *line, int32_t count, int x, int y, int32_t z, int32_t dz,
                            const int32_t c0[3], const int32_t dc[3], unsigned fmt);
 #define RUN_VARIANT(name, rgb565, d16)                                                                 \
