@@ -31,19 +31,34 @@ for i in range(0, 256, 8):
     print("    " + ", ".join("%du" % v for v in th[i:i + 8]) + ",")
 print("    %du," % (1 << 24))
 print("};")
+th.append(1 << 24)
 print()
-print("/* The code at the start of each 2^-12 segment of [0, 1): no segment holds")
-print(" * more than one threshold (the closest two, codes 1 and 2, are 5093 apart),")
-print(" * so the code is this or one more (one comparison). 4 KB. */")
-print("const uint8_t lumo_raster_srgb_segment[4096] = {")
+print("/* The code at the start of each 2^-12 segment of [0, 1], and 255 for the")
+print(" * one past it: no segment holds more than one threshold (the closest two,")
+print(" * codes 1 and 2, are 5093 apart), so the code is this or one more (one")
+print(" * comparison). Per-vertex runs read the entry of the nearest segment start")
+print(" * alone (within one code, docs/rasterizer.md). 4 KB. */")
+print("const uint8_t lumo_raster_srgb_segment[4097] = {")
 seg = []
-for i in range(4096):
+for i in range(4097):
     v = i << 12
     code = max(k for k in range(256) if th[k] <= v)
     assert sum(1 for k in range(1, 256) if v < th[k] <= v + 4095) <= 1
     seg.append(code)
-for i in range(0, 4096, 16):
+for i in range(0, 4097, 16):
     print("    " + ", ".join("%d" % c for c in seg[i:i + 16]) + ",")
+print("};")
+print()
+print("/* The code at each multiple of 2^-13 of [0, 1]: the nearest-entry code of")
+print(" * per-vertex runs (lumo_raster_srgb_near, raster_internal.h): the exact code")
+print(" * but where a threshold lies within 2^-14 of the value. 8 KB. */")
+print("const uint8_t lumo_raster_srgb_near_code[8193] = {")
+near = []
+for i in range(8193):
+    v = i << 11
+    near.append(max(k for k in range(256) if th[k] <= v))
+for i in range(0, 8193, 16):
+    print("    " + ", ".join("%d" % c for c in near[i:i + 16]) + ",")
 print("};")
 print()
 print("/* ceil(16 sqrt(i + 1)) for i = 0..255: an over-estimate of the square root")
@@ -53,4 +68,13 @@ seed = [math.ceil(16 * math.sqrt(i + 1)) for i in range(256)]
 for i in range(0, 256, 16):
     print("    " + ", ".join("%d" % c for c in seed[i:i + 16]) + ",")
 print("};")
-
+print()
+print("/* 2^46 / sqrt(v) at the middle of each 2^24-wide segment i of v in")
+print(" * [2^30, 2^32) (i = 64..255; entries below 64 unused), rounded: the seed")
+print(" * of the per-pixel lights' 1/|l| (raster_shade.c), within 0.4%. 1 KB. */")
+print("const uint32_t lumo_raster_rsqrt_seed[256] = {")
+rs = [0 if i < 64 else round(2 ** 46 / math.sqrt((i + 0.5) * 2 ** 24)) for i in range(256)]
+assert max(rs) < 2 ** 31 + 2 ** 24
+for i in range(0, 256, 6):
+    print("    " + ", ".join("%du" % c for c in rs[i:i + 6]) + ",")
+print("};")

@@ -6,9 +6,10 @@
  * per-pixel lighting to XRGB8888 in one pass and again in 4 bands of 30
  * rows (the bytes must not depend on the band split — checked here); and
  * per-pixel with IVG indirect light to dithered RGB565 with a 16-bit depth
- * buffer; then with the point light's 6 x 64^2 shadow cube map (drawn on
- * the board by the rasterizer itself): per vertex, per pixel, and per
- * pixel in 4 bands (again equal to the one-pass frame).
+ * buffer, and the same with the IVG sampled once per vertex side; then
+ * with the point light's 6 x 64^2 shadow cube map (drawn on the board by
+ * the rasterizer itself): per vertex, per pixel, and per pixel in 4 bands
+ * (again equal to the one-pass frame).
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -33,7 +34,8 @@ static lumo_raster_mesh g_mesh;
 static lumo_raster_vertex g_cache[MAX_VERTS];
 static uint32_t g_color[W * H], g_band_color[W * H];
 static uint32_t g_depth[W * H];
-static uint16_t g_color565[W * H];
+static uint16_t g_color565[W * H], g_color565_exact[W * H];
+static lumo_uq16_16 g_ind[MAX_VERTS * 6];
 static uint8_t g_ivg_mem[1u << 16];
 static uint8_t g_bundle[WIRE_HEADER + 27u * WIRE_QUANT_RECORD];
 #define SHADOW_SIZE 64
@@ -221,7 +223,11 @@ static int shadow_frames(const lumo_raster_light *plain)
 /* Where a frame's instructions go (docs/rasterizer.md, "Cost on the
  * Cortex-M3"): clearing the band, transforming the vertices (the cache),
  * and drawing, with the draw's triangle and pixel counts, so that the draw
- * can be divided into per-triangle set-up and per-pixel work. */
+ * can be divided into per-triangle set-up and per-pixel work; then the
+ * same draw again over its own depth ("redraw": every pixel fails the
+ * depth test, so it costs the set-up, the rows, the pieces' exact ends and
+ * the depth tests, and draw - redraw is the shading and writing of the
+ * pixels). */
 static int frame_parts(const lumo_raster_scene *s, const char *label)
 {
     static const lumo_raster_camera cam = {
@@ -230,7 +236,7 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     lumo_raster_view view;
     lumo_raster_target t;
     lumo_raster_stats st;
-    uint32_t t0, t1, t2, t3, hz = board_tick_hz();
+    uint32_t t0, t1, t2, t3, t4, hz = board_tick_hz();
 
     init_target(&t, LUMO_PIXEL_XRGB8888, g_color, 0, H, 32);
     if (lumo_raster_view_init(&view, &cam, W, H) != LUMO_OK)
@@ -245,6 +251,9 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     if (lumo_raster_draw_stats(&view, s, &g_mesh, g_cache, &t, &st) != LUMO_OK)
         return 1;
     t3 = board_ticks();
+    if (lumo_raster_draw(&view, s, &g_mesh, g_cache, &t) != LUMO_OK)
+        return 1;
+    t4 = board_ticks();
     if (hz == 0)
         return 0;
     con_str("PARTS ");
@@ -255,6 +264,8 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     con_u64((uint64_t)(t2 - t1) * (1000000000u / hz));
     con_str(" draw ");
     con_u64((uint64_t)(t3 - t2) * (1000000000u / hz));
+    con_str(" redraw ");
+    con_u64((uint64_t)(t4 - t3) * (1000000000u / hz));
     con_str(" triangles ");
     con_u64(st.tris_drawn);
     con_str(" pixels_tested ");
@@ -263,6 +274,50 @@ static int frame_parts(const lumo_raster_scene *s, const char *label)
     con_u64(st.pixels_written);
     con_nl();
     return 0;
+}
+
+/* The per-pixel IVG frame again with the IVG sampled once per vertex side
+ * (docs/rasterizer.md, "IVG per vertex"): the samples' cost, the frame's
+ * cost and bytes, and how far its codes are from the exact frame's (mean
+ * and largest difference of the 8-bit channels the RGB565 pixels hold, in
+ * integers so that the host and the board print the same line). */
+static int ivg_vertex_frame(const lumo_raster_scene *s)
+{
+    lumo_raster_target t;
+    uint64_t h = BT_FNV_OFFSET, sum = 0;
+    uint32_t t0 = board_ticks(), worst = 0;
+    size_t i;
+    int k;
+
+    if (lumo_raster_indirect_vertices(s, &g_mesh, g_ind) != LUMO_OK)
+        return 1;
+    golden_cost("raster.ivg_vertices", t0);
+    g_mesh.indirect = g_ind;
+    init_target(&t, LUMO_PIXEL_RGB565, g_color565, 0, H, 16);
+    t0 = board_ticks();
+    if (draw(s, &t) != 0)
+        return 1;
+    golden_cost("raster.pixel_ivgv_565", t0);
+    for (i = 0; i < (size_t)W * H; i++)
+        h = bt_fnv1a_u32(h, g_color565[i]);
+    golden_hash("raster.pixel_ivgv_565", h);
+    for (i = 0; i < (size_t)W * H; i++)
+        for (k = 0; k < 3; k++) {
+            static const unsigned shift[3] = {11, 5, 0}, bits[3] = {5, 6, 5};
+            uint32_t a = (g_color565[i] >> shift[k]) & ((1u << bits[k]) - 1u);
+            uint32_t b = (g_color565_exact[i] >> shift[k]) & ((1u << bits[k]) - 1u);
+            uint32_t d = (a > b ? a - b : b - a) * 255u / ((1u << bits[k]) - 1u);
+            sum += d;
+            worst = d > worst ? d : worst;
+        }
+    con_str("DIFF raster.pixel_ivgv_565 vs raster.pixel_ivg_565: mean code difference x1000 ");
+    con_u64(sum * 1000u / (3u * W * H));
+    con_str(" largest ");
+    con_u64(worst);
+    con_nl();
+    k = frame_parts(s, "raster.pixel_ivgv_xrgb");
+    g_mesh.indirect = NULL;
+    return k;
 }
 
 int main(void)
@@ -331,5 +386,10 @@ int main(void)
             h = bt_fnv1a_u32(h, g_color565[i]);
         golden_hash("raster.pixel_ivg_565", h);
     }
+    memcpy(g_color565_exact, g_color565, sizeof g_color565);
+    if (ivg_vertex_frame(&s))
+        return golden_done(1);
+    s.indirect = NULL;
+    s.indirect_ctx = NULL;
     return shadow_frames(&light) ? golden_done(1) : golden_done(0);
 }
