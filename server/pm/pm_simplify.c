@@ -245,14 +245,32 @@ static uint32_t opposite(const simp *s, uint32_t f, uint32_t u, uint32_t v)
     return UINT32_MAX;
 }
 
+/* Is c the third corner of a hole of three border edges u-v, v-c, c-u
+ * (u -> v along the border edge closes it)? */
+static int closes_hole(const simp *s, uint32_t u, uint32_t v, uint32_t c)
+{
+    uint32_t ef[MAX_EDGE_FACES];
+    return edge_faces(s, u, c, ef) == 1 && edge_faces(s, v, c, ef) == 1;
+}
+
 /* Link condition: the common neighbours of u and v are exactly the
- * vertices opposite the edge, so the collapse keeps the surface's topology. */
+ * vertices opposite the edge, so the collapse keeps the surface's topology.
+ * One exception: on a border edge, the third vertex of a hole of three
+ * edges. The collapse then closes the hole (its two other edges become one
+ * interior edge): the surface stays a manifold, one boundary loop fewer.
+ * Without it each hole keeps three vertices for ever, and a mesh with a
+ * hundred holes keeps hundreds (elephant-with-holes, bench-pm-quality). */
 static int link_ok(simp *s, uint32_t u, uint32_t v, const uint32_t *ef, uint32_t ne)
 {
-    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v), common = 0;
-    for (uint32_t i = 0; i < nu; i++)
-        common += in_list(s->nb_v, nv, s->nb_u[i]);
-    if (common != ne)
+    uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v), common = 0, hole = 0;
+    for (uint32_t i = 0; i < nu; i++) {
+        uint32_t c = s->nb_u[i];
+        if (!in_list(s->nb_v, nv, c))
+            continue;
+        common++;
+        hole += ne == 1 && !has_vertex(s, ef[0], c) && closes_hole(s, u, v, c);
+    }
+    if (common != ne + hole || hole > 1)
         return 0;
     for (uint32_t i = 0; i < ne; i++) {
         uint32_t w = opposite(s, ef[i], u, v);
@@ -398,10 +416,44 @@ static double worst_dist2(const simp *s, uint32_t u, uint32_t v)
     return worst;
 }
 
+/* The third corner c of a hole u-v-c of three border edges, if u -> v
+ * runs along one of them and would close it; else UINT32_MAX. */
+static uint32_t hole_corner(const simp *s, uint32_t u, uint32_t v)
+{
+    uint32_t ef[MAX_EDGE_FACES];
+    if (edge_faces(s, u, v, ef) != 1)
+        return UINT32_MAX;
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        const uint32_t *t = s->tri + 3 * (size_t)s->vf[u].f[i];
+        for (int k = 0; k < 3; k++)
+            if (t[k] != u && t[k] != v && !has_vertex(s, ef[0], t[k]) && closes_hole(s, u, v, t[k]))
+                return t[k];
+    }
+    return UINT32_MAX;
+}
+
+/* Closing a hole covers it: the new surface there is about the hole's
+ * inradius from the nearest original surface (its rim), which neither the
+ * quadric nor the input vertices see. The squared inradius 2A/P of the
+ * hole's triangle. */
+static double hole_cost(const simp *s, uint32_t u, uint32_t v)
+{
+    uint32_t c = hole_corner(s, u, v);
+    if (c == UINT32_MAX)
+        return 0;
+    const float *a = s->xyz + 3 * (size_t)u, *b = s->xyz + 3 * (size_t)v, *p = s->xyz + 3 * (size_t)c;
+    double n[3], e[3][3];
+    normal_of(a, b, p, n);
+    sub3(b, a, e[0]), sub3(p, b, e[1]), sub3(a, p, e[2]);
+    double per = sqrt(dot3(e[0], e[0])) + sqrt(dot3(e[1], e[1])) + sqrt(dot3(e[2], e[2]));
+    double r = per > 0 ? sqrt(dot3(n, n)) / per : 0;  /* |n| = 2A */
+    return r * r;
+}
+
 static cand cand_make(const simp *s, uint32_t u, uint32_t v)
 {
     double qe = quadric_error(s->q + QN * (size_t)u, s->xyz + 3 * (size_t)v);
-    double h = worst_dist2(s, u, v);
+    double h = fmax(worst_dist2(s, u, v), hole_cost(s, u, v));
     cand c = {qe > h ? qe : h, u, v, s->stamp[u], s->stamp[v]};
     return c;
 }
