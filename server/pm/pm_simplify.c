@@ -19,7 +19,10 @@
 
 typedef struct { uint32_t *f; uint32_t n, cap; } flist;
 
-typedef struct { double cost; uint32_t u, v, su, sv; } cand;
+/* A candidate u -> v at its cost; su, sv the stamps it was priced at
+ * (run_single); bad: it failed the guards, which read only the faces
+ * around u and v, so it stays invalid until a round touches u or v. */
+typedef struct { double cost; uint32_t u, v, su, sv; uint8_t bad; } cand;
 
 typedef struct {
     const float *xyz;
@@ -32,6 +35,8 @@ typedef struct {
     uint32_t    *core, *ring; /* round locks: u or v of a collapse, their neighbours */
     cand        *heap;
     size_t       hn, hcap;
+    cand        *merge;      /* collect_round's scratch, hcap entries */
+    uint32_t    *touched_list, touched_n; /* the vertices the last round locked, once each */
     uint32_t    *nb_u, *nb_v; /* neighbour scratch */
     uint32_t    *pt_next, *pt_tail; /* the input vertices each alive vertex stands for: a list
                                        from v itself through pt_next, ending at pt_tail[v] */
@@ -367,9 +372,14 @@ static int heap_room(simp *s)
     if (s->hn == s->hcap) {
         size_t cap = s->hcap ? 2 * s->hcap : 1024;
         cand *h = realloc(s->heap, sizeof *h * cap);
-        if (!h)
+        if (h)
+            s->heap = h;
+        cand *m = realloc(s->merge, sizeof *m * cap);
+        if (m)
+            s->merge = m;
+        if (!h || !m)
             return -1;
-        s->heap = h, s->hcap = cap;
+        s->hcap = cap;
     }
     return 0;
 }
@@ -454,7 +464,7 @@ static cand cand_make(const simp *s, uint32_t u, uint32_t v)
 {
     double qe = quadric_error(s->q + QN * (size_t)u, s->xyz + 3 * (size_t)v);
     double h = fmax(worst_dist2(s, u, v), hole_cost(s, u, v));
-    cand c = {qe > h ? qe : h, u, v, s->stamp[u], s->stamp[v]};
+    cand c = {qe > h ? qe : h, u, v, s->stamp[u], s->stamp[v], 0};
     return c;
 }
 
@@ -606,14 +616,23 @@ static int round_free(simp *s, uint32_t u, uint32_t v, uint32_t r)
     return 1;
 }
 
+/* Lock x for round r (ring or core), listing it once as touched. */
+static void lock_one(simp *s, uint32_t *lock, uint32_t x, uint32_t r)
+{
+    if (s->core[x] != r && s->ring[x] != r)
+        s->touched_list[s->touched_n++] = x;
+    lock[x] = r;
+}
+
 static void round_lock(simp *s, uint32_t u, uint32_t v, uint32_t r)
 {
     uint32_t nu = neighbours(s, u, s->nb_u), nv = neighbours(s, v, s->nb_v);
     for (uint32_t i = 0; i < nu; i++)
-        s->ring[s->nb_u[i]] = r;
+        lock_one(s, s->ring, s->nb_u[i], r);
     for (uint32_t i = 0; i < nv; i++)
-        s->ring[s->nb_v[i]] = r;
-    s->core[u] = s->core[v] = r;
+        lock_one(s, s->ring, s->nb_v[i], r);
+    lock_one(s, s->core, u, r);
+    lock_one(s, s->core, v, r);
 }
 
 /* Did round r - 1 touch x (a collapse end or a neighbour of one)? Only
@@ -623,23 +642,41 @@ static int touched(const simp *s, uint32_t x, uint32_t r)
     return r == 1 || s->core[x] == r - 1 || s->ring[x] == r - 1;
 }
 
-/* u's directed edges whose cost is not known from the last round. */
-static int append_changed_edges(simp *s, uint32_t u, uint32_t r)
+/* x's directed edges both ways, x touched by the last round; an edge to a
+ * neighbour that was touched too is that neighbour's to list backwards. */
+static int append_changed_edges(simp *s, uint32_t x, uint32_t r)
 {
-    if (grow_nb(s, 2 * s->vf[u].n + 2))
+    if (grow_nb(s, 2 * s->vf[x].n + 2))
         return -1;
-    uint32_t n = neighbours(s, u, s->nb_u);
-    int all = touched(s, u, r);
-    for (uint32_t i = 0; i < n; i++)
-        if ((all || touched(s, s->nb_u[i], r)) && list_append(s, u, s->nb_u[i]))
+    uint32_t n = neighbours(s, x, s->nb_u);
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t y = s->nb_u[i];
+        if (list_append(s, x, y) || (!touched(s, y, r) && list_append(s, y, x)))
             return -1;
+    }
     return 0;
 }
 
+/* Merge the sorted runs heap[0, kept) and heap[kept, hn). */
+static void merge_runs(simp *s, size_t kept)
+{
+    size_t a = 0, b = kept, o = 0;
+    while (a < kept && b < s->hn)
+        s->merge[o++] = cand_less(&s->heap[b], &s->heap[a]) ? s->heap[b++] : s->heap[a++];
+    while (a < kept)
+        s->merge[o++] = s->heap[a++];
+    while (b < s->hn)
+        s->merge[o++] = s->heap[b++];
+    cand *t = s->heap;
+    s->heap = s->merge, s->merge = t;
+}
+
 /* The candidates of a round: every directed edge, cheapest first. An edge
- * neither of whose ends the last round touched keeps its cost (the worst-
- * case term reads the input sets, so recomputing every edge every round
- * would cost the whole mesh per round); the others are priced anew. */
+ * neither of whose ends the last round touched keeps its cost and its
+ * place (the worst-case term reads the input sets, so recomputing every
+ * edge every round would cost the whole mesh per round); the edges of the
+ * touched vertices are priced anew, sorted, and merged in: a round costs
+ * the list's length plus what changed, so rounds may be small. */
 static int collect_round(simp *s, uint32_t r)
 {
     size_t kept = 0;
@@ -649,10 +686,15 @@ static int collect_round(simp *s, uint32_t r)
             s->heap[kept++] = c;
     }
     s->hn = kept;
-    for (uint32_t v = 0; v < s->nv; v++)
-        if (s->vert_alive[v] && append_changed_edges(s, v, r))
+    uint32_t n = r == 1 ? s->nv : s->touched_n;
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t x = r == 1 ? i : s->touched_list[i];
+        if (s->vert_alive[x] && append_changed_edges(s, x, r))
             return -1;
-    qsort(s->heap, s->hn, sizeof *s->heap, cand_cmp);
+    }
+    s->touched_n = 0;
+    qsort(s->heap + kept, s->hn - kept, sizeof *s->heap, cand_cmp);
+    merge_runs(s, kept);
     return 0;
 }
 
@@ -671,8 +713,12 @@ static int run_rounds(simp *s, srv_pm_collapses *out)
             uint32_t u = s->heap[i].u, v = s->heap[i].v;
             if (s->heap[i].cost > s->limit)
                 break;  /* this one and all after it change the shape */
-            if (!round_free(s, u, v, r) || !collapse_ok(s, u, v))
+            if (s->heap[i].bad || !round_free(s, u, v, r))
                 continue;
+            if (!collapse_ok(s, u, v)) {
+                s->heap[i].bad = 1;
+                continue;
+            }
             round_lock(s, u, v, r);
             if (apply_collapse(s, u, v, out->count, out))
                 return -1;
@@ -704,6 +750,8 @@ static void simp_free(simp *s)
     free(s->core);
     free(s->ring);
     free(s->heap);
+    free(s->merge);
+    free(s->touched_list);
     free(s->nb_u);
     free(s->nb_v);
     free(s->pt_next);
@@ -742,6 +790,7 @@ lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *op
     s.stamp = calloc(nv, sizeof *s.stamp);
     s.core = calloc(nv, sizeof *s.core);
     s.ring = calloc(nv, sizeof *s.ring);
+    s.touched_list = malloc(sizeof *s.touched_list * nv);
     s.pt_next = malloc(sizeof *s.pt_next * nv);
     s.pt_tail = malloc(sizeof *s.pt_tail * nv);
     out->round = malloc(sizeof *out->round * nv);
@@ -749,7 +798,7 @@ lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *op
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
     lumo_status rc = LUMO_ERR_NOMEM;
-    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.pt_next || !s.pt_tail ||
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.touched_list || !s.pt_next || !s.pt_tail ||
         !out->round || !out->removed || !out->target || !out->face_die)
         goto done;
     memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
