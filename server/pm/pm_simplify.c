@@ -38,8 +38,10 @@ typedef struct {
     cand        *merge;      /* collect_round's scratch, hcap entries */
     uint32_t    *touched_list, touched_n; /* the vertices the last round locked, once each */
     uint32_t    *nb_u, *nb_v; /* neighbour scratch */
-    uint32_t    *pt_next, *pt_tail; /* the input vertices each alive vertex stands for: a list
-                                       from v itself through pt_next, ending at pt_tail[v] */
+    uint32_t    *pt_head, *pt_next; /* the input vertices attached to each alive face (the
+                                       nearest of the faces that replaced theirs): a list
+                                       from pt_head[f] through pt_next */
+    uint32_t    *moved, moved_cap;  /* apply_collapse's scratch: the points it re-attaches */
     uint32_t     nb_cap;
     const srv_pm_options *opt;
     double       limit;      /* largest cost a collapse may have (max_error) */
@@ -411,18 +413,24 @@ static double ring_dist2(const simp *s, uint32_t u, uint32_t v, const double x[3
     return best;
 }
 
-/* The worst-case error of u -> v: the largest distance of the input
- * vertices u stands for from the faces around v after the collapse (an
- * upper bound of their distance to the new surface). */
+/* The worst-case error of u -> v: the largest distance from the faces
+ * around v after the collapse of the input vertices attached to u's faces
+ * (every one of which changes or vanishes): an upper bound of their
+ * distance to the new surface. Points attached to faces the collapse does
+ * not touch keep their distance; so the bound holds for every input vertex
+ * at every level, not only for those that collapsed into u (which left the
+ * points near u's neighbours unguarded when those neighbours moved:
+ * bench-pm-quality's Hausdorff). */
 static double worst_dist2(const simp *s, uint32_t u, uint32_t v)
 {
     double worst = 0;
-    for (uint32_t x = u; x != UINT32_MAX; x = s->pt_next[x]) {
-        double p[3];
-        corner(s, x, p);
-        double d = ring_dist2(s, u, v, p);
-        worst = d > worst ? d : worst;
-    }
+    for (uint32_t i = 0; i < s->vf[u].n; i++)
+        for (uint32_t x = s->pt_head[s->vf[u].f[i]]; x != UINT32_MAX; x = s->pt_next[x]) {
+            double p[3];
+            corner(s, x, p);
+            double d = ring_dist2(s, u, v, p);
+            worst = d > worst ? d : worst;
+        }
     return worst;
 }
 
@@ -524,8 +532,53 @@ static int push_vertex_edges(simp *s, uint32_t v)
 }
 
 /* ---- the collapse --------------------------------------------------------- */
+/* Detach the points of u's faces into s->moved; their count, or -1. */
+static int64_t detach_points(simp *s, uint32_t u)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        uint32_t f = s->vf[u].f[i];
+        for (uint32_t x = s->pt_head[f]; x != UINT32_MAX; x = s->pt_next[x]) {
+            if (n == s->moved_cap) {
+                uint32_t cap = s->moved_cap ? 2 * s->moved_cap : 64;
+                uint32_t *m = realloc(s->moved, sizeof *m * cap);
+                if (!m)
+                    return -1;
+                s->moved = m, s->moved_cap = cap;
+            }
+            s->moved[n++] = x;
+        }
+        s->pt_head[f] = UINT32_MAX;
+    }
+    return n;
+}
+
+/* Attach each detached point to the nearest face around v. */
+static void attach_points(simp *s, uint32_t v, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t x = s->moved[i], best_f = s->vf[v].f[0];
+        double p[3], best = INFINITY;
+        corner(s, x, p);
+        for (uint32_t j = 0; j < s->vf[v].n; j++) {
+            const uint32_t *t = s->tri + 3 * (size_t)s->vf[v].f[j];
+            double c[3][3];
+            for (int k = 0; k < 3; k++)
+                corner(s, t[k], c[k]);
+            double d = srv_triangle_dist2(p, c[0], c[1], c[2]);
+            if (d < best)
+                best = d, best_f = s->vf[v].f[j];
+        }
+        s->pt_next[x] = s->pt_head[best_f];
+        s->pt_head[best_f] = x;
+    }
+}
+
 static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm_collapses *out)
 {
+    int64_t moved = detach_points(s, u);
+    if (moved < 0)
+        return -1;
     for (uint32_t i = s->vf[u].n; i-- > 0;) {
         uint32_t f = s->vf[u].f[i];
         uint32_t *t = s->tri + 3 * (size_t)f;
@@ -545,8 +598,7 @@ static int apply_collapse(simp *s, uint32_t u, uint32_t v, uint32_t step, srv_pm
     }
     s->vf[u].n = 0;
     s->vert_alive[u] = 0;
-    s->pt_next[s->pt_tail[v]] = u;
-    s->pt_tail[v] = s->pt_tail[u];
+    attach_points(s, v, (uint32_t)moved);
     for (int i = 0; i < QN; i++)
         s->q[QN * (size_t)v + i] += s->q[QN * (size_t)u + i];
     s->stamp[v]++;
@@ -754,8 +806,19 @@ static void simp_free(simp *s)
     free(s->touched_list);
     free(s->nb_u);
     free(s->nb_v);
+    free(s->pt_head);
     free(s->pt_next);
-    free(s->pt_tail);
+    free(s->moved);
+}
+
+/* Every input vertex starts attached to its first face (distance 0). */
+static void attach_inputs(simp *s)
+{
+    for (uint32_t x = 0; x < s->nv; x++) {
+        uint32_t f = s->vf[x].f[0];  /* the cleaned mesh has no unused vertex */
+        s->pt_next[x] = s->pt_head[f];
+        s->pt_head[f] = x;
+    }
 }
 
 /* max_error as a cost: the squared fraction of the bounding-box diagonal. */
@@ -791,27 +854,26 @@ lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *op
     s.core = calloc(nv, sizeof *s.core);
     s.ring = calloc(nv, sizeof *s.ring);
     s.touched_list = malloc(sizeof *s.touched_list * nv);
+    s.pt_head = malloc(sizeof *s.pt_head * nf);
     s.pt_next = malloc(sizeof *s.pt_next * nv);
-    s.pt_tail = malloc(sizeof *s.pt_tail * nv);
     out->round = malloc(sizeof *out->round * nv);
     out->removed = malloc(sizeof *out->removed * nv);
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
     lumo_status rc = LUMO_ERR_NOMEM;
-    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.touched_list || !s.pt_next || !s.pt_tail ||
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.touched_list || !s.pt_head || !s.pt_next ||
         !out->round || !out->removed || !out->target || !out->face_die)
         goto done;
     memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
     memset(s.face_alive, 1, nf);
     memset(s.vert_alive, 1, nv);
-    memset(s.pt_next, 0xff, sizeof *s.pt_next * nv);
-    for (uint32_t v = 0; v < m->nv; v++)
-        s.pt_tail[v] = v;
+    memset(s.pt_head, 0xff, sizeof *s.pt_head * nf);
     memset(out->face_die, 0xff, sizeof *out->face_die * nf);
     for (uint32_t f = 0; f < m->nf; f++)
         for (int c = 0; c < 3; c++)
             if (flist_push(&s.vf[s.tri[3 * (size_t)f + c]], f))
                 goto done;
+    attach_inputs(&s);
     init_quadrics(&s);
     s.limit = error_limit(m, opt->max_error);
     rc = run(&s, out) ? LUMO_ERR_NOMEM : LUMO_OK;   /* its helpers fail only to allocate */
