@@ -21,12 +21,19 @@ typedef struct { uint32_t *f; uint32_t n, cap; } flist;
 
 /* A candidate u -> v at its cost; su, sv the stamps it was priced at
  * (run_single); bad: it failed the guards, which read only the faces
- * around u and v, so it stays invalid until a round touches u or v. */
-typedef struct { double cost; uint32_t u, v, su, sv; uint8_t bad; } cand;
+ * around u and v, so it stays invalid until a round touches u or v; full:
+ * the cost includes the surface term (surface_dev2, priced only when the
+ * candidate is about to be taken); moved: that raised its cost, so it is
+ * out of its place in the sorted round list. */
+typedef struct { double cost; uint32_t u, v, su, sv; uint8_t bad, full, moved; } cand;
 
 typedef struct {
     const float *xyz;
     uint32_t     nv, nf;
+    const uint32_t *in_tri;  /* the input faces, never changed */
+    uint32_t    *in_off, *in_face; /* the input faces around each input vertex: in_face[in_off[x] ..] */
+    uint32_t    *in_seen, seen_stamp; /* surface_dev2's scratch: the input faces it listed */
+    uint32_t    *near, near_cap; /* those faces */
     uint32_t    *tri;        /* current corners */
     uint8_t     *face_alive, *vert_alive;
     flist       *vf;         /* alive faces around each vertex */
@@ -434,6 +441,102 @@ static double worst_dist2(const simp *s, uint32_t u, uint32_t v)
     return worst;
 }
 
+/* List the input faces around input vertex x in s->near (once each). */
+static int near_add(simp *s, uint32_t x, uint32_t *n)
+{
+    for (uint32_t i = s->in_off[x]; i < s->in_off[x + 1]; i++) {
+        uint32_t g = s->in_face[i];
+        if (s->in_seen[g] == s->seen_stamp)
+            continue;
+        if (*n == s->near_cap) {
+            uint32_t cap = s->near_cap ? 2 * s->near_cap : 256;
+            uint32_t *a = realloc(s->near, sizeof *a * cap);
+            if (!a)
+                return -1;
+            s->near = a, s->near_cap = cap;
+        }
+        s->in_seen[g] = s->seen_stamp;
+        s->near[(*n)++] = g;
+    }
+    return 0;
+}
+
+/* The input surface under u's faces: the input faces around the points
+ * attached to them and around the corners of u's ring. Its count, or -1. */
+static int64_t near_faces(simp *s, uint32_t u)
+{
+    uint32_t n = 0;
+    s->seen_stamp++;
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        uint32_t f = s->vf[u].f[i];
+        const uint32_t *t = s->tri + 3 * (size_t)f;
+        for (int k = 0; k < 3; k++)
+            if (near_add(s, t[k], &n))
+                return -1;
+        for (uint32_t x = s->pt_head[f]; x != UINT32_MAX; x = s->pt_next[x])
+            if (near_add(s, x, &n))
+                return -1;
+    }
+    return n;
+}
+
+static double near_dist2(const simp *s, uint32_t n, const double p[3])
+{
+    double best = INFINITY;
+    for (uint32_t i = 0; i < n; i++) {
+        const uint32_t *t = s->in_tri + 3 * (size_t)s->near[i];
+        double c[3][3];
+        for (int k = 0; k < 3; k++)
+            corner(s, t[k], c[k]);
+        double d = srv_triangle_dist2(p, c[0], c[1], c[2]);
+        best = d < best ? d : best;
+    }
+    return best;
+}
+
+/* The surface term of u -> v: how far the faces u hands to v stray from
+ * the input surface, the largest squared distance of their centroids and
+ * edge midpoints from the input faces under them (near_faces). The other
+ * direction of the Hausdorff distance: the quadric averages the planes'
+ * distances and the worst-case term measures input points, so a face
+ * bridging a concave fold or cutting off a ridge was seen by neither
+ * (bench-pm-quality: the bunny's ears). Costly, so priced only for a
+ * candidate about to be taken (run_rounds, run_single). */
+static double surface_dev2(simp *s, uint32_t u, uint32_t v)
+{
+    int64_t n = near_faces(s, u);
+    if (n <= 0)
+        return n < 0 ? INFINITY : 0;
+    double worst = 0;
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        uint32_t f = s->vf[u].f[i];
+        if (has_vertex(s, f, v))
+            continue;
+        const uint32_t *t = s->tri + 3 * (size_t)f;
+        double c[3][3], p[3];
+        for (int k = 0; k < 3; k++)
+            corner(s, t[k] == u ? v : t[k], c[k]);
+        for (int k = 0; k < 4; k++) {  /* the centroid, then the edge midpoints */
+            for (int a = 0; a < 3; a++)
+                p[a] = k == 0 ? (c[0][a] + c[1][a] + c[2][a]) / 3 : 0.5 * (c[k - 1][a] + c[k % 3][a]);
+            double d = near_dist2(s, (uint32_t)n, p);
+            worst = d > worst ? d : worst;
+        }
+    }
+    return worst;
+}
+
+/* Complete c's cost with the surface term; 1 if that raised it. */
+static int price_fully(simp *s, cand *c)
+{
+    c->full = 1;
+    double d = surface_dev2(s, c->u, c->v);
+    if (d <= c->cost)
+        return 0;
+    c->cost = d;
+    return 1;
+}
+
 /* The third corner c of a hole u-v-c of three border edges, if u -> v
  * runs along one of them and would close it; else UINT32_MAX. */
 static uint32_t hole_corner(const simp *s, uint32_t u, uint32_t v)
@@ -472,7 +575,7 @@ static cand cand_make(const simp *s, uint32_t u, uint32_t v)
 {
     double qe = quadric_error(s->q + QN * (size_t)u, s->xyz + 3 * (size_t)v);
     double h = fmax(worst_dist2(s, u, v), hole_cost(s, u, v));
-    cand c = {qe > h ? qe : h, u, v, s->stamp[u], s->stamp[v], 0};
+    cand c = {qe > h ? qe : h, u, v, s->stamp[u], s->stamp[v], 0, 0, 0};
     return c;
 }
 
@@ -485,11 +588,10 @@ static int list_append(simp *s, uint32_t u, uint32_t v)
     return 0;
 }
 
-static int heap_push(simp *s, uint32_t u, uint32_t v)
+static int heap_insert(simp *s, cand c)
 {
     if (heap_room(s))
         return -1;
-    cand c = cand_make(s, u, v);
     size_t i = s->hn++;
     while (i > 0 && cand_less(&c, &s->heap[(i - 1) / 2])) {
         s->heap[i] = s->heap[(i - 1) / 2];
@@ -497,6 +599,11 @@ static int heap_push(simp *s, uint32_t u, uint32_t v)
     }
     s->heap[i] = c;
     return 0;
+}
+
+static int heap_push(simp *s, uint32_t u, uint32_t v)
+{
+    return heap_insert(s, cand_make(s, u, v));
 }
 
 static cand heap_pop(simp *s)
@@ -634,6 +741,11 @@ static int run_single(simp *s, srv_pm_collapses *out)
             if (!s->vert_alive[c.u] || !s->vert_alive[c.v] || s->stamp[c.u] != c.su ||
                 s->stamp[c.v] != c.sv || !collapse_ok(s, c.u, c.v))
                 continue;
+            if (!c.full && price_fully(s, &c)) {
+                if (heap_insert(s, c))
+                    return -1;
+                continue;  /* back in its place */
+            }
             if (apply_collapse(s, c.u, c.v, out->count, out) || push_vertex_edges(s, c.v))
                 return -1;
             out->round[out->count] = out->count;
@@ -731,13 +843,19 @@ static void merge_runs(simp *s, size_t kept)
  * the list's length plus what changed, so rounds may be small. */
 static int collect_round(simp *s, uint32_t r)
 {
-    size_t kept = 0;
+    size_t kept = 0, nmoved = 0;
     for (size_t i = 0; r > 1 && i < s->hn; i++) {
         cand c = s->heap[i];
-        if (s->vert_alive[c.u] && s->vert_alive[c.v] && !touched(s, c.u, r) && !touched(s, c.v, r))
+        if (!s->vert_alive[c.u] || !s->vert_alive[c.v] || touched(s, c.u, r) || touched(s, c.v, r))
+            continue;
+        if (c.moved)
+            s->merge[nmoved++] = c;  /* re-sorted with the new ones */
+        else
             s->heap[kept++] = c;
     }
-    s->hn = kept;
+    for (size_t i = 0; i < nmoved; i++)
+        s->heap[kept + i] = s->merge[i], s->heap[kept + i].moved = 0;
+    s->hn = kept + nmoved;
     uint32_t n = r == 1 ? s->nv : s->touched_n;
     for (uint32_t i = 0; i < n; i++) {
         uint32_t x = r == 1 ? i : s->touched_list[i];
@@ -761,6 +879,7 @@ static int run_rounds(simp *s, srv_pm_collapses *out)
         if (collect_round(s, r))
             return -1;
         size_t limit = (size_t)(s->opt->round_fraction * (double)s->hn), taken = 0;
+        size_t last = limit < s->hn ? limit : s->hn - 1;  /* the walk's last candidate */
         for (size_t i = 0; i < s->hn && alive > target && (i < limit || !taken); i++) {
             uint32_t u = s->heap[i].u, v = s->heap[i].v;
             if (s->heap[i].cost > s->limit)
@@ -771,6 +890,9 @@ static int run_rounds(simp *s, srv_pm_collapses *out)
                 s->heap[i].bad = 1;
                 continue;
             }
+            if (!s->heap[i].full && price_fully(s, &s->heap[i]) &&
+                (s->heap[i].moved = 1, s->heap[i].cost > s->limit || s->heap[i].cost > s->heap[last].cost))
+                continue;  /* beyond this round's walk: it waits for its place */
             round_lock(s, u, v, r);
             if (apply_collapse(s, u, v, out->count, out))
                 return -1;
@@ -809,6 +931,27 @@ static void simp_free(simp *s)
     free(s->pt_head);
     free(s->pt_next);
     free(s->moved);
+    free(s->in_off);
+    free(s->in_face);
+    free(s->in_seen);
+    free(s->near);
+}
+
+/* The input faces around each input vertex (counting sort by vertex). */
+static void index_inputs(simp *s)
+{
+    for (size_t i = 0; i < 3 * (size_t)s->nf; i++)
+        s->in_off[s->in_tri[i] + 1]++;
+    for (uint32_t x = 0; x < s->nv; x++)
+        s->in_off[x + 1] += s->in_off[x];
+    for (uint32_t f = 0; f < s->nf; f++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t x = s->in_tri[3 * (size_t)f + k];
+            s->in_face[s->in_off[x]++] = f;
+        }
+    for (uint32_t x = s->nv; x > 0; x--)  /* in_off[x] now ends x's run: shift back */
+        s->in_off[x] = s->in_off[x - 1];
+    s->in_off[0] = 0;
 }
 
 /* Every input vertex starts attached to its first face (distance 0). */
@@ -856,12 +999,16 @@ lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *op
     s.touched_list = malloc(sizeof *s.touched_list * nv);
     s.pt_head = malloc(sizeof *s.pt_head * nf);
     s.pt_next = malloc(sizeof *s.pt_next * nv);
+    s.in_tri = m->tris;
+    s.in_off = calloc(nv + 1, sizeof *s.in_off);
+    s.in_face = malloc(sizeof *s.in_face * 3 * nf);
+    s.in_seen = calloc(nf, sizeof *s.in_seen);
     out->round = malloc(sizeof *out->round * nv);
     out->removed = malloc(sizeof *out->removed * nv);
     out->target = malloc(sizeof *out->target * nv);
     out->face_die = malloc(sizeof *out->face_die * nf);
     lumo_status rc = LUMO_ERR_NOMEM;
-    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.touched_list || !s.pt_head || !s.pt_next ||
+    if (!s.tri || !s.face_alive || !s.vert_alive || !s.vf || !s.q || !s.stamp || !s.core || !s.ring || !s.touched_list || !s.pt_head || !s.pt_next || !s.in_off || !s.in_face || !s.in_seen ||
         !out->round || !out->removed || !out->target || !out->face_die)
         goto done;
     memcpy(s.tri, m->tris, sizeof *s.tri * 3 * (size_t)m->nf);
@@ -874,6 +1021,7 @@ lumo_status srv_pm_simplify(const srv_pm_clean_mesh *m, const srv_pm_options *op
             if (flist_push(&s.vf[s.tri[3 * (size_t)f + c]], f))
                 goto done;
     attach_inputs(&s);
+    index_inputs(&s);
     init_quadrics(&s);
     s.limit = error_limit(m, opt->max_error);
     rc = run(&s, out) ? LUMO_ERR_NOMEM : LUMO_OK;   /* its helpers fail only to allocate */
