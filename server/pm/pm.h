@@ -28,7 +28,7 @@ typedef struct srv_pm_options {
                                   more than acos(flip_cos) (0.2) */
     double   round_fraction;   /* independent-set rounds: each round considers
                                   the cheapest fraction of the candidates
-                                  (0.25); 0 = one collapse at a time */
+                                  (0.1); 0 = one collapse at a time */
     double   max_error;        /* refuse a collapse whose worst-case error (the
                                   distance of an input vertex from the new faces)
                                   exceeds this fraction of the bounding-box

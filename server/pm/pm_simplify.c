@@ -399,8 +399,11 @@ static void corner(const simp *s, uint32_t w, double out[3])
     out[0] = p[0], out[1] = p[1], out[2] = p[2];
 }
 
-/* Squared distance from input point x to the faces around v after u -> v. */
-static double ring_dist2(const simp *s, uint32_t u, uint32_t v, const double x[3])
+/* Squared distance from input point x to the faces around v after u -> v,
+ * or some value <= enough once one face is that near (the callers want
+ * the largest of such distances: a point nearer than the largest so far
+ * cannot change it). */
+static double ring_dist2(const simp *s, uint32_t u, uint32_t v, const double x[3], double enough)
 {
     double best = INFINITY;
     for (int side = 0; side < 2; side++) {
@@ -414,6 +417,8 @@ static double ring_dist2(const simp *s, uint32_t u, uint32_t v, const double x[3
             for (int k = 0; k < 3; k++)
                 corner(s, t[k] == u ? v : t[k], c[k]);
             double d = srv_triangle_dist2(x, c[0], c[1], c[2]);
+            if (d <= enough)
+                return d;
             best = d < best ? d : best;
         }
     }
@@ -431,13 +436,22 @@ static double ring_dist2(const simp *s, uint32_t u, uint32_t v, const double x[3
 static double worst_dist2(const simp *s, uint32_t u, uint32_t v)
 {
     double worst = 0;
-    for (uint32_t i = 0; i < s->vf[u].n; i++)
-        for (uint32_t x = s->pt_head[s->vf[u].f[i]]; x != UINT32_MAX; x = s->pt_next[x]) {
+    for (uint32_t i = 0; i < s->vf[u].n; i++) {
+        uint32_t f = s->vf[u].f[i];
+        double c[3][3];
+        int keeps = !has_vertex(s, f, v);
+        for (int k = 0; keeps && k < 3; k++)
+            corner(s, s->tri[3 * (size_t)f + k] == u ? v : s->tri[3 * (size_t)f + k], c[k]);
+        for (uint32_t x = s->pt_head[f]; x != UINT32_MAX; x = s->pt_next[x]) {
             double p[3];
             corner(s, x, p);
-            double d = ring_dist2(s, u, v, p);
+            /* its own face first: usually the nearest, and then enough */
+            double d = keeps ? srv_triangle_dist2(p, c[0], c[1], c[2]) : INFINITY;
+            if (d > worst)
+                d = fmin(d, ring_dist2(s, u, v, p, worst));
             worst = d > worst ? d : worst;
         }
+    }
     return worst;
 }
 
@@ -480,7 +494,9 @@ static int64_t near_faces(simp *s, uint32_t u)
     return n;
 }
 
-static double near_dist2(const simp *s, uint32_t n, const double p[3])
+/* Squared distance from p to the listed input faces, or some value <=
+ * enough (as ring_dist2). */
+static double near_dist2(const simp *s, uint32_t n, const double p[3], double enough)
 {
     double best = INFINITY;
     for (uint32_t i = 0; i < n; i++) {
@@ -489,6 +505,8 @@ static double near_dist2(const simp *s, uint32_t n, const double p[3])
         for (int k = 0; k < 3; k++)
             corner(s, t[k], c[k]);
         double d = srv_triangle_dist2(p, c[0], c[1], c[2]);
+        if (d <= enough)
+            return d;
         best = d < best ? d : best;
     }
     return best;
@@ -519,7 +537,7 @@ static double surface_dev2(simp *s, uint32_t u, uint32_t v)
         for (int k = 0; k < 4; k++) {  /* the centroid, then the edge midpoints */
             for (int a = 0; a < 3; a++)
                 p[a] = k == 0 ? (c[0][a] + c[1][a] + c[2][a]) / 3 : 0.5 * (c[k - 1][a] + c[k % 3][a]);
-            double d = near_dist2(s, (uint32_t)n, p);
+            double d = near_dist2(s, (uint32_t)n, p, worst);
             worst = d > worst ? d : worst;
         }
     }
