@@ -524,7 +524,7 @@ static double surface_dev2(simp *s, uint32_t u, uint32_t v)
 {
     int64_t n = near_faces(s, u);
     if (n <= 0)
-        return n < 0 ? INFINITY : 0;
+        return n < 0 ? INFINITY : 0;  /* out of memory: the candidate is refused, not taken blind */
     double worst = 0;
     for (uint32_t i = 0; i < s->vf[u].n; i++) {
         uint32_t f = s->vf[u].f[i];
