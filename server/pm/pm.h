@@ -28,12 +28,14 @@ typedef struct srv_pm_options {
                                   more than acos(flip_cos) (0.2) */
     double   round_fraction;   /* independent-set rounds: each round considers
                                   the cheapest fraction of the candidates
-                                  (0.25); 0 = one collapse at a time */
+                                  (0.1); 0 = one collapse at a time */
     double   max_error;        /* refuse a collapse whose worst-case error (the
-                                  distance of an input vertex from the new faces)
+                                  distance of an input vertex from the new faces,
+                                  or of the new faces from the input surface)
                                   exceeds this fraction of the bounding-box
                                   diagonal (0.05): it would change the shape,
-                                  not its detail; 0 = no limit */
+                                  not its detail; every input vertex then stays
+                                  that near every level; 0 = no limit */
 } srv_pm_options;
 
 typedef struct srv_pm {

@@ -10,7 +10,7 @@ void srv_pm_default_options(srv_pm_options *o)
     o->min_vertices = 3;
     o->boundary_weight = 100.0;
     o->flip_cos = 0.2;
-    o->round_fraction = 0.25;
+    o->round_fraction = 0.1;   /* bench-pm-quality: 0.25 left 13 levels worse than meshoptimizer */
     o->max_error = 0.05;
 }
 

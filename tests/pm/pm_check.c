@@ -484,6 +484,7 @@ static void check_rewind(const srv_pm *pm, const uint8_t *s, size_t len, double 
 int main(int argc, char **argv)
 {
     const char *gen = NULL, *file = NULL, *dump = NULL, *want_base = NULL;
+    long base_max = -1;
     int want_rgb = 0;
     srv_pm_stream_options so;
     srv_pm_stream_stats st;
@@ -514,6 +515,8 @@ int main(int argc, char **argv)
             po.max_error = atof(argv[++i]);  /* 0: no limit (the seeds' small meshes split down to a few vertices) */
         else if (!strcmp(argv[i], "--base") && i + 1 < argc)
             want_base = argv[++i];  /* "V/F": the base mesh must be exactly that */
+        else if (!strcmp(argv[i], "--base-max") && i + 1 < argc)
+            base_max = atol(argv[++i]);  /* the base mesh has at most this many vertices */
         else
             file = argv[i];
     }
@@ -543,6 +546,10 @@ int main(int argc, char **argv)
         char got[32];
         snprintf(got, sizeof got, "%u/%u", pm.base_vertices, pm.base_faces);
         check(!strcmp(got, want_base), "base mesh keeps the shape", got);
+    }
+    if (built && base_max >= 0) {
+        snprintf(err, sizeof err, "%u base vertices of %u, at most %ld", pm.base_vertices, pm.vertices, base_max);
+        check(pm.base_vertices <= (uint32_t)base_max, "base mesh small (holes close)", err);
     }
     if (built) {
         check_all_levels(&pm);

@@ -2,7 +2,8 @@
  * closed sphere, open noisy grid (boundary), a Cornell-style box of
  * separate walls and a cube (several components), and a "scan" with every
  * defect of real scans (unwelded duplicates, holes, a non-manifold fin,
- * duplicate and degenerate faces, two components). */
+ * duplicate and degenerate faces, two components), and a sphere with many
+ * small holes. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -176,6 +177,28 @@ static void seam(pm_test_mesh *m)
     free(north), free(south), free(s.xyz), free(s.tris);
 }
 
+/* A sphere with 40 holes: the fans of vertices spread over it (hexagonal
+ * holes, the vertex itself dropped as unused) and single missing faces
+ * (holes of three edges). Each hole that stayed open would keep three
+ * vertices: the base is small only if holes close (issue 23). */
+static void holes(pm_test_mesh *m)
+{
+    const int nu = 32, nv = 18;
+    sphere(m, nu, nv, 1.0, 0);
+    uint32_t kept = 0, first = 1;
+    for (uint32_t f = 0; f < m->nf; f++) {
+        int drop = f % 61 == 30;
+        for (int c = 0; c < 3; c++) {
+            uint32_t v = m->tris[3 * f + c];
+            int j = v >= first ? (int)((v - first) / (uint32_t)nu) + 1 : 0, i = (int)((v - first) % (uint32_t)nu);
+            drop |= v >= first && j < nv && j % 3 == 2 && i % 4 == (j % 2) * 2;
+        }
+        if (!drop)
+            memmove(m->tris + 3 * kept++, m->tris + 3 * f, 3 * sizeof *m->tris);
+    }
+    m->nf = kept;
+}
+
 int pm_test_mesh_make(const char *name, pm_test_mesh *m)
 {
     memset(m, 0, sizeof *m);
@@ -195,6 +218,8 @@ int pm_test_mesh_make(const char *name, pm_test_mesh *m)
         box(m);
     else if (!strcmp(name, "scan"))
         scan(m);
+    else if (!strcmp(name, "holes"))
+        holes(m);
     else if (!strcmp(name, "tiny")) {
         sphere(m, 6, 4, 1.0, 0);
     } else

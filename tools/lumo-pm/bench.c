@@ -342,8 +342,8 @@ static void section_rounds(FILE *o, model *ms, int n)
     static const double at[] = {0.01, 0.05, 0.25};
     fprintf(o, "### Quality cost of independent-set rounds\n\n"
                "Same cleaned mesh simplified one collapse at a time (`round_fraction` 0, the QEM "
-               "order) and in independent-set rounds (the default `round_fraction` 0.25: each round takes "
-               "the valid, mutually independent collapses among the cheapest quarter of the candidates; "
+               "order) and in independent-set rounds (the default `round_fraction` 0.1: each round takes "
+               "the valid, mutually independent collapses among the cheapest tenth of the candidates; "
                "1 = all of them). Error of a "
                "level = RMS distance of the level's corner positions from the planes of the full "
                "mesh's faces (area weighted, the quadric error), in units of 10⁻⁴ of the bounding-box "

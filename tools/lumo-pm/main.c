@@ -37,7 +37,7 @@ static const char k_usage[] =
     "  --batch N          vertices per batch record, 1..1048576 (default: per mesh, 250 doubled up to 2000 for large meshes)\n"
     "  --bits B           position quantization bits, 1..20 (default: per mesh, from its median edge)\n"
     "  --min-vertices N   stop simplifying at N vertices, 3.. (default 3)\n"
-    "  --rounds F         fraction of candidates per independent-set round, 0..1 (0.25; 0: one\n"
+    "  --rounds F         fraction of candidates per independent-set round, 0..1 (0.1; 0: one\n"
     "                     collapse at a time)\n"
     "  --albedo           stream the per-vertex albedo too\n"
     "  --raw              write the bare stream, not a package (no INFO: lumo-render needs a scene\n"
