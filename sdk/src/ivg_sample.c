@@ -132,38 +132,142 @@ static void corner_offsets(const lumo_ivg *g, uint32_t off[8])
  * |d| <= 17/16, it bounds the 64-bit sum for any n the caller passes. */
 #define FACTOR_MAX ((int64_t)1 << 29)
 
+/* The cell holding p (the index of its first vertex) and its eight
+ * trilinear weights. */
+static uint32_t cell_of(const lumo_ivg *g, const lumo_q16_16 p[3], uint32_t w[8])
+{
+    uint32_t cell[3], t[3];
+    int a;
+
+    for (a = 0; a < 3; a++)
+        locate(g, a, p[a], &cell[a], &t[a]);
+    cell_weights(t, w);
+    return cell[0] + g->desc.dims[0] * (cell[1] + g->desc.dims[1] * cell[2]);
+}
+
+/* sum += n_a^2 (d_a . n) c_a for the interpolated hemisphere h of axis a
+ * (n2 = n_a^2, Q28): Q44, |.| < 2^61. */
+static void add_hemi(const ivg_hemi *h, const lumo_q1_14 n[3], int64_t n2, int64_t sum[3])
+{
+    int64_t dn = 0, f;
+    int k;
+
+    for (k = 0; k < 3; k++)
+        dn += (int64_t)h->d[k] * n[k];                    /* Q28 */
+    f = lumo_round_shift(n2 * dn, 28);                    /* Q28 */
+    f = f > FACTOR_MAX ? FACTOR_MAX : f < -FACTOR_MAX ? -FACTOR_MAX : f;
+    for (k = 0; k < 3; k++)
+        sum[k] += (int64_t)h->c[k] * f;
+}
+
+static void finish(const int64_t sum[3], lumo_uq16_16 out[3])
+{
+    int k;
+
+    for (k = 0; k < 3; k++)
+        out[k] = lumo_sat_u32(lumo_round_shift(sum[k], 28));
+}
+
 void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                          lumo_uq16_16 out[3])
 {
-    uint32_t cell[3], t[3], w[8], off[8];
+    uint32_t w[8], off[8];
     const uint8_t *base;
     int64_t sum[3] = {0, 0, 0};
-    int a, k;
+    int a;
 
     out[0] = out[1] = out[2] = 0;
     if (g == NULL)
         return;
-    for (a = 0; a < 3; a++)
-        locate(g, a, p[a], &cell[a], &t[a]);
-    base = ivg_packed_at(&g->level[0], cell[0] + g->desc.dims[0] * (cell[1] + g->desc.dims[1] * cell[2]), 0);
-    cell_weights(t, w);
+    base = ivg_packed_at(&g->level[0], cell_of(g, p, w), 0);
     corner_offsets(g, off);
     for (a = 0; a < 3; a++) {
         int64_t n2 = (int64_t)n[a] * n[a];               /* Q28 */
-        int64_t dn = 0, f;
         ivg_hemi h;
         if (n2 == 0)
             continue;                                     /* no weight: skip */
         interpolate(base + (2 * a + (n[a] < 0)) * IVG_PACKED, off, w, &h);
-        for (k = 0; k < 3; k++)
-            dn += (int64_t)h.d[k] * n[k];                 /* Q28 */
-        f = lumo_round_shift(n2 * dn, 28);                /* Q28 */
-        f = f > FACTOR_MAX ? FACTOR_MAX : f < -FACTOR_MAX ? -FACTOR_MAX : f;
-        for (k = 0; k < 3; k++)
-            sum[k] += (int64_t)h.c[k] * f;                /* Q44, |.| < 2^61 */
+        add_hemi(&h, n, n2, sum);
     }
-    for (k = 0; k < 3; k++)
-        out[k] = lumo_sat_u32(lumo_round_shift(sum[k], 28));
+    finish(sum, out);
+}
+
+/* ---- the sampler: the same sums over a memo of the cell's opened corners */
+
+void lumo_ivg_sampler_init(lumo_ivg_sampler *s, const lumo_ivg *g)
+{
+    s->grid = g;
+    s->cell = UINT32_MAX;
+    s->opened = 0;
+    if (g)
+        corner_offsets(g, s->corner_off);
+}
+
+/* Open hemisphere h of the memo's cell: the eight corners unpacked once. */
+static void open_hemi(lumo_ivg_sampler *s, unsigned h)
+{
+    const uint8_t *base = ivg_packed_at(&s->grid->level[0], s->cell, h);
+    int n, k;
+
+    for (n = 0; n < 8; n++) {
+        const uint8_t *p = base + s->corner_off[n];
+        uint32_t c[3];
+        ivg_rgb9e5_open(p + 3, c);
+        for (k = 0; k < 3; k++) {
+            s->c[h][k][n] = c[k];
+            s->q[h][k][n] = (int8_t)p[k];
+        }
+    }
+    s->opened |= 1u << h;
+}
+
+/* interpolate() over the opened corners: the same sums, so the same bits
+ * (a zero weight adds nothing whether its corner is opened or not). */
+static void interpolate_open(const lumo_ivg_sampler *s, unsigned h, const uint32_t w[8], ivg_hemi *out)
+{
+    int n, k;
+
+    for (k = 0; k < 3; k++) {
+        const uint32_t *c = s->c[h][k];
+        const int16_t *q = s->q[h][k];
+        uint64_t cs = 0;
+        int32_t qs = 0;
+        for (n = 0; n < 8; n++) {
+            cs += (uint64_t)c[n] * w[n];
+            qs += q[n] * (int32_t)w[n];
+        }
+        out->c[k] = (uint32_t)((cs + (1u << 15)) >> 16);
+        out->d[k] = q_sum_to_q14(qs);
+    }
+}
+
+void lumo_ivg_sampler_irradiance(lumo_ivg_sampler *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                                 lumo_uq16_16 out[3])
+{
+    uint32_t w[8], cell;
+    int64_t sum[3] = {0, 0, 0};
+    unsigned a;
+
+    out[0] = out[1] = out[2] = 0;
+    if (s->grid == NULL)
+        return;
+    cell = cell_of(s->grid, p, w);
+    if (cell != s->cell) {
+        s->cell = cell;
+        s->opened = 0;
+    }
+    for (a = 0; a < 3; a++) {
+        int64_t n2 = (int64_t)n[a] * n[a];
+        unsigned h = 2 * a + (n[a] < 0);
+        ivg_hemi hh;
+        if (n2 == 0)
+            continue;
+        if (!(s->opened & (1u << h)))
+            open_hemi(s, h);
+        interpolate_open(s, h, w, &hh);
+        add_hemi(&hh, n, n2, sum);
+    }
+    finish(sum, out);
 }
 
 void lumo_ivg_radiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
