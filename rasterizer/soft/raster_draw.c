@@ -431,6 +431,62 @@ static void draw_mesh(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_r
     }
 }
 
+/* 1 when no depth entry of the band is set (nothing drawn since the clear). */
+static int depth_clear(const lumo_raster_target *t)
+{
+    size_t i, n = (size_t)t->width * t->band_rows;
+
+    if (t->depth_bits == 16) {
+        const uint16_t *d = (const uint16_t *)t->depth;
+        for (i = 0; i < n; i++)
+            if (d[i])
+                return 0;
+    } else {
+        const uint32_t *d = (const uint32_t *)t->depth;
+        for (i = 0; i < n; i++)
+            if (d[i])
+                return 0;
+    }
+    return 1;
+}
+
+/* Every set depth one step nearer the far plane (0 stays "clear"): after
+ * the depth-only pass each pixel holds its nearest fragment's depth D, and
+ * the colour pass's test (depth > stored) now passes at D - 1 for exactly
+ * that fragment, the first one to reach D, as drawing without the pass
+ * would keep; it stores D again, so later fragments at D fail as before. */
+static void depth_step_back(const lumo_raster_target *t)
+{
+    size_t i, n = (size_t)t->width * t->band_rows;
+
+    if (t->depth_bits == 16) {
+        uint16_t *d = (uint16_t *)t->depth;
+        for (i = 0; i < n; i++)
+            d[i] = (uint16_t)(d[i] - (d[i] != 0));
+    } else {
+        uint32_t *d = (uint32_t *)t->depth;
+        for (i = 0; i < n; i++)
+            d[i] -= (d[i] != 0);
+    }
+}
+
+/* LUMO_RASTER_DEPTH_FIRST: the mesh's depth alone first (exact per-pixel
+ * depth: the colour pass computes the very same values), so that the
+ * colour pass shades each pixel once. Only into a clear band: there the
+ * picture is byte for byte the one drawn without it. */
+static void depth_first(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
+{
+    draw_ctx d = *c;
+
+    if (!(c->scene->flags & LUMO_RASTER_DEPTH_FIRST) || !(c->scene->flags & LUMO_RASTER_PER_PIXEL)
+        || !depth_clear(c->target))
+        return;
+    d.stats = NULL;
+    d.depth_only = 1;
+    draw_mesh(&d, m, cache);
+    depth_step_back(c->target);
+}
+
 lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,
                                    const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
                                    lumo_raster_target *t, lumo_raster_stats *stats)
@@ -459,6 +515,7 @@ lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_
         *stats = zero;
         stats->tris_in = m->tri_count;
     }
+    depth_first(&c, m, cache);
     draw_mesh(&c, m, cache);
     return LUMO_OK;
 }

@@ -489,7 +489,8 @@ int main(int argc, char **argv)
     rs.lights = scene.lights;
     rs.light_count = scene.light_count;
     rs.exposure = (lumo_uq16_16)floor(o.exposure * 65536 + 0.5);
-    rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL : 0) | (o.cull ? LUMO_RASTER_CULL_BACK : 0);
+    rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL | LUMO_RASTER_DEPTH_FIRST : 0)
+             | (o.cull ? LUMO_RASTER_CULL_BACK : 0);
     if (ivg.grid && !o.no_indirect && !o.prt) {   /* PRT carries its own interreflections */
         rs.indirect = lumo_raster_ivg_irradiance;
         rs.indirect_ctx = ivg.grid;

@@ -123,6 +123,13 @@ void lumo_raster_ivg_sampler_irradiance(const void *sampler, const lumo_q16_16 p
 /* Flags of a frame. */
 #define LUMO_RASTER_PER_PIXEL 1u   /* per-pixel lighting (default: per vertex) */
 #define LUMO_RASTER_CULL_BACK 2u   /* drop back faces (closed meshes) */
+/* Per-pixel lighting, drawn into a band whose depth is clear: a depth-only
+ * pass over the mesh first, then only each pixel's nearest fragment is
+ * shaded, so a mesh that overdraws itself (a model inside a room) shades
+ * every pixel once. The same bytes as without; it costs a second set-up of
+ * every triangle, so it pays only where the mesh overdraws. Ignored per
+ * vertex and when the band's depth holds anything (docs/rasterizer.md). */
+#define LUMO_RASTER_DEPTH_FIRST 4u
 
 /* What lights a frame. */
 typedef struct lumo_raster_scene {
