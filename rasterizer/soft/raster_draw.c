@@ -214,32 +214,38 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
 
 /* ---- clipping ------------------------------------------------------------ */
 
-/* Signed distance of a clip-space vertex to plane k (inside when >= 0):
+/* Signed distances of a clip-space vertex to the planes (inside when >= 0):
  * the near plane w >= znear, then |x| and |y| within the guard band,
  * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0. */
-static int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
+static void plane_dists(const lumo_raster_view *view, const lumo_raster_vertex *v, int64_t d[CLIP_PLANES])
 {
     int64_t g = (int64_t)2 * GUARD_PX * v->clip[2];
     int64_t h = view->height;
 
-    switch (k) {
-    case 0:  return (int64_t)v->clip[2] - view->znear;
-    case 1:  return g - (int64_t)v->clip[0] * h;
-    case 2:  return g + (int64_t)v->clip[0] * h;
-    case 3:  return g - (int64_t)v->clip[1] * h;
-    default: return g + (int64_t)v->clip[1] * h;
-    }
+    d[0] = (int64_t)v->clip[2] - view->znear;
+    d[1] = g - (int64_t)v->clip[0] * h;
+    d[2] = g + (int64_t)v->clip[0] * h;
+    d[3] = g - (int64_t)v->clip[1] * h;
+    d[4] = g + (int64_t)v->clip[1] * h;
 }
 
+static int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
+{
+    int64_t d[CLIP_PLANES];
+
+    plane_dists(view, v, d);
+    return d[k];
+}
+
+/* Bit k set when the vertex is outside plane k (once per vertex: the five
+ * distances together, no call per plane). */
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v)
 {
-    unsigned code = 0;
-    int k;
+    int64_t d[CLIP_PLANES];
 
-    for (k = 0; k < CLIP_PLANES; k++)
-        if (plane_dist(view, k, v) < 0)
-            code |= 1u << k;
-    return code;
+    plane_dists(view, v, d);
+    return (unsigned)(d[0] < 0) | (unsigned)(d[1] < 0) << 1 | (unsigned)(d[2] < 0) << 2
+         | (unsigned)(d[3] < 0) << 3 | (unsigned)(d[4] < 0) << 4;
 }
 
 /* The point where the segment from the inside vertex a (da >= 0) to the
