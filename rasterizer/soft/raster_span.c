@@ -240,13 +240,15 @@ static int box_edges(const tri *t, int64_t px0, int64_t px1, int64_t py0, int64_
 }
 
 /* A row's covered span [*x0, *x1] from the edge values at its pixel px0
- * (E: in, then the values at *x0); 0 if none. small: box_edges' answer. */
+ * (E: in, then the values at *x0); 0 if none. small: box_edges' answer.
+ * A box under 4 pixels wide (most triangles of a dense mesh) is scanned:
+ * a few comparisons cost less than run_32's three divisions. */
 static int row_span(const tri *t, int64_t px0, int64_t px1, int small, int64_t E[3],
                     int64_t *x0, int64_t *x1)
 {
     int i;
 
-    *x1 = small ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
+    *x1 = small && px1 - px0 >= 4 ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
     if (*x1 < *x0)
         return 0;
     for (i = 0; i < 3; i++)
