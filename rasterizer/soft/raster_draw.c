@@ -313,34 +313,42 @@ static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, s
     s->var = v->var;
 }
 
-/* Draw a convex screen polygon as a fan. */
+/* One screen triangle: dropped when degenerate or a culled back face,
+ * else put in the order the edge functions want (positive area) and drawn;
+ * tri is reordered in place. */
+static void draw_tri(const draw_ctx *c, screen_vertex tri[3])
+{
+    int64_t area = ((int64_t)tri[1].x - tri[0].x) * ((int64_t)tri[2].y - tri[0].y)
+                 - ((int64_t)tri[1].y - tri[0].y) * ((int64_t)tri[2].x - tri[0].x);
+
+    if (area == 0)
+        return;
+    /* Front faces are counter-clockwise with y up, so negative here. */
+    if (area > 0 && (c->scene->flags & LUMO_RASTER_CULL_BACK)) {
+        if (c->stats)
+            c->stats->tris_culled++;
+        return;
+    }
+    if (area < 0) {              /* the edge functions want positive area */
+        screen_vertex tmp = tri[1];
+        tri[1] = tri[2];
+        tri[2] = tmp;
+        area = -area;
+    }
+    lumo_raster_triangle(c, tri, area);
+}
+
+/* Draw a convex screen polygon (a clipped triangle) as a fan. */
 static void draw_fan(const draw_ctx *c, const screen_vertex *s, int n)
 {
     int i;
 
     for (i = 1; i + 1 < n; i++) {
         screen_vertex tri[3];
-        int64_t area;
         tri[0] = s[0];
         tri[1] = s[i];
         tri[2] = s[i + 1];
-        area = ((int64_t)tri[1].x - tri[0].x) * ((int64_t)tri[2].y - tri[0].y)
-             - ((int64_t)tri[1].y - tri[0].y) * ((int64_t)tri[2].x - tri[0].x);
-        if (area == 0)
-            continue;
-        /* Front faces are counter-clockwise with y up, so negative here. */
-        if (area > 0 && (c->scene->flags & LUMO_RASTER_CULL_BACK)) {
-            if (c->stats)
-                c->stats->tris_culled++;
-            continue;
-        }
-        if (area < 0) {          /* the edge functions want positive area */
-            screen_vertex tmp = tri[1];
-            tri[1] = tri[2];
-            tri[2] = tmp;
-            area = -area;
-        }
-        lumo_raster_triangle(c, tri, area);
+        draw_tri(c, tri);
     }
 }
 
@@ -372,7 +380,7 @@ static void draw_unclipped(const draw_ctx *c, const lumo_raster_vertex *a,
     screen_of(a, &s[0]);
     screen_of(b, &s[1]);
     screen_of(d, &s[2]);
-    draw_fan(c, s, 3);
+    draw_tri(c, s);
 }
 
 static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
