@@ -214,38 +214,34 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
 
 /* ---- clipping ------------------------------------------------------------ */
 
-/* Signed distances of a clip-space vertex to the planes (inside when >= 0):
+/* Signed distance of a clip-space vertex to plane k (inside when >= 0):
  * the near plane w >= znear, then |x| and |y| within the guard band,
- * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0. */
-static void plane_dists(const lumo_raster_view *view, const lumo_raster_vertex *v, int64_t d[CLIP_PLANES])
+ * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0.
+ * Inlined: outcode's loop over the planes then folds the switch away (a
+ * call per plane and vertex was 4 % of a frame of small triangles). */
+LUMO_RASTER_HOT int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
 {
     int64_t g = (int64_t)2 * GUARD_PX * v->clip[2];
     int64_t h = view->height;
 
-    d[0] = (int64_t)v->clip[2] - view->znear;
-    d[1] = g - (int64_t)v->clip[0] * h;
-    d[2] = g + (int64_t)v->clip[0] * h;
-    d[3] = g - (int64_t)v->clip[1] * h;
-    d[4] = g + (int64_t)v->clip[1] * h;
+    switch (k) {
+    case 0:  return (int64_t)v->clip[2] - view->znear;
+    case 1:  return g - (int64_t)v->clip[0] * h;
+    case 2:  return g + (int64_t)v->clip[0] * h;
+    case 3:  return g - (int64_t)v->clip[1] * h;
+    default: return g + (int64_t)v->clip[1] * h;
+    }
 }
 
-static int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
-{
-    int64_t d[CLIP_PLANES];
-
-    plane_dists(view, v, d);
-    return d[k];
-}
-
-/* Bit k set when the vertex is outside plane k (once per vertex: the five
- * distances together, no call per plane). */
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v)
 {
-    int64_t d[CLIP_PLANES];
+    unsigned code = 0;
+    int k;
 
-    plane_dists(view, v, d);
-    return (unsigned)(d[0] < 0) | (unsigned)(d[1] < 0) << 1 | (unsigned)(d[2] < 0) << 2
-         | (unsigned)(d[3] < 0) << 3 | (unsigned)(d[4] < 0) << 4;
+    for (k = 0; k < CLIP_PLANES; k++)
+        if (plane_dist(view, k, v) < 0)
+            code |= 1u << k;
+    return code;
 }
 
 /* The point where the segment from the inside vertex a (da >= 0) to the
@@ -488,16 +484,20 @@ static void depth_step_back(const lumo_raster_target *t)
  * depth: the colour pass computes the very same values), so that the
  * colour pass shades each pixel once. Only into a clear band: there the
  * picture is byte for byte the one drawn without it. */
-static void depth_first(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
+static void depth_first(draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
 {
-    draw_ctx d = *c;
+    lumo_raster_stats *stats = c->stats;
 
     if (!(c->scene->flags & LUMO_RASTER_DEPTH_FIRST) || !(c->scene->flags & LUMO_RASTER_PER_PIXEL)
         || !depth_clear(c->target))
         return;
-    d.stats = NULL;
-    d.depth_only = 1;
-    draw_mesh(&d, m, cache);
+    /* the caller's context switched to depth only and back (no copy: the
+     * board's stack peak is in this call chain) */
+    c->stats = NULL;
+    c->depth_only = 1;
+    draw_mesh(c, m, cache);
+    c->stats = stats;
+    c->depth_only = 0;
     depth_step_back(c->target);
 }
 

@@ -240,15 +240,13 @@ static int box_edges(const tri *t, int64_t px0, int64_t px1, int64_t py0, int64_
 }
 
 /* A row's covered span [*x0, *x1] from the edge values at its pixel px0
- * (E: in, then the values at *x0); 0 if none. small: box_edges' answer.
- * A box under 4 pixels wide (most triangles of a dense mesh) is scanned:
- * a few comparisons cost less than run_32's three divisions. */
+ * (E: in, then the values at *x0); 0 if none. small: box_edges' answer. */
 static int row_span(const tri *t, int64_t px0, int64_t px1, int small, int64_t E[3],
                     int64_t *x0, int64_t *x1)
 {
     int i;
 
-    *x1 = small && px1 - px0 >= 4 ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
+    *x1 = small ? run_32(t, E, px0, px1, x0) : run_64(t, E, px0, px1, x0);
     if (*x1 < *x0)
         return 0;
     for (i = 0; i < 3; i++)
@@ -278,16 +276,28 @@ LUMO_RASTER_HOT int depth_pass(const lumo_raster_target *tg, size_t at, uint64_t
     }
 }
 
-/* Depth only (shadow maps: 16-bit; the depth-first pass: either width). */
+/* Depth only: shadow maps (16-bit: the loop as it was, no width test per
+ * pixel) and the depth-first pass (either width, through depth_pass). */
 static void span_depth(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int64_t x0,
                        int64_t x1, size_t row)
 {
+    uint16_t *d = (uint16_t *)c->target->depth + row;
     uint64_t p[3];
     int64_t x;
     int i;
 
+    if (c->target->depth_bits != 16) {
+        for (x = x0; x <= x1; x++) {
+            (void)depth_pass(c->target, row + (size_t)x, pixel_depth(t, E, p));
+            for (i = 0; i < 3; i++)
+                E[i] += t->step[i];
+        }
+        return;
+    }
     for (x = x0; x <= x1; x++) {
-        (void)depth_pass(c->target, row + (size_t)x, pixel_depth(t, E, p));
+        uint32_t dz = depth16(pixel_depth(t, E, p));
+        if (dz > d[x])
+            d[x] = (uint16_t)dz;
         for (i = 0; i < 3; i++)
             E[i] += t->step[i];
     }
