@@ -218,7 +218,7 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
  * the near plane w >= znear, then |x| and |y| within the guard band,
  * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0.
  * Inlined: outcode's loop over the planes then folds the switch away (a
- * call per plane and vertex was 4 % of a frame of small triangles). */
+ * call per plane and vertex was 3 % of a frame of small triangles). */
 LUMO_RASTER_HOT int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
 {
     int64_t g = (int64_t)2 * GUARD_PX * v->clip[2];
