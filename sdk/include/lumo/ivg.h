@@ -241,7 +241,7 @@ void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q
  * lumo_ivg_sampler_init again after any lumo_ivg_apply_* or
  * lumo_ivg_pushpull on the grid. g may be NULL (all samples are zero). */
 typedef struct lumo_ivg_sampler {
-    const lumo_ivg *grid;
+    const lumo_ivg *grid;      /* sampled grid, borrowed; NULL: every sample is zero */
     uint32_t cell;             /* first vertex of the opened cell; UINT32_MAX: none */
     uint32_t opened;           /* bit h set: hemisphere h (lumo_ivg_axis) opened */
     uint32_t corner_off[8];    /* byte offsets of a cell's corners (x + 2y + 4z) */
@@ -249,6 +249,8 @@ typedef struct lumo_ivg_sampler {
     int16_t  q[6][3][8];       /* direction in q units (value q / 127) */
 } lumo_ivg_sampler;
 
+/* Set s up for grid g (may be NULL) with an empty memo: before the first
+ * sample, and again after g changed. Never fails; touches only *s. */
 void lumo_ivg_sampler_init(lumo_ivg_sampler *s, const lumo_ivg *g);
 
 /* lumo_ivg_irradiance(s->grid, p, n, out), through the memo. */
