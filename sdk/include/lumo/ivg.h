@@ -236,7 +236,8 @@ void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q
  * used so far unpacked (colour UQ16.16, direction in q units), so such a
  * sample skips finding and opening the corners' packed entries and only
  * weighs them. Results are bit-identical to lumo_ivg_irradiance.
- * Caller-owned (sizeof: 1 168 bytes), one per thread; the grid is borrowed.
+ * Caller-owned (908 bytes on a Cortex-M3, 912 on x86-64), one per thread;
+ * the grid is borrowed.
  * The memo is of the grid's values when they were opened: call
  * lumo_ivg_sampler_init again after any lumo_ivg_apply_* or
  * lumo_ivg_pushpull on the grid. g may be NULL (all samples are zero). */
