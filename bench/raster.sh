@@ -51,6 +51,10 @@ echo "Soft and llvmpipe runs alternate $REPS times per row (soft, llvmpipe, soft
 echo "column is the median of its $REPS runs, and the ratio llvmpipe/soft is taken of the medians."
 echo "\"soft, IVG per vertex\" (per-pixel rows) samples the IVG once per vertex side and interpolates it"
 echo "(\`--ivg-vertex\`; direct light and shadows stay per pixel; docs/rasterizer.md \"IVG per vertex\")."
+echo "Soft per pixel samples the IVG through a sampler with a memo of the last opened cell (\`lumo_ivg_sampler\`)"
+echo "and draws with \`LUMO_RASTER_DEPTH_FIRST\` (a depth-only pass, then each pixel shaded once); both give the"
+echo "same bytes as without (docs/rasterizer.md \"Round four\")."
+echo "Commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)."
 echo
 echo "| mesh | size | lighting | soft ms | soft, lit each frame ms | soft, IVG per vertex ms | soft + shadows ms | llvmpipe ms | llvmpipe + shadows ms | softpipe ms | llvmpipe/soft | llvmpipe/soft IVG per vertex | llvmpipe/soft with shadows | softpipe/soft |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -83,14 +87,14 @@ echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)."
 echo
 echo "### Instructions per frame (callgrind)"
 echo
-echo "\`valgrind --tool=callgrind --toggle-collect=timed_frame lumo-render PKG --frames 2 --orbit --warmup 1 ...\`:"
+echo "\`valgrind --tool=callgrind --toggle-collect='timed_frame*' lumo-render PKG --frames 2 --orbit --warmup 1 ...\`:"
 echo "instructions executed inside the timed frames (the draw and, for GL, the read-back), divided by 2."
 echo
 echo "| backend | mesh | size | lighting | instructions / frame |"
 echo "|---|---|---|---|---|"
 cg() {  # cg LABEL BACKEND ARGS...
     label=$1; be=$2; shift 2
-    n=$(LP_NUM_THREADS=0 GALLIUM_DRIVER=llvmpipe valgrind --tool=callgrind --toggle-collect=timed_frame \
+    n=$(LP_NUM_THREADS=0 GALLIUM_DRIVER=llvmpipe valgrind --tool=callgrind --toggle-collect='timed_frame*' \
         --callgrind-out-file=/dev/null "$bin/lumo-render" "$@" --backend "$be" --frames 2 --orbit --warmup 1 \
         -o "$work/cg.png" 2>&1 | sed -n 's/.*Collected : \([0-9]*\).*/\1/p')
     echo "| $label | $(echo "$@" | sed 's/.*dragon_\([0-9k]*\).lumo --size \([0-9x]*\) --\([a-z-]*\).*/dragon \1 | \2 | \3/') | $(awk -v n="$n" 'BEGIN{printf "%.1f M", n/2e6}') |"

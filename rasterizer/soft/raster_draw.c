@@ -216,8 +216,10 @@ lumo_status lumo_raster_prepare(const lumo_raster_view *v, const lumo_raster_sce
 
 /* Signed distance of a clip-space vertex to plane k (inside when >= 0):
  * the near plane w >= znear, then |x| and |y| within the guard band,
- * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0. */
-static int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
+ * |x_c * H * 8 / w| <= GUARD_PX * 16  <=>  2 * GUARD_PX * w -+ x_c * H >= 0.
+ * Inlined: outcode's loop over the planes then folds the switch away (a
+ * call per plane and vertex was 3 % of a frame of small triangles). */
+LUMO_RASTER_HOT int64_t plane_dist(const lumo_raster_view *view, int k, const lumo_raster_vertex *v)
 {
     int64_t g = (int64_t)2 * GUARD_PX * v->clip[2];
     int64_t h = view->height;
@@ -307,34 +309,42 @@ static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, s
     s->var = v->var;
 }
 
-/* Draw a convex screen polygon as a fan. */
+/* One screen triangle: dropped when degenerate or a culled back face,
+ * else put in the order the edge functions want (positive area) and drawn;
+ * tri is reordered in place. */
+static void draw_tri(const draw_ctx *c, screen_vertex tri[3])
+{
+    int64_t area = ((int64_t)tri[1].x - tri[0].x) * ((int64_t)tri[2].y - tri[0].y)
+                 - ((int64_t)tri[1].y - tri[0].y) * ((int64_t)tri[2].x - tri[0].x);
+
+    if (area == 0)
+        return;
+    /* Front faces are counter-clockwise with y up, so negative here. */
+    if (area > 0 && (c->scene->flags & LUMO_RASTER_CULL_BACK)) {
+        if (c->stats)
+            c->stats->tris_culled++;
+        return;
+    }
+    if (area < 0) {              /* the edge functions want positive area */
+        screen_vertex tmp = tri[1];
+        tri[1] = tri[2];
+        tri[2] = tmp;
+        area = -area;
+    }
+    lumo_raster_triangle(c, tri, area);
+}
+
+/* Draw a convex screen polygon (a clipped triangle) as a fan. */
 static void draw_fan(const draw_ctx *c, const screen_vertex *s, int n)
 {
     int i;
 
     for (i = 1; i + 1 < n; i++) {
         screen_vertex tri[3];
-        int64_t area;
         tri[0] = s[0];
         tri[1] = s[i];
         tri[2] = s[i + 1];
-        area = ((int64_t)tri[1].x - tri[0].x) * ((int64_t)tri[2].y - tri[0].y)
-             - ((int64_t)tri[1].y - tri[0].y) * ((int64_t)tri[2].x - tri[0].x);
-        if (area == 0)
-            continue;
-        /* Front faces are counter-clockwise with y up, so negative here. */
-        if (area > 0 && (c->scene->flags & LUMO_RASTER_CULL_BACK)) {
-            if (c->stats)
-                c->stats->tris_culled++;
-            continue;
-        }
-        if (area < 0) {          /* the edge functions want positive area */
-            screen_vertex tmp = tri[1];
-            tri[1] = tri[2];
-            tri[2] = tmp;
-            area = -area;
-        }
-        lumo_raster_triangle(c, tri, area);
+        draw_tri(c, tri);
     }
 }
 
@@ -366,7 +376,7 @@ static void draw_unclipped(const draw_ctx *c, const lumo_raster_vertex *a,
     screen_of(a, &s[0]);
     screen_of(b, &s[1]);
     screen_of(d, &s[2]);
-    draw_fan(c, s, 3);
+    draw_tri(c, s);
 }
 
 static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
@@ -431,6 +441,66 @@ static void draw_mesh(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_r
     }
 }
 
+/* 1 when no depth entry of the band is set (nothing drawn since the clear). */
+static int depth_clear(const lumo_raster_target *t)
+{
+    size_t i, n = (size_t)t->width * t->band_rows;
+
+    if (t->depth_bits == 16) {
+        const uint16_t *d = (const uint16_t *)t->depth;
+        for (i = 0; i < n; i++)
+            if (d[i])
+                return 0;
+    } else {
+        const uint32_t *d = (const uint32_t *)t->depth;
+        for (i = 0; i < n; i++)
+            if (d[i])
+                return 0;
+    }
+    return 1;
+}
+
+/* Every set depth one step nearer the far plane (0 stays "clear"): after
+ * the depth-only pass each pixel holds its nearest fragment's depth D, and
+ * the colour pass's test (depth > stored) now passes at D - 1 for exactly
+ * that fragment, the first one to reach D, as drawing without the pass
+ * would keep; it stores D again, so later fragments at D fail as before. */
+static void depth_step_back(const lumo_raster_target *t)
+{
+    size_t i, n = (size_t)t->width * t->band_rows;
+
+    if (t->depth_bits == 16) {
+        uint16_t *d = (uint16_t *)t->depth;
+        for (i = 0; i < n; i++)
+            d[i] = (uint16_t)(d[i] - (d[i] != 0));
+    } else {
+        uint32_t *d = (uint32_t *)t->depth;
+        for (i = 0; i < n; i++)
+            d[i] -= (d[i] != 0);
+    }
+}
+
+/* LUMO_RASTER_DEPTH_FIRST: the mesh's depth alone first (exact per-pixel
+ * depth: the colour pass computes the very same values), so that the
+ * colour pass shades each pixel once. Only into a clear band: there the
+ * picture is byte for byte the one drawn without it. */
+static void depth_first(draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
+{
+    lumo_raster_stats *stats = c->stats;
+
+    if (!(c->scene->flags & LUMO_RASTER_DEPTH_FIRST) || !(c->scene->flags & LUMO_RASTER_PER_PIXEL)
+        || !depth_clear(c->target))
+        return;
+    /* the caller's context switched to depth only and back (no copy: the
+     * board's stack peak is in this call chain) */
+    c->stats = NULL;
+    c->depth_only = 1;
+    draw_mesh(c, m, cache);
+    c->stats = stats;
+    c->depth_only = 0;
+    depth_step_back(c->target);
+}
+
 lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_scene *s,
                                    const lumo_raster_mesh *m, const lumo_raster_vertex *cache,
                                    lumo_raster_target *t, lumo_raster_stats *stats)
@@ -459,6 +529,7 @@ lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_
         *stats = zero;
         stats->tris_in = m->tri_count;
     }
+    depth_first(&c, m, cache);
     draw_mesh(&c, m, cache);
     return LUMO_OK;
 }

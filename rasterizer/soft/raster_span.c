@@ -269,24 +269,6 @@ static int row_span(const tri *t, int64_t px0, int64_t px1, int small, int64_t E
 
 /* ---- spans by kind ------------------------------------------------------- */
 
-/* Depth only (shadow maps: 16-bit). */
-static void span_depth(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int64_t x0,
-                       int64_t x1, size_t row)
-{
-    uint16_t *d = (uint16_t *)c->target->depth + row;
-    uint64_t p[3];
-    int64_t x;
-    int i;
-
-    for (x = x0; x <= x1; x++) {
-        uint32_t dz = depth16(pixel_depth(t, E, p));
-        if (dz > d[x])
-            d[x] = (uint16_t)dz;
-        for (i = 0; i < 3; i++)
-            E[i] += t->step[i];
-    }
-}
-
 /* 1 when the pixel passes the depth test (and its depth is stored). */
 LUMO_RASTER_HOT int depth_pass(const lumo_raster_target *tg, size_t at, uint64_t z30)
 {
@@ -304,6 +286,33 @@ LUMO_RASTER_HOT int depth_pass(const lumo_raster_target *tg, size_t at, uint64_t
             return 0;
         *d = dz;
         return 1;
+    }
+}
+
+/* Depth only: shadow maps (16-bit: the loop as it was, no width test per
+ * pixel) and the depth-first pass (either width, through depth_pass). */
+static void span_depth(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int64_t x0,
+                       int64_t x1, size_t row)
+{
+    uint16_t *d = (uint16_t *)c->target->depth + row;
+    uint64_t p[3];
+    int64_t x;
+    int i;
+
+    if (c->target->depth_bits != 16) {
+        for (x = x0; x <= x1; x++) {
+            (void)depth_pass(c->target, row + (size_t)x, pixel_depth(t, E, p));
+            for (i = 0; i < 3; i++)
+                E[i] += t->step[i];
+        }
+        return;
+    }
+    for (x = x0; x <= x1; x++) {
+        uint32_t dz = depth16(pixel_depth(t, E, p));
+        if (dz > d[x])
+            d[x] = (uint16_t)dz;
+        for (i = 0; i < 3; i++)
+            E[i] += t->step[i];
     }
 }
 

@@ -47,6 +47,7 @@ static void run_one(const uint8_t *data, size_t size, int as_run)
     lumo_ivg_desc d;
     size_t need;
     lumo_uq16_16 out[3];
+    lumo_ivg_sampler smp;
     lumo_status st;
     int s;
 
@@ -72,17 +73,22 @@ static void run_one(const uint8_t *data, size_t size, int as_run)
     }
     if (lumo_ivg_pushpull(g, size & 1 ? LUMO_IVG_SMOOTH : 0) != LUMO_OK)
         __builtin_trap();
+    lumo_ivg_sampler_init(&smp, g);
     for (s = 0; s < 4 && size > 0; s++) {
         /* points and normals from the input itself, in and out of the box */
         size_t o = (size / 4) * (size_t)s;
         lumo_q16_16 p[3];
         lumo_q1_14 n[3], albedo[3] = {LUMO_Q14_ONE, LUMO_Q14_ONE / 2, 0};
+        lumo_uq16_16 memo[3];
         int a;
         for (a = 0; a < 3; a++) {
             p[a] = (lumo_q16_16)((uint32_t)data[(o + a) % size] << 17) - LUMO_Q16_FROM_INT(4);
             n[a] = (lumo_q1_14)((int)data[(o + 3 + a) % size] * 128 - 16384);
         }
         lumo_ivg_irradiance(g, p, n, out);
+        lumo_ivg_sampler_irradiance(&smp, p, n, memo);   /* the sampler: the same bits */
+        if (memcmp(memo, out, sizeof memo) != 0)
+            __builtin_trap();
         lumo_ivg_radiance(g, p, n, albedo, out);
     }
 }

@@ -323,6 +323,100 @@ static void test_radiance_and_clamps(void **state)
     tgrid_free(&t);
 }
 
+/* The sampler's memo gives lumo_ivg_irradiance's bits: runs of nearby
+ * points with slowly turning normals (a span's pixels: mostly one cell,
+ * hemispheres opened one by one), random jumps (a new cell each time), and
+ * points outside the box; a sampler made again after the grid changed sees
+ * the new values. */
+static void sampler_matches(lumo_ivg *g, test_rng *r, int runs)
+{
+    const lumo_ivg_desc *d = lumo_ivg_get_desc(g);
+    lumo_ivg_sampler smp;
+    long hits = 0, total = 0;
+    int run, s, a, k;
+
+    lumo_ivg_sampler_init(&smp, g);
+    for (run = 0; run < runs; run++) {
+        lumo_q16_16 p[3], step[3];
+        lumo_q1_14 n[3];
+        int len = 1 + (int)(test_rng_next(r) % 64);
+        for (a = 0; a < 3; a++) {
+            double lo = d->bmin[a] / Q16, hi = d->bmax[a] / Q16, m = 0.1 * (hi - lo);
+            p[a] = (lumo_q16_16)lround(test_rng_uniform(r, lo - m, hi + m) * Q16);
+            step[a] = (lumo_q16_16)lround(test_rng_uniform(r, -0.02, 0.02) * (hi - lo) * Q16);
+        }
+        random_normal(r, n);
+        for (s = 0; s < len; s++) {
+            lumo_uq16_16 want[3], got[3];
+            uint32_t before = smp.cell;
+            lumo_ivg_irradiance(g, p, n, want);
+            lumo_ivg_sampler_irradiance(&smp, p, n, got);
+            for (k = 0; k < 3; k++)
+                assert_int_equal(got[k], want[k]);
+            hits += smp.cell == before;
+            total++;
+            for (a = 0; a < 3; a++)
+                p[a] += step[a];
+            if (test_rng_next(r) % 4 == 0)
+                random_normal(r, n);
+        }
+    }
+    print_message("sampler: %ld of %ld samples in the memo's cell\n", hits, total);
+    assert_true(hits > total / 2);   /* runs do reuse the memo */
+}
+
+static void test_sampler_same_bits(void **state)
+{
+    test_rng r = {777};
+    tgrid t;
+    lumo_ivg *g = tgrid_make(&t, 9, 7, 5, 6);
+    const lumo_ivg_desc *d = lumo_ivg_get_desc(g);
+    uint32_t count = lumo_ivg_vertex_count(g), *all = malloc(count * 4), v;
+    srv_ivg_fentry (*f)[LUMO_IVG_AXES] = random_field(&r, count, 500.0);
+    lumo_ivg_sampler smp;
+    lumo_q16_16 p[3];
+    lumo_q1_14 n[3];
+    lumo_uq16_16 before[64][3], a[3];
+    int i, a_, changed = 0;
+    (void)state;
+    for (v = 0; v < count; v++) all[v] = v;
+    send(g, LUMO_IVG_FORM_QUANTIZED, all, count, f);
+    sampler_matches(g, &r, 4000);
+    /* the grid changes: a sampler made again follows it (the same walk
+     * before and after, seeded alike) */
+    for (i = 0; i < 64; i++) {
+        test_rng w = {1000u + (uint32_t)i};
+        for (a_ = 0; a_ < 3; a_++)
+            p[a_] = (lumo_q16_16)lround(test_rng_uniform(&w, d->bmin[a_] / Q16, d->bmax[a_] / Q16) * Q16);
+        random_normal(&w, n);
+        lumo_ivg_irradiance(g, p, n, before[i]);
+    }
+    free(f);
+    f = random_field(&r, count, 50.0);
+    send(g, LUMO_IVG_FORM_QUANTIZED, all, count, f);
+    lumo_ivg_sampler_init(&smp, g);
+    for (i = 0; i < 64; i++) {
+        test_rng w = {1000u + (uint32_t)i};
+        lumo_uq16_16 want[3];
+        for (a_ = 0; a_ < 3; a_++)
+            p[a_] = (lumo_q16_16)lround(test_rng_uniform(&w, d->bmin[a_] / Q16, d->bmax[a_] / Q16) * Q16);
+        random_normal(&w, n);
+        lumo_ivg_irradiance(g, p, n, want);
+        lumo_ivg_sampler_irradiance(&smp, p, n, a);
+        assert_memory_equal(a, want, sizeof a);
+        changed += memcmp(a, before[i], sizeof a) != 0;
+    }
+    assert_true(changed > 32);
+    sampler_matches(g, &r, 1000);
+    /* no grid: zeros, like lumo_ivg_irradiance(NULL, ...) */
+    lumo_ivg_sampler_init(&smp, NULL);
+    lumo_ivg_sampler_irradiance(&smp, p, n, a);
+    assert_true(a[0] == 0 && a[1] == 0 && a[2] == 0);
+    free(all);
+    free(f);
+    tgrid_free(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -332,6 +426,7 @@ int main(void)
         cmocka_unit_test(test_n_along_delta_exact),
         cmocka_unit_test(test_constant_field),
         cmocka_unit_test(test_radiance_and_clamps),
+        cmocka_unit_test(test_sampler_same_bits),
     };
     return cmocka_run_group_tests_name("ivg_sample", tests, NULL, NULL);
 }

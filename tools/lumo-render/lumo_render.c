@@ -6,7 +6,8 @@
  *       [--size WxH] [--camera EYE:TARGET:UP:FOVY] [--per-vertex|--per-pixel]
  *       [--no-indirect] [--frames N --orbit] [--exposure E]
  *       [--model PATH] [--light SPEC] [--bands K] [--rgb565] [--depth16]
- *       [--no-cache] [--cull] [--lod N|P%|all] [--ivg-vertex] [--prt [--env FILE] [--rotate DEG]]
+ *       [--no-cache] [--cull] [--lod N|P%|all] [--ivg-vertex] [--no-depth-first]
+ *       [--prt [--env FILE] [--rotate DEG]]
  *
  * Packages with progressive meshes (PMSH) are decoded through the SDK's
  * lumo_pmesh as on a device, at the level --lod asks (seed 000 §4.2).
@@ -65,6 +66,9 @@ static const char usage[] =
     "                              once, again only when the lights or the IVG change)\n"
     "  --ivg-vertex                soft, per pixel: sample the IVG once per vertex and\n"
     "                              interpolate it (direct light stays per pixel)\n"
+    "  --no-depth-first            soft, per pixel: shade every fragment that passes the depth\n"
+    "                              test (default, from 4 pixels per triangle: a depth-only\n"
+    "                              pass first, each pixel shaded once; the same picture)\n"
     "  --shadows N                 shadow maps of N x N texels per face for every light\n"
     "                              (point: 6 faces; default 0: no shadows; every backend)\n"
     "  --warmup K                  draw K untimed frames first (GL shader compilation)\n"
@@ -84,6 +88,7 @@ typedef struct options {
     const char *input, *output, *backend, *camera, *model;
     const char *lights[LUMO_MAX_LIGHTS];
     int nlights, per_pixel, no_indirect, frames, orbit, use_default, cull, warmup, lod_set, fit, prt;
+    int no_depth_first;
     const char *env;
     double rotate;
     int prt_view;
@@ -94,7 +99,7 @@ typedef struct options {
 } options;
 
 enum { O_BACKEND = 256, O_SIZE, O_CAMERA, O_PV, O_PP, O_NOIND, O_FRAMES, O_ORBIT, O_EXPOSURE,
-       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_IVGV, O_HELP,
+       O_DEFAULT, O_MODEL, O_LIGHT, O_BANDS, O_565, O_D16, O_NOCACHE, O_CULL, O_WARMUP, O_LOD, O_SHADOWS, O_RELIGHT, O_FIT, O_IVGV, O_NODF, O_HELP,
        O_PRT, O_ENV, O_ROTATE, O_PRT_VIEW };
 
 static const struct option k_longs[] = {
@@ -105,7 +110,7 @@ static const struct option k_longs[] = {
     {"bands", 1, 0, O_BANDS}, {"rgb565", 0, 0, O_565}, {"depth16", 0, 0, O_D16},
     {"no-cache", 0, 0, O_NOCACHE}, {"cull", 0, 0, O_CULL}, {"warmup", 1, 0, O_WARMUP},
     {"lod", 1, 0, O_LOD}, {"shadows", 1, 0, O_SHADOWS}, {"relight", 0, 0, O_RELIGHT}, {"fit", 0, 0, O_FIT},
-    {"ivg-vertex", 0, 0, O_IVGV},
+    {"ivg-vertex", 0, 0, O_IVGV}, {"no-depth-first", 0, 0, O_NODF},
     {"help", 0, 0, O_HELP},
     {"prt", 0, 0, O_PRT}, {"env", 1, 0, O_ENV}, {"rotate", 1, 0, O_ROTATE},
     {"prt-view", 1, 0, O_PRT_VIEW},
@@ -146,6 +151,7 @@ static int take_flag(options *o, int c, const char *arg, char *err, size_t errle
     case O_RELIGHT: o->ro.relight = 1; return 0;
     case O_FIT: o->fit = 1; return 0;
     case O_IVGV: o->ro.ivg_vertex = 1; return 0;
+    case O_NODF: o->no_depth_first = 1; return 0;
     case O_PRT: o->prt = 1; return 0;
     case O_ENV: o->env = arg; return 0;
     case O_PRT_VIEW: {
@@ -489,7 +495,12 @@ int main(int argc, char **argv)
     rs.lights = scene.lights;
     rs.light_count = scene.light_count;
     rs.exposure = (lumo_uq16_16)floor(o.exposure * 65536 + 0.5);
-    rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL : 0) | (o.cull ? LUMO_RASTER_CULL_BACK : 0);
+    /* The depth-first pass pays where the triangles are large enough that
+     * the overdraw it saves outweighs a second set-up of each: from 4
+     * pixels of frame a triangle (measured, docs/rasterizer.md "Round four"). */
+    rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL : 0) | (o.cull ? LUMO_RASTER_CULL_BACK : 0)
+             | (o.per_pixel && !o.no_depth_first
+                && (uint64_t)o.ro.width * o.ro.height >= 4 * (uint64_t)mesh.tri_count ? LUMO_RASTER_DEPTH_FIRST : 0);
     if (ivg.grid && !o.no_indirect && !o.prt) {   /* PRT carries its own interreflections */
         rs.indirect = lumo_raster_ivg_irradiance;
         rs.indirect_ctx = ivg.grid;

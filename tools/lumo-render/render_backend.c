@@ -39,6 +39,8 @@ struct host_renderer {
     lumo_uq16_16 *ind;
     lumo_raster_mesh ind_mesh;
     const void *ind_ctx;
+    /* per-pixel lighting with the IVG per pixel: the sampler's memo */
+    lumo_ivg_sampler sampler;
 };
 
 /* The mesh to draw per pixel with the IVG interpolated from the vertices:
@@ -299,6 +301,14 @@ static int draw_soft(host_renderer *r, const lumo_raster_camera *cam, const lumo
         return -1;
     if ((s->flags & LUMO_RASTER_PER_PIXEL) && r->o.ivg_vertex && s->indirect && !(mesh = ind_mesh(r, s)))
         return -1;
+    if ((s->flags & LUMO_RASTER_PER_PIXEL) && !r->o.ivg_vertex && s->indirect == lumo_raster_ivg_irradiance) {
+        /* same values through the sampler's memo (the grid may have changed
+         * since the last frame: a fresh memo) */
+        lumo_ivg_sampler_init(&r->sampler, (const lumo_ivg *)s->indirect_ctx);
+        shadowed.indirect = lumo_raster_ivg_sampler_irradiance;
+        shadowed.indirect_ctx = &r->sampler;
+        s = &shadowed;
+    }
     if (r->cache && lumo_raster_prepare(&v, s, mesh, r->cache))
         return -1;
     for (y0 = 0; y0 < r->o.height; y0 += r->o.band_rows) {

@@ -111,9 +111,25 @@ typedef void (*lumo_raster_indirect_fn)(const void *ctx, const lumo_q16_16 p[3],
 void lumo_raster_ivg_irradiance(const void *ivg, const lumo_q16_16 p[3],
                                 const lumo_q1_14 n[3], lumo_uq16_16 out[3]);
 
+/* Adapter: ctx is a lumo_ivg_sampler * (lumo/ivg.h), taken as const void *
+ * by the callback type but written: its memo of the last opened IVG cell.
+ * Same values as lumo_raster_ivg_irradiance with the sampler's grid, and
+ * cheaper per pixel (neighbouring pixels share a cell). One sampler per
+ * drawing thread, initialised with lumo_ivg_sampler_init after the grid
+ * last changed. */
+void lumo_raster_ivg_sampler_irradiance(const void *sampler, const lumo_q16_16 p[3],
+                                        const lumo_q1_14 n[3], lumo_uq16_16 out[3]);
+
 /* Flags of a frame. */
 #define LUMO_RASTER_PER_PIXEL 1u   /* per-pixel lighting (default: per vertex) */
 #define LUMO_RASTER_CULL_BACK 2u   /* drop back faces (closed meshes) */
+/* Per-pixel lighting, drawn into a band whose depth is clear: a depth-only
+ * pass over the mesh first, then only each pixel's nearest fragment is
+ * shaded, so a mesh that overdraws itself (a model inside a room) shades
+ * every pixel once. The same bytes as without; it costs a second set-up of
+ * every triangle, so it pays only where the mesh overdraws. Ignored per
+ * vertex and when the band's depth holds anything (docs/rasterizer.md). */
+#define LUMO_RASTER_DEPTH_FIRST 4u
 
 /* What lights a frame. */
 typedef struct lumo_raster_scene {

@@ -230,6 +230,34 @@ lumo_status lumo_ivg_pushpull(lumo_ivg *g, unsigned flags);
 void lumo_ivg_irradiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                          lumo_uq16_16 out[3]);
 
+/* A sampler: lumo_ivg_irradiance with a memo of the last cell it opened.
+ * Neighbouring samples of a surface (the pixels of a span) mostly fall in
+ * one cell; the memo keeps that cell's eight corners of every hemisphere
+ * used so far unpacked (colour UQ16.16, direction in q units), so such a
+ * sample skips finding and opening the corners' packed entries and only
+ * weighs them. Results are bit-identical to lumo_ivg_irradiance.
+ * Caller-owned (908 bytes on a Cortex-M3, 912 on x86-64), one per thread;
+ * the grid is borrowed.
+ * The memo is of the grid's values when they were opened: call
+ * lumo_ivg_sampler_init again after any lumo_ivg_apply_* or
+ * lumo_ivg_pushpull on the grid. g may be NULL (all samples are zero). */
+typedef struct lumo_ivg_sampler {
+    const lumo_ivg *grid;      /* sampled grid, borrowed; NULL: every sample is zero */
+    uint32_t cell;             /* first vertex of the opened cell; UINT32_MAX: none */
+    uint32_t opened;           /* bit h set: hemisphere h (lumo_ivg_axis) opened */
+    uint32_t corner_off[8];    /* byte offsets of a cell's corners (x + 2y + 4z) */
+    uint32_t c[6][3][8];       /* colour, UQ16.16: hemisphere, channel, corner */
+    int16_t  q[6][3][8];       /* direction in q units (value q / 127) */
+} lumo_ivg_sampler;
+
+/* Set s up for grid g (may be NULL) with an empty memo: before the first
+ * sample, and again after g changed. Never fails; touches only *s. */
+void lumo_ivg_sampler_init(lumo_ivg_sampler *s, const lumo_ivg *g);
+
+/* lumo_ivg_irradiance(s->grid, p, n, out), through the memo. */
+void lumo_ivg_sampler_irradiance(lumo_ivg_sampler *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
+                                 lumo_uq16_16 out[3]);
+
 /* Reflected indirect radiance L_r = rho/pi (I_n . n) per channel (eq. 2):
  * albedo in Q1.14 ([0, 1]), result in UQ16.16 (W/m^2/sr). */
 void lumo_ivg_radiance(const lumo_ivg *g, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
