@@ -89,6 +89,13 @@ struct ld_eb {
     uint64_t budget;
 };
 
+/* The mode and the opposite store, constant in a lean-only build (its
+ * walks' default instances then fold away; with attribute data the lean
+ * mode packs the table right after the connectivity, so every walk below
+ * that picks an instance by the store runs on a packed table there). */
+#define LD_EB_LEAN(e) (LD_LEAN_ONLY || (e)->lean)
+#define LD_EB_PACKED(e) (LD_LEAN_ONLY || (e)->packed)
+
 static int ld_eb_peek_vpoints(const ld_buf *at, uint32_t faces, uint32_t nad, int valence);
 
 /* Bounded work: fan walks are charged here. */
@@ -102,7 +109,7 @@ static int ld_eb_charge(struct ld_eb *e)
 
 /* The opposites while the connectivity is decoded: 32-bit ids (default) or
  * 24-bit ids (lean, packed afterwards by ld_eb_pack). `lean` is a
- * constant in the symbol loop's two instances, e->lean elsewhere. */
+ * constant in the symbol loop's two instances, LD_EB_LEAN(e) elsewhere. */
 static LD_FORCE_INLINE uint32_t ld_eb_opp(const struct ld_eb *e, uint32_t c, int lean)
 {
     uint32_t o;
@@ -268,14 +275,14 @@ static lumo_status ld_ctx_symbols(ld_dec *d, uint32_t n, uint8_t **out)
 
 static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 {
-    const size_t vsize = e->lean ? 1u : sizeof(uint32_t);
+    const size_t vsize = LD_EB_LEAN(e) ? 1u : sizeof(uint32_t);
     void *val = ld_tmp(&d->mem, e->max_vertices + 3u, vsize);
     unsigned i;
     lumo_status st;
     if (!val)
         return LUMO_ERR_NOMEM;
     memset(val, 0, ((size_t)e->max_vertices + 3u) * vsize);
-    if (e->lean)
+    if (LD_EB_LEAN(e))
         e->val.b = val;
     else
         e->val.w = val;
@@ -604,14 +611,14 @@ static lumo_status ld_eb_start_faces(struct ld_eb *e, ld_eb_state *s)
         c = ld_next(e->lmc[vx]);
         if (corner == b || corner == c || b == c || b == LD_INV || c == LD_INV)
             return LUMO_ERR_CORRUPT;
-        if (ld_has_opp(e, corner, e->lean) || ld_has_opp(e, b, e->lean) ||
-            ld_has_opp(e, c, e->lean))
+        if (ld_has_opp(e, corner, LD_EB_LEAN(e)) || ld_has_opp(e, b, LD_EB_LEAN(e)) ||
+            ld_has_opp(e, c, LD_EB_LEAN(e)))
             return LUMO_ERR_CORRUPT;
         vp = e->c2v[ld_next(c)];
         nc = 3u * s->faces++;
-        ld_set_opp(e, nc, corner, e->lean);
-        ld_set_opp(e, nc + 1u, b, e->lean);
-        ld_set_opp(e, nc + 2u, c, e->lean);
+        ld_set_opp(e, nc, corner, LD_EB_LEAN(e));
+        ld_set_opp(e, nc + 1u, b, LD_EB_LEAN(e));
+        ld_set_opp(e, nc + 2u, c, LD_EB_LEAN(e));
         e->c2v[nc] = vx;
         e->c2v[nc + 1u] = vp;
         e->c2v[nc + 2u] = vn;
@@ -648,15 +655,15 @@ static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_
                 return LUMO_ERR_CORRUPT;
             e->c2v[c] = iv;
             if (left) {
-                c = ld_eb_swing_left(e, c, e->lean);
+                c = ld_eb_swing_left(e, c, LD_EB_LEAN(e));
                 if (c == LD_INV) {
-                    c = ld_eb_swing_right(e, start, e->lean);
+                    c = ld_eb_swing_right(e, start, LD_EB_LEAN(e));
                     left = 0;
                 } else if (c == start) {
                     c = LD_INV;
                 }
             } else {
-                c = ld_eb_swing_right(e, c, e->lean);
+                c = ld_eb_swing_right(e, c, LD_EB_LEAN(e));
             }
         }
         e->lmc[iv] = e->lmc[src];
@@ -732,7 +739,7 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
      * when the symbols are done */
     s.stack = ld_free_space(&d->mem, &cap);
     s.cap = cap > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)cap;
-    st = e->lean ? ld_eb_symbols_lean(e, &s, num_symbols) : ld_eb_symbols_fast(e, &s, num_symbols);
+    st = LD_EB_LEAN(e) ? ld_eb_symbols_lean(e, &s, num_symbols) : ld_eb_symbols_fast(e, &s, num_symbols);
     ld_free_used(&d->mem, (size_t)s.max_top * sizeof(uint32_t));
     if (st || (st = ld_eb_start_faces(e, &s)))
         return st;
@@ -810,7 +817,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
 
 static lumo_status ld_eb_seams(struct ld_eb *e)
 {
-    return e->packed ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
+    return LD_EB_PACKED(e) ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
 }
 
 /* The attribute vertices a table may have, which its border bytes are
@@ -895,7 +902,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_a
 
 static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
 {
-    return e->packed ? ld_eb_attr_vertices_run(e, a, 1) : ld_eb_attr_vertices_run(e, a, 0);
+    return LD_EB_PACKED(e) ? ld_eb_attr_vertices_run(e, a, 1) : ld_eb_attr_vertices_run(e, a, 0);
 }
 
 /* A vertex is on a border when it has no left-most corner or that corner
@@ -927,7 +934,7 @@ static LD_FORCE_INLINE void ld_eb_border_fill(const uint32_t *lmc, const uint32_
 static uint8_t *ld_eb_border(struct ld_eb *e)
 {
     uint8_t *border = e->lmc_top - (((size_t)e->num_vertices + 7u) & ~(size_t)7u);
-    if (e->lean)
+    if (LD_EB_LEAN(e))
         ld_eb_border_fill(e->lmc, NULL, e->o24, e->num_vertices, border, 1);
     else
         ld_eb_border_fill(e->lmc, e->opp32, NULL, e->num_vertices, border, 0);
@@ -1187,12 +1194,12 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
         return LUMO_OK;
     }
     if (e->vpoints) {
-        lumo_status st = e->packed ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
+        lumo_status st = LD_EB_PACKED(e) ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
         if (!st)
             ld_eb_vpoints_tables(d, e);
         return st;
     }
-    return e->packed ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
+    return LD_EB_PACKED(e) ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
 }
 
 /* ---- entry points ----------------------------------------------------------------- */
@@ -1207,7 +1214,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
      * vertex is a point: the corner table's vertex map is the output face
      * array itself. */
     e->c2v = own_map ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
-    if (!e->lean) {
+    if (!LD_EB_LEAN(e)) {
         e->opp_top = ld_tmp_mark(&d->mem);
         e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     }
@@ -1215,7 +1222,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
-    if (e->lean) {
+    if (LD_EB_LEAN(e)) {
         e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
         e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
     }
@@ -1383,7 +1390,7 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     /* without seams the first sequence, which knows the traversals, drops
      * the left-most corners (default) or packs the table or reads it as
      * decoded (lean, ld_eb_reads_o24) */
-    if (e->lean && nad && (st = ld_eb_pack(d, e)))
+    if (LD_EB_LEAN(e) && nad && (st = ld_eb_pack(d, e)))
         return st;
     d->num_faces = faces;
     if ((st = ld_eb_alloc_attr_data(d, e)))
@@ -1536,7 +1543,7 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (e->ad[ad].ct.num_vertices > vmap)
             vmap = e->ad[ad].ct.num_vertices;
     }
-    if (!e->lean && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
+    if (!LD_EB_LEAN(e) && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
         return st;  /* default, no seams, first sequence */
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
         keep = ld_eb_reads_o24(decoder, d->num_decoders, seq->last, e->dec_traversal[0], &d->buf);
@@ -1759,7 +1766,7 @@ static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
     }
     if (!e->valence)
         return LUMO_OK;
-    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, e->lean ? 1u : sizeof(uint32_t));
+    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, LD_EB_LEAN(e) ? 1u : sizeof(uint32_t));
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         if ((st = ld_varint32(b, &n)))
             return st;
@@ -1972,9 +1979,9 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
                                   ? ld_need_bytes(ld_eb_need_vertices(e), 1)
                                   : 0u;
         e->settled = 1;
-        keep = e->lean &&
+        keep = LD_EB_LEAN(e) &&
                ld_eb_reads_o24(decoder, e->num_decoders, s->last, e->dec_traversal[0], b);
-        if (!e->lean) {  /* ld_eb_drop_lmc */
+        if (!LD_EB_LEAN(e)) {  /* ld_eb_drop_lmc */
             ld_need_release(k, e->w_lmc_top);
             if (border)
                 ld_need_tmp(k, ld_eb_need_vertices(e), 1);
@@ -2021,7 +2028,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
 void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites)
 {
     const size_t opp = ld_need_bytes(3u * (size_t)e->faces, 4u);
-    const size_t top = !e->lean ? e->w_opp_top + (opposites ? 0u : opp)
+    const size_t top = !LD_EB_LEAN(e) ? e->w_opp_top + (opposites ? 0u : opp)
                                 : e->w_lmc_top + (opposites ? 0u : e->w_table);
     if (!e->table_live)
         return;

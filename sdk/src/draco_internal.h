@@ -47,6 +47,23 @@
 #define LD_NOINLINE
 #endif
 
+/* A build with the lean mode only (LUMO_DRACO_MODES, lumo/draco.h): every
+ * decode is lean, and each test below that picks a walk's instance by its
+ * opposite store is a constant, so the default mode's instances are not
+ * compiled in. */
+#if LUMO_DRACO_MODES == LUMO_DRACO_MODES_LEAN
+#define LD_LEAN_ONLY 1
+#elif LUMO_DRACO_MODES == LUMO_DRACO_MODES_ALL
+#define LD_LEAN_ONLY 0
+#else
+#error "LUMO_DRACO_MODES: LUMO_DRACO_MODES_ALL or LUMO_DRACO_MODES_LEAN"
+#endif
+/* The decode's mode from the caller's flags. */
+static inline uint8_t ld_mode_lean(unsigned flags)
+{
+    return (uint8_t)(LD_LEAN_ONLY || (flags & LUMO_DRACO_LEAN) != 0);
+}
+
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)
 /* The lean mode keeps EdgeBreaker corner ids in 23 bits while it decodes
@@ -582,6 +599,13 @@ typedef struct ld_ct {
     uint32_t num_vertices;
     uint32_t num_corners;
 } ld_ct;
+
+/* The table's opposites are not 32-bit ids (packed, or none): picks the
+ * walks' instances. Always so in a lean-only build, where opp32 is NULL. */
+static inline int ld_ct_packed(const ld_ct *t)
+{
+    return LD_LEAN_ONLY || t->opp32 == NULL;
+}
 
 /* x is a multiple of 3 exactly when x * 3^-1 (mod 2^32) <= (2^32 - 1) / 3:
  * one multiply and a compare instead of a division (corners < 2^32 - 1). */

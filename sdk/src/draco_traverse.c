@@ -208,10 +208,10 @@ static lumo_status ld_dfs_all(ld_walk *w, uint32_t *stack)
     if (w->ct->o24)  /* a mesh without seams */
         return ld_dfs_starts(w, stack, LD_STORE_O24, 0);
     if (!w->ct->seam)
-        return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 0)
-                            : ld_dfs_starts(w, stack, LD_STORE_PACKED, 0);
-    return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 1)
-                        : ld_dfs_starts(w, stack, LD_STORE_PACKED, 1);
+        return !ld_ct_packed(w->ct) ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 0)
+                                    : ld_dfs_starts(w, stack, LD_STORE_PACKED, 0);
+    return !ld_ct_packed(w->ct) ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 1)
+                                : ld_dfs_starts(w, stack, LD_STORE_PACKED, 1);
 }
 
 /* Prediction-degree traversal: three priority stacks sharing one node pool
@@ -371,8 +371,8 @@ out:
 static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
 {
     if (!w->ct->seam)  /* the mesh's own table: no seam test per opposite */
-        return w->ct->opp32 ? ld_degree_walk(w, q, 0, 0) : ld_degree_walk(w, q, 1, 0);
-    return w->ct->opp32 ? ld_degree_walk(w, q, 0, 1) : ld_degree_walk(w, q, 1, 1);
+        return !ld_ct_packed(w->ct) ? ld_degree_walk(w, q, 0, 0) : ld_degree_walk(w, q, 1, 0);
+    return !ld_ct_packed(w->ct) ? ld_degree_walk(w, q, 0, 1) : ld_degree_walk(w, q, 1, 1);
 }
 
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t max_values,
