@@ -33,13 +33,12 @@ typedef struct ld_attr_data {
     ld_rabs seams;
     uint8_t *seam;         /* per corner: opposite edge is a seam */
     uint8_t *vseam;        /* per mesh vertex: on a seam */
-    uint32_t *c2v;         /* attribute vertex of each corner */
-    uint8_t *border;       /* attribute vertex -> on a border or seam (the
-                              depth-first walk's only use of a left-most
-                              corner: a byte, not a 32-bit corner) */
+    uint32_t *rep;         /* point -> its attribute vertex's first point |
+                              border flag << 31 (ld_ct.rep, ld_eb_points_run) */
+    uint32_t num_avs;      /* attribute vertices (RecomputeVertices' count) */
     uint32_t ones;         /* interior edges marked as seams */
     uint8_t shared;        /* no interior seam: ct is the mesh's table
-                              (ld_eb_attr_table), no c2v or seam of its own */
+                              (ld_eb_attr_table), no rep or seam of its own */
     ld_ct ct;
 } ld_attr_data;
 
@@ -820,89 +819,15 @@ static lumo_status ld_eb_seams(struct ld_eb *e)
     return LD_EB_PACKED(e) ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
 }
 
-/* The attribute vertices a table may have, which its border bytes are
- * sized by: at most one per corner, and the V encoded vertices with each
- * seam edge splitting its two end vertices once (the bound the decode
- * checks and the arena need takes; a byte per corner before, 3 B/face). */
-static uint32_t ld_eb_attr_vertex_cap(uint32_t corners, uint32_t verts, uint32_t ones)
+/* The points a mesh may have, which the attributes' rep maps are sized
+ * by before they are assigned: at most one per corner, and the V encoded
+ * vertices with each seam edge of any attribute splitting its two end
+ * vertices once (the bound the decode checks and the arena need takes,
+ * from the seam coders' ones). */
+static uint32_t ld_eb_point_cap(uint32_t corners, uint32_t verts, uint64_t ones)
 {
-    /* verts <= corners < 2^28 (the header checks): 32 bits do once ones
-     * is below corners / 2 */
-    if (ones >= corners / 2u || verts + 2u * ones > corners)
-        return corners;
-    return verts + 2u * ones;
-}
-
-/* MeshAttributeCornerTable::RecomputeVertices: split mesh vertices into
- * attribute vertices along seam edges. */
-static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_attr_data *a,
-                                                            int packed)
-{
-    uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
-    const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
-    uint32_t v, n = 0, live = 0;
-    a->ct.c2v = a->c2v;
-    a->ct.opp32 = e->ct.opp32;
-    a->ct.opp = e->ct.opp;
-    a->ct.vmask = 0xFFFFFFFFu;
-    a->ct.seam = a->seam;
-    a->ct.lmc = NULL;
-    a->ct.border = a->border;
-    a->ct.num_corners = e->num_corners;
-    for (v = 0; v < e->num_vertices; ++v) {
-        uint32_t c = e->lmc[v], first, act, vid;
-        if (c == LD_INV)
-            continue;
-        live++;
-        if (n >= cap)
-            return LUMO_ERR_CORRUPT;
-        vid = n++;
-        first = c;
-        if (a->vseam[v]) {
-            act = ld_swing_left(&a->ct, first);
-            while (act != LD_INV) {
-                if (budget == 0)
-                    return LUMO_ERR_LIMIT;
-                --budget;
-                first = act;
-                act = ld_swing_left(&a->ct, act);
-                if (act == c)
-                    return LUMO_ERR_CORRUPT;
-            }
-        }
-        a->c2v[first] = vid;
-        /* Every end of a seam or border edge is in vseam (ld_add_seam),
-         * and its fan starts where the swing left ends: a border for the
-         * depth-first walk. Without one the fan is closed. */
-        a->border[vid] = a->vseam[v];
-        act = ld_eb_mswing_right(e, first, packed);
-        while (act != LD_INV && act != first) {
-            if (budget == 0)
-                return LUMO_ERR_LIMIT;
-            --budget;
-            if (a->seam[ld_next_v(act)]) {
-                if (n >= cap)
-                    return LUMO_ERR_CORRUPT;
-                vid = n++;
-                a->border[vid] = 1;  /* its left edge is a seam */
-            }
-            a->c2v[act] = vid;
-            act = ld_eb_mswing_right(e, act, packed);
-        }
-    }
-    e->budget = budget;
-    /* the bounds the arena need takes: the encoded vertices live (S were
-     * merged), at most one attribute vertex per corner, and a seam edge
-     * splits its two end vertices once each */
-    if (live > e->encoded_vertices || n > e->num_corners || n > live + 2u * (uint64_t)a->ones)
-        return LUMO_ERR_CORRUPT;
-    a->ct.num_vertices = n;
-    return LUMO_OK;
-}
-
-static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
-{
-    return LD_EB_PACKED(e) ? ld_eb_attr_vertices_run(e, a, 1) : ld_eb_attr_vertices_run(e, a, 0);
+    const uint64_t split = verts + 2u * ones;  /* verts <= corners < 2^28 */
+    return split < corners ? (uint32_t)split : corners;
 }
 
 /* A vertex is on a border when it has no left-most corner or that corner
@@ -1028,79 +953,186 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
     return LUMO_OK;
 }
 
-/* AssignPointsToCorners: one point per distinct combination of attribute
- * vertices around each mesh vertex, numbered in vertex order. */
+/* AssignPointsToCorners, with the attribute vertices of RecomputeVertices
+ * named by their points instead of a vertex per corner (12 B/face per
+ * attribute with seams, issue 25 round five). An attribute's seams cut a
+ * mesh vertex's fan into its attribute vertices: on an open fan every
+ * crossing starts a vertex, on a closed one each crossing does when there
+ * are two or more (with one, RecomputeVertices starts the fan's only
+ * vertex at it). A point is a fan segment no attribute's vertex changes
+ * in; libdraco starts a closed fan at the first change of the first
+ * attribute that has one (`dedup`). Per point and attribute, rep holds the
+ * first point of the point's attribute vertex (on a closed fan the last
+ * segment after the walk's last crossing is the first's vertex when no
+ * crossing lies at the start) and, in bit 31, the vertex's border flag:
+ * the mesh vertex ends a seam or border edge (vseam), as RecomputeVertices
+ * set it. Every corner must get a point; an open fan must start at its
+ * left end, and a closed one with vertex seam flags must be crossed (as
+ * RecomputeVertices' swing left required). */
+typedef struct ld_cut {
+    const uint8_t *seam;
+    uint32_t *rep;
+    uint32_t k;        /* crossings of the fan */
+    uint32_t seen;     /* ... met by the walk from the fan's start */
+    uint32_t cur;      /* rep word of the walk's current vertex */
+    uint32_t first;    /* ... of the walk's first vertex */
+    uint8_t cuts;      /* its crossings change its vertex on this fan */
+    uint8_t wrap;      /* the last segment is the first's vertex */
+} ld_cut;
+
+/* The fan of vertex v from its left-most corner c: its crossings per
+ * attribute and whether it closes. */
+static LD_FORCE_INLINE lumo_status ld_eb_fan_cuts(const struct ld_eb *e, uint32_t c, ld_cut *cut,
+                                                  uint32_t n, uint64_t *budget, int *closed,
+                                                  int packed)
+{
+    uint32_t act = c, i;
+    *closed = 0;
+    for (i = 0; i < n; ++i)
+        cut[i].k = 0;
+    for (;;) {
+        const uint32_t nx = ld_eb_mswing_right(e, act, packed);
+        if (nx == LD_INV)
+            return LUMO_OK;
+        if (*budget == 0)
+            return LUMO_ERR_LIMIT;
+        --*budget;
+        for (i = 0; i < n; ++i)  /* the edge between act and nx */
+            cut[i].k += cut[i].seam[ld_next_v(nx)];
+        if (nx == c) {
+            *closed = 1;
+            return LUMO_OK;
+        }
+        act = nx;
+    }
+}
+
+/* The fan's start: libdraco's dedup corner of a closed fan (the first
+ * change of the first attribute with one), else c. */
+static LD_FORCE_INLINE uint32_t ld_eb_fan_start(const struct ld_eb *e, uint32_t c, const ld_cut *cut,
+                                                uint32_t n, int packed)
+{
+    uint32_t i, act;
+    for (i = 0; i < n; ++i) {
+        if (!cut[i].cuts)
+            continue;
+        for (act = ld_eb_mswing_right(e, c, packed); act != c;  /* closed: k >= 2 */
+             act = ld_eb_mswing_right(e, act, packed))
+            if (cut[i].seam[ld_next_v(act)])
+                return act;
+    }
+    return c;
+}
+
+/* A new point: its rep word for every attribute. */
+static LD_FORCE_INLINE lumo_status ld_eb_new_point(ld_cut *cut, uint32_t n, uint32_t *np,
+                                                   uint32_t cap)
+{
+    uint32_t i;
+    if (*np >= cap)
+        return LUMO_ERR_CORRUPT;
+    for (i = 0; i < n; ++i)
+        cut[i].rep[*np] = cut[i].cur;
+    ++*np;
+    return LUMO_OK;
+}
+
 static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, int packed)
 {
     uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
-    uint32_t v, i, np = 0, live = 0, nown = 0;
+    uint64_t ones = 0, sum = 0;
+    uint32_t v, i, c, np = 0, live = 0, nown = 0, cap;
     uint32_t *pts = d->faces;
+    ld_attr_data *own[LD_MAX_ATTR_DATA];
+    ld_cut cut[LD_MAX_ATTR_DATA];
+    lumo_status st;
     /* only attributes with interior seams cut a fan (ld_eb_attr_tables) */
-    const ld_attr_data *own[LD_MAX_ATTR_DATA];
-    for (i = 0; i < e->num_attr_data; ++i)
-        if (!e->ad[i].shared)
-            own[nown++] = &e->ad[i];
-    const uint32_t *c2v0;  /* the first one's in a local: one load per corner */
-    memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
-    c2v0 = nown ? own[0]->c2v : NULL;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ones += e->ad[i].ones;
+        if (!e->ad[i].shared) {
+            own[nown] = &e->ad[i];
+            cut[nown].seam = e->ad[i].seam;
+            cut[nown].rep = e->ad[i].rep;
+            own[nown++]->num_avs = 0;
+        }
+    }
+    cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ones);
+    memset(pts, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
     for (v = 0; v < e->num_vertices; ++v) {
-        uint32_t c = e->lmc[v], dedup, prev;
-        if (c == LD_INV)
+        const uint32_t lc = e->lmc[v];
+        uint32_t start, p0;
+        int closed;
+        if (lc == LD_INV)
             continue;
         live++;
-        dedup = c;
-        for (i = 0; i < nown && !e->hole[v]; ++i) {
-            const ld_attr_data *a = own[i];
-            uint32_t vid, act;
-            int found = 0;
-            if (!a->vseam[ld_eb_mvert(e, c, packed)])
-                continue;
-            vid = a->c2v[c];
-            act = ld_eb_mswing_right(e, c, packed);
-            while (act != c) {
-                if (act == LD_INV)
-                    return LUMO_ERR_CORRUPT;
-                if (budget == 0)
-                    return LUMO_ERR_LIMIT;
-                --budget;
-                if (a->c2v[act] != vid) {
-                    dedup = act;
-                    found = 1;
-                    break;
-                }
-                act = ld_eb_mswing_right(e, act, packed);
-            }
-            if (found)
-                break;
+        if ((st = ld_eb_fan_cuts(e, lc, cut, nown, &budget, &closed, packed)))
+            return st;
+        if (!closed && ld_eb_mopp(e, ld_next_v(lc), packed) != LD_INV)
+            return LUMO_ERR_CORRUPT;  /* an open fan starts at its left end */
+        for (i = 0; i < nown; ++i) {
+            const int vs = own[i]->vseam[v];
+            if (vs && ((closed && cut[i].k == 0) || (!closed && !e->hole[v])))
+                return LUMO_ERR_CORRUPT;
+            cut[i].cuts = (uint8_t)(vs && (!closed || cut[i].k >= 2u));
+            own[i]->num_avs += !cut[i].cuts ? 1u : closed ? cut[i].k : cut[i].k + 1u;
         }
-        c = dedup;
-        pts[c] = np++;
-        prev = c;
-        c = ld_eb_mswing_right(e, c, packed);
-        while (c != LD_INV && c != dedup) {
-            int seam;
+        start = closed && !e->hole[v] ? ld_eb_fan_start(e, lc, cut, nown, packed) : lc;
+        p0 = np;
+        for (i = 0; i < nown; ++i) {
+            cut[i].first = cut[i].cur = p0 | (own[i]->vseam[v] ? LD_REP_BORDER : 0u);
+            cut[i].seen = 0;
+            cut[i].wrap = (uint8_t)(cut[i].cuts && closed && !cut[i].seam[ld_next_v(start)]);
+        }
+        if ((st = ld_eb_new_point(cut, nown, &np, cap)))
+            return st;
+        pts[start] = p0;
+        for (c = ld_eb_mswing_right(e, start, packed); c != LD_INV && c != start;
+             c = ld_eb_mswing_right(e, c, packed)) {
+            int fresh = 0;
             if (budget == 0)
                 return LUMO_ERR_LIMIT;
             --budget;
-            seam = nown && c2v0[c] != c2v0[prev];
-            for (i = 1; i < nown && !seam; ++i)
-                seam = own[i]->c2v[c] != own[i]->c2v[prev];
-            pts[c] = seam ? np++ : pts[prev];
-            prev = c;
-            c = ld_eb_mswing_right(e, c, packed);
+            for (i = 0; i < nown; ++i) {
+                if (!cut[i].cuts || !cut[i].seam[ld_next_v(c)])
+                    continue;
+                fresh = 1;
+                cut[i].cur = ++cut[i].seen == cut[i].k && cut[i].wrap
+                                 ? cut[i].first
+                                 : np | (cut[i].cur & LD_REP_BORDER);
+            }
+            if (fresh && (st = ld_eb_new_point(cut, nown, &np, cap)))
+                return st;
+            pts[c] = np - 1u;
         }
     }
-    {   /* at most one per corner, and at most the attribute vertices
-         * together (each cut of a fan is some attribute's cut; a shared
-         * table has one per live vertex): the bounds of the arena need */
-        uint64_t sum = 0, ones = 0;
-        for (i = 0; i < e->num_attr_data; ++i) {
-            sum += e->ad[i].shared ? live : e->ad[i].ct.num_vertices;
-            ones += e->ad[i].ones;
-        }
-        if (np > e->num_corners || np > sum || np > e->encoded_vertices + 2u * ones ||
-            live > e->encoded_vertices)
+    for (c = 0; c < e->num_corners; ++c)  /* every corner in some fan */
+        if (pts[c] == LD_INV)
             return LUMO_ERR_CORRUPT;
+    /* the bounds of the arena need: the encoded vertices live (S were
+     * merged), an attribute's vertices at most one per corner and V plus
+     * two per seam edge, and the points at most the attribute vertices
+     * together (each cut of a fan is some attribute's cut; a shared table
+     * has one per live vertex) */
+    for (i = 0; i < e->num_attr_data; ++i) {
+        const ld_attr_data *a = &e->ad[i];
+        sum += a->shared ? live : a->num_avs;
+        if (!a->shared && (a->num_avs > e->num_corners || a->num_avs > live + 2u * (uint64_t)a->ones))
+            return LUMO_ERR_CORRUPT;
+    }
+    if (np > sum || live > e->encoded_vertices)
+        return LUMO_ERR_CORRUPT;
+    for (i = 0; i < nown; ++i) {  /* c2v: the points, through rep */
+        ld_attr_data *a = own[i];
+        a->ct.c2v = d->faces;
+        a->ct.vmask = 0xFFFFFFFFu;
+        a->ct.opp32 = e->ct.opp32;
+        a->ct.opp = e->ct.opp;
+        a->ct.seam = a->seam;
+        a->ct.rep = a->rep;
+        a->ct.lmc = NULL;
+        a->ct.border = NULL;
+        a->ct.num_corners = e->num_corners;
+        a->ct.num_vertices = np;
     }
     d->num_points = np;
     e->budget = budget;
@@ -1280,12 +1312,13 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
  * its vertex seam flags as the depth-first walk's border bytes (a vertex
  * is on a border exactly when a border edge ends there, ld_add_seam), and
  * its seam flags go. The others keep their seam flags, moved up over the
- * dead ones, and get a vertex per corner and border bytes of their own. */
+ * dead ones, and get a rep word per point (ld_eb_points_run: 4 B per point
+ * bound instead of a vertex per corner and a border byte per vertex). */
 static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
 {
     uint8_t *top = e->seam_top;
+    uint64_t ones = 0;
     uint32_t i;
-    lumo_status st;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
         /* Decided on the interior edges' bits, the only ones the encoder
@@ -1310,18 +1343,16 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
         a->seam = top;
     }
     ld_tmp_release(&d->mem, top);
+    for (i = 0; i < e->num_attr_data; ++i)
+        ones += e->ad[i].ones;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
         if (a->shared)
             continue;
-        a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-        a->border = ld_tmp(&d->mem, (size_t)cap + 1u, 1);
-        if (!a->c2v || !a->border)
+        a->rep = ld_tmp(&d->mem, ld_eb_point_cap(e->num_corners, e->encoded_vertices, ones),
+                        sizeof(uint32_t));
+        if (!a->rep)
             return LUMO_ERR_NOMEM;
-        memset(a->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
-        if ((st = ld_eb_attr_vertices(e, a)))
-            return st;
     }
     return LUMO_OK;
 }
@@ -1526,6 +1557,40 @@ static lumo_status ld_eb_point_map(const ld_ct *ct, const uint32_t *faces, uint3
     return LUMO_OK;
 }
 
+/* An attribute's table with seams (ld_ct.rep): the traversal's vertex ->
+ * value map is the output point map, read at each vertex's first point;
+ * then every other point takes its vertex's value (its first point is
+ * below it), so the predictions read a corner's value through its point
+ * and no vertex map of the attribute exists (issue 25 round five). */
+static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_attr_data *a,
+                                      ld_seq *seq)
+{
+    const uint32_t np = d->num_points, *rep = a->rep;
+    int32_t *map = ld_out(&d->mem, np, sizeof(int32_t));
+    ld_order o;
+    uint32_t p;
+    lumo_status st;
+    if (!map)
+        return LUMO_ERR_NOMEM;
+    o.vertex_to_value = map;
+    if ((st = ld_traverse(&d->mem, &a->ct, np, a->num_avs, d->eb->dec_traversal[decoder], &o)))
+        return st;
+    for (p = 0; p < np; ++p) {  /* unvisited (-1, -3) is huge unsigned */
+        const uint32_t x = (uint32_t)map[rep[p] & LD_REP_MASK];
+        if (x >= o.num_values)
+            return LUMO_ERR_CORRUPT;
+        map[p] = (int32_t)x;
+    }
+    seq->num_entries = o.num_values;
+    seq->faces = d->faces;
+    seq->faces_mask = 0xFFFFFFFFu;
+    seq->ct = &a->ct;
+    seq->vertex_to_value = map;
+    seq->value_to_corner = o.value_to_corner;
+    seq->point_to_value = (uint32_t *)map;
+    return LUMO_OK;
+}
+
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
@@ -1538,11 +1603,14 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     const int vmap_faces = !e->num_attr_data || e->vpoints;
     lumo_status st;
     if (ad >= 0) {
+        const uint32_t na = e->ad[ad].shared ? e->ad[ad].ct.num_vertices : e->ad[ad].num_avs;
         if (e->dec_type[decoder] != 0)
             ct = &e->ad[ad].ct;
-        if (e->ad[ad].ct.num_vertices > vmap)
-            vmap = e->ad[ad].ct.num_vertices;
+        if (na > vmap)
+            vmap = na;
     }
+    if (ct->rep)
+        return ld_eb_rep_sequence(d, decoder, &e->ad[ad], seq);
     if (!LD_EB_LEAN(e) && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
         return st;  /* default, no seams, first sequence */
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
@@ -1819,6 +1887,7 @@ static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean)
 {
     uint32_t verts, faces, symbols, splits, num_splits, i, own = 0;
+    uint64_t ones = 0;
     size_t mark, o24_top, seam_top;
     uint8_t type, nad;
     lumo_status st;
@@ -1885,12 +1954,11 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         own += !e->ad_shared[i];
     }
     ld_need_release(k, seam_top + own * ld_need_bytes(3u * (size_t)faces, 1));
-    for (i = 0; i < nad; ++i) {
-        if (e->ad_shared[i])
-            continue;
-        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-        ld_need_tmp(k, (size_t)ld_eb_attr_vertex_cap(3u * faces, e->verts, e->seam_ones[i]) + 1u, 1);
-    }
+    for (i = 0; i < nad; ++i)
+        ones += e->seam_ones[i];
+    for (i = 0; i < nad; ++i)  /* the rep maps, sized by the points' bound */
+        if (!e->ad_shared[i])
+            ld_need_tmp(k, ld_eb_point_cap(3u * faces, e->verts, ones), sizeof(uint32_t));
     if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
         ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));
     e->table_live = nad == 0;
@@ -1972,6 +2040,9 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
     int keep = 0;
+    /* an attribute's table with seams: its vertex map is the output point
+     * map (ld_eb_rep_sequence) */
+    const int rep = !own;
     if (ad >= 0 && !e->ad_shared[ad] && ld_eb_need_attr_vertices(k, e, ad) > vmap)
         vmap = ld_eb_need_attr_vertices(k, e, ad);
     if (!e->nad && !e->settled) {  /* ld_eb_sequence: the left-most corners */
@@ -1993,6 +2064,8 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     }
     if (vmap_faces)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));
+    else if (rep)
+        ld_need_out(k, (size_t)points, sizeof(uint32_t));
     else
         ld_need_tmp(k, (size_t)vmap, sizeof(int32_t));
     if (keep)  /* ld_eb_keep_o24: ... and over the border bytes */
@@ -2007,7 +2080,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
     ld_need_release(k, mark);
-    if (!vmap_faces)
+    if (!vmap_faces && !rep)
         ld_need_out(k, (size_t)points, sizeof(uint32_t));
     /* values: every point's value (no seams); with seams one per vertex
      * visited, learnt from a tagged stream (else at most nv) */

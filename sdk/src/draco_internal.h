@@ -592,6 +592,14 @@ typedef struct ld_ct {
                                  -2 in the unvisited vertex map, and each
                                  value keeps its corner's opposite */
     const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
+    /* An attribute's table with seams (ld_eb_points_run): c2v holds the
+     * points, and rep maps a point to its attribute vertex, named by the
+     * vertex's first point, with the vertex's border flag (the depth-first
+     * walk's test) in bit 31; the traversal's vertex is rep[point] &
+     * LD_REP_MASK. NULL: c2v holds the vertices. The predictions read a
+     * corner's value through its point (every point of a vertex holds the
+     * vertex's value once the traversal is done), so they ignore it. */
+    const uint32_t *rep;
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner
                                  has no swing left); NULL: ask lmc */
@@ -600,6 +608,8 @@ typedef struct ld_ct {
     uint32_t num_corners;
 } ld_ct;
 
+#define LD_REP_MASK 0x7FFFFFFFu
+#define LD_REP_BORDER 0x80000000u
 /* The table's opposites are not 32-bit ids (packed, or none): picks the
  * walks' instances. Always so in a lean-only build, where opp32 is NULL. */
 static inline int ld_ct_packed(const ld_ct *t)
@@ -627,6 +637,16 @@ static inline uint32_t ld_vert(const ld_ct *t, uint32_t c)
 {
     return c == LD_INV ? LD_INV : t->c2v[c] & t->vmask;
 }
+/* The vertex a traversal visits at corner c: c2v's, through rep when the
+ * table has one (LD_INV for a point out of range). */
+static inline uint32_t ld_tvert(const ld_ct *t, uint32_t c)
+{
+    const uint32_t v = ld_vert(t, c);
+    if (!t->rep)
+        return v;
+    return v < t->num_vertices ? t->rep[v] & LD_REP_MASK : LD_INV;
+}
+
 /* Swings take a valid corner and may return LD_INV. */
 static inline uint32_t ld_swing_right(const ld_ct *t, uint32_t c)
 {

@@ -56,7 +56,7 @@ static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
 
 static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 {
-    uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
+    uint32_t n = ld_tvert(w->ct, ld_next_v(corner)), p = ld_tvert(w->ct, ld_prev_v(corner));
     if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
         return LUMO_ERR_CORRUPT;
     if (w->o->vertex_to_value[n] < 0)
@@ -69,13 +69,14 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 /* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
  * (the stores into the order arrays would otherwise force reloads);
  * `store`: a constant, one of LD_STORE_*; `seams`: a constant, 0 for the
- * mesh's own table (no seam test per opposite). */
+ * mesh's own table (no seam test per opposite), 1 for an attribute's,
+ * whose vertices and border flags are its points' rep words (ld_ct.rep). */
 static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack,
                                           int store, int seams)
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
-    const uint32_t vmask = ct->vmask;
+    const uint32_t vmask = ct->vmask, *rep = ct->rep;
     const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam, *border = ct->border;
     uint8_t *o24 = (uint8_t *)(uintptr_t)ct->o24;  /* face flags: LD_STORE_O24 */
@@ -106,7 +107,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
             continue;
         }
         for (;;) {
-            uint32_t v, r, l, m3;
+            uint32_t v, r, l, m3, rw = 0;
             if (store == LD_STORE_O24)
                 ld_o24_mark(o24, c - c % 3u);
             else
@@ -116,12 +117,18 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
             }
+            if (seams) {  /* the point's attribute vertex (below nv) */
+                rw = rep[v];
+                v = rw & LD_REP_MASK;
+            }
             m3 = c % 3u;
             if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
                 if (store == LD_STORE_O24) {
                     boundary = vmap[v] == LD_VMAP_BORDER;
+                } else if (seams) {
+                    boundary = (int)(rw >> 31);
                 } else if (border) {
                     boundary = border[v];
                 } else {
@@ -233,7 +240,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *opp32 = ct->opp32, nv = ct->num_vertices, vmask = ct->vmask;
-    const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap;
+    const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap, *rep = ct->rep;
     const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam;
     uint8_t *fseen = w->face_seen;
@@ -243,7 +250,9 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     lumo_status st = LUMO_OK;
     int best = 0;
 #define LD_OPP(c) ((seams && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
-#define LD_VERT(c) (packed ? c2v[c] & vmask : c2v[c])
+    /* an attribute's table (seams): the point's attribute vertex (ld_ct.rep) */
+#define LD_PT(c) (packed ? c2v[c] & vmask : c2v[c])
+#define LD_VERT(c) (!seams ? LD_PT(c) : LD_PT(c) < nv ? rep[LD_PT(c)] & LD_REP_MASK : LD_INV)
 #define LD_SEEN(c) ((c) == LD_INV || fseen[c])
     /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
 #define LD_VISIT(v, c)                      \
@@ -359,6 +368,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     }
 out:
 #undef LD_OPP
+#undef LD_PT
 #undef LD_VERT
 #undef LD_SEEN
 #undef LD_VISIT
