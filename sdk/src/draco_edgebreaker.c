@@ -64,6 +64,8 @@ struct ld_eb {
                                   the vertices are the points and the output
                                   face array is the vertex map (ld_eb_renumber) */
     uint8_t released;          /* ld_eb_release_table has run */
+    uint32_t *rep;             /* with seams: point -> its mesh vertex's first
+                                  point | fan open << 31 (ld_ct.rep) */
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -768,9 +770,10 @@ static LD_FORCE_INLINE uint32_t ld_eb_mvert(const struct ld_eb *e, uint32_t c, i
     return packed ? e->ct.c2v[c] & e->ct.vmask : e->ct.c2v[c];
 }
 
-static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
+/* The edge opposite corner c (its opposite o, or LD_INV) is a seam of a:
+ * the faces still hold the mesh vertices. */
+static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c, uint32_t o)
 {
-    uint32_t o = ld_opp(&e->ct, c);
     a->seam[c] = 1;
     a->vseam[ld_vert(&e->ct, ld_next(c))] = 1;
     a->vseam[ld_vert(&e->ct, ld_prev(c))] = 1;
@@ -781,16 +784,18 @@ static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
     }
 }
 
-static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
+/* Read before the table is packed (lean: on the 24-bit table), so that the
+ * packing knows how many points the seams may make (ld_eb_pack_ids). */
+static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int lean)
 {
     uint32_t f, k, i, reads = 0;
     for (f = 0; f < e->num_faces; ++f) {
         const uint32_t c0 = 3u * f, cs[3] = {c0, c0 + 1u, c0 + 2u};
         for (k = 0; k < 3; ++k) {
-            uint32_t o = ld_eb_mopp(e, cs[k], packed);
+            uint32_t o = ld_eb_opp(e, cs[k], lean);
             if (o == LD_INV) {
                 for (i = 0; i < e->num_attr_data; ++i)
-                    ld_add_seam(e, &e->ad[i], cs[k]);
+                    ld_add_seam(e, &e->ad[i], cs[k], o);
                 continue;
             }
             if (o < c0)  /* an earlier face's edge: its bit is read */
@@ -802,7 +807,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
             for (i = 0; i < e->num_attr_data; ++i)
                 if (ld_rabs_bit(&e->ad[i].seams)) {
                     e->ad[i].ones++;
-                    ld_add_seam(e, &e->ad[i], cs[k]);
+                    ld_add_seam(e, &e->ad[i], cs[k], o);
                 }
         }
     }
@@ -816,7 +821,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
 
 static lumo_status ld_eb_seams(struct ld_eb *e)
 {
-    return LD_EB_PACKED(e) ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
+    return LD_EB_LEAN(e) ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
 }
 
 /* The points a mesh may have, which the attributes' rep maps are sized
@@ -828,6 +833,27 @@ static uint32_t ld_eb_point_cap(uint32_t corners, uint32_t verts, uint64_t ones)
 {
     const uint64_t split = verts + 2u * ones;  /* verts <= corners < 2^28 */
     return split < corners ? (uint32_t)split : corners;
+}
+
+/* Interior seam edges of all attribute data (after ld_eb_seams). */
+static uint64_t ld_eb_ones(const struct ld_eb *e)
+{
+    uint64_t ones = 0;
+    uint32_t i;
+    for (i = 0; i < e->num_attr_data; ++i)
+        ones += e->ad[i].ones;
+    return ones;
+}
+
+/* The ids the packed face words must hold: the vertices, and with seams
+ * (points renumbered in place, ld_eb_points_run) the points' bound plus
+ * one for the mark of a corner not yet given a point. The decode and the
+ * arena need (escape width) ask alike. */
+static uint32_t ld_eb_pack_ids(uint32_t vertices, uint32_t corners, uint32_t verts, uint64_t ones,
+                               int seamed)
+{
+    const uint32_t pts = seamed ? ld_eb_point_cap(corners, verts, ones) + 1u : 0u;
+    return pts > vertices ? pts : vertices;
 }
 
 /* A vertex is on a border when it has no left-most corner or that corner
@@ -920,7 +946,8 @@ static uint8_t *ld_move_up(uint8_t *top, const void *src, size_t bytes)
 static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
 {
     const uint32_t nc = e->num_corners;
-    const unsigned vshift = ld_pot_vshift(e->num_vertices);
+    const unsigned vshift = ld_pot_vshift(ld_eb_pack_ids(e->num_vertices, nc, e->encoded_vertices,
+                                                         ld_eb_ones(e), e->num_attr_data && !e->vpoints));
     const size_t cb = (((size_t)nc + 1023u) >> LD_POT_COARSE) * 4u;
     const size_t fb = (((size_t)nc + 15u) >> LD_POT_BLOCK) * 2u;
     const size_t bb = ld_pot_bases(nc) * 4u;
@@ -1024,13 +1051,14 @@ static LD_FORCE_INLINE uint32_t ld_eb_fan_start(const struct ld_eb *e, uint32_t 
     return c;
 }
 
-/* A new point: its rep word for every attribute. */
+/* A new point: its rep word for the mesh (`mesh`) and every attribute. */
 static LD_FORCE_INLINE lumo_status ld_eb_new_point(ld_cut *cut, uint32_t n, uint32_t *np,
-                                                   uint32_t cap)
+                                                   uint32_t cap, uint32_t *mrep, uint32_t mesh)
 {
     uint32_t i;
     if (*np >= cap)
         return LUMO_ERR_CORRUPT;
+    mrep[*np] = mesh;
     for (i = 0; i < n; ++i)
         cut[i].rep[*np] = cut[i].cur;
     ++*np;
@@ -1040,15 +1068,18 @@ static LD_FORCE_INLINE lumo_status ld_eb_new_point(ld_cut *cut, uint32_t n, uint
 static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, int packed)
 {
     uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
-    uint64_t ones = 0, sum = 0;
+    uint64_t sum = 0;
     uint32_t v, i, c, np = 0, live = 0, nown = 0, cap;
+    /* the faces hold the vertex ids (and, packed, the opposites above
+     * vmask): each corner's id becomes its point's, marked vmask until
+     * then (ld_eb_pack_ids keeps vmask above every point) */
     uint32_t *pts = d->faces;
+    const uint32_t vmask = e->ct.vmask;
     ld_attr_data *own[LD_MAX_ATTR_DATA];
     ld_cut cut[LD_MAX_ATTR_DATA];
     lumo_status st;
     /* only attributes with interior seams cut a fan (ld_eb_attr_tables) */
     for (i = 0; i < e->num_attr_data; ++i) {
-        ones += e->ad[i].ones;
         if (!e->ad[i].shared) {
             own[nown] = &e->ad[i];
             cut[nown].seam = e->ad[i].seam;
@@ -1056,11 +1087,12 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
             own[nown++]->num_avs = 0;
         }
     }
-    cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ones);
-    memset(pts, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
+    cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ld_eb_ones(e));
+    for (c = 0; c < e->num_corners; ++c)
+        pts[c] |= vmask;
     for (v = 0; v < e->num_vertices; ++v) {
         const uint32_t lc = e->lmc[v];
-        uint32_t start, p0;
+        uint32_t start, p0, mesh;
         int closed;
         if (lc == LD_INV)
             continue;
@@ -1078,14 +1110,15 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
         }
         start = closed && !e->hole[v] ? ld_eb_fan_start(e, lc, cut, nown, packed) : lc;
         p0 = np;
+        mesh = p0 | (closed ? 0u : LD_REP_BORDER);  /* a border: the fan is open */
         for (i = 0; i < nown; ++i) {
             cut[i].first = cut[i].cur = p0 | (own[i]->vseam[v] ? LD_REP_BORDER : 0u);
             cut[i].seen = 0;
             cut[i].wrap = (uint8_t)(cut[i].cuts && closed && !cut[i].seam[ld_next_v(start)]);
         }
-        if ((st = ld_eb_new_point(cut, nown, &np, cap)))
+        if ((st = ld_eb_new_point(cut, nown, &np, cap, e->rep, mesh)))
             return st;
-        pts[start] = p0;
+        pts[start] = (pts[start] & ~vmask) | p0;
         for (c = ld_eb_mswing_right(e, start, packed); c != LD_INV && c != start;
              c = ld_eb_mswing_right(e, c, packed)) {
             int fresh = 0;
@@ -1100,13 +1133,13 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
                                  ? cut[i].first
                                  : np | (cut[i].cur & LD_REP_BORDER);
             }
-            if (fresh && (st = ld_eb_new_point(cut, nown, &np, cap)))
+            if (fresh && (st = ld_eb_new_point(cut, nown, &np, cap, e->rep, mesh)))
                 return st;
-            pts[c] = np - 1u;
+            pts[c] = (pts[c] & ~vmask) | (np - 1u);
         }
     }
     for (c = 0; c < e->num_corners; ++c)  /* every corner in some fan */
-        if (pts[c] == LD_INV)
+        if ((pts[c] & vmask) == vmask)
             return LUMO_ERR_CORRUPT;
     /* the bounds of the arena need: the encoded vertices live (S were
      * merged), an attribute's vertices at most one per corner and V plus
@@ -1121,18 +1154,19 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
     }
     if (np > sum || live > e->encoded_vertices)
         return LUMO_ERR_CORRUPT;
-    for (i = 0; i < nown; ++i) {  /* c2v: the points, through rep */
-        ld_attr_data *a = own[i];
-        a->ct.c2v = d->faces;
-        a->ct.vmask = 0xFFFFFFFFu;
-        a->ct.opp32 = e->ct.opp32;
-        a->ct.opp = e->ct.opp;
+    /* every table's c2v: the points, through its rep map; the mesh's
+     * border flags are in its rep words (its left-most corners go unread) */
+    e->ct.rep = e->rep;
+    e->ct.lmc = NULL;
+    e->ct.border = NULL;
+    e->ct.num_vertices = np;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->ct = e->ct;
+        if (a->shared)
+            continue;
         a->ct.seam = a->seam;
         a->ct.rep = a->rep;
-        a->ct.lmc = NULL;
-        a->ct.border = NULL;
-        a->ct.num_corners = e->num_corners;
-        a->ct.num_vertices = np;
     }
     d->num_points = np;
     e->budget = budget;
@@ -1236,16 +1270,21 @@ static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 
 /* ---- entry points ----------------------------------------------------------------- */
 
+static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e);
+
 static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
+    lumo_status st;
     const int own_map = e->num_attr_data && !e->vpoints;
     e->num_corners = 3u * e->num_faces;
     d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
-    /* Without attribute seams, or without an interior one (vpoints), every
-     * vertex is a point: the corner table's vertex map is the output face
-     * array itself. */
-    e->c2v = own_map ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
+    /* The corner table's vertex map is the output face array itself:
+     * without seams, or without an interior one (vpoints), every vertex is
+     * a point (renumbered in place to point order); with seams the points
+     * are assigned over the vertex ids in place (ld_eb_points_run: no
+     * vertex map of 12 B/face beside the faces, issue 25 round five). */
+    e->c2v = d->faces;
     if (!LD_EB_LEAN(e)) {
         e->opp_top = ld_tmp_mark(&d->mem);
         e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
@@ -1254,12 +1293,15 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
+    /* the seam reading's tables above the 24-bit table, which moves up
+     * over the seam flags that go (ld_eb_attr_tables) before it is packed */
+    if (e->lmc && (st = ld_eb_alloc_attr_data(d, e)))
+        return st;
     if (LD_EB_LEAN(e)) {
         e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
         e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
     }
-    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && own_map) ||
-        !d->faces)
+    if (!d->faces || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && own_map))
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and the opposites: every symbol writes the three
      * vertices of its face and clears its three opposites before anything
@@ -1291,10 +1333,10 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
     uint32_t i;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        a->vseam = ld_tmp(&d->mem, e->num_vertices + 1u, 1);
+        a->vseam = ld_tmp(&d->mem, e->max_vertices + 1u, 1);
         if (!a->vseam)
             return LUMO_ERR_NOMEM;
-        memset(a->vseam, 0, e->num_vertices + 1u);
+        memset(a->vseam, 0, e->max_vertices + 1u);
     }
     e->seam_top = ld_tmp_mark(&d->mem);
     for (i = 0; i < e->num_attr_data; ++i) {
@@ -1317,8 +1359,8 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
 static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
 {
     uint8_t *top = e->seam_top;
-    uint64_t ones = 0;
-    uint32_t i;
+    uint32_t i, cap;
+    lumo_status st;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
         /* Decided on the interior edges' bits, the only ones the encoder
@@ -1342,15 +1384,25 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
         top = ld_move_up(top, a->seam, e->num_corners);
         a->seam = top;
     }
+    if (LD_EB_LEAN(e)) {  /* the 24-bit table moves up over the dead flags */
+        e->o24 = ld_move_up(top, e->o24, 9u * (size_t)e->num_faces + 1u);
+        e->o24_top = top;
+        top = e->o24;
+    }
     ld_tmp_release(&d->mem, top);
-    for (i = 0; i < e->num_attr_data; ++i)
-        ones += e->ad[i].ones;
+    if (LD_EB_LEAN(e) && (st = ld_eb_pack(d, e)))
+        return st;
+    if (e->vpoints)
+        return LUMO_OK;
+    cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ld_eb_ones(e));
+    e->rep = ld_tmp(&d->mem, cap, sizeof(uint32_t));
+    if (!e->rep)
+        return LUMO_ERR_NOMEM;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
         if (a->shared)
             continue;
-        a->rep = ld_tmp(&d->mem, ld_eb_point_cap(e->num_corners, e->encoded_vertices, ones),
-                        sizeof(uint32_t));
+        a->rep = ld_tmp(&d->mem, cap, sizeof(uint32_t));
         if (!a->rep)
             return LUMO_ERR_NOMEM;
     }
@@ -1420,12 +1472,9 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->ct.num_vertices = e->num_vertices;
     /* without seams the first sequence, which knows the traversals, drops
      * the left-most corners (default) or packs the table or reads it as
-     * decoded (lean, ld_eb_reads_o24) */
-    if (LD_EB_LEAN(e) && nad && (st = ld_eb_pack(d, e)))
-        return st;
+     * decoded (lean, ld_eb_reads_o24); with seams ld_eb_attr_tables packs
+     * it once the seams are read */
     d->num_faces = faces;
-    if ((st = ld_eb_alloc_attr_data(d, e)))
-        return st;
     if (nad && (st = ld_eb_seams(e)))
         return st;
     if (nad && (st = ld_eb_attr_tables(d, e)))
@@ -1516,56 +1565,16 @@ static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
     e->ct.o24 = e->o24;
 }
 
-/* The point -> value map of one attributes decoder: each point takes the
- * value of its corner's vertex in `ct`. Every corner of a point lies in
- * the same vertex of every table (a point is a fan segment that no seam
- * cuts, ld_eb_points_run), so one corner per point suffices: the map
- * first holds the last corner of each point (a pass of a load and a store
- * per corner), then each point looks its corner's vertex up (one
- * pass over the points, about half the corners): the per-corner vertex
- * lookups and checks of a pass over the corners were 17 instructions a
- * corner (callgrind, issue 25 round three). On a crafted table whose
- * corners of one point disagree, the last corner decides, as the corner
- * pass did. */
-static lumo_status ld_eb_point_map(const ld_ct *ct, const uint32_t *faces, uint32_t num_corners,
-                                   uint32_t num_points, uint32_t vmap,
-                                   const int32_t *vertex_to_value, uint32_t *point_to_value)
+/* A table of a mesh with seams (ld_ct.rep: the mesh's or an attribute's):
+ * the traversal's vertex -> value map is the output point map, read at
+ * each vertex's first point; then every other point takes its vertex's
+ * value (its first point is below it), so the predictions read a corner's
+ * value through its point and no vertex map exists (issue 25 round
+ * five). At most max_values values. */
+static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_ct *ct,
+                                      uint32_t max_values, ld_seq *seq)
 {
-    const uint32_t *c2v = ct->c2v, vmask = ct->vmask;
-    uint32_t c, p;
-    if (num_points == 0)
-        return num_corners ? LUMO_ERR_CORRUPT : LUMO_OK;
-    memset(point_to_value, 0xFF, (size_t)num_points * sizeof(uint32_t));
-    for (c = 0; c < num_corners; ++c) {
-        if (faces[c] >= num_points)  /* kept: a write, whatever made faces */
-            return LUMO_ERR_CORRUPT;
-        point_to_value[faces[c]] = c;
-    }
-    for (p = 0; p < num_points; ++p) {  /* LD_INV and -1 are huge unsigned */
-        const uint32_t cp = point_to_value[p];
-        uint32_t v, entry;
-        if (cp >= num_corners)
-            return LUMO_ERR_CORRUPT;  /* a point without a corner */
-        v = c2v[cp] & vmask;
-        if (v >= vmap)
-            return LUMO_ERR_CORRUPT;
-        entry = (uint32_t)vertex_to_value[v];
-        if (entry >= num_points)
-            return LUMO_ERR_CORRUPT;
-        point_to_value[p] = entry;
-    }
-    return LUMO_OK;
-}
-
-/* An attribute's table with seams (ld_ct.rep): the traversal's vertex ->
- * value map is the output point map, read at each vertex's first point;
- * then every other point takes its vertex's value (its first point is
- * below it), so the predictions read a corner's value through its point
- * and no vertex map of the attribute exists (issue 25 round five). */
-static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_attr_data *a,
-                                      ld_seq *seq)
-{
-    const uint32_t np = d->num_points, *rep = a->rep;
+    const uint32_t np = d->num_points, *rep = ct->rep;
     int32_t *map = ld_out(&d->mem, np, sizeof(int32_t));
     ld_order o;
     uint32_t p;
@@ -1573,7 +1582,7 @@ static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_attr
     if (!map)
         return LUMO_ERR_NOMEM;
     o.vertex_to_value = map;
-    if ((st = ld_traverse(&d->mem, &a->ct, np, a->num_avs, d->eb->dec_traversal[decoder], &o)))
+    if ((st = ld_traverse(&d->mem, ct, np, max_values, d->eb->dec_traversal[decoder], &o)))
         return st;
     for (p = 0; p < np; ++p) {  /* unvisited (-1, -3) is huge unsigned */
         const uint32_t x = (uint32_t)map[rep[p] & LD_REP_MASK];
@@ -1583,8 +1592,8 @@ static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_attr
     }
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
-    seq->faces_mask = 0xFFFFFFFFu;
-    seq->ct = &a->ct;
+    seq->faces_mask = ct->vmask;
+    seq->ct = ct;
     seq->vertex_to_value = map;
     seq->value_to_corner = o.value_to_corner;
     seq->point_to_value = (uint32_t *)map;
@@ -1599,18 +1608,18 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     int8_t ad = e->dec_att_data[decoder];
     ld_order o;
     int keep = 0;
-    /* the vertices are the points: the face array is the vertex map */
-    const int vmap_faces = !e->num_attr_data || e->vpoints;
     lumo_status st;
     if (ad >= 0) {
-        const uint32_t na = e->ad[ad].shared ? e->ad[ad].ct.num_vertices : e->ad[ad].num_avs;
         if (e->dec_type[decoder] != 0)
             ct = &e->ad[ad].ct;
-        if (na > vmap)
-            vmap = na;
+        if (e->ad[ad].ct.num_vertices > vmap)
+            vmap = e->ad[ad].ct.num_vertices;
     }
-    if (ct->rep)
-        return ld_eb_rep_sequence(d, decoder, &e->ad[ad], seq);
+    if (ct->rep)  /* with seams: an attribute's vertices, or the mesh's */
+        return ld_eb_rep_sequence(d, decoder, ct, ct->seam ? e->ad[ad].num_avs : e->num_vertices,
+                                  seq);
+    /* else the vertices are the points: the face array is the vertex map,
+     * the vertex -> value map the point map, decoded into the output */
     if (!LD_EB_LEAN(e) && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
         return st;  /* default, no seams, first sequence */
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
@@ -1620,16 +1629,11 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (keep)
             ld_eb_keep_o24_begin(d, e);
     }
-    o.vertex_to_value = NULL;
-    if (vmap_faces) {
-        /* points are the mesh vertices: the vertex -> value map is the
-         * point map, decoded straight into the output */
-        o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
-        if (!o.vertex_to_value)
-            return LUMO_ERR_NOMEM;
-        if (keep)
-            ld_eb_keep_o24(d, e, o.vertex_to_value);
-    }
+    o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
+    if (!o.vertex_to_value)
+        return LUMO_ERR_NOMEM;
+    if (keep)
+        ld_eb_keep_o24(d, e, o.vertex_to_value);
     /* read as decoded, the table leaves no room for the split vertices'
      * entries: a mesh without seams has d->num_points vertices in use */
     if ((st = ld_traverse(&d->mem, ct, vmap, keep ? d->num_points : vmap,
@@ -1637,22 +1641,15 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
-    seq->faces_mask = vmap_faces ? e->ct.vmask : 0xFFFFFFFFu;
+    seq->faces_mask = e->ct.vmask;
     seq->ct = ct;
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
-    if (vmap_faces) {
-        for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
-            if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
-                return LUMO_ERR_CORRUPT;
-        seq->point_to_value = (uint32_t *)o.vertex_to_value;
-        return LUMO_OK;
-    }
-    seq->point_to_value = ld_out(&d->mem, d->num_points, sizeof(uint32_t));
-    if (!seq->point_to_value)
-        return LUMO_ERR_NOMEM;
-    return ld_eb_point_map(ct, d->faces, e->num_corners, d->num_points, vmap, o.vertex_to_value,
-                           seq->point_to_value);
+    for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
+        if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
+            return LUMO_ERR_CORRUPT;
+    seq->point_to_value = (uint32_t *)o.vertex_to_value;
+    return LUMO_OK;
 }
 
 /* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
@@ -1872,11 +1869,18 @@ static void ld_eb_need_traverse(ld_need *k, const ld_eb_need *e, uint32_t num_sp
 static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces;
-    const unsigned vshift = ld_pot_vshift(ld_eb_need_vertices(e));
-    const size_t ew = vshift > LD_POT_MAX_VSHIFT ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
-    const size_t cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
-    const size_t fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
-    const size_t bb = ld_need_bytes(ld_pot_bases(corners), 4u);
+    uint64_t ones = 0;
+    uint32_t i;
+    unsigned vshift;
+    size_t ew, cb, fb, bb;
+    for (i = 0; i < e->nad; ++i)
+        ones += e->seam_ones[i];
+    vshift = ld_pot_vshift(ld_eb_pack_ids((uint32_t)ld_eb_need_vertices(e), (uint32_t)corners, e->verts,
+                                          ones, e->nad && !e->vpoints));
+    ew = vshift > LD_POT_MAX_VSHIFT ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
+    cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
+    fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
+    bb = ld_need_bytes(ld_pot_bases(corners), 4u);
     ld_need_tmp(k, cb, 1);
     ld_need_tmp(k, fb, 1);
     ld_need_tmp(k, bb, 1);
@@ -1888,7 +1892,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
 {
     uint32_t verts, faces, symbols, splits, num_splits, i, own = 0;
     uint64_t ones = 0;
-    size_t mark, o24_top, seam_top;
+    size_t mark, seam_top, top;
     uint8_t type, nad;
     lumo_status st;
     if ((st = ld_u8(b, &type)))
@@ -1923,8 +1927,6 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     /* ld_eb_decode_connectivity, ld_eb_alloc */
     ld_need_tmp(k, 1, sizeof(struct ld_eb));
     ld_need_out(k, 3u * (size_t)faces, sizeof(uint32_t));
-    if (nad && !e->vpoints)
-        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
     e->w_opp_top = k->work;
     if (!lean)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
@@ -1932,7 +1934,11 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
     e->w_lmc_top = k->work;
     ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
-    o24_top = k->work;
+    for (i = 0; i < nad; ++i)  /* ld_eb_alloc_attr_data */
+        ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
+    seam_top = k->work;
+    for (i = 0; i < nad; ++i)
+        ld_need_tmp(k, 3u * (size_t)faces, 1);
     if (lean)
         ld_need_tmp(k, 9u * (size_t)faces + 1u, 1);
     mark = k->work;
@@ -1940,24 +1946,23 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
-    if (lean && nad)
-        ld_eb_need_pack(k, e, o24_top);
-    for (i = 0; i < nad; ++i)  /* ld_eb_alloc_attr_data */
-        ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
-    seam_top = k->work;
-    for (i = 0; i < nad; ++i)
-        ld_need_tmp(k, 3u * (size_t)faces, 1);
     /* ld_eb_attr_tables: shared when the interior edges' bits hold no
-     * one (ld_eb_need_symbols counted them) */
+     * one (ld_eb_need_symbols counted them); the 24-bit table moves up
+     * under the seam flags kept, and is packed there */
     for (i = 0; i < nad; ++i) {
         e->ad_shared[i] = e->seam_ones[i] == 0;
         own += !e->ad_shared[i];
-    }
-    ld_need_release(k, seam_top + own * ld_need_bytes(3u * (size_t)faces, 1));
-    for (i = 0; i < nad; ++i)
         ones += e->seam_ones[i];
-    for (i = 0; i < nad; ++i)  /* the rep maps, sized by the points' bound */
-        if (!e->ad_shared[i])
+    }
+    top = seam_top + own * ld_need_bytes(3u * (size_t)faces, 1);
+    if (lean && nad) {
+        ld_need_release(k, top + ld_need_bytes(9u * (size_t)faces + 1u, 1));
+        ld_eb_need_pack(k, e, top);
+    } else if (nad) {
+        ld_need_release(k, top);
+    }
+    for (i = 0; nad && !e->vpoints && i <= nad; ++i)  /* the mesh's and the own tables' rep maps */
+        if (i == nad || !e->ad_shared[i])
             ld_need_tmp(k, ld_eb_point_cap(3u * faces, e->verts, ones), sizeof(uint32_t));
     if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
         ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));
@@ -2040,9 +2045,9 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
     int keep = 0;
-    /* an attribute's table with seams: its vertex map is the output point
-     * map (ld_eb_rep_sequence) */
-    const int rep = !own;
+    /* with seams every table's vertex map is the output point map
+     * (ld_eb_rep_sequence) */
+    const int rep = !vmap_faces;
     if (ad >= 0 && !e->ad_shared[ad] && ld_eb_need_attr_vertices(k, e, ad) > vmap)
         vmap = ld_eb_need_attr_vertices(k, e, ad);
     if (!e->nad && !e->settled) {  /* ld_eb_sequence: the left-most corners */
