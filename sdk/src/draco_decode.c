@@ -297,7 +297,7 @@ static lumo_status ld_attribute_values(ld_dec *d, unsigned i, ld_decoder_slot *s
         slot->seq.num_entries = d->num_points;  /* linear sequencer */
     }
     st = ld_decode_attributes(d, slot->first, slot->count, &slot->seq);
-    ld_tmp_release(&d->mem, mark);
+    ld_tmp_release(&d->mem, slot->seq.work_top ? slot->seq.work_top : mark);
     return st;
 }
 
@@ -637,7 +637,7 @@ static lumo_status ld_scan_attributes(ld_scan *s)
         }
         if (st)
             return st;
-        ld_need_release(&s->k, mark);
+        ld_need_release(&s->k, seq.work_top ? seq.work_top : mark);
     }
     return LUMO_OK;
 }

@@ -66,6 +66,9 @@ struct ld_eb {
     uint8_t released;          /* ld_eb_release_table has run */
     uint32_t *rep;             /* with seams: point -> its mesh vertex's first
                                   point | fan open << 31 (ld_ct.rep) */
+    uint8_t *region;           /* with seams: the top of the blocks
+                                  ld_eb_drop_dead moves (below the opposites) */
+    uint32_t rep_cap;          /* entries of each rep map */
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -980,6 +983,23 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
     return LUMO_OK;
 }
 
+/* Every table's c2v: the points, through its rep map (the mesh's border
+ * flags are in its rep words; its left-most corners go unread); the
+ * table copies follow the blocks ld_eb_drop_dead moves. */
+static void ld_eb_sync_tables(struct ld_eb *e)
+{
+    uint32_t i;
+    e->ct.rep = e->rep;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->ct = e->ct;
+        if (a->shared)
+            continue;
+        a->ct.seam = a->seam;
+        a->ct.rep = a->rep;
+    }
+}
+
 /* AssignPointsToCorners, with the attribute vertices of RecomputeVertices
  * named by their points instead of a vertex per corner (12 B/face per
  * attribute with seams, issue 25 round five). An attribute's seams cut a
@@ -1154,20 +1174,9 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
     }
     if (np > sum || live > e->encoded_vertices)
         return LUMO_ERR_CORRUPT;
-    /* every table's c2v: the points, through its rep map; the mesh's
-     * border flags are in its rep words (its left-most corners go unread) */
-    e->ct.rep = e->rep;
     e->ct.lmc = NULL;
     e->ct.border = NULL;
     e->ct.num_vertices = np;
-    for (i = 0; i < e->num_attr_data; ++i) {
-        ld_attr_data *a = &e->ad[i];
-        a->ct = e->ct;
-        if (a->shared)
-            continue;
-        a->ct.seam = a->seam;
-        a->ct.rep = a->rep;
-    }
     d->num_points = np;
     e->budget = budget;
     return LUMO_OK;
@@ -1253,19 +1262,109 @@ static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
     }
 }
 
+/* With seams, the work memory from e->region down holds, top down: hole
+ * flags, left-most corners and each attribute's vertex seam flags (read
+ * only to assign the points), each own attribute's seam flags, the packed
+ * table (lean), the mesh's rep map, each own attribute's rep map, then a
+ * sequence's value -> corner map. A block dies when no decoder to come
+ * reads it: an attribute's seam flags after its decoder's prediction, a
+ * rep map after the last traversal of its table. ld_eb_drop_dead moves the
+ * live blocks up over the dead ones, top down (each moves up, so a
+ * memmove in order is safe), and the pointers with them; the arena-need
+ * replay (ld_eb_need_drop_dead) books the same sizes. `from_seam` and
+ * `from_rep`: the first decoder still to read seam flags and rep maps;
+ * -1 before the decoders are known (the point assignment: only its own
+ * blocks die). */
+static uint8_t *ld_eb_move_block(uint8_t *dst, void *src, size_t bytes)
+{
+    return ld_move_up(dst, src, bytes);
+}
+
+static size_t ld_eb_round8(size_t n) { return (n + 7u) & ~(size_t)7u; }
+
+/* Whether decoder `from` or a later one reads the mesh's table. */
+static int ld_eb_mesh_read(const ld_dec *d, const struct ld_eb *e, int from)
+{
+    int j;
+    if (from < 0)
+        return 1;
+    for (j = from; j < (int)d->num_decoders; ++j) {
+        const int8_t ad = e->dec_att_data[j];
+        if (ad < 0 || e->dec_type[j] == 0 || e->ad[ad].shared)
+            return 1;
+    }
+    return 0;
+}
+
+static uint8_t *ld_eb_drop_dead(ld_dec *d, struct ld_eb *e, int from_seam, int from_rep,
+                              const uint32_t **v2c, uint32_t n_v2c)
+{
+    uint8_t *dst = e->region;
+    const size_t rb = ld_eb_round8((size_t)e->rep_cap * 4u);
+    uint32_t i;
+    e->hole = NULL;  /* hole flags, left-most corners, vertex seam flags */
+    e->lmc = NULL;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->vseam = NULL;
+        if (a->shared || !a->seam)
+            continue;
+        if (from_seam >= 0 && a->decoder_id < from_seam) {
+            a->seam = NULL;
+            continue;
+        }
+        a->seam = dst = ld_eb_move_block(dst, a->seam, e->num_corners);
+    }
+    if (e->packed) {  /* [base][fine][coarse][escapes] up to table_top */
+        ld_pot *t = &e->ct.opp;
+        const size_t bytes = (size_t)(e->table_top - e->table_lo), shift = (size_t)(dst - e->table_top);
+        memmove(e->table_lo + shift, e->table_lo, bytes);
+        t->esc += shift;
+        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
+        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
+        e->table_lo += shift;
+        e->table_top = dst;
+        dst = e->table_lo;
+    }
+    if (e->rep && ld_eb_mesh_read(d, e, from_rep))
+        e->rep = (uint32_t *)(void *)(dst = ld_eb_move_block(dst, e->rep, rb));
+    else
+        e->rep = NULL;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        if (!a->rep)
+            continue;
+        if (from_rep >= 0 && a->decoder_id < from_rep)
+            a->rep = NULL;
+        else
+            a->rep = (uint32_t *)(void *)(dst = ld_eb_move_block(dst, a->rep, rb));
+    }
+    if (v2c)
+        *v2c = (const uint32_t *)(const void *)ld_eb_move_block(dst, (void *)(uintptr_t)*v2c,
+                                                                (size_t)n_v2c * 4u);
+    ld_tmp_release(&d->mem, v2c ? (uint8_t *)(uintptr_t)*v2c : dst);
+    ld_eb_sync_tables(e);
+    return dst;
+}
+
 static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 {
+    lumo_status st;
     if (e->num_attr_data == 0) {  /* the output faces are the vertex map */
         d->num_points = e->num_conn_vertices;
         return LUMO_OK;
     }
     if (e->vpoints) {
-        lumo_status st = LD_EB_PACKED(e) ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
+        st = LD_EB_PACKED(e) ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
         if (!st)
             ld_eb_vpoints_tables(d, e);
         return st;
     }
-    return LD_EB_PACKED(e) ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
+    st = LD_EB_PACKED(e) ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
+    if (!st)  /* the point assignment's own blocks go */
+        ld_eb_drop_dead(d, e, -1, -1, NULL, 0);
+    return st;
 }
 
 /* ---- entry points ----------------------------------------------------------------- */
@@ -1290,6 +1389,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
         e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     }
     /* hole flags are read only to assign points along seams */
+    e->region = ld_tmp_mark(&d->mem);
     e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
@@ -1395,6 +1495,7 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
     if (e->vpoints)
         return LUMO_OK;
     cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ld_eb_ones(e));
+    e->rep_cap = cap;
     e->rep = ld_tmp(&d->mem, cap, sizeof(uint32_t));
     if (!e->rep)
         return LUMO_ERR_NOMEM;
@@ -1593,10 +1694,14 @@ static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_ct *
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
     seq->faces_mask = ct->vmask;
-    seq->ct = ct;
     seq->vertex_to_value = map;
     seq->value_to_corner = o.value_to_corner;
     seq->point_to_value = (uint32_t *)map;
+    /* this traversal was the last of its table's rep map: the dead blocks
+     * go before the values (the tables move: ct is a copy in e) */
+    seq->work_top = ld_eb_drop_dead(d, d->eb, (int)decoder, (int)decoder + 1, &seq->value_to_corner,
+                                  max_values);
+    seq->ct = ct;
     return LUMO_OK;
 }
 
@@ -1888,6 +1993,49 @@ static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
     ld_need_release(k, top + e->w_table);
 }
 
+static uint64_t ld_eb_need_ones(const ld_eb_need *e)
+{
+    uint64_t ones = 0;
+    uint32_t i;
+    for (i = 0; i < e->nad; ++i)
+        ones += e->seam_ones[i];
+    return ones;
+}
+
+/* ld_eb_drop_dead's blocks as work in use: the seam flags, the packed
+ * table and the rep maps still read from decoders from_seam and from_rep
+ * on, under the work above them. */
+static int ld_eb_need_decoder_of(const ld_eb_need *e, uint32_t ad)
+{
+    unsigned j;
+    for (j = 0; j < e->num_decoders; ++j)
+        if (e->dec_att_data[j] == (int8_t)ad)
+            return (int)j;
+    return -1;
+}
+
+static size_t ld_eb_need_drop_dead(const ld_eb_need *e, int from_seam, int from_rep)
+{
+    const size_t rb = ld_need_bytes(ld_eb_point_cap(3u * e->faces, e->verts, ld_eb_need_ones(e)), 4u);
+    size_t w = e->w_region + (e->lean ? e->w_table : 0u);
+    int mesh = from_rep < 0;
+    uint32_t i;
+    unsigned j;
+    for (j = from_rep < 0 ? 0u : (unsigned)from_rep; j < e->num_decoders; ++j)
+        mesh |= e->dec_att_data[j] < 0 || e->dec_type[j] == 0 || e->ad_shared[e->dec_att_data[j]];
+    w += mesh ? rb : 0u;
+    for (i = 0; i < e->nad; ++i) {
+        const int dec = ld_eb_need_decoder_of(e, i);
+        if (e->ad_shared[i])
+            continue;
+        if (from_seam < 0 || dec >= from_seam)
+            w += ld_need_bytes(3u * (size_t)e->faces, 1);
+        if (from_rep < 0 || dec >= from_rep)
+            w += rb;
+    }
+    return w;
+}
+
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean)
 {
     uint32_t verts, faces, symbols, splits, num_splits, i, own = 0;
@@ -1930,6 +2078,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     e->w_opp_top = k->work;
     if (!lean)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
+    e->w_region = k->work;
     if (nad && !e->vpoints)
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
     e->w_lmc_top = k->work;
@@ -1964,6 +2113,8 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     for (i = 0; nad && !e->vpoints && i <= nad; ++i)  /* the mesh's and the own tables' rep maps */
         if (i == nad || !e->ad_shared[i])
             ld_need_tmp(k, ld_eb_point_cap(3u * faces, e->verts, ones), sizeof(uint32_t));
+    if (nad && !e->vpoints)  /* ld_eb_points: the point assignment's blocks go */
+        ld_need_release(k, ld_eb_need_drop_dead(e, -1, -1));
     if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
         ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));
     e->table_live = nad == 0;
@@ -2085,8 +2236,11 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
     ld_need_release(k, mark);
-    if (!vmap_faces && !rep)
-        ld_need_out(k, (size_t)points, sizeof(uint32_t));
+    s->work_top = 0;
+    if (rep) {  /* ld_eb_rep_sequence: the dead blocks go, the value -> corner map moves up */
+        s->work_top = ld_eb_need_drop_dead(e, (int)decoder, (int)decoder + 1);
+        ld_need_release(k, s->work_top + ld_need_bytes((size_t)nv, sizeof(uint32_t)));
+    }
     /* values: every point's value (no seams); with seams one per vertex
      * visited, learnt from a tagged stream (else at most nv) */
     s->uncertain = 0;

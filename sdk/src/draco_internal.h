@@ -342,6 +342,9 @@ typedef struct ld_seq {
     /* the decoder's only attribute and the stream's last decoder: its
      * prediction may consume the corner table */
     uint8_t last;
+    /* NULL, or where the sequence's work memory ends (its tables moved up
+     * over dead ones, ld_eb_drop_dead): released to there after the values */
+    uint8_t *work_top;
 } ld_seq;
 
 /* draco_attribute.c */
@@ -359,6 +362,7 @@ typedef struct ld_need_seq {
     uint8_t mesh;             /* a corner table exists (EdgeBreaker) */
     uint8_t last;             /* as ld_seq.last */
     uint8_t uncertain;        /* entries is only an upper bound */
+    size_t work_top;          /* 0, or ld_seq.work_top as work in use */
     struct ld_eb_need *eb;    /* EdgeBreaker state, NULL otherwise */
 } ld_need_seq;
 lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
@@ -681,6 +685,7 @@ typedef struct ld_eb_need {
     size_t w_opp_top;          /* work above the 32-bit opposites (fast) */
     size_t w_lmc_top;          /* work above the left-most corners' block */
     size_t w_table;            /* the packed table's escapes and indices */
+    size_t w_region;           /* with seams: work above ld_eb_drop_dead's blocks */
     uint8_t table_live;        /* packed table and border bytes not released */
     uint8_t settled;           /* no seams: the first sequence dropped the
                                   left-most corners and chose how to read
