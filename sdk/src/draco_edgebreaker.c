@@ -777,11 +777,11 @@ static LD_FORCE_INLINE uint32_t ld_eb_mvert(const struct ld_eb *e, uint32_t c, i
  * the faces still hold the mesh vertices. */
 static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c, uint32_t o)
 {
-    a->seam[c] = 1;
+    ld_seam_set(a->seam, c);
     a->vseam[ld_vert(&e->ct, ld_next(c))] = 1;
     a->vseam[ld_vert(&e->ct, ld_prev(c))] = 1;
     if (o != LD_INV) {
-        a->seam[o] = 1;
+        ld_seam_set(a->seam, o);
         a->vseam[ld_vert(&e->ct, ld_next(o))] = 1;
         a->vseam[ld_vert(&e->ct, ld_prev(o))] = 1;
     }
@@ -1045,7 +1045,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_fan_cuts(const struct ld_eb *e, uint32_
             return LUMO_ERR_LIMIT;
         --*budget;
         for (i = 0; i < n; ++i)  /* the edge between act and nx */
-            cut[i].k += cut[i].seam[ld_next_v(nx)];
+            cut[i].k += (uint32_t)ld_seam(cut[i].seam, ld_next_v(nx));
         if (nx == c) {
             *closed = 1;
             return LUMO_OK;
@@ -1065,7 +1065,7 @@ static LD_FORCE_INLINE uint32_t ld_eb_fan_start(const struct ld_eb *e, uint32_t 
             continue;
         for (act = ld_eb_mswing_right(e, c, packed); act != c;  /* closed: k >= 2 */
              act = ld_eb_mswing_right(e, act, packed))
-            if (cut[i].seam[ld_next_v(act)])
+            if (ld_seam(cut[i].seam, ld_next_v(act)))
                 return act;
     }
     return c;
@@ -1134,7 +1134,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
         for (i = 0; i < nown; ++i) {
             cut[i].first = cut[i].cur = p0 | (own[i]->vseam[v] ? LD_REP_BORDER : 0u);
             cut[i].seen = 0;
-            cut[i].wrap = (uint8_t)(cut[i].cuts && closed && !cut[i].seam[ld_next_v(start)]);
+            cut[i].wrap = (uint8_t)(cut[i].cuts && closed && !ld_seam(cut[i].seam, ld_next_v(start)));
         }
         if ((st = ld_eb_new_point(cut, nown, &np, cap, e->rep, mesh)))
             return st;
@@ -1146,7 +1146,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
                 return LUMO_ERR_LIMIT;
             --budget;
             for (i = 0; i < nown; ++i) {
-                if (!cut[i].cuts || !cut[i].seam[ld_next_v(c)])
+                if (!cut[i].cuts || !ld_seam(cut[i].seam, ld_next_v(c)))
                     continue;
                 fresh = 1;
                 cut[i].cur = ++cut[i].seen == cut[i].k && cut[i].wrap
@@ -1313,7 +1313,7 @@ static uint8_t *ld_eb_drop_dead(ld_dec *d, struct ld_eb *e, int from_seam, int f
             a->seam = NULL;
             continue;
         }
-        a->seam = dst = ld_eb_move_block(dst, a->seam, e->num_corners);
+        a->seam = dst = ld_eb_move_block(dst, a->seam, ld_seam_bytes(e->num_corners));
     }
     if (e->packed) {  /* [base][fine][coarse][escapes] up to table_top */
         ld_pot *t = &e->ct.opp;
@@ -1441,10 +1441,10 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
     e->seam_top = ld_tmp_mark(&d->mem);
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        a->seam = ld_tmp(&d->mem, e->num_corners, 1);
+        a->seam = ld_tmp(&d->mem, ld_seam_bytes(e->num_corners), 1);
         if (!a->seam)
             return LUMO_ERR_NOMEM;
-        memset(a->seam, 0, e->num_corners);
+        memset(a->seam, 0, ld_seam_bytes(e->num_corners));
     }
     return LUMO_OK;
 }
@@ -1481,7 +1481,7 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
             a->seam = NULL;
             continue;
         }
-        top = ld_move_up(top, a->seam, e->num_corners);
+        top = ld_move_up(top, a->seam, ld_seam_bytes(e->num_corners));
         a->seam = top;
     }
     if (LD_EB_LEAN(e)) {  /* the 24-bit table moves up over the dead flags */
@@ -2029,7 +2029,7 @@ static size_t ld_eb_need_drop_dead(const ld_eb_need *e, int from_seam, int from_
         if (e->ad_shared[i])
             continue;
         if (from_seam < 0 || dec >= from_seam)
-            w += ld_need_bytes(3u * (size_t)e->faces, 1);
+            w += ld_need_bytes(ld_seam_bytes(3u * e->faces), 1);
         if (from_rep < 0 || dec >= from_rep)
             w += rb;
     }
@@ -2087,7 +2087,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
     seam_top = k->work;
     for (i = 0; i < nad; ++i)
-        ld_need_tmp(k, 3u * (size_t)faces, 1);
+        ld_need_tmp(k, ld_seam_bytes(3u * faces), 1);
     if (lean)
         ld_need_tmp(k, 9u * (size_t)faces + 1u, 1);
     mark = k->work;
@@ -2103,7 +2103,7 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         own += !e->ad_shared[i];
         ones += e->seam_ones[i];
     }
-    top = seam_top + own * ld_need_bytes(3u * (size_t)faces, 1);
+    top = seam_top + own * ld_need_bytes(ld_seam_bytes(3u * faces), 1);
     if (lean && nad) {
         ld_need_release(k, top + ld_need_bytes(9u * (size_t)faces + 1u, 1));
         ld_eb_need_pack(k, e, top);

@@ -582,6 +582,19 @@ static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
     return ld_pot_near_opp(ld_pot_near_of(t), c);
 }
 
+/* An attribute's seam flags: a bit per corner, set when the edge opposite
+ * the corner is a seam (3F/8 bytes an attribute with seams, issue 25 round
+ * five; a byte per corner before). */
+static inline size_t ld_seam_bytes(uint32_t corners) { return ((size_t)corners + 7u) >> 3; }
+static LD_FORCE_INLINE int ld_seam(const uint8_t *s, uint32_t c)
+{
+    return s[c >> 3] >> (c & 7u) & 1;
+}
+static inline void ld_seam_set(uint8_t *s, uint32_t c)
+{
+    s[c >> 3] = (uint8_t)(s[c >> 3] | 1u << (c & 7u));
+}
+
 /* A view of a corner table: the mesh's own, or an attribute's (whose seam
  * edges have no opposite and whose vertices are split along seams). */
 typedef struct ld_ct {
@@ -595,7 +608,8 @@ typedef struct ld_ct {
                                  the table (ld_o24_mark), border vertices
                                  -2 in the unvisited vertex map, and each
                                  value keeps its corner's opposite */
-    const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
+    const uint8_t  *seam;     /* corner -> edge opposite is a seam (ld_seam);
+                                 NULL: none */
     /* An attribute's table with seams (ld_eb_points_run): c2v holds the
      * points, and rep maps a point to its attribute vertex, named by the
      * vertex's first point, with the vertex's border flag (the depth-first
@@ -633,7 +647,7 @@ static inline uint32_t ld_next(uint32_t c) { return c == LD_INV ? c : ld_next_v(
 static inline uint32_t ld_prev(uint32_t c) { return c == LD_INV ? c : ld_prev_v(c); }
 static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
 {
-    if (c == LD_INV || (t->seam && t->seam[c]))
+    if (c == LD_INV || (t->seam && ld_seam(t->seam, c)))
         return LD_INV;
     return t->opp32 ? t->opp32[c] : ld_pot_opp(&t->opp, c);
 }

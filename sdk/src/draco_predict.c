@@ -359,7 +359,7 @@ typedef struct ld_fan {
 
 static LD_FORCE_INLINE uint32_t ld_fan_opp(const ld_fan *f, uint32_t c, int packed)
 {
-    if (f->seam && f->seam[c])
+    if (f->seam && ld_seam(f->seam, c))
         return LD_INV;
     return packed ? ld_pot_near_opp(f->opp, c) : f->opp32[c];
 }

@@ -86,7 +86,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
-#define LD_OPP(c) ((seams && seam[c]) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
+#define LD_OPP(c) ((seams && ld_seam(seam, c)) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
 #define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
     /* LD_STORE_O24: the entry keeps its corner's opposite (ld_ct.o24) */
@@ -256,7 +256,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     uint32_t n = w->o->num_values, used = 0, fre = LD_INV, head[3], f;
     lumo_status st = LUMO_OK;
     int best = 0;
-#define LD_OPP(c) ((seams && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
+#define LD_OPP(c) ((seams && ld_seam(seam, c)) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
     /* an attribute's table (seams): the point's attribute vertex (ld_ct.rep) */
 #define LD_PT(c) (packed ? c2v[c] & vmask : c2v[c])
 #define LD_VERT(c) (!rep_words ? LD_PT(c) : LD_PT(c) < nv ? rep[LD_PT(c)] & LD_REP_MASK : LD_INV)
