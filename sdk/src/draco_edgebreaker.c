@@ -1085,6 +1085,37 @@ static LD_FORCE_INLINE lumo_status ld_eb_new_point(ld_cut *cut, uint32_t n, uint
     return LUMO_OK;
 }
 
+/* A fan no attribute's seam or border crosses (no vertex seam flag; most
+ * fans): one point, every attribute's vertex and the mesh's its first
+ * point. Such a fan is closed (a border edge sets the flags of its ends,
+ * ld_add_seam); on a crafted table whose walk still ends, it is open, as
+ * the general walk would find. */
+static LD_FORCE_INLINE lumo_status ld_eb_fan_point(struct ld_eb *e, uint32_t lc, ld_cut *cut,
+                                                   uint32_t nown, uint32_t *np, uint32_t cap,
+                                                   uint64_t *budget, uint32_t vmask, int packed)
+{
+    uint32_t *pts = e->c2v, c = lc, i;
+    const uint32_t p0 = *np;
+    lumo_status st;
+    for (i = 0; i < nown; ++i)
+        cut[i].cur = p0;
+    if ((st = ld_eb_new_point(cut, nown, np, cap, e->rep, p0)))
+        return st;
+    do {
+        if (*budget == 0)
+            return LUMO_ERR_LIMIT;
+        --*budget;
+        pts[c] = (pts[c] & ~vmask) | p0;
+        c = ld_eb_mswing_right(e, c, packed);
+    } while (c != LD_INV && c != lc);
+    if (c == LD_INV) {  /* open after all: a border, starting at its left end */
+        e->rep[p0] |= LD_REP_BORDER;
+        if (ld_eb_mopp(e, ld_next_v(lc), packed) != LD_INV)
+            return LUMO_ERR_CORRUPT;
+    }
+    return LUMO_OK;
+}
+
 static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, int packed)
 {
     uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
@@ -1117,6 +1148,15 @@ static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, 
         if (lc == LD_INV)
             continue;
         live++;
+        for (i = 0; i < nown && !own[i]->vseam[v]; ++i)
+            ;
+        if (i == nown) {  /* no seam or border ends here: one point */
+            if ((st = ld_eb_fan_point(e, lc, cut, nown, &np, cap, &budget, vmask, packed)))
+                return st;
+            for (i = 0; i < nown; ++i)
+                own[i]->num_avs++;
+            continue;
+        }
         if ((st = ld_eb_fan_cuts(e, lc, cut, nown, &budget, &closed, packed)))
             return st;
         if (!closed && ld_eb_mopp(e, ld_next_v(lc), packed) != LD_INV)
