@@ -7,7 +7,7 @@
 # and that check-embedded proves. Its decoder holds the lean mode only:
 # every walk instantiated per opposite store then exists once, which is
 # what keeps the decoder within its 48 KB of code (docs/draco-decoder.md,
-# "Code size"). Every decode on these boards is lean (same output; the
+# "Round five"). Every decode on these boards is lean (same output; the
 # golden programs hash host == board for both flags). The host builds
 # (rel, san) keep both modes; `make board-tests DRACO_M3_MODES=LUMO_DRACO_MODES_ALL`
 # builds the board with both (a clean build/m3 first: the objects depend

@@ -768,11 +768,6 @@ static LD_FORCE_INLINE uint32_t ld_eb_mswing_right(const struct ld_eb *e, uint32
     return o == LD_INV ? LD_INV : ld_prev_v(o);
 }
 
-static LD_FORCE_INLINE uint32_t ld_eb_mvert(const struct ld_eb *e, uint32_t c, int packed)
-{
-    return packed ? e->ct.c2v[c] & e->ct.vmask : e->ct.c2v[c];
-}
-
 /* The edge opposite corner c (its opposite o, or LD_INV) is a seam of a:
  * the faces still hold the mesh vertices. */
 static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c, uint32_t o)
@@ -939,6 +934,28 @@ static uint8_t *ld_move_up(uint8_t *top, const void *src, size_t bytes)
     uint8_t *dst = top - ((bytes + 7u) & ~(size_t)7u);
     memmove(dst, src, bytes);
     return dst;
+}
+
+/* The packed table's escapes and indices were moved `shift` bytes up. */
+static void ld_pot_moved(ld_pot *t, size_t shift)
+{
+    t->esc += shift;
+    t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
+    t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+    t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
+}
+
+/* The packed table's block, [bases][fine][coarse][escapes] from table_lo
+ * to table_top, moves up to end at `top` (over dead work memory); returns
+ * its new start. */
+static uint8_t *ld_eb_lift_table(struct ld_eb *e, uint8_t *top)
+{
+    const size_t shift = (size_t)(top - e->table_top);
+    memmove(e->table_lo + shift, e->table_lo, (size_t)(e->table_top - e->table_lo));
+    ld_pot_moved(&e->ct.opp, shift);
+    e->table_lo += shift;
+    e->table_top = top;
+    return e->table_lo;
 }
 
 /* Pack the opposites into the corner table's words (ld_pot) and shrink
@@ -1282,12 +1299,8 @@ static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
     ld_pot *t = &e->ct.opp;
     uint32_t i;
     memmove(lo + shift, lo, (size_t)(end - lo));
-    if (e->packed) {
-        t->esc += shift;
-        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
-        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
-        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
-    }
+    if (e->packed)
+        ld_pot_moved(t, shift);
     for (i = 0; i < e->num_attr_data; ++i)
         e->ad[i].vseam += shift;
     ld_tmp_release(&d->mem, lo + shift);
@@ -1315,11 +1328,6 @@ static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
  * `from_rep`: the first decoder still to read seam flags and rep maps;
  * -1 before the decoders are known (the point assignment: only its own
  * blocks die). */
-static uint8_t *ld_eb_move_block(uint8_t *dst, void *src, size_t bytes)
-{
-    return ld_move_up(dst, src, bytes);
-}
-
 static size_t ld_eb_round8(size_t n) { return (n + 7u) & ~(size_t)7u; }
 
 /* Whether decoder `from` or a later one reads the mesh's table. */
@@ -1353,22 +1361,12 @@ static uint8_t *ld_eb_drop_dead(ld_dec *d, struct ld_eb *e, int from_seam, int f
             a->seam = NULL;
             continue;
         }
-        a->seam = dst = ld_eb_move_block(dst, a->seam, ld_seam_bytes(e->num_corners));
+        a->seam = dst = ld_move_up(dst, a->seam, ld_seam_bytes(e->num_corners));
     }
-    if (e->packed) {  /* [base][fine][coarse][escapes] up to table_top */
-        ld_pot *t = &e->ct.opp;
-        const size_t bytes = (size_t)(e->table_top - e->table_lo), shift = (size_t)(dst - e->table_top);
-        memmove(e->table_lo + shift, e->table_lo, bytes);
-        t->esc += shift;
-        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
-        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
-        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
-        e->table_lo += shift;
-        e->table_top = dst;
-        dst = e->table_lo;
-    }
+    if (e->packed)
+        dst = ld_eb_lift_table(e, dst);
     if (e->rep && ld_eb_mesh_read(d, e, from_rep))
-        e->rep = (uint32_t *)(void *)(dst = ld_eb_move_block(dst, e->rep, rb));
+        e->rep = (uint32_t *)(void *)(dst = ld_move_up(dst, e->rep, rb));
     else
         e->rep = NULL;
     for (i = 0; i < e->num_attr_data; ++i) {
@@ -1378,10 +1376,10 @@ static uint8_t *ld_eb_drop_dead(ld_dec *d, struct ld_eb *e, int from_seam, int f
         if (from_rep >= 0 && a->decoder_id < from_rep)
             a->rep = NULL;
         else
-            a->rep = (uint32_t *)(void *)(dst = ld_eb_move_block(dst, a->rep, rb));
+            a->rep = (uint32_t *)(void *)(dst = ld_move_up(dst, a->rep, rb));
     }
     if (v2c)
-        *v2c = (const uint32_t *)(const void *)ld_eb_move_block(dst, (void *)(uintptr_t)*v2c,
+        *v2c = (const uint32_t *)(const void *)ld_move_up(dst, (void *)(uintptr_t)*v2c,
                                                                 (size_t)n_v2c * 4u);
     ld_tmp_release(&d->mem, v2c ? (uint8_t *)(uintptr_t)*v2c : dst);
     ld_eb_sync_tables(e);
@@ -1415,7 +1413,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
     lumo_status st;
-    const int own_map = e->num_attr_data && !e->vpoints;
+    const int seamed = e->num_attr_data && !e->vpoints;  /* interior seams */
     e->num_corners = 3u * e->num_faces;
     d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
     /* The corner table's vertex map is the output face array itself:
@@ -1430,7 +1428,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
     }
     /* hole flags are read only to assign points along seams */
     e->region = ld_tmp_mark(&d->mem);
-    e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
+    e->hole = seamed ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
     /* the seam reading's tables above the 24-bit table, which moves up
@@ -1441,7 +1439,7 @@ static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
         e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
         e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
     }
-    if (!d->faces || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && own_map))
+    if (!d->faces || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && seamed))
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and the opposites: every symbol writes the three
      * vertices of its face and clears its three opposites before anything
@@ -1850,16 +1848,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
         memset(&e->ct.opp, 0, sizeof e->ct.opp);
         top = e->lmc_top;
     } else {  /* the packed table moves up over the border bytes */
-        ld_pot *t = &e->ct.opp;
-        const size_t shift = (size_t)(e->lmc_top - e->table_top);
-        memmove(e->table_lo + shift, e->table_lo, (size_t)(e->table_top - e->table_lo));
-        t->esc += shift;
-        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
-        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
-        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
-        e->table_lo += shift;
-        e->table_top = e->lmc_top;
-        top = e->table_lo;
+        top = ld_eb_lift_table(e, e->lmc_top);
     }
     seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(top, v2c, (size_t)n * 4u);
     seq->opposites = (uint8_t)(opposites != 0);

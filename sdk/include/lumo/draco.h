@@ -193,7 +193,7 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
  * is the lean mode's, whatever the flags (the output is the same; the
  * EdgeBreaker face limit is the lean one) — for a board whose code space is
  * short: the walks instantiated per opposite store exist once
- * (docs/porting.md, docs/draco-decoder.md "Code size"). */
+ * (docs/porting.md §3, docs/draco-decoder.md "Round five"). */
 #define LUMO_DRACO_MODES_ALL 0
 #define LUMO_DRACO_MODES_LEAN 1
 #ifndef LUMO_DRACO_MODES
