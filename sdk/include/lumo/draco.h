@@ -186,17 +186,19 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
                                need.bytes assumes the worst packing and
                                bytes_min is close to the exact need.
                                EdgeBreaker meshes up to 2 796 202 faces. */
-/* Which modes a build of the decoder holds: LUMO_DRACO_MODES, set on the
- * compiler's command line for the SDK's sources (the application needs
- * nothing). LUMO_DRACO_MODES_ALL (the default): both. LUMO_DRACO_MODES_LEAN:
- * only the lean mode's code is compiled in — every decode and arena need
- * is the lean mode's, whatever the flags (the output is the same; the
- * EdgeBreaker face limit is the lean one) — for a board whose code space is
- * short: the walks instantiated per opposite store exist once
- * (docs/porting.md §3, docs/draco-decoder.md "Round five"). */
+/* A value of LUMO_DRACO_MODES: both modes compiled in (the default). */
 #define LUMO_DRACO_MODES_ALL 0
+/* A value of LUMO_DRACO_MODES: only the lean mode's code is compiled in;
+ * every decode and arena need is the lean mode's, whatever the flags (the
+ * output is the same; the EdgeBreaker face limit is the lean one). For a
+ * board whose code space is short: the walks instantiated per opposite
+ * store exist once (docs/porting.md §3, docs/draco-decoder.md "Round
+ * five"). */
 #define LUMO_DRACO_MODES_LEAN 1
 #ifndef LUMO_DRACO_MODES
+/* Which modes a build of the decoder holds, set on the compiler's command
+ * line for the SDK's sources (-DLUMO_DRACO_MODES=LUMO_DRACO_MODES_LEAN);
+ * the application needs nothing. */
 #define LUMO_DRACO_MODES LUMO_DRACO_MODES_ALL
 #endif
 /* lumo_draco_decode and lumo_draco_arena_need in the mode `flags` (above). */
