@@ -98,7 +98,8 @@ done
     echo "|---|---|---|---|---|---|---|---|"
     cat "$grows"
     echo
-    echo "Cortex-M3 code size of the decoder (\`arm-none-eabi-size build/m3/sdk/src/draco_*.o\`, -Os):"
+    echo "Cortex-M3 code size of the decoder (\`arm-none-eabi-size build/m3/sdk/src/draco_*.o\`, -Os; the"
+    echo "boards' build, which holds the lean mode only: LUMO_DRACO_MODES, boards/armv7m/draco_modes.mk):"
     echo
     echo '```'
     arm-none-eabi-size -t "$build"/m3/sdk/src/draco_*.o

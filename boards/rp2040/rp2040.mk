@@ -21,10 +21,16 @@ RP2040_OUT := $(BUILD)/board/rp2040
 # The client libraries are the SDK's own Cortex-M0+ build (sdk/cross.mk,
 # `make sdk CROSS=arm-none-eabi- CPU=cortex-m0plus`, also proven by the
 # sdk-cross step), made by a sub-make: one recipe for a firmware's libraries.
-RP2040_SDK := $(BUILD)/sdk/cortex-m0plus
+# Its Draco decoder holds the lean mode only (LUMO_DRACO_MODES, as the
+# ARMv7-M boards': boards/armv7m/draco_modes.mk), in a directory of its own
+# (the objects do not depend on SDK_DEFS): the image runs from SRAM, where
+# the default mode's instances of the decoder's walks cost about 10 KiB.
+RP2040_SDK_TARGET := cortex-m0plus-lean
+RP2040_SDK := $(BUILD)/sdk/$(RP2040_SDK_TARGET)
 .PHONY: rp2040-sdk
 rp2040-sdk:
-	+@$(MAKE) --no-print-directory -s sdk CROSS=arm-none-eabi- CPU=cortex-m0plus >/dev/null
+	+@$(MAKE) --no-print-directory -s sdk CROSS=arm-none-eabi- CPU=cortex-m0plus \
+	    SDK_TARGET=$(RP2040_SDK_TARGET) SDK_DEFS=-DLUMO_DRACO_MODES=LUMO_DRACO_MODES_LEAN >/dev/null
 
 # The client sized for 264 KiB (boards/client/client.c's knobs): frames of
 # at most 4 KiB, 24 KiB of picture memory (one 16-row band at 320 pixels

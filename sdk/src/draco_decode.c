@@ -297,7 +297,7 @@ static lumo_status ld_attribute_values(ld_dec *d, unsigned i, ld_decoder_slot *s
         slot->seq.num_entries = d->num_points;  /* linear sequencer */
     }
     st = ld_decode_attributes(d, slot->first, slot->count, &slot->seq);
-    ld_tmp_release(&d->mem, mark);
+    ld_tmp_release(&d->mem, slot->seq.work_top ? slot->seq.work_top : mark);
     return st;
 }
 
@@ -385,7 +385,7 @@ lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flag
     if ((st = ld_start(&d.buf, data, size, &h)))
         return st;
     d.version = (uint16_t)(h.major << 8 | h.minor);
-    d.lean = (uint8_t)((flags & LUMO_DRACO_LEAN) != 0);
+    d.lean = ld_mode_lean(flags);
     d.geometry = h.geometry;
     d.method = h.method;
     ld_mem_init(&d.mem, arena);
@@ -637,7 +637,7 @@ static lumo_status ld_scan_attributes(ld_scan *s)
         }
         if (st)
             return st;
-        ld_need_release(&s->k, mark);
+        ld_need_release(&s->k, seq.work_top ? seq.work_top : mark);
     }
     return LUMO_OK;
 }
@@ -656,7 +656,7 @@ static lumo_status ld_scan_run(const uint8_t *data, size_t size, unsigned flags,
     lumo_status st;
     memset(&s, 0, sizeof s);
     s.k.hi = hi;
-    s.lean = (uint8_t)((flags & LUMO_DRACO_LEAN) != 0);
+    s.lean = ld_mode_lean(flags);
     memcpy(s.learnt, learnt, sizeof s.learnt);
     if ((st = ld_start(&s.buf, data, size, &s.h)) || (st = ld_scan_geometry(&s)))
         return st;

@@ -33,13 +33,12 @@ typedef struct ld_attr_data {
     ld_rabs seams;
     uint8_t *seam;         /* per corner: opposite edge is a seam */
     uint8_t *vseam;        /* per mesh vertex: on a seam */
-    uint32_t *c2v;         /* attribute vertex of each corner */
-    uint8_t *border;       /* attribute vertex -> on a border or seam (the
-                              depth-first walk's only use of a left-most
-                              corner: a byte, not a 32-bit corner) */
+    uint32_t *rep;         /* point -> its attribute vertex's first point |
+                              border flag << 31 (ld_ct.rep, ld_eb_points_run) */
+    uint32_t num_avs;      /* attribute vertices (RecomputeVertices' count) */
     uint32_t ones;         /* interior edges marked as seams */
     uint8_t shared;        /* no interior seam: ct is the mesh's table
-                              (ld_eb_attr_table), no c2v or seam of its own */
+                              (ld_eb_attr_table), no rep or seam of its own */
     ld_ct ct;
 } ld_attr_data;
 
@@ -65,6 +64,11 @@ struct ld_eb {
                                   the vertices are the points and the output
                                   face array is the vertex map (ld_eb_renumber) */
     uint8_t released;          /* ld_eb_release_table has run */
+    uint32_t *rep;             /* with seams: point -> its mesh vertex's first
+                                  point | fan open << 31 (ld_ct.rep) */
+    uint8_t *region;           /* with seams: the top of the blocks
+                                  ld_eb_drop_dead moves (below the opposites) */
+    uint32_t rep_cap;          /* entries of each rep map */
     ld_ct ct;
     uint32_t num_attr_data;
     ld_attr_data ad[LD_MAX_ATTR_DATA];
@@ -89,6 +93,13 @@ struct ld_eb {
     uint64_t budget;
 };
 
+/* The mode and the opposite store, constant in a lean-only build (its
+ * walks' default instances then fold away; with attribute data the lean
+ * mode packs the table right after the connectivity, so every walk below
+ * that picks an instance by the store runs on a packed table there). */
+#define LD_EB_LEAN(e) (LD_LEAN_ONLY || (e)->lean)
+#define LD_EB_PACKED(e) (LD_LEAN_ONLY || (e)->packed)
+
 static int ld_eb_peek_vpoints(const ld_buf *at, uint32_t faces, uint32_t nad, int valence);
 
 /* Bounded work: fan walks are charged here. */
@@ -102,7 +113,7 @@ static int ld_eb_charge(struct ld_eb *e)
 
 /* The opposites while the connectivity is decoded: 32-bit ids (default) or
  * 24-bit ids (lean, packed afterwards by ld_eb_pack). `lean` is a
- * constant in the symbol loop's two instances, e->lean elsewhere. */
+ * constant in the symbol loop's two instances, LD_EB_LEAN(e) elsewhere. */
 static LD_FORCE_INLINE uint32_t ld_eb_opp(const struct ld_eb *e, uint32_t c, int lean)
 {
     uint32_t o;
@@ -268,14 +279,14 @@ static lumo_status ld_ctx_symbols(ld_dec *d, uint32_t n, uint8_t **out)
 
 static lumo_status ld_eb_start_valence(ld_dec *d, struct ld_eb *e)
 {
-    const size_t vsize = e->lean ? 1u : sizeof(uint32_t);
+    const size_t vsize = LD_EB_LEAN(e) ? 1u : sizeof(uint32_t);
     void *val = ld_tmp(&d->mem, e->max_vertices + 3u, vsize);
     unsigned i;
     lumo_status st;
     if (!val)
         return LUMO_ERR_NOMEM;
     memset(val, 0, ((size_t)e->max_vertices + 3u) * vsize);
-    if (e->lean)
+    if (LD_EB_LEAN(e))
         e->val.b = val;
     else
         e->val.w = val;
@@ -604,14 +615,14 @@ static lumo_status ld_eb_start_faces(struct ld_eb *e, ld_eb_state *s)
         c = ld_next(e->lmc[vx]);
         if (corner == b || corner == c || b == c || b == LD_INV || c == LD_INV)
             return LUMO_ERR_CORRUPT;
-        if (ld_has_opp(e, corner, e->lean) || ld_has_opp(e, b, e->lean) ||
-            ld_has_opp(e, c, e->lean))
+        if (ld_has_opp(e, corner, LD_EB_LEAN(e)) || ld_has_opp(e, b, LD_EB_LEAN(e)) ||
+            ld_has_opp(e, c, LD_EB_LEAN(e)))
             return LUMO_ERR_CORRUPT;
         vp = e->c2v[ld_next(c)];
         nc = 3u * s->faces++;
-        ld_set_opp(e, nc, corner, e->lean);
-        ld_set_opp(e, nc + 1u, b, e->lean);
-        ld_set_opp(e, nc + 2u, c, e->lean);
+        ld_set_opp(e, nc, corner, LD_EB_LEAN(e));
+        ld_set_opp(e, nc + 1u, b, LD_EB_LEAN(e));
+        ld_set_opp(e, nc + 2u, c, LD_EB_LEAN(e));
         e->c2v[nc] = vx;
         e->c2v[nc + 1u] = vp;
         e->c2v[nc + 2u] = vn;
@@ -648,15 +659,15 @@ static lumo_status ld_eb_compact(struct ld_eb *e, ld_eb_state *s, uint32_t *num_
                 return LUMO_ERR_CORRUPT;
             e->c2v[c] = iv;
             if (left) {
-                c = ld_eb_swing_left(e, c, e->lean);
+                c = ld_eb_swing_left(e, c, LD_EB_LEAN(e));
                 if (c == LD_INV) {
-                    c = ld_eb_swing_right(e, start, e->lean);
+                    c = ld_eb_swing_right(e, start, LD_EB_LEAN(e));
                     left = 0;
                 } else if (c == start) {
                     c = LD_INV;
                 }
             } else {
-                c = ld_eb_swing_right(e, c, e->lean);
+                c = ld_eb_swing_right(e, c, LD_EB_LEAN(e));
             }
         }
         e->lmc[iv] = e->lmc[src];
@@ -732,7 +743,7 @@ static lumo_status ld_eb_traverse(ld_dec *d, struct ld_eb *e, uint32_t num_symbo
      * when the symbols are done */
     s.stack = ld_free_space(&d->mem, &cap);
     s.cap = cap > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)cap;
-    st = e->lean ? ld_eb_symbols_lean(e, &s, num_symbols) : ld_eb_symbols_fast(e, &s, num_symbols);
+    st = LD_EB_LEAN(e) ? ld_eb_symbols_lean(e, &s, num_symbols) : ld_eb_symbols_fast(e, &s, num_symbols);
     ld_free_used(&d->mem, (size_t)s.max_top * sizeof(uint32_t));
     if (st || (st = ld_eb_start_faces(e, &s)))
         return st;
@@ -757,34 +768,32 @@ static LD_FORCE_INLINE uint32_t ld_eb_mswing_right(const struct ld_eb *e, uint32
     return o == LD_INV ? LD_INV : ld_prev_v(o);
 }
 
-static LD_FORCE_INLINE uint32_t ld_eb_mvert(const struct ld_eb *e, uint32_t c, int packed)
+/* The edge opposite corner c (its opposite o, or LD_INV) is a seam of a:
+ * the faces still hold the mesh vertices. */
+static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c, uint32_t o)
 {
-    return packed ? e->ct.c2v[c] & e->ct.vmask : e->ct.c2v[c];
-}
-
-static void ld_add_seam(struct ld_eb *e, ld_attr_data *a, uint32_t c)
-{
-    uint32_t o = ld_opp(&e->ct, c);
-    a->seam[c] = 1;
+    ld_seam_set(a->seam, c);
     a->vseam[ld_vert(&e->ct, ld_next(c))] = 1;
     a->vseam[ld_vert(&e->ct, ld_prev(c))] = 1;
     if (o != LD_INV) {
-        a->seam[o] = 1;
+        ld_seam_set(a->seam, o);
         a->vseam[ld_vert(&e->ct, ld_next(o))] = 1;
         a->vseam[ld_vert(&e->ct, ld_prev(o))] = 1;
     }
 }
 
-static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
+/* Read before the table is packed (lean: on the 24-bit table), so that the
+ * packing knows how many points the seams may make (ld_eb_pack_ids). */
+static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int lean)
 {
     uint32_t f, k, i, reads = 0;
     for (f = 0; f < e->num_faces; ++f) {
         const uint32_t c0 = 3u * f, cs[3] = {c0, c0 + 1u, c0 + 2u};
         for (k = 0; k < 3; ++k) {
-            uint32_t o = ld_eb_mopp(e, cs[k], packed);
+            uint32_t o = ld_eb_opp(e, cs[k], lean);
             if (o == LD_INV) {
                 for (i = 0; i < e->num_attr_data; ++i)
-                    ld_add_seam(e, &e->ad[i], cs[k]);
+                    ld_add_seam(e, &e->ad[i], cs[k], o);
                 continue;
             }
             if (o < c0)  /* an earlier face's edge: its bit is read */
@@ -796,7 +805,7 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
             for (i = 0; i < e->num_attr_data; ++i)
                 if (ld_rabs_bit(&e->ad[i].seams)) {
                     e->ad[i].ones++;
-                    ld_add_seam(e, &e->ad[i], cs[k]);
+                    ld_add_seam(e, &e->ad[i], cs[k], o);
                 }
         }
     }
@@ -810,92 +819,39 @@ static LD_FORCE_INLINE lumo_status ld_eb_seams_run(struct ld_eb *e, int packed)
 
 static lumo_status ld_eb_seams(struct ld_eb *e)
 {
-    return e->packed ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
+    return LD_EB_LEAN(e) ? ld_eb_seams_run(e, 1) : ld_eb_seams_run(e, 0);
 }
 
-/* The attribute vertices a table may have, which its border bytes are
- * sized by: at most one per corner, and the V encoded vertices with each
- * seam edge splitting its two end vertices once (the bound the decode
- * checks and the arena need takes; a byte per corner before, 3 B/face). */
-static uint32_t ld_eb_attr_vertex_cap(uint32_t corners, uint32_t verts, uint32_t ones)
+/* The points a mesh may have, which the attributes' rep maps are sized
+ * by before they are assigned: at most one per corner, and the V encoded
+ * vertices with each seam edge of any attribute splitting its two end
+ * vertices once (the bound the decode checks and the arena need takes,
+ * from the seam coders' ones). */
+static uint32_t ld_eb_point_cap(uint32_t corners, uint32_t verts, uint64_t ones)
 {
-    /* verts <= corners < 2^28 (the header checks): 32 bits do once ones
-     * is below corners / 2 */
-    if (ones >= corners / 2u || verts + 2u * ones > corners)
-        return corners;
-    return verts + 2u * ones;
+    const uint64_t split = verts + 2u * ones;  /* verts <= corners < 2^28 */
+    return split < corners ? (uint32_t)split : corners;
 }
 
-/* MeshAttributeCornerTable::RecomputeVertices: split mesh vertices into
- * attribute vertices along seam edges. */
-static LD_FORCE_INLINE lumo_status ld_eb_attr_vertices_run(struct ld_eb *e, ld_attr_data *a,
-                                                            int packed)
+/* Interior seam edges of all attribute data (after ld_eb_seams). */
+static uint64_t ld_eb_ones(const struct ld_eb *e)
 {
-    uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
-    const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
-    uint32_t v, n = 0, live = 0;
-    a->ct.c2v = a->c2v;
-    a->ct.opp32 = e->ct.opp32;
-    a->ct.opp = e->ct.opp;
-    a->ct.vmask = 0xFFFFFFFFu;
-    a->ct.seam = a->seam;
-    a->ct.lmc = NULL;
-    a->ct.border = a->border;
-    a->ct.num_corners = e->num_corners;
-    for (v = 0; v < e->num_vertices; ++v) {
-        uint32_t c = e->lmc[v], first, act, vid;
-        if (c == LD_INV)
-            continue;
-        live++;
-        if (n >= cap)
-            return LUMO_ERR_CORRUPT;
-        vid = n++;
-        first = c;
-        if (a->vseam[v]) {
-            act = ld_swing_left(&a->ct, first);
-            while (act != LD_INV) {
-                if (budget == 0)
-                    return LUMO_ERR_LIMIT;
-                --budget;
-                first = act;
-                act = ld_swing_left(&a->ct, act);
-                if (act == c)
-                    return LUMO_ERR_CORRUPT;
-            }
-        }
-        a->c2v[first] = vid;
-        /* Every end of a seam or border edge is in vseam (ld_add_seam),
-         * and its fan starts where the swing left ends: a border for the
-         * depth-first walk. Without one the fan is closed. */
-        a->border[vid] = a->vseam[v];
-        act = ld_eb_mswing_right(e, first, packed);
-        while (act != LD_INV && act != first) {
-            if (budget == 0)
-                return LUMO_ERR_LIMIT;
-            --budget;
-            if (a->seam[ld_next_v(act)]) {
-                if (n >= cap)
-                    return LUMO_ERR_CORRUPT;
-                vid = n++;
-                a->border[vid] = 1;  /* its left edge is a seam */
-            }
-            a->c2v[act] = vid;
-            act = ld_eb_mswing_right(e, act, packed);
-        }
-    }
-    e->budget = budget;
-    /* the bounds the arena need takes: the encoded vertices live (S were
-     * merged), at most one attribute vertex per corner, and a seam edge
-     * splits its two end vertices once each */
-    if (live > e->encoded_vertices || n > e->num_corners || n > live + 2u * (uint64_t)a->ones)
-        return LUMO_ERR_CORRUPT;
-    a->ct.num_vertices = n;
-    return LUMO_OK;
+    uint64_t ones = 0;
+    uint32_t i;
+    for (i = 0; i < e->num_attr_data; ++i)
+        ones += e->ad[i].ones;
+    return ones;
 }
 
-static lumo_status ld_eb_attr_vertices(struct ld_eb *e, ld_attr_data *a)
+/* The ids the packed face words must hold: the vertices, and with seams
+ * (points renumbered in place, ld_eb_points_run) the points' bound plus
+ * one for the mark of a corner not yet given a point. The decode and the
+ * arena need (escape width) ask alike. */
+static uint32_t ld_eb_pack_ids(uint32_t vertices, uint32_t corners, uint32_t verts, uint64_t ones,
+                               int seamed)
 {
-    return e->packed ? ld_eb_attr_vertices_run(e, a, 1) : ld_eb_attr_vertices_run(e, a, 0);
+    const uint32_t pts = seamed ? ld_eb_point_cap(corners, verts, ones) + 1u : 0u;
+    return pts > vertices ? pts : vertices;
 }
 
 /* A vertex is on a border when it has no left-most corner or that corner
@@ -927,7 +883,7 @@ static LD_FORCE_INLINE void ld_eb_border_fill(const uint32_t *lmc, const uint32_
 static uint8_t *ld_eb_border(struct ld_eb *e)
 {
     uint8_t *border = e->lmc_top - (((size_t)e->num_vertices + 7u) & ~(size_t)7u);
-    if (e->lean)
+    if (LD_EB_LEAN(e))
         ld_eb_border_fill(e->lmc, NULL, e->o24, e->num_vertices, border, 1);
     else
         ld_eb_border_fill(e->lmc, e->opp32, NULL, e->num_vertices, border, 0);
@@ -980,6 +936,28 @@ static uint8_t *ld_move_up(uint8_t *top, const void *src, size_t bytes)
     return dst;
 }
 
+/* The packed table's escapes and indices were moved `shift` bytes up. */
+static void ld_pot_moved(ld_pot *t, size_t shift)
+{
+    t->esc += shift;
+    t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
+    t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
+    t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
+}
+
+/* The packed table's block, [bases][fine][coarse][escapes] from table_lo
+ * to table_top, moves up to end at `top` (over dead work memory); returns
+ * its new start. */
+static uint8_t *ld_eb_lift_table(struct ld_eb *e, uint8_t *top)
+{
+    const size_t shift = (size_t)(top - e->table_top);
+    memmove(e->table_lo + shift, e->table_lo, (size_t)(e->table_top - e->table_lo));
+    ld_pot_moved(&e->ct.opp, shift);
+    e->table_lo += shift;
+    e->table_top = top;
+    return e->table_lo;
+}
+
 /* Pack the opposites into the corner table's words (ld_pot) and shrink
  * the work memory to the packed table. Work memory grows down: before,
  * [left-most corners][24-bit opposites][coarse][fine][bases]; after,
@@ -988,7 +966,8 @@ static uint8_t *ld_move_up(uint8_t *top, const void *src, size_t bytes)
 static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
 {
     const uint32_t nc = e->num_corners;
-    const unsigned vshift = ld_pot_vshift(e->num_vertices);
+    const unsigned vshift = ld_pot_vshift(ld_eb_pack_ids(e->num_vertices, nc, e->encoded_vertices,
+                                                         ld_eb_ones(e), e->num_attr_data && !e->vpoints));
     const size_t cb = (((size_t)nc + 1023u) >> LD_POT_COARSE) * 4u;
     const size_t fb = (((size_t)nc + 15u) >> LD_POT_BLOCK) * 2u;
     const size_t bb = ld_pot_bases(nc) * 4u;
@@ -1021,80 +1000,240 @@ static lumo_status ld_eb_pack(ld_dec *d, struct ld_eb *e)
     return LUMO_OK;
 }
 
-/* AssignPointsToCorners: one point per distinct combination of attribute
- * vertices around each mesh vertex, numbered in vertex order. */
+/* Every table's c2v: the points, through its rep map (the mesh's border
+ * flags are in its rep words; its left-most corners go unread); the
+ * table copies follow the blocks ld_eb_drop_dead moves. */
+static void ld_eb_sync_tables(struct ld_eb *e)
+{
+    uint32_t i;
+    e->ct.rep = e->rep;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->ct = e->ct;
+        if (a->shared)
+            continue;
+        a->ct.seam = a->seam;
+        a->ct.rep = a->rep;
+    }
+}
+
+/* AssignPointsToCorners, with the attribute vertices of RecomputeVertices
+ * named by their points instead of a vertex per corner (12 B/face per
+ * attribute with seams, issue 25 round five). An attribute's seams cut a
+ * mesh vertex's fan into its attribute vertices: on an open fan every
+ * crossing starts a vertex, on a closed one each crossing does when there
+ * are two or more (with one, RecomputeVertices starts the fan's only
+ * vertex at it). A point is a fan segment no attribute's vertex changes
+ * in; libdraco starts a closed fan at the first change of the first
+ * attribute that has one (`dedup`). Per point and attribute, rep holds the
+ * first point of the point's attribute vertex (on a closed fan the last
+ * segment after the walk's last crossing is the first's vertex when no
+ * crossing lies at the start) and, in bit 31, the vertex's border flag:
+ * the mesh vertex ends a seam or border edge (vseam), as RecomputeVertices
+ * set it. Every corner must get a point; an open fan must start at its
+ * left end, and a closed one with vertex seam flags must be crossed (as
+ * RecomputeVertices' swing left required). */
+typedef struct ld_cut {
+    const uint8_t *seam;
+    uint32_t *rep;
+    uint32_t k;        /* crossings of the fan */
+    uint32_t seen;     /* ... met by the walk from the fan's start */
+    uint32_t cur;      /* rep word of the walk's current vertex */
+    uint32_t first;    /* ... of the walk's first vertex */
+    uint8_t cuts;      /* its crossings change its vertex on this fan */
+    uint8_t wrap;      /* the last segment is the first's vertex */
+} ld_cut;
+
+/* The fan of vertex v from its left-most corner c: its crossings per
+ * attribute and whether it closes. */
+static LD_FORCE_INLINE lumo_status ld_eb_fan_cuts(const struct ld_eb *e, uint32_t c, ld_cut *cut,
+                                                  uint32_t n, uint64_t *budget, int *closed,
+                                                  int packed)
+{
+    uint32_t act = c, i;
+    *closed = 0;
+    for (i = 0; i < n; ++i)
+        cut[i].k = 0;
+    for (;;) {
+        const uint32_t nx = ld_eb_mswing_right(e, act, packed);
+        if (nx == LD_INV)
+            return LUMO_OK;
+        if (*budget == 0)
+            return LUMO_ERR_LIMIT;
+        --*budget;
+        for (i = 0; i < n; ++i)  /* the edge between act and nx */
+            cut[i].k += (uint32_t)ld_seam(cut[i].seam, ld_next_v(nx));
+        if (nx == c) {
+            *closed = 1;
+            return LUMO_OK;
+        }
+        act = nx;
+    }
+}
+
+/* The fan's start: libdraco's dedup corner of a closed fan (the first
+ * change of the first attribute with one), else c. */
+static LD_FORCE_INLINE uint32_t ld_eb_fan_start(const struct ld_eb *e, uint32_t c, const ld_cut *cut,
+                                                uint32_t n, int packed)
+{
+    uint32_t i, act;
+    for (i = 0; i < n; ++i) {
+        if (!cut[i].cuts)
+            continue;
+        for (act = ld_eb_mswing_right(e, c, packed); act != c;  /* closed: k >= 2 */
+             act = ld_eb_mswing_right(e, act, packed))
+            if (ld_seam(cut[i].seam, ld_next_v(act)))
+                return act;
+    }
+    return c;
+}
+
+/* A new point: its rep word for the mesh (`mesh`) and every attribute. */
+static LD_FORCE_INLINE lumo_status ld_eb_new_point(ld_cut *cut, uint32_t n, uint32_t *np,
+                                                   uint32_t cap, uint32_t *mrep, uint32_t mesh)
+{
+    uint32_t i;
+    if (*np >= cap)
+        return LUMO_ERR_CORRUPT;
+    mrep[*np] = mesh;
+    for (i = 0; i < n; ++i)
+        cut[i].rep[*np] = cut[i].cur;
+    ++*np;
+    return LUMO_OK;
+}
+
+/* A fan no attribute's seam or border crosses (no vertex seam flag; most
+ * fans): one point, every attribute's vertex and the mesh's its first
+ * point. Such a fan is closed (a border edge sets the flags of its ends,
+ * ld_add_seam); on a crafted table whose walk still ends, it is open, as
+ * the general walk would find. */
+static LD_FORCE_INLINE lumo_status ld_eb_fan_point(struct ld_eb *e, uint32_t lc, ld_cut *cut,
+                                                   uint32_t nown, uint32_t *np, uint32_t cap,
+                                                   uint64_t *budget, uint32_t vmask, int packed)
+{
+    uint32_t *pts = e->c2v, c = lc, i;
+    const uint32_t p0 = *np;
+    lumo_status st;
+    for (i = 0; i < nown; ++i)
+        cut[i].cur = p0;
+    if ((st = ld_eb_new_point(cut, nown, np, cap, e->rep, p0)))
+        return st;
+    do {
+        if (*budget == 0)
+            return LUMO_ERR_LIMIT;
+        --*budget;
+        pts[c] = (pts[c] & ~vmask) | p0;
+        c = ld_eb_mswing_right(e, c, packed);
+    } while (c != LD_INV && c != lc);
+    if (c == LD_INV) {  /* open after all: a border, starting at its left end */
+        e->rep[p0] |= LD_REP_BORDER;
+        if (ld_eb_mopp(e, ld_next_v(lc), packed) != LD_INV)
+            return LUMO_ERR_CORRUPT;
+    }
+    return LUMO_OK;
+}
+
 static LD_FORCE_INLINE lumo_status ld_eb_points_run(ld_dec *d, struct ld_eb *e, int packed)
 {
     uint64_t budget = e->budget;  /* charged here as by ld_eb_charge */
-    uint32_t v, i, np = 0, live = 0, nown = 0;
+    uint64_t sum = 0;
+    uint32_t v, i, c, np = 0, live = 0, nown = 0, cap;
+    /* the faces hold the vertex ids (and, packed, the opposites above
+     * vmask): each corner's id becomes its point's, marked vmask until
+     * then (ld_eb_pack_ids keeps vmask above every point) */
     uint32_t *pts = d->faces;
+    const uint32_t vmask = e->ct.vmask;
+    ld_attr_data *own[LD_MAX_ATTR_DATA];
+    ld_cut cut[LD_MAX_ATTR_DATA];
+    lumo_status st;
     /* only attributes with interior seams cut a fan (ld_eb_attr_tables) */
-    const ld_attr_data *own[LD_MAX_ATTR_DATA];
-    for (i = 0; i < e->num_attr_data; ++i)
-        if (!e->ad[i].shared)
-            own[nown++] = &e->ad[i];
-    const uint32_t *c2v0;  /* the first one's in a local: one load per corner */
-    memset(pts, 0, (size_t)e->num_corners * sizeof(uint32_t));
-    c2v0 = nown ? own[0]->c2v : NULL;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        if (!e->ad[i].shared) {
+            own[nown] = &e->ad[i];
+            cut[nown].seam = e->ad[i].seam;
+            cut[nown].rep = e->ad[i].rep;
+            own[nown++]->num_avs = 0;
+        }
+    }
+    cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ld_eb_ones(e));
+    for (c = 0; c < e->num_corners; ++c)
+        pts[c] |= vmask;
     for (v = 0; v < e->num_vertices; ++v) {
-        uint32_t c = e->lmc[v], dedup, prev;
-        if (c == LD_INV)
+        const uint32_t lc = e->lmc[v];
+        uint32_t start, p0, mesh;
+        int closed;
+        if (lc == LD_INV)
             continue;
         live++;
-        dedup = c;
-        for (i = 0; i < nown && !e->hole[v]; ++i) {
-            const ld_attr_data *a = own[i];
-            uint32_t vid, act;
-            int found = 0;
-            if (!a->vseam[ld_eb_mvert(e, c, packed)])
-                continue;
-            vid = a->c2v[c];
-            act = ld_eb_mswing_right(e, c, packed);
-            while (act != c) {
-                if (act == LD_INV)
-                    return LUMO_ERR_CORRUPT;
-                if (budget == 0)
-                    return LUMO_ERR_LIMIT;
-                --budget;
-                if (a->c2v[act] != vid) {
-                    dedup = act;
-                    found = 1;
-                    break;
-                }
-                act = ld_eb_mswing_right(e, act, packed);
-            }
-            if (found)
-                break;
+        for (i = 0; i < nown && !own[i]->vseam[v]; ++i)
+            ;
+        if (i == nown) {  /* no seam or border ends here: one point */
+            if ((st = ld_eb_fan_point(e, lc, cut, nown, &np, cap, &budget, vmask, packed)))
+                return st;
+            for (i = 0; i < nown; ++i)
+                own[i]->num_avs++;
+            continue;
         }
-        c = dedup;
-        pts[c] = np++;
-        prev = c;
-        c = ld_eb_mswing_right(e, c, packed);
-        while (c != LD_INV && c != dedup) {
-            int seam;
+        if ((st = ld_eb_fan_cuts(e, lc, cut, nown, &budget, &closed, packed)))
+            return st;
+        if (!closed && ld_eb_mopp(e, ld_next_v(lc), packed) != LD_INV)
+            return LUMO_ERR_CORRUPT;  /* an open fan starts at its left end */
+        for (i = 0; i < nown; ++i) {
+            const int vs = own[i]->vseam[v];
+            if (vs && ((closed && cut[i].k == 0) || (!closed && !e->hole[v])))
+                return LUMO_ERR_CORRUPT;
+            cut[i].cuts = (uint8_t)(vs && (!closed || cut[i].k >= 2u));
+            own[i]->num_avs += !cut[i].cuts ? 1u : closed ? cut[i].k : cut[i].k + 1u;
+        }
+        start = closed && !e->hole[v] ? ld_eb_fan_start(e, lc, cut, nown, packed) : lc;
+        p0 = np;
+        mesh = p0 | (closed ? 0u : LD_REP_BORDER);  /* a border: the fan is open */
+        for (i = 0; i < nown; ++i) {
+            cut[i].first = cut[i].cur = p0 | (own[i]->vseam[v] ? LD_REP_BORDER : 0u);
+            cut[i].seen = 0;
+            cut[i].wrap = (uint8_t)(cut[i].cuts && closed && !ld_seam(cut[i].seam, ld_next_v(start)));
+        }
+        if ((st = ld_eb_new_point(cut, nown, &np, cap, e->rep, mesh)))
+            return st;
+        pts[start] = (pts[start] & ~vmask) | p0;
+        for (c = ld_eb_mswing_right(e, start, packed); c != LD_INV && c != start;
+             c = ld_eb_mswing_right(e, c, packed)) {
+            int fresh = 0;
             if (budget == 0)
                 return LUMO_ERR_LIMIT;
             --budget;
-            seam = nown && c2v0[c] != c2v0[prev];
-            for (i = 1; i < nown && !seam; ++i)
-                seam = own[i]->c2v[c] != own[i]->c2v[prev];
-            pts[c] = seam ? np++ : pts[prev];
-            prev = c;
-            c = ld_eb_mswing_right(e, c, packed);
+            for (i = 0; i < nown; ++i) {
+                if (!cut[i].cuts || !ld_seam(cut[i].seam, ld_next_v(c)))
+                    continue;
+                fresh = 1;
+                cut[i].cur = ++cut[i].seen == cut[i].k && cut[i].wrap
+                                 ? cut[i].first
+                                 : np | (cut[i].cur & LD_REP_BORDER);
+            }
+            if (fresh && (st = ld_eb_new_point(cut, nown, &np, cap, e->rep, mesh)))
+                return st;
+            pts[c] = (pts[c] & ~vmask) | (np - 1u);
         }
     }
-    {   /* at most one per corner, and at most the attribute vertices
-         * together (each cut of a fan is some attribute's cut; a shared
-         * table has one per live vertex): the bounds of the arena need */
-        uint64_t sum = 0, ones = 0;
-        for (i = 0; i < e->num_attr_data; ++i) {
-            sum += e->ad[i].shared ? live : e->ad[i].ct.num_vertices;
-            ones += e->ad[i].ones;
-        }
-        if (np > e->num_corners || np > sum || np > e->encoded_vertices + 2u * ones ||
-            live > e->encoded_vertices)
+    for (c = 0; c < e->num_corners; ++c)  /* every corner in some fan */
+        if ((pts[c] & vmask) == vmask)
+            return LUMO_ERR_CORRUPT;
+    /* the bounds of the arena need: the encoded vertices live (S were
+     * merged), an attribute's vertices at most one per corner and V plus
+     * two per seam edge, and the points at most the attribute vertices
+     * together (each cut of a fan is some attribute's cut; a shared table
+     * has one per live vertex) */
+    for (i = 0; i < e->num_attr_data; ++i) {
+        const ld_attr_data *a = &e->ad[i];
+        sum += a->shared ? live : a->num_avs;
+        if (!a->shared && (a->num_avs > e->num_corners || a->num_avs > live + 2u * (uint64_t)a->ones))
             return LUMO_ERR_CORRUPT;
     }
+    if (np > sum || live > e->encoded_vertices)
+        return LUMO_ERR_CORRUPT;
+    e->ct.lmc = NULL;
+    e->ct.border = NULL;
+    e->ct.num_vertices = np;
     d->num_points = np;
     e->budget = budget;
     return LUMO_OK;
@@ -1160,12 +1299,8 @@ static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
     ld_pot *t = &e->ct.opp;
     uint32_t i;
     memmove(lo + shift, lo, (size_t)(end - lo));
-    if (e->packed) {
-        t->esc += shift;
-        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
-        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
-        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
-    }
+    if (e->packed)
+        ld_pot_moved(t, shift);
     for (i = 0; i < e->num_attr_data; ++i)
         e->ad[i].vseam += shift;
     ld_tmp_release(&d->mem, lo + shift);
@@ -1180,47 +1315,131 @@ static void ld_eb_vpoints_tables(ld_dec *d, struct ld_eb *e)
     }
 }
 
+/* With seams, the work memory from e->region down holds, top down: hole
+ * flags, left-most corners and each attribute's vertex seam flags (read
+ * only to assign the points), each own attribute's seam flags, the packed
+ * table (lean), the mesh's rep map, each own attribute's rep map, then a
+ * sequence's value -> corner map. A block dies when no decoder to come
+ * reads it: an attribute's seam flags after its decoder's prediction, a
+ * rep map after the last traversal of its table. ld_eb_drop_dead moves the
+ * live blocks up over the dead ones, top down (each moves up, so a
+ * memmove in order is safe), and the pointers with them; the arena-need
+ * replay (ld_eb_need_drop_dead) books the same sizes. `from_seam` and
+ * `from_rep`: the first decoder still to read seam flags and rep maps;
+ * -1 before the decoders are known (the point assignment: only its own
+ * blocks die). */
+static size_t ld_eb_round8(size_t n) { return (n + 7u) & ~(size_t)7u; }
+
+/* Whether decoder `from` or a later one reads the mesh's table. */
+static int ld_eb_mesh_read(const ld_dec *d, const struct ld_eb *e, int from)
+{
+    int j;
+    if (from < 0)
+        return 1;
+    for (j = from; j < (int)d->num_decoders; ++j) {
+        const int8_t ad = e->dec_att_data[j];
+        if (ad < 0 || e->dec_type[j] == 0 || e->ad[ad].shared)
+            return 1;
+    }
+    return 0;
+}
+
+static uint8_t *ld_eb_drop_dead(ld_dec *d, struct ld_eb *e, int from_seam, int from_rep,
+                              const uint32_t **v2c, uint32_t n_v2c)
+{
+    uint8_t *dst = e->region;
+    const size_t rb = ld_eb_round8((size_t)e->rep_cap * 4u);
+    uint32_t i;
+    e->hole = NULL;  /* hole flags, left-most corners, vertex seam flags */
+    e->lmc = NULL;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        a->vseam = NULL;
+        if (a->shared || !a->seam)
+            continue;
+        if (from_seam >= 0 && a->decoder_id < from_seam) {
+            a->seam = NULL;
+            continue;
+        }
+        a->seam = dst = ld_move_up(dst, a->seam, ld_seam_bytes(e->num_corners));
+    }
+    if (e->packed)
+        dst = ld_eb_lift_table(e, dst);
+    if (e->rep && ld_eb_mesh_read(d, e, from_rep))
+        e->rep = (uint32_t *)(void *)(dst = ld_move_up(dst, e->rep, rb));
+    else
+        e->rep = NULL;
+    for (i = 0; i < e->num_attr_data; ++i) {
+        ld_attr_data *a = &e->ad[i];
+        if (!a->rep)
+            continue;
+        if (from_rep >= 0 && a->decoder_id < from_rep)
+            a->rep = NULL;
+        else
+            a->rep = (uint32_t *)(void *)(dst = ld_move_up(dst, a->rep, rb));
+    }
+    if (v2c)
+        *v2c = (const uint32_t *)(const void *)ld_move_up(dst, (void *)(uintptr_t)*v2c,
+                                                                (size_t)n_v2c * 4u);
+    ld_tmp_release(&d->mem, v2c ? (uint8_t *)(uintptr_t)*v2c : dst);
+    ld_eb_sync_tables(e);
+    return dst;
+}
+
 static lumo_status ld_eb_points(ld_dec *d, struct ld_eb *e)
 {
+    lumo_status st;
     if (e->num_attr_data == 0) {  /* the output faces are the vertex map */
         d->num_points = e->num_conn_vertices;
         return LUMO_OK;
     }
     if (e->vpoints) {
-        lumo_status st = e->packed ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
+        st = LD_EB_PACKED(e) ? ld_eb_renumber_run(d, e, 1) : ld_eb_renumber_run(d, e, 0);
         if (!st)
             ld_eb_vpoints_tables(d, e);
         return st;
     }
-    return e->packed ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
+    st = LD_EB_PACKED(e) ? ld_eb_points_run(d, e, 1) : ld_eb_points_run(d, e, 0);
+    if (!st)  /* the point assignment's own blocks go */
+        ld_eb_drop_dead(d, e, -1, -1, NULL, 0);
+    return st;
 }
 
 /* ---- entry points ----------------------------------------------------------------- */
 
+static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e);
+
 static lumo_status ld_eb_alloc(ld_dec *d, struct ld_eb *e)
 {
     uint32_t i;
-    const int own_map = e->num_attr_data && !e->vpoints;
+    lumo_status st;
+    const int seamed = e->num_attr_data && !e->vpoints;  /* interior seams */
     e->num_corners = 3u * e->num_faces;
     d->faces = ld_out(&d->mem, e->num_corners, sizeof(uint32_t));
-    /* Without attribute seams, or without an interior one (vpoints), every
-     * vertex is a point: the corner table's vertex map is the output face
-     * array itself. */
-    e->c2v = own_map ? ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t)) : d->faces;
-    if (!e->lean) {
+    /* The corner table's vertex map is the output face array itself:
+     * without seams, or without an interior one (vpoints), every vertex is
+     * a point (renumbered in place to point order); with seams the points
+     * are assigned over the vertex ids in place (ld_eb_points_run: no
+     * vertex map of 12 B/face beside the faces, issue 25 round five). */
+    e->c2v = d->faces;
+    if (!LD_EB_LEAN(e)) {
         e->opp_top = ld_tmp_mark(&d->mem);
         e->opp32 = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
     }
     /* hole flags are read only to assign points along seams */
-    e->hole = own_map ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
+    e->region = ld_tmp_mark(&d->mem);
+    e->hole = seamed ? ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, 1) : NULL;
     e->lmc_top = ld_tmp_mark(&d->mem);  /* the border bytes take its top */
     e->lmc = ld_tmp(&d->mem, (size_t)e->max_vertices + 3u, sizeof(uint32_t));
-    if (e->lean) {
+    /* the seam reading's tables above the 24-bit table, which moves up
+     * over the seam flags that go (ld_eb_attr_tables) before it is packed */
+    if (e->lmc && (st = ld_eb_alloc_attr_data(d, e)))
+        return st;
+    if (LD_EB_LEAN(e)) {
         e->o24_top = ld_tmp_mark(&d->mem);  /* lowest: packed in place, ld_eb_pack */
         e->o24 = ld_tmp(&d->mem, 3u * (size_t)e->num_corners + 1u, 1);
     }
-    if (!e->c2v || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && own_map) ||
-        !d->faces)
+    if (!d->faces || !(e->o24 || e->opp32) || !e->lmc || (!e->hole && seamed))
         return LUMO_ERR_NOMEM;
     /* No fill of c2v and the opposites: every symbol writes the three
      * vertices of its face and clears its three opposites before anything
@@ -1252,18 +1471,18 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
     uint32_t i;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        a->vseam = ld_tmp(&d->mem, e->num_vertices + 1u, 1);
+        a->vseam = ld_tmp(&d->mem, e->max_vertices + 1u, 1);
         if (!a->vseam)
             return LUMO_ERR_NOMEM;
-        memset(a->vseam, 0, e->num_vertices + 1u);
+        memset(a->vseam, 0, e->max_vertices + 1u);
     }
     e->seam_top = ld_tmp_mark(&d->mem);
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        a->seam = ld_tmp(&d->mem, e->num_corners, 1);
+        a->seam = ld_tmp(&d->mem, ld_seam_bytes(e->num_corners), 1);
         if (!a->seam)
             return LUMO_ERR_NOMEM;
-        memset(a->seam, 0, e->num_corners);
+        memset(a->seam, 0, ld_seam_bytes(e->num_corners));
     }
     return LUMO_OK;
 }
@@ -1273,11 +1492,12 @@ static lumo_status ld_eb_alloc_attr_data(ld_dec *d, struct ld_eb *e)
  * its vertex seam flags as the depth-first walk's border bytes (a vertex
  * is on a border exactly when a border edge ends there, ld_add_seam), and
  * its seam flags go. The others keep their seam flags, moved up over the
- * dead ones, and get a vertex per corner and border bytes of their own. */
+ * dead ones, and get a rep word per point (ld_eb_points_run: 4 B per point
+ * bound instead of a vertex per corner and a border byte per vertex). */
 static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
 {
     uint8_t *top = e->seam_top;
-    uint32_t i;
+    uint32_t i, cap;
     lumo_status st;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
@@ -1299,22 +1519,31 @@ static lumo_status ld_eb_attr_tables(ld_dec *d, struct ld_eb *e)
             a->seam = NULL;
             continue;
         }
-        top = ld_move_up(top, a->seam, e->num_corners);
+        top = ld_move_up(top, a->seam, ld_seam_bytes(e->num_corners));
         a->seam = top;
     }
+    if (LD_EB_LEAN(e)) {  /* the 24-bit table moves up over the dead flags */
+        e->o24 = ld_move_up(top, e->o24, 9u * (size_t)e->num_faces + 1u);
+        e->o24_top = top;
+        top = e->o24;
+    }
     ld_tmp_release(&d->mem, top);
+    if (LD_EB_LEAN(e) && (st = ld_eb_pack(d, e)))
+        return st;
+    if (e->vpoints)
+        return LUMO_OK;
+    cap = ld_eb_point_cap(e->num_corners, e->encoded_vertices, ld_eb_ones(e));
+    e->rep_cap = cap;
+    e->rep = ld_tmp(&d->mem, cap, sizeof(uint32_t));
+    if (!e->rep)
+        return LUMO_ERR_NOMEM;
     for (i = 0; i < e->num_attr_data; ++i) {
         ld_attr_data *a = &e->ad[i];
-        const uint32_t cap = ld_eb_attr_vertex_cap(e->num_corners, e->encoded_vertices, a->ones);
         if (a->shared)
             continue;
-        a->c2v = ld_tmp(&d->mem, e->num_corners, sizeof(uint32_t));
-        a->border = ld_tmp(&d->mem, (size_t)cap + 1u, 1);
-        if (!a->c2v || !a->border)
+        a->rep = ld_tmp(&d->mem, cap, sizeof(uint32_t));
+        if (!a->rep)
             return LUMO_ERR_NOMEM;
-        memset(a->c2v, 0xFF, (size_t)e->num_corners * sizeof(uint32_t));
-        if ((st = ld_eb_attr_vertices(e, a)))
-            return st;
     }
     return LUMO_OK;
 }
@@ -1382,12 +1611,9 @@ lumo_status ld_eb_decode_connectivity(ld_dec *d)
     e->ct.num_vertices = e->num_vertices;
     /* without seams the first sequence, which knows the traversals, drops
      * the left-most corners (default) or packs the table or reads it as
-     * decoded (lean, ld_eb_reads_o24) */
-    if (e->lean && nad && (st = ld_eb_pack(d, e)))
-        return st;
+     * decoded (lean, ld_eb_reads_o24); with seams ld_eb_attr_tables packs
+     * it once the seams are read */
     d->num_faces = faces;
-    if ((st = ld_eb_alloc_attr_data(d, e)))
-        return st;
     if (nad && (st = ld_eb_seams(e)))
         return st;
     if (nad && (st = ld_eb_attr_tables(d, e)))
@@ -1478,44 +1704,42 @@ static void ld_eb_keep_o24(ld_dec *d, struct ld_eb *e, int32_t *vmap)
     e->ct.o24 = e->o24;
 }
 
-/* The point -> value map of one attributes decoder: each point takes the
- * value of its corner's vertex in `ct`. Every corner of a point lies in
- * the same vertex of every table (a point is a fan segment that no seam
- * cuts, ld_eb_points_run), so one corner per point suffices: the map
- * first holds the last corner of each point (a pass of a load and a store
- * per corner), then each point looks its corner's vertex up (one
- * pass over the points, about half the corners): the per-corner vertex
- * lookups and checks of a pass over the corners were 17 instructions a
- * corner (callgrind, issue 25 round three). On a crafted table whose
- * corners of one point disagree, the last corner decides, as the corner
- * pass did. */
-static lumo_status ld_eb_point_map(const ld_ct *ct, const uint32_t *faces, uint32_t num_corners,
-                                   uint32_t num_points, uint32_t vmap,
-                                   const int32_t *vertex_to_value, uint32_t *point_to_value)
+/* A table of a mesh with seams (ld_ct.rep: the mesh's or an attribute's):
+ * the traversal's vertex -> value map is the output point map, read at
+ * each vertex's first point; then every other point takes its vertex's
+ * value (its first point is below it), so the predictions read a corner's
+ * value through its point and no vertex map exists (issue 25 round
+ * five). At most max_values values. */
+static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_ct *ct,
+                                      uint32_t max_values, ld_seq *seq)
 {
-    const uint32_t *c2v = ct->c2v, vmask = ct->vmask;
-    uint32_t c, p;
-    if (num_points == 0)
-        return num_corners ? LUMO_ERR_CORRUPT : LUMO_OK;
-    memset(point_to_value, 0xFF, (size_t)num_points * sizeof(uint32_t));
-    for (c = 0; c < num_corners; ++c) {
-        if (faces[c] >= num_points)  /* kept: a write, whatever made faces */
+    const uint32_t np = d->num_points, *rep = ct->rep;
+    int32_t *map = ld_out(&d->mem, np, sizeof(int32_t));
+    ld_order o;
+    uint32_t p;
+    lumo_status st;
+    if (!map)
+        return LUMO_ERR_NOMEM;
+    o.vertex_to_value = map;
+    if ((st = ld_traverse(&d->mem, ct, np, max_values, d->eb->dec_traversal[decoder], &o)))
+        return st;
+    for (p = 0; p < np; ++p) {  /* unvisited (-1, -3) is huge unsigned */
+        const uint32_t x = (uint32_t)map[rep[p] & LD_REP_MASK];
+        if (x >= o.num_values)
             return LUMO_ERR_CORRUPT;
-        point_to_value[faces[c]] = c;
+        map[p] = (int32_t)x;
     }
-    for (p = 0; p < num_points; ++p) {  /* LD_INV and -1 are huge unsigned */
-        const uint32_t cp = point_to_value[p];
-        uint32_t v, entry;
-        if (cp >= num_corners)
-            return LUMO_ERR_CORRUPT;  /* a point without a corner */
-        v = c2v[cp] & vmask;
-        if (v >= vmap)
-            return LUMO_ERR_CORRUPT;
-        entry = (uint32_t)vertex_to_value[v];
-        if (entry >= num_points)
-            return LUMO_ERR_CORRUPT;
-        point_to_value[p] = entry;
-    }
+    seq->num_entries = o.num_values;
+    seq->faces = d->faces;
+    seq->faces_mask = ct->vmask;
+    seq->vertex_to_value = map;
+    seq->value_to_corner = o.value_to_corner;
+    seq->point_to_value = (uint32_t *)map;
+    /* this traversal was the last of its table's rep map: the dead blocks
+     * go before the values (the tables move: ct is a copy in e) */
+    seq->work_top = ld_eb_drop_dead(d, d->eb, (int)decoder, (int)decoder + 1, &seq->value_to_corner,
+                                  max_values);
+    seq->ct = ct;
     return LUMO_OK;
 }
 
@@ -1527,8 +1751,6 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     int8_t ad = e->dec_att_data[decoder];
     ld_order o;
     int keep = 0;
-    /* the vertices are the points: the face array is the vertex map */
-    const int vmap_faces = !e->num_attr_data || e->vpoints;
     lumo_status st;
     if (ad >= 0) {
         if (e->dec_type[decoder] != 0)
@@ -1536,7 +1758,12 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (e->ad[ad].ct.num_vertices > vmap)
             vmap = e->ad[ad].ct.num_vertices;
     }
-    if (!e->lean && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
+    if (ct->rep)  /* with seams: an attribute's vertices, or the mesh's */
+        return ld_eb_rep_sequence(d, decoder, ct, ct->seam ? e->ad[ad].num_avs : e->num_vertices,
+                                  seq);
+    /* else the vertices are the points: the face array is the vertex map,
+     * the vertex -> value map the point map, decoded into the output */
+    if (!LD_EB_LEAN(e) && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
         return st;  /* default, no seams, first sequence */
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
         keep = ld_eb_reads_o24(decoder, d->num_decoders, seq->last, e->dec_traversal[0], &d->buf);
@@ -1545,16 +1772,11 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if (keep)
             ld_eb_keep_o24_begin(d, e);
     }
-    o.vertex_to_value = NULL;
-    if (vmap_faces) {
-        /* points are the mesh vertices: the vertex -> value map is the
-         * point map, decoded straight into the output */
-        o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
-        if (!o.vertex_to_value)
-            return LUMO_ERR_NOMEM;
-        if (keep)
-            ld_eb_keep_o24(d, e, o.vertex_to_value);
-    }
+    o.vertex_to_value = ld_out(&d->mem, vmap, sizeof(int32_t));
+    if (!o.vertex_to_value)
+        return LUMO_ERR_NOMEM;
+    if (keep)
+        ld_eb_keep_o24(d, e, o.vertex_to_value);
     /* read as decoded, the table leaves no room for the split vertices'
      * entries: a mesh without seams has d->num_points vertices in use */
     if ((st = ld_traverse(&d->mem, ct, vmap, keep ? d->num_points : vmap,
@@ -1562,22 +1784,15 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         return st;
     seq->num_entries = o.num_values;
     seq->faces = d->faces;
-    seq->faces_mask = vmap_faces ? e->ct.vmask : 0xFFFFFFFFu;
+    seq->faces_mask = e->ct.vmask;
     seq->ct = ct;
     seq->vertex_to_value = o.vertex_to_value;
     seq->value_to_corner = o.value_to_corner;
-    if (vmap_faces) {
-        for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
-            if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
-                return LUMO_ERR_CORRUPT;
-        seq->point_to_value = (uint32_t *)o.vertex_to_value;
-        return LUMO_OK;
-    }
-    seq->point_to_value = ld_out(&d->mem, d->num_points, sizeof(uint32_t));
-    if (!seq->point_to_value)
-        return LUMO_ERR_NOMEM;
-    return ld_eb_point_map(ct, d->faces, e->num_corners, d->num_points, vmap, o.vertex_to_value,
-                           seq->point_to_value);
+    for (c = 0; c < d->num_points; ++c)  /* unvisited (-1) is huge unsigned */
+        if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
+            return LUMO_ERR_CORRUPT;
+    seq->point_to_value = (uint32_t *)o.vertex_to_value;
+    return LUMO_OK;
 }
 
 /* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
@@ -1633,16 +1848,7 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
         memset(&e->ct.opp, 0, sizeof e->ct.opp);
         top = e->lmc_top;
     } else {  /* the packed table moves up over the border bytes */
-        ld_pot *t = &e->ct.opp;
-        const size_t shift = (size_t)(e->lmc_top - e->table_top);
-        memmove(e->table_lo + shift, e->table_lo, (size_t)(e->table_top - e->table_lo));
-        t->esc += shift;
-        t->coarse = (const uint32_t *)(const void *)((const uint8_t *)t->coarse + shift);
-        t->fine = (const uint16_t *)(const void *)((const uint8_t *)t->fine + shift);
-        t->base = (const int16_t *)(const void *)((const uint8_t *)t->base + shift);
-        e->table_lo += shift;
-        e->table_top = e->lmc_top;
-        top = e->table_lo;
+        top = ld_eb_lift_table(e, e->lmc_top);
     }
     seq->value_to_corner = (const uint32_t *)(const void *)ld_move_up(top, v2c, (size_t)n * 4u);
     seq->opposites = (uint8_t)(opposites != 0);
@@ -1759,7 +1965,7 @@ static lumo_status ld_eb_need_symbols(ld_buf *b, ld_need *k, ld_eb_need *e)
     }
     if (!e->valence)
         return LUMO_OK;
-    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, e->lean ? 1u : sizeof(uint32_t));
+    ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, LD_EB_LEAN(e) ? 1u : sizeof(uint32_t));
     for (i = 0; i < LD_VALENCE_CONTEXTS; ++i) {
         if ((st = ld_varint32(b, &n)))
             return st;
@@ -1797,11 +2003,18 @@ static void ld_eb_need_traverse(ld_need *k, const ld_eb_need *e, uint32_t num_sp
 static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
 {
     const uint64_t corners = 3u * (uint64_t)e->faces;
-    const unsigned vshift = ld_pot_vshift(ld_eb_need_vertices(e));
-    const size_t ew = vshift > LD_POT_MAX_VSHIFT ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
-    const size_t cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
-    const size_t fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
-    const size_t bb = ld_need_bytes(ld_pot_bases(corners), 4u);
+    uint64_t ones = 0;
+    uint32_t i;
+    unsigned vshift;
+    size_t ew, cb, fb, bb;
+    for (i = 0; i < e->nad; ++i)
+        ones += e->seam_ones[i];
+    vshift = ld_pot_vshift(ld_eb_pack_ids((uint32_t)ld_eb_need_vertices(e), (uint32_t)corners, e->verts,
+                                          ones, e->nad && !e->vpoints));
+    ew = vshift > LD_POT_MAX_VSHIFT ? 3u : ld_pot_escape_width((uint32_t)corners, vshift);
+    cb = ld_need_bytes((size_t)((corners + 1023u) >> LD_POT_COARSE), 4u);
+    fb = ld_need_bytes((size_t)((corners + 15u) >> LD_POT_BLOCK), 2u);
+    bb = ld_need_bytes(ld_pot_bases(corners), 4u);
     ld_need_tmp(k, cb, 1);
     ld_need_tmp(k, fb, 1);
     ld_need_tmp(k, bb, 1);
@@ -1809,10 +2022,54 @@ static void ld_eb_need_pack(ld_need *k, ld_eb_need *e, size_t top)
     ld_need_release(k, top + e->w_table);
 }
 
+static uint64_t ld_eb_need_ones(const ld_eb_need *e)
+{
+    uint64_t ones = 0;
+    uint32_t i;
+    for (i = 0; i < e->nad; ++i)
+        ones += e->seam_ones[i];
+    return ones;
+}
+
+/* ld_eb_drop_dead's blocks as work in use: the seam flags, the packed
+ * table and the rep maps still read from decoders from_seam and from_rep
+ * on, under the work above them. */
+static int ld_eb_need_decoder_of(const ld_eb_need *e, uint32_t ad)
+{
+    unsigned j;
+    for (j = 0; j < e->num_decoders; ++j)
+        if (e->dec_att_data[j] == (int8_t)ad)
+            return (int)j;
+    return -1;
+}
+
+static size_t ld_eb_need_drop_dead(const ld_eb_need *e, int from_seam, int from_rep)
+{
+    const size_t rb = ld_need_bytes(ld_eb_point_cap(3u * e->faces, e->verts, ld_eb_need_ones(e)), 4u);
+    size_t w = e->w_region + (e->lean ? e->w_table : 0u);
+    int mesh = from_rep < 0;
+    uint32_t i;
+    unsigned j;
+    for (j = from_rep < 0 ? 0u : (unsigned)from_rep; j < e->num_decoders; ++j)
+        mesh |= e->dec_att_data[j] < 0 || e->dec_type[j] == 0 || e->ad_shared[e->dec_att_data[j]];
+    w += mesh ? rb : 0u;
+    for (i = 0; i < e->nad; ++i) {
+        const int dec = ld_eb_need_decoder_of(e, i);
+        if (e->ad_shared[i])
+            continue;
+        if (from_seam < 0 || dec >= from_seam)
+            w += ld_need_bytes(ld_seam_bytes(3u * e->faces), 1);
+        if (from_rep < 0 || dec >= from_rep)
+            w += rb;
+    }
+    return w;
+}
+
 lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int lean)
 {
     uint32_t verts, faces, symbols, splits, num_splits, i, own = 0;
-    size_t mark, o24_top, seam_top;
+    uint64_t ones = 0;
+    size_t mark, seam_top, top;
     uint8_t type, nad;
     lumo_status st;
     if ((st = ld_u8(b, &type)))
@@ -1847,16 +2104,19 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
     /* ld_eb_decode_connectivity, ld_eb_alloc */
     ld_need_tmp(k, 1, sizeof(struct ld_eb));
     ld_need_out(k, 3u * (size_t)faces, sizeof(uint32_t));
-    if (nad && !e->vpoints)
-        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
     e->w_opp_top = k->work;
     if (!lean)
         ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
+    e->w_region = k->work;
     if (nad && !e->vpoints)
         ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, 1);
     e->w_lmc_top = k->work;
     ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 3u, sizeof(uint32_t));
-    o24_top = k->work;
+    for (i = 0; i < nad; ++i)  /* ld_eb_alloc_attr_data */
+        ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
+    seam_top = k->work;
+    for (i = 0; i < nad; ++i)
+        ld_need_tmp(k, ld_seam_bytes(3u * faces), 1);
     if (lean)
         ld_need_tmp(k, 9u * (size_t)faces + 1u, 1);
     mark = k->work;
@@ -1864,26 +2124,26 @@ lumo_status ld_eb_need_connectivity(ld_buf *b, ld_need *k, ld_eb_need *e, int le
         return st;
     ld_eb_need_traverse(k, e, num_splits);
     ld_need_release(k, mark);
-    if (lean && nad)
-        ld_eb_need_pack(k, e, o24_top);
-    for (i = 0; i < nad; ++i)  /* ld_eb_alloc_attr_data */
-        ld_need_tmp(k, (size_t)ld_eb_need_vertices(e) + 1u, 1);
-    seam_top = k->work;
-    for (i = 0; i < nad; ++i)
-        ld_need_tmp(k, 3u * (size_t)faces, 1);
     /* ld_eb_attr_tables: shared when the interior edges' bits hold no
-     * one (ld_eb_need_symbols counted them) */
+     * one (ld_eb_need_symbols counted them); the 24-bit table moves up
+     * under the seam flags kept, and is packed there */
     for (i = 0; i < nad; ++i) {
         e->ad_shared[i] = e->seam_ones[i] == 0;
         own += !e->ad_shared[i];
+        ones += e->seam_ones[i];
     }
-    ld_need_release(k, seam_top + own * ld_need_bytes(3u * (size_t)faces, 1));
-    for (i = 0; i < nad; ++i) {
-        if (e->ad_shared[i])
-            continue;
-        ld_need_tmp(k, 3u * (size_t)faces, sizeof(uint32_t));
-        ld_need_tmp(k, (size_t)ld_eb_attr_vertex_cap(3u * faces, e->verts, e->seam_ones[i]) + 1u, 1);
+    top = seam_top + own * ld_need_bytes(ld_seam_bytes(3u * faces), 1);
+    if (lean && nad) {
+        ld_need_release(k, top + ld_need_bytes(9u * (size_t)faces + 1u, 1));
+        ld_eb_need_pack(k, e, top);
+    } else if (nad) {
+        ld_need_release(k, top);
     }
+    for (i = 0; nad && !e->vpoints && i <= nad; ++i)  /* the mesh's and the own tables' rep maps */
+        if (i == nad || !e->ad_shared[i])
+            ld_need_tmp(k, ld_eb_point_cap(3u * faces, e->verts, ones), sizeof(uint32_t));
+    if (nad && !e->vpoints)  /* ld_eb_points: the point assignment's blocks go */
+        ld_need_release(k, ld_eb_need_drop_dead(e, -1, -1));
     if (e->vpoints)  /* ld_eb_vpoints_tables: the left-most corners go */
         ld_need_release(k, k->work - ld_need_bytes((size_t)ld_eb_need_vertices(e) + 3u, 4u));
     e->table_live = nad == 0;
@@ -1965,6 +2225,9 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     const size_t o24 = ld_need_bytes(9u * (size_t)e->faces + 1u, 1);
     size_t mark;
     int keep = 0;
+    /* with seams every table's vertex map is the output point map
+     * (ld_eb_rep_sequence) */
+    const int rep = !vmap_faces;
     if (ad >= 0 && !e->ad_shared[ad] && ld_eb_need_attr_vertices(k, e, ad) > vmap)
         vmap = ld_eb_need_attr_vertices(k, e, ad);
     if (!e->nad && !e->settled) {  /* ld_eb_sequence: the left-most corners */
@@ -1972,9 +2235,9 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
                                   ? ld_need_bytes(ld_eb_need_vertices(e), 1)
                                   : 0u;
         e->settled = 1;
-        keep = e->lean &&
+        keep = LD_EB_LEAN(e) &&
                ld_eb_reads_o24(decoder, e->num_decoders, s->last, e->dec_traversal[0], b);
-        if (!e->lean) {  /* ld_eb_drop_lmc */
+        if (!LD_EB_LEAN(e)) {  /* ld_eb_drop_lmc */
             ld_need_release(k, e->w_lmc_top);
             if (border)
                 ld_need_tmp(k, ld_eb_need_vertices(e), 1);
@@ -1986,6 +2249,8 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
     }
     if (vmap_faces)
         ld_need_out(k, (size_t)vmap, sizeof(int32_t));
+    else if (rep)
+        ld_need_out(k, (size_t)points, sizeof(uint32_t));
     else
         ld_need_tmp(k, (size_t)vmap, sizeof(int32_t));
     if (keep)  /* ld_eb_keep_o24: ... and over the border bytes */
@@ -2000,8 +2265,11 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
     ld_need_release(k, mark);
-    if (!vmap_faces)
-        ld_need_out(k, (size_t)points, sizeof(uint32_t));
+    s->work_top = 0;
+    if (rep) {  /* ld_eb_rep_sequence: the dead blocks go, the value -> corner map moves up */
+        s->work_top = ld_eb_need_drop_dead(e, (int)decoder, (int)decoder + 1);
+        ld_need_release(k, s->work_top + ld_need_bytes((size_t)nv, sizeof(uint32_t)));
+    }
     /* values: every point's value (no seams); with seams one per vertex
      * visited, learnt from a tagged stream (else at most nv) */
     s->uncertain = 0;
@@ -2021,7 +2289,7 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
 void ld_eb_need_release(ld_eb_need *e, ld_need *k, uint32_t entries, int opposites)
 {
     const size_t opp = ld_need_bytes(3u * (size_t)e->faces, 4u);
-    const size_t top = !e->lean ? e->w_opp_top + (opposites ? 0u : opp)
+    const size_t top = !LD_EB_LEAN(e) ? e->w_opp_top + (opposites ? 0u : opp)
                                 : e->w_lmc_top + (opposites ? 0u : e->w_table);
     if (!e->table_live)
         return;

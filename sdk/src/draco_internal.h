@@ -47,6 +47,23 @@
 #define LD_NOINLINE
 #endif
 
+/* A build with the lean mode only (LUMO_DRACO_MODES, lumo/draco.h): every
+ * decode is lean, and each test below that picks a walk's instance by its
+ * opposite store is a constant, so the default mode's instances are not
+ * compiled in. */
+#if LUMO_DRACO_MODES == LUMO_DRACO_MODES_LEAN
+#define LD_LEAN_ONLY 1
+#elif LUMO_DRACO_MODES == LUMO_DRACO_MODES_ALL
+#define LD_LEAN_ONLY 0
+#else
+#error "LUMO_DRACO_MODES: LUMO_DRACO_MODES_ALL or LUMO_DRACO_MODES_LEAN"
+#endif
+/* The decode's mode from the caller's flags. */
+static inline uint8_t ld_mode_lean(unsigned flags)
+{
+    return (uint8_t)(LD_LEAN_ONLY || (flags & LUMO_DRACO_LEAN) != 0);
+}
+
 /* Work limits: no count read from a stream may exceed these. */
 #define LD_MAX_FACES   (1u << 26)
 /* The lean mode keeps EdgeBreaker corner ids in 23 bits while it decodes
@@ -325,6 +342,9 @@ typedef struct ld_seq {
     /* the decoder's only attribute and the stream's last decoder: its
      * prediction may consume the corner table */
     uint8_t last;
+    /* NULL, or where the sequence's work memory ends (its tables moved up
+     * over dead ones, ld_eb_drop_dead): released to there after the values */
+    uint8_t *work_top;
 } ld_seq;
 
 /* draco_attribute.c */
@@ -342,6 +362,7 @@ typedef struct ld_need_seq {
     uint8_t mesh;             /* a corner table exists (EdgeBreaker) */
     uint8_t last;             /* as ld_seq.last */
     uint8_t uncertain;        /* entries is only an upper bound */
+    size_t work_top;          /* 0, or ld_seq.work_top as work in use */
     struct ld_eb_need *eb;    /* EdgeBreaker state, NULL otherwise */
 } ld_need_seq;
 lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
@@ -561,6 +582,19 @@ static LD_FORCE_INLINE uint32_t ld_pot_opp(const ld_pot *t, uint32_t c)
     return ld_pot_near_opp(ld_pot_near_of(t), c);
 }
 
+/* An attribute's seam flags: a bit per corner, set when the edge opposite
+ * the corner is a seam (3F/8 bytes an attribute with seams, issue 25 round
+ * five; a byte per corner before). */
+static inline size_t ld_seam_bytes(uint32_t corners) { return ((size_t)corners + 7u) >> 3; }
+static LD_FORCE_INLINE int ld_seam(const uint8_t *s, uint32_t c)
+{
+    return s[c >> 3] >> (c & 7u) & 1;
+}
+static inline void ld_seam_set(uint8_t *s, uint32_t c)
+{
+    s[c >> 3] = (uint8_t)(s[c >> 3] | 1u << (c & 7u));
+}
+
 /* A view of a corner table: the mesh's own, or an attribute's (whose seam
  * edges have no opposite and whose vertices are split along seams). */
 typedef struct ld_ct {
@@ -574,7 +608,16 @@ typedef struct ld_ct {
                                  the table (ld_o24_mark), border vertices
                                  -2 in the unvisited vertex map, and each
                                  value keeps its corner's opposite */
-    const uint8_t  *seam;     /* corner -> edge opposite is a seam; NULL: none */
+    const uint8_t  *seam;     /* corner -> edge opposite is a seam (ld_seam);
+                                 NULL: none */
+    /* An attribute's table with seams (ld_eb_points_run): c2v holds the
+     * points, and rep maps a point to its attribute vertex, named by the
+     * vertex's first point, with the vertex's border flag (the depth-first
+     * walk's test) in bit 31; the traversal's vertex is rep[point] &
+     * LD_REP_MASK. NULL: c2v holds the vertices. The predictions read a
+     * corner's value through its point (every point of a vertex holds the
+     * vertex's value once the traversal is done), so they ignore it. */
+    const uint32_t *rep;
     const uint32_t *lmc;      /* vertex -> left-most corner */
     const uint8_t  *border;   /* vertex -> on a border (left-most corner
                                  has no swing left); NULL: ask lmc */
@@ -582,6 +625,15 @@ typedef struct ld_ct {
     uint32_t num_vertices;
     uint32_t num_corners;
 } ld_ct;
+
+#define LD_REP_MASK 0x7FFFFFFFu
+#define LD_REP_BORDER 0x80000000u
+/* The table's opposites are not 32-bit ids (packed, or none): picks the
+ * walks' instances. Always so in a lean-only build, where opp32 is NULL. */
+static inline int ld_ct_packed(const ld_ct *t)
+{
+    return LD_LEAN_ONLY || t->opp32 == NULL;
+}
 
 /* x is a multiple of 3 exactly when x * 3^-1 (mod 2^32) <= (2^32 - 1) / 3:
  * one multiply and a compare instead of a division (corners < 2^32 - 1). */
@@ -595,7 +647,7 @@ static inline uint32_t ld_next(uint32_t c) { return c == LD_INV ? c : ld_next_v(
 static inline uint32_t ld_prev(uint32_t c) { return c == LD_INV ? c : ld_prev_v(c); }
 static inline uint32_t ld_opp(const ld_ct *t, uint32_t c)
 {
-    if (c == LD_INV || (t->seam && t->seam[c]))
+    if (c == LD_INV || (t->seam && ld_seam(t->seam, c)))
         return LD_INV;
     return t->opp32 ? t->opp32[c] : ld_pot_opp(&t->opp, c);
 }
@@ -603,6 +655,16 @@ static inline uint32_t ld_vert(const ld_ct *t, uint32_t c)
 {
     return c == LD_INV ? LD_INV : t->c2v[c] & t->vmask;
 }
+/* The vertex a traversal visits at corner c: c2v's, through rep when the
+ * table has one (LD_INV for a point out of range). */
+static inline uint32_t ld_tvert(const ld_ct *t, uint32_t c)
+{
+    const uint32_t v = ld_vert(t, c);
+    if (!t->rep)
+        return v;
+    return v < t->num_vertices ? t->rep[v] & LD_REP_MASK : LD_INV;
+}
+
 /* Swings take a valid corner and may return LD_INV. */
 static inline uint32_t ld_swing_right(const ld_ct *t, uint32_t c)
 {
@@ -637,6 +699,7 @@ typedef struct ld_eb_need {
     size_t w_opp_top;          /* work above the 32-bit opposites (fast) */
     size_t w_lmc_top;          /* work above the left-most corners' block */
     size_t w_table;            /* the packed table's escapes and indices */
+    size_t w_region;           /* with seams: work above ld_eb_drop_dead's blocks */
     uint8_t table_live;        /* packed table and border bytes not released */
     uint8_t settled;           /* no seams: the first sequence dropped the
                                   left-most corners and chose how to read

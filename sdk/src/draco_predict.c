@@ -359,7 +359,7 @@ typedef struct ld_fan {
 
 static LD_FORCE_INLINE uint32_t ld_fan_opp(const ld_fan *f, uint32_t c, int packed)
 {
-    if (f->seam && f->seam[c])
+    if (f->seam && ld_seam(f->seam, c))
         return LD_INV;
     return packed ? ld_pot_near_opp(f->opp, c) : f->opp32[c];
 }
@@ -430,7 +430,7 @@ static void ld_fan_init(ld_fan *f, const ld_pred *p, int seams)
     f->vmask = ct->vmask;
     f->opp32 = ct->opp32;
     f->opp = ld_pot_near_of(&ct->opp);
-    f->packed = ct->opp32 == NULL;
+    f->packed = ld_ct_packed(ct);
     f->seam = seams ? ct->seam : NULL;
     f->v2v = p->seq->vertex_to_value;
 }
@@ -484,7 +484,7 @@ static LD_FORCE_INLINE void ld_parallelogram3_run(const ld_pred *p, int32_t *v, 
 
 static LD_NOINLINE lumo_status ld_parallelogram_wrap3(const ld_pred *p, int32_t *v, uint32_t n)
 {
-    const int packed = p->seq->ct->opp32 == NULL;
+    const int packed = ld_ct_packed(p->seq->ct);
     if (!p->seq->ct->seam && !packed)
         ld_parallelogram3_run(p, v, n, 1, 0);
     else if (!p->seq->ct->seam)
@@ -668,7 +668,7 @@ static LD_FORCE_INLINE lumo_status ld_multi_run(ld_pred *p, int32_t *v, uint32_t
 
 static LD_NOINLINE lumo_status ld_multi_parallelogram(ld_pred *p, int32_t *v, uint32_t n)
 {
-    const int packed = p->seq->ct->opp32 == NULL;
+    const int packed = ld_ct_packed(p->seq->ct);
     if (p->comps == 3 && p->transform == LD_XFORM_WRAP && !p->seq->ct->seam)
         return packed ? ld_multi_run(p, v, n, 1, 1) : ld_multi_run(p, v, n, 1, 0);
     return ld_multi_run(p, v, n, 0, packed);
@@ -1008,8 +1008,8 @@ static LD_NOINLINE lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint3
 {
     if (!p->pos || p->pos->num_portable != 3 || !p->seq->faces || p->seq->opposites)
         return LUMO_ERR_CORRUPT;
-    return p->seq->ct->opp32 ? ld_geometric_normal_run(p, v, n, 0)
-                             : ld_geometric_normal_run(p, v, n, 1);
+    return ld_ct_packed(p->seq->ct) ? ld_geometric_normal_run(p, v, n, 1)
+                                     : ld_geometric_normal_run(p, v, n, 0);
 }
 
 int ld_pred_needs_opposites_only(const ld_pred *p)

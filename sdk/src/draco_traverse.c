@@ -56,7 +56,7 @@ static LD_FORCE_INLINE void ld_visit(ld_walk *w, uint32_t v, uint32_t corner)
 
 static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 {
-    uint32_t n = ld_vert(w->ct, ld_next_v(corner)), p = ld_vert(w->ct, ld_prev_v(corner));
+    uint32_t n = ld_tvert(w->ct, ld_next_v(corner)), p = ld_tvert(w->ct, ld_prev_v(corner));
     if (n >= w->ct->num_vertices || p >= w->ct->num_vertices)
         return LUMO_ERR_CORRUPT;
     if (w->o->vertex_to_value[n] < 0)
@@ -69,13 +69,15 @@ static lumo_status ld_visit_edge(ld_walk *w, uint32_t corner)
 /* DepthFirstTraverser::TraverseFromCorner on local copies of the tables
  * (the stores into the order arrays would otherwise force reloads);
  * `store`: a constant, one of LD_STORE_*; `seams`: a constant, 0 for the
- * mesh's own table (no seam test per opposite). */
+ * mesh's own table (no seam test per opposite); `rep`: a constant, 1 when
+ * the table's vertices and border flags are its points' rep words
+ * (ld_ct.rep: every table of a mesh with seams). */
 static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t *stack,
-                                          int store, int seams)
+                                          int store, int seams, int rep_words)
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *lmc = ct->lmc, *opp32 = ct->opp32, nv = ct->num_vertices;
-    const uint32_t vmask = ct->vmask;
+    const uint32_t vmask = ct->vmask, *rep = ct->rep;
     const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam, *border = ct->border;
     uint8_t *o24 = (uint8_t *)(uintptr_t)ct->o24;  /* face flags: LD_STORE_O24 */
@@ -84,7 +86,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
     int32_t *vmap = w->o->vertex_to_value;
     uint32_t n = w->o->num_values, top = 0;
     lumo_status st;
-#define LD_OPP(c) ((seams && seam[c]) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
+#define LD_OPP(c) ((seams && ld_seam(seam, c)) ? LD_INV : ld_dfs_opp(opp32, opp, o24, c, store))
 #define LD_FACE_SEEN(c) (store == LD_STORE_O24 ? ld_o24_seen(o24, c) : fseen[(c) / 3u])
 #define LD_SEEN(c) ((c) == LD_INV || LD_FACE_SEEN(c))
     /* LD_STORE_O24: the entry keeps its corner's opposite (ld_ct.o24) */
@@ -106,7 +108,7 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
             continue;
         }
         for (;;) {
-            uint32_t v, r, l, m3;
+            uint32_t v, r, l, m3, rw = 0;
             if (store == LD_STORE_O24)
                 ld_o24_mark(o24, c - c % 3u);
             else
@@ -116,12 +118,18 @@ static LD_FORCE_INLINE lumo_status ld_dfs(ld_walk *w, uint32_t corner, uint32_t 
                 w->o->num_values = n;
                 return LUMO_ERR_CORRUPT;
             }
+            if (rep_words) {  /* the point's vertex (below nv) */
+                rw = rep[v];
+                v = rw & LD_REP_MASK;
+            }
             m3 = c % 3u;
             if (vmap[v] < 0) {
                 /* on the boundary: no left-most corner, or no swing left */
                 int boundary;
                 if (store == LD_STORE_O24) {
                     boundary = vmap[v] == LD_VMAP_BORDER;
+                } else if (rep_words) {
+                    boundary = (int)(rw >> 31);
                 } else if (border) {
                     boundary = border[v];
                 } else {
@@ -192,26 +200,31 @@ static LD_FORCE_INLINE uint32_t ld_next_start(const uint8_t *fseen, const uint8_
     return q ? (uint32_t)(q - fseen) : num_faces;
 }
 
-/* Every start face; one instance per opposite store and seams or none. */
-static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int store, int seams)
+/* Every start face; one instance per opposite store, seams or none, rep
+ * words or none. */
+static LD_FORCE_INLINE lumo_status ld_dfs_starts(ld_walk *w, uint32_t *stack, int store, int seams,
+                                                 int rep_words)
 {
     const uint8_t *o24 = store == LD_STORE_O24 ? w->ct->o24 : NULL;
     uint32_t f = 0;
     lumo_status st = LUMO_OK;
     while (!st && (f = ld_next_start(w->face_seen, o24, f, w->num_faces)) < w->num_faces)
-        st = ld_dfs(w, 3u * f++, stack, store, seams);
+        st = ld_dfs(w, 3u * f++, stack, store, seams, rep_words);
     return st;
 }
 
 static lumo_status ld_dfs_all(ld_walk *w, uint32_t *stack)
 {
     if (w->ct->o24)  /* a mesh without seams */
-        return ld_dfs_starts(w, stack, LD_STORE_O24, 0);
-    if (!w->ct->seam)
-        return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 0)
-                            : ld_dfs_starts(w, stack, LD_STORE_PACKED, 0);
-    return w->ct->opp32 ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 1)
-                        : ld_dfs_starts(w, stack, LD_STORE_PACKED, 1);
+        return ld_dfs_starts(w, stack, LD_STORE_O24, 0, 0);
+    if (!w->ct->rep)  /* a mesh without interior seams */
+        return !ld_ct_packed(w->ct) ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 0, 0)
+                                    : ld_dfs_starts(w, stack, LD_STORE_PACKED, 0, 0);
+    if (!w->ct->seam)  /* the mesh's table of a mesh with seams */
+        return !ld_ct_packed(w->ct) ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 0, 1)
+                                    : ld_dfs_starts(w, stack, LD_STORE_PACKED, 0, 1);
+    return !ld_ct_packed(w->ct) ? ld_dfs_starts(w, stack, LD_STORE_PLAIN, 1, 1)
+                                : ld_dfs_starts(w, stack, LD_STORE_PACKED, 1, 1);
 }
 
 /* Prediction-degree traversal: three priority stacks sharing one node pool
@@ -229,11 +242,12 @@ typedef struct ld_pq {
  * the structs' fields and force reloads); `packed`: a constant, one
  * instance per opposite store and per seams (an attribute's table) or none
  * (the mesh's: no seam test per opposite). */
-static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int packed, int seams)
+static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int packed, int seams,
+                                                  int rep_words)
 {
     const ld_ct *ct = w->ct;
     const uint32_t *c2v = ct->c2v, *opp32 = ct->opp32, nv = ct->num_vertices, vmask = ct->vmask;
-    const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap;
+    const uint32_t nfaces = w->num_faces, maxv = w->max_values, cap = q->cap, *rep = ct->rep;
     const ld_pot_near opp = ld_pot_near_of(&ct->opp);
     const uint8_t *seam = ct->seam;
     uint8_t *fseen = w->face_seen;
@@ -242,8 +256,10 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     uint32_t n = w->o->num_values, used = 0, fre = LD_INV, head[3], f;
     lumo_status st = LUMO_OK;
     int best = 0;
-#define LD_OPP(c) ((seams && seam[c]) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
-#define LD_VERT(c) (packed ? c2v[c] & vmask : c2v[c])
+#define LD_OPP(c) ((seams && ld_seam(seam, c)) ? LD_INV : packed ? ld_pot_near_opp(opp, c) : opp32[c])
+    /* an attribute's table (seams): the point's attribute vertex (ld_ct.rep) */
+#define LD_PT(c) (packed ? c2v[c] & vmask : c2v[c])
+#define LD_VERT(c) (!rep_words ? LD_PT(c) : LD_PT(c) < nv ? rep[LD_PT(c)] & LD_REP_MASK : LD_INV)
 #define LD_SEEN(c) ((c) == LD_INV || fseen[c])
     /* MeshAttributeIndicesEncodingObserver::OnNewVertexVisited */
 #define LD_VISIT(v, c)                      \
@@ -359,6 +375,7 @@ static LD_FORCE_INLINE lumo_status ld_degree_walk(ld_walk *w, ld_pq *q, int pack
     }
 out:
 #undef LD_OPP
+#undef LD_PT
 #undef LD_VERT
 #undef LD_SEEN
 #undef LD_VISIT
@@ -370,9 +387,11 @@ out:
 
 static lumo_status ld_max_degree_all(ld_walk *w, ld_pq *q)
 {
-    if (!w->ct->seam)  /* the mesh's own table: no seam test per opposite */
-        return w->ct->opp32 ? ld_degree_walk(w, q, 0, 0) : ld_degree_walk(w, q, 1, 0);
-    return w->ct->opp32 ? ld_degree_walk(w, q, 0, 1) : ld_degree_walk(w, q, 1, 1);
+    if (!w->ct->rep)  /* the mesh's own table: no seam test per opposite */
+        return !ld_ct_packed(w->ct) ? ld_degree_walk(w, q, 0, 0, 0) : ld_degree_walk(w, q, 1, 0, 0);
+    if (!w->ct->seam)  /* ... of a mesh with seams: rep words */
+        return !ld_ct_packed(w->ct) ? ld_degree_walk(w, q, 0, 0, 1) : ld_degree_walk(w, q, 1, 0, 1);
+    return !ld_ct_packed(w->ct) ? ld_degree_walk(w, q, 0, 1, 1) : ld_degree_walk(w, q, 1, 1, 1);
 }
 
 lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t max_values,
@@ -389,7 +408,8 @@ lumo_status ld_traverse(ld_mem *m, const ld_ct *ct, uint32_t vmap_size, uint32_t
     memset(&q, 0, sizeof q);
     o->ct = ct;
     o->vertex_to_value = vmap ? vmap : ld_tmp(m, vmap_size, sizeof(int32_t));
-    w.max_values = max_values < nv ? max_values : nv;
+    /* rep words: the vertex ids are points, the values at most max_values */
+    w.max_values = ct->rep || max_values < nv ? max_values : nv;
     o->value_to_corner = ld_tmp(m, w.max_values, sizeof(uint32_t));
     mark = ld_tmp_mark(m);  /* the rest is released on return */
     w.ct = ct;

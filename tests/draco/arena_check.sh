@@ -30,15 +30,15 @@ for spec in 0:1080 7:1450 10:1750 lean:0:1080 lean:7:1250 lean:10:1250; do
     fi
 done
 # The attribute set of issue 25 (tests/draco/gen_attr_meshes.cc), lean
-# mode (docs/draco-decoder.md, issue 25 rounds two and three): without an
-# interior seam (colours; the holed torus's normals; the open terrain's
-# colours, whose seam coder ends before the first 3F/2 bits) the vertices
-# are the points, under the goal itself, 1.25x; normals with interior
-# seams keep a table of their own, limits just above today's ratios.
+# mode (docs/draco-decoder.md, issue 25 rounds two to five), under the goal
+# itself, 1.25x: without an interior seam (colours; the holed torus's
+# normals; the open terrain's colours, whose seam coder ends before the
+# first 3F/2 bits) the vertices are the points; normals and texture
+# coordinates with interior seams (scan, gear, bunny) since round five.
 mkdir -p "$work/attr"
 if "$bin/gen-attr-meshes" "$work/attr" "$build/data/models/bunny.obj" > /dev/null; then
-    for spec in scan_20k_c.ply:1250 terrain_c.ply:1250 holed_n.obj:1250 scan_20k_n.obj:2370 \
-                scan_20k_nt.obj:2590; do
+    for spec in scan_20k_c.ply:1250 terrain_c.ply:1250 holed_n.obj:1250 scan_20k_n.obj:1250 \
+                scan_20k_nt.obj:1250 cad_n.obj:1250 bunny_nt.obj:1250; do
         src=${spec%%:*}; limit=${spec#*:}; drc="$work/${src%.*}_cl7.drc"
         draco_encoder -i "$work/attr/$src" -o "$drc" -cl 7 -qp 14 -qt 12 -qn 10 > /dev/null 2>&1
         ratio=$("$bin/lumo-draco-decode" --lean --info "$drc" |

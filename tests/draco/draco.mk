@@ -27,7 +27,24 @@ $(DRACO_SAN): $(BUILD)/tests/tools/lumo-draco-decode/main.o $(BUILD)/san/liblumo
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
 
-DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_GEN_ATTR) $(DRACO_SAN) $(DRACO_PLYCMP) $(BIN)/lumo-draco-decode
+# The decoder built with the lean mode only (LUMO_DRACO_MODES, as the
+# ARMv7-M boards build it: boards/armv7m/draco_modes.mk), sanitizer build:
+# its draco objects ahead of the rest of liblumo. Conformance decodes every
+# case with it too, so the boards' choice is checked on every case.
+DRACO_SAN_LEAN      := $(BIN)/lumo-draco-decode-lean-san
+DRACO_LEAN_SAN_OBJS := $(patsubst %.c,$(BUILD)/san-lean/%.o,$(wildcard sdk/src/draco_*.c))
+HOST_TOOLS          += $(DRACO_SAN_LEAN)
+$(BUILD)/san-lean/%.o: %.c tests/draco/draco.mk
+	@mkdir -p $(@D)
+	$(CC) $(CLIENT_CFLAGS_san) -DLUMO_DRACO_MODES=LUMO_DRACO_MODES_LEAN -MMD -MP -c $< -o $@
+-include $(DRACO_LEAN_SAN_OBJS:.o=.d)
+$(DRACO_SAN_LEAN): $(BUILD)/tests/tools/lumo-draco-decode/main.o $(DRACO_LEAN_SAN_OBJS) \
+                   $(BUILD)/san/liblumo.a $(BUILD)/host/libhost.a
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) -o $@ $^ -lm
+
+DRACO_CONF_DEPS := $(DRACO_ORACLE) $(DRACO_GEN) $(DRACO_GEN_ATTR) $(DRACO_SAN) $(DRACO_SAN_LEAN) \
+                   $(DRACO_PLYCMP) $(BIN)/lumo-draco-decode
 
 .PHONY: draco-conformance draco-conformance-quick draco-conformance-full
 draco-conformance: $(DRACO_CONF_DEPS)

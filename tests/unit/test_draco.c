@@ -174,8 +174,14 @@ static void test_arena_exact_and_short(void **state)
 }
 
 /* The need before decoding: exact (decodes in that many bytes, not one
- * less) where the stream's headers decide it, else a bound within 1.1x;
- * an unaligned buffer of need + LUMO_ARENA_SLACK bytes suffices. */
+ * less) where the stream's headers decide it, else a bound within 1.1x of
+ * the use, or within 16 bytes a face of it: the unknowns' bounds (the
+ * prediction-degree queue's F + 1 nodes of 8 bytes, a point map's 4 bytes
+ * per point bound, docs/draco-decoder.md "Memory before decoding") do not
+ * shrink with the arena, and since issue 25 round five a small seamed
+ * mesh's arena is small enough for them to pass 1.1x (the cube at -cl 10:
+ * 4 256 bytes over 30 872); an unaligned buffer of need + LUMO_ARENA_SLACK
+ * bytes suffices. */
 static void test_arena_need(void **state)
 {
     /* as streams(); the torus (normals, no interior seam: its vertices are
@@ -201,8 +207,9 @@ static void test_arena_need(void **state)
         assert_true(need.bytes % 8u == 0);
         if (need.exact)
             assert_int_equal(need.bytes, used);
-        else if (need.bytes * 10u > used * 11u)
-            fail_msg("%s: need %zu for %zu used (> 1.1x)", s[i].name, need.bytes, used);
+        else if (need.bytes * 10u > used * 11u && need.bytes - used > 16u * (size_t)s[i].faces)
+            fail_msg("%s: need %zu for %zu used (> 1.1x and > 16 B a face more)", s[i].name,
+                     need.bytes, used);
         print_message("%s: need %zu, used %zu (%s)\n", s[i].name, need.bytes, used,
                       need.exact ? "exact" : "bound");
         arena_fresh(&a, need.bytes);

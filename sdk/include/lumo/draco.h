@@ -186,6 +186,21 @@ lumo_status lumo_draco_decode(const uint8_t *data, size_t size, lumo_arena *aren
                                need.bytes assumes the worst packing and
                                bytes_min is close to the exact need.
                                EdgeBreaker meshes up to 2 796 202 faces. */
+/* A value of LUMO_DRACO_MODES: both modes compiled in (the default). */
+#define LUMO_DRACO_MODES_ALL 0
+/* A value of LUMO_DRACO_MODES: only the lean mode's code is compiled in;
+ * every decode and arena need is the lean mode's, whatever the flags (the
+ * output is the same; the EdgeBreaker face limit is the lean one). For a
+ * board whose code space is short: the walks instantiated per opposite
+ * store exist once (docs/porting.md §3, docs/draco-decoder.md "Round
+ * five"). */
+#define LUMO_DRACO_MODES_LEAN 1
+#ifndef LUMO_DRACO_MODES
+/* Which modes a build of the decoder holds, set on the compiler's command
+ * line for the SDK's sources (-DLUMO_DRACO_MODES=LUMO_DRACO_MODES_LEAN);
+ * the application needs nothing. */
+#define LUMO_DRACO_MODES LUMO_DRACO_MODES_ALL
+#endif
 /* lumo_draco_decode and lumo_draco_arena_need in the mode `flags` (above). */
 lumo_status lumo_draco_decode_ex(const uint8_t *data, size_t size, unsigned flags,
                                  lumo_arena *arena, lumo_draco_mesh *out);
