@@ -124,23 +124,25 @@ uint32_t lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, con
     return sc < LUMO_PMESH_SPREAD_CTXS ? sc : LUMO_PMESH_SPREAD_CTXS - 1u;
 }
 
-static uint16_t res_prior(int32_t d)
+/* In 1/2048 (version 5's probability unit). */
+static uint32_t res_prior(int32_t d)
 {
     if (d <= -10)
         return 32u;
     if (d <= -5)
-        return (uint16_t)(1024u >> (uint32_t)(-5 - d));
+        return 1024u >> (uint32_t)(-5 - d);
     return d == -4 ? 1536u : 1856u;
 }
 
-void lumo_pmesh_init_contexts(uint16_t *ctx)
+void lumo_pmesh_init_contexts(uint32_t *ctx)
 {
     uint32_t i, sc, j;
     for (i = 0; i < LUMO_PMESH_CONTEXTS; i++)
-        ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
+        ctx[i] = lumo_pmesh_ctx_make(LUMO_PMESH_RC_PROB_INIT, 0);
     for (sc = 0; sc < LUMO_PMESH_SPREAD_CTXS; sc++)
         for (j = 0; j < LUMO_PMESH_RES_CLASSES; j++)
-            ctx[lumo_pmesh_res_ctx(sc, j)] = res_prior((int32_t)j - (int32_t)sc);
+            ctx[lumo_pmesh_res_ctx(sc, j)] =
+                lumo_pmesh_ctx_make(16u * res_prior((int32_t)j - (int32_t)sc), LUMO_PMESH_RES_PRIOR_COUNT);
 }
 
 /* Eligible parents of a continued round (pmesh_shared.h): a face, and no

@@ -14,14 +14,43 @@
 #include "lumo/pmesh.h"
 
 /* Split records are one adaptive binary range code (docs/progressive-mesh.md
- * §2.3, "Range code"; LZMA's coder): probabilities of PROB_BITS bits that
- * move by 1/2^MOVE_BITS of the distance to 0 or 1 after every coded bit,
- * renormalised a byte at a time below TOP. The decoder is
- * sdk/src/pmesh_rc.c, the encoder server/pm/pm_rc.c. */
-#define LUMO_PMESH_RC_PROB_BITS 11u
+ * §2.3, "Range code"; LZMA's coder with counted contexts): a context is
+ * one uint32, its probability of a 0 in PROB_BITS bits (low 16 bits) and
+ * the number of bits it has coded (bits 16 ... 23, at most COUNT_MAX).
+ * After every coded bit the probability moves by 1/2^s of its distance to
+ * 0 or 1, s = floor(log2(count + 2)) clamped to RATE_MAX: a fresh context
+ * learns fast (s = 1 after its first bit, as a Krichevsky-Trofimov
+ * estimate would), a busy one averages over about 2^RATE_MAX bits
+ * (version 5 moved every context by 1/32 with 11-bit probabilities: the
+ * 871k dragon 0.95% larger, the bunny 0.4%). The range is renormalised a
+ * byte at a time below TOP. The decoder is sdk/src/pmesh_rc.c, the
+ * encoder server/pm/pm_rc.c. */
+#define LUMO_PMESH_RC_PROB_BITS 15u
 #define LUMO_PMESH_RC_PROB_INIT (1u << (LUMO_PMESH_RC_PROB_BITS - 1))
-#define LUMO_PMESH_RC_MOVE_BITS 5u
+#define LUMO_PMESH_RC_RATE_MAX  7u
+#define LUMO_PMESH_RC_COUNT_MAX ((1u << LUMO_PMESH_RC_RATE_MAX) - 2u)
 #define LUMO_PMESH_RC_TOP       (1u << 24)
+
+/* A context's probability of a 0 (1 ... 2^PROB_BITS - 1). */
+static inline uint32_t lumo_pmesh_ctx_prob(uint32_t ctx)
+{
+    return ctx & 0xffffu;
+}
+/* A context's probability and count of coded bits. */
+static inline uint32_t lumo_pmesh_ctx_make(uint32_t prob, uint32_t count)
+{
+    return count << 16 | prob;
+}
+/* The context after coding `bit`: the probability stays in 1 ... 2^PROB_BITS
+ * - 1 (a step never reaches 0 or 1). */
+static inline uint32_t lumo_pmesh_ctx_update(uint32_t ctx, uint32_t bit)
+{
+    uint32_t p = ctx & 0xffffu, n = ctx >> 16, s = 1;
+    while (s < LUMO_PMESH_RC_RATE_MAX && (n + 2u) >> (s + 1u))
+        s++;
+    p = bit ? p - (p >> s) : p + (((1u << LUMO_PMESH_RC_PROB_BITS) - p) >> s);
+    return lumo_pmesh_ctx_make(p, n < LUMO_PMESH_RC_COUNT_MAX ? n + 1u : n);
+}
 /* The adaptive contexts (LUMO_PMESH_CONTEXTS of them, lumo/pmesh.h), by
  * first index: whether a parent continues the round; whether an eligible
  * vertex is the parent, by its valence (PARENT_CTXS); whether the split
@@ -49,18 +78,27 @@
 #define LUMO_PMESH_RES_LOW_CTXS 16u
 #define LUMO_PMESH_CTX_RES      (LUMO_PMESH_CTX_MASK + 1u)
 #define LUMO_PMESH_CTX_RES_LOW  (LUMO_PMESH_CTX_RES + LUMO_PMESH_SPREAD_CTXS * LUMO_PMESH_RES_CLASSES)
-#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_RES_LOW + 2u * LUMO_PMESH_RES_LOW_CTXS)
+/* A residual's sign (§2.3 step 5): by its class (1 ... SIGN_CLASSES, the
+ * last one shared by every larger class) and by the sign of the
+ * prediction's offset from the parent on that axis (+, 0, -; the
+ * residual leans towards the parent: SIGN_DIRS). */
+#define LUMO_PMESH_SIGN_CLASSES 4u
+#define LUMO_PMESH_SIGN_DIRS    3u
+#define LUMO_PMESH_CTX_SIGN     (LUMO_PMESH_CTX_RES_LOW + 2u * LUMO_PMESH_RES_LOW_CTXS)
+#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_SIGN + LUMO_PMESH_SIGN_CLASSES * LUMO_PMESH_SIGN_DIRS)
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
-/* The contexts' probabilities at the start of a stream (every record
- * after the base carries them on): LUMO_PMESH_RC_PROB_INIT (1/2), except
+/* The contexts at the start of a stream (every record after the base
+ * carries them on): LUMO_PMESH_RC_PROB_INIT (1/2) and count 0, except
  * the residual class bits, which start from a prior by the offset d = j -
  * sc of the bit's place from the spread class: a residual's bit length is
  * about sc - 5 (measured on the bunny and the 11k dragon, and it does not
  * depend on the grid: both scale with the edges), so "class > j" is likely
  * well below it and unlikely above. The chance of a 0, in 1/2048: 32 for
  * d <= -10, 1024 >> (-5 - d) for -9 <= d <= -5, 1536 for d = -4, 1856 for
- * d >= -3. Saves the code's learning on short streams. */
-void lumo_pmesh_init_contexts(uint16_t *ctx);
+ * d >= -3 (times 16 in PROB_BITS), with count RES_PRIOR_COUNT (the prior
+ * is worth that many bits). Saves the code's learning on short streams. */
+#define LUMO_PMESH_RES_PRIOR_COUNT 16u
+void lumo_pmesh_init_contexts(uint32_t *ctx);
 
 /* Context of the residual's class bit j ("class > j") under spread class
  * sc, and of bit j (0 or 1) under the leading one of a class-c residual. */
@@ -72,6 +110,14 @@ static inline uint32_t lumo_pmesh_res_ctx(uint32_t sc, uint32_t j)
 static inline uint32_t lumo_pmesh_res_low_ctx(uint32_t c, uint32_t j)
 {
     return LUMO_PMESH_CTX_RES_LOW + 2u * (c < LUMO_PMESH_RES_LOW_CTXS ? c : LUMO_PMESH_RES_LOW_CTXS - 1u) + j;
+}
+/* Context of the sign of a class-c residual (c >= 1) whose prediction
+ * lies `offset` grid steps from the parent on its axis. */
+static inline uint32_t lumo_pmesh_sign_ctx(uint32_t c, int32_t offset)
+{
+    uint32_t dir = offset > 0 ? 1u : offset < 0 ? 2u : 0u;
+    uint32_t b = c < LUMO_PMESH_SIGN_CLASSES ? c - 1u : LUMO_PMESH_SIGN_CLASSES - 1u;
+    return LUMO_PMESH_CTX_SIGN + LUMO_PMESH_SIGN_DIRS * b + dir;
 }
 /* Context of the rank's class bit c for a parent with n corners. */
 static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
@@ -101,7 +147,7 @@ int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint
 #define LUMO_PMESH_ARC_BITS 14u
 /* Predicted positions: a split vertex is predicted by the rounded mean of
  * the corners of its faces, its parent counted this many extra times. */
-#define LUMO_PMESH_PARENT_WEIGHT  1u
+#define LUMO_PMESH_PARENT_WEIGHT  2u
 /* The candidate fans of a fan split whose parent p has n corners (1 ...
  * ARC_MAX_CORNERS), ranked by geometry (docs/progressive-mesh.md §2.3
  * step 3; sdk/src/pmesh_predict.c). The stream writer and the decoder share
