@@ -155,7 +155,7 @@ static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t offset, i
     while (a >> c)
         c++;
     for (uint32_t j = 0; j < r->quant_bits && j <= c; j++)
-        put_ctx(r, w, lumo_pmesh_res_ctx(sc, j), j < c);
+        put_ctx(r, w, lumo_pmesh_res_ctx(sc, j, offset), j < c);
     if (c == 0)
         return;
     for (uint32_t i = c - 1; i-- > 0;) {
@@ -175,13 +175,14 @@ static void predict(replay *r, bitwriter *w, uint32_t k)
 {
     int32_t pred[3];
     uint32_t p = r->pm->parent[k];
-    uint32_t sc = lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, pred);
+    uint32_t sc[3];
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, pred, sc);
     double mark = spent(w);
     for (int d = 0; d < 3; d++) {
         int32_t v = r->q[3 * (size_t)k + d] - pred[d];
         r->res[3 * (size_t)k + d] = v;
         if (r->coded)
-            put_residual(r, w, sc, pred[d] - r->q[3 * (size_t)p + d], v);
+            put_residual(r, w, sc[d], pred[d] - r->q[3 * (size_t)p + d], v);
     }
     count_bits(w, &mark, &r->st.pos_bits);
 }

@@ -63,7 +63,7 @@
 /* Adaptive contexts of the split records' range code (a probability and
  * a count each, one uint32), kept from record to record (layout:
  * lumo_shared/pmesh_shared.h); in the arena. */
-#define LUMO_PMESH_CONTEXTS    264u
+#define LUMO_PMESH_CONTEXTS    292u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {
