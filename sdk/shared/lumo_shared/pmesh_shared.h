@@ -15,8 +15,9 @@
 
 /* Split records are one adaptive binary range code (docs/progressive-mesh.md
  * §2.3, "Range code"; LZMA's coder with counted contexts): a context is
- * one uint32, its probability of a 0 in PROB_BITS bits (low 16 bits) and
- * the number of bits it has coded (bits 16 ... 23, at most COUNT_MAX).
+ * one uint32, its probability of a 0 in PROB_BITS bits (low 16 bits), the
+ * number of bits it has coded (bits 16 ... 23, at most COUNT_MAX) and its
+ * rate s (bits 24 ... 26).
  * After every coded bit the probability moves by 1/2^s of its distance to
  * 0 or 1, s = floor(log2(count + 2)) clamped to RATE_MAX: a fresh context
  * learns fast (s = 1 after its first bit, as a Krichevsky-Trofimov
@@ -29,6 +30,7 @@
 #define LUMO_PMESH_RC_PROB_INIT (1u << (LUMO_PMESH_RC_PROB_BITS - 1))
 #define LUMO_PMESH_RC_RATE_MAX  7u
 #define LUMO_PMESH_RC_COUNT_MAX ((1u << LUMO_PMESH_RC_RATE_MAX) - 2u)
+typedef char lumo_pmesh_rate_fit[LUMO_PMESH_RC_RATE_MAX == 7u ? 1 : -1];  /* lumo_pmesh_ctx_make */
 #define LUMO_PMESH_RC_TOP       (1u << 24)
 
 /* A context's probability of a 0 (1 ... 2^PROB_BITS - 1). */
@@ -36,20 +38,27 @@ static inline uint32_t lumo_pmesh_ctx_prob(uint32_t ctx)
 {
     return ctx & 0xffffu;
 }
-/* A context's probability and count of coded bits. */
+/* A context of probability prob and count (at most COUNT_MAX); its rate
+ * s = floor(log2(count + 2)) rides along in bits 24 ... 26, so that a
+ * coded bit does not work it out again. */
 static inline uint32_t lumo_pmesh_ctx_make(uint32_t prob, uint32_t count)
 {
-    return count << 16 | prob;
+    uint32_t s = 1u + (count >= 2u) + (count >= 6u) + (count >= 14u) + (count >= 30u) +
+                 (count >= 62u) + (count >= 126u);
+    return s << 24 | count << 16 | prob;
 }
-/* The context after coding `bit`: the probability stays in 1 ... 2^PROB_BITS
- * - 1 (a step never reaches 0 or 1). */
+/* The context after coding `bit`: the probability moves by 1/2^s of its
+ * distance to 0 or 1 and stays in 1 ... 2^PROB_BITS - 1; the count grows,
+ * and s with it whenever count + 2 reaches a power of two. */
 static inline uint32_t lumo_pmesh_ctx_update(uint32_t ctx, uint32_t bit)
 {
-    uint32_t p = ctx & 0xffffu, n = ctx >> 16, s = 1;
-    while (s < LUMO_PMESH_RC_RATE_MAX && (n + 2u) >> (s + 1u))
-        s++;
+    uint32_t p = ctx & 0xffffu, n = ctx >> 16 & 0xffu, s = ctx >> 24;
     p = bit ? p - (p >> s) : p + (((1u << LUMO_PMESH_RC_PROB_BITS) - p) >> s);
-    return lumo_pmesh_ctx_make(p, n < LUMO_PMESH_RC_COUNT_MAX ? n + 1u : n);
+    if (n < LUMO_PMESH_RC_COUNT_MAX) {
+        n++;
+        s += ((n + 2u) & (n + 1u)) == 0;
+    }
+    return s << 24 | n << 16 | p;
 }
 /* The adaptive contexts (LUMO_PMESH_CONTEXTS of them, lumo/pmesh.h), by
  * first index: whether a parent continues the round; whether an eligible
