@@ -119,7 +119,7 @@ static void layout(const lumo_pmesh_header *h, size_t n[NARRAYS], size_t sz[NARR
                            scratch_bytes(h), rgb, ARC_KEYS, v, splits, LUMO_PMESH_CONTEXTS,
                            LUMO_PMESH_CONTEXTS};
     size_t el[NARRAYS] = {sizeof(lumo_q16_16), sizeof(int32_t), sizeof(lumo_q1_14), 4, 4, 4, 4, 4, 4, 4, 4, 1,
-                          sizeof(lumo_q1_14), sizeof(int64_t), 4, 4, 2, 2};
+                          sizeof(lumo_q1_14), sizeof(int64_t), 4, 4, 4, 4};
     memcpy(n, cnt, sizeof cnt);
     memcpy(sz, el, sizeof el);
 }

@@ -102,7 +102,7 @@ typedef struct {
     uint32_t    round_first; /* first split vertex of the current round */
     uint32_t    last_fan;    /* the previous split was a fan split */
     uint32_t    stamped;     /* splits whose parent's round_parent is set */
-    uint16_t   *ctx;         /* pm->ctx (pm->ctx_undo keeps the batch's start) */
+    uint32_t   *ctx;         /* pm->ctx (pm->ctx_undo keeps the batch's start) */
 } split_ctx;
 
 /* One bit of adaptive context `c` of the split record's range code. */
@@ -463,15 +463,18 @@ static lumo_status read_new_face(split_ctx *s, uint32_t p, uint32_t k, uint32_t 
 
 /* One residual of a CODED stream (docs/progressive-mesh.md §2.3 step 5):
  * its class c (the bit length of |r|, at most quant_bits) in unary,
- * adaptive bits "c > j" by the ring's spread class sc; then the c - 1 bits
+ * adaptive bits "c > j" by the ring's spread class sc on this axis (and,
+ * for j = 0, whether `offset` is 0); then the c - 1 bits
  * under the leading one, most significant first, the first two adaptive
- * (by c and place), the rest direct; then, for c > 0, the sign as a direct bit (1:
- * negative). Work: at most 2 quant_bits + 1 bits. */
-static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t *r)
+ * (by c and place), the rest direct; then, for c > 0, the sign (1:
+ * negative), adaptive by c and `offset` (lumo_pmesh_sign_ctx), the
+ * prediction's offset from the parent on this axis. Work: at most
+ * 2 quant_bits + 1 bits. */
+static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t offset, int32_t *r)
 {
     uint32_t c = 0, bit = 1, v = 1, qbits = s->pm->h.quant_bits;
     while (c < qbits) {
-        if (read_ctx(s, lumo_pmesh_res_ctx(sc, c), &bit))
+        if (read_ctx(s, lumo_pmesh_res_ctx(sc, c, offset), &bit))
             return LUMO_ERR_TRUNCATED;
         if (!bit)
             break;
@@ -485,7 +488,7 @@ static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t *r)
             return LUMO_ERR_TRUNCATED;
         v = v << 1 | bit;
     }
-    if (read_bits(&s->br, 1, &bit))
+    if (read_ctx(s, lumo_pmesh_sign_ctx(c, offset), &bit))
         return LUMO_ERR_TRUNCATED;
     *r = bit ? -(int32_t)v : (int32_t)v;
     return LUMO_OK;
@@ -498,12 +501,13 @@ static lumo_status predict_split(split_ctx *s, uint32_t k)
 {
     lumo_pmesh *pm = s->pm;
     int32_t pred[3], res[3];
-    uint32_t sc = lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k,
-                                              pm->batch_parent[k - s->b->first], pred);
+    uint32_t p = pm->batch_parent[k - s->b->first];
+    uint32_t sc[3];
+    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k, p, pred, sc);
     if (!s->coded)
         return grid_value(pm, k, pred, s->res, k - s->b->first);
     for (unsigned d = 0; d < 3; d++) {
-        lumo_status st = read_residual(s, sc, &res[d]);
+        lumo_status st = read_residual(s, sc[d], pred[d] - pm->qpos[3 * (size_t)p + d], &res[d]);
         if (st)
             return st;
     }

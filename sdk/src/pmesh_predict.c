@@ -86,8 +86,8 @@ uint32_t lumo_pmesh_fan_keys(const lumo_pmesh_fan *g, int64_t *key)
 /* The rounded mean of the corners of k's faces (k itself excluded), the
  * parent counted LUMO_PMESH_PARENT_WEIGHT more times. Grid integers are
  * non-negative, so the division rounds half up on every target. The same
- * walk gives the ring's extent per axis, whose sum's bit length is the
- * spread class. */
+ * walk gives the ring's extent per axis, whose bit length (times 3) is
+ * that axis's spread class. */
 static void grow_box(const int32_t *v, int32_t lo[3], int32_t hi[3])
 {
     for (unsigned d = 0; d < 3; d++) {
@@ -96,13 +96,22 @@ static void grow_box(const int32_t *v, int32_t lo[3], int32_t hi[3])
     }
 }
 
-uint32_t lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                     const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3])
+static uint32_t spread_class(int32_t lo, int32_t hi)
+{
+    uint32_t extent = 3u * (uint32_t)(hi - lo), sc = 0;  /* < 3 * 2^20: no overflow */
+    while (extent >> sc)
+        sc++;
+    return sc < LUMO_PMESH_SPREAD_CTXS ? sc : LUMO_PMESH_SPREAD_CTXS - 1u;
+}
+
+void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
+                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3],
+                                 uint32_t sc[3])
 {
     int64_t sum[3] = {0, 0, 0};
     const int32_t *qp = q + 3 * (size_t)p;
     int32_t lo[3] = {qp[0], qp[1], qp[2]}, hi[3] = {qp[0], qp[1], qp[2]};
-    uint32_t n = LUMO_PMESH_PARENT_WEIGHT, c, extent = 0, sc = 0;
+    uint32_t n = LUMO_PMESH_PARENT_WEIGHT, c;
     unsigned i, d;
 
     for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c], n += 2) {
@@ -117,30 +126,33 @@ uint32_t lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, con
     for (d = 0; d < 3; d++) {
         sum[d] += (int64_t)LUMO_PMESH_PARENT_WEIGHT * qp[d];
         pred[d] = (int32_t)((sum[d] + n / 2) / n);
-        extent += (uint32_t)(hi[d] - lo[d]);  /* < 3 * 2^20: no overflow */
+        sc[d] = spread_class(lo[d], hi[d]);
     }
-    while (extent >> sc)
-        sc++;
-    return sc < LUMO_PMESH_SPREAD_CTXS ? sc : LUMO_PMESH_SPREAD_CTXS - 1u;
 }
 
-static uint16_t res_prior(int32_t d)
+/* In 1/2048 (version 5's probability unit). */
+static uint32_t res_prior(int32_t d)
 {
     if (d <= -10)
         return 32u;
     if (d <= -5)
-        return (uint16_t)(1024u >> (uint32_t)(-5 - d));
+        return 1024u >> (uint32_t)(-5 - d);
     return d == -4 ? 1536u : 1856u;
 }
 
-void lumo_pmesh_init_contexts(uint16_t *ctx)
+void lumo_pmesh_init_contexts(uint32_t *ctx)
 {
     uint32_t i, sc, j;
     for (i = 0; i < LUMO_PMESH_CONTEXTS; i++)
-        ctx[i] = (uint16_t)LUMO_PMESH_RC_PROB_INIT;
+        ctx[i] = lumo_pmesh_ctx_make(LUMO_PMESH_RC_PROB_INIT, 0);
     for (sc = 0; sc < LUMO_PMESH_SPREAD_CTXS; sc++)
-        for (j = 0; j < LUMO_PMESH_RES_CLASSES; j++)
-            ctx[lumo_pmesh_res_ctx(sc, j)] = res_prior((int32_t)j - (int32_t)sc);
+        for (j = 0; j < LUMO_PMESH_RES_CLASSES; j++) {
+            uint32_t prior = lumo_pmesh_ctx_make(16u * res_prior((int32_t)j - (int32_t)sc),
+                                                 LUMO_PMESH_RES_PRIOR_COUNT);
+            ctx[lumo_pmesh_res_ctx(sc, j, 1)] = prior;
+            if (j == 0)
+                ctx[lumo_pmesh_res_ctx(sc, j, 0)] = prior;
+        }
 }
 
 /* Eligible parents of a continued round (pmesh_shared.h): a face, and no

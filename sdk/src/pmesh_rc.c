@@ -28,18 +28,17 @@ static void normalize(pmesh_rc *rc)
     }
 }
 
-uint32_t lumo_pmesh_rc_bit(pmesh_rc *rc, uint16_t *prob)
+uint32_t lumo_pmesh_rc_bit(pmesh_rc *rc, uint32_t *ctx)
 {
-    uint32_t bound = (rc->range >> LUMO_PMESH_RC_PROB_BITS) * *prob, bit;
+    uint32_t bound = (rc->range >> LUMO_PMESH_RC_PROB_BITS) * lumo_pmesh_ctx_prob(*ctx), bit;
     if (rc->code < bound) {
         rc->range = bound;
-        *prob = (uint16_t)(*prob + (((1u << LUMO_PMESH_RC_PROB_BITS) - *prob) >> LUMO_PMESH_RC_MOVE_BITS));
         bit = 0;
     } else {
         rc->code -= bound, rc->range -= bound;
-        *prob = (uint16_t)(*prob - (*prob >> LUMO_PMESH_RC_MOVE_BITS));
         bit = 1;
     }
+    *ctx = lumo_pmesh_ctx_update(*ctx, bit);
     normalize(rc);
     return bit;
 }

@@ -40,18 +40,16 @@ static void normalize(srv_pm_rc *rc)
     }
 }
 
-void srv_pm_rc_bit(srv_pm_rc *rc, uint16_t *prob, uint32_t bit)
+void srv_pm_rc_bit(srv_pm_rc *rc, uint32_t *ctx, uint32_t bit)
 {
     const double one = (double)(1u << LUMO_PMESH_RC_PROB_BITS);
-    uint32_t bound = (rc->range >> LUMO_PMESH_RC_PROB_BITS) * *prob;
-    rc->cost -= log2(bit ? (one - *prob) / one : *prob / one);
-    if (!bit) {
+    uint32_t prob = lumo_pmesh_ctx_prob(*ctx), bound = (rc->range >> LUMO_PMESH_RC_PROB_BITS) * prob;
+    rc->cost -= log2(bit ? (one - prob) / one : prob / one);
+    if (!bit)
         rc->range = bound;
-        *prob = (uint16_t)(*prob + (((1u << LUMO_PMESH_RC_PROB_BITS) - *prob) >> LUMO_PMESH_RC_MOVE_BITS));
-    } else {
+    else
         rc->low += bound, rc->range -= bound;
-        *prob = (uint16_t)(*prob - (*prob >> LUMO_PMESH_RC_MOVE_BITS));
-    }
+    *ctx = lumo_pmesh_ctx_update(*ctx, bit);
     normalize(rc);
 }
 

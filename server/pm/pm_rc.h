@@ -20,9 +20,9 @@ typedef struct srv_pm_rc {
 } srv_pm_rc;
 
 void srv_pm_rc_init(srv_pm_rc *rc);
-/* One bit with the adaptive probability *prob (of a 0), which adapts as
- * the decoder's does. */
-void srv_pm_rc_bit(srv_pm_rc *rc, uint16_t *prob, uint32_t bit);
+/* One bit with the adaptive context *ctx (probability of a 0 and count,
+ * lumo_pmesh_ctx_update), which adapts as the decoder's does. */
+void srv_pm_rc_bit(srv_pm_rc *rc, uint32_t *ctx, uint32_t bit);
 /* The n low bits of v at probability 1/2, least significant first. */
 void srv_pm_rc_direct(srv_pm_rc *rc, uint32_t v, unsigned n);
 /* Write out the rest of the code: out then holds the whole block. */

@@ -89,7 +89,7 @@ typedef struct {
     uint32_t  round_first;    /* first split vertex of the current round */
     uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
     uint32_t  last_fan;       /* the previous split was a fan split */
-    uint16_t  ctx[LUMO_PMESH_CONTEXTS];  /* the decoder's probabilities, replayed */
+    uint32_t  ctx[LUMO_PMESH_CONTEXTS];  /* the decoder's contexts, replayed */
 } replay;
 
 /* One adaptive bit of context c (mirrors read_ctx in pmesh_batch.c). */
@@ -147,14 +147,15 @@ static void write_base(replay *r, bitwriter *w)
 /* Mirrors read_residual() in pmesh_batch.c: the class c of |v| (its bit
  * length) in adaptive unary by the spread class sc (no end bit at
  * quant_bits), the c - 1 bits under the leading one (the first two
- * adaptive), then the sign. */
-static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t v)
+ * adaptive), then the sign, adaptive by c and the sign of `offset` (the
+ * prediction's offset from the parent). */
+static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t offset, int32_t v)
 {
     uint32_t a = (uint32_t)(v < 0 ? -v : v), c = 0;
     while (a >> c)
         c++;
     for (uint32_t j = 0; j < r->quant_bits && j <= c; j++)
-        put_ctx(r, w, lumo_pmesh_res_ctx(sc, j), j < c);
+        put_ctx(r, w, lumo_pmesh_res_ctx(sc, j, offset), j < c);
     if (c == 0)
         return;
     for (uint32_t i = c - 1; i-- > 0;) {
@@ -164,7 +165,7 @@ static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t v)
         else
             put_bits(w, bit, 1);
     }
-    put_bits(w, v < 0, 1);
+    put_ctx(r, w, lumo_pmesh_sign_ctx(c, offset), v < 0);
 }
 
 /* The residual of k from the decoder's own prediction
@@ -173,13 +174,15 @@ static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t v)
 static void predict(replay *r, bitwriter *w, uint32_t k)
 {
     int32_t pred[3];
-    uint32_t sc = lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, r->pm->parent[k], pred);
+    uint32_t p = r->pm->parent[k];
+    uint32_t sc[3];
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, pred, sc);
     double mark = spent(w);
     for (int d = 0; d < 3; d++) {
         int32_t v = r->q[3 * (size_t)k + d] - pred[d];
         r->res[3 * (size_t)k + d] = v;
         if (r->coded)
-            put_residual(r, w, sc, v);
+            put_residual(r, w, sc[d], pred[d] - r->q[3 * (size_t)p + d], v);
     }
     count_bits(w, &mark, &r->st.pos_bits);
 }

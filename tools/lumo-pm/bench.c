@@ -126,9 +126,9 @@ static void section_sizes(FILE *o, model *ms, int n)
 {
     fprintf(o, "### Stream size against single-shot Draco\n\n"
                "Same cleaned mesh (welded, degenerate/duplicate faces dropped) for every column; "
-               "pm = the progressive stream (version 5, header and record framing included; "
+               "pm = the progressive stream (version 6, header and record framing included; "
                "positions coded in the split records, docs/progressive-mesh.md §2.3 step 5; "
-               "v4 payload = the same stream with version 4's Draco residual payloads), "
+               "v4 payload = the same stream with its residuals in Draco payloads, as version 4 had them (`position_coding` 1)), "
                "Draco = stock `draco_encoder -cl 7` at the same quantization (`-qp`). Left: 12-bit "
                "positions and batches of 250 for every mesh (pm absolute: stock-readable positions); "
                "right: the stream's own per-mesh choices (`lumo-pm build`'s default: position bits "

@@ -39,7 +39,7 @@
  * varints (index, side bytes, Draco bytes) and a CRC-32: 7 to 19 bytes. */
 #define LUMO_PMESH_BATCH_HEAD_MIN 7u
 #define LUMO_PMESH_BATCH_HEAD_MAX 19u   /* bytes of a record head, at most */
-#define LUMO_PMESH_VERSION     5u    /* the stream version read (docs/progressive-mesh.md) */
+#define LUMO_PMESH_VERSION     6u    /* the stream version read (docs/progressive-mesh.md) */
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
@@ -60,9 +60,10 @@
 #define LUMO_PMESH_HAS_ALBEDO 1u
 /* "LPM1", first character in the lowest byte. */
 #define LUMO_PMESH_MAGIC       0x314d504cu
-/* Adaptive probabilities of the split records' range code, kept from
- * record to record (layout: lumo_shared/pmesh_shared.h); in the arena. */
-#define LUMO_PMESH_CONTEXTS    256u
+/* Adaptive contexts of the split records' range code (a probability and
+ * a count each, one uint32), kept from record to record (layout:
+ * lumo_shared/pmesh_shared.h); in the arena. */
+#define LUMO_PMESH_CONTEXTS    292u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {
@@ -127,8 +128,8 @@ typedef struct lumo_pmesh {
     uint32_t     round_first;         /* first split vertex of the current
                                          collapse round (parent scan) */
     uint32_t     last_fan;            /* the last split was a fan split */
-    uint16_t    *ctx;                 /* LUMO_PMESH_CONTEXTS range-code probabilities */
-    uint16_t    *ctx_undo;            /* their copy from before the batch */
+    uint32_t    *ctx;                 /* LUMO_PMESH_CONTEXTS range-code contexts */
+    uint32_t    *ctx_undo;            /* their copy from before the batch */
     int          rewound;             /* lumo_pmesh_rewind was used */
     int64_t     *arc_key;             /* fan-rank candidates of one split
                                          (ARC_MAX_CORNERS^2 keys) */

@@ -14,14 +14,52 @@
 #include "lumo/pmesh.h"
 
 /* Split records are one adaptive binary range code (docs/progressive-mesh.md
- * §2.3, "Range code"; LZMA's coder): probabilities of PROB_BITS bits that
- * move by 1/2^MOVE_BITS of the distance to 0 or 1 after every coded bit,
- * renormalised a byte at a time below TOP. The decoder is
- * sdk/src/pmesh_rc.c, the encoder server/pm/pm_rc.c. */
-#define LUMO_PMESH_RC_PROB_BITS 11u
+ * §2.3, "Range code"; LZMA's coder with counted contexts): a context is
+ * one uint32, its probability of a 0 in PROB_BITS bits (low 16 bits), the
+ * number of bits it has coded (bits 16 ... 23, at most COUNT_MAX) and its
+ * rate s (bits 24 ... 26).
+ * After every coded bit the probability moves by 1/2^s of its distance to
+ * 0 or 1, s = floor(log2(count + 2)) clamped to RATE_MAX: a fresh context
+ * learns fast (s = 1 after its first bit, as a Krichevsky-Trofimov
+ * estimate would), a busy one averages over about 2^RATE_MAX bits
+ * (version 5 moved every context by 1/32 with 11-bit probabilities: the
+ * 871k dragon 0.95% larger, the bunny 0.4%). The range is renormalised a
+ * byte at a time below TOP. The decoder is sdk/src/pmesh_rc.c, the
+ * encoder server/pm/pm_rc.c. */
+#define LUMO_PMESH_RC_PROB_BITS 15u
 #define LUMO_PMESH_RC_PROB_INIT (1u << (LUMO_PMESH_RC_PROB_BITS - 1))
-#define LUMO_PMESH_RC_MOVE_BITS 5u
+#define LUMO_PMESH_RC_RATE_MAX  7u
+#define LUMO_PMESH_RC_COUNT_MAX ((1u << LUMO_PMESH_RC_RATE_MAX) - 2u)
+typedef char lumo_pmesh_rate_fit[LUMO_PMESH_RC_RATE_MAX == 7u ? 1 : -1];  /* lumo_pmesh_ctx_make */
 #define LUMO_PMESH_RC_TOP       (1u << 24)
+
+/* A context's probability of a 0 (1 ... 2^PROB_BITS - 1). */
+static inline uint32_t lumo_pmesh_ctx_prob(uint32_t ctx)
+{
+    return ctx & 0xffffu;
+}
+/* A context of probability prob and count (at most COUNT_MAX); its rate
+ * s = floor(log2(count + 2)) rides along in bits 24 ... 26, so that a
+ * coded bit does not work it out again. */
+static inline uint32_t lumo_pmesh_ctx_make(uint32_t prob, uint32_t count)
+{
+    uint32_t s = 1u + (count >= 2u) + (count >= 6u) + (count >= 14u) + (count >= 30u) +
+                 (count >= 62u) + (count >= 126u);
+    return s << 24 | count << 16 | prob;
+}
+/* The context after coding `bit`: the probability moves by 1/2^s of its
+ * distance to 0 or 1 and stays in 1 ... 2^PROB_BITS - 1; the count grows,
+ * and s with it whenever count + 2 reaches a power of two. */
+static inline uint32_t lumo_pmesh_ctx_update(uint32_t ctx, uint32_t bit)
+{
+    uint32_t p = ctx & 0xffffu, n = ctx >> 16 & 0xffu, s = ctx >> 24;
+    p = bit ? p - (p >> s) : p + (((1u << LUMO_PMESH_RC_PROB_BITS) - p) >> s);
+    if (n < LUMO_PMESH_RC_COUNT_MAX) {
+        n++;
+        s += ((n + 2u) & (n + 1u)) == 0;
+    }
+    return s << 24 | n << 16 | p;
+}
 /* The adaptive contexts (LUMO_PMESH_CONTEXTS of them, lumo/pmesh.h), by
  * first index: whether a parent continues the round; whether an eligible
  * vertex is the parent, by its valence (PARENT_CTXS); whether the split
@@ -49,23 +87,46 @@
 #define LUMO_PMESH_RES_LOW_CTXS 16u
 #define LUMO_PMESH_CTX_RES      (LUMO_PMESH_CTX_MASK + 1u)
 #define LUMO_PMESH_CTX_RES_LOW  (LUMO_PMESH_CTX_RES + LUMO_PMESH_SPREAD_CTXS * LUMO_PMESH_RES_CLASSES)
-#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_RES_LOW + 2u * LUMO_PMESH_RES_LOW_CTXS)
+/* A residual's sign (§2.3 step 5): by its class (1 ... SIGN_CLASSES, the
+ * last one shared by every larger class) and by the prediction's offset
+ * from the parent on that axis (SIGN_DIRS: 0; positive or negative, each
+ * below 2^c or not): the residual leans towards the parent, more so when
+ * the offset is large against the residual. */
+#define LUMO_PMESH_SIGN_CLASSES 6u
+#define LUMO_PMESH_SIGN_DIRS    5u
+#define LUMO_PMESH_CTX_SIGN     (LUMO_PMESH_CTX_RES_LOW + 2u * LUMO_PMESH_RES_LOW_CTXS)
+/* A residual's first class bit ("class > 0", i.e. not zero) when the
+ * prediction equals the parent's coordinate on that axis, by the spread
+ * class: meshes extracted from voxels (the 871k dragon) put their
+ * vertices on lattice lines, where a ring symmetric about the parent on an
+ * axis often means k shares that coordinate too (the 871k dragon's
+ * positions 12.37 -> 12.10 bits per vertex; one more context set for all
+ * places, or one by the offset's size, gained < 0.1 bit more and cost the
+ * bunny 0.1 … 0.2%). */
+#define LUMO_PMESH_CTX_FLAT     (LUMO_PMESH_CTX_SIGN + LUMO_PMESH_SIGN_CLASSES * LUMO_PMESH_SIGN_DIRS)
+#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_FLAT + LUMO_PMESH_SPREAD_CTXS)
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
-/* The contexts' probabilities at the start of a stream (every record
- * after the base carries them on): LUMO_PMESH_RC_PROB_INIT (1/2), except
- * the residual class bits, which start from a prior by the offset d = j -
- * sc of the bit's place from the spread class: a residual's bit length is
- * about sc - 5 (measured on the bunny and the 11k dragon, and it does not
- * depend on the grid: both scale with the edges), so "class > j" is likely
- * well below it and unlikely above. The chance of a 0, in 1/2048: 32 for
- * d <= -10, 1024 >> (-5 - d) for -9 <= d <= -5, 1536 for d = -4, 1856 for
- * d >= -3. Saves the code's learning on short streams. */
-void lumo_pmesh_init_contexts(uint16_t *ctx);
+/* The contexts at the start of a stream (every record after the base
+ * carries them on): LUMO_PMESH_RC_PROB_INIT (1/2) and count 0, except the
+ * residual class bits (and the FLAT ones, as j = 0), which start from a
+ * prior by the offset d = j - sc of the bit's place from the spread
+ * class: a residual's bit length is about sc - 5 (measured on the bunny
+ * and the 11k dragon, and it does not depend on the grid: both scale with
+ * the edges), so "class > j" is likely well below it and unlikely above.
+ * The chance of a 0, in 1/2048: 32 for d <= -10, 1024 >> (-5 - d) for -9
+ * <= d <= -5, 1536 for d = -4, 1856 for d >= -3 (times 16 in PROB_BITS),
+ * with count RES_PRIOR_COUNT (the prior is worth that many bits). Saves
+ * the code's learning on short streams. */
+#define LUMO_PMESH_RES_PRIOR_COUNT 16u
+void lumo_pmesh_init_contexts(uint32_t *ctx);
 
 /* Context of the residual's class bit j ("class > j") under spread class
- * sc, and of bit j (0 or 1) under the leading one of a class-c residual. */
-static inline uint32_t lumo_pmesh_res_ctx(uint32_t sc, uint32_t j)
+ * sc, the prediction `offset` grid steps from the parent on that axis, and
+ * of bit j (0 or 1) under the leading one of a class-c residual. */
+static inline uint32_t lumo_pmesh_res_ctx(uint32_t sc, uint32_t j, int32_t offset)
 {
+    if (j == 0 && offset == 0)
+        return LUMO_PMESH_CTX_FLAT + sc;
     return LUMO_PMESH_CTX_RES + sc * LUMO_PMESH_RES_CLASSES +
            (j < LUMO_PMESH_RES_CLASSES ? j : LUMO_PMESH_RES_CLASSES - 1u);
 }
@@ -73,6 +134,18 @@ static inline uint32_t lumo_pmesh_res_low_ctx(uint32_t c, uint32_t j)
 {
     return LUMO_PMESH_CTX_RES_LOW + 2u * (c < LUMO_PMESH_RES_LOW_CTXS ? c : LUMO_PMESH_RES_LOW_CTXS - 1u) + j;
 }
+/* Context of the sign of a class-c residual (c >= 1) whose prediction
+ * lies `offset` grid steps from the parent on its axis. */
+static inline uint32_t lumo_pmesh_sign_ctx(uint32_t c, int32_t offset)
+{
+    uint32_t mag = (uint32_t)(offset < 0 ? -(int64_t)offset : offset);
+    uint32_t dir = offset > 0 ? 1u : offset < 0 ? 2u : 0u;
+    uint32_t b = c < LUMO_PMESH_SIGN_CLASSES ? c - 1u : LUMO_PMESH_SIGN_CLASSES - 1u;
+    if (dir && (mag >> c) != 0)  /* c < 32 */
+        dir += 2u;
+    return LUMO_PMESH_CTX_SIGN + LUMO_PMESH_SIGN_DIRS * b + dir;
+}
+
 /* Context of the rank's class bit c for a parent with n corners. */
 static inline uint32_t lumo_pmesh_rank_ctx(uint32_t n, uint32_t c)
 {
@@ -101,7 +174,7 @@ int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint
 #define LUMO_PMESH_ARC_BITS 14u
 /* Predicted positions: a split vertex is predicted by the rounded mean of
  * the corners of its faces, its parent counted this many extra times. */
-#define LUMO_PMESH_PARENT_WEIGHT  1u
+#define LUMO_PMESH_PARENT_WEIGHT  2u
 /* The candidate fans of a fan split whose parent p has n corners (1 ...
  * ARC_MAX_CORNERS), ranked by geometry (docs/progressive-mesh.md §2.3
  * step 3; sdk/src/pmesh_predict.c). The stream writer and the decoder share
@@ -130,15 +203,17 @@ static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
 /* The predicted grid point of split vertex k right after its split, with
  * parent p (docs/progressive-mesh.md §2.3 step 5; sdk/src/pmesh_predict.c):
  * L(k) is walked from head[k] through next[] until LUMO_PMESH_NIL, corner c
- * showing tris[c]; q holds 3 grid integers per vertex. Returns the ring's
- * spread class (0 ... SPREAD_CTXS - 1): the bit length of the sum over the
- * axes of the extent (max - min) of the predicting vertices, which scales
- * with the local edge length and so with the residual (LUMO_PMESH_POS_CODED
- * conditions the residual's class on it). Shared by the stream writer and
- * the decoder. */
+ * showing tris[c]; q holds 3 grid integers per vertex. sc[] gets each
+ * axis's spread class (0 ... SPREAD_CTXS - 1): the bit length of 3 times
+ * the extent (max - min) of the predicting vertices on that axis, which
+ * scales with the residual on that axis (LUMO_PMESH_POS_CODED conditions
+ * the residual's class on it; version 5 had one class for the three axes,
+ * from the sum of the extents: the 871k dragon's positions 12.85 -> 12.50
+ * bits per vertex). Shared by the stream writer and the decoder. */
 #define LUMO_PMESH_NIL 0xffffffffu
-uint32_t lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                     const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3]);
+void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
+                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3],
+                                 uint32_t sc[3]);
 
 /* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
  * the smallest n with 2^n >= count (0 for count <= 1). The stream writer
