@@ -498,6 +498,7 @@ static void depth_first(draw_ctx *c, const lumo_raster_mesh *m, const lumo_raste
     draw_mesh(c, m, cache);
     c->stats = stats;
     c->depth_only = 0;
+    c->depth_laid = 1;
     depth_step_back(c->target);
 }
 
@@ -524,6 +525,7 @@ lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_
     c.stats = stats;
     c.nvar = lumo_raster_varyings(s, m);
     c.depth_only = 0;
+    c.depth_laid = 0;
     if (stats) {
         lumo_raster_stats zero = {0, 0, 0, 0, 0, 0};
         *stats = zero;
@@ -556,6 +558,7 @@ lumo_status lumo_raster_draw_depth(const lumo_raster_view *v, const lumo_raster_
     c.stats = NULL;
     c.nvar = 0;
     c.depth_only = 1;
+    c.depth_laid = 0;
     draw_mesh(&c, m, NULL);
     return LUMO_OK;
 }

@@ -981,7 +981,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         t.st32[i] = (int32_t)t.step[i];
         t.bias32[i] = (int32_t)t.e[i].bias;
     }
-    if (t.edges32 && !c->depth_only && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_ok(c, &t))) {
+    if (t.edges32 && !c->depth_only && !c->depth_laid && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_ok(c, &t))) {
         rows32_draw(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1,
                     c->nvar == LUMO_RASTER_VAR_GOURAUD ? span_gouraud32 : span_pixel32);
         return;
