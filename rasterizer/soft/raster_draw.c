@@ -491,14 +491,13 @@ static void depth_first(draw_ctx *c, const lumo_raster_mesh *m, const lumo_raste
     if (!(c->scene->flags & LUMO_RASTER_DEPTH_FIRST) || !(c->scene->flags & LUMO_RASTER_PER_PIXEL)
         || !depth_clear(c->target))
         return;
-    /* the caller's context switched to depth only and back (no copy: the
+    /* the caller's context switched to laying depth and back (no copy: the
      * board's stack peak is in this call chain) */
     c->stats = NULL;
-    c->depth_only = 1;
+    c->laying = 1;
     draw_mesh(c, m, cache);
     c->stats = stats;
-    c->depth_only = 0;
-    c->depth_laid = 1;
+    c->laying = 0;
     depth_step_back(c->target);
 }
 
@@ -525,7 +524,7 @@ lumo_status lumo_raster_draw_stats(const lumo_raster_view *v, const lumo_raster_
     c.stats = stats;
     c.nvar = lumo_raster_varyings(s, m);
     c.depth_only = 0;
-    c.depth_laid = 0;
+    c.laying = 0;
     if (stats) {
         lumo_raster_stats zero = {0, 0, 0, 0, 0, 0};
         *stats = zero;
@@ -558,7 +557,7 @@ lumo_status lumo_raster_draw_depth(const lumo_raster_view *v, const lumo_raster_
     c.stats = NULL;
     c.nvar = 0;
     c.depth_only = 1;
-    c.depth_laid = 0;
+    c.laying = 0;
     draw_mesh(&c, m, NULL);
     return LUMO_OK;
 }

@@ -115,8 +115,8 @@ typedef struct lumo_raster_ctx {
     lumo_raster_stats       *stats;
     unsigned nvar;
     int depth_only;            /* shadow maps: depth test and write only */
-    int depth_laid;            /* LUMO_RASTER_DEPTH_FIRST laid the depth: the colour pass takes
-                                  the exact 64-bit rows, whose depth the pass wrote */
+    int laying;                /* LUMO_RASTER_DEPTH_FIRST's pass: the colour pass's very rows and
+                                  depths (same routing and pieces), depth stored, nothing shaded */
 } lumo_raster_ctx;
 
 /* Rasterize one screen triangle with positive (doubled) area in 1/256

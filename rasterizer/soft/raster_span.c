@@ -784,7 +784,7 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
     const lumo_raster_ctx *c = g->c;
     const lumo_raster_target *tg = c->target;
     const unsigned nvar = c->nvar;
-    const int d16 = tg->depth_bits == 16;
+    const int d16 = tg->depth_bits == 16, lay = c->laying;
     int32_t va[LUMO_RASTER_MAX_VARYINGS], vb[LUMO_RASTER_MAX_VARYINGS], dv[LUMO_RASTER_MAX_VARYINGS];
     int32_t cur[LUMO_RASTER_MAX_VARYINGS];
     uint32_t za, zb, written = 0;
@@ -818,10 +818,12 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
                     *(uint16_t *)(void *)dp = (uint16_t)dz_x;
                 else
                     *(uint32_t *)(void *)dp = dz_x;
+                written++;
+                if (lay)
+                    continue;
                 piece_groups(cur, va, dv, x - a, g->mask_groups);
                 lumo_raster_shade_pixel32(c->view, c->scene, &g->pf, nvar, cur, code);
                 lumo_raster_put_codes(tg, crow, (int)x, (int)y, code[0], code[1], code[2]);
-                written++;
             }
         }
         za = zb;
@@ -981,7 +983,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         t.st32[i] = (int32_t)t.step[i];
         t.bias32[i] = (int32_t)t.e[i].bias;
     }
-    if (t.edges32 && !c->depth_only && !c->depth_laid && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_ok(c, &t))) {
+    if (t.edges32 && !c->depth_only && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_ok(c, &t))) {
         rows32_draw(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1,
                     c->nvar == LUMO_RASTER_VAR_GOURAUD ? span_gouraud32 : span_pixel32);
         return;
@@ -994,7 +996,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
             continue;
         if (c->stats)
             c->stats->pixels_tested += (uint32_t)(x1 - x0 + 1);
-        if (c->depth_only)
+        if (c->depth_only || c->laying)
             span_depth(c, &t, E, x0, x1, row);
         else if (c->nvar == LUMO_RASTER_VAR_GOURAUD)
             span_gouraud(c, &t, E, x0, x1, py, row);

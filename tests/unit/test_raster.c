@@ -507,35 +507,6 @@ static void draw_counted(const lumo_raster_view *v, const lumo_raster_scene *s, 
     *written += st.pixels_written;
 }
 
-/* After a depth-first pass the colour pass takes the exact 64-bit rows
- * (their depth is the pass's); without it small triangles take the 32-bit
- * rows, whose shading may differ by one code: colour bytes equal but for
- * at most one code on at most 1 % of them (depth bytes stay equal). */
-static void assert_colour_near(const void *a, const void *b, size_t bytes)
-{
-    const uint8_t *p = a, *q = b;
-    size_t i, off = 0;
-    for (i = 0; i < bytes; i++) {
-        int d = (int)p[i] - (int)q[i];
-        assert_true(d >= -1 && d <= 1);
-        off += d != 0;
-    }
-    assert_true(off * 100 <= bytes);
-}
-
-/* The same pixels covered (the 32-bit rows step depth along pieces, the
- * exact rows compute it per pixel: the stored values may differ). */
-static void assert_same_coverage(const uint32_t *a, const uint32_t *b, size_t n, int bits)
-{
-    size_t i;
-    for (i = 0; i < n; i++)
-        if (bits == 16)
-            assert_int_equal(((const uint16_t *)(const void *)a)[i] != 0, ((const uint16_t *)(const void *)b)[i] != 0);
-        else
-            assert_int_equal(a[i] != 0, b[i] != 0);
-}
-
-static void test_depth_first_same_bytes(void **state) __attribute__((unused));
 static void test_depth_first_same_bytes(void **state)
 {
     static uint32_t c0[W * H], d0[W * H], c1[W * H], d1[W * H];
@@ -565,19 +536,20 @@ static void test_depth_first_same_bytes(void **state)
                     assert_int_equal(lumo_raster_target_init(&b, W, H, (uint16_t)y0, rows, pf, c1, d1, (uint8_t)bits), LUMO_OK);
                     draw_counted(&v, &s, &rm, &a, 1, &plain);
                     draw_counted(&v, &sf, &rm, &b, 1, &first);
-                    assert_colour_near(c0, c1, n * (fmt ? 2 : 4));
-                    assert_same_coverage(d0, d1, n, bits);
+                    assert_memory_equal(c0, c1, n * (fmt ? 2 : 4));
+                    assert_memory_equal(d0, d1, n * (size_t)bits / 8);
                     for (i = 0; i < n; i++)
                         covered += bits == 16 ? ((uint16_t *)(void *)d0)[i] != 0 : d0[i] != 0;
                     /* a second draw into the same band: the pass is skipped */
                     draw_counted(&v, &s, &rm, &a, 0, &plain);
                     draw_counted(&v, &sf, &rm, &b, 0, &first);
-                    assert_colour_near(c0, c1, n * (fmt ? 2 : 4));
-                    assert_same_coverage(d0, d1, n, bits);
+                    assert_memory_equal(c0, c1, n * (fmt ? 2 : 4));
+                    assert_memory_equal(d0, d1, n * (size_t)bits / 8);
                 }
                 /* written: once per covered pixel in the first draws, nothing
                  * in the second (all ties lose) for both */
-                assert_true(first >= covered); /* the second draw takes the 32-bit rows: its stepped depth may win ties against the exact depth */
+                assert_int_equal(first, covered);
+                assert_true(plain > first);
             }
     host_mesh_free(&m);
 }
@@ -811,7 +783,7 @@ int main(void)
         cmocka_unit_test(test_depth32),
         cmocka_unit_test(test_bands_equal_full_frame),
         cmocka_unit_test(test_cache_and_cull_equal),
-        
+        cmocka_unit_test(test_depth_first_same_bytes),
         cmocka_unit_test(test_golden_hashes),
         cmocka_unit_test(test_errors_leave_target),
         cmocka_unit_test(test_cot_half),
