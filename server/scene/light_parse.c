@@ -144,6 +144,20 @@ static lumo_status read_cone(const lp *p, const char *field, float *half)
     return st;
 }
 
+/* An area light's edges span a parallelogram whose normal float can hold:
+ * at least 1 um^2 and not a sliver (sine of the edges' angle >= 1e-4), so
+ * the normalised U x V is a unit vector (near-parallel or denormal edges
+ * gave a "unit" normal 0.1 % too long). Computed in double. */
+static int area_ok(vec3 u, vec3 v)
+{
+    double cx = (double)u.y * v.z - (double)u.z * v.y, cy = (double)u.z * v.x - (double)u.x * v.z,
+           cz = (double)u.x * v.y - (double)u.y * v.x;
+    double a = sqrt(cx * cx + cy * cy + cz * cz);
+    double lu = sqrt((double)u.x * u.x + (double)u.y * u.y + (double)u.z * u.z);
+    double lv = sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z);
+    return a >= 1e-12 && a >= 1e-4 * lu * lv;
+}
+
 /* The fields after the kind, by kind. */
 static lumo_status read_kind(const lp *p, lumo_light_kind kind, char **f, srv_light *l)
 {
@@ -163,7 +177,7 @@ static lumo_status read_kind(const lp *p, lumo_light_kind kind, char **f, srv_li
         if ((st = read_position(p, "corner", f[1], &l->pos)) || (st = read_position(p, "edge U", f[2], &l->u)) ||
             (st = read_position(p, "edge V", f[3], &l->v)))
             return st;
-        if (!(v3_len(v3_cross(l->u, l->v)) > 0.0f))
+        if (!area_ok(l->u, l->v))
             return refuse(p, "edges U %s and V %s are parallel or zero: no area", f[2], f[3]);
         return read_power(p, kind, f[4], &l->power);
     }

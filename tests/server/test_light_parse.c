@@ -42,6 +42,9 @@ static void test_fields(void **state)
     refused("spot:0,1,0:0,-1,0:30,2:1,1,1", "cone half-angle needs 1 number, got 2");
     refused("directional:0,-1,0:1,1,-2", "irradiance value 3 = -2 is outside [0, 1e+09] W/m^2");
     refused("area:0,1,0:1,0,0:2,0,0:1,1,1", "edges U 1,0,0 and V 2,0,0 are parallel or zero: no area");
+    /* nearly parallel (sine 1e-6) and tiny (1e-7 m edges): a normal float cannot make unit (fuzz_light_parse) */
+    refused("area:0,1,0:1,0,0:1,0.000001,0:1,1,1", "edges U 1,0,0 and V 1,0.000001,0 are parallel or zero");
+    refused("area:0,1,0:1e-7,0,0:0,0,1e-7:1,1,1", "edges U 1e-7,0,0 and V 0,0,1e-7 are parallel or zero");
     refused("area:0,1,0:1,0:0,0,1:1,1,1", "edge U needs 3 numbers, got 2");
     refused("point: 0,1,0:1,1,1", "position value 1 ' 0' is not a finite number");
     refused("", "kind '' is not");
