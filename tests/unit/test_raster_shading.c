@@ -76,28 +76,21 @@ static void cam_ray(const cam_d *c, int x, int y, double d[3])
     for (k = 0; k < 3; k++) d[k] = c->f[k] + s * c->r[k] + t * c->u[k];
 }
 
-/* A large floor (y = 0, 16 x 16 quads over 40 x 40 m), a point light and
- * the fake indirect source; per-pixel soft image vs the ray caster. The
- * quads are big and run from under the camera to far away, so wrong
- * (screen-linear) interpolation would show metres of error. */
-static void test_per_pixel_vs_raycast(void **state)
+/* The scene both references check: a large floor (y = 0, 16 x 16 quads
+ * over 40 x 40 m), the point light at lp with power phi, the fake indirect
+ * source, the camera at eye looking at at (the tests' constants), drawn by
+ * the soft rasterizer into t with `flags`. */
+static void draw_floor(lumo_raster_target *t, uint32_t flags, host_mesh *m)
 {
-    const double eye[3] = {0.3, 1.2, 2.5}, at[3] = {0, 0, -1}, alb[3] = {0.8, 0.7, 0.6};
-    const double c0[3] = {-20, 0, 20}, u[3] = {40, 0, 0}, v[3] = {0, 0, -40};
-    const double lp[3] = {0.5, 1.5, -0.5}, phi[3] = {20, 18, 15};
-    host_mesh m = {0};
+    const double c0[3] = {-20, 0, 20}, u[3] = {40, 0, 0}, v[3] = {0, 0, -40}, alb[3] = {0.8, 0.7, 0.6};
     lumo_raster_camera cam;
     lumo_raster_view view;
     lumo_raster_light light;
     lumo_raster_scene s;
     lumo_raster_mesh rm;
-    lumo_raster_target t = target(LUMO_PIXEL_XRGB8888);
-    cam_d cd;
-    int x, y, k, compared = 0, off1 = 0, worst = 0;
-    (void)state;
 
-    host_mesh_add_quad(&m, c0, u, v, 16, 16, alb);
-    rm = host_mesh_raster(&m);
+    host_mesh_add_quad(m, c0, u, v, 16, 16, alb);
+    rm = host_mesh_raster(m);
     memset(&cam, 0, sizeof cam);
     assert_int_equal(host_camera_from_string("0.3,1.2,2.5:0,0,-1:0,1,0:55", &cam), LUMO_OK);
     cam.znear = host_q16(0.05);
@@ -108,9 +101,26 @@ static void test_per_pixel_vs_raycast(void **state)
     s.light_count = 1;
     s.indirect = fake_indirect;
     s.exposure = LUMO_Q16_ONE;
-    s.flags = LUMO_RASTER_PER_PIXEL;
-    assert_int_equal(lumo_raster_clear(&t, 0), LUMO_OK);
-    assert_int_equal(lumo_raster_draw(&view, &s, &rm, NULL, &t), LUMO_OK);
+    s.flags = flags;
+    assert_int_equal(lumo_raster_clear(t, 0), LUMO_OK);
+    assert_int_equal(lumo_raster_draw(&view, &s, &rm, NULL, t), LUMO_OK);
+}
+
+/* A large floor (y = 0, 16 x 16 quads over 40 x 40 m), a point light and
+ * the fake indirect source; per-pixel soft image vs the ray caster. The
+ * quads are big and run from under the camera to far away, so wrong
+ * (screen-linear) interpolation would show metres of error. */
+static void test_per_pixel_vs_raycast(void **state)
+{
+    const double eye[3] = {0.3, 1.2, 2.5}, at[3] = {0, 0, -1}, alb[3] = {0.8, 0.7, 0.6};
+    const double lp[3] = {0.5, 1.5, -0.5}, phi[3] = {20, 18, 15};
+    host_mesh m = {0};
+    lumo_raster_target t = target(LUMO_PIXEL_XRGB8888);
+    cam_d cd;
+    int x, y, k, compared = 0, off1 = 0, worst = 0;
+    (void)state;
+
+    draw_floor(&t, LUMO_RASTER_PER_PIXEL, &m);
     cam_setup(&cd, eye, at, 55);
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
@@ -163,35 +173,17 @@ static double vertex_radiance(int k, const double p[3], const double lp[3], cons
 static void test_per_vertex_vs_reference(void **state)
 {
     const double eye[3] = {0.3, 1.2, 2.5}, at[3] = {0, 0, -1}, alb[3] = {0.8, 0.7, 0.6};
-    const double c0[3] = {-20, 0, 20}, u[3] = {40, 0, 0}, v[3] = {0, 0, -40};
+    const double c0[3] = {-20, 0, 20}, u[3] = {40, 0, 0}, v[3] = {0, 0, -40};   /* draw_floor's */
     const double lp[3] = {0.5, 1.5, -0.5}, phi[3] = {20, 18, 15};
     const int nq = 16;
     host_mesh m = {0};
-    lumo_raster_camera cam;
-    lumo_raster_view view;
-    lumo_raster_light light;
-    lumo_raster_scene s;
-    lumo_raster_mesh rm;
     lumo_raster_target t = target(LUMO_PIXEL_XRGB8888);
     cam_d cd;
     int x, y, k, compared = 0, worst = 0;
     double sum = 0;
     (void)state;
 
-    host_mesh_add_quad(&m, c0, u, v, nq, nq, alb);
-    rm = host_mesh_raster(&m);
-    memset(&cam, 0, sizeof cam);
-    assert_int_equal(host_camera_from_string("0.3,1.2,2.5:0,0,-1:0,1,0:55", &cam), LUMO_OK);
-    cam.znear = host_q16(0.05);
-    assert_int_equal(lumo_raster_view_init(&view, &cam, W, H), LUMO_OK);
-    assert_int_equal(host_light_from_string("point:0.5,1.5,-0.5:20,18,15", &light), LUMO_OK);
-    memset(&s, 0, sizeof s);
-    s.lights = &light;
-    s.light_count = 1;
-    s.indirect = fake_indirect;
-    s.exposure = LUMO_Q16_ONE;
-    assert_int_equal(lumo_raster_clear(&t, 0), LUMO_OK);
-    assert_int_equal(lumo_raster_draw(&view, &s, &rm, NULL, &t), LUMO_OK);
+    draw_floor(&t, 0, &m);
     cam_setup(&cd, eye, at, 55);
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
