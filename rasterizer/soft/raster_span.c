@@ -891,7 +891,9 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
     g.dbytes = tg->depth_bits == 16 ? 2u : 4u;
     g.cbytes = tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u;
     g.mask = ((int32_t)1 << t->run_bits) - 1;
-    if (span == span_pixel32)
+    if (span == span_pixel32 && c->laying)
+        g.ngroups = 0, g.mask_groups = 0;   /* the depth-first pass: depth at the same ends, nothing to shade */
+    else if (span == span_pixel32)
         pixel_groups(&g, c, t);
     drow = (uint8_t *)tg->depth + (size_t)(py0 - tg->band_y) * tg->width * g.dbytes;
     crow = (uint8_t *)tg->color + (size_t)(py0 - tg->band_y) * tg->color_stride;
