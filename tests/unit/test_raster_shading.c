@@ -76,6 +76,20 @@ static void cam_ray(const cam_d *c, int x, int y, double d[3])
     for (k = 0; k < 3; k++) d[k] = c->f[k] + s * c->r[k] + t * c->u[k];
 }
 
+/* Where pixel (x, y)'s ray from eye meets the floor (y = 0), in p; 0 near
+ * the horizon (sub-pixel detail) or off the floor's 40 x 40 m. */
+static int floor_hit(const cam_d *cd, const double eye[3], int x, int y, double p[3])
+{
+    double d[3], hit;
+    int k;
+    cam_ray(cd, x, y, d);
+    if (d[1] > -0.05)
+        return 0;
+    hit = -eye[1] / d[1];
+    for (k = 0; k < 3; k++) p[k] = eye[k] + hit * d[k];
+    return fabs(p[0]) <= 19.9 && fabs(p[2]) <= 19.9;
+}
+
 /* The scene both references check: a large floor (y = 0, 16 x 16 quads
  * over 40 x 40 m), the point light at lp with power phi, the fake indirect
  * source, the camera at eye looking at at (the tests' constants), drawn by
@@ -124,14 +138,9 @@ static void test_per_pixel_vs_raycast(void **state)
     cam_setup(&cd, eye, at, 55);
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
-            double d[3], p[3], n[3] = {0, 1, 0}, l[3], d2 = 0, cosv, hit;
+            double p[3], n[3] = {0, 1, 0}, l[3], d2 = 0, cosv;
             uint32_t got = color[y * W + x];
-            cam_ray(&cd, x, y, d);
-            if (d[1] > -0.05)
-                continue;                    /* near the horizon: sub-pixel detail */
-            hit = -eye[1] / d[1];
-            for (k = 0; k < 3; k++) p[k] = eye[k] + hit * d[k];
-            if (fabs(p[0]) > 19.9 || fabs(p[2]) > 19.9)
+            if (!floor_hit(&cd, eye, x, y, p))
                 continue;
             for (k = 0; k < 3; k++) { l[k] = lp[k] - p[k]; d2 += l[k] * l[k]; }
             cosv = l[1] / sqrt(d2);
@@ -187,15 +196,10 @@ static void test_per_vertex_vs_reference(void **state)
     cam_setup(&cd, eye, at, 55);
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
-            double d[3], p[3], hit, cs, ct, fs, ft;
+            double p[3], cs, ct, fs, ft;
             uint32_t got = color[y * W + x];
             int ci, cj;
-            cam_ray(&cd, x, y, d);
-            if (d[1] > -0.05)
-                continue;                    /* near the horizon: sub-pixel detail */
-            hit = -eye[1] / d[1];
-            for (k = 0; k < 3; k++) p[k] = eye[k] + hit * d[k];
-            if (fabs(p[0]) > 19.9 || fabs(p[2]) > 19.9)
+            if (!floor_hit(&cd, eye, x, y, p))
                 continue;
             cs = (p[0] - c0[0]) / u[0] * nq;
             ct = (p[2] - c0[2]) / v[2] * nq;
