@@ -236,17 +236,28 @@ static int fits_30(int64_t v)
     return v < ((int64_t)1 << 30) && v > -((int64_t)1 << 30);
 }
 
+/* Vertices whose sub-pixel extents are both below 2^14 bound every edge
+ * value of their box: |a|, |b| and the distances |x - x0|, |y - y0| of a
+ * pixel centre of the box to a vertex are all below 2^14, so |E| < 2^29
+ * and box_edges' corner tests would all pass (most triangles of a mesh:
+ * the tests are skipped for them). */
+#define BOX_SURE_EXTENT ((int64_t)1 << 14)
+
 /* The edge values at pixel (px0, py0), and whether every value of the
  * pixel box [px0, px1] x [py0, py1] lies within +-2^30: E is linear, so its
- * extremes over the box are at the box's corners. */
-static int box_edges(const tri *t, int64_t px0, int64_t px1, int64_t py0, int64_t py1, int64_t E[3])
+ * extremes over the box are at the box's corners (not tested when `sure`,
+ * BOX_SURE_EXTENT). */
+static int box_edges(const tri *t, int64_t px0, int64_t px1, int64_t py0, int64_t py1, int sure, int64_t E[3])
 {
     int64_t sy = py0 * 16 + 8, sx = px0 * 16 + 8;
     int small = 1, i;
 
+    for (i = 0; i < 3; i++)
+        E[i] = t->e[i].a * (sx - t->e[i].x0) + t->e[i].b * (sy - t->e[i].y0);
+    if (sure)
+        return 1;
     for (i = 0; i < 3; i++) {
         int64_t dx = t->step[i] * (px1 - px0), dy = t->e[i].b * 16 * (py1 - py0);
-        E[i] = t->e[i].a * (sx - t->e[i].x0) + t->e[i].b * (sy - t->e[i].y0);
         small &= fits_30(E[i]) && fits_30(E[i] + dx) && fits_30(E[i] + dy) && fits_30(E[i] + dx + dy);
     }
     return small;
@@ -979,7 +990,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         t.run_bits = gouraud_run_bits(&t, area, PIXEL_MIN_BITS, PIXEL_PERSPECTIVE_BITS);
     else if (!c->depth_only && px1 - px0 >= (1 << RUN_MIN_BITS))
         t.run_bits = gouraud_run_bits(&t, area, RUN_MIN_BITS, RUN_PERSPECTIVE_BITS);
-    small = box_edges(&t, px0, px1, py0, py1, Erow);
+    small = box_edges(&t, px0, px1, py0, py1, maxx - minx < BOX_SURE_EXTENT && maxy - miny < BOX_SURE_EXTENT, Erow);
     t.edges32 = small && t.sh == 0;
     for (i = 0; i < 3; i++) {
         t.st32[i] = (int32_t)t.step[i];
