@@ -404,7 +404,10 @@ LUMO_RASTER_HOT int32_t convex3(int32_t a0, int32_t a1, int32_t a2, uint32_t b0,
                       + ((uint64_t)1 << 30)) >> 31);
 }
 
-static uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
+/* Inlined into its two callers (gouraud_at32, vary_at32): the call and its
+ * saved registers were 2.8 M of a frame's 83.6 M on a mesh of small
+ * triangles (docs/benchmarks.md, round five). */
+LUMO_RASTER_HOT uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
 {
     uint64_t p1 = (uint64_t)(uint32_t)E[1] * t->v[1].q, p2 = (uint64_t)(uint32_t)E[2] * t->v[2].q;
     uint64_t ps = (uint64_t)(uint32_t)E[0] * t->v[0].q + p1 + p2, r;
