@@ -434,7 +434,9 @@ LUMO_RASTER_HOT uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
     return z > ((uint32_t)1 << 30) ? (uint32_t)1 << 30 : z;
 }
 
-static uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
+/* Inlined at span_gouraud32's two evaluations (a piece's start and end):
+ * 80.8 -> 79.3 M a frame of small triangles. */
+LUMO_RASTER_HOT uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
 {
     const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
     uint32_t b[3], z = bary32(t, E, b);
