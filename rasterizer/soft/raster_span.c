@@ -15,6 +15,17 @@
  */
 #include "raster_internal.h"
 
+/* Inlined where the build optimises for speed (the host's -O2: on a mesh
+ * of small triangles the calls and their saved registers cost more than
+ * the code); a plain call under -Os (the boards), where the larger inlined
+ * bodies spill registers (golden_raster per vertex: +0.9 instructions a
+ * covered pixel inlined). */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#define SPAN_FAST static inline __attribute__((always_inline))
+#else
+#define SPAN_FAST static
+#endif
+
 /* Barycentric precision of the interpolation: Q0.16. */
 #define BARY_BITS 16
 /* Edge functions are scaled down to < 2^24 before the perspective products. */
@@ -53,8 +64,9 @@ static int is_top_left(const lumo_raster_sv *a, const lumo_raster_sv *b)
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-/* Inlined: three calls a triangle were 0.6 % of a frame of small triangles. */
-LUMO_RASTER_HOT void edge_setup(edge *e, const lumo_raster_sv *p, const lumo_raster_sv *q)
+/* Inlined on the host (SPAN_FAST): three calls a triangle were 0.6 % of a
+ * frame of small triangles. */
+SPAN_FAST void edge_setup(edge *e, const lumo_raster_sv *p, const lumo_raster_sv *q)
 {
     e->a = -((int64_t)q->y - p->y);
     e->b = (int64_t)q->x - p->x;
@@ -406,10 +418,10 @@ LUMO_RASTER_HOT int32_t convex3(int32_t a0, int32_t a1, int32_t a2, uint32_t b0,
                       + ((uint64_t)1 << 30)) >> 31);
 }
 
-/* Inlined into its two callers (gouraud_at32, vary_at32): the call and its
- * saved registers were 2.8 M of a frame's 83.6 M on a mesh of small
- * triangles (docs/benchmarks.md, round five). */
-LUMO_RASTER_HOT uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
+/* Inlined into its two callers (gouraud_at32, vary_at32) on the host
+ * (SPAN_FAST): the call and its saved registers were 2.8 M of a frame's
+ * 83.6 M on a mesh of small triangles (docs/benchmarks.md, round five). */
+SPAN_FAST uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
 {
     uint64_t p1 = (uint64_t)(uint32_t)E[1] * t->v[1].q, p2 = (uint64_t)(uint32_t)E[2] * t->v[2].q;
     uint64_t ps = (uint64_t)(uint32_t)E[0] * t->v[0].q + p1 + p2, r;
@@ -436,9 +448,9 @@ LUMO_RASTER_HOT uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
     return z > ((uint32_t)1 << 30) ? (uint32_t)1 << 30 : z;
 }
 
-/* Inlined at span_gouraud32's two evaluations (a piece's start and end):
- * 80.8 -> 79.3 M a frame of small triangles. */
-LUMO_RASTER_HOT uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
+/* Inlined at span_gouraud32's two evaluations (a piece's start and end) on
+ * the host (SPAN_FAST): 80.8 -> 79.3 M a frame of small triangles. */
+SPAN_FAST uint32_t gouraud_at32(const tri *t, const int32_t E[3], int32_t c[3])
 {
     const int32_t *v0 = t->v[0].var, *v1 = t->v[1].var, *v2 = t->v[2].var;
     uint32_t b[3], z = bary32(t, E, b);
@@ -592,7 +604,8 @@ LUMO_RASTER_HOT uint32_t run_pixels(void *depth, uint8_t *line, int32_t count, i
     uint8_t *d = (uint8_t *)depth, *end = d + (size_t)count * (d16 ? 2u : 4u);
 
     for (; d != end; d += d16 ? 2 : 4, line += rgb565 ? 2 : 4, x++, z += dzu, r += dr, g += dg, b += db)
-        fails += 1u - run_pixel(d, line, bayer, x, z, r, g, b, rgb565, d16, plain);
+        if (!run_pixel(d, line, bayer, x, z, r, g, b, rgb565, d16, plain))
+            fails++;                /* a branch, not 1 - written: 2 instructions a pixel less on the board */
     return (uint32_t)count - fails;
 }
 
