@@ -418,6 +418,22 @@ LUMO_RASTER_HOT int32_t convex3(int32_t a0, int32_t a1, int32_t a2, uint32_t b0,
                       + ((uint64_t)1 << 30)) >> 31);
 }
 
+/* The depth (Q0.30) from the sum ps of a pixel's weights e_i q_i (below
+ * 2^62) as pixel_depth finds it: the per-triangle reciprocal. */
+LUMO_RASTER_HOT uint32_t depth_of_sum(const tri *t, uint64_t ps)
+{
+    return (uint32_t)(((uint64_t)(uint32_t)(ps >> t->zs) * (uint32_t)t->zr) >> 32);
+}
+
+/* bary32's depth alone (capped at 2^30): three products, no division. */
+LUMO_RASTER_HOT uint32_t depth32_at(const tri *t, const int32_t E[3])
+{
+    uint32_t z = depth_of_sum(t, (uint64_t)(uint32_t)E[0] * t->v[0].q + (uint64_t)(uint32_t)E[1] * t->v[1].q
+                                 + (uint64_t)(uint32_t)E[2] * t->v[2].q);
+
+    return z > ((uint32_t)1 << 30) ? (uint32_t)1 << 30 : z;
+}
+
 /* Inlined into its two callers (gouraud_at32, vary_at32) on the host
  * (SPAN_FAST): the call and its saved registers were 2.8 M of a frame's
  * 83.6 M on a mesh of small triangles (docs/benchmarks.md, round five). */
@@ -436,7 +452,7 @@ SPAN_FAST uint32_t bary32(const tri *t, const int32_t E[3], uint32_t b[3])
         pixel_bary(t, e, p, b);
         b[0] <<= 31 - BARY_BITS, b[1] <<= 31 - BARY_BITS, b[2] <<= 31 - BARY_BITS;
     } else {
-        z = (uint32_t)(((uint64_t)(uint32_t)(ps >> t->zs) * (uint32_t)t->zr) >> 32);
+        z = depth_of_sum(t, ps);
         sh = lumo_raster_clz32(hi);                  /* 2..31 */
         d = (hi << sh) | ((uint32_t)ps >> (32 - sh));    /* [2^31, 2^32) */
         r0 = 0xFFFFFFFFu / (d >> 16) - 5u;
@@ -777,6 +793,33 @@ static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t)
     lumo_raster_pixel_fixed_init(&g->pf, c->view, c->scene, v0, v1, v2);
 }
 
+/* Whether every pixel of a one-piece span [a, x1] ((a | mask) >= x1; E
+ * the edge values at a) fails the depth test: the depths its run would
+ * test (bary32's at both ends, stepped by seg_step) from three products
+ * each, without the barycentrics. depth_of's clamped form is the plain
+ * one wherever a run may be plain (depths in [2^14, 2^30)), so the answer
+ * is the run's. A mesh of small triangles hides 40 % of its spans' pixels
+ * behind nearer ones: those spans need no radiance (round five). */
+static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x1, const uint8_t *drow)
+{
+    const tri *t = g->t;
+    const int d16 = g->dbytes == 2u;
+    const int32_t n = x1 - a;
+    uint32_t z = depth32_at(t, E), dz = 0;
+    const uint8_t *d = drow + (size_t)a * g->dbytes, *end = d + (size_t)(n + 1) * g->dbytes;
+
+    if (n) {
+        int32_t Eb[3];
+        Eb[0] = E[0] + t->st32[0] * n, Eb[1] = E[1] + t->st32[1] * n, Eb[2] = E[2] + t->st32[2] * n;
+        dz = (uint32_t)seg_step((int32_t)z, (int32_t)depth32_at(t, Eb), n);
+    }
+    for (; d != end; d += g->dbytes, z += dz)
+        if (d16 ? depth_of(z, 1, 0) > *(const uint16_t *)(const void *)d
+                : depth_of(z, 0, 0) > *(const uint32_t *)(const void *)d)
+            return 0;
+    return 1;
+}
+
 /* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic, E
  * the edge values at a, drow and crow the depth and colour of the row's
  * pixel 0: the same pieces (ending at absolute multiples of 2^run_bits),
@@ -789,8 +832,11 @@ static uint32_t span_gouraud32(const rows32 *g, int32_t E[3], int32_t a, int32_t
     const uint32_t half = (uint32_t)1 << (LUMO_RASTER_SRGB_NEAR_BITS - 1);
     const tri *t = g->t;
     int32_t ca[3], cb[3], dc[3];
-    uint32_t za = gouraud_at32(t, E, ca), zb, written = 0;
+    uint32_t za, zb, written = 0;
 
+    if ((a | g->mask) >= x1 && span_hidden(g, E, a, x1, drow))
+        return 0;
+    za = gouraud_at32(t, E, ca);
     /* one pixel (most spans of a mesh of small triangles): run_pixel
      * inlined, without the pieces' loop and the call through g->plain */
     if (a == x1)
