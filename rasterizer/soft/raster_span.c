@@ -197,7 +197,8 @@ LUMO_RASTER_HOT int32_t run32(const tri *t, const int32_t E[3], int32_t len, int
                 if (k > *lo) *lo = k;
             }
         } else if (e < b) {
-            *lo = hi + 1;                                 /* never covered in this row */
+            *lo = 0;                                      /* never covered in this row */
+            return -1;
         } else if (st < 0) {
             int32_t k = (e - b) / -st;                    /* last k with e + k st >= b */
             if (k < hi) hi = k;
