@@ -194,6 +194,10 @@ LUMO_RASTER_HOT int32_t run32(const tri *t, const int32_t E[3], int32_t len, int
         if (st > 0) {
             if (e < b) {
                 int32_t k = (b - e + st - 1) / st;          /* first k with e + k st >= b */
+                if (k > len) {
+                    *lo = 0;
+                    return -1;                            /* past the box: none */
+                }
                 if (k > *lo) *lo = k;
             }
         } else if (e < b) {
