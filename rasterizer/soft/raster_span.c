@@ -976,6 +976,7 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
     int32_t Er[3], dy[3], py;
     uint32_t tested = 0, written = 0;
     uint8_t *drow, *crow;
+    size_t dstride, cstride;
     rows32 g;
     int i;
 
@@ -997,8 +998,9 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
         Er[i] = (int32_t)Erow[i];
         dy[i] = (int32_t)(t->e[i].b * 16);
     }
-    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2],
-         drow += (size_t)tg->width * g.dbytes, crow += tg->color_stride) {
+    /* the row strides in locals: the spans' stores could alias *tg */
+    dstride = (size_t)tg->width * g.dbytes, cstride = tg->color_stride;
+    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2], drow += dstride, crow += cstride) {
         int32_t E[3], lo, hi = run32(t, Er, px1 - px0, &lo);
         if (hi < lo)
             continue;
