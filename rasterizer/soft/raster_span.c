@@ -676,11 +676,11 @@ static unsigned run_fmt(const lumo_raster_target *tg)
 
 /* The run function for a target: one per format without clamps, run_clamp
  * with them. */
+static const run_fn run_fns[4] = {run_xrgb_d32, run_565_d32, run_xrgb_d16, run_565_d16};   /* by run_fmt */
+
 static run_fn run_for(const lumo_raster_target *tg, int plain)
 {
-    static const run_fn fns[4] = {run_xrgb_d32, run_565_d32, run_xrgb_d16, run_565_d16};
-
-    return plain ? fns[run_fmt(tg)] : run_clamp;
+    return plain ? run_fns[run_fmt(tg)] : run_clamp;
 }
 
 /* Pixel x of the target's band row `row` (row = band row times width):
@@ -982,11 +982,11 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
 
     g.c = c;
     g.t = t;
-    g.plain = run_for(tg, 1);
-    g.clamp = run_for(tg, 0);
-    g.fmt = run_fmt(tg);
-    g.dbytes = tg->depth_bits == 16 ? 2u : 4u;
-    g.cbytes = tg->format == LUMO_PIXEL_RGB565 ? 2u : 4u;
+    g.fmt = run_fmt(tg);              /* once: the sizes and run functions follow from it */
+    g.plain = run_fns[g.fmt];
+    g.clamp = run_clamp;
+    g.dbytes = g.fmt & 2u ? 2u : 4u;
+    g.cbytes = g.fmt & 1u ? 2u : 4u;
     g.mask = ((int32_t)1 << t->run_bits) - 1;
     if (span == span_pixel32 && c->laying)
         g.ngroups = 0, g.mask_groups = 0;   /* the depth-first pass: depth at the same ends, nothing to shade */
