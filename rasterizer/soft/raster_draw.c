@@ -29,9 +29,11 @@ static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *
 static int faces_away(const lumo_raster_view *v, const lumo_q16_16 p[3], const lumo_q1_14 n[3]);
 static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const lumo_q1_14 n[3],
                        int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3]);
-static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
+LUMO_RASTER_HOT void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
 
-void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
+/* lumo_raster_to_camera, inlined into the per-vertex transform (a call a
+ * vertex was 0.4 M instructions a frame of the 48k dragon, round five). */
+LUMO_RASTER_HOT void to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
 {
     int64_t d[3];
     int i;
@@ -41,6 +43,11 @@ void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], in
     for (i = 0; i < 3; i++)
         c[i] = lumo_round_shift(d[0] * v->rot[i][0] + d[1] * v->rot[i][1] + d[2] * v->rot[i][2],
                                 LUMO_Q14_SHIFT);
+}
+
+void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
+{
+    to_camera(v, p, c);
 }
 
 void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_scene *s,
@@ -53,7 +60,7 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
     int64_t c[3];
     int i;
 
-    lumo_raster_to_camera(v, p, c);
+    to_camera(v, p, c);
     out->clip[0] = lumo_sat_i32(lumo_round_shift(c[0] * v->cot_half, 16));
     out->clip[1] = lumo_sat_i32(lumo_round_shift(c[1] * v->cot_half, 16));
     out->clip[2] = lumo_sat_i32(c[2]);
@@ -297,7 +304,9 @@ static int64_t div_round(int64_t n, int64_t d)   /* d > 0 */
     return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
 }
 
-static void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s)
+/* Inlined (LUMO_RASTER_HOT) into the per-vertex transform and the clipped
+ * path: 74.1 -> 73.7 M instructions a frame of the 48k dragon (round five). */
+LUMO_RASTER_HOT void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s)
 {
     int64_t w = v->clip[2] < view->znear ? view->znear : v->clip[2];
     int64_t h8 = (int64_t)view->height * 8;
