@@ -398,38 +398,50 @@ static void draw_unclipped(const draw_ctx *c, const lumo_raster_vertex *a,
     draw_tri(c, s);
 }
 
-static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
-                          const lumo_raster_vertex *b, const lumo_raster_vertex *d)
+/* A triangle that crosses a clip plane: clipped, projected, drawn as a fan.
+ * Its own function: the unclipped triangles (nearly all) then do not set up
+ * its 1.2 KB of polygon buffers (0.9 M instructions a frame of the 48k
+ * dragon, round five). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void draw_clipped(const draw_ctx *c, const lumo_raster_vertex *a, const lumo_raster_vertex *b,
+                         const lumo_raster_vertex *d)
 {
     lumo_raster_vertex buf[2][MAX_POLY];
     screen_vertex s[MAX_POLY];
-    unsigned oa = a->outcode, ob = b->outcode, od = d->outcode;
+    unsigned out = a->outcode | b->outcode | d->outcode;
     int n = 3, cur = 0, k;
 
-    if (oa & ob & od)
-        return;                              /* all outside one plane */
-    if ((oa | ob | od) == 0) {
-        draw_unclipped(c, a, b, d);
-        return;
-    }
     buf[0][0] = *a;
     buf[0][1] = *b;
     buf[0][2] = *d;
-    {
-        if (c->stats)
-            c->stats->tris_clipped++;
-        for (k = 0; k < CLIP_PLANES && n >= 3; k++) {
-            if (!((oa | ob | od) & (1u << k)))
-                continue;
-            n = clip_plane(c, k, buf[cur], n, buf[cur ^ 1]);
-            cur ^= 1;
-        }
-        if (n < 3)
-            return;
+    if (c->stats)
+        c->stats->tris_clipped++;
+    for (k = 0; k < CLIP_PLANES && n >= 3; k++) {
+        if (!(out & (1u << k)))
+            continue;
+        n = clip_plane(c, k, buf[cur], n, buf[cur ^ 1]);
+        cur ^= 1;
     }
+    if (n < 3)
+        return;
     for (k = 0; k < n; k++)
         project(c->view, &buf[cur][k], &s[k]);
     draw_fan(c, s, n);
+}
+
+static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
+                          const lumo_raster_vertex *b, const lumo_raster_vertex *d)
+{
+    unsigned oa = a->outcode, ob = b->outcode, od = d->outcode;
+
+    if (oa & ob & od)
+        return;                              /* all outside one plane */
+    if ((oa | ob | od) == 0)
+        draw_unclipped(c, a, b, d);
+    else
+        draw_clipped(c, a, b, d);
 }
 
 static lumo_status check_indices(const lumo_raster_mesh *m)
