@@ -457,22 +457,34 @@ static lumo_status check_indices(const lumo_raster_mesh *m)
     return LUMO_OK;
 }
 
-static void draw_mesh(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
+/* Without a cache: each triangle transforms its three vertices (the same
+ * bytes: lumo_raster_transform_vertex is a pure function). */
+static void draw_mesh_uncached(const draw_ctx *c, const lumo_raster_mesh *m)
 {
     uint32_t i;
+    int k;
 
     for (i = 0; i < m->tri_count; i++) {
         const uint32_t *tri = &m->tris[3 * (size_t)i];
-        if (cache) {
-            draw_triangle(c, &cache[tri[0]], &cache[tri[1]], &cache[tri[2]]);
-        } else {
-            lumo_raster_vertex tv[3];
-            int k;
-            for (k = 0; k < 3; k++)
-                lumo_raster_transform_vertex(c->view, c->scene, m, tri[k], &tv[k]);
-            draw_triangle(c, &tv[0], &tv[1], &tv[2]);
-        }
+        lumo_raster_vertex tv[3];
+        for (k = 0; k < 3; k++)
+            lumo_raster_transform_vertex(c->view, c->scene, m, tri[k], &tv[k]);
+        draw_triangle(c, &tv[0], &tv[1], &tv[2]);
     }
+}
+
+/* The cached loop apart from the uncached one: no test per triangle and
+ * no 228-byte frame of transformed vertices. */
+static void draw_mesh(const draw_ctx *c, const lumo_raster_mesh *m, const lumo_raster_vertex *cache)
+{
+    const uint32_t *tri = m->tris, *end = tri + 3 * (size_t)m->tri_count;
+
+    if (!cache) {
+        draw_mesh_uncached(c, m);
+        return;
+    }
+    for (; tri != end; tri += 3)
+        draw_triangle(c, &cache[tri[0]], &cache[tri[1]], &cache[tri[2]]);
 }
 
 /* 1 when no depth entry of the band is set (nothing drawn since the clear). */
