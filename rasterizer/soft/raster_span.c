@@ -51,9 +51,14 @@ typedef struct tri {
     int32_t st32[3], bias32[3];   /* step and bias as 32-bit values (edges32) */
 } tri;
 
+/* floor(v / 16) for |v| < 2^30 (screen sub-pixels lie within +-2^18,
+ * raster_draw.c's clamp_sub): v made positive by a multiple of 16 before
+ * the shift, no branch. */
+#define FLOOR16_BIAS ((int64_t)1 << 30)
+
 static int64_t floor_div16(int64_t v)
 {
-    return v >= 0 ? v / 16 : -((-v + 15) / 16);
+    return (int64_t)((uint64_t)(v + FLOOR16_BIAS) >> 4) - FLOOR16_BIAS / 16;
 }
 
 /* Top-left rule for an edge of a triangle with positive area in y-down
