@@ -830,7 +830,8 @@ static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x
     return 1;
 }
 
-/* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic, E
+/* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic (a
+ * hidden one-piece span never gets here: rows32_draw skips it), E
  * the edge values at a, drow and crow the depth and colour of the row's
  * pixel 0: the same pieces (ending at absolute multiples of 2^run_bits),
  * each stepped from its first pixel's exact value towards the next
@@ -844,8 +845,6 @@ static uint32_t span_gouraud32(const rows32 *g, int32_t E[3], int32_t a, int32_t
     int32_t ca[3], cb[3], dc[3];
     uint32_t za, zb, written = 0;
 
-    if ((a | g->mask) >= x1 && span_hidden(g, E, a, x1, drow))
-        return 0;
     za = gouraud_at32(t, E, ca);
     /* one pixel (most spans of a mesh of small triangles): run_pixel
      * inlined, without the pieces' loop and the call through g->plain */
@@ -1011,6 +1010,11 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
             continue;
         E[0] = Er[0] + t->st32[0] * lo, E[1] = Er[1] + t->st32[1] * lo, E[2] = Er[2] + t->st32[2] * lo;
         tested += (uint32_t)(hi - lo + 1);
+        /* a hidden one-piece Gouraud span is skipped here, before its call
+         * (71.21 -> 70.91 M a frame of small triangles, round five) */
+        if (span == span_gouraud32 && ((px0 + lo) | g.mask) >= px0 + hi
+            && span_hidden(&g, E, px0 + lo, px0 + hi, drow))
+            continue;
         written += span(&g, E, px0 + lo, px0 + hi, py, drow, crow);
     }
     if (c->stats) {
