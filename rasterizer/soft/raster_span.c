@@ -818,22 +818,27 @@ static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t)
  * one wherever a run may be plain (depths in [2^14, 2^30)), so the answer
  * is the run's. A mesh of small triangles hides 40 % of its spans' pixels
  * behind nearer ones: those spans need no radiance (round five). */
+LUMO_RASTER_HOT int pixel_hidden(const uint8_t *d, uint32_t z, int d16)
+{
+    return d16 ? depth_of(z, 1, 0) <= *(const uint16_t *)(const void *)d
+               : depth_of(z, 0, 0) <= *(const uint32_t *)(const void *)d;
+}
+
 static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x1, const uint8_t *drow)
 {
     const tri *t = g->t;
     const int d16 = g->dbytes == 2u;
     const int32_t n = x1 - a;
-    uint32_t z = depth32_at(t, E), dz = 0;
+    uint32_t z = depth32_at(t, E), dz;
     const uint8_t *d = drow + (size_t)a * g->dbytes, *end = d + (size_t)(n + 1) * g->dbytes;
+    int32_t Eb[3];
 
-    if (n) {
-        int32_t Eb[3];
-        Eb[0] = E[0] + t->st32[0] * n, Eb[1] = E[1] + t->st32[1] * n, Eb[2] = E[2] + t->st32[2] * n;
-        dz = (uint32_t)seg_step((int32_t)z, (int32_t)depth32_at(t, Eb), n);
-    }
+    if (!n)                                  /* one pixel: most spans */
+        return pixel_hidden(d, z, d16);
+    Eb[0] = E[0] + t->st32[0] * n, Eb[1] = E[1] + t->st32[1] * n, Eb[2] = E[2] + t->st32[2] * n;
+    dz = (uint32_t)seg_step((int32_t)z, (int32_t)depth32_at(t, Eb), n);
     for (; d != end; d += g->dbytes, z += dz)
-        if (d16 ? depth_of(z, 1, 0) > *(const uint16_t *)(const void *)d
-                : depth_of(z, 0, 0) > *(const uint32_t *)(const void *)d)
+        if (!pixel_hidden(d, z, d16))
             return 0;
     return 1;
 }
