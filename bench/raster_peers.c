@@ -8,6 +8,7 @@
  * once (`lit`). Host-only: floats only to load the mesh.
  *
  *   raster_peers DRAGON.ply [OUT.raw]   OUT: the three frames' colour bytes
+ *   make bench-raster-peers              (bench/raster.mk) builds and counts it
  */
 #include <stdint.h>
 
@@ -52,6 +53,9 @@ static void scene_of(const hmesh *h, lumo_q16_16 *pos, lumo_q1_14 *nrm, uint32_t
     s->light_count = 1;
     s->exposure = LUMO_Q16_ONE;
 }
+
+int frame(int k, const lumo_raster_scene *s, const lumo_raster_mesh *m, lumo_raster_vertex *cache,
+          lumo_raster_target *t);
 
 /* One frame: clear, transform, draw (what callgrind collects). */
 __attribute__((noinline)) int frame(int k, const lumo_raster_scene *s, const lumo_raster_mesh *m,
