@@ -2,6 +2,7 @@
  * chunk (docs/package-format.md). The CRC is the client's own function, so
  * writer and reader cannot disagree. */
 #include <errno.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -152,20 +153,24 @@ lumo_status srv_pkgw_write_file(const srv_pkg_writer *w, const char *path, char 
     }
     /* Written beside and renamed into place: a writer killed half-way
      * (an MPI job stopped, docs/server.md) never leaves a partial package
-     * under the package's name. */
+     * under the package's name. A path that exists and is not a regular
+     * file (/dev/null, a pipe, a terminal) is written in place: renaming
+     * over it would replace the device or pipe itself. */
     char tmp[4096];
+    struct stat sb;
+    int in_place = stat(path, &sb) == 0 && !S_ISREG(sb.st_mode);
     errno = 0;
-    int ok = snprintf(tmp, sizeof tmp, "%s.partial", path) < (int)sizeof tmp;
-    FILE *f = ok ? fopen(tmp, "wb") : NULL;
+    int ok = in_place || snprintf(tmp, sizeof tmp, "%s.partial", path) < (int)sizeof tmp;
+    FILE *f = ok ? fopen(in_place ? path : tmp, "wb") : NULL;
     ok = f && fwrite(data, 1, len, f) == len;
     if (f && fclose(f))
         ok = 0;
-    if (ok && rename(tmp, path))
+    if (ok && !in_place && rename(tmp, path))
         ok = 0;
     int why = errno;
     free(data);
     if (!ok) {
-        if (f)
+        if (f && !in_place)
             remove(tmp);
         snprintf(err, errlen, "%s: cannot write: %s", path, why ? strerror(why) : "short write");
         return LUMO_ERR_IO;

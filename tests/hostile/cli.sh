@@ -217,8 +217,41 @@ if [ -n "$drc" ]; then
     expect 1 "$no/x.txt: cannot write: No such file or directory" "$bin/lumo-draco-decode" --dump "$drc" "$no/x.txt"
 fi
 
+# ---- a package written to a pipe (or a device: /dev/null) is written into it,
+# never renamed over it (the writers' temporary-then-rename would replace the
+# pipe or device itself: as root, /dev/null) -----------------------------------
+into_pipe() {
+    rm -f "$tmp/pipe" "$tmp/piped"
+    mkfifo "$tmp/pipe"
+    # (a writer that renames over the pipe never opens it: the reader's
+    # timeout ends the wait)
+    timeout 30 cat "$tmp/pipe" >"$tmp/piped" &
+    reader=$!
+    "$@" -o "$tmp/pipe" >/dev/null 2>"$tmp/err" </dev/null
+    got=$?
+    wait "$reader"
+    if [ "$got" -eq 0 ] && [ -p "$tmp/pipe" ] && "$bin/lumo-inspect" "$tmp/piped" >/dev/null 2>&1; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1))
+        echo "FAIL: $* -o $tmp/pipe -> status $got; still a pipe: $([ -p "$tmp/pipe" ] && echo yes || echo no)"
+    fi
+}
+into_pipe "$bin/lumo-pm" build "$M"
+into_pipe "$bin/lumo-bake" --default --grid 2 --spp 1 --no-progress
+
 # ---- what the tools cannot draw, said plainly -------------------------------
 expect 1 "$tmp/pm.lumo: no INFO chunk, so no scene to draw (camera, lights)" "$bin/lumo-render" "$tmp/pm.lumo" -o "$tmp/x.png"
+# ... while lumo-inspect lists it (docs/package-format.md): status 0, the chunk
+# table, and a line saying there is no scene
+if "$bin/lumo-inspect" "$tmp/pm.lumo" >"$tmp/out" 2>"$tmp/err" && [ ! -s "$tmp/err" ] \
+    && grep -q '^  chunk  0 PMSH' "$tmp/out" && grep -q '^scene     none: no INFO chunk' "$tmp/out"; then
+    pass=$((pass + 1))
+else
+    fail=$((fail + 1))
+    echo "FAIL: lumo-inspect $tmp/pm.lumo (a stream-only package) is not listed:"
+    sed 's/^/    /' "$tmp/out" "$tmp/err" | head -5
+fi
 expect 1 "--camera 0,1,2:0,1,2:0,1,0:40: eye and target are the same point" \
     "$bin/lumo-render" --default -o "$tmp/x.png" --camera 0,1,2:0,1,2:0,1,0:40
 expect 1 "--camera 0,1,2:0,1,2.000001:0,1,0:40: eye and target are the same point in Q16.16 fixed point" \

@@ -30,9 +30,19 @@ static void print_chunks(const lumo_package *pkg)
 
 static const char *k_kinds[] = {"point", "spot", "directional", "area"};
 
+/* 0 when the scene was printed, 1 when the package has no INFO chunk (a
+ * stream-only package of lumo-pm build: listed, nothing to draw), -1 on a
+ * refusal. */
 static int print_scene(const lumo_package *pkg)
 {
     lumo_pkg_info in;
+    const uint8_t *p;
+    uint32_t len;
+    if (lumo_package_find(pkg, LUMO_PKG_INFO, 0, &p, &len) == LUMO_ERR_RANGE) {
+        printf("scene     none: no INFO chunk (a stream-only package, as lumo-pm build writes;"
+               " lumo-render and lumo-server refuse it)\n");
+        return 1;
+    }
     lumo_status st = lumo_package_info(pkg, &in);
     if (st) {
         fprintf(stderr, "lumo-inspect: error: scene info: %s\n", lumo_strerror(st));
@@ -173,9 +183,9 @@ int inspect_summary(int argc, char **argv)
         print_meshes(&pkg);
         print_ivg(&pkg);
         rc = print_ivg_order(&pkg);
+        if (!rc)
+            rc = print_order(&pkg);
     }
-    if (!rc)
-        rc = print_order(&pkg);
     free(data);
-    return rc ? 1 : 0;
+    return rc < 0 ? 1 : 0;
 }
