@@ -1835,7 +1835,6 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     return LUMO_OK;
 }
 
-
 /* The last attributes decoder's only attribute: after its traversal the
  * border bytes are dead, and a parallelogram prediction reads of the
  * corner table only the opposite of each entry's corner. Move the entry

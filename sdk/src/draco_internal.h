@@ -337,7 +337,8 @@ typedef struct ld_seq {
     const int32_t *vertex_to_value;
     const uint32_t *value_to_corner;
     /* value_to_corner holds each entry's opposite corner instead: the
-     * corner table's opposites were released (ld_eb_release_table) */
+     * corner table's opposites were released (ld_eb_release_table, or
+     * after the walk of a table read as decoded, ld_eb_release_o24) */
     uint8_t opposites;
     /* the decoder's only attribute and the stream's last decoder: its
      * prediction may consume the corner table */
@@ -364,8 +365,8 @@ typedef struct ld_need_seq {
     uint8_t uncertain;        /* entries is only an upper bound */
     size_t work_top;          /* 0, or ld_seq.work_top as work in use */
     struct ld_eb_need *eb;    /* EdgeBreaker state, NULL otherwise */
-    const struct ld_need_attr *attrs; /* the decoder's attributes (EdgeBreaker) */
-    uint32_t count;
+    const struct ld_need_attr *attrs; /* the decoder's `count` attributes */
+    uint32_t count;                   /* (EdgeBreaker: ld_peek_opposites_only) */
 } ld_need_seq;
 lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
                                ld_need_seq *seq);
