@@ -177,15 +177,20 @@ static void ld_fill_u32(uint32_t *q, uint32_t n, uint32_t v)
         q[j] = v;
 }
 
-/* Bucket b of a lookup table of 2^bits buckets starts at b << shift; its
- * first symbol is the one whose range [tab[s].lo, tab[s+1].lo) holds that
- * start: fill symbol by symbol the buckets whose start falls in its range
- * (the sentinel tab[num_nz].lo == 2^prec). */
-static void ld_rans_fill_lut(ld_rans *r, uint32_t *lut, unsigned bits)
+static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
 {
-    uint32_t bkt, s;
+    const unsigned bits = ld_rans_lut_bits(r, num_values);
+    uint32_t buckets, bkt, s, *lut;
+    buckets = 1u << bits;
     r->lut_shift = r->prec_bits - bits;
-    r->lut = lut;
+    r->lut = ld_tmp(m, buckets, sizeof(uint32_t));
+    if (!r->lut)
+        return LUMO_ERR_NOMEM;
+    /* Bucket b starts at b << shift; its first symbol is the one whose
+     * range [tab[s].lo, tab[s+1].lo) holds that start: fill symbol by
+     * symbol the buckets whose start falls in its range (the sentinel
+     * tab[num_nz].lo == 2^prec). */
+    lut = r->lut;
     for (s = 0, bkt = 0; s < r->num_nz; ++s) {
         const uint32_t end = (r->tab[s + 1].lo + (1u << r->lut_shift) - 1u) >> r->lut_shift;
         if (end > bkt) {
@@ -193,15 +198,6 @@ static void ld_rans_fill_lut(ld_rans *r, uint32_t *lut, unsigned bits)
             bkt = end;
         }
     }
-}
-
-static lumo_status ld_rans_build_lut(ld_rans *r, ld_mem *m, uint32_t num_values)
-{
-    const unsigned bits = ld_rans_lut_bits(r, num_values);
-    uint32_t *lut = ld_tmp(m, (size_t)1 << bits, sizeof(uint32_t));
-    if (!lut)
-        return LUMO_ERR_NOMEM;
-    ld_rans_fill_lut(r, lut, bits);
     return LUMO_OK;
 }
 
@@ -510,11 +506,8 @@ static void ld_need_lut(ld_need *k, const ld_rans *r, uint32_t num_values)
 /* Tagged values are followed by their raw bits, whose length only the tags
  * tell: the tags are decoded with their table on the stack (a tag is a bit
  * length, so the alphabet of a real stream has at most 33 symbols) and a
- * lookup table of 2^LD_NEED_TAG_LUT_BITS buckets (128 bytes of stack; a
- * linear search from symbol 0 before round six), and the bits are
- * skipped. */
+ * linear search, and the bits are skipped. */
 #define LD_NEED_TAGS 64u
-#define LD_NEED_TAG_LUT_BITS 5u
 
 /* The scan reads every tag without having paid for its values in arena
  * memory (the decode allocates them first), so a header claiming millions
@@ -528,62 +521,19 @@ static uint32_t ld_need_tag_budget(const ld_buf *b)
     return n > 0xFFFFFFu ? 0xFFFFFFFFu : (uint32_t)(n * 64u) + (1u << 20);
 }
 
-/* The bits of the values behind the tags of a stream whose count is
- * unknown (values per corner), and that count: rANS decoding returns to
- * its initial state with every byte read exactly after the last symbol,
- * and not before unless one tag has all the probability. */
-static lumo_status ld_need_tags_found(ld_rans *tags, uint32_t num_values, unsigned comps,
-                                      uint32_t budget, uint32_t *found, uint64_t *value_bits)
-{
-    uint32_t len;
-    if (tags->num_nz < 2u)
-        return LUMO_ERR_LIMIT;  /* the state never moves */
-    for (*found = 0; !ld_rans_at_start(tags); ++*found) {
-        if (*found >= num_values / comps)
-            return LUMO_ERR_CORRUPT;  /* the decode fails on it too */
-        if (*found >= budget / comps)
-            return LUMO_ERR_LIMIT;
-        if ((len = ld_rans_read(tags)) > 32u)
-            return LUMO_ERR_CORRUPT;
-        *value_bits += (uint64_t)len * comps;
-    }
-    return LUMO_OK;
-}
-
-/* The bits of num_values values behind their tags (one per comps values). */
-static lumo_status ld_need_tags_known(ld_rans *tags, uint32_t num_values, unsigned comps,
-                                      uint32_t budget, uint64_t *value_bits)
-{
-    uint32_t i, len;
-    if (tags->num_nz < 2u) {  /* one tag: every value has its length */
-        if ((len = ld_rans_read(tags)) > 32u)
-            return LUMO_ERR_CORRUPT;
-        *value_bits = (uint64_t)len * num_values;
-        return LUMO_OK;
-    }
-    if (num_values > budget)
-        return LUMO_ERR_LIMIT;
-    for (i = 0; i < num_values;) {
-        const uint32_t per = num_values - i < comps ? num_values - i : comps;
-        if ((len = ld_rans_read(tags)) > 32u)
-            return LUMO_ERR_CORRUPT;
-        *value_bits += (uint64_t)len * per;
-        i += per;
-    }
-    return LUMO_OK;
-}
-
 static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, unsigned comps,
                                   uint32_t *found)
 {
-    uint64_t space[2u * (LD_NEED_TAGS + 2u)], value_bits = 0;
-    uint32_t lut[1u << LD_NEED_TAG_LUT_BITS];
+    uint64_t space[2u * (LD_NEED_TAGS + 2u)];
+    const uint32_t zero = 0;
     ld_buf table = *b;
     ld_rans tags;
     lumo_arena a;
     ld_mem m;
     ld_bits bits;
     const uint32_t budget = ld_need_tag_budget(b);
+    uint32_t i = 0;
+    unsigned j;
     lumo_status st;
     tags.prec_bits = ld_rans_precision(5);
     if ((st = ld_rans_read_table(&tags, b, NULL, k, 0)))
@@ -597,17 +547,46 @@ static lumo_status ld_need_tagged(ld_buf *b, ld_need *k, uint32_t num_values, un
     ld_mem_init(&m, &a);
     if ((st = ld_rans_read_table(&tags, &table, &m, NULL, 0)) || (st = ld_rans_start(&tags, b)))
         return st;
-    ld_rans_fill_lut(&tags, lut, LD_NEED_TAG_LUT_BITS);  /* prec_bits >= 12 */
-    st = found ? ld_need_tags_found(&tags, num_values, comps, budget, found, &value_bits)
-               : ld_need_tags_known(&tags, num_values, comps, budget, &value_bits);
-    if (st)
-        return st;
-    /* The value bits are skipped, not read one value at a time:
-     * ld_bits_skip stops at the end of the buffer as the reads would.
-     * Round six: the lean decode passes over tagged positions this way
-     * (ld_peek_opposites_only). */
+    tags.lut = (uint32_t *)(uintptr_t)&zero;  /* one bucket: search from 0 */
+    tags.lut_shift = tags.prec_bits;
     ld_bits_start(&bits, b);
-    ld_bits_skip(&bits, value_bits);
+    if (found) {
+        /* The count is unknown (values per corner): rANS decoding returns
+         * to its initial state with every byte read exactly after the last
+         * symbol, and not before unless one tag has all the probability. */
+        if (tags.num_nz < 2u)
+            return LUMO_ERR_LIMIT;  /* the state never moves */
+        for (*found = 0; !ld_rans_at_start(&tags); ++*found) {
+            uint32_t len;
+            if (*found >= num_values / comps)
+                return LUMO_ERR_CORRUPT;  /* the decode fails on it too */
+            if (*found >= budget / comps)
+                return LUMO_ERR_LIMIT;
+            if ((len = ld_rans_read(&tags)) > 32u)
+                return LUMO_ERR_CORRUPT;
+            for (j = 0; j < comps; ++j)
+                (void)ld_bits_get(&bits, len);
+        }
+        ld_bits_end(&bits, b);
+        return LUMO_OK;
+    }
+    if (tags.num_nz < 2u) {  /* one tag: every value has its length */
+        const uint32_t len = ld_rans_read(&tags);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        ld_bits_skip(&bits, (uint64_t)len * num_values);
+        ld_bits_end(&bits, b);
+        return LUMO_OK;
+    }
+    if (num_values > budget)
+        return LUMO_ERR_LIMIT;
+    while (i < num_values) {
+        const uint32_t len = ld_rans_read(&tags);
+        if (len > 32u)
+            return LUMO_ERR_CORRUPT;
+        for (j = 0; j < comps && i < num_values; ++j, ++i)
+            (void)ld_bits_get(&bits, len);
+    }
     ld_bits_end(&bits, b);
     return LUMO_OK;
 }
