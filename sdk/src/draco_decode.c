@@ -627,6 +627,8 @@ static lumo_status ld_scan_attributes(ld_scan *s)
         } else {
             if (s->is_eb) {
                 seq.last = (uint8_t)(i + 1u == n && s->count[i] == 1u);
+                seq.attrs = s->attrs + s->first[i];
+                seq.count = s->count[i];
                 ld_eb_need_sequence(&s->k, &s->eb, i, &seq, &s->buf);
             } else {
                 seq.entries = s->num_points;

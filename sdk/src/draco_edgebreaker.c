@@ -1658,19 +1658,37 @@ lumo_status ld_eb_create_attributes_decoder(ld_dec *d, unsigned decoder, ld_seq 
 }
 
 /* Lean, no seams: the 24-bit table is as the symbols left it. When the
- * stream's only attributes decoder holds one attribute, walked depth-first
- * and predicted by parallelograms (positions at -cl 3..8: the default
- * level), the table is read as it is: the traversal flags faces in the
- * table and finds borders in the vertex map, and the prediction keeps only
- * each entry's opposite (ld_eb_release_table), so the table is never
- * packed. Otherwise it is packed before the first traversal. The decode
- * and the arena-need replay (ld_eb_need_sequence) ask alike; `b` is the
- * stream at the decoder's first attribute. */
-static int ld_eb_reads_o24(unsigned decoder, unsigned num_decoders, int last, uint8_t traversal,
-                           const ld_buf *b)
+ * stream's only attributes decoder is walked depth-first and none of its
+ * attributes' predictions reads more of the table than each entry's
+ * opposite corner (parallelograms, differences, none: positions at -cl
+ * 3..8, and at -cl 4 the normals, texture coordinates and colours beside
+ * them), the table is read as it is: the traversal flags faces in the
+ * table, finds borders in the vertex map and gives each entry its
+ * corner's opposite, and then the table goes (ld_eb_release_o24), so it
+ * is never packed. Otherwise it is packed before the first traversal.
+ * The decode and the arena-need replay (ld_eb_need_sequence) ask alike:
+ * this of the decoder, then ld_peek_opposites_only of its attributes at
+ * the stream's position (each point has one value). Round five asked
+ * only of a decoder with one attribute; round six peeks past each
+ * attribute's values to the next one's method (issue 25). */
+static int ld_eb_o24_decoder(unsigned decoder, unsigned num_decoders, uint8_t traversal)
 {
-    return decoder == 0 && num_decoders == 1 && last && traversal == 0 &&
-           ld_peek_opposites_only(b);
+    return decoder == 0 && num_decoders == 1 && traversal == 0;
+}
+
+/* ... and the attributes asked for the decode: the stream's (all of its
+ * only decoder's) as the arena-need scan keeps them. */
+static int ld_eb_dec_opposites_only(const ld_dec *d)
+{
+    ld_need_attr a[LUMO_DRACO_MAX_ATTRIBUTES];
+    uint32_t i;
+    for (i = 0; i < d->num_attrs; ++i) {
+        a[i].components = d->attrs[i].num_components;
+        a[i].portable = d->attrs[i].num_portable;
+        a[i].seq_type = d->attrs[i].modes.seq_type;
+        a[i].data_type = d->attrs[i].data_type;
+    }
+    return ld_peek_opposites_only(&d->buf, a, d->num_attrs, d->num_points);
 }
 
 /* The 24-bit table moves up to end at `top`, over dead work memory. */
@@ -1743,6 +1761,25 @@ static lumo_status ld_eb_rep_sequence(ld_dec *d, unsigned decoder, const ld_ct *
     return LUMO_OK;
 }
 
+/* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
+ * each entry its corner's opposite already, which is all the decoder's
+ * predictions read of the table (ld_eb_o24_decoder); the table goes at
+ * once, the entries move up over it, and the faces are plain vertex ids
+ * for every attribute of the decoder (round six: before, the table
+ * stayed until the last attribute's prediction released it, so a
+ * decoder of several attributes packed it instead). */
+static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
+{
+    struct ld_eb *e = d->eb;
+    const uint32_t *v2c = seq->value_to_corner, n = seq->num_entries;
+    e->o24 = NULL;
+    e->ct.o24 = NULL;
+    seq->value_to_corner =
+        (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);
+    seq->opposites = 1;
+    ld_tmp_release(&d->mem, (uint8_t *)(uintptr_t)seq->value_to_corner);
+}
+
 lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
 {
     struct ld_eb *e = d->eb;
@@ -1766,7 +1803,8 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
     if (!LD_EB_LEAN(e) && !e->num_attr_data && e->lmc && (st = ld_eb_drop_lmc(d, e)))
         return st;  /* default, no seams, first sequence */
     if (e->o24 && !e->ct.o24) {  /* lean, no seams, first sequence */
-        keep = ld_eb_reads_o24(decoder, d->num_decoders, seq->last, e->dec_traversal[0], &d->buf);
+        keep = ld_eb_o24_decoder(decoder, d->num_decoders, e->dec_traversal[0]) &&
+               ld_eb_dec_opposites_only(d);
         if (!keep && (st = ld_eb_pack(d, e)))
             return st;
         if (keep)
@@ -1792,22 +1830,9 @@ lumo_status ld_eb_sequence(ld_dec *d, unsigned decoder, ld_seq *seq)
         if ((uint32_t)o.vertex_to_value[c] >= o.num_values)
             return LUMO_ERR_CORRUPT;
     seq->point_to_value = (uint32_t *)o.vertex_to_value;
+    if (keep)
+        ld_eb_release_o24(d, seq);
     return LUMO_OK;
-}
-
-/* The 24-bit table read as decoded (ld_eb_keep_o24): the traversal gave
- * each entry its corner's opposite already; the entries move up over the
- * table. */
-static void ld_eb_release_o24(ld_dec *d, ld_seq *seq)
-{
-    struct ld_eb *e = d->eb;
-    const uint32_t *v2c = seq->value_to_corner, n = seq->num_entries;
-    e->o24 = NULL;
-    e->ct.o24 = NULL;
-    seq->value_to_corner =
-        (const uint32_t *)(const void *)ld_move_up(e->lmc_top, v2c, (size_t)n * 4u);
-    seq->opposites = 1;
-    ld_tmp_release(&d->mem, (uint8_t *)(uintptr_t)seq->value_to_corner);
 }
 
 /* The last attributes decoder's only attribute: after its traversal the
@@ -1823,12 +1848,6 @@ void ld_eb_release_table(ld_dec *d, ld_seq *seq, int opposites)
     uint32_t *v2c = (uint32_t *)(uintptr_t)seq->value_to_corner, i;
     const uint32_t n = seq->num_entries;
     uint8_t *top;
-    /* read as decoded: ld_eb_reads_o24 admitted only the last decoder's
-     * only attribute predicted by parallelograms, so `opposites` is set */
-    if (e && e->ct.o24 && seq->ct == &e->ct && opposites) {
-        ld_eb_release_o24(d, seq);
-        return;
-    }
     if (!e || e->num_attr_data || seq->ct != &e->ct || !(e->packed || e->opp32) || e->released)
         return;
     if (opposites && e->opp32)  /* one loop per store: no test per entry */
@@ -2235,8 +2254,8 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
                                   ? ld_need_bytes(ld_eb_need_vertices(e), 1)
                                   : 0u;
         e->settled = 1;
-        keep = LD_EB_LEAN(e) &&
-               ld_eb_reads_o24(decoder, e->num_decoders, s->last, e->dec_traversal[0], b);
+        keep = LD_EB_LEAN(e) && ld_eb_o24_decoder(decoder, e->num_decoders, e->dec_traversal[0]) &&
+               ld_peek_opposites_only(b, s->attrs, s->count, (uint32_t)points);
         if (!LD_EB_LEAN(e)) {  /* ld_eb_drop_lmc */
             ld_need_release(k, e->w_lmc_top);
             if (border)
@@ -2265,6 +2284,8 @@ void ld_eb_need_sequence(ld_need *k, ld_eb_need *e, unsigned decoder, ld_need_se
         ld_need_free(k, (size_t)ld_need_pick(k, 2u, (uint64_t)e->faces + 2u) * 4u);
     }
     ld_need_release(k, mark);
+    if (keep)  /* ld_eb_release_o24: the entries move up over the table */
+        ld_eb_need_release(e, k, (uint32_t)points, 1);
     s->work_top = 0;
     if (rep) {  /* ld_eb_rep_sequence: the dead blocks go, the value -> corner map moves up */
         s->work_top = ld_eb_need_drop_dead(e, (int)decoder, (int)decoder + 1);

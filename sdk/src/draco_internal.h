@@ -337,7 +337,8 @@ typedef struct ld_seq {
     const int32_t *vertex_to_value;
     const uint32_t *value_to_corner;
     /* value_to_corner holds each entry's opposite corner instead: the
-     * corner table's opposites were released (ld_eb_release_table) */
+     * corner table's opposites were released (ld_eb_release_table, or
+     * after the walk of a table read as decoded, ld_eb_release_o24) */
     uint8_t opposites;
     /* the decoder's only attribute and the stream's last decoder: its
      * prediction may consume the corner table */
@@ -364,6 +365,8 @@ typedef struct ld_need_seq {
     uint8_t uncertain;        /* entries is only an upper bound */
     size_t work_top;          /* 0, or ld_seq.work_top as work in use */
     struct ld_eb_need *eb;    /* EdgeBreaker state, NULL otherwise */
+    const struct ld_need_attr *attrs; /* the decoder's `count` attributes */
+    uint32_t count;                   /* (EdgeBreaker: ld_peek_opposites_only) */
 } ld_need_seq;
 lumo_status ld_need_attributes(ld_buf *b, ld_need *k, const ld_need_attr *attrs, uint32_t count,
                                ld_need_seq *seq);
@@ -405,8 +408,12 @@ lumo_status ld_pred_compute(ld_pred *p, int32_t *values, uint32_t num_entries);
 /* 1 when the prediction reads the corner table only as the opposite of
  * each entry's corner (parallelogram). */
 int ld_pred_needs_opposites_only(const ld_pred *p);
-/* draco_attribute.c: the same for the attribute whose values start at b */
-int ld_peek_opposites_only(const ld_buf *b);
+/* 1 when the prediction reads the corner table at all (not differences). */
+int ld_pred_reads_table(const ld_pred *p);
+/* draco_attribute.c: whether none of the `count` attributes whose values
+ * start at b reads more of the table than the opposites (round six) */
+int ld_peek_opposites_only(const ld_buf *b, const ld_need_attr *attrs, uint32_t count,
+                           uint32_t entries);
 
 /* ---- corner tables (draco_traverse.c) ------------------------------------ */
 #define LD_INV 0xFFFFFFFFu

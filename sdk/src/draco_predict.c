@@ -1012,6 +1012,11 @@ static LD_NOINLINE lumo_status ld_geometric_normal(ld_pred *p, int32_t *v, uint3
                                      : ld_geometric_normal_run(p, v, n, 0);
 }
 
+int ld_pred_reads_table(const ld_pred *p)
+{
+    return ld_effective_method(p) != LD_PRED_DIFFERENCE;
+}
+
 int ld_pred_needs_opposites_only(const ld_pred *p)
 {
     return ld_effective_method(p) == LD_PRED_PARALLELOGRAM;
