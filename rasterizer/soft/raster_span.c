@@ -875,9 +875,10 @@ static int pixel32_ok(const lumo_raster_ctx *c, const tri *t)
  * Under a piece's worth of pixels the pieces' per-triangle shading
  * constants and two exact piece ends per row cost more than they save on
  * the host, where the exact rows' 64-bit divisions are one instruction
- * each (dragon 48k 640x480 per pixel, callgrind: 596 -> 492 M a frame;
- * flat for any bound from 8 to 1024 pixels, 497 M at 4; docs/benchmarks.md
- * "Round five"). Doubled area in 1/16 pixel units: 512 per pixel. */
+ * each (dragon 48k 640x480 per pixel, callgrind: 596 -> 491 M a frame;
+ * the same for any bound from 8 to 1024 pixels, 1 % more at 4;
+ * docs/benchmarks.md "Round five"). Doubled area in 1/16 pixel units: 512
+ * per pixel. */
 #define PIXEL32_MIN_AREA (((int64_t)1 << PIXEL_MIN_BITS) * 512)
 
 /* Whether an edges32 triangle takes span_pixel32 (large enough and
