@@ -21,6 +21,7 @@
 #include <string.h>
 #include "board.h"
 #include "armv7m.h"
+#include "stack_paint.h"
 
 int main(void);
 void Reset_Handler(void);
@@ -28,12 +29,6 @@ void Reset_Handler(void);
 /* Symbols of the linker script (addresses only). */
 extern uint32_t __data_load[], __data_start[], __data_end[];
 extern uint32_t __bss_start[], __bss_end[];
-
-#define STACK_PAINT 0x5AC0FFEEu
-/* Bytes below the current frame left unpainted while painting. */
-#define PAINT_MARGIN 64u
-
-static uint32_t *g_paint_low;
 
 /* Index 0 is the initial stack pointer; 1 reset; 2..15 system exceptions.
  * The AN385 interrupts (16..47) are never enabled by the board programs. */
@@ -54,28 +49,6 @@ static const vector g_vectors[16] = {
     Fault_Handler, /* PendSV */
     Fault_Handler  /* SysTick */
 };
-
-static void paint_stack(void)
-{
-    uint32_t here;   /* its address approximates the current stack pointer */
-    uint32_t *p = __stack_paint_low + STACK_GUARD / 4u;
-    uint32_t *end = (uint32_t *)((uintptr_t)&here - PAINT_MARGIN);
-
-    g_paint_low = p;
-    while (p < end)
-        *p++ = STACK_PAINT;
-}
-
-size_t board_stack_peak(void)
-{
-    const uint32_t *p = g_paint_low;
-
-    if (p == NULL)
-        return 0;
-    while (p < __stack_top && *p == STACK_PAINT)
-        p++;
-    return (size_t)((uintptr_t)__stack_top - (uintptr_t)p);
-}
 
 /* ARMv7-M MPU and System Control Block registers (ARMv7-M ARM B3.2, B3.5). */
 #define MPU_CTRL   (*(volatile uint32_t *)0xE000ED94u)
@@ -117,7 +90,7 @@ void Reset_Handler(void)
 
     memcpy(__data_start, __data_load, data);
     memset(__bss_start, 0, bss);
-    paint_stack();
+    board_stack_paint(__stack_paint_low + STACK_GUARD / 4u, __stack_top);   /* above the guard */
     guard_stack();
     board_exit(main());
 }

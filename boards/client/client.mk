@@ -17,10 +17,10 @@ CLIENT_HOST := $(BUILD)/board/host/client
 # The thin client program's own sources: every board build of it (here, the
 # lm3s6965evb, the RP2040, the Linux gadget) links these with its port.
 BOARD_CLIENT_SRCS := boards/client/client.c boards/client/grey4.c
-CLIENT_M3_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3/%.o,$(BOARD_CLIENT_SRCS) boards/armv7m/startup.c \
-    boards/armv7m/fault.c boards/armv7m/semihost.c boards/mps2-an385/board.c boards/common/console.c)
+CLIENT_M3_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3/%.o,$(BOARD_CLIENT_SRCS) boards/armv7m/startup.c boards/common/stack_paint.c \
+    boards/armv7m/fault.c boards/armv7m/semihost.c boards/mps2-an385/board.c boards/common/console.c boards/common/no_screen.c)
 CLIENT_HOST_OBJS := $(patsubst %.c,$(BUILD)/board/obj-host/%.o,$(BOARD_CLIENT_SRCS) \
-    boards/host/board.c boards/host/link_tcp.c boards/common/console.c)
+    boards/host/board.c boards/host/link_tcp.c boards/common/console.c boards/common/no_screen.c)
 CLIENT_M3_LIBS := $(BUILD)/m3/liblumo_net.a $(BUILD)/m3/liblumo_raster.a $(BUILD)/m3/liblumo.a
 
 # make check-embedded proves the client rules on the image's own objects too

@@ -94,16 +94,6 @@ int board_cmdline(char *buf, size_t cap)
     return 0;
 }
 
-/* No screen: the host's pictures go to files (--out). */
-int board_display_grey4(uint16_t y, uint16_t rows, uint16_t width, const uint8_t *px)
-{
-    (void)y;
-    (void)rows;
-    (void)width;
-    (void)px;
-    return -1;
-}
-
 /* Nothing to keep on show: done. */
 void board_hold(void)
 {

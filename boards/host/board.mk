@@ -6,7 +6,7 @@
 # $(BUILD)/board/host/NAME is tests/board/NAME.c linked with this port, the
 # test harness (harness.c, golden.c, ivg_wire.c) and the client libraries.
 HOST_BOARD_OBJS := $(patsubst %.c,$(BUILD)/board/obj-host/%.o,boards/host/board.c boards/host/link_tcp.c \
-    boards/common/console.c)
+    boards/common/console.c boards/common/no_screen.c)
 HOST_BOARD_TEST_OBJS := $(patsubst %,$(BUILD)/board/obj-host/tests/board/%.o,harness golden ivg_wire)
 HOST_BOARD_LIBS := $(BUILD)/san/liblumo_net.a $(BUILD)/san/liblumo_raster.a $(BUILD)/san/liblumo.a
 

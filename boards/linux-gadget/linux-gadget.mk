@@ -12,7 +12,7 @@
 GADGET_DIR     := $(BUILD)/board/linux-gadget
 GADGET_BIN     := $(GADGET_DIR)/lumo-gadget
 GADGET_TCP_BIN := $(GADGET_DIR)/lumo-client-tcp
-GADGET_COMMON  := $(BOARD_CLIENT_SRCS) boards/host/board.c boards/common/console.c
+GADGET_COMMON  := $(BOARD_CLIENT_SRCS) boards/host/board.c boards/common/console.c boards/common/no_screen.c
 GADGET_OBJS     := $(patsubst %.c,$(BUILD)/board/obj-gadget/%.o,$(GADGET_COMMON) boards/linux-gadget/link_ffs.c \
                    boards/linux-gadget/ffs_desc.c)
 GADGET_TCP_OBJS := $(patsubst %.c,$(BUILD)/board/obj-gadget/%.o,$(GADGET_COMMON) boards/host/link_tcp.c)

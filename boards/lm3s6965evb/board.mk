@@ -13,7 +13,7 @@
 LM3S_DIR  := boards/lm3s6965evb
 LM3S_OUT  := $(BUILD)/board/lm3s6965evb
 LM3S_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3/%.o, \
-    tests/board/lm3s_ivg.c $(LM3S_DIR)/board.c boards/armv7m/startup.c boards/armv7m/fault.c boards/armv7m/semihost.c \
+    tests/board/lm3s_ivg.c $(LM3S_DIR)/board.c boards/armv7m/startup.c boards/common/stack_paint.c boards/armv7m/fault.c boards/armv7m/semihost.c \
     boards/common/console.c tests/board/harness.c tests/board/golden.c tests/board/ivg_wire.c)
 LM3S_HOST := $(BUILD)/board/host/lm3s_ivg
 LM3S_QEMU := timeout 60 qemu-system-arm -machine lm3s6965evb -cpu cortex-m3 -nographic \

@@ -55,7 +55,7 @@ $(BUILD)/board/obj-host-lm3s/%.o: %.c boards/lm3s6965evb/client.mk
 .PRECIOUS: $(BUILD)/board/obj-host-lm3s/%.o
 
 LM3S_CLIENT_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m3s/%.o,$(BOARD_CLIENT_SRCS) \
-    boards/armv7m/startup.c boards/armv7m/fault.c boards/armv7m/semihost.c boards/lm3s6965evb/board.c \
+    boards/armv7m/startup.c boards/common/stack_paint.c boards/armv7m/fault.c boards/armv7m/semihost.c boards/lm3s6965evb/board.c \
     boards/common/console.c)
 LM3S_CLIENT_LIBS := $(BUILD)/m3s/liblumo_net.a $(BUILD)/m3s/liblumo_raster.a $(BUILD)/m3s/liblumo.a
 LM3S_CLIENT_ELF  := $(LM3S_CLIENT_OUT)/client.elf
@@ -70,7 +70,7 @@ $(LM3S_CLIENT_ELF): $(LM3S_CLIENT_OBJS) $(LM3S_CLIENT_LIBS) boards/lm3s6965evb/l
 	    echo "$@: links a heap or soft-float symbol (above); board programs must not"; rm -f $@; exit 1; fi
 
 $(LM3S_CLIENT_HOST): $(patsubst %.c,$(BUILD)/board/obj-host-lm3s/%.o,$(BOARD_CLIENT_SRCS) \
-                     boards/host/board.c boards/host/link_tcp.c boards/common/console.c) $(HOST_BOARD_LIBS)
+                     boards/host/board.c boards/host/link_tcp.c boards/common/console.c boards/common/no_screen.c) $(HOST_BOARD_LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) -o $@ $^
 

@@ -93,14 +93,3 @@ int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms)
     }
     return (int32_t)n;
 }
-
-/* No screen on the AN385 image as QEMU models it: pictures are hashed and
- * written over semihosting (boards/client/client.c --out). */
-int board_display_grey4(uint16_t y, uint16_t rows, uint16_t width, const uint8_t *px)
-{
-    (void)y;
-    (void)rows;
-    (void)width;
-    (void)px;
-    return -1;
-}

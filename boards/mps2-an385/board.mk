@@ -29,8 +29,8 @@ MPS2_QEMU := timeout $(QEMU_TIMEOUT) $(MPS2_QEMU_CMD) -icount shift=0 -kernel
 # the test harness every board program links (checks, golden output, IVG
 # bundle encoder; --gc-sections drops what a program ignores). The host
 # builds of the same programs: boards/host/board.mk.
-MPS2_PORT_SRCS := boards/armv7m/startup.c boards/armv7m/fault.c boards/armv7m/semihost.c $(MPS2_DIR)/board.c \
-                  boards/common/console.c
+MPS2_PORT_SRCS := boards/armv7m/startup.c boards/common/stack_paint.c boards/armv7m/fault.c boards/armv7m/semihost.c $(MPS2_DIR)/board.c \
+                  boards/common/console.c boards/common/no_screen.c
 MPS2_TEST_SRCS := tests/board/harness.c tests/board/golden.c tests/board/ivg_wire.c
 BOARD_TEST_SRCS   := $(sort $(wildcard tests/board/test_*.c))
 BOARD_GOLDEN_SRCS := $(sort $(wildcard tests/board/golden_*.c))

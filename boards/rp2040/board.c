@@ -160,12 +160,3 @@ int32_t board_link_read(uint8_t *buf, size_t cap, uint32_t timeout_ms)
     return (int32_t)n;
 }
 
-/* No screen yet (a band at a time could go to an SPI panel). */
-int board_display_grey4(uint16_t y, uint16_t rows, uint16_t width, const uint8_t *px)
-{
-    (void)y;
-    (void)rows;
-    (void)width;
-    (void)px;
-    return -1;
-}

@@ -42,8 +42,8 @@ $(BUILD)/board/obj-m0/%.o: %.c boards/rp2040/rp2040.mk
 	@mkdir -p $(@D)
 	$(ARM_CC) $(CLIENT_CFLAGS_m0) -Iboards -Iboards/common $(RP2040_CLIENT_FLAGS) -MMD -MP -c $< -o $@
 .PRECIOUS: $(BUILD)/board/obj-m0/%.o
-RP2040_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m0/%.o,$(BOARD_CLIENT_SRCS) boards/rp2040/startup.c \
-    boards/rp2040/board.c boards/armv7m/semihost.c boards/common/console.c)
+RP2040_OBJS := $(patsubst %.c,$(BUILD)/board/obj-m0/%.o,$(BOARD_CLIENT_SRCS) boards/rp2040/startup.c boards/common/stack_paint.c \
+    boards/rp2040/board.c boards/armv7m/semihost.c boards/common/console.c boards/common/no_screen.c)
 RP2040_LIBS := $(RP2040_SDK)/liblumo_net.a $(RP2040_SDK)/liblumo_raster.a $(RP2040_SDK)/liblumo.a
 # Only the top make asks the sub-make; inside it (CROSS set) the libraries
 # are sdk/cross.mk's own targets, or it would call itself for ever.

@@ -10,6 +10,7 @@
 #include <string.h>
 #include "board.h"
 #include "console.h"
+#include "stack_paint.h"
 
 int main(void);
 void Reset_Handler(void);
@@ -18,11 +19,6 @@ void rp2040_fault(void);
 extern uint32_t __bss_start[], __bss_end[], __stack_top[], __stack_paint_low[];
 
 #define SCB_VTOR    (*(volatile uint32_t *)0xE000ED08u)
-#define STACK_PAINT 0x5AC0FFEEu
-#define PAINT_MARGIN 64u
-
-static uint32_t *g_paint_low;
-
 /* 0 initial sp, 1 reset, 2 NMI, 3 HardFault (the only fault ARMv6-M has),
  * 11 SVCall, 14 PendSV, 15 SysTick; the RP2040's IRQs are never enabled. */
 typedef void (*vector)(void);
@@ -41,28 +37,6 @@ void rp2040_fault(void)
     board_exit(131);
 }
 
-static void paint_stack(void)
-{
-    uint32_t here;
-    uint32_t *p = __stack_paint_low;
-    uint32_t *end = (uint32_t *)((uintptr_t)&here - PAINT_MARGIN);
-
-    g_paint_low = p;
-    while (p < end)
-        *p++ = STACK_PAINT;
-}
-
-size_t board_stack_peak(void)
-{
-    const uint32_t *p = g_paint_low;
-
-    if (p == NULL)
-        return 0;
-    while (p < __stack_top && *p == STACK_PAINT)
-        p++;
-    return (size_t)((uintptr_t)__stack_top - (uintptr_t)p);
-}
-
 /* The screen keeps its last picture; the core sleeps between interrupts
  * (none are enabled, so for ever: QEMU until it is quit). */
 void board_hold(void)
@@ -75,6 +49,6 @@ void Reset_Handler(void)
 {
     SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;   /* the first thing in SRAM */
     memset(__bss_start, 0, (size_t)((uintptr_t)__bss_end - (uintptr_t)__bss_start));
-    paint_stack();
+    board_stack_paint(__stack_paint_low, __stack_top);
     board_exit(main());
 }

@@ -288,7 +288,9 @@ static void add_local_light32(const lumo_raster_light *L, const uint32_t inten[3
     }
     if (L->shadow && (vis = lumo_raster_shadow_visibility(L->shadow, p, n)) == 0)
         return;
-    cos_n = (uint32_t)(((uint64_t)(uint32_t)ln * u) >> 32) >> (14 - z / 2);    /* Q14 */
+    /* one shift of the 64-bit product: z reaches 30 when |l|^2 < 4 units of
+     * 2^dsh, and 14 - z/2 would then be -1 */
+    cos_n = (uint32_t)(((uint64_t)(uint32_t)ln * u) >> (46 - z / 2));    /* Q14 */
     if (cos_n > 2 * LUMO_Q14_ONE)
         cos_n = 2 * LUMO_Q14_ONE;
     /* |l|^2 (Q32) = dist2 2^(2 dsh) clamped to MIN_DIST2 << 16 */
@@ -434,7 +436,7 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
                                unsigned code[3])
 {
     lumo_q1_14 n[3];
-    lumo_uq16_16 e[3] = {0, 0, 0}, ind[3] = {0, 0, 0};
+    lumo_uq16_16 e[3];
     uint32_t i;
 
     if (pf->nfixed) {
@@ -444,6 +446,17 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
         if (facing(view, var, n) < 0)
             n[0] = (lumo_q1_14)-n[0], n[1] = (lumo_q1_14)-n[1], n[2] = (lumo_q1_14)-n[2];
     }
+    /* The lights add onto the indirect light: saturating sums of
+     * non-negative terms are min(sum, 2^32 - 1) in any order, so this is
+     * lumo_raster_shade_point's direct + indirect without the final adds. */
+    if (nvar > LUMO_RASTER_VAR_PIXEL) {
+        for (i = 0; i < 3; i++)
+            e[i] = var[9 + i] < 0 ? 0u : (uint32_t)var[9 + i];
+    } else if (s->indirect) {
+        s->indirect(s->indirect_ctx, var, n, e);
+    } else {
+        e[0] = e[1] = e[2] = 0;
+    }
     for (i = 0; i < pf->count; i++) {
         const lumo_raster_light *L = &s->lights[i];
         if (L->kind == LUMO_LIGHT_DIRECTIONAL)
@@ -451,19 +464,13 @@ void lumo_raster_shade_pixel32(const lumo_raster_view *view, const lumo_raster_s
         else
             add_local_light32(L, pf->inten[i], pf->dsh[i], var, n, e);
     }
-    if (nvar > LUMO_RASTER_VAR_PIXEL) {
-        for (i = 0; i < 3; i++)
-            ind[i] = var[9 + i] < 0 ? 0u : (uint32_t)var[9 + i];
-    } else if (s->indirect) {
-        s->indirect(s->indirect_ctx, var, n, ind);
-    }
     if (pf->rfixed) {
-        code[0] = tone32(sat_add_u32(e[0], ind[0]), pf->rk[0]);
-        code[1] = tone32(sat_add_u32(e[1], ind[1]), pf->rk[1]);
-        code[2] = tone32(sat_add_u32(e[2], ind[2]), pf->rk[2]);
+        code[0] = tone32(e[0], pf->rk[0]);
+        code[1] = tone32(e[1], pf->rk[1]);
+        code[2] = tone32(e[2], pf->rk[2]);
     } else {
         for (i = 0; i < 3; i++)
-            code[i] = tone32(sat_add_u32(e[i], ind[i]), rho_k(var[6 + i], pf->k));
+            code[i] = tone32(e[i], rho_k(var[6 + i], pf->k));
     }
 }
 
