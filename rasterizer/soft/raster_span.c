@@ -1087,6 +1087,30 @@ static int pixel32_ok(const lumo_raster_ctx *c, const tri *t)
     return 1;
 }
 
+/* Which per-pixel rows a triangle takes, from its doubled area alone (so
+ * the host and every board make the same choice, and the depth-first pass
+ * lays each triangle's depth through the rows its colour pass uses): one
+ * of at least 2^PIXEL_MIN_BITS pixels (one minimum piece) takes the 32-bit
+ * piece rows (span_pixel32), a smaller one the exact rows (span_color).
+ * Under a piece's worth of pixels the pieces' per-triangle shading
+ * constants and two exact piece ends per row cost more than they save on
+ * the host, where the exact rows' 64-bit divisions are one instruction
+ * each (dragon 48k 640x480 per pixel, callgrind: 596 -> 491 M a frame;
+ * the same for any bound from 8 to 1024 pixels, 1 % more at 4;
+ * docs/benchmarks.md "Round five"). Doubled area in 1/16 pixel units: 512
+ * per pixel. */
+#define PIXEL32_MIN_AREA (((int64_t)1 << PIXEL_MIN_BITS) * 512)
+
+/* Whether an edges32 triangle takes span_pixel32 (large enough and
+ * pixel32_ok), and then its pieces' length. */
+static int pixel32_pieces(const lumo_raster_ctx *c, tri *t, int64_t area)
+{
+    if (area < PIXEL32_MIN_AREA || !pixel32_ok(c, t))
+        return 0;
+    t->run_bits = gouraud_run_bits(t, area, PIXEL_MIN_BITS, PIXEL_PERSPECTIVE_BITS);
+    return 1;
+}
+
 /* The rows of an edges32 triangle (every triangle of a board's frame) in
  * 32-bit arithmetic: edge values stepped from row to row, the run of each
  * row from run32, its pixels from `span` (span_gouraud32 or span_pixel32). */
@@ -1205,9 +1229,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     tri_setup(&t, v, area);
     /* a box up to 16 pixels wide is one run per row whatever the length */
     t.run_bits = RUN_MIN_BITS;
-    if (!c->depth_only && c->nvar != LUMO_RASTER_VAR_GOURAUD)
-        t.run_bits = gouraud_run_bits(&t, area, PIXEL_MIN_BITS, PIXEL_PERSPECTIVE_BITS);
-    else if (!c->depth_only && px1 - px0 >= (1 << RUN_MIN_BITS))
+    if (!c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD && px1 - px0 >= (1 << RUN_MIN_BITS))
         t.run_bits = gouraud_run_bits(&t, area, RUN_MIN_BITS, RUN_PERSPECTIVE_BITS);
     small = box_edges(&t, px0, px1, py0, py1, maxx - minx < BOX_SURE_EXTENT && maxy - miny < BOX_SURE_EXTENT, Erow);
     t.edges32 = small && t.sh == 0;
@@ -1215,7 +1237,7 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         t.st32[i] = (int32_t)t.step[i];
         t.bias32[i] = (int32_t)t.e[i].bias;
     }
-    if (t.edges32 && !c->depth_only && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_ok(c, &t))) {
+    if (t.edges32 && !c->depth_only && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_pieces(c, &t, area))) {
         rows32_draw(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1,
                     c->nvar == LUMO_RASTER_VAR_GOURAUD ? span_gouraud32 : span_pixel32);
         return;

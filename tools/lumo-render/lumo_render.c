@@ -497,7 +497,9 @@ int main(int argc, char **argv)
     rs.exposure = (lumo_uq16_16)floor(o.exposure * 65536 + 0.5);
     /* The depth-first pass pays where the triangles are large enough that
      * the overdraw it saves outweighs a second set-up of each: from 4
-     * pixels of frame a triangle (measured, docs/rasterizer.md "Round four"). */
+     * pixels of frame a triangle (measured, docs/rasterizer.md "Round four";
+     * measured again with round five's row kinds: it pays at 6.6 pixels a
+     * triangle and costs at 0.4-1.7, docs/benchmarks.md "Round five"). */
     rs.flags = (o.per_pixel ? LUMO_RASTER_PER_PIXEL : 0) | (o.cull ? LUMO_RASTER_CULL_BACK : 0)
              | (o.per_pixel && !o.no_depth_first
                 && (uint64_t)o.ro.width * o.ro.height >= 4 * (uint64_t)mesh.tri_count ? LUMO_RASTER_DEPTH_FIRST : 0);
