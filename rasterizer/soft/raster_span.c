@@ -1172,9 +1172,13 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
         if (span == span_gouraud32 && ((px0 + lo) | g.mask) >= px0 + hi
             && span_hidden(&g, E, px0 + lo, px0 + hi, drow))
             continue;
-        if (ONE_PIXEL_APART && span == span_gouraud32 && lo == hi)
+        if (ONE_PIXEL_APART && span == span_gouraud32 && hi - lo < 2) {
             written += pixel_gouraud32(&g, E, px0 + lo, py, drow, crow);
-        else
+            if (hi == lo)
+                continue;
+            E[0] += t->st32[0], E[1] += t->st32[1], E[2] += t->st32[2];
+            written += pixel_gouraud32(&g, E, px0 + hi, py, drow, crow);
+        } else
             written += span(&g, E, px0 + lo, px0 + hi, py, drow, crow);
     }
     if (c->stats) {
