@@ -253,15 +253,13 @@ LUMO_RASTER_HOT int64_t plane_dist(const lumo_raster_view *view, int k, const lu
     }
 }
 
+/* The five planes written out: GCC -O2 kept the loop over them (0.09 M
+ * instructions a frame of the 48k dragon, round five part two). */
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v)
 {
-    unsigned code = 0;
-    int k;
-
-    for (k = 0; k < CLIP_PLANES; k++)
-        if (plane_dist(view, k, v) < 0)
-            code |= 1u << k;
-    return code;
+    return (unsigned)(plane_dist(view, 0, v) < 0) | (unsigned)(plane_dist(view, 1, v) < 0) << 1
+         | (unsigned)(plane_dist(view, 2, v) < 0) << 2 | (unsigned)(plane_dist(view, 3, v) < 0) << 3
+         | (unsigned)(plane_dist(view, 4, v) < 0) << 4;
 }
 
 /* The point where the segment from the inside vertex a (da >= 0) to the
