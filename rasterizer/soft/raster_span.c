@@ -155,6 +155,8 @@ static void tri_setup(tri *t, const lumo_raster_sv *v, int64_t area)
  * edge values at the box's first centre (sx, sy). t->e and t->step are not
  * made: nothing on that path reads them. The same values as tri_setup and
  * box_edges. */
+#define SMALL_TL_SCALE ((int32_t)1 << 15)
+
 LUMO_RASTER_HOT void edge_small(tri *t, int i, const lumo_raster_sv *p, const lumo_raster_sv *q, int32_t sx,
                                  int32_t sy, int64_t E[3])
 {
@@ -162,7 +164,10 @@ LUMO_RASTER_HOT void edge_small(tri *t, int i, const lumo_raster_sv *p, const lu
 
     t->st32[i] = a * 16;
     t->dy32[i] = b * 16;
-    t->bias32[i] = !((a > 0) | ((a == 0) & (b > 0)));   /* !is_top_left, without branches */
+    /* !is_top_left: (a, b) <= (0, 0) in lexicographic order, the sign of
+     * a 2^15 + b - 1 (|a|, |b| < 2^14), one shift (4 instructions against
+     * 11 for the comparisons without branches, round five part two) */
+    t->bias32[i] = (int32_t)((uint32_t)(a * SMALL_TL_SCALE + b - 1) >> 31);
     E[i] = a * (sx - p->x) + b * (sy - p->y);
 }
 
