@@ -1148,7 +1148,8 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
 {
     const lumo_raster_target *tg = c->target;
     int32_t Er[3], dy[3], py;
-    uint32_t tested = 0, written = 0;
+    uint32_t written = 0;
+    lumo_raster_stats *const stats = c->stats;
     uint8_t *drow, *crow;
     size_t dstride, cstride;
     rows32 g;
@@ -1179,7 +1180,8 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
         if (hi < lo)
             continue;
         E[0] = Er[0] + t->st32[0] * lo, E[1] = Er[1] + t->st32[1] * lo, E[2] = Er[2] + t->st32[2] * lo;
-        tested += (uint32_t)(hi - lo + 1);
+        if (stats)                /* a test, not a sum kept for nothing: 0.17 M a frame, round five part two */
+            stats->pixels_tested += (uint32_t)(hi - lo + 1);
         /* a hidden one-piece Gouraud span is skipped here, before its call
          * (71.21 -> 70.91 M a frame of small triangles, round five) */
         if (span == span_gouraud32 && ((px0 + lo) | g.mask) >= px0 + hi
@@ -1194,10 +1196,8 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
         } else
             written += span(&g, E, px0 + lo, px0 + hi, py, drow, crow);
     }
-    if (c->stats) {
-        c->stats->pixels_tested += tested;
-        c->stats->pixels_written += written;
-    }
+    if (stats)
+        stats->pixels_written += written;
 }
 
 /* rows32_draw once per span kind (the tests of `span` in its row loop are
