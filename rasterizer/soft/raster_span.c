@@ -985,6 +985,9 @@ static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x
 #else
 #define ONE_PIXEL_APART 1
 #endif
+/* Its pixel takes run_pixel's clamped forms (plain 0): the same bytes, and
+ * cheaper than run_plain's test for one pixel (-0.03 M a frame, round five
+ * part two). */
 SPAN_APART uint32_t pixel_gouraud32(const rows32 *g, const int32_t E[3], int32_t a, int32_t y, uint8_t *drow,
                                 uint8_t *crow)
 {
@@ -994,7 +997,7 @@ SPAN_APART uint32_t pixel_gouraud32(const rows32 *g, const int32_t E[3], int32_t
 
     return run_pixel(drow + (size_t)a * g->dbytes, crow + (size_t)a * g->cbytes, lumo_raster_bayer4[y & 3], a, z,
                      (uint32_t)c[0] + half, (uint32_t)c[1] + half, (uint32_t)c[2] + half, (int)(g->fmt & 1u),
-                     (int)(g->fmt >> 1), run_plain(z, z, c, c));
+                     (int)(g->fmt >> 1), 0);
 }
 
 /* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic (a
