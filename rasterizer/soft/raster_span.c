@@ -1150,13 +1150,12 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
                         int32_t px1, int32_t py0, int32_t py1, span32_fn span)
 {
     const lumo_raster_target *tg = c->target;
-    int32_t Er[3], dy[3], py;
+    int32_t e0, e1, e2, dy0, dy1, dy2, py;
     uint32_t written = 0;
     lumo_raster_stats *const stats = c->stats;
     uint8_t *drow, *crow;
     size_t dstride, cstride;
     rows32 g;
-    int i;
 
     g.c = c;
     g.t = t;
@@ -1172,17 +1171,20 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
         pixel_groups(&g, c, t, Erow);
     drow = (uint8_t *)tg->depth + (size_t)(py0 - tg->band_y) * tg->width * g.dbytes;
     crow = (uint8_t *)tg->color + (size_t)(py0 - tg->band_y) * tg->color_stride;
-    for (i = 0; i < 3; i++) {
-        Er[i] = (int32_t)Erow[i];
-        dy[i] = t->dy32[i];
-    }
+    /* the row's edge values and their steps in scalars, not arrays: GCC
+     * -O2 put the arrays in vector registers and shuffled them every row
+     * (round five part two) */
+    e0 = (int32_t)Erow[0], e1 = (int32_t)Erow[1], e2 = (int32_t)Erow[2];
+    dy0 = t->dy32[0], dy1 = t->dy32[1], dy2 = t->dy32[2];
     /* the row strides in locals: the spans' stores could alias *tg */
     dstride = (size_t)tg->width * g.dbytes, cstride = tg->color_stride;
-    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2], drow += dstride, crow += cstride) {
-        int32_t E[3], lo, hi = run32(t, Er, px1 - px0, &lo);
+    for (py = py0; py <= py1; py++, e0 += dy0, e1 += dy1, e2 += dy2, drow += dstride, crow += cstride) {
+        int32_t E[3], lo, hi;
+        E[0] = e0, E[1] = e1, E[2] = e2;
+        hi = run32(t, E, px1 - px0, &lo);
         if (hi < lo)
             continue;
-        E[0] = Er[0] + t->st32[0] * lo, E[1] = Er[1] + t->st32[1] * lo, E[2] = Er[2] + t->st32[2] * lo;
+        E[0] = e0 + t->st32[0] * lo, E[1] = e1 + t->st32[1] * lo, E[2] = e2 + t->st32[2] * lo;
         if (stats)                /* a test, not a sum kept for nothing: 0.17 M a frame, round five part two */
             stats->pixels_tested += (uint32_t)(hi - lo + 1);
         /* a hidden one-piece Gouraud span is skipped here, before its call
