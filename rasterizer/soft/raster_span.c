@@ -1255,6 +1255,20 @@ static void span_color(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int
     ((c)->nvar == LUMO_RASTER_VAR_GOURAUD && !(c)->depth_only && (sure) \
      && (area) < ((int64_t)1 << EDGE_BITS) && (w) < (1 << RUN_MIN_BITS))
 
+LUMO_RASTER_HOT int32_t min3_32(int32_t a, int32_t b, int32_t c)
+{
+    int32_t m = a < b ? a : b;
+
+    return m < c ? m : c;
+}
+
+LUMO_RASTER_HOT int32_t max3_32(int32_t a, int32_t b, int32_t c)
+{
+    int32_t m = a > b ? a : b;
+
+    return m > c ? m : c;
+}
+
 /* Rasterize one screen triangle with positive area. */
 void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int64_t area)
 {
@@ -1263,14 +1277,10 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
     tri t;
     int i, small, sure;
 
-    minx = maxx = v[0].x;
-    miny = maxy = v[0].y;
-    for (i = 1; i < 3; i++) {
-        if (v[i].x < minx) minx = v[i].x;
-        if (v[i].x > maxx) maxx = v[i].x;
-        if (v[i].y < miny) miny = v[i].y;
-        if (v[i].y > maxy) maxy = v[i].y;
-    }
+    /* scalars, not a loop over the vertices: GCC -O2 loaded x and y in
+     * pairs into vector registers and shuffled them (round five part two) */
+    minx = min3_32(v[0].x, v[1].x, v[2].x), maxx = max3_32(v[0].x, v[1].x, v[2].x);
+    miny = min3_32(v[0].y, v[1].y, v[2].y), maxy = max3_32(v[0].y, v[1].y, v[2].y);
     /* Pixel centres (16 p + 8) inside the bounding box, within the band. */
     px0 = floor_div16(minx - 8 + 15);
     px1 = floor_div16(maxx - 8);
