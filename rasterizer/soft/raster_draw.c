@@ -61,9 +61,9 @@ void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], in
  * kept: 3 instructions a channel and vertex, round five part two). */
 LUMO_RASTER_HOT int32_t exposed_capped(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
 {
-    int32_t e = lumo_raster_exposed(radiance, exposure);
+    uint64_t e = lumo_raster_exposed64(radiance, exposure);   /* lumo_raster_exposed's cap is above 2^30 */
 
-    return e > (1 << 30) ? (1 << 30) : e;
+    return e > ((uint64_t)1 << 30) ? (1 << 30) : (int32_t)e;
 }
 
 void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_scene *s,
@@ -95,14 +95,15 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
         }
     } else {
         lumo_uq16_16 l[3];
+        const lumo_uq16_16 ex = s->exposure;   /* once: out's stores could alias *s */
         const lumo_uq16_16 *lit = l;
         if (m->lit)
             lit = &m->lit[6 * (size_t)index + (faces_away(v, p, n) ? 3 : 0)];
         else
             light_side(s, p, n, faces_away(v, p, n), rho, l);
-        out->var[0] = exposed_capped(lit[0], s->exposure);
-        out->var[1] = exposed_capped(lit[1], s->exposure);
-        out->var[2] = exposed_capped(lit[2], s->exposure);
+        out->var[0] = exposed_capped(lit[0], ex);
+        out->var[1] = exposed_capped(lit[1], ex);
+        out->var[2] = exposed_capped(lit[2], ex);
     }
     out->outcode = outcode(v, out);
     out->screen[0] = out->screen[1] = 0;
