@@ -1255,6 +1255,26 @@ static void span_color(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int
     ((c)->nvar == LUMO_RASTER_VAR_GOURAUD && !(c)->depth_only && (sure) \
      && (area) < ((int64_t)1 << EDGE_BITS) && (w) < (1 << RUN_MIN_BITS))
 
+/* Whether every pixel of the box [px0, px1] x [py0, py1] holds a depth
+ * that a pixel of depth z (Q0.30) would fail: no pixel of a triangle whose
+ * vertices' q are at most z can then pass (its depths are convex
+ * combinations of the q, and depth_of_sum's roundings are all downward,
+ * so no pixel's depth exceeds the largest q). */
+static int box_hidden(const lumo_raster_target *tg, uint32_t z, int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+{
+    const int d16 = tg->depth_bits == 16;
+    const uint32_t dv = depth_of(z, d16, 0);
+    int32_t x, y;
+
+    for (y = py0; y <= py1; y++) {
+        size_t at = (size_t)(y - tg->band_y) * tg->width;
+        for (x = px0; x <= px1; x++)
+            if (dv > (d16 ? ((const uint16_t *)tg->depth)[at + (size_t)x] : ((const uint32_t *)tg->depth)[at + (size_t)x]))
+                return 0;
+    }
+    return 1;
+}
+
 LUMO_RASTER_HOT int32_t min3_32(int32_t a, int32_t b, int32_t c)
 {
     int32_t m = a < b ? a : b;
@@ -1265,6 +1285,13 @@ LUMO_RASTER_HOT int32_t min3_32(int32_t a, int32_t b, int32_t c)
 LUMO_RASTER_HOT int32_t max3_32(int32_t a, int32_t b, int32_t c)
 {
     int32_t m = a > b ? a : b;
+
+    return m > c ? m : c;
+}
+
+LUMO_RASTER_HOT uint32_t max3_u32(uint32_t a, uint32_t b, uint32_t c)
+{
+    uint32_t m = a > b ? a : b;
 
     return m > c ? m : c;
 }
@@ -1296,6 +1323,9 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         c->stats->tris_drawn++;
     sure = maxx - minx < BOX_SURE_EXTENT && maxy - miny < BOX_SURE_EXTENT;
     if (SMALL_TRI(c, sure, area, px1 - px0)) {
+        if (!c->stats && box_hidden(tg, max3_u32(v[0].q, v[1].q, v[2].q), (int32_t)px0, (int32_t)px1, (int32_t)py0,
+                                    (int32_t)py1))
+            return;
         tri_setup_small(&t, v, area, (int32_t)px0 * 16 + 8, (int32_t)py0 * 16 + 8, Erow);
         t.run_bits = RUN_MIN_BITS;
         t.edges32 = 1;
