@@ -31,23 +31,35 @@ static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const
                        int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3]);
 LUMO_RASTER_HOT void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
 
-/* lumo_raster_to_camera, inlined into the per-vertex transform (a call a
- * vertex was 0.4 M instructions a frame of the 48k dragon, round five). */
-/* One camera axis: the rotation's row r times d, rounded from Q14. */
-LUMO_RASTER_HOT int64_t camera_axis(const lumo_q1_14 r[3], int64_t d0, int64_t d1, int64_t d2)
+/* Camera axis i of p: the rotation's row i times p - eye, rounded from
+ * Q14 (the difference made per axis: fewer live registers on the
+ * Cortex-M3, where the shadow lookups call it per pixel). */
+LUMO_RASTER_HOT int64_t camera_axis(const lumo_raster_view *v, const lumo_q16_16 p[3], int i)
 {
-    return lumo_round_shift(d0 * r[0] + d1 * r[1] + d2 * r[2], LUMO_Q14_SHIFT);
+    return lumo_round_shift(((int64_t)p[0] - v->eye[0]) * v->rot[i][0] + ((int64_t)p[1] - v->eye[1]) * v->rot[i][1]
+                                + ((int64_t)p[2] - v->eye[2]) * v->rot[i][2],
+                            LUMO_Q14_SHIFT);
 }
 
-/* The three axes written out: GCC -O2 kept a loop (and c in memory),
- * 0.4 M instructions a frame of the 48k dragon (round five part two). */
+/* lumo_raster_to_camera, inlined into the per-vertex transform (a call a
+ * vertex was 0.4 M instructions a frame of the 48k dragon, round five);
+ * the three axes written out: GCC -O2 kept a loop (and c in memory), 0.5 M
+ * a frame (round five part two). */
 LUMO_RASTER_HOT void to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
 {
-    int64_t d0 = (int64_t)p[0] - v->eye[0], d1 = (int64_t)p[1] - v->eye[1], d2 = (int64_t)p[2] - v->eye[2];
+#if defined(__OPTIMIZE_SIZE__)
+    /* -Os: a loop, one use of lumo_round_shift, which -Os then inlines
+     * (written out, three calls to it: +27 instructions a pixel of the
+     * board's shadowed per-pixel frame, whose lookups call this) */
+    int i;
 
-    c[0] = camera_axis(v->rot[0], d0, d1, d2);
-    c[1] = camera_axis(v->rot[1], d0, d1, d2);
-    c[2] = camera_axis(v->rot[2], d0, d1, d2);
+    for (i = 0; i < 3; i++)
+        c[i] = camera_axis(v, p, i);
+#else
+    c[0] = camera_axis(v, p, 0);
+    c[1] = camera_axis(v, p, 1);
+    c[2] = camera_axis(v, p, 2);
+#endif
 }
 
 void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
