@@ -31,23 +31,51 @@ static void light_side(const lumo_raster_scene *s, const lumo_q16_16 p[3], const
                        int back, const lumo_q1_14 rho[3], lumo_uq16_16 out[3]);
 LUMO_RASTER_HOT void project(const lumo_raster_view *view, const lumo_raster_vertex *v, screen_vertex *s);
 
+/* Camera axis i of p: the rotation's row i times p - eye, rounded from
+ * Q14 (the difference made per axis: fewer live registers on the
+ * Cortex-M3, where the shadow lookups call it per pixel). */
+LUMO_RASTER_HOT int64_t camera_axis(const lumo_raster_view *v, const lumo_q16_16 p[3], int i)
+{
+    return lumo_round_shift(((int64_t)p[0] - v->eye[0]) * v->rot[i][0] + ((int64_t)p[1] - v->eye[1]) * v->rot[i][1]
+                                + ((int64_t)p[2] - v->eye[2]) * v->rot[i][2],
+                            LUMO_Q14_SHIFT);
+}
+
 /* lumo_raster_to_camera, inlined into the per-vertex transform (a call a
- * vertex was 0.4 M instructions a frame of the 48k dragon, round five). */
+ * vertex was 0.4 M instructions a frame of the 48k dragon, round five);
+ * the three axes written out: GCC -O2 kept a loop (and c in memory), 0.5 M
+ * a frame (round five part two). */
 LUMO_RASTER_HOT void to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
 {
-    int64_t d[3];
+#if defined(__OPTIMIZE_SIZE__)
+    /* -Os: a loop, one use of lumo_round_shift, which -Os then inlines
+     * (written out, three calls to it: +27 instructions a pixel of the
+     * board's shadowed per-pixel frame, whose lookups call this) */
     int i;
 
     for (i = 0; i < 3; i++)
-        d[i] = (int64_t)p[i] - v->eye[i];
-    for (i = 0; i < 3; i++)
-        c[i] = lumo_round_shift(d[0] * v->rot[i][0] + d[1] * v->rot[i][1] + d[2] * v->rot[i][2],
-                                LUMO_Q14_SHIFT);
+        c[i] = camera_axis(v, p, i);
+#else
+    c[0] = camera_axis(v, p, 0);
+    c[1] = camera_axis(v, p, 1);
+    c[2] = camera_axis(v, p, 2);
+#endif
 }
 
 void lumo_raster_to_camera(const lumo_raster_view *v, const lumo_q16_16 p[3], int64_t c[3])
 {
     to_camera(v, p, c);
+}
+
+/* The exposed radiance of a vertex capped at 2^30 (64 x white, far past
+ * code 255): every value a Gouraud run interpolates then lies in [0, 2^30]
+ * (raster_span.c). Called three times, not from a loop (which GCC -O2
+ * kept: 3 instructions a channel and vertex, round five part two). */
+LUMO_RASTER_HOT int32_t exposed_capped(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
+{
+    uint64_t e = lumo_raster_exposed64(radiance, exposure);   /* lumo_raster_exposed's cap is above 2^30 */
+
+    return e > ((uint64_t)1 << 30) ? (1 << 30) : (int32_t)e;
 }
 
 void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_scene *s,
@@ -79,17 +107,15 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
         }
     } else {
         lumo_uq16_16 l[3];
+        const lumo_uq16_16 ex = s->exposure;   /* once: out's stores could alias *s */
         const lumo_uq16_16 *lit = l;
         if (m->lit)
             lit = &m->lit[6 * (size_t)index + (faces_away(v, p, n) ? 3 : 0)];
         else
             light_side(s, p, n, faces_away(v, p, n), rho, l);
-        /* capped at 2^30 (64 x white, far past code 255): every value a
-         * Gouraud run interpolates then lies in [0, 2^30] (raster_span.c) */
-        for (i = 0; i < 3; i++) {
-            int32_t e = lumo_raster_exposed(lit[i], s->exposure);
-            out->var[i] = e > (1 << 30) ? (1 << 30) : e;
-        }
+        out->var[0] = exposed_capped(lit[0], ex);
+        out->var[1] = exposed_capped(lit[1], ex);
+        out->var[2] = exposed_capped(lit[2], ex);
     }
     out->outcode = outcode(v, out);
     out->screen[0] = out->screen[1] = 0;
@@ -106,11 +132,11 @@ void lumo_raster_transform_vertex(const lumo_raster_view *v, const lumo_raster_s
 /* 1 when the eye sees the side of p opposite to n. */
 static int faces_away(const lumo_raster_view *v, const lumo_q16_16 p[3], const lumo_q1_14 n[3])
 {
-    int64_t d = 0;
-    int i;
+    /* the three terms written out: GCC -O2 kept a loop (3 instructions a
+     * term and vertex, round five part two) */
+    int64_t d = ((int64_t)v->eye[0] - p[0]) * n[0] + ((int64_t)v->eye[1] - p[1]) * n[1]
+              + ((int64_t)v->eye[2] - p[2]) * n[2];
 
-    for (i = 0; i < 3; i++)
-        d += ((int64_t)v->eye[i] - p[i]) * n[i];
     return d < 0;
 }
 
@@ -240,15 +266,13 @@ LUMO_RASTER_HOT int64_t plane_dist(const lumo_raster_view *view, int k, const lu
     }
 }
 
+/* The five planes written out: GCC -O2 kept the loop over them (0.09 M
+ * instructions a frame of the 48k dragon, round five part two). */
 static unsigned outcode(const lumo_raster_view *view, const lumo_raster_vertex *v)
 {
-    unsigned code = 0;
-    int k;
-
-    for (k = 0; k < CLIP_PLANES; k++)
-        if (plane_dist(view, k, v) < 0)
-            code |= 1u << k;
-    return code;
+    return (unsigned)(plane_dist(view, 0, v) < 0) | (unsigned)(plane_dist(view, 1, v) < 0) << 1
+         | (unsigned)(plane_dist(view, 2, v) < 0) << 2 | (unsigned)(plane_dist(view, 3, v) < 0) << 3
+         | (unsigned)(plane_dist(view, 4, v) < 0) << 4;
 }
 
 /* The point where the segment from the inside vertex a (da >= 0) to the

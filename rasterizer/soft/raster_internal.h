@@ -200,10 +200,16 @@ LUMO_RASTER_HOT void lumo_raster_put_codes(const lumo_raster_target *t, uint8_t 
  * each capped at 2^15 as lumo_raster_tonemap does), capped at INT32_MAX:
  * everything from 1.0 (2^24) up is code 255. Per-vertex lighting
  * interpolates this value, so the pixel only looks its code up. */
-static inline int32_t lumo_raster_exposed(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
+static inline uint64_t lumo_raster_exposed64(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
 {
     const uint32_t lim = (uint32_t)1 << 31;
-    uint64_t v = ((uint64_t)(radiance > lim ? lim : radiance) * (exposure > lim ? lim : exposure)) >> 8;
+
+    return ((uint64_t)(radiance > lim ? lim : radiance) * (exposure > lim ? lim : exposure)) >> 8;
+}
+
+static inline int32_t lumo_raster_exposed(lumo_uq16_16 radiance, lumo_uq16_16 exposure)
+{
+    uint64_t v = lumo_raster_exposed64(radiance, exposure);
 
     return v > (uint64_t)INT32_MAX ? INT32_MAX : (int32_t)v;
 }

@@ -57,6 +57,7 @@ typedef struct tri {
     unsigned run_bits; /* Gouraud: runs end at multiples of 2^run_bits pixels */
     int edges32;       /* sh == 0 and every edge value of the box within +-2^30 */
     int32_t st32[3], bias32[3];   /* step and bias as 32-bit values (edges32) */
+    int32_t dy32[3];              /* the edge values' change per row, 16 b (edges32) */
 } tri;
 
 /* floor(v / 16) for |v| < 2^30 (screen sub-pixels lie within +-2^18,
@@ -107,18 +108,12 @@ static unsigned bit_length(uint64_t v)
  * (sum w_i q_i) < 2^(t + 30) for t = bit length of A >> sh is shifted
  * right by zs = t - 2 to < 2^32 and multiplied by zr = 2^(32 + zs) /
  * (A >> sh) < 2^31: error below 1.5 units of Q0.30. */
-static void tri_setup(tri *t, const lumo_raster_sv *v, int64_t area)
+SPAN_FAST void tri_scale(tri *t, const lumo_raster_sv *v, int64_t area)
 {
     uint64_t qmax = v[0].q, bound, se;
     unsigned b;
     int i;
 
-    t->v = v;
-    edge_setup(&t->e[0], &v[1], &v[2]);
-    edge_setup(&t->e[1], &v[2], &v[0]);
-    edge_setup(&t->e[2], &v[0], &v[1]);
-    for (i = 0; i < 3; i++)
-        t->step[i] = t->e[i].a * 16;
     t->sh = 0;
     while ((area >> t->sh) >= ((int64_t)1 << EDGE_BITS))
         t->sh++;
@@ -136,6 +131,53 @@ static void tri_setup(tri *t, const lumo_raster_sv *v, int64_t area)
     b = bit_length(se);
     t->zs = b > 2 ? b - 2 : 0;
     t->zr = ((uint64_t)1 << (32 + t->zs)) / se;
+}
+
+/* Edges (64-bit) and tri_scale: any triangle. */
+static void tri_setup(tri *t, const lumo_raster_sv *v, int64_t area)
+{
+    int i;
+
+    t->v = v;
+    edge_setup(&t->e[0], &v[1], &v[2]);
+    edge_setup(&t->e[1], &v[2], &v[0]);
+    edge_setup(&t->e[2], &v[0], &v[1]);
+    for (i = 0; i < 3; i++)
+        t->step[i] = t->e[i].a * 16;
+    tri_scale(t, v, area);
+}
+
+/* The set-up of a small triangle (SMALL_TRI: sub-pixel extents below
+ * BOX_SURE_EXTENT, doubled area below 2^EDGE_BITS, so sh == 0, and a box
+ * under 2^RUN_MIN_BITS pixels wide): only what rows32_draw and the Gouraud
+ * spans read, in 32-bit arithmetic (|a|, |b| and the distances of the box's
+ * centres to a vertex below 2^14: every edge value below 2^29), and E, the
+ * edge values at the box's first centre (sx, sy). t->e and t->step are not
+ * made: nothing on that path reads them. The same values as tri_setup and
+ * box_edges. */
+#define SMALL_TL_SCALE ((int32_t)1 << 15)
+
+LUMO_RASTER_HOT void edge_small(tri *t, int i, const lumo_raster_sv *p, const lumo_raster_sv *q, int32_t sx,
+                                 int32_t sy, int64_t E[3])
+{
+    int32_t a = p->y - q->y, b = q->x - p->x;
+
+    t->st32[i] = a * 16;
+    t->dy32[i] = b * 16;
+    /* !is_top_left: (a, b) <= (0, 0) in lexicographic order, the sign of
+     * a 2^15 + b - 1 (|a|, |b| < 2^14), one shift (4 instructions against
+     * 11 for the comparisons without branches, round five part two) */
+    t->bias32[i] = (int32_t)((uint32_t)(a * SMALL_TL_SCALE + b - 1) >> 31);
+    E[i] = a * (sx - p->x) + b * (sy - p->y);
+}
+
+static void tri_setup_small(tri *t, const lumo_raster_sv *v, int64_t area, int32_t sx, int32_t sy, int64_t E[3])
+{
+    t->v = v;
+    edge_small(t, 0, &v[1], &v[2], sx, sy, E);
+    edge_small(t, 1, &v[2], &v[0], sx, sy, E);
+    edge_small(t, 2, &v[0], &v[1], sx, sy, E);
+    tri_scale(t, v, area);
 }
 
 /* Depth value in the buffer's width; 0 is reserved for "cleared". */
@@ -196,30 +238,38 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
  * return the last one, or x0 - 1 when none. */
 /* Inlined into rows32_draw's row loop (and run_32): 79.3 -> 77.6 M a frame
  * of small triangles, three rows a triangle. */
+/* One edge's bound on the run [*lo, *hi]; 0 when it leaves the row
+ * uncovered. */
+LUMO_RASTER_HOT int run32_edge(int32_t e, int32_t st, int32_t b, int32_t len, int32_t *lo, int32_t *hi)
+{
+    if (st > 0) {
+        if (e < b) {
+            int32_t k = (b - e + st - 1) / st;              /* first k with e + k st >= b */
+            if (k > len)
+                return 0;                                 /* past the box: none */
+            if (k > *lo) *lo = k;
+        }
+    } else if (e < b) {
+        return 0;                                         /* never covered in this row */
+    } else if (st < 0) {
+        int32_t k = (e - b) / -st;                        /* last k with e + k st >= b */
+        if (k < *hi) *hi = k;
+    }
+    return 1;
+}
+
+/* The three edges written out (a loop over them was 3 instructions an
+ * edge of a row on the host: 1.3 M a frame of small triangles). */
 LUMO_RASTER_HOT int32_t run32(const tri *t, const int32_t E[3], int32_t len, int32_t *lo)
 {
     int32_t hi = len;
-    int i;
 
     *lo = 0;
-    for (i = 0; i < 3; i++) {
-        int32_t e = E[i], st = t->st32[i], b = t->bias32[i];
-        if (st > 0) {
-            if (e < b) {
-                int32_t k = (b - e + st - 1) / st;          /* first k with e + k st >= b */
-                if (k > len) {
-                    *lo = 0;
-                    return -1;                            /* past the box: none */
-                }
-                if (k > *lo) *lo = k;
-            }
-        } else if (e < b) {
-            *lo = 0;                                      /* never covered in this row */
-            return -1;
-        } else if (st < 0) {
-            int32_t k = (e - b) / -st;                    /* last k with e + k st >= b */
-            if (k < hi) hi = k;
-        }
+    if (!run32_edge(E[0], t->st32[0], t->bias32[0], len, lo, &hi)
+        || !run32_edge(E[1], t->st32[1], t->bias32[1], len, lo, &hi)
+        || !run32_edge(E[2], t->st32[2], t->bias32[2], len, lo, &hi)) {
+        *lo = 0;
+        return -1;
     }
     return *lo > hi ? *lo - 1 : hi;
 }
@@ -935,6 +985,9 @@ static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x
 #else
 #define ONE_PIXEL_APART 1
 #endif
+/* Its pixel takes run_pixel's clamped forms (plain 0): the same bytes, and
+ * cheaper than run_plain's test for one pixel (-0.03 M a frame, round five
+ * part two). */
 SPAN_APART uint32_t pixel_gouraud32(const rows32 *g, const int32_t E[3], int32_t a, int32_t y, uint8_t *drow,
                                 uint8_t *crow)
 {
@@ -944,7 +997,7 @@ SPAN_APART uint32_t pixel_gouraud32(const rows32 *g, const int32_t E[3], int32_t
 
     return run_pixel(drow + (size_t)a * g->dbytes, crow + (size_t)a * g->cbytes, lumo_raster_bayer4[y & 3], a, z,
                      (uint32_t)c[0] + half, (uint32_t)c[1] + half, (uint32_t)c[2] + half, (int)(g->fmt & 1u),
-                     (int)(g->fmt >> 1), run_plain(z, z, c, c));
+                     (int)(g->fmt >> 1), 0);
 }
 
 /* A Gouraud span [a, x1] of an edges32 triangle in 32-bit arithmetic (a
@@ -1117,16 +1170,16 @@ static int pixel32_pieces(const lumo_raster_ctx *c, tri *t, int64_t area)
 typedef uint32_t (*span32_fn)(const rows32 *g, int32_t E[3], int32_t a, int32_t x1, int32_t y, uint8_t *drow,
                               uint8_t *crow);
 
-static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
                         int32_t px1, int32_t py0, int32_t py1, span32_fn span)
 {
     const lumo_raster_target *tg = c->target;
-    int32_t Er[3], dy[3], py;
-    uint32_t tested = 0, written = 0;
+    int32_t e0, e1, e2, dy0, dy1, dy2, py;
+    uint32_t written = 0;
+    lumo_raster_stats *const stats = c->stats;
     uint8_t *drow, *crow;
     size_t dstride, cstride;
     rows32 g;
-    int i;
 
     g.c = c;
     g.t = t;
@@ -1142,32 +1195,53 @@ static void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t Er
         pixel_groups(&g, c, t, Erow);
     drow = (uint8_t *)tg->depth + (size_t)(py0 - tg->band_y) * tg->width * g.dbytes;
     crow = (uint8_t *)tg->color + (size_t)(py0 - tg->band_y) * tg->color_stride;
-    for (i = 0; i < 3; i++) {
-        Er[i] = (int32_t)Erow[i];
-        dy[i] = (int32_t)(t->e[i].b * 16);
-    }
+    /* the row's edge values and their steps in scalars, not arrays: GCC
+     * -O2 put the arrays in vector registers and shuffled them every row
+     * (round five part two) */
+    e0 = (int32_t)Erow[0], e1 = (int32_t)Erow[1], e2 = (int32_t)Erow[2];
+    dy0 = t->dy32[0], dy1 = t->dy32[1], dy2 = t->dy32[2];
     /* the row strides in locals: the spans' stores could alias *tg */
     dstride = (size_t)tg->width * g.dbytes, cstride = tg->color_stride;
-    for (py = py0; py <= py1; py++, Er[0] += dy[0], Er[1] += dy[1], Er[2] += dy[2], drow += dstride, crow += cstride) {
-        int32_t E[3], lo, hi = run32(t, Er, px1 - px0, &lo);
+    for (py = py0; py <= py1; py++, e0 += dy0, e1 += dy1, e2 += dy2, drow += dstride, crow += cstride) {
+        int32_t E[3], lo, hi;
+        E[0] = e0, E[1] = e1, E[2] = e2;
+        hi = run32(t, E, px1 - px0, &lo);
         if (hi < lo)
             continue;
-        E[0] = Er[0] + t->st32[0] * lo, E[1] = Er[1] + t->st32[1] * lo, E[2] = Er[2] + t->st32[2] * lo;
-        tested += (uint32_t)(hi - lo + 1);
+        E[0] = e0 + t->st32[0] * lo, E[1] = e1 + t->st32[1] * lo, E[2] = e2 + t->st32[2] * lo;
+        if (stats)                /* a test, not a sum kept for nothing: 0.17 M a frame, round five part two */
+            stats->pixels_tested += (uint32_t)(hi - lo + 1);
         /* a hidden one-piece Gouraud span is skipped here, before its call
          * (71.21 -> 70.91 M a frame of small triangles, round five) */
         if (span == span_gouraud32 && ((px0 + lo) | g.mask) >= px0 + hi
             && span_hidden(&g, E, px0 + lo, px0 + hi, drow))
             continue;
-        if (ONE_PIXEL_APART && span == span_gouraud32 && lo == hi)
+        if (ONE_PIXEL_APART && span == span_gouraud32 && hi - lo < 2) {
             written += pixel_gouraud32(&g, E, px0 + lo, py, drow, crow);
-        else
+            if (hi == lo)
+                continue;
+            E[0] += t->st32[0], E[1] += t->st32[1], E[2] += t->st32[2];
+            written += pixel_gouraud32(&g, E, px0 + hi, py, drow, crow);
+        } else
             written += span(&g, E, px0 + lo, px0 + hi, py, drow, crow);
     }
-    if (c->stats) {
-        c->stats->pixels_tested += tested;
-        c->stats->pixels_written += written;
-    }
+    if (stats)
+        stats->pixels_written += written;
+}
+
+/* rows32_draw once per span kind (the tests of `span` in its row loop are
+ * then folded away on the host, where SPAN_FAST inlines it; one function
+ * under -Os): raster_peers 64.88 -> 64.54 M a frame (round five part two). */
+SPAN_APART void rows32_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+                               int32_t px1, int32_t py0, int32_t py1)
+{
+    rows32_draw(c, t, Erow, px0, px1, py0, py1, span_gouraud32);
+}
+
+SPAN_APART void rows32_pixel(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+                             int32_t px1, int32_t py0, int32_t py1)
+{
+    rows32_draw(c, t, Erow, px0, px1, py0, py1, span_pixel32);
 }
 
 /* Per-pixel colour spans: depth test, barycentrics, shading, pixel. */
@@ -1197,22 +1271,67 @@ static void span_color(const lumo_raster_ctx *c, const tri *t, int64_t E[3], int
         c->stats->pixels_written += written;
 }
 
+/* A Gouraud triangle that tri_setup_small may set up: what tri_setup,
+ * box_edges and the choice of run_bits would find for it is edges32 and
+ * RUN_MIN_BITS (most triangles of a mesh at a usual size: every one of
+ * the 45 934 a frame with a non-empty box of the 48k dragon at 640x480). */
+#define SMALL_TRI(c, sure, area, w) \
+    ((c)->nvar == LUMO_RASTER_VAR_GOURAUD && !(c)->depth_only && (sure) \
+     && (area) < ((int64_t)1 << EDGE_BITS) && (w) < (1 << RUN_MIN_BITS))
+
+/* Whether every pixel of the box [px0, px1] x [py0, py1] holds a depth
+ * that a pixel of depth z (Q0.30) would fail: no pixel of a triangle whose
+ * vertices' q are at most z can then pass (its depths are convex
+ * combinations of the q, and depth_of_sum's roundings are all downward,
+ * so no pixel's depth exceeds the largest q). */
+static int box_hidden(const lumo_raster_target *tg, uint32_t z, int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+{
+    const int d16 = tg->depth_bits == 16;
+    const uint32_t dv = depth_of(z, d16, 0);
+    int32_t x, y;
+
+    for (y = py0; y <= py1; y++) {
+        size_t at = (size_t)(y - tg->band_y) * tg->width;
+        for (x = px0; x <= px1; x++)
+            if (dv > (d16 ? ((const uint16_t *)tg->depth)[at + (size_t)x] : ((const uint32_t *)tg->depth)[at + (size_t)x]))
+                return 0;
+    }
+    return 1;
+}
+
+LUMO_RASTER_HOT int32_t min3_32(int32_t a, int32_t b, int32_t c)
+{
+    int32_t m = a < b ? a : b;
+
+    return m < c ? m : c;
+}
+
+LUMO_RASTER_HOT int32_t max3_32(int32_t a, int32_t b, int32_t c)
+{
+    int32_t m = a > b ? a : b;
+
+    return m > c ? m : c;
+}
+
+LUMO_RASTER_HOT uint32_t max3_u32(uint32_t a, uint32_t b, uint32_t c)
+{
+    uint32_t m = a > b ? a : b;
+
+    return m > c ? m : c;
+}
+
 /* Rasterize one screen triangle with positive area. */
 void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int64_t area)
 {
     const lumo_raster_target *tg = c->target;
     int64_t minx, maxx, miny, maxy, px0, px1, py0, py1, py, Erow[3];
     tri t;
-    int i, small;
+    int i, small, sure;
 
-    minx = maxx = v[0].x;
-    miny = maxy = v[0].y;
-    for (i = 1; i < 3; i++) {
-        if (v[i].x < minx) minx = v[i].x;
-        if (v[i].x > maxx) maxx = v[i].x;
-        if (v[i].y < miny) miny = v[i].y;
-        if (v[i].y > maxy) maxy = v[i].y;
-    }
+    /* scalars, not a loop over the vertices: GCC -O2 loaded x and y in
+     * pairs into vector registers and shuffled them (round five part two) */
+    minx = min3_32(v[0].x, v[1].x, v[2].x), maxx = max3_32(v[0].x, v[1].x, v[2].x);
+    miny = min3_32(v[0].y, v[1].y, v[2].y), maxy = max3_32(v[0].y, v[1].y, v[2].y);
     /* Pixel centres (16 p + 8) inside the bounding box, within the band. */
     px0 = floor_div16(minx - 8 + 15);
     px1 = floor_div16(maxx - 8);
@@ -1226,20 +1345,37 @@ void lumo_raster_triangle(const lumo_raster_ctx *c, const lumo_raster_sv *v, int
         return;
     if (c->stats)
         c->stats->tris_drawn++;
+    sure = maxx - minx < BOX_SURE_EXTENT && maxy - miny < BOX_SURE_EXTENT;
+    if (SMALL_TRI(c, sure, area, px1 - px0)) {
+        /* hidden where it is drawn: nothing to set up (20 740 of the 45 934
+         * small triangles a frame of the 48k dragon: 62.86 -> 54.20 M a
+         * frame, docs/benchmarks.md round five part two); not with stats,
+         * which count the covered pixels */
+        if (!c->stats && box_hidden(tg, max3_u32(v[0].q, v[1].q, v[2].q), (int32_t)px0, (int32_t)px1, (int32_t)py0,
+                                    (int32_t)py1))
+            return;
+        tri_setup_small(&t, v, area, (int32_t)px0 * 16 + 8, (int32_t)py0 * 16 + 8, Erow);
+        t.run_bits = RUN_MIN_BITS;
+        t.edges32 = 1;
+        rows32_gouraud(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1);
+        return;
+    }
     tri_setup(&t, v, area);
     /* a box up to 16 pixels wide is one run per row whatever the length */
     t.run_bits = RUN_MIN_BITS;
     if (!c->depth_only && c->nvar == LUMO_RASTER_VAR_GOURAUD && px1 - px0 >= (1 << RUN_MIN_BITS))
         t.run_bits = gouraud_run_bits(&t, area, RUN_MIN_BITS, RUN_PERSPECTIVE_BITS);
-    small = box_edges(&t, px0, px1, py0, py1, maxx - minx < BOX_SURE_EXTENT && maxy - miny < BOX_SURE_EXTENT, Erow);
+    small = box_edges(&t, px0, px1, py0, py1, sure, Erow);
     t.edges32 = small && t.sh == 0;
     for (i = 0; i < 3; i++) {
         t.st32[i] = (int32_t)t.step[i];
         t.bias32[i] = (int32_t)t.e[i].bias;
+        t.dy32[i] = (int32_t)(t.e[i].b * 16);
     }
     if (t.edges32 && !c->depth_only && (c->nvar == LUMO_RASTER_VAR_GOURAUD || pixel32_pieces(c, &t, area))) {
-        rows32_draw(c, &t, Erow, (int32_t)px0, (int32_t)px1, (int32_t)py0, (int32_t)py1,
-                    c->nvar == LUMO_RASTER_VAR_GOURAUD ? span_gouraud32 : span_pixel32);
+        (c->nvar == LUMO_RASTER_VAR_GOURAUD ? rows32_gouraud : rows32_pixel)(c, &t, Erow, (int32_t)px0,
+                                                                            (int32_t)px1, (int32_t)py0,
+                                                                            (int32_t)py1);
         return;
     }
     for (py = py0; py <= py1; py++, Erow[0] += t.e[0].b * 16, Erow[1] += t.e[1].b * 16, Erow[2] += t.e[2].b * 16) {
