@@ -288,9 +288,10 @@ static void add_local_light32(const lumo_raster_light *L, const uint32_t inten[3
     }
     if (L->shadow && (vis = lumo_raster_shadow_visibility(L->shadow, p, n)) == 0)
         return;
-    /* one shift of the 64-bit product: z reaches 30 when |l|^2 < 4 units of
-     * 2^dsh, and 14 - z/2 would then be -1 */
-    cos_n = (uint32_t)(((uint64_t)(uint32_t)ln * u) >> (46 - z / 2));    /* Q14 */
+    /* (ln u) >> (46 - z/2) as a 32-bit shift of the product's top 33 bits
+     * (ln u < 2^63): z reaches 30 when |l|^2 < 4 units of 2^dsh, where a
+     * shift of the top 32 bits by 14 - z/2 would be by -1 */
+    cos_n = (uint32_t)(((uint64_t)(uint32_t)ln * u) >> 31) >> (15 - z / 2);    /* Q14 */
     if (cos_n > 2 * LUMO_Q14_ONE)
         cos_n = 2 * LUMO_Q14_ONE;
     /* |l|^2 (Q32) = dist2 2^(2 dsh) clamped to MIN_DIST2 << 16 */
