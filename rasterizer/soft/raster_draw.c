@@ -427,10 +427,7 @@ static void draw_unclipped(const draw_ctx *c, const lumo_raster_vertex *a,
  * Its own function: the unclipped triangles (nearly all) then do not set up
  * its 1.2 KB of polygon buffers (0.9 M instructions a frame of the 48k
  * dragon, round five). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void draw_clipped(const draw_ctx *c, const lumo_raster_vertex *a, const lumo_raster_vertex *b,
+LUMO_RASTER_APART void draw_clipped(const draw_ctx *c, const lumo_raster_vertex *a, const lumo_raster_vertex *b,
                          const lumo_raster_vertex *d)
 {
     lumo_raster_vertex buf[2][MAX_POLY];

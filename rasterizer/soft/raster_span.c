@@ -26,14 +26,6 @@
 #define SPAN_FAST static
 #endif
 
-/* A function kept out of its one caller (its own frame and saved
- * registers, paid only on its path). */
-#if defined(__GNUC__)
-#define SPAN_APART static __attribute__((noinline))
-#else
-#define SPAN_APART static
-#endif
-
 /* Barycentric precision of the interpolation: Q0.16. */
 #define BARY_BITS 16
 /* Edge functions are scaled down to < 2^24 before the perspective products. */
@@ -236,8 +228,6 @@ static inline void pixel_bary(const tri *t, const int64_t E[3], uint64_t p[3], u
  * in 32 bits. run32: the run [*lo, returned] of pixels 0..len of the
  * row (empty when *lo is greater); run_32: *x0 = first covered pixel,
  * return the last one, or x0 - 1 when none. */
-/* Inlined into rows32_draw's row loop (and run_32): 79.3 -> 77.6 M a frame
- * of small triangles, three rows a triangle. */
 /* One edge's bound on the run [*lo, *hi]; 0 when it leaves the row
  * uncovered. */
 LUMO_RASTER_HOT int run32_edge(int32_t e, int32_t st, int32_t b, int32_t len, int32_t *lo, int32_t *hi)
@@ -259,7 +249,9 @@ LUMO_RASTER_HOT int run32_edge(int32_t e, int32_t st, int32_t b, int32_t len, in
 }
 
 /* The three edges written out (a loop over them was 3 instructions an
- * edge of a row on the host: 1.3 M a frame of small triangles). */
+ * edge of a row on the host: 1.3 M a frame of small triangles), inlined
+ * into rows32_draw's row loop and run_32 (79.3 -> 77.6 M a frame of small
+ * triangles, three rows a triangle). */
 LUMO_RASTER_HOT int32_t run32(const tri *t, const int32_t E[3], int32_t len, int32_t *lo)
 {
     int32_t hi = len;
@@ -825,8 +817,8 @@ typedef struct rows32 {
     unsigned group[4], ngroups, mask_groups;
     lumo_raster_pixel_fixed pf;
     /* the per-vertex indirect light (varyings 9..11), when it differs
-     * between the vertices: affine in screen space (ind_row, ind_at) */
-    int ind;
+     * between the vertices (IND_STEPPED): affine in screen space
+     * (ind_setup, ind_row) */
     uint64_t rcp;          /* affine barycentric lambda_i = E_i rcp >> rs, Q0.31 */
     unsigned rs, f;        /* f: fraction bits of the stepped values */
     int32_t d1[3], d2[3];  /* v1 - v0 and v2 - v0 of the three varyings */
@@ -910,6 +902,10 @@ static void ind_row(const rows32 *g, const tri *t, const int32_t E[3], int32_t w
              + (int32_t)(((int64_t)l1 * g->d1[i] + (int64_t)l2 * g->d2[i] + ((int64_t)1 << (29 - g->f))) >> (30 - g->f));
 }
 
+/* Whether the indirect light's group changes over the triangle: then it is
+ * stepped by piece_groups from ind_row's affine values. */
+#define IND_STEPPED(g) ((g)->mask_groups & (1u << (LUMO_RASTER_VAR_PIXEL / 3)))
+
 /* rows32's per-pixel fields for triangle t, Erow its edge values at one
  * pixel (ind_setup's area). */
 static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3])
@@ -919,7 +915,6 @@ static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t, cons
 
     g->ngroups = 0;
     g->mask_groups = 0;
-    g->ind = 0;
     for (i = 0; i < c->nvar; i += 3) {
         int same = 1;
         for (k = i; k < i + 3; k++)
@@ -927,8 +922,7 @@ static void pixel_groups(rows32 *g, const lumo_raster_ctx *c, const tri *t, cons
         if (same)
             continue;
         g->mask_groups |= 1u << (i / 3);
-        if (i == LUMO_RASTER_VAR_PIXEL) {
-            g->ind = 1;             /* stepped by piece_groups, not evaluated at the pieces' ends */
+        if (i == LUMO_RASTER_VAR_PIXEL) {   /* not evaluated at the pieces' ends */
             ind_setup(g, t, Erow);
             continue;
         }
@@ -976,7 +970,7 @@ static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x
  * run_pixel inlined, without the pieces' loop and the call through
  * g->plain; called from rows32_draw's loop directly (71.21 -> 70.58 M a
  * frame of small triangles with the hidden spans' skip), and kept out of
- * it (SPAN_APART: inlined there, the loop lost 0.9 M a frame). Not on the
+ * it (LUMO_RASTER_APART: inlined there, the loop lost 0.9 M a frame). Not on the
  * boards (-Os), whose frames have few one-pixel spans: there the test per
  * row cost 0.7 instructions a covered pixel (golden_raster), and a
  * one-pixel span takes span_gouraud32's pieces. */
@@ -988,7 +982,7 @@ static int span_hidden(const rows32 *g, const int32_t E[3], int32_t a, int32_t x
 /* Its pixel takes run_pixel's clamped forms (plain 0): the same bytes, and
  * cheaper than run_plain's test for one pixel (-0.03 M a frame, round five
  * part two). */
-SPAN_APART uint32_t pixel_gouraud32(const rows32 *g, const int32_t E[3], int32_t a, int32_t y, uint8_t *drow,
+LUMO_RASTER_APART uint32_t pixel_gouraud32(const rows32 *g, const int32_t E[3], int32_t a, int32_t y, uint8_t *drow,
                                 uint8_t *crow)
 {
     const uint32_t half = (uint32_t)1 << (LUMO_RASTER_SRGB_NEAR_BITS - 1);
@@ -1056,7 +1050,7 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
 
     for (i = 0; i < nvar; i++)                       /* the groups that do not change */
         cur[i] = t->v[0].var[i];
-    if (g->ind) {
+    if (IND_STEPPED(g)) {
         ind_row(g, t, E, ind);
         for (i = 0; i < 3; i++)
             dv[LUMO_RASTER_VAR_PIXEL + i] = g->ind_dv[i];
@@ -1066,7 +1060,7 @@ static uint32_t span_pixel32(const rows32 *g, int32_t E[3], int32_t a, int32_t x
     while (a <= x1) {
         int32_t b = (a | g->mask) < x1 ? a | g->mask : x1, e = b < x1 ? b - a + 1 : b - a, dz = 0, x;
         uint32_t z = za;
-        if (g->ind)                                  /* the indirect light at the piece's start, affine */
+        if (IND_STEPPED(g))                          /* the indirect light at the piece's start, affine */
             for (i = 0; i < 3; i++)
                 va[LUMO_RASTER_VAR_PIXEL + i]
                     = (int32_t)((uint32_t)ind[i] + (uint32_t)(a - a0) * (uint32_t)g->ind_step[i]) >> g->f;
@@ -1190,7 +1184,7 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
     g.cbytes = g.fmt & 1u ? 2u : 4u;
     g.mask = ((int32_t)1 << t->run_bits) - 1;
     if (span == span_pixel32 && c->laying)
-        g.ngroups = 0, g.mask_groups = 0, g.ind = 0;   /* the depth-first pass: depth at the same ends, nothing to shade */
+        g.ngroups = 0, g.mask_groups = 0;   /* the depth-first pass: depth at the same ends, nothing to shade */
     else if (span == span_pixel32)
         pixel_groups(&g, c, t, Erow);
     drow = (uint8_t *)tg->depth + (size_t)(py0 - tg->band_y) * tg->width * g.dbytes;
@@ -1232,13 +1226,13 @@ SPAN_FAST void rows32_draw(const lumo_raster_ctx *c, const tri *t, const int64_t
 /* rows32_draw once per span kind (the tests of `span` in its row loop are
  * then folded away on the host, where SPAN_FAST inlines it; one function
  * under -Os): raster_peers 64.88 -> 64.54 M a frame (round five part two). */
-SPAN_APART void rows32_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+LUMO_RASTER_APART void rows32_gouraud(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
                                int32_t px1, int32_t py0, int32_t py1)
 {
     rows32_draw(c, t, Erow, px0, px1, py0, py1, span_gouraud32);
 }
 
-SPAN_APART void rows32_pixel(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
+LUMO_RASTER_APART void rows32_pixel(const lumo_raster_ctx *c, const tri *t, const int64_t Erow[3], int32_t px0,
                              int32_t px1, int32_t py0, int32_t py1)
 {
     rows32_draw(c, t, Erow, px0, px1, py0, py1, span_pixel32);
@@ -1290,6 +1284,9 @@ static int box_hidden(const lumo_raster_target *tg, uint32_t z, int32_t px0, int
     const uint32_t dv = depth_of(z, d16, 0);
     int32_t x, y;
 
+    /* the comparison written here rather than through pixel_hidden: typed
+     * loads by index are 2 M instructions a frame cheaper than its byte
+     * pointers on this path (raster_peers 54.2 -> 56.3 M) */
     for (y = py0; y <= py1; y++) {
         size_t at = (size_t)(y - tg->band_y) * tg->width;
         for (x = px0; x <= px1; x++)
