@@ -43,7 +43,8 @@ static const char usage[] =
     "                          every base mesh and the grid's corners are in\n"
     "  --backend soft|osmesa|egl  renderer (default soft)\n"
     "  --size WxH              frame size (default 320x240)\n"
-    "  --per-vertex            light per vertex, as a weak device would (default: per pixel)\n"
+    "  --per-vertex | --per-pixel  light per vertex, as a weak device would, or per pixel\n"
+    "                          (default: per pixel)\n"
     "  --shadows N             shadow maps of N x N texels per face for every light\n"
     "                          (point: 6 faces; default 0: no shadows; any backend)\n"
     "  --camera EYE:TARGET:UP:FOVY  draw from this camera (default: the package's)\n"
@@ -105,7 +106,7 @@ static int parse_order(const char *s, options *o)
 }
 
 enum { O_CONNECT = 256, O_SERIAL, O_HTTP, O_REPLAY, O_RECORD, O_RETRIES, O_PACKAGE, O_OUT, O_AT, O_BACKEND,
-       O_SIZE, O_PV, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
+       O_SIZE, O_PV, O_PP, O_ORDER, O_VERTS, O_ROUNDS, O_TARGET, O_PIPE, O_MAXPAY, O_NOSMOOTH, O_SMOOTHB, O_FLOAT, O_ARENA,
        O_QUIET, O_CAMERA, O_FIT, O_UPDATES, O_UPDEVERY, O_SHADOWS, O_PRT, O_ROTATE };
 
 static int take_option(int c, const char *arg, options *o)
@@ -130,6 +131,7 @@ static int take_option(int c, const char *arg, options *o)
     case O_BACKEND: o->backend = arg; return 0;
     case O_SIZE: return parse_size(arg, o);
     case O_PV: o->per_vertex = 1; return 0;
+    case O_PP: o->per_vertex = 0; return 0;
     case O_SHADOWS: return host_opt_shadows(arg, &o->ro.shadow_size, g_err, sizeof g_err);
     case O_CAMERA: o->camera = arg; return 0;
     case O_FIT: o->fit = 1; return 0;
@@ -161,7 +163,7 @@ static int parse_args(int argc, char **argv, options *o)
         {"record", 1, 0, O_RECORD},
         {"retries", 1, 0, O_RETRIES},
         {"package", 1, 0, O_PACKAGE}, {"out", 1, 0, O_OUT}, {"frames-at", 1, 0, O_AT},
-        {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"per-vertex", 0, 0, O_PV},
+        {"backend", 1, 0, O_BACKEND}, {"size", 1, 0, O_SIZE}, {"per-vertex", 0, 0, O_PV}, {"per-pixel", 0, 0, O_PP},
         {"order", 1, 0, O_ORDER}, {"vertices", 1, 0, O_VERTS}, {"rounds", 1, 0, O_ROUNDS},
         {"target-ms", 1, 0, O_TARGET}, {"pipeline", 1, 0, O_PIPE}, {"max-payload", 1, 0, O_MAXPAY},
         {"no-smoothing", 0, 0, O_NOSMOOTH}, {"smoothing-budget", 1, 0, O_SMOOTHB}, {"float", 0, 0, O_FLOAT}, {"arena", 1, 0, O_ARENA},
