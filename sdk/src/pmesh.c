@@ -30,8 +30,11 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
     if (h->batch_count != expected_batches(h))
         return LUMO_ERR_CORRUPT;
     if (h->quant_bits < 1 || h->quant_bits > LUMO_PMESH_MAX_QBITS ||
-        h->position_coding > LUMO_PMESH_POS_CODED || (h->flags & ~LUMO_PMESH_HAS_ALBEDO))
+        h->position_coding > LUMO_PMESH_POS_CODED ||
+        (h->flags & ~(LUMO_PMESH_HAS_ALBEDO | LUMO_PMESH_LATTICE)))
         return LUMO_ERR_UNSUPPORTED;
+    if (h->position_coding != LUMO_PMESH_POS_CODED && (h->flags & LUMO_PMESH_LATTICE))
+        return LUMO_ERR_UNSUPPORTED;  /* lattice copies live in the range code */
     if (h->position_coding == LUMO_PMESH_POS_CODED && (h->flags & LUMO_PMESH_HAS_ALBEDO))
         return LUMO_ERR_UNSUPPORTED;  /* the albedo rides in the payloads CODED drops */
     return LUMO_OK;

@@ -494,24 +494,53 @@ static lumo_status read_residual(split_ctx *s, uint32_t sc, int32_t offset, int3
     return LUMO_OK;
 }
 
+/* LATTICE streams: whether axis d copies a ring coordinate (the copy
+ * flag, by how many ring vertices repeat a value), and which: its rank
+ * among the ring's distinct values, nearest the prediction first, in
+ * unary (docs/progressive-mesh.md §2.3 step 5). *copied is 0 when the
+ * residual follows instead. Work: RING_MAX^2 at most. */
+static lumo_status read_copy(split_ctx *s, const lumo_pmesh_ring *ring, unsigned d, int32_t *value,
+                             int *copied)
+{
+    int32_t cand[LUMO_PMESH_RING_MAX];
+    uint32_t ctx, bit, r = 0, m = lumo_pmesh_lattice_values(s->pm->qpos, ring, d, cand, &ctx);
+    if (read_ctx(s, ctx, &bit))
+        return LUMO_ERR_TRUNCATED;
+    *copied = (int)bit;
+    while (bit && r + 1 < m) {
+        if (read_ctx(s, lumo_pmesh_copy_rank_ctx(r), &bit))
+            return LUMO_ERR_TRUNCATED;
+        r += bit;
+    }
+    *value = cand[r];
+    return LUMO_OK;
+}
+
 /* k appears among its neighbours: lumo_pmesh_predict_position (shared
  * with the stream writer), plus the residual from the payload or, CODED,
- * from the range code. Work: k's valence. */
+ * from the range code (or, LATTICE, a coordinate copied from the ring).
+ * Work: k's valence squared. */
 static lumo_status predict_split(split_ctx *s, uint32_t k)
 {
     lumo_pmesh *pm = s->pm;
-    int32_t pred[3], res[3];
+    lumo_pmesh_ring ring;
+    int32_t res[3];
     uint32_t p = pm->batch_parent[k - s->b->first];
-    uint32_t sc[3];
-    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k, p, pred, sc);
+    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k, p, &ring);
     if (!s->coded)
-        return grid_value(pm, k, pred, s->res, k - s->b->first);
+        return grid_value(pm, k, ring.pred, s->res, k - s->b->first);
     for (unsigned d = 0; d < 3; d++) {
-        lumo_status st = read_residual(s, sc[d], pred[d] - pm->qpos[3 * (size_t)p + d], &res[d]);
+        int copied = 0;
+        int32_t value;
+        lumo_status st = pm->h.flags & LUMO_PMESH_LATTICE ? read_copy(s, &ring, d, &value, &copied) : LUMO_OK;
+        if (!st && copied)
+            res[d] = value - ring.pred[d];  /* both on the grid: no overflow */
+        else if (!st)
+            st = read_residual(s, ring.sc[d], ring.pred[d] - pm->qpos[3 * (size_t)p + d], &res[d]);
         if (st)
             return st;
     }
-    return set_grid(pm, k, pred, res);
+    return set_grid(pm, k, ring.pred, res);
 }
 
 /* Explicit split: the mask over p's corners, then the faces. */

@@ -86,6 +86,7 @@ typedef struct {
     unsigned  quant_bits;     /* grid bits (the fan ranking shifts by them) */
     int       rank_escape;    /* options->fan_rank_escape */
     int       coded;          /* LUMO_PMESH_POS_CODED: positions in the blocks */
+    int       lattice;        /* LUMO_PMESH_LATTICE: coordinates may copy the ring's */
     uint32_t  round_first;    /* first split vertex of the current round */
     uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
     uint32_t  last_fan;       /* the previous split was a fan split */
@@ -168,21 +169,35 @@ static void put_residual(replay *r, bitwriter *w, uint32_t sc, int32_t offset, i
     put_ctx(r, w, lumo_pmesh_sign_ctx(c, offset), v < 0);
 }
 
+/* LATTICE streams (mirrors read_copy in pmesh_batch.c): the copy flag,
+ * and for a coordinate found among the ring's values its rank in unary.
+ * Returns whether it was copied (else the residual follows). */
+static int put_copy(replay *r, bitwriter *w, const lumo_pmesh_ring *ring, unsigned d, int32_t value)
+{
+    int32_t cand[LUMO_PMESH_RING_MAX];
+    uint32_t ctx, m = lumo_pmesh_lattice_values(r->q, ring, d, cand, &ctx), rank = 0;
+    while (rank < m && cand[rank] != value)
+        rank++;
+    put_ctx(r, w, ctx, rank < m);
+    for (uint32_t j = 0; rank < m && j + 1 < m && j <= rank; j++)
+        put_ctx(r, w, lumo_pmesh_copy_rank_ctx(j), j < rank);
+    return rank < m;
+}
+
 /* The residual of k from the decoder's own prediction
  * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c); CODED streams
- * write it into the range code. */
+ * write it into the range code (or, LATTICE, a copied coordinate). */
 static void predict(replay *r, bitwriter *w, uint32_t k)
 {
-    int32_t pred[3];
+    lumo_pmesh_ring ring;
     uint32_t p = r->pm->parent[k];
-    uint32_t sc[3];
-    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, pred, sc);
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, &ring);
     double mark = spent(w);
     for (int d = 0; d < 3; d++) {
-        int32_t v = r->q[3 * (size_t)k + d] - pred[d];
+        int32_t v = r->q[3 * (size_t)k + d] - ring.pred[d];
         r->res[3 * (size_t)k + d] = v;
-        if (r->coded)
-            put_residual(r, w, sc[d], pred[d] - r->q[3 * (size_t)p + d], v);
+        if (r->coded && !(r->lattice && put_copy(r, w, &ring, (unsigned)d, r->q[3 * (size_t)k + d])))
+            put_residual(r, w, ring.sc[d], ring.pred[d] - r->q[3 * (size_t)p + d], v);
     }
     count_bits(w, &mark, &r->st.pos_bits);
 }
@@ -616,7 +631,8 @@ static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_optio
                       pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
                       o->batch_vertices, nb, maxf, maxm, maxb,
                       (uint32_t)q->bits | (uint32_t)o->position_coding << 8 |
-                          (uint32_t)(pm->albedo != NULL) << 16,
+                          (uint32_t)(pm->albedo != NULL) << 16 |
+                          (uint32_t)(o->lattice > 0) << 17,
                       f32bits(q->origin[0]), f32bits(q->origin[1]), f32bits(q->origin[2]),
                       f32bits(q->range)};
     for (int i = 0; i < 16; i++)
@@ -685,6 +701,7 @@ void srv_pm_stream_default_options(srv_pm_stream_options *o)
     o->position_coding = LUMO_PMESH_POS_CODED;
     o->stats = NULL;
     o->fan_rank_escape = 0;
+    o->lattice = -1;
 }
 
 static double field_bits(const srv_pm_stream_stats *st)
@@ -746,24 +763,10 @@ static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
     return LUMO_OK;
 }
 
-lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
-                                size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
+/* One stream with every choice made (o->lattice 0 or 1). */
+static lumo_status build_once(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                              size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
 {
-    srv_pm_stream_options def;
-    if (!o) {
-        srv_pm_stream_default_options(&def);
-        o = &def;
-    }
-    if (!pm->vertices || o->quant_bits < 0 || o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
-        return LUMO_ERR_ARG;
-    srv_pm_stream_options chosen = *o;
-    if (!chosen.batch_vertices)
-        chosen.batch_vertices = srv_pm_stream_auto_batch(pm);
-    if (!chosen.quant_bits)
-        chosen.quant_bits = srv_pm_stream_auto_bits(pm);
-    if (chosen.position_coding == LUMO_PMESH_POS_CODED && pm->albedo)
-        chosen.position_coding = LUMO_PMESH_POS_PREDICTED;  /* the albedo needs the payloads */
-    o = &chosen;
     uint32_t rest = pm->vertices - pm->base_vertices;
     uint32_t nb = 1 + rest / o->batch_vertices + (rest % o->batch_vertices != 0);
     srv_draco_quant q;
@@ -772,6 +775,7 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
     memset(&r, 0, sizeof r);
     r.pm = pm, r.rank_escape = o->fan_rank_escape;
     r.coded = o->position_coding == LUMO_PMESH_POS_CODED;
+    r.lattice = r.coded && o->lattice > 0;
     r.q = malloc(12 * (size_t)pm->vertices), r.res = malloc(12 * (size_t)pm->vertices);
     r.disp = malloc(12 * (size_t)pm->faces + 4), r.next = malloc(12 * (size_t)pm->faces + 4);
     r.head = malloc(4 * (size_t)pm->vertices);
@@ -811,4 +815,49 @@ done:
     free(bi);
     free(s.p);
     return rc;
+}
+
+lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o, uint8_t **out,
+                                size_t *len, srv_pm_batch_info **batches, uint32_t *nbatches)
+{
+    srv_pm_stream_options def;
+    if (!o) {
+        srv_pm_stream_default_options(&def);
+        o = &def;
+    }
+    if (!pm->vertices || o->quant_bits < 0 || o->quant_bits > (int)LUMO_PMESH_MAX_QBITS)
+        return LUMO_ERR_ARG;
+    srv_pm_stream_options chosen = *o;
+    if (!chosen.batch_vertices)
+        chosen.batch_vertices = srv_pm_stream_auto_batch(pm);
+    if (!chosen.quant_bits)
+        chosen.quant_bits = srv_pm_stream_auto_bits(pm);
+    if (chosen.position_coding == LUMO_PMESH_POS_CODED && pm->albedo)
+        chosen.position_coding = LUMO_PMESH_POS_PREDICTED;  /* the albedo needs the payloads */
+    if (chosen.position_coding != LUMO_PMESH_POS_CODED)
+        chosen.lattice = 0;
+    if (chosen.lattice >= 0)
+        return build_once(pm, &chosen, out, len, batches, nbatches);
+    /* per mesh: with lattice copies only where they make the stream smaller */
+    srv_pm_stream_stats st[2];
+    srv_pm_batch_info *bi[2] = {NULL, NULL};
+    uint8_t *s[2] = {NULL, NULL};
+    size_t n[2] = {0, 0};
+    lumo_status rc = LUMO_OK;
+    for (int l = 0; l < 2 && !rc; l++) {
+        chosen.lattice = l, chosen.stats = &st[l];
+        rc = build_once(pm, &chosen, &s[l], &n[l], batches ? &bi[l] : NULL, nbatches);
+    }
+    int keep = !rc && n[1] < n[0];
+    free(s[!keep]), free(bi[!keep]);
+    if (rc) {
+        free(s[keep]), free(bi[keep]);
+        return rc;
+    }
+    if (o->stats)
+        *o->stats = st[keep];
+    if (batches)
+        *batches = bi[keep];
+    *out = s[keep], *len = n[keep];
+    return LUMO_OK;
 }

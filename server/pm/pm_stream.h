@@ -38,6 +38,9 @@ typedef struct srv_pm_stream_options {
     int                 fan_rank_escape; /* 1: every fan takes the rank's escape and is
                                             coded explicitly (tests the decoder's escape
                                             path; larger streams), 0 (default) */
+    int                 lattice;         /* LUMO_PMESH_LATTICE (CODED only): 1 on, 0 off,
+                                            -1 (default): per mesh, whichever stream is
+                                            smaller (built both ways) */
 } srv_pm_stream_options;
 
 void srv_pm_stream_default_options(srv_pm_stream_options *o);

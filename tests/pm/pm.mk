@@ -19,9 +19,11 @@ test-pm: $(PM_CHECK)
 	          "scan --batch 3" "scan --batch 2 --rounds 0" "sphere --batch 250 --bits 16" "cornell --batch 5 --absolute" "seam --batch 4" "seam --batch 60 --absolute" \
 	          "scan --batch 3 --predicted" "sphere --batch 9 --bits 20" "grid --batch 40 --predicted" \
 	          "sphere --batch 7 --rank-escape" "scan --batch 3 --rank-escape" \
-	          "wall --batch 5 --base 4/2" "box --batch 5 --base 8/12"; do \
+	          "wall --batch 5 --base 4/2" "box --batch 5 --base 8/12" \
+	          "voxel --batch 50 --expect-lattice 1" "sphere --batch 50 --expect-lattice 0" \
+	          "scan --batch 3 --lattice on" "cornell --batch 7 --lattice on" "grid --batch 40 --lattice on"; do \
 	    $(PM_CHECK) --gen $$g || st=1; done; \
-	for m in "dragon_11k.ply --batch 1" "dragon_11k.ply --batch 250" "dragon_11k.ply --batch 250 --rounds 0" "dragon_11k.ply --batch 250 --predicted" "dragon_48k.ply --batch 250"; do \
+	for m in "dragon_11k.ply --batch 1" "dragon_11k.ply --batch 250" "dragon_11k.ply --batch 250 --rounds 0" "dragon_11k.ply --batch 250 --predicted" "dragon_48k.ply --batch 250" "dragon_11k.ply --batch 250 --lattice on"; do \
 	    set -- $$m; f=$(PM_MODELS)/$$1; shift; \
 	    if [ -f $$f ]; then $(PM_CHECK) $$f "$$@" || st=1; \
 	    else echo "RESULT: 0 passed, 1 failed ($$f missing: run tools/setup.sh)"; st=1; fi; done; exit $$st

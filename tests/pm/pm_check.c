@@ -485,6 +485,7 @@ int main(int argc, char **argv)
 {
     const char *gen = NULL, *file = NULL, *dump = NULL, *want_base = NULL;
     long base_max = -1;
+    int want_lattice = -1;
     int want_rgb = 0;
     srv_pm_stream_options so;
     srv_pm_stream_stats st;
@@ -503,6 +504,11 @@ int main(int argc, char **argv)
             so.position_coding = LUMO_PMESH_POS_ABSOLUTE;
         else if (!strcmp(argv[i], "--predicted"))  /* residuals in Draco payloads (version 4's) */
             so.position_coding = LUMO_PMESH_POS_PREDICTED;
+        else if (!strcmp(argv[i], "--lattice") && i + 1 < argc) {
+            const char *v = argv[++i];  /* auto (default), on, off */
+            so.lattice = !strcmp(v, "on") ? 1 : !strcmp(v, "off") ? 0 : -1;
+        } else if (!strcmp(argv[i], "--expect-lattice") && i + 1 < argc)
+            want_lattice = atoi(argv[++i]);  /* 1/0: the stream must (not) copy coordinates */
         else if (!strcmp(argv[i], "--rank-escape"))
             so.fan_rank_escape = 1;  /* every ranked fan coded explicitly after the escape */
         else if (!strcmp(argv[i], "--write-stream") && i + 1 < argc)
@@ -534,6 +540,8 @@ int main(int argc, char **argv)
                                                               : "absolute",
              po.round_fraction,
              so.fan_rank_escape ? "/fans explicit" : "");
+    if (so.lattice >= 0)
+        snprintf(g_name + strlen(g_name), sizeof g_name - strlen(g_name), "/lattice %s", so.lattice ? "on" : "off");
     srv_pm pm;
     uint8_t *s = NULL;
     size_t len = 0;
@@ -578,6 +586,12 @@ int main(int argc, char **argv)
             int fewest = b == SRV_PM_MIN_AUTO_BITS || range / ((1 << (b - 1)) - 1) > 0.9999 * edge / SRV_PM_EDGE_STEPS;
             snprintf(err, sizeof err, "%d bits, step %.3g, median edge %.3g", b, range / ((1 << b) - 1), edge);
             check(fine && fewest, "position bits from the median edge", err);
+        }
+        if (streamed && want_lattice >= 0) {
+            /* per mesh (auto): copies where the mesh's coordinates repeat
+             * on lattice lines, none where they would cost */
+            snprintf(err, sizeof err, "header flags 0x%02x", s[46]);
+            check(!(s[46] & LUMO_PMESH_LATTICE) == !want_lattice, "lattice copies chosen per mesh", err);
         }
         if (streamed && dump) {
             FILE *f = fopen(dump, "wb");

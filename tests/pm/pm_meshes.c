@@ -199,6 +199,25 @@ static void holes(pm_test_mesh *m)
     m->nf = kept;
 }
 
+/* A sphere as marching cubes leaves one: every vertex on a line of a
+ * lattice of step h, two of its coordinates on lattice planes (those of
+ * the axes least along its normal), the third free. LATTICE streams copy
+ * such coordinates from the ring (docs/progressive-mesh.md §2.3 step 5). */
+static void voxel(pm_test_mesh *m)
+{
+    const double h = 2.0 / 28;
+    sphere(m, 48, 26, 1.0, 0);
+    for (uint32_t v = 0; v < m->nv; v++) {
+        float *p = m->xyz + 3 * v;
+        int free_axis = 0;
+        for (int a = 1; a < 3; a++)
+            free_axis = fabsf(p[a]) > fabsf(p[free_axis]) ? a : free_axis;
+        for (int a = 0; a < 3; a++)
+            if (a != free_axis)
+                p[a] = (float)(h * floor(p[a] / h + 0.5));
+    }
+}
+
 int pm_test_mesh_make(const char *name, pm_test_mesh *m)
 {
     memset(m, 0, sizeof *m);
@@ -220,6 +239,8 @@ int pm_test_mesh_make(const char *name, pm_test_mesh *m)
         scan(m);
     else if (!strcmp(name, "holes"))
         holes(m);
+    else if (!strcmp(name, "voxel"))
+        voxel(m);
     else if (!strcmp(name, "tiny")) {
         sphere(m, 6, 4, 1.0, 0);
     } else

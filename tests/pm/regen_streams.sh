@@ -17,6 +17,7 @@ seeds=tests/fuzz/seeds/fuzz_pmesh
 "$check" --gen tiny --batch 3 --max-error 0 --absolute --write-stream "$seeds/tiny_absolute.lpm"
 "$check" --gen grid --batch 40 --max-error 0 --write-stream "$seeds/grid.lpm"
 "$check" --gen seam --batch 7 --albedo --max-error 0 --write-stream "$seeds/seam_albedo.lpm"
+"$check" --gen voxel --batch 50 --lattice on --write-stream "$seeds/voxel_lattice.lpm"
 # test_pmesh.c's k_stream: the bytes of tiny_coded.lpm, 16 a line
 python3 - "$seeds/tiny_coded.lpm" tests/unit/test_pmesh.c <<'PY'
 import sys

@@ -30,7 +30,7 @@ typedef struct {
 } args;
 
 static const char k_usage[] =
-    "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--albedo] [--raw]\n"
+    "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--lattice auto|on|off] [--albedo] [--raw]\n"
     "       lumo-pm clean IN -o OUT.ply\n"
     "       lumo-pm apply STREAM [RECORDS]\n"
     "       lumo-pm bench --out SECTION.md MODEL...\n"
@@ -39,6 +39,8 @@ static const char k_usage[] =
     "  --min-vertices N   stop simplifying at N vertices, 3.. (default 3)\n"
     "  --rounds F         fraction of candidates per independent-set round, 0..1 (0.1; 0: one\n"
     "                     collapse at a time)\n"
+    "  --lattice M        coordinates copied from the ring (meshes from voxel grids): auto (default:\n"
+    "                     built both ways, the smaller kept), on or off\n"
     "  --albedo           stream the per-vertex albedo too\n"
     "  --raw              write the bare stream, not a package (no INFO: lumo-render needs a scene\n"
     "                     from lumo-bake; lumo-inspect --stream / --lod read both)\n";
@@ -64,6 +66,14 @@ static int take_value(args *a, const char *opt, const char *v, char *err, size_t
         return host_opt_u32(opt, v, 3, UINT32_MAX, &a->po.min_vertices, err, errlen);
     if (!strcmp(opt, "--rounds"))
         return host_opt_double(opt, v, 0, 1, &a->po.round_fraction, err, errlen);
+    if (!strcmp(opt, "--lattice")) {
+        static const char *const modes[] = {"auto", "off", "on"};
+        for (int m = 0; m < 3; m++)
+            if (!strcmp(v, modes[m]))
+                return a->so.lattice = m - 1, 0;
+        snprintf(err, errlen, "--lattice: '%.32s' is not auto, on or off", v);
+        return -1;
+    }
     snprintf(err, errlen, "%.64s: unknown option (try --help)", opt);
     return -1;
 }
@@ -164,9 +174,10 @@ static int cmd_build(const args *a, int clean_only)
     lumo_pmesh_header h;
     (void)lumo_pmesh_read_header(s, n, &h);  /* what the per-mesh choices made */
     printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
-           "%u batches of %u, %u-bit positions, %zu bytes, %.2f bits/triangle\n",
+           "%u batches of %u, %u-bit positions%s, %zu bytes, %.2f bits/triangle\n",
            a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
-           pm.base_faces, nb, h.batch_vertices, h.quant_bits, n, pm.faces ? 8.0 * n / pm.faces : 0.0);
+           pm.base_faces, nb, h.batch_vertices, h.quant_bits,
+           h.flags & LUMO_PMESH_LATTICE ? " (lattice copies)" : "", n, pm.faces ? 8.0 * n / pm.faces : 0.0);
     double sv = st.splits ? (double)st.splits : 1.0;
     printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, positions %.2f, "
            "other %.2f, draco payload %.2f, record heads %.2f\n",

@@ -39,7 +39,7 @@
  * varints (index, side bytes, Draco bytes) and a CRC-32: 7 to 19 bytes. */
 #define LUMO_PMESH_BATCH_HEAD_MIN 7u
 #define LUMO_PMESH_BATCH_HEAD_MAX 19u   /* bytes of a record head, at most */
-#define LUMO_PMESH_VERSION     6u    /* the stream version read (docs/progressive-mesh.md) */
+#define LUMO_PMESH_VERSION     7u    /* the stream version read (docs/progressive-mesh.md) */
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
@@ -58,12 +58,18 @@
 /* Header flag: every payload also carries a COLOR uint8 x3 attribute, the
  * per-vertex albedo (0..255 -> 0..1). */
 #define LUMO_PMESH_HAS_ALBEDO 1u
+/* Header flag (CODED only): a split vertex's coordinate on an axis may be
+ * copied from one of its ring's (docs/progressive-mesh.md §2.3 step 5):
+ * meshes extracted from a voxel grid put their vertices on its lines, so
+ * a coordinate often repeats a neighbour's. The writer sets it when it
+ * makes the stream smaller. */
+#define LUMO_PMESH_LATTICE    2u
 /* "LPM1", first character in the lowest byte. */
 #define LUMO_PMESH_MAGIC       0x314d504cu
 /* Adaptive contexts of the split records' range code (a probability and
  * a count each, one uint32), kept from record to record (layout:
  * lumo_shared/pmesh_shared.h); in the arena. */
-#define LUMO_PMESH_CONTEXTS    292u
+#define LUMO_PMESH_CONTEXTS    301u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {

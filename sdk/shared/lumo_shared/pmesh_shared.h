@@ -104,8 +104,17 @@ static inline uint32_t lumo_pmesh_ctx_update(uint32_t ctx, uint32_t bit)
  * places, or one by the offset's size, gained < 0.1 bit more and cost the
  * bunny 0.1 … 0.2%). */
 #define LUMO_PMESH_CTX_FLAT     (LUMO_PMESH_CTX_SIGN + LUMO_PMESH_SIGN_CLASSES * LUMO_PMESH_SIGN_DIRS)
-#define LUMO_PMESH_CTX_END      (LUMO_PMESH_CTX_FLAT + LUMO_PMESH_SPREAD_CTXS)
-typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END <= LUMO_PMESH_CONTEXTS ? 1 : -1];
+/* LATTICE streams (§2.3 step 5): whether an axis's coordinate is copied
+ * from the ring, by how many of the ring's vertices repeat a value on
+ * that axis (COPY_CTXS, the last one shared by more); the copied value's
+ * rank in unary, by place (COPY_RANK_CTXS, the last one shared by every
+ * later place). */
+#define LUMO_PMESH_COPY_CTXS      5u
+#define LUMO_PMESH_COPY_RANK_CTXS 4u
+#define LUMO_PMESH_CTX_COPY       (LUMO_PMESH_CTX_FLAT + LUMO_PMESH_SPREAD_CTXS)
+#define LUMO_PMESH_CTX_COPY_RANK  (LUMO_PMESH_CTX_COPY + LUMO_PMESH_COPY_CTXS)
+#define LUMO_PMESH_CTX_END        (LUMO_PMESH_CTX_COPY_RANK + LUMO_PMESH_COPY_RANK_CTXS)
+typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END == LUMO_PMESH_CONTEXTS ? 1 : -1];
 /* The contexts at the start of a stream (every record after the base
  * carries them on): LUMO_PMESH_RC_PROB_INIT (1/2) and count 0, except the
  * residual class bits (and the FLAT ones, as j = 0), which start from a
@@ -172,9 +181,6 @@ int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint
  * ARC_BITS) on finer grids), so a score and the candidate's id fit one
  * int64 key. */
 #define LUMO_PMESH_ARC_BITS 14u
-/* Predicted positions: a split vertex is predicted by the rounded mean of
- * the corners of its faces, its parent counted this many extra times. */
-#define LUMO_PMESH_PARENT_WEIGHT  2u
 /* The candidate fans of a fan split whose parent p has n corners (1 ...
  * ARC_MAX_CORNERS), ranked by geometry (docs/progressive-mesh.md §2.3
  * step 3; sdk/src/pmesh_predict.c). The stream writer and the decoder share
@@ -200,20 +206,38 @@ static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
     return 4095u - (uint32_t)((uint64_t)key & 4095u);
 }
 
-/* The predicted grid point of split vertex k right after its split, with
+/* What a split vertex k's ring predicts right after its split, with
  * parent p (docs/progressive-mesh.md §2.3 step 5; sdk/src/pmesh_predict.c):
- * L(k) is walked from head[k] through next[] until LUMO_PMESH_NIL, corner c
- * showing tris[c]; q holds 3 grid integers per vertex. sc[] gets each
- * axis's spread class (0 ... SPREAD_CTXS - 1): the bit length of 3 times
- * the extent (max - min) of the predicting vertices on that axis, which
- * scales with the residual on that axis (LUMO_PMESH_POS_CODED conditions
- * the residual's class on it; version 5 had one class for the three axes,
- * from the sum of the extents: the 871k dragon's positions 12.85 -> 12.50
- * bits per vertex). Shared by the stream writer and the decoder. */
+ * pred, a blend of p, the wings' mean and the inner ring's mean; sc[],
+ * each axis's spread class (0 ... SPREAD_CTXS - 1), the bit length of 3
+ * times the extent (max - min) of the ring and p on that axis, which
+ * scales with the residual on that axis; vert[], the ring's first
+ * RING_MAX distinct vertices, p first, in walk order (a LATTICE stream
+ * copies coordinates from them). L(k) is walked from head[k] through
+ * next[] until LUMO_PMESH_NIL, corner c showing tris[c]; q holds 3 grid
+ * integers per vertex. Shared by the stream writer and the decoder. */
 #define LUMO_PMESH_NIL 0xffffffffu
+#define LUMO_PMESH_RING_MAX 32u
+typedef struct lumo_pmesh_ring {
+    int32_t  pred[3];
+    uint32_t sc[3];
+    uint32_t n;                        /* vertices in vert[] (>= 1) */
+    uint32_t vert[LUMO_PMESH_RING_MAX];
+} lumo_pmesh_ring;
 void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                 const uint32_t *next, uint32_t k, uint32_t p, int32_t pred[3],
-                                 uint32_t sc[3]);
+                                 const uint32_t *next, uint32_t k, uint32_t p,
+                                 lumo_pmesh_ring *ring);
+/* The distinct values on axis d of the ring's vertices into cand[] (room
+ * for RING_MAX), nearest the prediction first (ties: the smaller value);
+ * returns their count m and sets *copy_ctx, the context of the copy flag
+ * (CTX_COPY + min(n - m, COPY_CTXS - 1): how many vertices repeat a
+ * value). Work: RING_MAX^2 at most. */
+uint32_t lumo_pmesh_lattice_values(const int32_t *q, const lumo_pmesh_ring *ring, unsigned d,
+                                   int32_t *cand, uint32_t *copy_ctx);
+static inline uint32_t lumo_pmesh_copy_rank_ctx(uint32_t j)
+{
+    return LUMO_PMESH_CTX_COPY_RANK + (j < LUMO_PMESH_COPY_RANK_CTXS ? j : LUMO_PMESH_COPY_RANK_CTXS - 1u);
+}
 
 /* w(c) of docs/progressive-mesh.md: the bit width of a value in [0, count),
  * the smallest n with 2^n >= count (0 for count <= 1). The stream writer
