@@ -35,8 +35,6 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
         return LUMO_ERR_UNSUPPORTED;
     if (h->position_coding != LUMO_PMESH_POS_CODED && (h->flags & LUMO_PMESH_LATTICE))
         return LUMO_ERR_UNSUPPORTED;  /* lattice copies live in the range code */
-    if (h->position_coding == LUMO_PMESH_POS_CODED && (h->flags & LUMO_PMESH_HAS_ALBEDO))
-        return LUMO_ERR_UNSUPPORTED;  /* the albedo rides in the payloads CODED drops */
     return LUMO_OK;
 }
 

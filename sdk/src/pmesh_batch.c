@@ -101,6 +101,7 @@ typedef struct {
                                 record), NIL before the first split */
     uint32_t    round_first; /* first split vertex of the current round */
     uint32_t    last_fan;    /* the previous split was a fan split */
+    uint32_t    last_same;   /* the previous split's albedo was its parent's */
     uint32_t    stamped;     /* splits whose parent's round_parent is set */
     uint32_t   *ctx;         /* pm->ctx (pm->ctx_undo keeps the batch's start) */
 } split_ctx;
@@ -220,7 +221,7 @@ static void store_albedo(lumo_pmesh *pm, const batch *b, const lumo_draco_attrib
     for (uint32_t i = 0; a && i < b->count; i++)
         for (unsigned c = 0; c < 3; c++) {
             int32_t v = lumo_draco_value(a, i, c);
-            pm->albedo[3 * (size_t)(b->first + i) + c] = (lumo_q1_14)((v * LUMO_Q14_ONE + 127) / 255);
+            pm->albedo[3 * (size_t)(b->first + i) + c] = (lumo_q1_14)lumo_pmesh_albedo_q14((uint32_t)v);
         }
 }
 
@@ -747,6 +748,25 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
  * reading an adaptive bit, until a 1 names the parent. Else (a new round)
  * p follows as tb(k) and the round starts at k. Work: the vertices passed
  * and their valences; a round passes each vertex once. */
+/* A new round's first parent (docs/progressive-mesh.md §2.3 step 1): the
+ * class c of p + 1 (1 ... w(k + 1)) in unary, adaptive bits "c > j" for
+ * j = 1, 2, ... (none once c = w(k + 1)), then the c - 1 bits of p + 1
+ * under its leading one as one (c - 1)-bit value of direct bits. p >= k is left to
+ * the caller (RANGE). Work: at most 2 w(k + 1) bits. */
+static lumo_status read_round_start(split_ctx *s, uint32_t k, uint32_t *p)
+{
+    uint32_t cmax = lumo_pmesh_field_bits(k + 1u), c = 1, bit = 1, low = 0;
+    while (c < cmax && bit) {
+        if (read_ctx(s, lumo_pmesh_start_ctx(c - 1u), &bit))
+            return LUMO_ERR_TRUNCATED;
+        c += bit;
+    }
+    if (read_bits(&s->br, c - 1u, &low))
+        return LUMO_ERR_TRUNCATED;
+    *p = ((uint32_t)1 << (c - 1u) | low) - 1u;
+    return LUMO_OK;
+}
+
 static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
 {
     lumo_pmesh *pm = s->pm;
@@ -755,7 +775,7 @@ static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
         return LUMO_ERR_TRUNCATED;
     if (!bit) {
         s->round_first = k;
-        return read_trunc(&s->br, k, p) ? LUMO_ERR_TRUNCATED : LUMO_OK;
+        return read_round_start(s, k, p);
     }
     for (v = s->prev_parent + 1; v < s->round_first; v++) {
         int c = lumo_pmesh_parent_ctx(pm->tris, pm->head, pm->next, pm->round_parent, v, s->round_first);
@@ -767,6 +787,39 @@ static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
             return *p = v, LUMO_OK;
     }
     return LUMO_ERR_CORRUPT;  /* no parent before the round's first split */
+}
+
+/* CODED albedo of split vertex k (docs/progressive-mesh.md §2.3 step 6):
+ * "the parent's" (adaptive, by the previous split's answer), else per
+ * channel a residual from the parent's code: its class (bit length of |r|,
+ * 0 ... 8) in unary by channel and place, the c - 1 bits under its leading
+ * one as one direct value, the sign by channel. Written straight into the
+ * albedo array: vertices past vertex_count are invisible until kept. */
+static lumo_status read_split_albedo(split_ctx *s, uint32_t p, uint32_t k)
+{
+    lumo_q1_14 *a = s->pm->albedo;
+    uint32_t same, ch;
+    if (read_ctx(s, LUMO_PMESH_CTX_ALB_SAME + s->last_same, &same))
+        return LUMO_ERR_TRUNCATED;
+    s->last_same = same;
+    for (ch = 0; ch < 3; ch++) {
+        uint32_t pred = lumo_pmesh_albedo_code((uint32_t)a[3 * (size_t)p + ch]), c = 0, bit = 1, low = 0;
+        int32_t v = (int32_t)pred;
+        while (!same && c < LUMO_PMESH_ALB_CLASSES && bit) {
+            if (read_ctx(s, LUMO_PMESH_CTX_ALB_CLASS + ch * LUMO_PMESH_ALB_CLASSES + c, &bit))
+                return LUMO_ERR_TRUNCATED;
+            c += bit;
+        }
+        if (c) {
+            if (read_bits(&s->br, c - 1u, &low) || read_ctx(s, LUMO_PMESH_CTX_ALB_SIGN + ch, &bit))
+                return LUMO_ERR_TRUNCATED;
+            v += bit ? -(int32_t)((1u << (c - 1u)) | low) : (int32_t)((1u << (c - 1u)) | low);
+        }
+        if (v < 0 || v > 255)
+            return LUMO_ERR_RANGE;
+        a[3 * (size_t)k + ch] = (lumo_q1_14)lumo_pmesh_albedo_q14((uint32_t)v);
+    }
+    return LUMO_OK;
 }
 
 static lumo_status split(split_ctx *s, uint32_t k)
@@ -787,7 +840,9 @@ static lumo_status split(split_ctx *s, uint32_t k)
         return st;
     if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
         return st;
-    return s->res || s->coded ? predict_split(s, k) : LUMO_OK;
+    if ((s->res || s->coded) && (st = predict_split(s, k)))
+        return st;
+    return s->coded && s->pm->albedo ? read_split_albedo(s, p, k) : LUMO_OK;
 }
 
 /* A split record's block is one range code (pmesh_rc.h). */
@@ -807,7 +862,7 @@ static lumo_status run_split_block(split_ctx *s)
 }
 
 /* CODED base positions: quant_bits per grid integer, x, y, z per vertex
- * (every value fits the grid). */
+ * (every value fits the grid); with albedo, then 8 bits per channel. */
 static lumo_status read_base_positions(split_ctx *s)
 {
     uint32_t v;
@@ -826,6 +881,12 @@ static lumo_status run_base_block(split_ctx *s)
     lumo_status st = read_base(s);
     if (!st && s->coded)
         st = read_base_positions(s);
+    for (size_t at = 0; !st && s->coded && s->pm->albedo && at < 3 * (size_t)s->b->count; at++) {
+        uint32_t v;
+        if (read_bits(&s->br, 8, &v))
+            return LUMO_ERR_TRUNCATED;
+        s->pm->albedo[at] = (lumo_q1_14)lumo_pmesh_albedo_q14(v);
+    }
     if (st)
         return st;
     if ((s->br.wb.pos + 7) / 8 != s->b->side_bytes)
@@ -929,6 +990,7 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
     s.pm = pm, s.b = &b, s.res = predicted ? pos : NULL, s.coded = coded;
     s.br.wb = (lumo_wire_bits){b.side, (size_t)b.side_bytes * 8u, 0};
     s.prev_parent = pm->last_parent, s.round_first = pm->round_first, s.last_fan = pm->last_fan;
+    s.last_same = pm->last_same;
     s.ctx = pm->ctx;
     memcpy(pm->ctx_undo, pm->ctx, LUMO_PMESH_CONTEXTS * sizeof *pm->ctx);
     /* absolute positions first: the fan ranks read the batch's earlier
@@ -941,8 +1003,10 @@ lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size)
         return st;
     }
     pm->last_parent = s.prev_parent, pm->round_first = s.round_first, pm->last_fan = s.last_fan;
+    pm->last_same = s.last_same;
     store_positions(pm, &b);
-    store_albedo(pm, &b, rgb);
+    if (!coded)
+        store_albedo(pm, &b, rgb);
     pm->split_log[b.first ? b.count : 0] = s.log_n;
     pm->log_n = s.log_n, pm->last_first = b.first;
     pm->vertex_count += b.count;

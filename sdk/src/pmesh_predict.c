@@ -165,6 +165,59 @@ static int64_t mean_or(int64_t sum, uint32_t n, int32_t fallback)
     return n ? (sum + n / 2) / n : fallback;
 }
 
+/* The ring's bend along its normal, carried over to k (§2.3 step 5): on a
+ * curved surface p stands off the plane of its ring by h, and k, one
+ * edge away on the same surface, stands off its prediction by about
+ * BEND_NUM / BEND_DEN of that. N is the sum of the cross products (a - p) x
+ * (b - p) over k's faces (k, a, b), scaled down to 15 bits per axis; h the
+ * offset of p from the ring's mean along N. Rings of more than
+ * BEND_MAX_CORNERS corners (no surface to speak of) are not bent. All
+ * integer: |N| < 2^15, |p - mean| * count < 2^28, products < 2^62. */
+#define BEND_NUM 3
+#define BEND_DEN 8
+#define BEND_MAX_CORNERS 64u
+
+static int64_t div_round(int64_t num, int64_t den)  /* den > 0; half away from 0 */
+{
+    return (num >= 0 ? num + den / 2 : num - den / 2) / den;
+}
+
+static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *head,
+                      const uint32_t *next, uint32_t k, uint32_t p, const int64_t rsum[3],
+                      uint32_t count, int32_t bend[3])
+{
+    const int32_t *qp = q + 3 * (size_t)p;
+    int64_t n[3] = {0, 0, 0}, big = 0, h = 0, nn = 0;
+    uint32_t corners = 0, c;
+    unsigned d;
+    for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c]) {
+        const int32_t *a = q + 3 * (size_t)ring_vertex(tris, c, 1), *b = q + 3 * (size_t)ring_vertex(tris, c, 2);
+        int64_t u[3], v[3];
+        if (++corners > BEND_MAX_CORNERS || !count)
+            return;
+        for (d = 0; d < 3; d++)
+            u[d] = (int64_t)a[d] - qp[d], v[d] = (int64_t)b[d] - qp[d];
+        n[0] += u[1] * v[2] - u[2] * v[1];
+        n[1] += u[2] * v[0] - u[0] * v[2];
+        n[2] += u[0] * v[1] - u[1] * v[0];
+    }
+    for (d = 0; d < 3; d++)
+        big = n[d] > big ? n[d] : -n[d] > big ? -n[d] : big;
+    while (big >= (int64_t)1 << 15) {
+        big /= 2;
+        for (d = 0; d < 3; d++)
+            n[d] /= 2;
+    }
+    for (d = 0; d < 3; d++) {
+        h += ((int64_t)qp[d] * count - rsum[d]) * n[d];
+        nn += n[d] * n[d];
+    }
+    if (!nn)
+        return;
+    for (d = 0; d < 3; d++)
+        bend[d] = (int32_t)div_round(BEND_NUM * h * n[d], (int64_t)BEND_DEN * count * nn);
+}
+
 void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
                                  const uint32_t *next, uint32_t k, uint32_t p,
                                  lumo_pmesh_ring *ring)
@@ -192,10 +245,14 @@ void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const u
         }
     {
         const uint8_t *w = BLEND[ni == 0 ? 0 : ni <= 2 ? 1 : ni <= 4 ? 2 : 3];
+        int32_t bend[3] = {0, 0, 0};
+        int64_t rsum[3] = {wsum[0] + isum[0], wsum[1] + isum[1], wsum[2] + isum[2]};
+        curvature(q, tris, head, next, k, p, rsum, nw + ni, bend);
         for (d = 0; d < 3; d++) {
             int64_t blend = w[0] * (int64_t)qp[d] + w[1] * mean_or(wsum[d], nw, qp[d]) +
                             w[2] * mean_or(isum[d], ni, qp[d]);
-            ring->pred[d] = (int32_t)((blend + 8) / 16);
+            int64_t v = (blend + 8) / 16 + bend[d];
+            ring->pred[d] = (int32_t)(v < lo[d] ? lo[d] : v > hi[d] ? hi[d] : v);
             ring->sc[d] = spread_class(lo[d], hi[d]);
         }
     }

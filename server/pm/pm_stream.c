@@ -90,6 +90,7 @@ typedef struct {
     uint32_t  round_first;    /* first split vertex of the current round */
     uint32_t *round_parent;   /* per vertex: round start of its last round as a parent */
     uint32_t  last_fan;       /* the previous split was a fan split */
+    uint32_t  last_same;      /* the previous split's albedo was its parent's */
     uint32_t  ctx[LUMO_PMESH_CONTEXTS];  /* the decoder's contexts, replayed */
 } replay;
 
@@ -140,6 +141,8 @@ static void write_base(replay *r, bitwriter *w)
     }
     for (size_t at = 0; r->coded && at < 3 * (size_t)pm->base_vertices; at++)
         put_bits(w, (uint32_t)r->q[at], r->quant_bits);
+    for (size_t at = 0; r->coded && pm->albedo && at < 3 * (size_t)pm->base_vertices; at++)
+        put_bits(w, pm->albedo[at], 8);
     for (uint32_t v = 0; v < pm->base_vertices; v++)
         for (int c = 0; c < 3; c++)
             r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
@@ -200,6 +203,31 @@ static void predict(replay *r, bitwriter *w, uint32_t k)
             put_residual(r, w, ring.sc[d], ring.pred[d] - r->q[3 * (size_t)p + d], v);
     }
     count_bits(w, &mark, &r->st.pos_bits);
+}
+
+/* Mirrors read_split_albedo() in pmesh_batch.c: "the parent's", else per
+ * channel the residual's class in unary, the bits under its leading one,
+ * the sign. */
+static void put_albedo(replay *r, bitwriter *w, uint32_t p, uint32_t k)
+{
+    const uint8_t *a = r->pm->albedo;
+    uint32_t same = !memcmp(a + 3 * (size_t)p, a + 3 * (size_t)k, 3);
+    double mark = spent(w);
+    put_ctx(r, w, LUMO_PMESH_CTX_ALB_SAME + r->last_same, same);
+    r->last_same = same;
+    for (uint32_t ch = 0; !same && ch < 3; ch++) {
+        int32_t v = (int32_t)a[3 * (size_t)k + ch] - (int32_t)a[3 * (size_t)p + ch];
+        uint32_t m = (uint32_t)(v < 0 ? -v : v), c = 0;
+        while (m >> c)
+            c++;
+        for (uint32_t j = 0; j < LUMO_PMESH_ALB_CLASSES && j <= c; j++)
+            put_ctx(r, w, LUMO_PMESH_CTX_ALB_CLASS + ch * LUMO_PMESH_ALB_CLASSES + j, j < c);
+        if (c) {
+            put_bits(w, m - (1u << (c - 1u)), c - 1u);
+            put_ctx(r, w, LUMO_PMESH_CTX_ALB_SIGN + ch, v < 0);
+        }
+    }
+    count_bits(w, &mark, &r->st.albedo_bits);
 }
 
 static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
@@ -473,6 +501,18 @@ static int parent_ctx(const replay *r, uint32_t v)
     return lumo_pmesh_parent_ctx(r->disp, r->head, r->next, r->round_parent, v, r->round_first);
 }
 
+/* Mirrors read_round_start(): p + 1 as its class in adaptive unary, then
+ * the bits under its leading one as one (c - 1)-bit value. */
+static void put_round_start(replay *r, bitwriter *w, uint32_t p, uint32_t k)
+{
+    uint32_t v = p + 1u, c = 0, cmax = lumo_pmesh_field_bits(k + 1u);
+    while (v >> c)
+        c++;
+    for (uint32_t j = 1; j < cmax && j <= c; j++)
+        put_ctx(r, w, lumo_pmesh_start_ctx(j - 1u), j < c);
+    put_bits(w, v - ((uint32_t)1 << (c - 1u)), c - 1u);
+}
+
 static void put_parent(replay *r, bitwriter *w, uint32_t p, uint32_t prev, uint32_t k)
 {
     uint32_t cont = 0;
@@ -482,7 +522,7 @@ static void put_parent(replay *r, bitwriter *w, uint32_t p, uint32_t prev, uint3
     }
     if (!cont) {
         r->round_first = k;
-        put_trunc(w, p, k);
+        put_round_start(r, w, p, k);
     }
     for (uint32_t v = prev + 1; cont && v <= p; v++) {
         int c = parent_ctx(r, v);
@@ -529,6 +569,8 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
         write_fan(r, w, p, k, f0, xa, m);
         count_bits(w, &mark, &r->st.fan_bits);
         predict(r, w, k);
+        if (r->coded && pm->albedo)
+            put_albedo(r, w, p, k);
         return 0;
     }
     if (!paired && (n < 1 || n > 15))
@@ -541,6 +583,8 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
             return -1;
     count_bits(w, &mark, &r->st.mask_bits);
     predict(r, w, k);
+    if (r->coded && pm->albedo)
+        put_albedo(r, w, p, k);
     return 0;
 }
 
@@ -706,7 +750,7 @@ void srv_pm_stream_default_options(srv_pm_stream_options *o)
 
 static double field_bits(const srv_pm_stream_stats *st)
 {
-    return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits + st->pos_bits;
+    return st->parent_bits + st->kind_bits + st->fan_bits + st->mask_bits + st->pos_bits + st->albedo_bits;
 }
 
 /* A written split record's share of the stats: fields_before is
@@ -832,8 +876,6 @@ lumo_status srv_pm_stream_build(const srv_pm *pm, const srv_pm_stream_options *o
         chosen.batch_vertices = srv_pm_stream_auto_batch(pm);
     if (!chosen.quant_bits)
         chosen.quant_bits = srv_pm_stream_auto_bits(pm);
-    if (chosen.position_coding == LUMO_PMESH_POS_CODED && pm->albedo)
-        chosen.position_coding = LUMO_PMESH_POS_PREDICTED;  /* the albedo needs the payloads */
     if (chosen.position_coding != LUMO_PMESH_POS_CODED)
         chosen.lattice = 0;
     if (chosen.lattice >= 0)

@@ -22,6 +22,7 @@ typedef struct srv_pm_stream_stats {
     uint64_t arc_ranked, fans;          /* fan splits coded by rank; all fan splits */
     double   mask_bits;                 /* mask splits: masks, flips, third vertices */
     double   pos_bits;                  /* CODED positions: the residuals in the range code */
+    double   albedo_bits;               /* CODED albedo: "the parent's" or residuals */
     double   other_bits;                /* the code's flush and rounding */
     uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
 } srv_pm_stream_stats;
@@ -32,8 +33,8 @@ typedef struct srv_pm_stream_options {
     int                 quant_bits;      /* position grid bits; 0 (default): per mesh,
                                             srv_pm_stream_auto_bits */
     srv_draco_settings  draco;           /* the payload encoder choice */
-    int                 position_coding; /* LUMO_PMESH_POS_CODED (default; PREDICTED for a
-                                            mesh with albedo), _PREDICTED or _ABSOLUTE */
+    int                 position_coding; /* LUMO_PMESH_POS_CODED (default), _PREDICTED or
+                                            _ABSOLUTE */
     srv_pm_stream_stats *stats;          /* NULL (default), or filled by the build */
     int                 fan_rank_escape; /* 1: every fan takes the rank's escape and is
                                             coded explicitly (tests the decoder's escape

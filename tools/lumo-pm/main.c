@@ -180,9 +180,9 @@ static int cmd_build(const args *a, int clean_only)
            h.flags & LUMO_PMESH_LATTICE ? " (lattice copies)" : "", n, pm.faces ? 8.0 * n / pm.faces : 0.0);
     double sv = st.splits ? (double)st.splits : 1.0;
     printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, positions %.2f, "
-           "other %.2f, draco payload %.2f, record heads %.2f\n",
+           "albedo %.2f, other %.2f, draco payload %.2f, record heads %.2f\n",
            st.parent_bits / sv, st.kind_bits / sv, st.fan_bits / sv, st.mask_bits / sv,
-           st.pos_bits / sv, st.other_bits / sv, 8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv);
+           st.pos_bits / sv, st.albedo_bits / sv, st.other_bits / sv, 8.0 * st.draco_bytes / sv, 8.0 * st.frame_bytes / sv);
     printf("fan splits: %llu (%.1f%% of splits), %.1f%% of them coded by rank\n",
            (unsigned long long)st.fans, 100.0 * st.fans / sv,
            st.fans ? 100.0 * st.arc_ranked / st.fans : 0.0);

@@ -69,7 +69,7 @@
 /* Adaptive contexts of the split records' range code (a probability and
  * a count each, one uint32), kept from record to record (layout:
  * lumo_shared/pmesh_shared.h); in the arena. */
-#define LUMO_PMESH_CONTEXTS    301u
+#define LUMO_PMESH_CONTEXTS    346u
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {
@@ -134,6 +134,7 @@ typedef struct lumo_pmesh {
     uint32_t     round_first;         /* first split vertex of the current
                                          collapse round (parent scan) */
     uint32_t     last_fan;            /* the last split was a fan split */
+    uint32_t     last_same;           /* the last split's albedo was its parent's */
     uint32_t    *ctx;                 /* LUMO_PMESH_CONTEXTS range-code contexts */
     uint32_t    *ctx_undo;            /* their copy from before the batch */
     int          rewound;             /* lumo_pmesh_rewind was used */

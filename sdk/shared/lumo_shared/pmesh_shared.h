@@ -113,7 +113,35 @@ static inline uint32_t lumo_pmesh_ctx_update(uint32_t ctx, uint32_t bit)
 #define LUMO_PMESH_COPY_RANK_CTXS 4u
 #define LUMO_PMESH_CTX_COPY       (LUMO_PMESH_CTX_FLAT + LUMO_PMESH_SPREAD_CTXS)
 #define LUMO_PMESH_CTX_COPY_RANK  (LUMO_PMESH_CTX_COPY + LUMO_PMESH_COPY_CTXS)
-#define LUMO_PMESH_CTX_END        (LUMO_PMESH_CTX_COPY_RANK + LUMO_PMESH_COPY_RANK_CTXS)
+/* A new round's first parent p (§2.3 step 1): the class of p + 1 (its bit
+ * length) in unary, by place (START_CTXS, the last one shared by every
+ * later place). The first parent of a round is its lowest, so small: on
+ * the bunny 0 ... 42 where truncated binary spent log2(k), 5 ... 11 bits. */
+#define LUMO_PMESH_START_CTXS     16u
+#define LUMO_PMESH_CTX_START      (LUMO_PMESH_CTX_COPY_RANK + LUMO_PMESH_COPY_RANK_CTXS)
+/* CODED streams with albedo (§2.3 step 6): whether a split vertex's
+ * albedo is its parent's, by whether the previous split's was (2); else
+ * per channel the residual's class (its bit length, 0 ... 8) in unary by
+ * channel and place (3 x ALB_CLASSES), and its sign by channel (3). */
+#define LUMO_PMESH_ALB_CLASSES    8u
+#define LUMO_PMESH_CTX_ALB_SAME   (LUMO_PMESH_CTX_START + LUMO_PMESH_START_CTXS)
+#define LUMO_PMESH_CTX_ALB_CLASS  (LUMO_PMESH_CTX_ALB_SAME + 2u)
+#define LUMO_PMESH_CTX_ALB_SIGN   (LUMO_PMESH_CTX_ALB_CLASS + 3u * LUMO_PMESH_ALB_CLASSES)
+#define LUMO_PMESH_CTX_END        (LUMO_PMESH_CTX_ALB_SIGN + 3u)
+/* An albedo code 0 ... 255 as Q1.14 ((v * 2^14 + 127) / 255) and back
+ * (exact for every code: the client keeps only the Q1.14 values). */
+static inline uint32_t lumo_pmesh_albedo_q14(uint32_t v)
+{
+    return (v * 16384u + 127u) / 255u;
+}
+static inline uint32_t lumo_pmesh_albedo_code(uint32_t q14)
+{
+    return (q14 * 255u + 8191u) / 16384u;
+}
+static inline uint32_t lumo_pmesh_start_ctx(uint32_t j)
+{
+    return LUMO_PMESH_CTX_START + (j < LUMO_PMESH_START_CTXS ? j : LUMO_PMESH_START_CTXS - 1u);
+}
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END == LUMO_PMESH_CONTEXTS ? 1 : -1];
 /* The contexts at the start of a stream (every record after the base
  * carries them on): LUMO_PMESH_RC_PROB_INIT (1/2) and count 0, except the
