@@ -183,9 +183,10 @@ static void test_header(void **state)
         {44, 21, LUMO_ERR_UNSUPPORTED}, {28, 6, LUMO_ERR_CORRUPT}, {16, 0, LUMO_ERR_CORRUPT},
         {16, 21, LUMO_ERR_CORRUPT}, {8, 1u << 29, LUMO_ERR_LIMIT}, {60, 0x7f800000u, LUMO_ERR_NONFINITE},
         {60, 0xbf800000u, LUMO_ERR_RANGE}, {32, 37, LUMO_ERR_CORRUPT},
-        {44, 12u | 1u << 8 | 2u << 16, LUMO_ERR_UNSUPPORTED},  /* unknown flag */
+        {44, 12u | 2u << 8 | 4u << 16, LUMO_ERR_UNSUPPORTED},  /* unknown flag */
+        {44, 12u | 1u << 8 | 2u << 16, LUMO_ERR_UNSUPPORTED},  /* LATTICE without CODED */
         {44, 12u | 3u << 8, LUMO_ERR_UNSUPPORTED},             /* unknown coding */
-        {44, 12u | 2u << 8 | 1u << 16, LUMO_ERR_UNSUPPORTED},  /* CODED with albedo */
+        {44, 12u | 2u << 8 | 3u << 16, LUMO_OK},               /* CODED, albedo and LATTICE */
         {44, 12u | 1u << 8 | 1u << 24, LUMO_ERR_CORRUPT},      /* reserved byte */
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
