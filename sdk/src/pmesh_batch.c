@@ -527,7 +527,8 @@ static lumo_status predict_split(split_ctx *s, uint32_t k)
     lumo_pmesh_ring ring;
     int32_t res[3];
     uint32_t p = pm->batch_parent[k - s->b->first];
-    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k, p, &ring);
+    lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k, p,
+                                pm->h.flags & LUMO_PMESH_LATTICE, &ring);
     if (!s->coded)
         return grid_value(pm, k, ring.pred, s->res, k - s->b->first);
     for (unsigned d = 0; d < 3; d++) {

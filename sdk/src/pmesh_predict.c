@@ -116,11 +116,12 @@ static uint32_t spread_class(int32_t lo, int32_t hi)
  * closed fan twice): 0, 1-2, 3-4, more. */
 static const uint8_t BLEND[4][3] = {{7, 9, 0}, {7, 4, 5}, {7, 2, 7}, {8, 0, 8}};
 
-/* The vertex of corner c's face on side s (1: the next corner, 2: the
- * previous one). */
-static uint32_t ring_vertex(const uint32_t *tris, uint32_t c, unsigned s)
+/* Both: the vertices after (o[0]) and before (o[1]) corner c in its face. */
+static void corner_sides(const uint32_t *tris, uint32_t c, uint32_t o[2])
 {
-    return tris[3 * (size_t)(c / 3) + (c % 3 + s) % 3];
+    const uint32_t *t = tris + (c - c % 3);
+    unsigned i = c % 3;
+    o[0] = t[i == 2 ? 0 : i + 1], o[1] = t[i == 0 ? 2 : i - 1];
 }
 
 /* Keep v among the ring's first RING_MAX distinct vertices. */
@@ -142,11 +143,14 @@ static uint32_t find_wings(const uint32_t *tris, const uint32_t *head, const uin
                            uint32_t k, uint32_t p, uint32_t *wing)
 {
     uint32_t n = 0, c;
-    unsigned s;
-    for (c = head[k]; c != LUMO_PMESH_NIL && n < WINGS_MAX; c = next[c])
-        for (s = 1; s <= 2 && n < WINGS_MAX; s++)
-            if (ring_vertex(tris, c, s) == p)
-                wing[n++] = ring_vertex(tris, c, 3 - s);
+    for (c = head[k]; c != LUMO_PMESH_NIL && n < WINGS_MAX; c = next[c]) {
+        uint32_t o[2];
+        corner_sides(tris, c, o);
+        if (o[0] == p)
+            wing[n++] = o[1];
+        if (o[1] == p && n < WINGS_MAX)
+            wing[n++] = o[0];
+    }
     return n;
 }
 
@@ -190,9 +194,13 @@ static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *he
     int64_t n[3] = {0, 0, 0}, big = 0, h = 0, nn = 0;
     uint32_t corners = 0, c;
     unsigned d;
+    unsigned shift = 0;
     for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c]) {
-        const int32_t *a = q + 3 * (size_t)ring_vertex(tris, c, 1), *b = q + 3 * (size_t)ring_vertex(tris, c, 2);
+        uint32_t o[2];
+        const int32_t *a, *b;
         int64_t u[3], v[3];
+        corner_sides(tris, c, o);
+        a = q + 3 * (size_t)o[0], b = q + 3 * (size_t)o[1];
         if (++corners > BEND_MAX_CORNERS || !count)
             return;
         for (d = 0; d < 3; d++)
@@ -203,11 +211,10 @@ static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *he
     }
     for (d = 0; d < 3; d++)
         big = n[d] > big ? n[d] : -n[d] > big ? -n[d] : big;
-    while (big >= (int64_t)1 << 15) {
-        big /= 2;
-        for (d = 0; d < 3; d++)
-            n[d] /= 2;
-    }
+    while (big >> shift >= (int64_t)1 << 15)
+        shift++;
+    for (d = 0; d < 3; d++)  /* halved `shift` times, truncating toward 0 */
+        n[d] = n[d] < 0 ? -(-n[d] >> shift) : n[d] >> shift;
     for (d = 0; d < 3; d++) {
         h += ((int64_t)qp[d] * count - rsum[d]) * n[d];
         nn += n[d] * n[d];
@@ -219,7 +226,7 @@ static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *he
 }
 
 void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                 const uint32_t *next, uint32_t k, uint32_t p,
+                                 const uint32_t *next, uint32_t k, uint32_t p, int keep_ring,
                                  lumo_pmesh_ring *ring)
 {
     int64_t wsum[3] = {0, 0, 0}, isum[3] = {0, 0, 0};
@@ -230,19 +237,23 @@ void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const u
     unsigned s, d;
 
     ring->n = 1, ring->vert[0] = p;
-    for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c])
-        for (s = 1; s <= 2; s++) {
-            uint32_t v = ring_vertex(tris, c, s);
+    for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c]) {
+        uint32_t o[2];
+        corner_sides(tris, c, o);
+        for (s = 0; s < 2; s++) {
+            uint32_t v = o[s];
             const int32_t *qv = q + 3 * (size_t)v;
             int is_w = among(wing, nwing, v);
             if (v == p)
                 continue;
             grow_box(qv, lo, hi);
-            ring_keep(ring, v);
+            if (keep_ring)
+                ring_keep(ring, v);
             nw += (uint32_t)is_w, ni += (uint32_t)!is_w;
             for (d = 0; d < 3; d++)
                 *(is_w ? &wsum[d] : &isum[d]) += qv[d];  /* < 2^30 corners of 2^20: fits */
         }
+    }
     {
         const uint8_t *w = BLEND[ni == 0 ? 0 : ni <= 2 ? 1 : ni <= 4 ? 2 : 3];
         int32_t bend[3] = {0, 0, 0};

@@ -194,7 +194,7 @@ static void predict(replay *r, bitwriter *w, uint32_t k)
 {
     lumo_pmesh_ring ring;
     uint32_t p = r->pm->parent[k];
-    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, &ring);
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, r->lattice, &ring);
     double mark = spent(w);
     for (int d = 0; d < 3; d++) {
         int32_t v = r->q[3 * (size_t)k + d] - ring.pred[d];

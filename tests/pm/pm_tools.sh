@@ -15,6 +15,12 @@ set -- $n; nv=$1; nf=$2; base=$3
 rows=$(awk 'NR > 2' "$tmp/stream.txt" | wc -l)
 want=$(( 1 + (nv - base + 99) / 100 ))
 [ "$rows" -eq "$want" ] && ok "--stream lists $rows batches" || bad "--stream lists $rows batches, want $want"
+# how the positions travel: the build's choice, named as lumo-pm build named it
+lat=no; grep -q "(lattice copies)" "$tmp/build.txt" && lat=yes
+if { [ $lat = no ] && grep -q "positions [0-9]* bits (coded)" "$tmp/stream.txt"; } ||
+   { [ $lat = yes ] && grep -q "positions [0-9]* bits (coded, lattice copies)" "$tmp/stream.txt"; }; then
+    ok "--stream names the position coding"
+else bad "--stream position coding: $(head -1 "$tmp/stream.txt")"; fi
 # Every column of the listing against the header and itself: indices 0, 1,
 # ...; each batch starts where the last ended and the vertices add up to the
 # mesh; record = head + side + Draco bytes; records tile the stream from the
@@ -53,6 +59,12 @@ if [ -x "$bin/lumo-bake" ] && "$bin/lumo-bake" --default --grid 4 --spp 2 --mesh
     if [ "$i" -ge 1 ] && "$bin/lumo-inspect" --lod all --ply "$tmp/s.ply" --mesh $((i - 1)) "$tmp/scene.lumo" >/dev/null; then
         ok "lumo-bake --mesh pm: $i streams decode, --mesh $i is refused"
     else bad "lumo-bake --mesh pm package: $i streams"; fi
+    # a baked mesh carries its albedo, coded with its positions (stream version 7)
+    "$bin/lumo-inspect" --stream --mesh $((i - 1)) "$tmp/scene.lumo" >"$tmp/scene-stream.txt" 2>&1
+    if grep -q "^progressive mesh: .*positions [0-9]* bits (coded[^)]*); albedo;" "$tmp/scene-stream.txt" \
+        && awk 'NR > 2 && $7 != 0 { exit 1 }' "$tmp/scene-stream.txt"; then
+        ok "--stream: the baked mesh's positions and albedo coded, no Draco payload"
+    else bad "--stream: baked mesh listing $(head -1 "$tmp/scene-stream.txt")"; fi
 else bad "lumo-bake --default --mesh pm"; fi
 head -c 1000 "$tmp/m.lumo" >"$tmp/cut.lumo"
 if "$bin/lumo-inspect" --stream "$tmp/cut.lumo" >/dev/null 2>&1; then bad "truncated package accepted"; else ok "truncated package rejected"; fi

@@ -239,9 +239,9 @@ static inline uint32_t lumo_pmesh_fan_key_id(int64_t key)
  * pred, a blend of p, the wings' mean and the inner ring's mean; sc[],
  * each axis's spread class (0 ... SPREAD_CTXS - 1), the bit length of 3
  * times the extent (max - min) of the ring and p on that axis, which
- * scales with the residual on that axis; vert[], the ring's first
- * RING_MAX distinct vertices, p first, in walk order (a LATTICE stream
- * copies coordinates from them). L(k) is walked from head[k] through
+ * scales with the residual on that axis; vert[], when keep_ring (a
+ * LATTICE stream, which copies coordinates from them), the ring's first
+ * RING_MAX distinct vertices, p first, in walk order (else only p). L(k) is walked from head[k] through
  * next[] until LUMO_PMESH_NIL, corner c showing tris[c]; q holds 3 grid
  * integers per vertex. Shared by the stream writer and the decoder. */
 #define LUMO_PMESH_NIL 0xffffffffu
@@ -253,7 +253,7 @@ typedef struct lumo_pmesh_ring {
     uint32_t vert[LUMO_PMESH_RING_MAX];
 } lumo_pmesh_ring;
 void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                                 const uint32_t *next, uint32_t k, uint32_t p,
+                                 const uint32_t *next, uint32_t k, uint32_t p, int keep_ring,
                                  lumo_pmesh_ring *ring);
 /* The distinct values on axis d of the ring's vertices into cand[] (room
  * for RING_MAX), nearest the prediction first (ties: the smaller value);
