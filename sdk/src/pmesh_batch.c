@@ -741,19 +741,11 @@ static lumo_status fan_split(split_ctx *s, uint32_t p, uint32_t k)
     return (st = add_face(s, k, p, xa)) ? st : add_face(s, k, xb, p);
 }
 
-/* The lookup-table parent of k (docs/progressive-mesh.md §2.3 step 1). The
- * splits of one independent-set round come sorted by parent, so after the
- * first split an adaptive bit says whether this one continues the round;
- * then the vertices after the previous parent and below the round's first
- * split vertex are scanned, each eligible one (lumo_pmesh_parent_ctx)
- * reading an adaptive bit, until a 1 names the parent. Else (a new round)
- * p follows as tb(k) and the round starts at k. Work: the vertices passed
- * and their valences; a round passes each vertex once. */
 /* A new round's first parent (docs/progressive-mesh.md §2.3 step 1): the
  * class c of p + 1 (1 ... w(k + 1)) in unary, adaptive bits "c > j" for
  * j = 1, 2, ... (none once c = w(k + 1)), then the c - 1 bits of p + 1
- * under its leading one as one (c - 1)-bit value of direct bits. p >= k is left to
- * the caller (RANGE). Work: at most 2 w(k + 1) bits. */
+ * under its leading one as one (c - 1)-bit value of direct bits. p >= k
+ * is left to the caller (RANGE). Work: at most 2 w(k + 1) bits. */
 static lumo_status read_round_start(split_ctx *s, uint32_t k, uint32_t *p)
 {
     uint32_t cmax = lumo_pmesh_field_bits(k + 1u), c = 1, bit = 1, low = 0;
@@ -768,6 +760,14 @@ static lumo_status read_round_start(split_ctx *s, uint32_t k, uint32_t *p)
     return LUMO_OK;
 }
 
+/* The lookup-table parent of k (docs/progressive-mesh.md §2.3 step 1). The
+ * splits of one independent-set round come sorted by parent, so after the
+ * first split an adaptive bit says whether this one continues the round;
+ * then the vertices after the previous parent and below the round's first
+ * split vertex are scanned, each eligible one (lumo_pmesh_parent_ctx)
+ * reading an adaptive bit, until a 1 names the parent. Else (a new round)
+ * p follows in the round start code and the round starts at k. Work: the vertices passed
+ * and their valences; a round passes each vertex once. */
 static lumo_status read_parent(split_ctx *s, uint32_t k, uint32_t *p)
 {
     lumo_pmesh *pm = s->pm;

@@ -83,18 +83,8 @@ uint32_t lumo_pmesh_fan_keys(const lumo_pmesh_fan *g, int64_t *key)
     return count;
 }
 
-/* The prediction blends three points of k's ring (docs/progressive-mesh.md
- * §2.3 step 5): the parent p, the mean of the wings (the vertices sharing
- * a face with both k and p) and the mean of the inner ring (k's other
- * neighbours, each counted once per face of k it is in), with weights in
- * 1/16 by the inner ring's corner count. Why: a collapsed edge is short
- * (that made it cheap), so k lies about halfway between p and the
- * neighbours it brought, not at its ring's centroid; the wings, beside
- * the edge, say little once there are inner vertices (weights fitted by
- * least absolute error on the bunny and the 11k and 48k dragons, §4.1).
- * Grid integers are non-negative, so the division rounds half up on every
- * target. The same walk gives the ring's extent per axis, whose bit length
- * (times 3) is that axis's spread class. */
+/* The ring's box per axis; its extent's bit length (times 3) is that
+ * axis's spread class. */
 static void grow_box(const int32_t *v, int32_t lo[3], int32_t hi[3])
 {
     for (unsigned d = 0; d < 3; d++) {
@@ -225,6 +215,18 @@ static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *he
         bend[d] = (int32_t)div_round(BEND_NUM * h * n[d], (int64_t)BEND_DEN * count * nn);
 }
 
+/* The prediction blends three points of k's ring (docs/progressive-mesh.md
+ * §2.3 step 5): the parent p, the mean of the wings (the vertices sharing
+ * a face with both k and p) and the mean of the inner ring (k's other
+ * neighbours, each counted once per face of k it is in), with weights in
+ * 1/16 by the inner ring's corner count. Why: a collapsed edge is short
+ * (that made it cheap), so k lies about halfway between p and the
+ * neighbours it brought, not at its ring's centroid; the wings, beside
+ * the edge, say little once there are inner vertices (weights fitted by
+ * least absolute error on the bunny and the 11k and 48k dragons, §4.1).
+ * Grid integers are non-negative, so the division rounds half up on every
+ * target; the bend (above) is added and the sum clamped to the ring's box,
+ * which the same walk gives. */
 void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const uint32_t *head,
                                  const uint32_t *next, uint32_t k, uint32_t p, int keep_ring,
                                  lumo_pmesh_ring *ring)

@@ -187,24 +187,6 @@ static int put_copy(replay *r, bitwriter *w, const lumo_pmesh_ring *ring, unsign
     return rank < m;
 }
 
-/* The residual of k from the decoder's own prediction
- * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c); CODED streams
- * write it into the range code (or, LATTICE, a copied coordinate). */
-static void predict(replay *r, bitwriter *w, uint32_t k)
-{
-    lumo_pmesh_ring ring;
-    uint32_t p = r->pm->parent[k];
-    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, r->lattice, &ring);
-    double mark = spent(w);
-    for (int d = 0; d < 3; d++) {
-        int32_t v = r->q[3 * (size_t)k + d] - ring.pred[d];
-        r->res[3 * (size_t)k + d] = v;
-        if (r->coded && !(r->lattice && put_copy(r, w, &ring, (unsigned)d, r->q[3 * (size_t)k + d])))
-            put_residual(r, w, ring.sc[d], ring.pred[d] - r->q[3 * (size_t)p + d], v);
-    }
-    count_bits(w, &mark, &r->st.pos_bits);
-}
-
 /* Mirrors read_split_albedo() in pmesh_batch.c: "the parent's", else per
  * channel the residual's class in unary, the bits under its leading one,
  * the sign. */
@@ -228,6 +210,27 @@ static void put_albedo(replay *r, bitwriter *w, uint32_t p, uint32_t k)
         }
     }
     count_bits(w, &mark, &r->st.albedo_bits);
+}
+
+/* The residual of k from the decoder's own prediction
+ * (lumo_pmesh_predict_position, sdk/src/pmesh_predict.c); CODED streams
+ * write it into the range code (or, LATTICE, a copied coordinate), then
+ * the albedo. */
+static void predict(replay *r, bitwriter *w, uint32_t k)
+{
+    lumo_pmesh_ring ring;
+    uint32_t p = r->pm->parent[k];
+    lumo_pmesh_predict_position(r->q, r->disp, r->head, r->next, k, p, r->lattice, &ring);
+    double mark = spent(w);
+    for (int d = 0; d < 3; d++) {
+        int32_t v = r->q[3 * (size_t)k + d] - ring.pred[d];
+        r->res[3 * (size_t)k + d] = v;
+        if (r->coded && !(r->lattice && put_copy(r, w, &ring, (unsigned)d, r->q[3 * (size_t)k + d])))
+            put_residual(r, w, ring.sc[d], ring.pred[d] - r->q[3 * (size_t)p + d], v);
+    }
+    count_bits(w, &mark, &r->st.pos_bits);
+    if (r->coded && r->pm->albedo)
+        put_albedo(r, w, p, k);
 }
 
 static uint32_t write_moves(replay *r, bitwriter *w, uint32_t p, uint32_t k)
@@ -569,8 +572,6 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
         write_fan(r, w, p, k, f0, xa, m);
         count_bits(w, &mark, &r->st.fan_bits);
         predict(r, w, k);
-        if (r->coded && pm->albedo)
-            put_albedo(r, w, p, k);
         return 0;
     }
     if (!paired && (n < 1 || n > 15))
@@ -583,8 +584,6 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
             return -1;
     count_bits(w, &mark, &r->st.mask_bits);
     predict(r, w, k);
-    if (r->coded && pm->albedo)
-        put_albedo(r, w, p, k);
     return 0;
 }
 

@@ -126,8 +126,9 @@ static void section_sizes(FILE *o, model *ms, int n)
 {
     fprintf(o, "### Stream size against single-shot Draco\n\n"
                "Same cleaned mesh (welded, degenerate/duplicate faces dropped) for every column; "
-               "pm = the progressive stream (version 6, header and record framing included; "
-               "positions coded in the split records, docs/progressive-mesh.md §2.3 step 5; "
+               "pm = the progressive stream (version 7, header and record framing included; "
+               "positions coded in the split records, docs/progressive-mesh.md §2.3 step 5, with lattice "
+               "copies where the build found them smaller (lattice column); "
                "v4 payload = the same stream with its residuals in Draco payloads, as version 4 had them (`position_coding` 1)), "
                "Draco = stock `draco_encoder -cl 7` at the same quantization (`-qp`). Left: 12-bit "
                "positions and batches of 250 for every mesh (pm absolute: stock-readable positions); "
@@ -136,8 +137,8 @@ static void section_sizes(FILE *o, model *ms, int n)
                "§2.1).\n\n"
                "| model | triangles | vertices | base | pm 12 bits, 250 | bits/tri | v4 payload | pm absolute | "
                "draco -qp 12 -cl 7 | bits/tri | pm / draco | bits | batch | pm per mesh | bits/tri "
-               "| draco same -qp | pm / draco | build s |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+               "| draco same -qp | pm / draco | lattice | build s |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         model *m = &ms[i];
         uint8_t *s1 = NULL, *s0 = NULL, *sa = NULL, *sp = NULL;
@@ -151,10 +152,11 @@ static void section_sizes(FILE *o, model *ms, int n)
         long c7 = draco_cli_size(m, 12, 7), ca = draco_cli_size(m, (int)h.quant_bits, 7);
         uint32_t F = m->pm.faces;
         fprintf(o, "| %s | %u | %u | %u | %zu | %.2f | %zu | %zu | %ld | %.2f | %.3f | %u | %u | %zu | %.2f "
-                   "| %ld | %.3f | %.1f |\n",
+                   "| %ld | %.3f | %s | %.1f |\n",
                 m->name, F, m->pm.vertices, m->pm.base_vertices, l1, bits_per_tri(l1, F), lp, l0, c7,
                 bits_per_tri((size_t)c7, F), c7 ? (double)l1 / c7 : 0, h.quant_bits, h.batch_vertices,
-                la, bits_per_tri(la, F), ca, ca ? (double)la / ca : 0, m->build_s);
+                la, bits_per_tri(la, F), ca, ca ? (double)la / ca : 0,
+                h.flags & LUMO_PMESH_LATTICE ? "yes" : "no", m->build_s);
         free(s1), free(s0), free(sa), free(sp);
     }
     fprintf(o, "\n");
