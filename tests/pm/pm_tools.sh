@@ -10,6 +10,9 @@ mkdir -p "$tmp"
 if [ ! -f "$model" ]; then echo "RESULT: 0 passed, 1 failed ($model missing)"; exit 1; fi
 if "$bin/lumo-pm" build "$model" -o "$tmp/m.lumo" --batch 100 >"$tmp/build.txt"; then ok "lumo-pm build"; else bad "lumo-pm build"; fi
 if "$bin/lumo-inspect" --stream "$tmp/m.lumo" >"$tmp/stream.txt"; then ok "lumo-inspect --stream"; else bad "lumo-inspect --stream"; fi
+# lumo-pm apply takes the package lumo-pm build wrote (it took bare streams only)
+if "$bin/lumo-pm" apply "$tmp/m.lumo" 3 | grep -q "^3 records, .*: ok$"; then ok "lumo-pm apply PACKAGE 3"
+else bad "lumo-pm apply PACKAGE 3: $("$bin/lumo-pm" apply "$tmp/m.lumo" 3 2>&1)"; fi
 n=$(sed -n 's/^progressive mesh: \([0-9]*\) vertices, \([0-9]*\) faces; base \([0-9]*\) vertices.*/\1 \2 \3/p' "$tmp/stream.txt")
 set -- $n; nv=$1; nf=$2; base=$3
 rows=$(awk 'NR > 2' "$tmp/stream.txt" | wc -l)

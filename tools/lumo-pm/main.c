@@ -3,7 +3,8 @@
  *
  *   lumo-pm build IN.ply -o OUT.lumo [--batch N] [--bits B] [--raw]
  *   lumo-pm clean IN.ply -o OUT.ply      the welded, cleaned input mesh
- *   lumo-pm apply STREAM [N]             apply the first N records with the
+ *   lumo-pm apply STREAM [N]             apply the first N records (a bare
+ *                                        stream or a package) with the
  *                                        client (for callgrind in the bench)
  *   lumo-pm bench ...                    see bench.c
  */
@@ -32,7 +33,7 @@ typedef struct {
 static const char k_usage[] =
     "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--lattice auto|on|off] [--albedo] [--raw]\n"
     "       lumo-pm clean IN -o OUT.ply\n"
-    "       lumo-pm apply STREAM [RECORDS]\n"
+    "       lumo-pm apply STREAM|PACKAGE [RECORDS]\n"
     "       lumo-pm bench --out SECTION.md MODEL...\n"
     "  --batch N          vertices per batch record, 1..1048576 (default: per mesh, 250 doubled up to 2000 for large meshes)\n"
     "  --bits B           position quantization bits, 1..20 (default: per mesh, from its median edge)\n"
@@ -211,7 +212,17 @@ static int cmd_apply(int argc, char **argv)
     }
     srv_pm_client c;
     unsigned long done = 0;
-    lumo_status st = srv_pm_client_open(&c, d, len);
+    const uint8_t *stream = NULL;
+    size_t stream_len = 0;
+    /* a bare stream or a package's first PMSH chunk (lumo-pm build writes a package) */
+    lumo_status st = srv_pm_find_stream(d, len, 0, &stream, &stream_len);
+    if (st) {
+        printf("0 records, 0 vertices, 0 faces: %s (neither a stream nor a package with one)\n",
+               lumo_strerror(st));
+        free(d);
+        return 1;
+    }
+    st = srv_pm_client_open(&c, stream, stream_len);
     while (!st && done < records && !lumo_pmesh_complete(&c.pm))
         st = srv_pm_client_step(&c), done++;
     lumo_pmesh_view v;
