@@ -204,7 +204,7 @@ static void section_fig5(FILE *o, const model *m)
     fprintf(o, "### Receive + apply time against batch size (seed 000 §5.2, Fig. 5)\n\n"
                "%s (%u triangles). Link model: %.0f Mbit/s effective (802.11g-like) and one %.0f ms "
                "request round trip per batch; apply = measured client time (host, `-O2` liblumo, best "
-               "of 3 runs) for Draco decode + vertex splits + normals. Raw transfer = one request for "
+               "of 3 runs) for the range decode (or a Draco payload) + vertex splits + normals. Raw transfer = one request for "
                "the uncompressed mesh (float xyz + uint32 triangles, %zu bytes): %.3f s. Overhead = "
                "total / raw − 1.\n\n"
                "| batch vertices | batches | stream bytes | transfer s | apply s | total s | overhead vs raw |\n"
