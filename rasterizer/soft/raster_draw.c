@@ -171,6 +171,24 @@ size_t lumo_raster_lit_bytes(uint32_t vertex_count)
     return lumo_size_mul(lumo_size_mul(vertex_count, 6), sizeof(lumo_uq16_16));
 }
 
+/* At most LUMO_MAX_LIGHTS lights, and every axis within +-1 (a unit
+ * vector's components are): the shading's 32-bit dot products of an axis
+ * with a light vector of 15-bit components rely on it (a spot axis of
+ * 1.9 overflowed one; fuzz_raster). */
+static int lights_ok(const lumo_raster_scene *s)
+{
+    uint32_t i;
+    int k;
+
+    if (s->light_count > LUMO_MAX_LIGHTS || (s->light_count && !s->lights))
+        return 0;
+    for (i = 0; i < s->light_count; i++)
+        for (k = 0; k < 3; k++)
+            if (s->lights[i].dir[k] > LUMO_Q14_ONE || s->lights[i].dir[k] < -LUMO_Q14_ONE)
+                return 0;
+    return 1;
+}
+
 lumo_status lumo_raster_light_vertices(const lumo_raster_scene *s, const lumo_raster_mesh *m,
                                        lumo_uq16_16 *lit)
 {
@@ -178,7 +196,7 @@ lumo_status lumo_raster_light_vertices(const lumo_raster_scene *s, const lumo_ra
 
     if (!s || !m || (m->vertex_count && (!lit || !m->pos || !m->normal)))
         return LUMO_ERR_ARG;
-    if (s->light_count > LUMO_MAX_LIGHTS || (s->light_count && !s->lights))
+    if (!lights_ok(s))
         return LUMO_ERR_RANGE;
     for (i = 0; i < m->vertex_count; i++) {
         const lumo_q16_16 *p = &m->pos[3 * (size_t)i];
@@ -223,7 +241,7 @@ static lumo_status check_inputs(const lumo_raster_view *v, const lumo_raster_sce
         return LUMO_ERR_ARG;
     if ((m->vertex_count && (!m->pos || !m->normal)) || (m->tri_count && !m->tris))
         return LUMO_ERR_ARG;
-    if (s->light_count > LUMO_MAX_LIGHTS || (s->light_count && !s->lights))
+    if (!lights_ok(s))
         return LUMO_ERR_RANGE;
     if (v->znear <= 0 || v->width == 0 || v->height == 0)
         return LUMO_ERR_RANGE;

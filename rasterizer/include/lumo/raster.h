@@ -64,7 +64,8 @@ typedef struct lumo_raster_light {
     lumo_light_kind kind;      /* point, spot or directional */
     lumo_q16_16  pos[3];       /* point, spot: position */
     lumo_q1_14   dir[3];       /* spot: cone axis; directional: the direction
-                                * the light travels. Unit length. */
+                                * the light travels. Unit length (a component
+                                * beyond +-1 is refused: LUMO_ERR_RANGE). */
     lumo_q1_14   cos_cutoff;   /* spot: cos of the cone's half angle */
     lumo_uq16_16 value[3];     /* point, spot: power Phi (W per channel);
                                 * directional: irradiance E (W/m^2) on a
