@@ -86,10 +86,13 @@ lumo_status lumo_pmesh_read_header(const uint8_t *d, size_t size, lumo_pmesh_hea
     return LUMO_OK;
 }
 
-/* Draco work memory for the largest point payload of the stream. */
+/* Draco work memory for the largest point payload of the stream; none for
+ * a CODED stream, which has no payloads. */
 static size_t scratch_bytes(const lumo_pmesh_header *h)
 {
     lumo_draco_info info;
+    if (h->position_coding == LUMO_PMESH_POS_CODED)
+        return 0;
     memset(&info, 0, sizeof info);
     info.geometry = LUMO_DRACO_POINT_CLOUD;
     info.method = LUMO_DRACO_METHOD_SEQUENTIAL;

@@ -153,10 +153,16 @@ static int among(const uint32_t *set, uint32_t n, uint32_t v)
 }
 
 /* The rounded mean of n grid values summing to sum (both >= 0), or
- * fallback when there are none. */
+ * fallback when there are none. A 32-bit division when the sum allows
+ * (always, in practice): the same quotient, and a Cortex-M3 divides 32
+ * bits in hardware but 64 in a library call. */
 static int64_t mean_or(int64_t sum, uint32_t n, int32_t fallback)
 {
-    return n ? (sum + n / 2) / n : fallback;
+    if (!n)
+        return fallback;
+    if (sum + n / 2 <= (int64_t)UINT32_MAX)
+        return (uint32_t)(sum + n / 2) / n;
+    return (sum + n / 2) / n;
 }
 
 /* The ring's bend along its normal, carried over to k (§2.3 step 5): on a
