@@ -182,29 +182,26 @@ static int64_t div_round(int64_t num, int64_t den)  /* den > 0; half away from 0
     return (num >= 0 ? num + den / 2 : num - den / 2) / den;
 }
 
-static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *head,
-                      const uint32_t *next, uint32_t k, uint32_t p, const int64_t rsum[3],
-                      uint32_t count, int32_t bend[3])
+/* Add corner c's cross product (a - p) x (b - p) to n (one of at most
+ * BEND_MAX_CORNERS: each below 2^43, their sum fits int64). */
+static void add_cross(const int32_t *q, const int32_t *qp, const uint32_t o[2], int64_t n[3])
 {
-    const int32_t *qp = q + 3 * (size_t)p;
-    int64_t n[3] = {0, 0, 0}, big = 0, h = 0, nn = 0;
-    uint32_t corners = 0, c;
+    const int32_t *a = q + 3 * (size_t)o[0], *b = q + 3 * (size_t)o[1];
+    int64_t u[3], v[3];
     unsigned d;
-    unsigned shift = 0;
-    for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c]) {
-        uint32_t o[2];
-        const int32_t *a, *b;
-        int64_t u[3], v[3];
-        corner_sides(tris, c, o);
-        a = q + 3 * (size_t)o[0], b = q + 3 * (size_t)o[1];
-        if (++corners > BEND_MAX_CORNERS || !count)
-            return;
-        for (d = 0; d < 3; d++)
-            u[d] = (int64_t)a[d] - qp[d], v[d] = (int64_t)b[d] - qp[d];
-        n[0] += u[1] * v[2] - u[2] * v[1];
-        n[1] += u[2] * v[0] - u[0] * v[2];
-        n[2] += u[0] * v[1] - u[1] * v[0];
-    }
+    for (d = 0; d < 3; d++)
+        u[d] = (int64_t)a[d] - qp[d], v[d] = (int64_t)b[d] - qp[d];
+    n[0] += u[1] * v[2] - u[2] * v[1];
+    n[1] += u[2] * v[0] - u[0] * v[2];
+    n[2] += u[0] * v[1] - u[1] * v[0];
+}
+
+/* The bend from N (the summed cross products) and the ring's sums. */
+static void curvature(const int32_t *qp, int64_t n[3], const int64_t rsum[3], uint32_t count,
+                      int32_t bend[3])
+{
+    int64_t big = 0, h = 0, nn = 0;
+    unsigned d, shift = 0;
     for (d = 0; d < 3; d++)
         big = n[d] > big ? n[d] : -n[d] > big ? -n[d] : big;
     while (big >> shift >= (int64_t)1 << 15)
@@ -215,7 +212,7 @@ static void curvature(const int32_t *q, const uint32_t *tris, const uint32_t *he
         h += ((int64_t)qp[d] * count - rsum[d]) * n[d];
         nn += n[d] * n[d];
     }
-    if (!nn)
+    if (!nn || !count)
         return;
     for (d = 0; d < 3; d++)
         bend[d] = (int32_t)div_round(BEND_NUM * h * n[d], (int64_t)BEND_DEN * count * nn);
@@ -241,13 +238,16 @@ void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const u
     const int32_t *qp = q + 3 * (size_t)p;
     int32_t lo[3] = {qp[0], qp[1], qp[2]}, hi[3] = {qp[0], qp[1], qp[2]};
     uint32_t wing[WINGS_MAX], nwing = find_wings(tris, head, next, k, p, wing);
-    uint32_t nw = 0, ni = 0, c;
+    int64_t normal[3] = {0, 0, 0};
+    uint32_t nw = 0, ni = 0, corners = 0, c;
     unsigned s, d;
 
     ring->n = 1, ring->vert[0] = p;
     for (c = head[k]; c != LUMO_PMESH_NIL; c = next[c]) {
         uint32_t o[2];
         corner_sides(tris, c, o);
+        if (++corners <= BEND_MAX_CORNERS)
+            add_cross(q, qp, o, normal);
         for (s = 0; s < 2; s++) {
             uint32_t v = o[s];
             const int32_t *qv = q + 3 * (size_t)v;
@@ -266,7 +266,8 @@ void lumo_pmesh_predict_position(const int32_t *q, const uint32_t *tris, const u
         const uint8_t *w = BLEND[ni == 0 ? 0 : ni <= 2 ? 1 : ni <= 4 ? 2 : 3];
         int32_t bend[3] = {0, 0, 0};
         int64_t rsum[3] = {wsum[0] + isum[0], wsum[1] + isum[1], wsum[2] + isum[2]};
-        curvature(q, tris, head, next, k, p, rsum, nw + ni, bend);
+        if (corners <= BEND_MAX_CORNERS)
+            curvature(qp, normal, rsum, nw + ni, bend);
         for (d = 0; d < 3; d++) {
             int64_t blend = w[0] * (int64_t)qp[d] + w[1] * mean_or(wsum[d], nw, qp[d]) +
                             w[2] * mean_or(isum[d], ni, qp[d]);
@@ -347,9 +348,9 @@ int lumo_pmesh_parent_ctx(const uint32_t *tris, const uint32_t *head, const uint
 {
     uint32_t n = 0, c;
     for (c = head[v]; c != LUMO_PMESH_NIL; c = next[c], n++) {
-        const uint32_t *t = tris + 3 * (size_t)(c / 3);
-        if (round_end(round_parent, t[(c % 3 + 1) % 3], round_first) ||
-            round_end(round_parent, t[(c % 3 + 2) % 3], round_first))
+        uint32_t o[2];
+        corner_sides(tris, c, o);
+        if (round_end(round_parent, o[0], round_first) || round_end(round_parent, o[1], round_first))
             return -1;
     }
     if (!n)
