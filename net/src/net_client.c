@@ -221,20 +221,14 @@ static lumo_status check_records(const lumo_net_data *d)
 {
     size_t at = 0, n;
     const uint8_t *rec;
-    uint32_t k, crc;
+    uint32_t k;
     lumo_status st;
 
     for (k = 0; k < d->count; k++) {
-        lumo_pmesh_record_head rh;
         if ((st = lumo_pmesh_next_record(d->bytes, d->len, &at, &rec, &n)))
             return st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st;
-        if ((st = lumo_pmesh_read_record_head(rec, n, &rh)))
-            return st;
-        if (rh.index != d->first + k)
-            return LUMO_ERR_CORRUPT;
-        crc = lumo_wire_crc32(0, rec, rh.head_bytes - 4u);
-        if (lumo_wire_crc32(crc, rec + rh.head_bytes, n - rh.head_bytes) != rh.crc)
-            return LUMO_ERR_CHECKSUM;
+        if ((st = lumo_pmesh_record_check(rec, n, d->first + k)))
+            return st;  /* damaged, or not record first + k */
     }
     return at == d->len ? LUMO_OK : LUMO_ERR_CORRUPT;
 }

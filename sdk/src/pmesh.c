@@ -38,35 +38,59 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
     return LUMO_OK;
 }
 
+/* The header's fixed tail after the counts: quant_bits, position_coding,
+ * flags, the grid's origin and range, the CRC. */
+#define HEADER_TAIL 23u
+#define HEADER_COUNTS 8
+
+/* The eight counts, LEB128 (lumo_wire_varint), filling the bytes between
+ * the 7-byte front and the tail exactly. */
+static lumo_status read_counts(const uint8_t *d, size_t end, lumo_pmesh_header *h)
+{
+    uint32_t *dst[HEADER_COUNTS] = {&h->vertices, &h->faces, &h->base_vertices, &h->base_faces,
+                                    &h->batch_vertices, &h->max_batch_faces, &h->max_batch_moves,
+                                    &h->max_batch_bytes};
+    size_t at = 7;
+    for (int i = 0; i < HEADER_COUNTS; i++) {
+        lumo_status st = lumo_wire_varint(d, end, &at, UINT32_MAX, dst[i]);
+        if (st)
+            return st == LUMO_ERR_TRUNCATED ? LUMO_ERR_CORRUPT : st;
+    }
+    return at == end ? LUMO_OK : LUMO_ERR_CORRUPT;
+}
+
 lumo_status lumo_pmesh_read_header(const uint8_t *d, size_t size, lumo_pmesh_header *out)
 {
     lumo_pmesh_header h;
     int32_t probe;
     if (!d || !out)
         return LUMO_ERR_ARG;
-    if (size < LUMO_PMESH_HEADER_SIZE)
+    if (size < 7)
         return LUMO_ERR_TRUNCATED;
     if (lumo_wire_le32(d) != LUMO_PMESH_MAGIC)
         return LUMO_ERR_CORRUPT;
     if ((d[4] | d[5] << 8) != LUMO_PMESH_VERSION)
         return LUMO_ERR_VERSION;
-    if ((d[6] | d[7] << 8) != LUMO_PMESH_HEADER_SIZE)
+    h.header_bytes = d[6];
+    if (h.header_bytes < LUMO_PMESH_HEADER_MIN || h.header_bytes > LUMO_PMESH_HEADER_MAX)
         return LUMO_ERR_CORRUPT;
-    if (lumo_wire_crc32(0, d, 64) != lumo_wire_le32(d + 64))
+    if (size < h.header_bytes)
+        return LUMO_ERR_TRUNCATED;
+    const uint8_t *tail = d + h.header_bytes - HEADER_TAIL;
+    if (lumo_wire_crc32(0, d, h.header_bytes - 4u) != lumo_wire_le32(tail + 19))
         return LUMO_ERR_CHECKSUM;
-    h.vertices = lumo_wire_le32(d + 8), h.faces = lumo_wire_le32(d + 12);
-    h.base_vertices = lumo_wire_le32(d + 16), h.base_faces = lumo_wire_le32(d + 20);
-    h.batch_vertices = lumo_wire_le32(d + 24), h.batch_count = lumo_wire_le32(d + 28);
-    h.max_batch_faces = lumo_wire_le32(d + 32), h.max_batch_moves = lumo_wire_le32(d + 36);
-    h.max_batch_bytes = lumo_wire_le32(d + 40);
-    h.quant_bits = d[44], h.position_coding = d[45], h.flags = d[46];
-    if (d[47])
-        return LUMO_ERR_CORRUPT;
-    for (int i = 0; i < 3; i++)
-        h.origin_bits[i] = lumo_wire_le32(d + 48 + 4 * i);
-    h.range_bits = lumo_wire_le32(d + 60);
-    lumo_status st = check_counts(&h);
+    lumo_status st = read_counts(d, h.header_bytes - HEADER_TAIL, &h);
     if (st)
+        return st;
+    h.quant_bits = tail[0], h.position_coding = tail[1], h.flags = tail[2];
+    for (int i = 0; i < 3; i++)
+        h.origin_bits[i] = lumo_wire_le32(tail + 3 + 4 * i);
+    h.range_bits = lumo_wire_le32(tail + 15);
+    h.batch_count = 0;
+    if (h.vertices <= MAX_COUNT && h.base_vertices >= 1 && h.base_vertices <= h.vertices &&
+        h.batch_vertices >= 1)
+        h.batch_count = expected_batches(&h);
+    if ((st = check_counts(&h)))
         return st;
     for (int i = 0; i < 3; i++)
         if ((st = lumo_f32bits_to_fixed(h.origin_bits[i], LUMO_Q16_SHIFT, &probe)))
@@ -177,14 +201,19 @@ lumo_status lumo_pmesh_read_record_head(const uint8_t *d, size_t size, lumo_pmes
 {
     lumo_pmesh_record_head h;
     size_t at = 0;
+    uint32_t sizes;
     lumo_status st;
     if (!d || !out)
         return LUMO_ERR_ARG;
-    /* Minimally coded varints below 2^28 (docs/progressive-mesh.md §2.2). */
-    if ((st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.index)) ||
-        (st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.side_bytes)) ||
-        (st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.draco_bytes)))
+    /* Minimally coded varints below 2^28 (docs/progressive-mesh.md §2.2):
+     * the block's size doubled, plus 1 when a payload's size follows. */
+    if ((st = lumo_wire_varint(d, size, &at, 2u * MAX_COUNT + 1u, &sizes)))
         return st;
+    h.side_bytes = sizes >> 1, h.draco_bytes = 0;
+    if ((sizes & 1u) && (st = lumo_wire_varint(d, size, &at, MAX_COUNT, &h.draco_bytes)))
+        return st;
+    if ((sizes & 1u) && !h.draco_bytes)
+        return LUMO_ERR_CORRUPT;  /* the flag says a payload follows */
     if (size - at < 4)
         return LUMO_ERR_TRUNCATED;
     h.crc = lumo_wire_le32(d + at);
@@ -203,6 +232,24 @@ lumo_status lumo_pmesh_record_size(const uint8_t *d, size_t size, size_t *record
         return st;
     *record_bytes = (size_t)h.head_bytes + h.side_bytes + h.draco_bytes;
     return LUMO_OK;
+}
+
+lumo_status lumo_pmesh_record_check(const uint8_t *d, size_t size, uint32_t index)
+{
+    lumo_pmesh_record_head h;
+    uint8_t idx[LUMO_WIRE_VARINT32_MAX];
+    lumo_status st = lumo_pmesh_read_record_head(d, size, &h);
+    if (st)
+        return st;
+    size_t need = (size_t)h.head_bytes + h.side_bytes + h.draco_bytes;
+    if (size != need)
+        return size < need ? LUMO_ERR_TRUNCATED : LUMO_ERR_CORRUPT;
+    /* The index, which the record does not carry, then the record without
+     * its CRC: a record put in another's place fails like a damaged one. */
+    uint32_t crc = lumo_wire_crc32(0, idx, lumo_wire_put_varint(idx, index));
+    crc = lumo_wire_crc32(crc, d, h.head_bytes - 4u);
+    crc = lumo_wire_crc32(crc, d + h.head_bytes, need - h.head_bytes);
+    return crc == h.crc ? LUMO_OK : LUMO_ERR_CHECKSUM;
 }
 
 lumo_status lumo_pmesh_next_record(const uint8_t *d, size_t size, size_t *at, const uint8_t **record,

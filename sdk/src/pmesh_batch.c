@@ -114,8 +114,9 @@ static int read_ctx(split_ctx *s, uint32_t c, uint32_t *bit)
 }
 
 /* The record's head (docs/progressive-mesh.md §2.2): what the decoder
- * cannot derive. The first vertex and the vertex count follow from the
- * records applied; the CRC covers everything but itself. */
+ * cannot derive. The index, the first vertex and the vertex count follow
+ * from the records applied; the CRC covers the index and everything but
+ * itself. */
 static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t size, batch *b)
 {
     lumo_pmesh_record_head rh;
@@ -129,14 +130,12 @@ static lumo_status parse_record(const lumo_pmesh *pm, const uint8_t *r, size_t s
         return LUMO_ERR_CORRUPT;
     if (need > pm->h.max_batch_bytes)
         return LUMO_ERR_LIMIT;  /* the Draco scratch is sized for the largest record */
-    uint32_t crc = lumo_wire_crc32(0, r, rh.head_bytes - 4u);
-    crc = lumo_wire_crc32(crc, r + rh.head_bytes, need - rh.head_bytes);
-    if (crc != rh.crc)
-        return LUMO_ERR_CHECKSUM;
-    if (rh.index != pm->batches_applied || pm->vertex_count == pm->h.vertices)
-        return LUMO_ERR_STATE;  /* not the next batch: out of order or repeated */
+    if (pm->vertex_count == pm->h.vertices)
+        return LUMO_ERR_STATE;  /* complete: there is no next batch */
+    if ((st = lumo_pmesh_record_check(r, size, pm->batches_applied)))
+        return st;              /* damaged, or not the next batch */
     const lumo_pmesh_header *h = &pm->h;
-    b->index = rh.index, b->first = pm->vertex_count;
+    b->index = pm->batches_applied, b->first = pm->vertex_count;
     b->count = b->first ? h->vertices - b->first : h->base_vertices;
     if (b->first && b->count > h->batch_vertices)
         b->count = h->batch_vertices;

@@ -236,13 +236,14 @@ static lumo_status feed_stream(lumo_session *s, uint32_t index, const uint8_t *p
 {
     lumo_session_mesh_slot *slot;
     lumo_pmesh_header h;
-    size_t at = LUMO_PMESH_HEADER_SIZE, n;
+    size_t at, n;
     const uint8_t *rec;
     lumo_status st;
 
     if ((st = empty_slot(s, index, &slot)) || (st = lumo_pmesh_read_header(p, len, &h)) ||
         (st = lumo_pmesh_init(&slot->pm, &h, s->arena)))
         return st;
+    at = h.header_bytes;
     slot->target = lod_target(&s->cfg.lod, &h);
     slot->kind = SLOT_PM;
     while ((st = lumo_pmesh_next_record(p, len, &at, &rec, &n)) == LUMO_OK) {

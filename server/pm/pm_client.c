@@ -20,7 +20,7 @@ lumo_status srv_pm_client_open(srv_pm_client *c, const uint8_t *stream, size_t l
         srv_pm_client_close(c);
         return st;
     }
-    c->stream = stream, c->len = len, c->at = LUMO_PMESH_HEADER_SIZE;
+    c->stream = stream, c->len = len, c->at = c->h.header_bytes;
     return LUMO_OK;
 }
 

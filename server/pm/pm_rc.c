@@ -1,7 +1,8 @@
 /* pm_rc.c — range encoder of the split records (pm/pm_rc.h). LZMA's
  * encoder: a 64-bit low whose carries ripple into the delayed bytes; the
  * first output byte is always 0 and is not written, so the decoder starts
- * on the next four. */
+ * on the next four. The flush is short (docs/progressive-mesh.md §2.3):
+ * one byte where LZMA writes four. */
 #include <math.h>
 #include "lumo_shared/pmesh_shared.h"
 #include "pm/pm_rc.h"
@@ -64,8 +65,13 @@ void srv_pm_rc_direct(srv_pm_rc *rc, uint32_t v, unsigned n)
     rc->cost += n;
 }
 
+/* The final code value is the smallest multiple of 2^24 in [low, low +
+ * range) (there is one: range >= 2^24), so its three low bytes are zero and
+ * are left to the decoder, which reads three zero bytes past the block: two
+ * shifts write out the delayed bytes and the value's top byte. */
 void srv_pm_rc_flush(srv_pm_rc *rc)
 {
-    for (int i = 0; i < 5; i++)
-        shift_low(rc);
+    rc->low = (rc->low + (LUMO_PMESH_RC_TOP - 1u)) & ~(uint64_t)(LUMO_PMESH_RC_TOP - 1u);
+    shift_low(rc);
+    shift_low(rc);
 }

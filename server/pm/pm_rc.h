@@ -25,7 +25,8 @@ void srv_pm_rc_init(srv_pm_rc *rc);
 void srv_pm_rc_bit(srv_pm_rc *rc, uint32_t *ctx, uint32_t bit);
 /* The n low bits of v at probability 1/2, least significant first. */
 void srv_pm_rc_direct(srv_pm_rc *rc, uint32_t v, unsigned n);
-/* Write out the rest of the code: out then holds the whole block. */
+/* Write out the rest of the code, shortest (its last three bytes, zero, are
+ * implied): out then holds the whole block. */
 void srv_pm_rc_flush(srv_pm_rc *rc);
 
 #endif

@@ -634,21 +634,24 @@ static lumo_status encode_payload(const replay *r, uint32_t first, uint32_t coun
     return srv_draco_encode_ints(r->res + 3 * (size_t)first, rgb, count, 3, o->draco, drc, len);
 }
 
-/* The record: index, side bytes and Draco bytes as varints, the CRC-32 of
- * those varints followed by the block and the payload, then the two. */
+/* The record: the block's size doubled (plus 1 when a Draco payload
+ * follows) and the payload's size as varints, the CRC-32 of the record's
+ * index (a varint, not sent), those varints, the block and the payload;
+ * then the block and the payload (docs/progressive-mesh.md §2.2). */
 static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, uint32_t count,
                                 const replay *r, const bitwriter *w, const srv_pm_stream_options *o,
                                 const srv_draco_quant *q, srv_pm_batch_info *info)
 {
-    uint8_t *drc = NULL, head[LUMO_PMESH_BATCH_HEAD_MAX];
+    uint8_t *drc = NULL, head[LUMO_PMESH_BATCH_HEAD_MAX], idx[LUMO_WIRE_VARINT32_MAX];
     size_t drc_len = 0;
     lumo_status st = encode_payload(r, first, count, o, q, &drc, &drc_len);
     if (st)
         return st;
-    size_t hn = lumo_wire_put_varint(head, index);
-    hn += lumo_wire_put_varint(head + hn, (uint32_t)w->b.len);
-    hn += lumo_wire_put_varint(head + hn, (uint32_t)drc_len);
-    uint32_t crc = lumo_wire_crc32(0, head, hn);
+    size_t hn = lumo_wire_put_varint(head, (uint32_t)w->b.len * 2u + (drc_len != 0));
+    if (drc_len)
+        hn += lumo_wire_put_varint(head + hn, (uint32_t)drc_len);
+    uint32_t crc = lumo_wire_crc32(0, idx, lumo_wire_put_varint(idx, index));
+    crc = lumo_wire_crc32(crc, head, hn);
     crc = lumo_wire_crc32(crc, w->b.p ? w->b.p : (const uint8_t *)"", w->b.len);
     crc = lumo_wire_crc32(crc, drc, drc_len);
     *info = (srv_pm_batch_info){first, count, r->faces, r->moves, out->len,
@@ -661,8 +664,16 @@ static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, ui
     return out->failed ? LUMO_ERR_NOMEM : LUMO_OK;
 }
 
-static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_options *o,
-                         const srv_draco_quant *q, uint32_t nb, const srv_pm_batch_info *bi)
+static void put_le32(uint8_t *d, uint32_t v)
+{
+    for (int k = 0; k < 4; k++)
+        d[k] = (uint8_t)(v >> (8 * k));
+}
+
+/* The header (docs/progressive-mesh.md §2.1) into d (LUMO_PMESH_HEADER_MAX
+ * bytes); returns its length. */
+static size_t write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_options *o,
+                           const srv_draco_quant *q, uint32_t nb, const srv_pm_batch_info *bi)
 {
     uint32_t maxf = 0, maxm = 0, maxb = 0;
     for (uint32_t i = 0; i < nb; i++) {
@@ -670,20 +681,21 @@ static void write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_optio
         maxm = bi[i].move_count > maxm ? bi[i].move_count : maxm;
         maxb = bi[i].bytes > maxb ? (uint32_t)bi[i].bytes : maxb;
     }
-    uint32_t f[16] = {LUMO_PMESH_MAGIC, LUMO_PMESH_VERSION | LUMO_PMESH_HEADER_SIZE << 16,
-                      pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
-                      o->batch_vertices, nb, maxf, maxm, maxb,
-                      (uint32_t)q->bits | (uint32_t)o->position_coding << 8 |
-                          (uint32_t)(pm->albedo != NULL) << 16 |
-                          (uint32_t)(o->lattice > 0) << 17,
-                      f32bits(q->origin[0]), f32bits(q->origin[1]), f32bits(q->origin[2]),
-                      f32bits(q->range)};
-    for (int i = 0; i < 16; i++)
-        for (int k = 0; k < 4; k++)
-            d[4 * i + k] = (uint8_t)(f[i] >> (8 * k));
-    uint32_t crc = lumo_wire_crc32(0, d, 64);
-    for (int k = 0; k < 4; k++)
-        d[64 + k] = (uint8_t)(crc >> (8 * k));
+    uint32_t counts[8] = {pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
+                          o->batch_vertices, maxf, maxm, maxb};
+    size_t n = 7;
+    put_le32(d, LUMO_PMESH_MAGIC);
+    d[4] = (uint8_t)LUMO_PMESH_VERSION, d[5] = (uint8_t)(LUMO_PMESH_VERSION >> 8);
+    for (int i = 0; i < 8; i++)
+        n += lumo_wire_put_varint(d + n, counts[i]);
+    d[n++] = (uint8_t)q->bits, d[n++] = (uint8_t)o->position_coding;
+    d[n++] = (uint8_t)((pm->albedo != NULL) | (o->lattice > 0) << 1);
+    for (int i = 0; i < 3; i++, n += 4)
+        put_le32(d + n, f32bits(q->origin[i]));
+    put_le32(d + n, f32bits(q->range)), n += 4;
+    d[6] = (uint8_t)(n + 4);
+    put_le32(d + n, lumo_wire_crc32(0, d, n));
+    return n + 4;
 }
 
 /* ---- per-mesh choices (docs/progressive-mesh.md §2.1) ---- */
@@ -825,21 +837,29 @@ static lumo_status build_once(const srv_pm *pm, const srv_pm_stream_options *o, 
     r.round_parent = calloc(pm->vertices, 4);
     lumo_pmesh_init_contexts(r.ctx);
     srv_pm_batch_info *bi = calloc(nb, sizeof *bi);
-    srv_buf s = {0};
-    uint8_t header[LUMO_PMESH_HEADER_SIZE] = {0};
-    srv_buf_put(&s, header, sizeof header);
+    srv_buf recs = {0}, s = {0};
+    uint8_t header[LUMO_PMESH_HEADER_MAX];
     lumo_status rc = LUMO_ERR_NOMEM;
     if (!r.q || !r.res || !r.disp || !r.next || !r.head || !r.round_parent || !bi)
         goto done;
     quantize(pm, &q, r.q);
     r.quant_bits = (unsigned)q.bits;
     memset(r.head, 0xff, 4 * (size_t)pm->vertices);
-    rc = write_batches(&r, o, &q, &s, bi, nb);
-    if (!rc && s.failed)
+    rc = write_batches(&r, o, &q, &recs, bi, nb);
+    if (!rc && recs.failed)
         rc = LUMO_ERR_NOMEM;
     if (rc)
         goto done;
-    write_header(s.p, pm, o, &q, nb, bi);
+    /* the header's counts are known now; the records move behind it */
+    size_t hn = write_header(header, pm, o, &q, nb, bi);
+    srv_buf_put(&s, header, hn);
+    srv_buf_put(&s, recs.p, recs.len);
+    if (s.failed) {
+        rc = LUMO_ERR_NOMEM;
+        goto done;
+    }
+    for (uint32_t i = 0; i < nb; i++)
+        bi[i].offset += hn;
     if (o->stats)
         *o->stats = r.st;
     *out = s.p, *len = s.len, s.p = NULL;
@@ -856,6 +876,7 @@ done:
     free(r.head);
     free(r.round_parent);
     free(bi);
+    free(recs.p);
     free(s.p);
     return rc;
 }

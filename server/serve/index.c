@@ -22,12 +22,13 @@
 
 /* Offsets of every batch record of mesh i, walked with the SDK's one walk
  * over a stream; the walk must end exactly at the chunk's end with
- * batch_count records, each holding its index. */
+ * batch_count records, each the one of its place (its CRC covers its
+ * index). */
 static lumo_status index_mesh(srv_pkg *p, uint32_t i, char *err, size_t errlen)
 {
     srv_mesh_index *m = &p->mesh[i];
     const uint8_t *rec;
-    size_t at = LUMO_PMESH_HEADER_SIZE, n;
+    size_t at, n;
     uint32_t b;
     lumo_status st;
 
@@ -36,19 +37,19 @@ static lumo_status index_mesh(srv_pkg *p, uint32_t i, char *err, size_t errlen)
                     "lumo-server streams progressive meshes only (bake with --mesh pm)", p->path, i);
     if ((st = lumo_pmesh_read_header(m->stream, m->len, &m->h)))
         return srv_fail(err, errlen, st, "%s: mesh %u: stream header: %s", p->path, i, lumo_strerror(st));
+    at = m->h.header_bytes;
     m->rec = malloc(((size_t)m->h.batch_count + 1) * sizeof *m->rec);
     if (!m->rec)
         return srv_fail(err, errlen, LUMO_ERR_NOMEM, "%s: out of memory", p->path);
     for (b = 0; b < m->h.batch_count; b++) {
-        lumo_pmesh_record_head rh;
         m->rec[b] = (uint32_t)at;
         if ((st = lumo_pmesh_next_record(m->stream, m->len, &at, &rec, &n)))
             return srv_fail(err, errlen, st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st,
                         "%s: mesh %u: batch record %u: %s", p->path, i, b,
                         lumo_strerror(st == LUMO_ERR_RANGE ? LUMO_ERR_TRUNCATED : st));
-        if ((st = lumo_pmesh_read_record_head(rec, n, &rh)) || rh.index != b)
-            return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: mesh %u: batch record %u has index %u",
-                        p->path, i, b, st ? 0u : rh.index);
+        if ((st = lumo_pmesh_record_check(rec, n, b)))
+            return srv_fail(err, errlen, st, "%s: mesh %u: batch record %u: %s", p->path, i, b,
+                            lumo_strerror(st));
         if (n > m->max_record)
             m->max_record = (uint32_t)n;
     }
@@ -161,7 +162,7 @@ static lumo_status build_welcome(srv_pkg *p, int prt, char *err, size_t errlen)
         return srv_fail(err, errlen, LUMO_ERR_CORRUPT, "%s: no INFO chunk", p->path);
     msgs[count++] = (lumo_net_msg){LUMO_PKG_INFO, 0, n, d};
     for (i = 0; i < p->mesh_count; i++)
-        msgs[count++] = (lumo_net_msg){LUMO_PKG_PMSH, i, LUMO_PMESH_HEADER_SIZE, p->mesh[i].stream};
+        msgs[count++] = (lumo_net_msg){LUMO_PKG_PMSH, i, p->mesh[i].h.header_bytes, p->mesh[i].stream};
     if (p->ivg.present) {
         if (lumo_package_find(&p->pkg, LUMO_PKG_IVGD, 0, &d, &n) == LUMO_OK)
             msgs[count++] = (lumo_net_msg){LUMO_PKG_IVGD, 0, n, d};

@@ -234,7 +234,7 @@ static int get_chunk(client_link *l, int i, uint8_t **out)
     return 0;
 }
 
-/* The index of mesh m: its stream buffer with the 68-byte header fetched,
+/* The index of mesh m: its stream buffer with the header fetched,
  * the header read, room for every record's offset. */
 static int load_mesh(client_link *l, uint32_t m)
 {
@@ -243,21 +243,23 @@ static int load_mesh(client_link *l, uint32_t m)
     int i = find_chunk(h, LUMO_PKG_PMSH, m);
     lumo_status st;
 
-    if (i < 0 || h->chunk[i].length < LUMO_PMESH_HEADER_SIZE)
+    if (i < 0 || h->chunk[i].length < LUMO_PMESH_HEADER_MIN)
         return fail(l, "%s: %s", l->target, "a mesh has no progressive stream (PMSH): lumo-client streams those only");
     h->stream_chunk[m] = (uint32_t)i;
     if (!(h->stream[m] = malloc(h->chunk[i].length)))
         return fail(l, "%s: %s", l->target, "out of memory");
-    if (get_range(l, h->chunk[i].offset, LUMO_PMESH_HEADER_SIZE, h->stream[m]))
+    /* the longest header or the whole chunk: the header says its length */
+    size_t head = h->chunk[i].length < LUMO_PMESH_HEADER_MAX ? h->chunk[i].length : LUMO_PMESH_HEADER_MAX;
+    if (get_range(l, h->chunk[i].offset, head, h->stream[m]))
         return -1;
-    if ((st = lumo_pmesh_read_header(h->stream[m], LUMO_PMESH_HEADER_SIZE, &mi->h)))
+    if ((st = lumo_pmesh_read_header(h->stream[m], head, &mi->h)))
         return fail(l, "%s: a stream header: %s", l->target, lumo_strerror(st));
     if (!(mi->rec = malloc(((size_t)mi->h.batch_count + 1) * sizeof *mi->rec)))
         return fail(l, "%s: %s", l->target, "out of memory");
     mi->stream = h->stream[m];
     mi->len = h->chunk[i].length;
-    mi->rec[0] = LUMO_PMESH_HEADER_SIZE;
-    h->fetched[m] = LUMO_PMESH_HEADER_SIZE;
+    mi->rec[0] = mi->h.header_bytes;
+    h->fetched[m] = mi->h.header_bytes;  /* what follows is fetched again with the records */
     return 0;
 }
 
@@ -336,7 +338,7 @@ static int load_descriptors(client_link *l)
         return -1;
     msgs[n++] = (lumo_net_msg){LUMO_PKG_INFO, 0, h->desc_len[D_INFO], h->desc[D_INFO]};
     for (m = 0; m < info.mesh_count; m++)
-        msgs[n++] = (lumo_net_msg){LUMO_PKG_PMSH, m, LUMO_PMESH_HEADER_SIZE, h->stream[m]};
+        msgs[n++] = (lumo_net_msg){LUMO_PKG_PMSH, m, h->pk.mesh[m].h.header_bytes, h->stream[m]};
     if (h->pk.ivg.present) {
         msgs[n++] = (lumo_net_msg){LUMO_PKG_IVGD, 0, h->desc_len[D_IVGD], h->desc[D_IVGD]};
         msgs[n++] = (lumo_net_msg){LUMO_PKG_IVGS, 0, h->desc_len[D_IVGS], h->desc[D_IVGS]};
@@ -387,15 +389,14 @@ static int find_records(client_link *l, uint32_t m, uint32_t end)
     while (h->known[m] < end) {
         size_t at = mi->rec[h->known[m]], n;
         const uint8_t *rec;
-        lumo_pmesh_record_head rh;
         lumo_status st = lumo_pmesh_next_record(h->stream[m], h->fetched[m], &at, &rec, &n);
         if (st == LUMO_ERR_RANGE || st == LUMO_ERR_TRUNCATED) {
             if (fetch_stream(l, m, (size_t)(end - h->known[m]) * mi->h.max_batch_bytes))
                 return -1;
             continue;
         }
-        if (st || (st = lumo_pmesh_read_record_head(rec, n, &rh)) || rh.index != h->known[m])
-            return fail(l, "%s: a batch record: %s", l->target, st ? lumo_strerror(st) : "out of order");
+        if (st || (st = lumo_pmesh_record_check(rec, n, h->known[m])))
+            return fail(l, "%s: a batch record: %s", l->target, lumo_strerror(st));
         mi->rec[++h->known[m]] = (uint32_t)at;
         if (n > mi->max_record)
             mi->max_record = (uint32_t)n;

@@ -111,7 +111,7 @@ static int run_stream(int argc, char **argv)
             break;
         }
         lumo_pmesh_get_view(&c.pm, &after);
-        printf("%6u %9u %8u %8u %6u %8u %8u %9zu %10zu\n", rh.index, before.vertex_count,
+        printf("%6u %9u %8u %8u %6u %8u %8u %9zu %10zu\n", lumo_pmesh_batches(&c.pm) - 1, before.vertex_count,
                after.vertex_count - before.vertex_count, after.face_count, rh.head_bytes, rh.side_bytes,
                rh.draco_bytes, n, at);
     }

@@ -5,9 +5,10 @@
  * A stream is a header followed by batches. The first batch is the base
  * mesh; each later batch adds the next `vertex_count` vertices, in the
  * server's significance order, by vertex splits (the inverse of the
- * server's half-edge collapses). Vertex positions ride in a Draco point
- * cloud decoded with lumo's own decoder (lumo/draco.h); the lookup table and
- * the connectivity ride beside it in a small bit-packed block.
+ * server's half-edge collapses). The lookup table, the connectivity and
+ * (by default) the positions are range coded in each record's block; older
+ * position codings carry positions in a Draco point cloud decoded with
+ * lumo's own decoder (lumo/draco.h).
  *
  * Usage:
  *   lumo_pmesh_header h;  lumo_pmesh_read_header(stream, size, &h);
@@ -34,12 +35,16 @@
 #include "lumo/fixed.h"
 #include "lumo/status.h"
 
-#define LUMO_PMESH_HEADER_SIZE 68u   /* bytes of the stream header */
-/* A batch record's head (docs/progressive-mesh.md §2.2): three LEB128
- * varints (index, side bytes, Draco bytes) and a CRC-32: 7 to 19 bytes. */
-#define LUMO_PMESH_BATCH_HEAD_MIN 7u
-#define LUMO_PMESH_BATCH_HEAD_MAX 19u   /* bytes of a record head, at most */
-#define LUMO_PMESH_VERSION     7u    /* the stream version read (docs/progressive-mesh.md) */
+/* The stream header (docs/progressive-mesh.md §2.1): 7 fixed bytes (its
+ * length in byte 6), eight LEB128 counts, 23 fixed bytes: 38 to 70 bytes. */
+#define LUMO_PMESH_HEADER_MIN 38u
+#define LUMO_PMESH_HEADER_MAX 70u
+/* A batch record's head (docs/progressive-mesh.md §2.2): one or two LEB128
+ * varints (the block's size and a payload flag, the payload's size) and a
+ * CRC-32: 5 to 14 bytes. */
+#define LUMO_PMESH_BATCH_HEAD_MIN 5u
+#define LUMO_PMESH_BATCH_HEAD_MAX 14u   /* bytes of a record head, at most */
+#define LUMO_PMESH_VERSION     8u    /* the stream version read (docs/progressive-mesh.md) */
 #define LUMO_PMESH_MAX_QBITS   20u   /* position quantization bits, at most */
 /* How a batch's Draco payload carries positions (docs/progressive-mesh.md):
  * ABSOLUTE: a quantized POSITION attribute on the stream's grid (stock
@@ -73,12 +78,13 @@
 
 /* The stream header (all counts validated by lumo_pmesh_read_header). */
 typedef struct lumo_pmesh_header {
+    uint32_t header_bytes;      /* the header's own length; records follow */
     uint32_t vertices;          /* n: vertices of the full mesh */
     uint32_t faces;             /* triangles of the full mesh */
     uint32_t base_vertices;     /* vertices of the base mesh (first batch) */
     uint32_t base_faces;        /* triangles of the base mesh */
     uint32_t batch_vertices;    /* nominal vertices per batch (the last may be short) */
-    uint32_t batch_count;       /* batch records following the header */
+    uint32_t batch_count;       /* batch records following the header (derived) */
     uint32_t max_batch_faces;   /* largest face count of one batch */
     uint32_t max_batch_moves;   /* largest corner-move count of one batch */
     uint32_t max_batch_bytes;   /* largest batch record, header included */
@@ -144,9 +150,10 @@ typedef struct lumo_pmesh {
     size_t       scratch_bytes;
 } lumo_pmesh;
 
-/* Parse and validate the stream header (the first LUMO_PMESH_HEADER_SIZE
- * bytes). Errors: TRUNCATED, CORRUPT (magic, counts), VERSION, CHECKSUM,
- * UNSUPPORTED (quantization bits), NONFINITE (grid). */
+/* Parse and validate the stream header (its first h->header_bytes bytes,
+ * LUMO_PMESH_HEADER_MIN ... _MAX; the first 7 say how many). Errors:
+ * TRUNCATED, CORRUPT (magic, counts), VERSION, CHECKSUM, LIMIT (counts
+ * above 2^28), UNSUPPORTED (quantization bits), NONFINITE (grid). */
 lumo_status lumo_pmesh_read_header(const uint8_t *data, size_t size, lumo_pmesh_header *h);
 
 /* Arena bytes lumo_pmesh_init needs for this header (LUMO_ARENA_SLACK
@@ -162,10 +169,10 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
  * or an impossible size. The record itself may still be shorter than
  * head_bytes + side_bytes + draco_bytes. */
 typedef struct lumo_pmesh_record_head {
-    uint32_t index;        /* 0 = base mesh, then 1, 2, ... */
     uint32_t side_bytes;   /* the split block */
     uint32_t draco_bytes;  /* the Draco point cloud */
-    uint32_t crc;          /* CRC-32 of the record without these 4 bytes */
+    uint32_t crc;          /* CRC-32 of the record's index (not sent) and
+                              the record without these 4 bytes */
     uint32_t head_bytes;   /* LUMO_PMESH_BATCH_HEAD_MIN ... _MAX */
 } lumo_pmesh_record_head;
 /* The head of the batch record at data: TRUNCATED, CORRUPT (varints,
@@ -176,8 +183,16 @@ lumo_status lumo_pmesh_read_record_head(const uint8_t *data, size_t size, lumo_p
  * splitting a stream; errors as lumo_pmesh_read_record_head. */
 lumo_status lumo_pmesh_record_size(const uint8_t *data, size_t size, size_t *record_bytes);
 
-/* The next batch record of a stream: the record at data[*at] (a header's
- * LUMO_PMESH_HEADER_SIZE bytes in at the start), its bytes in *record and
+/* Whether the `size` bytes at data are exactly batch record number `index`
+ * of its stream (0 = the base mesh): its head, its length and its CRC,
+ * which covers the index the record does not carry. For a transport that
+ * checks records before handing them on. CHECKSUM when the bytes are
+ * damaged or another record's; CORRUPT, TRUNCATED for a length that is
+ * not the head's; errors of lumo_pmesh_read_record_head. */
+lumo_status lumo_pmesh_record_check(const uint8_t *data, size_t size, uint32_t index);
+
+/* The next batch record of a stream: the record at data[*at] (the
+ * header's header_bytes in at the start), its bytes in *record and
  * *record_bytes, *at advanced past it. LUMO_ERR_RANGE at the end of the data
  * (*at == size), TRUNCATED when the record is cut, errors of
  * lumo_pmesh_read_record_head for a bad head; *at unchanged on error. This
@@ -186,9 +201,11 @@ lumo_status lumo_pmesh_next_record(const uint8_t *data, size_t size, size_t *at,
                                    const uint8_t **record, size_t *record_bytes);
 
 /* Apply one batch record (exactly one record: `size` is its length).
- * STATE when it is not the next batch (out of order, repeated);
- * TRUNCATED, CORRUPT, CHECKSUM, RANGE, LIMIT, UNSUPPORTED, NOMEM for bad
- * records or Draco payloads. On any error the mesh is unchanged. */
+ * CHECKSUM when it is damaged or not the next batch (out of order,
+ * repeated: its CRC covers the index it should have); STATE when the mesh
+ * is already complete; TRUNCATED, CORRUPT, RANGE, LIMIT, UNSUPPORTED,
+ * NOMEM for bad records or Draco payloads. On any error the mesh is
+ * unchanged. */
 lumo_status lumo_pmesh_apply(lumo_pmesh *pm, const uint8_t *record, size_t size);
 
 /* The current level. */
