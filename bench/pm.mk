@@ -22,3 +22,21 @@ bench-pm-sizes: $(BIN)/lumo-pm
 	$(BIN)/lumo-pm bench --sizes-only --out $(BUILD)/bench/sections/60-pm-sizes.md \
 	    --cmd "make bench-pm-sizes ($(BIN)/lumo-pm bench --sizes-only $(PM_BENCH_MODELS))" \
 	    $(PM_BENCH_MODELS)
+
+# The range code's context priors (docs/progressive-mesh.md §2.3
+# "Contexts"): each training mesh's stream coded with the current table,
+# the bits per context fitted into sdk/src/pmesh_priors.c and the doc's
+# table. The benchmarks' bunny and the held-out CGAL models (homer,
+# elephant-with-holes) are not in the training set. A changed table changes
+# every stream: run tests/pm/regen_streams.sh after it.
+PM_PRIOR_MODELS := $(BUILD)/data/models/dragon_11k.ply $(BUILD)/data/models/dragon_48k.ply \
+                   $(BUILD)/data/cgal/camel.off $(BUILD)/data/cgal/cow.off $(BUILD)/data/cgal/fandisk.off \
+                   $(BUILD)/data/cgal/blobby_3cc.off $(BUILD)/data/cgal/mech-holes-shark.off
+.PHONY: pm-priors
+pm-priors: $(BIN)/lumo-pm
+	@mkdir -p $(BUILD)/pm-priors
+	@for m in $(PM_PRIOR_MODELS); do \
+	    $(BIN)/lumo-pm build $$m -o $(BUILD)/pm-priors/stream.lumo --lattice off \
+	        --context-stats $(BUILD)/pm-priors/$$(basename $$m).txt >/dev/null || exit 1; done
+	python3 tools/pm-priors/pm_priors.py $(patsubst %,$(BUILD)/pm-priors/%.txt,$(notdir $(PM_PRIOR_MODELS))) \
+	    --c sdk/src/pmesh_priors.c --doc docs/progressive-mesh.md

@@ -312,29 +312,12 @@ uint32_t lumo_pmesh_lattice_values(const int32_t *q, const lumo_pmesh_ring *ring
     return m;
 }
 
-/* In 1/2048 (version 5's probability unit). */
-static uint32_t res_prior(int32_t d)
-{
-    if (d <= -10)
-        return 32u;
-    if (d <= -5)
-        return 1024u >> (uint32_t)(-5 - d);
-    return d == -4 ? 1536u : 1856u;
-}
-
 void lumo_pmesh_init_contexts(uint32_t *ctx)
 {
-    uint32_t i, sc, j;
-    for (i = 0; i < LUMO_PMESH_CONTEXTS; i++)
-        ctx[i] = lumo_pmesh_ctx_make(LUMO_PMESH_RC_PROB_INIT, 0);
-    for (sc = 0; sc < LUMO_PMESH_SPREAD_CTXS; sc++)
-        for (j = 0; j < LUMO_PMESH_RES_CLASSES; j++) {
-            uint32_t prior = lumo_pmesh_ctx_make(16u * res_prior((int32_t)j - (int32_t)sc),
-                                                 LUMO_PMESH_RES_PRIOR_COUNT);
-            ctx[lumo_pmesh_res_ctx(sc, j, 1)] = prior;
-            if (j == 0)
-                ctx[lumo_pmesh_res_ctx(sc, j, 0)] = prior;
-        }
+    for (uint32_t i = 0; i < LUMO_PMESH_CONTEXTS; i++)
+        ctx[i] = lumo_pmesh_prior[i]
+                     ? lumo_pmesh_ctx_make(lumo_pmesh_prior[i] * LUMO_PMESH_PRIOR_UNIT, LUMO_PMESH_PRIOR_COUNT)
+                     : lumo_pmesh_ctx_make(LUMO_PMESH_RC_PROB_INIT, 0);
 }
 
 /* Eligible parents of a continued round (pmesh_shared.h): a face, and no

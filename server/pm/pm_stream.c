@@ -97,6 +97,7 @@ typedef struct {
 /* One adaptive bit of context c (mirrors read_ctx in pmesh_batch.c). */
 static void put_ctx(replay *r, bitwriter *w, uint32_t c, uint32_t bit)
 {
+    r->st.ctx_bits[c][bit]++;
     srv_pm_rc_bit(w->rc, &r->ctx[c], bit);
 }
 

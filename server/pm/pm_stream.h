@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "pm/draco_shim.h"
 #include "pm/pm.h"
+#include "lumo/pmesh.h"
 
 /* Where the bits go (split records only), filled when options->stats is
  * set: bits of each split-block field summed over the split vertices, and
@@ -25,6 +26,8 @@ typedef struct srv_pm_stream_stats {
     double   albedo_bits;               /* CODED albedo: "the parent's" or residuals */
     double   other_bits;                /* the code's flush and rounding */
     uint64_t draco_bytes, frame_bytes;  /* payloads; record heads (varints + CRC) */
+    uint64_t ctx_bits[LUMO_PMESH_CONTEXTS][2];  /* adaptive bits coded per context:
+                                                   zeros, ones (tools/pm_priors.py) */
 } srv_pm_stream_stats;
 
 typedef struct srv_pm_stream_options {

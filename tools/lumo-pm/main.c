@@ -25,6 +25,7 @@ int bench_main(int argc, char **argv);
 
 typedef struct {
     const char *in, *out;
+    const char *ctx_stats;   /* --context-stats FILE, or NULL */
     srv_pm_stream_options so;
     srv_pm_options po;
     int raw, albedo;
@@ -32,6 +33,7 @@ typedef struct {
 
 static const char k_usage[] =
     "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--lattice auto|on|off] [--albedo] [--raw]\n"
+    "                     [--context-stats FILE]\n"
     "       lumo-pm clean IN -o OUT.ply\n"
     "       lumo-pm apply STREAM|PACKAGE [RECORDS]\n"
     "       lumo-pm bench --out SECTION.md MODEL...\n"
@@ -43,6 +45,8 @@ static const char k_usage[] =
     "  --lattice M        coordinates copied from the ring (meshes from voxel grids): auto (default:\n"
     "                     built both ways, the smaller kept), on or off\n"
     "  --albedo           stream the per-vertex albedo too\n"
+    "  --context-stats F  write the adaptive bits coded per range-code context to F, one line\n"
+    "                     each: context, zeros, ones (tools/pm_priors.py fits the priors from them)\n"
     "  --raw              write the bare stream, not a package (no INFO: lumo-render needs a scene\n"
     "                     from lumo-bake; lumo-inspect --stream / --lod read both)\n";
 
@@ -57,6 +61,10 @@ static int take_value(args *a, const char *opt, const char *v, char *err, size_t
 {
     if (!strcmp(opt, "-o")) {
         a->out = v;
+        return 0;
+    }
+    if (!strcmp(opt, "--context-stats")) {
+        a->ctx_stats = v;
         return 0;
     }
     if (!strcmp(opt, "--batch"))
@@ -136,6 +144,21 @@ static int write_output(const args *a, const uint8_t *s, size_t n)
     return rc ? -1 : 0;
 }
 
+/* Per context with any bits: "context zeros ones". */
+static int write_ctx_stats(const char *path, const srv_pm_stream_stats *st)
+{
+    FILE *f = fopen(path, "w");
+    for (uint32_t c = 0; f && c < LUMO_PMESH_CONTEXTS; c++)
+        if (st->ctx_bits[c][0] + st->ctx_bits[c][1])
+            fprintf(f, "%u %llu %llu\n", c, (unsigned long long)st->ctx_bits[c][0],
+                    (unsigned long long)st->ctx_bits[c][1]);
+    if (!f || fclose(f)) {
+        fprintf(stderr, "lumo-pm: error: %s: cannot write: %s\n", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
 static int cmd_build(const args *a, int clean_only)
 {
     float *xyz;
@@ -170,7 +193,7 @@ static int cmd_build(const args *a, int clean_only)
                         "cannot hold)\n", a->in);
         goto done;
     }
-    if (write_output(a, s, n))
+    if (write_output(a, s, n) || (a->ctx_stats && write_ctx_stats(a->ctx_stats, &st)))
         goto done;
     lumo_pmesh_header h;
     (void)lumo_pmesh_read_header(s, n, &h);  /* what the per-mesh choices made */

@@ -144,17 +144,17 @@ static inline uint32_t lumo_pmesh_start_ctx(uint32_t j)
 }
 typedef char lumo_pmesh_ctx_fit[LUMO_PMESH_CTX_END == LUMO_PMESH_CONTEXTS ? 1 : -1];
 /* The contexts at the start of a stream (every record after the base
- * carries them on): LUMO_PMESH_RC_PROB_INIT (1/2) and count 0, except the
- * residual class bits (and the FLAT ones, as j = 0), which start from a
- * prior by the offset d = j - sc of the bit's place from the spread
- * class: a residual's bit length is about sc - 5 (measured on the bunny
- * and the 11k dragon, and it does not depend on the grid: both scale with
- * the edges), so "class > j" is likely well below it and unlikely above.
- * The chance of a 0, in 1/2048: 32 for d <= -10, 1024 >> (-5 - d) for -9
- * <= d <= -5, 1536 for d = -4, 1856 for d >= -3 (times 16 in PROB_BITS),
- * with count RES_PRIOR_COUNT (the prior is worth that many bits). Saves
- * the code's learning on short streams. */
-#define LUMO_PMESH_RES_PRIOR_COUNT 16u
+ * carries them on): a context with a prior starts at its chance of a 0,
+ * lumo_pmesh_prior[i] in 1/64 (PRIOR_UNIT in PROB_BITS), and count
+ * PRIOR_COUNT (the prior is worth that many bits, so it moves at rate 4);
+ * one without (0 in the table) at PROB_INIT (1/2), count 0. The table
+ * (pmesh_priors.c) is fitted on training meshes' streams by
+ * tools/pm-priors/pm_priors.py: a short stream then does not pay for the
+ * code's learning (version 8: about 25 bytes on meshes outside the
+ * training set). */
+#define LUMO_PMESH_PRIOR_UNIT  512u
+#define LUMO_PMESH_PRIOR_COUNT 16u
+extern const uint8_t lumo_pmesh_prior[LUMO_PMESH_CONTEXTS];
 void lumo_pmesh_init_contexts(uint32_t *ctx);
 
 /* Context of the residual's class bit j ("class > j") under spread class
