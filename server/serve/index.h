@@ -88,7 +88,7 @@ lumo_status srv_pkg_open(srv_pkg *p, const char *path, char *err, size_t errlen)
 void srv_pkg_close(srv_pkg *p);
 
 /* The WELCOME frame of docs/protocol.md §2 from its descriptors (INFO, each
- * stream's 68-byte header, IVGD, IVGS, ORDR, in that order): p->welcome
+ * stream's header, IVGD, IVGS, ORDR, in that order): p->welcome
  * (allocated), p->welcome_len and p->arena_need (every descriptor's
  * lumo_session_message_need plus LUMO_ARENA_SLACK). p->id and p->path are
  * read. Also what lumo-client --http (tools/lumo-client/link_http.c) builds

@@ -96,7 +96,7 @@ static int reject_corrupt(lumo_pmesh *pm, const uint8_t *rec, size_t n, const ch
 static int apply_stream(lumo_pmesh *pm, const uint8_t *s, size_t len, const char *label,
                         const char *path)
 {
-    size_t at = LUMO_PMESH_HEADER_SIZE, n = 0;
+    size_t at = pm->h.header_bytes, n = 0;
     uint32_t batch = 0, first = 0, t0 = board_ticks();
     uint64_t h = BT_FNV_OFFSET;
     const uint8_t *rec;

@@ -21,14 +21,21 @@ static void put32(uint8_t *p, uint32_t v)
     p[0] = (uint8_t)v, p[1] = (uint8_t)(v >> 8), p[2] = (uint8_t)(v >> 16), p[3] = (uint8_t)(v >> 24);
 }
 
+/* The header's CRC (at its length's end, byte 6) and each record's, with
+ * the index it has in the stream, so mutations get past the checksums. */
 static void fix_crcs(uint8_t *s, size_t size)
 {
-    size_t at = LUMO_PMESH_HEADER_SIZE, n;
-    put32(s + 64, lumo_wire_crc32(0, s, 64));
+    size_t at = s[6], n;
+    uint32_t index = 0;
+    uint8_t idx[LUMO_WIRE_VARINT32_MAX];
+    if (at < LUMO_PMESH_HEADER_MIN || at > LUMO_PMESH_HEADER_MAX || at > size)
+        return;
+    put32(s + at - 4, lumo_wire_crc32(0, s, at - 4));
     lumo_pmesh_record_head rh;
     while (!lumo_pmesh_read_record_head(s + at, size - at, &rh) &&
            (n = (size_t)rh.head_bytes + rh.side_bytes + rh.draco_bytes) <= size - at) {
-        uint32_t crc = lumo_wire_crc32(0, s + at, rh.head_bytes - 4u);
+        uint32_t crc = lumo_wire_crc32(0, idx, lumo_wire_put_varint(idx, index++));
+        crc = lumo_wire_crc32(crc, s + at, rh.head_bytes - 4u);
         put32(s + at + rh.head_bytes - 4u, lumo_wire_crc32(crc, s + at + rh.head_bytes, n - rh.head_bytes));
         at += n;
     }
@@ -51,7 +58,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lumo_pmesh_header h;
     lumo_pmesh pm;
     lumo_arena a;
-    if (size < LUMO_PMESH_HEADER_SIZE)
+    if (size < LUMO_PMESH_HEADER_MIN)
         return 0;
     uint8_t *s = malloc(size);
     if (!s)
@@ -66,7 +73,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     void *mem = malloc(need);
     lumo_arena_init(&a, mem, need);
     if (mem && !lumo_pmesh_init(&pm, &h, &a)) {
-        size_t at = LUMO_PMESH_HEADER_SIZE, n;
+        size_t at = h.header_bytes, n;
         const uint8_t *rec;
         lumo_status st;
         while ((st = lumo_pmesh_next_record(s, size, &at, &rec, &n)) != LUMO_ERR_RANGE) {

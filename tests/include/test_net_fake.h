@@ -7,7 +7,7 @@
  *  - a package read into memory and opened with lumo_package_open, every
  *    progressive stream's records walked with lumo_pmesh_next_record, the
  *    IVG's rounds from its IVGS (lumo_package_ivg_order);
- *  - the WELCOME of docs/protocol.md §2 (INFO, each PMSH's 68-byte header,
+ *  - the WELCOME of docs/protocol.md §2 (INFO, each PMSH's header,
  *    IVGD, IVGS, ORDR) with the arena need lumo_session_message_need gives,
  *    and for a package with PRTV chunks the WELCOME of a client asking for
  *    PRT (§10: each PRTV's 12-byte header and the PRTL after them);
@@ -95,7 +95,7 @@ static inline lumo_status fake_welcome(fake_pkg *k, int prt)
         return st;
     msgs[n].type = LUMO_PKG_INFO, msgs[n].index = 0, msgs[n].len = len, msgs[n++].data = d;
     for (m = 0; m < k->meshes; m++) {
-        msgs[n].type = LUMO_PKG_PMSH, msgs[n].index = m, msgs[n].len = LUMO_PMESH_HEADER_SIZE;
+        msgs[n].type = LUMO_PKG_PMSH, msgs[n].index = m, msgs[n].len = k->mesh[m].h.header_bytes;
         msgs[n++].data = k->mesh[m].stream;
     }
     if (k->has_ivg) {
@@ -146,11 +146,12 @@ static inline lumo_status fake_pkg_open(fake_pkg *k, uint8_t *data, size_t size)
     k->meshes = info.mesh_count;
     for (m = 0; m < k->meshes; m++) {
         fake_mesh *fm = &k->mesh[m];
-        size_t at = LUMO_PMESH_HEADER_SIZE, n;
+        size_t at, n;
         const uint8_t *r;
         if ((st = lumo_package_find(&k->pkg, LUMO_PKG_PMSH, m, &fm->stream, &fm->len)) ||
             (st = lumo_pmesh_read_header(fm->stream, fm->len, &fm->h)))
             return st;
+        at = fm->h.header_bytes;
         if (!(fm->rec = (uint32_t *)malloc(((size_t)fm->h.batch_count + 1) * sizeof *fm->rec)))
             return LUMO_ERR_NOMEM;
         for (b = 0; b < fm->h.batch_count; b++) {

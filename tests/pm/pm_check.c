@@ -369,10 +369,31 @@ static void put32(uint8_t *p, uint32_t v)
         p[i] = (uint8_t)(v >> (8 * i));
 }
 
-static void fix_crc(uint8_t *r, size_t n)
+/* Record rec (n bytes) with its block one byte longer (a zero byte added)
+ * or shorter, its head rewritten and the CRC of record number `index`
+ * fixed (docs/progressive-mesh.md §2.2): only the block's end rules
+ * (§2.3: every byte used, the range code's end) can refuse it. out holds
+ * n + 16 bytes; returns the new length. */
+static size_t resized(const uint8_t *rec, size_t n, int more, uint32_t index, uint8_t *out)
 {
-    uint32_t crc = lumo_wire_crc32(0, r, 32);
-    put32(r + 32, lumo_wire_crc32(crc, r + 36, n - 36));
+    lumo_pmesh_record_head rh;
+    uint8_t idx[LUMO_WIRE_VARINT32_MAX];
+    if (lumo_pmesh_read_record_head(rec, n, &rh) || (!more && rh.side_bytes < 2))
+        return 0;
+    uint32_t side = more ? rh.side_bytes + 1 : rh.side_bytes - 1;
+    size_t at = lumo_wire_put_varint(out, side * 2u + (rh.draco_bytes != 0)), hb;
+    if (rh.draco_bytes)
+        at += lumo_wire_put_varint(out + at, rh.draco_bytes);
+    hb = at + 4;
+    memcpy(out + hb, rec + rh.head_bytes, more ? rh.side_bytes : side);
+    if (more)
+        out[hb + rh.side_bytes] = 0;
+    memcpy(out + hb + side, rec + rh.head_bytes + rh.side_bytes, rh.draco_bytes);
+    uint32_t crc = lumo_wire_crc32(0, idx, lumo_wire_put_varint(idx, index));
+    crc = lumo_wire_crc32(crc, out, at);
+    crc = lumo_wire_crc32(crc, out + hb, side + rh.draco_bytes);
+    put32(out + at, crc);
+    return hb + side + rh.draco_bytes;
 }
 
 /* One bad variant of the next record must fail and leave the mesh as it was. */
@@ -402,18 +423,15 @@ static int corrupt_variants(srv_pm_client *cl, const uint8_t *rec, size_t n, con
     }
     for (size_t cut = 0; cut < n; cut += 1 + n / 7)  /* truncations */
         ok &= reject(cl, rec, cut, &s, &errs, "truncation", cut), (*tried)++;
-    const uint32_t fields[2] = {16, 20};             /* face and move counts, CRC fixed: */
-    for (int f = 0; f < 2; f++) {                    /* fails late, after changes to undo */
-        uint32_t v = n < 40 ? 0 : rec[fields[f]] | rec[fields[f] + 1] << 8 | rec[fields[f] + 2] << 16 | (uint32_t)rec[fields[f] + 3] << 24;
-        if (!v || n < 40)
-            continue;  /* a short record (CODED: no payload) has no such bytes */
-        memcpy(b, rec, n);
-        put32(b + fields[f], v - 1);
-        fix_crc(b, n);
-        ok &= reject(cl, b, n, &s, &errs, f ? "move count - 1" : "face count - 1", 0), (*tried)++;
+    uint8_t *c = malloc(n + 16);
+    for (int more = 0; more < 2; more++) {            /* the block resized, CRC fixed: */
+        size_t cn = resized(rec, n, more, lumo_pmesh_batches(&cl->pm), c);  /* its end rules */
+        if (cn)
+            ok &= reject(cl, c, cn, &s, &errs, more ? "block + 1 byte" : "block - 1 byte", 0), (*tried)++;
     }
-    if (later)                                        /* out of order */
-        ok &= lumo_pmesh_apply(&cl->pm, later, later_n) == LUMO_ERR_STATE && same_as(&cl->pm, &s), (*tried)++;
+    free(c);
+    if (later)                                        /* out of order: its CRC is another index's */
+        ok &= lumo_pmesh_apply(&cl->pm, later, later_n) == LUMO_ERR_CHECKSUM && same_as(&cl->pm, &s), (*tried)++;
     ok &= lumo_pmesh_apply(&cl->pm, rec, n) == LUMO_OK;  /* the good copy still applies */
     free(b);
     unsnap(&s);
@@ -561,7 +579,9 @@ int main(int argc, char **argv)
     }
     if (built) {
         check_all_levels(&pm);
-        int streamed = !srv_pm_stream_build(&pm, &so, &s, &len, NULL, NULL);
+        lumo_pmesh_header sh;
+        int streamed = !srv_pm_stream_build(&pm, &so, &s, &len, NULL, NULL) &&
+                       !lumo_pmesh_read_header(s, len, &sh);
         snprintf(err, sizeof err, "%zu bytes, %.2f bits/triangle", len, pm.faces ? 8.0 * len / pm.faces : 0);
         check(streamed, "stream written", err);
         if (streamed && po.round_fraction > 0 && pm.vertices > 1000 && so.batch_vertices >= 100) {
@@ -576,11 +596,10 @@ int main(int argc, char **argv)
         if (streamed && !so.quant_bits) {
             /* precision per mesh: the fewest bits whose step is at most
              * 1/EDGE_STEPS of the median edge (docs/progressive-mesh.md §2.1) */
-            int b = s[44];
+            int b = (int)sh.quant_bits;
             double range, edge = srv_pm_median_edge(&pm);
             float rf;
-            uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
-            memcpy(&rf, &rb, 4);
+            memcpy(&rf, &sh.range_bits, 4);
             range = rf;
             int fine = b == SRV_PM_MAX_AUTO_BITS || range / ((1 << b) - 1) <= 1.0001 * edge / SRV_PM_EDGE_STEPS;
             int fewest = b == SRV_PM_MIN_AUTO_BITS || range / ((1 << (b - 1)) - 1) > 0.9999 * edge / SRV_PM_EDGE_STEPS;
@@ -590,8 +609,8 @@ int main(int argc, char **argv)
         if (streamed && want_lattice >= 0) {
             /* per mesh (auto): copies where the mesh's coordinates repeat
              * on lattice lines, none where they would cost */
-            snprintf(err, sizeof err, "header flags 0x%02x", s[46]);
-            check(!(s[46] & LUMO_PMESH_LATTICE) == !want_lattice, "lattice copies chosen per mesh", err);
+            snprintf(err, sizeof err, "header flags 0x%02x", sh.flags);
+            check(!(sh.flags & LUMO_PMESH_LATTICE) == !want_lattice, "lattice copies chosen per mesh", err);
         }
         if (streamed && dump) {
             FILE *f = fopen(dump, "wb");
@@ -599,9 +618,8 @@ int main(int argc, char **argv)
         }
         if (streamed) {
             float range;
-            uint32_t rb = s[60] | s[61] << 8 | s[62] << 16 | (uint32_t)s[63] << 24;
-            memcpy(&range, &rb, 4);
-            double step = range / ((1 << s[44]) - 1) + 2.0 / 65536;  /* the stream's own bits */
+            memcpy(&range, &sh.range_bits, 4);
+            double step = range / ((1 << sh.quant_bits) - 1) + 2.0 / 65536;  /* the stream's own bits */
             srv_pm_client cl;
             check_client(&pm, s, len, step, &cl);
             lumo_pmesh_view v;

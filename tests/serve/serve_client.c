@@ -163,11 +163,12 @@ static int pkg_load(pkg_view *v, const char *path)
     lumo_package_find(&v->pkg, LUMO_PKG_INFO, 0, &v->info, &v->info_len);
     for (i = 0; i < v->meshes; i++) {
         pmesh_view *m = &v->mesh[i];
-        size_t at = LUMO_PMESH_HEADER_SIZE, n;
+        size_t at, n;
         const uint8_t *r;
         if (lumo_package_find(&v->pkg, LUMO_PKG_PMSH, i, &m->s, &m->len) ||
             lumo_pmesh_read_header(m->s, m->len, &m->h))
             return -1;
+        at = m->h.header_bytes;
         m->rec = calloc((size_t)m->h.batch_count + 1, sizeof *m->rec);
         for (b = 0; b < m->h.batch_count; b++) {
             m->rec[b] = (uint32_t)at;
@@ -454,7 +455,7 @@ static void check_welcome(const pkg_view *v, const lumo_net_frame *f, lumo_sessi
         if (k == 0)
             want_type = LUMO_PKG_INFO, want = v->info, want_len = v->info_len;
         else if (k <= v->meshes)
-            want_type = LUMO_PKG_PMSH, want_index = k - 1, want = v->mesh[k - 1].s, want_len = LUMO_PMESH_HEADER_SIZE;
+            want_type = LUMO_PKG_PMSH, want_index = k - 1, want = v->mesh[k - 1].s, want_len = v->mesh[k - 1].h.header_bytes;
         else if (v->has_ivg && k == v->meshes + 1)
             want_type = LUMO_PKG_IVGD, want = v->ivgd, want_len = v->ivgd_len;
         else if (v->has_ivg && k == v->meshes + 2)
@@ -651,7 +652,7 @@ static int on_answer(fetch *f, const lumo_net_frame *fr)
                 return -1;
             }
             if (f->got_geo[d.mesh])
-                memcpy(f->got_geo[d.mesh] + m->rec[d.first] - LUMO_PMESH_HEADER_SIZE, d.bytes, d.len);
+                memcpy(f->got_geo[d.mesh] + m->rec[d.first] - m->h.header_bytes, d.bytes, d.len);
             if (f->session)
                 for (k = 0; k < d.count; k++) {
                     uint32_t b = d.first + k;
@@ -737,7 +738,7 @@ static void fetch_init(fetch *f, const pkg_view *v, const run_opts *o, int keep)
     if (!keep)
         return;
     for (m = 0; m < v->meshes; m++)
-        f->got_geo[m] = calloc(1, v->mesh[m].len - LUMO_PMESH_HEADER_SIZE + 1);
+        f->got_geo[m] = calloc(1, v->mesh[m].len - v->mesh[m].h.header_bytes + 1);
     if (v->has_ivg && o->form != LUMO_NET_FORM_NONE)
         f->got_ivg = calloc(1, v->bundle_len[o->form] - BUNDLE_HEAD + 1);
 }
@@ -772,11 +773,11 @@ static void check_complete(const fetch *f, lumo_session *s, const char *mode)
     uint32_t m;
 
     for (m = 0; m < v->meshes; m++) {
-        uint32_t n = v->mesh[m].len - LUMO_PMESH_HEADER_SIZE;
+        uint32_t n = v->mesh[m].len - v->mesh[m].h.header_bytes;
         want += n;
         if (!f->ended[m] || f->held[m] != v->mesh[m].h.batch_count)
             problem("mesh %u: %u of %u batches", m, f->held[m], v->mesh[m].h.batch_count);
-        if (f->got_geo[m] && memcmp(f->got_geo[m], v->mesh[m].s + LUMO_PMESH_HEADER_SIZE, n))
+        if (f->got_geo[m] && memcmp(f->got_geo[m], v->mesh[m].s + v->mesh[m].h.header_bytes, n))
             problem("mesh %u: the records received are not its PMSH chunk minus the header", m);
     }
     if (v->has_ivg && f->form != LUMO_NET_FORM_NONE) {
@@ -1839,7 +1840,7 @@ static void mode_serial(const pkg_view *v, const run_opts *o)
     {
         uint32_t m;
         for (m = 0; m < v->meshes; m++)
-            f.record_bytes += v->mesh[m].len - LUMO_PMESH_HEADER_SIZE;
+            f.record_bytes += v->mesh[m].len - v->mesh[m].h.header_bytes;
         if (v->has_ivg && o->form != LUMO_NET_FORM_NONE)
             f.record_bytes += v->bundle_len[o->form] - BUNDLE_HEAD;
     }

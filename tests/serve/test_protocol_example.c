@@ -113,9 +113,15 @@ static void session(void)
                    "max payload 64 KiB, a 320×240 screen, quantized IVG and push-pull smoothing (40 bytes: N = 28, "
                    "no mesh cursors).");
     assert_int_equal(lumo_net_hello_encode(&h, NULL, f->b, FRAME_CAP, &f->n), LUMO_OK);
-    f = next_frame("The server answers with the WELCOME it built when it opened the package: the package id, the arena "
-                   "the scene needs, and five descriptors copied from the package — `INFO`, the 68-byte header of "
-                   "mesh 0's `PMSH` stream, `IVGD`, `IVGS` and `ORDR`. Every length is a multiple of 4: no padding.");
+    static char welcome_intro[400];
+    uint32_t head = g_pkg.mesh[0].h.header_bytes;
+    snprintf(welcome_intro, sizeof welcome_intro,
+             "The server answers with the WELCOME it built when it opened the package: the package id, the arena "
+             "the scene needs, and five descriptors copied from the package — `INFO`, the %u-byte header of "
+             "mesh 0's `PMSH` stream, `IVGD`, `IVGS` and `ORDR`.%s", head,
+             head % 4 ? " The header is padded to a multiple of 4 bytes with zeros." : " Every length is a multiple "
+             "of 4: no padding.");
+    f = next_frame(welcome_intro);
     assert_true(g_pkg.welcome_len <= FRAME_CAP);
     memcpy(f->b, g_pkg.welcome, g_pkg.welcome_len);
     f->n = g_pkg.welcome_len;
@@ -261,27 +267,34 @@ static void info_payload(cur *c)
     }
 }
 
+static uint32_t varint(cur *c, const char *what)
+{
+    uint32_t v = 0, shift = 0;
+    size_t n = 0;
+    do {
+        v |= (uint32_t)(c->b[c->at + n] & 0x7F) << shift;
+        shift += 7;
+    } while (c->b[c->at + n++] & 0x80);
+    field(c, n, "%s %u (varint)", what, v);
+    return v;
+}
+
 static void pmsh_header(cur *c)
 {
+    static const char *const counts[8] = {"vertices", "faces", "base_vertices", "base_faces", "batch_vertices",
+                                          "max_batch_faces", "max_batch_moves", "max_batch_bytes"};
+    uint32_t hb = c->b[c->at + 6];
     field(c, 4, "magic \"LPM1\"");
     field(c, 2, "stream version %u", u16at(c));
-    field(c, 2, "header size %u", u16at(c));
-    u32f(c, "vertices");
-    u32f(c, "faces");
-    u32f(c, "base_vertices");
-    u32f(c, "base_faces");
-    u32f(c, "batch_vertices");
-    u32f(c, "batch_count");
-    u32f(c, "max_batch_faces");
-    u32f(c, "max_batch_moves");
-    u32f(c, "max_batch_bytes");
+    field(c, 1, "header_bytes %u", hb);
+    for (int i = 0; i < 8; i++)
+        varint(c, counts[i]);
     field(c, 1, "quant_bits %u", c->b[c->at]);
     field(c, 1, "position_coding %u (%s)", c->b[c->at], c->b[c->at] == 2 ? "coded" : c->b[c->at] ? "predicted" : "absolute");
-    field(c, 1, "flags 0x%02X (bit 0: albedo present)", c->b[c->at]);
-    field(c, 1, "reserved");
+    field(c, 1, "flags 0x%02X (bit 0: albedo present, bit 1: lattice copies)", c->b[c->at]);
     vec3(c, "grid origin, m");
     field(c, 4, "grid range %g m", (double)f32(c->b + c->at));
-    field(c, 4, "CRC-32 of the header's bytes 0..63 = 0x%08X", u32at(c));
+    field(c, 4, "CRC-32 of the header's bytes 0..%u = 0x%08X", hb - 5, u32at(c));
 }
 
 static void ivgd_payload(cur *c)
@@ -387,18 +400,6 @@ static void welcome_payload(cur *c)
     }
 }
 
-static uint32_t varint(cur *c, const char *what)
-{
-    uint32_t v = 0, shift = 0;
-    size_t n = 0;
-    do {
-        v |= (uint32_t)(c->b[c->at + n] & 0x7F) << shift;
-        shift += 7;
-    } while (c->b[c->at + n++] & 0x80);
-    field(c, n, "%s %u (varint)", what, v);
-    return v;
-}
-
 static void batch_records(cur *c, uint32_t mesh, uint32_t first, uint32_t count)
 {
     const srv_mesh_index *m = &g_pkg.mesh[mesh];
@@ -410,10 +411,11 @@ static void batch_records(cur *c, uint32_t mesh, uint32_t first, uint32_t count)
         put(c->o, "%-*s", COMMENT_COL, "");
         put(c->o, "batch record %u (%u bytes): PMSH (mesh %u) payload bytes %u..%u, file bytes %zu..%zu\n", b, len,
             mesh, m->rec[b], m->rec[b + 1] - 1, off, off + len - 1);
-        varint(c, b ? "  index" : "  index (0: the base mesh)");
-        side = varint(c, "  side_bytes");
-        draco = varint(c, "  draco_bytes");
-        field(c, 4, "  CRC-32 of the record but these 4 bytes = 0x%08X", u32at(c));
+        side = varint(c, "  sizes: 2 · side_bytes + (1: a payload follows)");
+        draco = side & 1u ? varint(c, "  draco_bytes") : 0;
+        side >>= 1;
+        field(c, 4, "  CRC-32 of index %u (a varint, not sent) and the record but these 4 bytes = 0x%08X", b,
+              u32at(c));
         run(c, side, 0, "  split block (progressive-mesh.md §2.3)");
         run(c, draco, 0, "  Draco point cloud (progressive-mesh.md §2.4)");
         assert_int_equal(c->at - start, len);
@@ -740,7 +742,7 @@ static void test_session_covers(void **state)
     assert_int_equal(types[LUMO_NET_BYE], 1);
     assert_int_equal(g_pkg.mesh_count, 1);
     assert_int_equal(g_pkg.mesh[0].h.batch_count, 1);
-    assert_int_equal(geo, g_pkg.mesh[0].len - LUMO_PMESH_HEADER_SIZE);
+    assert_int_equal(geo, g_pkg.mesh[0].len - g_pkg.mesh[0].h.header_bytes);
     rec_bytes = g_pkg.ivg.bundle_len[LUMO_IVG_FORM_QUANTIZED] - SRV_IVG_BUNDLE_HEAD;
     assert_int_equal(light, rec_bytes);
     assert_int_equal(g_pkg.ivg.rounds, 5);

@@ -13,20 +13,16 @@
 #include "lumo/wire.h"
 
 static const uint8_t k_stream[] = {
-    0x4c, 0x50, 0x4d, 0x31, 0x07, 0x00, 0x44, 0x00, 0x14, 0x00, 0x00, 0x00, 0x24, 0x00, 0x00, 0x00,
-    0x04, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00,
-    0x06, 0x00, 0x00, 0x00, 0x0a, 0x00, 0x00, 0x00, 0x1a, 0x00, 0x00, 0x00, 0x08, 0x02, 0x02, 0x00,
-    0xaa, 0xd2, 0x7e, 0xbf, 0xb2, 0xa0, 0x5c, 0xbf, 0x08, 0x00, 0x80, 0xbf, 0xd8, 0x10, 0x01, 0x40,
-    0x49, 0x92, 0xb0, 0x56, 0x00, 0x0f, 0x00, 0xf4, 0x02, 0xa0, 0xf1, 0x39, 0x46, 0xb3, 0x51, 0x1f,
-    0xd8, 0xff, 0x6d, 0x7e, 0x3f, 0xda, 0x7e, 0x51, 0x1f, 0x24, 0x01, 0x10, 0x00, 0x97, 0x99, 0x07,
-    0x7a, 0x9a, 0x74, 0x95, 0x69, 0xdd, 0xbc, 0xce, 0x12, 0x44, 0xbb, 0x9e, 0xd1, 0xb9, 0xf5, 0xb3,
-    0x00, 0x02, 0x0f, 0x00, 0x11, 0x79, 0xa9, 0x2f, 0x4b, 0x4a, 0x97, 0xd4, 0x49, 0x07, 0x66, 0x1e,
-    0x25, 0x51, 0xa5, 0xa7, 0x42, 0x58, 0x00, 0x03, 0x0e, 0x00, 0xd3, 0x22, 0x3a, 0xf5, 0xfb, 0xc0,
-    0xb7, 0xc4, 0xbc, 0xa7, 0x88, 0x36, 0x40, 0xbc, 0x55, 0x93, 0x0a, 0x96, 0x04, 0x13, 0x00, 0xd6,
-    0x79, 0xa8, 0xc9, 0xa6, 0x12, 0xb4, 0x2d, 0x5f, 0xac, 0x43, 0x35, 0x06, 0x45, 0x49, 0xb6, 0x81,
-    0xd5, 0xbd, 0x64, 0x90, 0xb0, 0x00, 0x05, 0x0e, 0x00, 0xe9, 0xca, 0xd1, 0x0a, 0x91, 0xcb, 0xbd,
-    0xaa, 0xc2, 0x04, 0xb1, 0x40, 0xe7, 0x6f, 0xd7, 0x93, 0xe1, 0x00, 0x06, 0x06, 0x00, 0x34, 0x48,
-    0xa4, 0x2b, 0x9f, 0x85, 0x49, 0xa5, 0x1e, 0x00,
+    0x4c, 0x50, 0x4d, 0x31, 0x08, 0x00, 0x26, 0x14, 0x24, 0x04, 0x04, 0x03, 0x06, 0x0a, 0x14, 0x08,
+    0x02, 0x02, 0xaa, 0xd2, 0x7e, 0xbf, 0xb2, 0xa0, 0x5c, 0xbf, 0x08, 0x00, 0x80, 0xbf, 0xd8, 0x10,
+    0x01, 0x40, 0x2b, 0xd1, 0xe8, 0x17, 0x1e, 0xe4, 0xc7, 0x73, 0x5f, 0x39, 0x46, 0xb3, 0x51, 0x1f,
+    0xd8, 0xff, 0x6d, 0x7e, 0x3f, 0xda, 0x7e, 0x51, 0x1f, 0x24, 0x1e, 0x41, 0x85, 0x01, 0x31, 0x12,
+    0xac, 0x42, 0x43, 0xde, 0xe2, 0x57, 0xbc, 0xfa, 0x7c, 0x68, 0x7a, 0x93, 0x9d, 0x48, 0x18, 0xac,
+    0xea, 0xb3, 0x1f, 0x02, 0xf4, 0x68, 0xf7, 0x81, 0x86, 0x68, 0x3c, 0x4c, 0x95, 0xe5, 0xe9, 0x14,
+    0x78, 0x7d, 0x4c, 0x2b, 0xfa, 0xde, 0x1f, 0x4e, 0xec, 0x6f, 0x67, 0x2b, 0xfb, 0x21, 0x1a, 0x01,
+    0xa5, 0x26, 0xcb, 0x43, 0x71, 0x4a, 0xfa, 0xdb, 0xc8, 0xc7, 0xf3, 0x16, 0x90, 0x93, 0x99, 0x45,
+    0x16, 0x4b, 0xf9, 0x7f, 0xc6, 0x32, 0x92, 0xe9, 0x96, 0xe3, 0x25, 0xed, 0xdb, 0x23, 0xfd, 0xb6,
+    0x06, 0xc9, 0x74, 0x35, 0xdd, 0xd7, 0x9c, 0x8c,
 };
 
 /* FNV-1a of the final triangles and positions, pinned from the server's
@@ -49,7 +45,7 @@ static void open_fixture(fixture *f)
     assert_non_null(f->mem);
     lumo_arena_init(&f->arena, f->mem, n);
     assert_int_equal(lumo_pmesh_init(&f->pm, &f->h, &f->arena), LUMO_OK);
-    f->at = LUMO_PMESH_HEADER_SIZE;
+    f->at = f->h.header_bytes;
 }
 
 static size_t next_record(const fixture *f, const uint8_t **rec)
@@ -157,6 +153,44 @@ static void put32(uint8_t *p, uint32_t v)
         p[i] = (uint8_t)(v >> (8 * i));
 }
 
+/* LEB128 (docs/progressive-mesh.md §2.2); `overlong` adds a zero group. */
+static size_t put_leb(uint8_t *d, uint32_t v, int overlong)
+{
+    size_t n = 0;
+    for (; v > 0x7fu; v >>= 7)
+        d[n++] = (uint8_t)(v | 0x80u);
+    d[n++] = (uint8_t)v;
+    if (overlong)
+        d[n - 1] |= 0x80u, d[n++] = 0;
+    return n;
+}
+
+/* A header written field by field (docs/progressive-mesh.md §2.1), as a
+ * second writer would; `pad` adds a zero byte after the counts and
+ * `overlong` writes the first count with one byte too many (both refused).
+ * Returns the length; h->header_bytes is set to it. */
+static uint32_t put_header(uint8_t *d, lumo_pmesh_header *h, int pad, int overlong)
+{
+    const uint32_t counts[8] = {h->vertices, h->faces, h->base_vertices, h->base_faces,
+                                h->batch_vertices, h->max_batch_faces, h->max_batch_moves,
+                                h->max_batch_bytes};
+    size_t n = 7;
+    put32(d, LUMO_PMESH_MAGIC);
+    d[4] = LUMO_PMESH_VERSION, d[5] = 0;
+    for (int i = 0; i < 8; i++)
+        n += put_leb(d + n, counts[i], overlong && i == 0);
+    if (pad)
+        d[n++] = 0;
+    d[n++] = (uint8_t)h->quant_bits, d[n++] = (uint8_t)h->position_coding, d[n++] = (uint8_t)h->flags;
+    for (int i = 0; i < 3; i++, n += 4)
+        put32(d + n, h->origin_bits[i]);
+    put32(d + n, h->range_bits), n += 4;
+    d[6] = (uint8_t)(n + 4);
+    put32(d + n, lumo_wire_crc32(0, d, n));
+    h->header_bytes = (uint32_t)(n + 4);
+    return h->header_bytes;
+}
+
 /* ---- tests --------------------------------------------------------------- */
 static void test_header(void **state)
 {
@@ -169,31 +203,61 @@ static void test_header(void **state)
     assert_int_equal(h.batch_vertices, 3);
     assert_int_equal(h.batch_count, 7);
     assert_int_equal(h.quant_bits, 8);  /* per mesh: the tiny mesh's long edges */
-    for (size_t n = 0; n < LUMO_PMESH_HEADER_SIZE; n++)
+    for (size_t n = 0; n < h.header_bytes; n++)
         assert_int_equal(lumo_pmesh_read_header(k_stream, n, &h), LUMO_ERR_TRUNCATED);
-    uint8_t b[LUMO_PMESH_HEADER_SIZE];
-    for (size_t i = 0; i < sizeof b; i++) {  /* any flipped byte is caught */
-        memcpy(b, k_stream, sizeof b);
+    uint8_t b[LUMO_PMESH_HEADER_MAX + 8];
+    for (size_t i = 0; i < h.header_bytes; i++) {  /* any flipped byte is caught */
+        memcpy(b, k_stream, h.header_bytes);
         b[i] ^= 0x10;
-        assert_int_not_equal(lumo_pmesh_read_header(b, sizeof b, &h), LUMO_OK);
+        assert_int_not_equal(lumo_pmesh_read_header(b, h.header_bytes, &h), LUMO_OK);
     }
+    assert_int_equal(lumo_pmesh_read_header(k_stream, sizeof k_stream, &h), LUMO_OK);
+    /* our own writer's bytes give the stream's header back */
+    assert_int_equal(put_header(b, &h, 0, 0), h.header_bytes);
+    assert_memory_equal(b, k_stream, h.header_bytes);
     /* fields with the CRC fixed: each check has its own error */
-    struct { size_t at; uint32_t v; lumo_status want; } cases[] = {
-        {4, 1u | 68u << 16, LUMO_ERR_VERSION}, {44, 0, LUMO_ERR_UNSUPPORTED},
-        {44, 21, LUMO_ERR_UNSUPPORTED}, {28, 6, LUMO_ERR_CORRUPT}, {16, 0, LUMO_ERR_CORRUPT},
-        {16, 21, LUMO_ERR_CORRUPT}, {8, 1u << 29, LUMO_ERR_LIMIT}, {60, 0x7f800000u, LUMO_ERR_NONFINITE},
-        {60, 0xbf800000u, LUMO_ERR_RANGE}, {32, 37, LUMO_ERR_CORRUPT},
-        {44, 12u | 2u << 8 | 4u << 16, LUMO_ERR_UNSUPPORTED},  /* unknown flag */
-        {44, 12u | 1u << 8 | 2u << 16, LUMO_ERR_UNSUPPORTED},  /* LATTICE without CODED */
-        {44, 12u | 3u << 8, LUMO_ERR_UNSUPPORTED},             /* unknown coding */
-        {44, 12u | 2u << 8 | 3u << 16, LUMO_OK},               /* CODED, albedo and LATTICE */
-        {44, 12u | 1u << 8 | 1u << 24, LUMO_ERR_CORRUPT},      /* reserved byte */
+    enum { VTX, FACES, BASE, BASEF, BATCH, MAXF, MAXM, MAXB, QBITS, CODING, FLAGS, RANGE, VERSION };
+    struct { int field; uint32_t v; lumo_status want; } cases[] = {
+        {VERSION, 7, LUMO_ERR_VERSION}, {QBITS, 0, LUMO_ERR_UNSUPPORTED},
+        {QBITS, 21, LUMO_ERR_UNSUPPORTED}, {BASE, 0, LUMO_ERR_CORRUPT},
+        {BASE, 21, LUMO_ERR_CORRUPT}, {VTX, 1u << 29, LUMO_ERR_LIMIT}, {RANGE, 0x7f800000u, LUMO_ERR_NONFINITE},
+        {RANGE, 0xbf800000u, LUMO_ERR_RANGE}, {MAXF, 37, LUMO_ERR_CORRUPT}, {MAXB, 4, LUMO_ERR_CORRUPT},
+        {FLAGS, 4, LUMO_ERR_UNSUPPORTED},                        /* unknown flag */
+        {FLAGS, 2, LUMO_OK},                                     /* LATTICE with CODED */
+        {CODING, 1, LUMO_ERR_UNSUPPORTED},                       /* ... and without */
+        {CODING, 3, LUMO_ERR_UNSUPPORTED},                       /* unknown coding */
+        {FLAGS, 3, LUMO_OK},                                     /* CODED, albedo and LATTICE */
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-        memcpy(b, k_stream, sizeof b);
-        put32(b + cases[c].at, cases[c].v);
-        put32(b + 64, lumo_wire_crc32(0, b, 64));
-        assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &h), cases[c].want);
+        lumo_pmesh_header m = h;
+        uint32_t *field[] = {&m.vertices, &m.faces, &m.base_vertices, &m.base_faces, &m.batch_vertices,
+                             &m.max_batch_faces, &m.max_batch_moves, &m.max_batch_bytes, &m.quant_bits,
+                             &m.position_coding, &m.flags, &m.range_bits};
+        if (cases[c].field == CODING)
+            m.flags = LUMO_PMESH_LATTICE;
+        if (cases[c].field == VERSION) {
+            put_header(b, &m, 0, 0);
+            b[4] = (uint8_t)cases[c].v;
+            put32(b + m.header_bytes - 4, lumo_wire_crc32(0, b, m.header_bytes - 4));
+        } else {
+            *field[cases[c].field] = cases[c].v;
+            put_header(b, &m, 0, 0);
+        }
+        assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &m), cases[c].want);
+    }
+    /* the counts must fill their bytes exactly, minimally coded */
+    lumo_pmesh_header m;
+    put_header(b, &h, 1, 0);  /* a zero byte after the counts */
+    assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &m), LUMO_ERR_CORRUPT);
+    put_header(b, &h, 0, 1);  /* the first count overlong */
+    assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &m), LUMO_ERR_CORRUPT);
+    memcpy(b, k_stream, h.header_bytes);
+    for (uint32_t len = 0; len < 256; len++) {  /* a length byte not the header's */
+        if (len == h.header_bytes)
+            continue;
+        b[6] = (uint8_t)len;
+        lumo_status st = lumo_pmesh_read_header(b, sizeof b, &m);
+        assert_true(st == LUMO_ERR_CORRUPT || st == LUMO_ERR_CHECKSUM);
     }
 }
 
@@ -287,10 +351,13 @@ static uint32_t side_bytes(const uint8_t *r, size_t n)
     return rh.side_bytes;
 }
 
-static void fix_crc(uint8_t *r, size_t n)
+/* The CRC of record number `index` (which it does not carry). */
+static void fix_crc(uint8_t *r, size_t n, uint32_t index)
 {
+    uint8_t idx[LUMO_WIRE_VARINT32_MAX];
     uint32_t hb = head_bytes(r, n);
-    uint32_t crc = lumo_wire_crc32(0, r, hb - 4u);
+    uint32_t crc = lumo_wire_crc32(0, idx, put_leb(idx, index, 0));
+    crc = lumo_wire_crc32(crc, r, hb - 4u);
     put32(r + hb - 4u, lumo_wire_crc32(crc, r + hb, n - hb));
 }
 
@@ -316,7 +383,7 @@ static void test_tampered_batches(void **state)
             if (lumo_pmesh_read_record_head(b, n, &rh) || rh.head_bytes != hb ||
                 rh.side_bytes != side || (size_t)hb + side + rh.draco_bytes != n)
                 continue;  /* a changed head: the size checks (test_truncation_and_flips) */
-            fix_crc(b, n);
+            fix_crc(b, n, f.pm.batches_applied);
             snapshot s;
             snap(&f.pm, &s);
             lumo_status st = lumo_pmesh_apply(&f.pm, b, n);
@@ -354,31 +421,40 @@ static void test_order(void **state)
     f.at += n0;
     size_t n1 = next_record(&f, &rec1);
     f.at -= n0;
-    assert_int_equal(lumo_pmesh_apply(&f.pm, rec1, n1), LUMO_ERR_STATE);  /* split before base */
+    /* the CRC covers the index a record should have (§2.2) */
+    assert_int_equal(lumo_pmesh_record_check(rec0, n0, 0), LUMO_OK);
+    assert_int_equal(lumo_pmesh_record_check(rec1, n1, 1), LUMO_OK);
+    assert_int_equal(lumo_pmesh_record_check(rec1, n1, 0), LUMO_ERR_CHECKSUM);
+    assert_int_equal(lumo_pmesh_record_check(rec1, n1, 2), LUMO_ERR_CHECKSUM);
+    assert_int_equal(lumo_pmesh_record_check(rec1, n1 - 1, 1), LUMO_ERR_TRUNCATED);
+    assert_int_equal(lumo_pmesh_record_check(rec1, n1 + 1, 1), LUMO_ERR_CORRUPT);
+    assert_int_equal(lumo_pmesh_apply(&f.pm, rec1, n1), LUMO_ERR_CHECKSUM);  /* split before base */
     assert_int_equal(lumo_pmesh_apply(&f.pm, rec0, n0), LUMO_OK);
-    assert_int_equal(lumo_pmesh_apply(&f.pm, rec0, n0), LUMO_ERR_STATE);  /* repeated */
+    assert_int_equal(lumo_pmesh_apply(&f.pm, rec0, n0), LUMO_ERR_CHECKSUM);  /* repeated */
     assert_int_equal(lumo_pmesh_apply(&f.pm, rec1, n1), LUMO_OK);
-    assert_int_equal(lumo_pmesh_apply(&f.pm, rec1, n1), LUMO_ERR_STATE);
+    assert_int_equal(lumo_pmesh_apply(&f.pm, rec1, n1), LUMO_ERR_CHECKSUM);
     assert_int_equal(lumo_pmesh_apply(&f.pm, rec0, n0 + 1), LUMO_ERR_CORRUPT);  /* trailing byte */
     check_level(&f.pm);
     free(f.mem);
 }
 
 /* Record rec (n bytes) with its split block replaced by `side` (sn
- * bytes): new head varints, the same payload, a valid CRC. Returns the
+ * bytes): new head varints, the same payload, a valid CRC for record
+ * number `index`. Returns the
  * new length; out holds n + 16 bytes. */
-static size_t with_side(const uint8_t *rec, size_t n, const uint8_t *side, size_t sn, uint8_t *out)
+static size_t with_side(const uint8_t *rec, size_t n, const uint8_t *side, size_t sn, uint32_t index,
+                        uint8_t *out)
 {
     lumo_pmesh_record_head rh;
     assert_int_equal(lumo_pmesh_read_record_head(rec, n, &rh), LUMO_OK);
-    size_t at = lumo_wire_put_varint(out, rh.index);
-    at += lumo_wire_put_varint(out + at, (uint32_t)sn);
-    at += lumo_wire_put_varint(out + at, rh.draco_bytes);
+    size_t at = lumo_wire_put_varint(out, (uint32_t)sn * 2u + (rh.draco_bytes != 0));
+    if (rh.draco_bytes)
+        at += lumo_wire_put_varint(out + at, rh.draco_bytes);
     at += 4;
     memmove(out + at, side, sn);
     memcpy(out + at + sn, rec + rh.head_bytes + rh.side_bytes, rh.draco_bytes);
     at += sn + rh.draco_bytes;
-    fix_crc(out, at);
+    fix_crc(out, at, index);
     return at;
 }
 
@@ -404,17 +480,17 @@ static void test_range_code_end(void **state)
     snap(&f.pm, &s);
     memcpy(side, rec + hb, sb);
     side[sb] = 0;
-    assert_int_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb + 1, b)), LUMO_ERR_CORRUPT);
+    assert_int_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb + 1, f.pm.batches_applied, b)), LUMO_ERR_CORRUPT);
     assert_unchanged(&f.pm, &s);
-    assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb - 1, b)), LUMO_OK);
+    assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb - 1, f.pm.batches_applied, b)), LUMO_OK);
     assert_unchanged(&f.pm, &s);
     side[sb - 1] ^= 1u;
-    assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb, b)), LUMO_OK);
+    assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb, f.pm.batches_applied, b)), LUMO_OK);
     assert_unchanged(&f.pm, &s);
     static const uint8_t noise[] = {0x00, 0xff, 0x5a};
     for (size_t i = 0; i < sizeof noise; i++) {
         memset(side, noise[i], sb);
-        assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb, b)), LUMO_OK);
+        assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb, f.pm.batches_applied, b)), LUMO_OK);
         assert_unchanged(&f.pm, &s);
     }
     assert_int_equal(lumo_pmesh_apply(&f.pm, rec, n), LUMO_OK);  /* the good copy still applies */
@@ -425,24 +501,31 @@ static void test_range_code_end(void **state)
 }
 
 /* The record head's varints (docs/progressive-mesh.md §2.2): minimal
- * LEB128 of at most 5 bytes and below 2^28, else CORRUPT; a cut head is
- * TRUNCATED. */
+ * LEB128 of at most 5 bytes, the block's size below 2^28 doubled plus the
+ * payload flag, a payload size only after the flag and not 0; else
+ * CORRUPT; a cut head is TRUNCATED. */
 static void test_record_head(void **state)
 {
     (void)state;
     lumo_pmesh_record_head rh;
-    const uint8_t good[] = {0x05, 0x81, 0x01, 0x2c, 1, 2, 3, 4};
+    const uint8_t good[] = {0x83, 0x02, 0x2c, 1, 2, 3, 4};  /* 2 * 129 + 1, then 44 */
     assert_int_equal(lumo_pmesh_read_record_head(good, sizeof good, &rh), LUMO_OK);
-    assert_int_equal(rh.index, 5);
     assert_int_equal(rh.side_bytes, 129);
     assert_int_equal(rh.draco_bytes, 44);
     assert_int_equal(rh.crc, 0x04030201u);
-    assert_int_equal(rh.head_bytes, 8);
+    assert_int_equal(rh.head_bytes, 7);
     for (size_t n = 0; n < sizeof good; n++)
         assert_int_equal(lumo_pmesh_read_record_head(good, n, &rh), LUMO_ERR_TRUNCATED);
-    const uint8_t overlong[] = {0x85, 0x00, 0x01, 0x01, 1, 2, 3, 4};      /* 5 in two bytes */
-    const uint8_t six[] = {0x80, 0x80, 0x80, 0x80, 0x80, 0x01, 1, 1, 1, 2, 3, 4};
-    const uint8_t big[] = {0x00, 0x81, 0x80, 0x80, 0x80, 0x01, 1, 1, 2, 3, 4}; /* 2^28 + 1 */
+    const uint8_t coded[] = {0x82, 0x02, 1, 2, 3, 4};  /* no payload */
+    assert_int_equal(lumo_pmesh_read_record_head(coded, sizeof coded, &rh), LUMO_OK);
+    assert_int_equal(rh.side_bytes, 129);
+    assert_int_equal(rh.draco_bytes, 0);
+    assert_int_equal(rh.head_bytes, 6);
+    const uint8_t empty_payload[] = {0x83, 0x02, 0x00, 1, 2, 3, 4};
+    const uint8_t overlong[] = {0x85, 0x00, 0x01, 1, 2, 3, 4};   /* 5 in two bytes */
+    const uint8_t six[] = {0x80, 0x80, 0x80, 0x80, 0x80, 0x01, 1, 2, 3, 4};
+    const uint8_t big[] = {0x82, 0x80, 0x80, 0x80, 0x02, 1, 2, 3, 4};  /* 2 * (2^28 + 1) */
+    assert_int_equal(lumo_pmesh_read_record_head(empty_payload, sizeof empty_payload, &rh), LUMO_ERR_CORRUPT);
     assert_int_equal(lumo_pmesh_read_record_head(overlong, sizeof overlong, &rh), LUMO_ERR_CORRUPT);
     assert_int_equal(lumo_pmesh_read_record_head(six, sizeof six, &rh), LUMO_ERR_CORRUPT);
     assert_int_equal(lumo_pmesh_read_record_head(big, sizeof big, &rh), LUMO_ERR_CORRUPT);

@@ -31,7 +31,7 @@ static size_t read_tiny(uint8_t *buf, size_t cap)
     assert_non_null(f);
     n = fread(buf, 1, cap, f);
     fclose(f);
-    assert_true(n > LUMO_PMESH_HEADER_SIZE && n < cap);
+    assert_true(n > LUMO_PMESH_HEADER_MIN && n < cap);
     return n;
 }
 
@@ -203,7 +203,8 @@ static void test_one_record_at_a_time(void **state)
     static chunk info;
     lumo_arena a;
     const uint8_t *rec;
-    size_t n = read_tiny(s, sizeof s), at = LUMO_PMESH_HEADER_SIZE, rn;
+    size_t n = read_tiny(s, sizeof s), at, rn;
+    lumo_pmesh_header h;
     uint32_t whole, records = 0, before;
     (void)state;
     assert_int_equal(level_vertices(NULL), 20);
@@ -212,7 +213,9 @@ static void test_one_record_at_a_time(void **state)
     lumo_arena_init(&a, g_mem, sizeof g_mem);
     assert_int_equal(lumo_session_init(&g_s, NULL, &a), LUMO_OK);
     assert_int_equal(lumo_session_feed(&g_s, LUMO_MSG_INFO, 0, info.data.b, info.data.n), LUMO_OK);
-    assert_int_equal(lumo_session_feed(&g_s, LUMO_MSG_PMSH, 0, s, LUMO_PMESH_HEADER_SIZE), LUMO_OK);
+    assert_int_equal(lumo_pmesh_read_header(s, n, &h), LUMO_OK);
+    at = h.header_bytes;
+    assert_int_equal(lumo_session_feed(&g_s, LUMO_MSG_PMSH, 0, s, at), LUMO_OK);
     while (lumo_pmesh_next_record(s, n, &at, &rec, &rn) == LUMO_OK) {
         if (records++ == 2) {
             memcpy(bad, rec, rn);
@@ -346,7 +349,9 @@ static void test_ivgr_round_by_round(void **state)
     assert_int_equal(lumo_session_feed(&g_s2, LUMO_MSG_IVGS, 0, p, len), LUMO_ERR_STATE);
     for (i = 0; i < info.mesh_count; i++) {
         p = find(&pkg, LUMO_PKG_PMSH, i, &len);
-        assert_int_equal(lumo_session_feed(&g_s2, LUMO_MSG_PMSH, i, p, LUMO_PMESH_HEADER_SIZE), LUMO_OK);
+        lumo_pmesh_header h;
+        assert_int_equal(lumo_pmesh_read_header(p, len, &h), LUMO_OK);
+        assert_int_equal(lumo_session_feed(&g_s2, LUMO_MSG_PMSH, i, p, h.header_bytes), LUMO_OK);
     }
     p = find(&pkg, LUMO_PKG_IVGD, 0, &len);
     assert_int_equal(lumo_session_feed(&g_s2, LUMO_MSG_IVGD, 0, p, len), LUMO_OK);

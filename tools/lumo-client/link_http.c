@@ -6,8 +6,8 @@
  * driver is unchanged (docs/protocol.md §7 "HTTP"):
  *
  *  - opening: the package header and chunk table (two ranges, both CRCs
- *    checked), then the WELCOME descriptors — INFO, the first 68 bytes of
- *    each PMSH chunk (its stream header), IVGD, IVGS, ORDR — each whole
+ *    checked), then the WELCOME descriptors — INFO, each PMSH chunk's
+ *    stream header (its length in its byte 6), IVGD, IVGS, ORDR — each whole
  *    chunk checked against the table's CRC, and WELCOME built as the server
  *    builds it (srv_welcome_build);
  *  - HELLO: that WELCOME, or ERROR as lumo-server would send it;

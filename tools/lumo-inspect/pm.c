@@ -85,10 +85,12 @@ static int run_stream(int argc, char **argv)
     static const char *const coding[] = {"absolute, in Draco payloads", "predicted, residuals in Draco payloads",
                                          "coded"};
     printf("progressive mesh: %u vertices, %u faces; base %u vertices, %u faces; %u batches of %u "
-           "vertices; positions %u bits (%s%s)%s; stream %zu bytes (%.2f bits/triangle); client arena %zu bytes\n",
+           "vertices; positions %u bits (%s%s)%s; stream %zu bytes (%.2f bits/triangle; header %u); client arena "
+           "%zu bytes\n",
            h->vertices, h->faces, h->base_vertices, h->base_faces, h->batch_count, h->batch_vertices,
            h->quant_bits, coding[h->position_coding], h->flags & LUMO_PMESH_LATTICE ? ", lattice copies" : "",
-           h->flags & LUMO_PMESH_HAS_ALBEDO ? "; albedo" : "", c.len, h->faces ? 8.0 * c.len / h->faces : 0.0, c.arena_bytes);
+           h->flags & LUMO_PMESH_HAS_ALBEDO ? "; albedo" : "", c.len, h->faces ? 8.0 * c.len / h->faces : 0.0,
+           h->header_bytes, c.arena_bytes);
     printf("%6s %9s %8s %8s %6s %8s %8s %9s %10s\n", "batch", "first", "verts", "faces", "head B",
            "side B", "draco B", "record B", "offset");
     int rc = 0;
