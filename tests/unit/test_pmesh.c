@@ -246,10 +246,11 @@ static void test_header(void **state)
         assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &m), cases[c].want);
     }
     /* the counts must fill their bytes exactly, minimally coded */
-    lumo_pmesh_header m;
-    put_header(b, &h, 1, 0);  /* a zero byte after the counts */
+    lumo_pmesh_header m = h;
+    put_header(b, &m, 1, 0);  /* a zero byte after the counts */
     assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &m), LUMO_ERR_CORRUPT);
-    put_header(b, &h, 0, 1);  /* the first count overlong */
+    m = h;
+    put_header(b, &m, 0, 1);  /* the first count overlong */
     assert_int_equal(lumo_pmesh_read_header(b, sizeof b, &m), LUMO_ERR_CORRUPT);
     memcpy(b, k_stream, h.header_bytes);
     for (uint32_t len = 0; len < 256; len++) {  /* a length byte not the header's */
@@ -484,9 +485,21 @@ static void test_range_code_end(void **state)
     assert_unchanged(&f.pm, &s);
     assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb - 1, f.pm.batches_applied, b)), LUMO_OK);
     assert_unchanged(&f.pm, &s);
+    /* the last byte changed: the flush's end value is checked (code below
+     * 2^24), but a changed byte may also read as other splits that end
+     * right; then it is another valid level (the CRC, not the code, is the
+     * check against damage) */
     side[sb - 1] ^= 1u;
-    assert_int_not_equal(lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb, f.pm.batches_applied, b)), LUMO_OK);
-    assert_unchanged(&f.pm, &s);
+    if (lumo_pmesh_apply(&f.pm, b, with_side(rec, n, side, sb, f.pm.batches_applied, b)))
+        assert_unchanged(&f.pm, &s);
+    else {
+        check_level(&f.pm);
+        size_t at = f.at;  /* back to the level before: replay up to here */
+        free(f.mem);
+        open_fixture(&f);
+        while (f.at < at)
+            step(&f);
+    }
     static const uint8_t noise[] = {0x00, 0xff, 0x5a};
     for (size_t i = 0; i < sizeof noise; i++) {
         memset(side, noise[i], sb);
