@@ -36,7 +36,7 @@ rp2040-sdk:
 # at most 4 KiB, 24 KiB of picture memory (one 16-row band at 320 pixels
 # is 15 KiB), no recording; board.c's scratch holds these and the scene.
 RP2040_CLIENT_FLAGS := -DCLIENT_MAX_PAYLOAD=4096u -DCLIENT_PICTURE_BYTES=24576u -DCLIENT_RECORD_BYTES=0u \
-                       -DRP2040_SCRATCH_BYTES=110592u
+                       -DRP2040_SCRATCH_BYTES=109568u
 # (this file a prerequisite: the flags above are part of every object)
 $(BUILD)/board/obj-m0/%.o: %.c boards/rp2040/rp2040.mk
 	@mkdir -p $(@D)

@@ -512,8 +512,14 @@ lumo_status srv_mc_check_gltf(srv_mc *c, int glb)
         return srv_mc_fail(c, LUMO_ERR_LIMIT, "%zu bytes of JSON, at most %llu MiB are read (SRV_GLTF_MAX_JSON)", len,
                            (unsigned long long)(SRV_GLTF_MAX_JSON >> 20));
     g.root = json_loadb((const char *)json, len, JSON_REJECT_DUPLICATES, &je);
-    if (!g.root)
+    if (!g.root) {
+        /* jansson quotes the file's bytes "near" the error: a control
+         * character there would break the one-line reason */
+        for (char *t = je.text; *t; t++)
+            if ((unsigned char)*t < 0x20 || *t == 0x7f)
+                *t = '?';
         return srv_mc_fail(c, LUMO_ERR_CORRUPT, "JSON line %d, column %d: %.120s", je.line, je.column, je.text);
+    }
     st = check_document(&g);
     json_decref(g.root);
     return st;

@@ -372,8 +372,10 @@ static void put32(uint8_t *p, uint32_t v)
 /* Record rec (n bytes) with its block one byte longer (a zero byte added)
  * or shorter, its head rewritten and the CRC of record number `index`
  * fixed (docs/progressive-mesh.md §2.2): only the block's end rules
- * (§2.3: every byte used, the range code's end) can refuse it. out holds
- * n + 16 bytes; returns the new length. */
+ * (§2.3: every byte used, the range code's end) can refuse it. A zero
+ * byte more always is (the decoder reads the same bits and ends a byte
+ * early); a byte less may read as other valid splits. out holds n + 16
+ * bytes; returns the new length. */
 static size_t resized(const uint8_t *rec, size_t n, int more, uint32_t index, uint8_t *out)
 {
     lumo_pmesh_record_head rh;
@@ -423,12 +425,10 @@ static int corrupt_variants(srv_pm_client *cl, const uint8_t *rec, size_t n, con
     }
     for (size_t cut = 0; cut < n; cut += 1 + n / 7)  /* truncations */
         ok &= reject(cl, rec, cut, &s, &errs, "truncation", cut), (*tried)++;
-    uint8_t *c = malloc(n + 16);
-    for (int more = 0; more < 2; more++) {            /* the block resized, CRC fixed: */
-        size_t cn = resized(rec, n, more, lumo_pmesh_batches(&cl->pm), c);  /* its end rules */
-        if (cn)
-            ok &= reject(cl, c, cn, &s, &errs, more ? "block + 1 byte" : "block - 1 byte", 0), (*tried)++;
-    }
+    uint8_t *c = malloc(n + 16);                      /* a zero byte more in the block, CRC */
+    size_t cn = resized(rec, n, 1, lumo_pmesh_batches(&cl->pm), c);  /* fixed: its end rules */
+    if (cn)
+        ok &= reject(cl, c, cn, &s, &errs, "block + 1 byte", 0), (*tried)++;
     free(c);
     if (later)                                        /* out of order: its CRC is another index's */
         ok &= lumo_pmesh_apply(&cl->pm, later, later_n) == LUMO_ERR_CHECKSUM && same_as(&cl->pm, &s), (*tried)++;
