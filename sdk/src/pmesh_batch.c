@@ -103,6 +103,9 @@ typedef struct {
     uint32_t    last_fan;    /* the previous split was a fan split */
     uint32_t    last_same;   /* the previous split's albedo was its parent's */
     uint32_t    stamped;     /* splits whose parent's round_parent is set */
+    uint32_t    split0;      /* the block's first split vertex: the record's
+                                first vertex, in the base record the seed's
+                                size (batch_parent and stamp_log count from it) */
     uint32_t   *ctx;         /* pm->ctx (pm->ctx_undo keeps the batch's start) */
 } split_ctx;
 
@@ -329,14 +332,16 @@ static void rollback_to(split_ctx *s, uint32_t keep)
 }
 
 /* ---- base mesh and vertex splits ------------------------------------------- */
-static lumo_status read_base(split_ctx *s)
+/* The base record's first faces: nf faces of three distinct indices
+ * below nv, each in tb(nv). */
+static lumo_status read_base_faces(split_ctx *s, uint32_t nv, uint32_t nf)
 {
-    for (uint32_t f = 0; f < s->pm->h.base_faces; f++) {
+    for (uint32_t f = 0; f < nf; f++) {
         uint32_t t[3];
         for (int i = 0; i < 3; i++)
-            if (read_trunc(&s->br, s->b->count, &t[i]))
+            if (read_trunc(&s->br, nv, &t[i]))
                 return LUMO_ERR_TRUNCATED;
-        if (t[0] >= s->b->count || t[1] >= s->b->count || t[2] >= s->b->count)
+        if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
             return LUMO_ERR_RANGE;
         if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
             return LUMO_ERR_CORRUPT;
@@ -525,7 +530,7 @@ static lumo_status predict_split(split_ctx *s, uint32_t k)
     lumo_pmesh *pm = s->pm;
     lumo_pmesh_ring ring;
     int32_t res[3];
-    uint32_t p = pm->batch_parent[k - s->b->first];
+    uint32_t p = pm->batch_parent[k - s->split0];
     lumo_pmesh_predict_position(pm->qpos, pm->tris, pm->head, pm->next, k, p,
                                 pm->h.flags & LUMO_PMESH_LATTICE, &ring);
     if (!s->coded)
@@ -835,7 +840,7 @@ static lumo_status split(split_ctx *s, uint32_t k)
     s->pm->round_parent[p] = s->round_first;
     s->prev_parent = p;
     s->pm->head[k] = NIL;
-    s->pm->batch_parent[k - s->b->first] = p;
+    s->pm->batch_parent[k - s->split0] = p;
     if ((st = read_split_kind(s, &n, &paired, &fan)))
         return st;
     if ((st = fan ? fan_split(s, p, k) : mask_split(s, p, k, n, paired)))
@@ -850,6 +855,7 @@ static lumo_status run_split_block(split_ctx *s)
 {
     lumo_status st = LUMO_OK;
     s->br.range = 1;
+    s->split0 = s->b->first;
     if (lumo_pmesh_rc_init(&s->br.rc, s->b->side, s->b->side_bytes))
         return LUMO_ERR_TRUNCATED;
     for (uint32_t i = 0; i < s->b->count && !st; i++) {
@@ -861,39 +867,84 @@ static lumo_status run_split_block(split_ctx *s)
     return st;
 }
 
-/* CODED base positions: quant_bits per grid integer, x, y, z per vertex
+/* The seed's size in a CODED base record (docs/progressive-mesh.md §2.3
+ * "Base record"): its vertex count s (1 ... b) and face count + 1, gamma
+ * codes. A seed larger than the base mesh is RANGE; more faces than the
+ * base mesh's, or a seed as large as the base mesh with fewer faces
+ * (nothing would add them), CORRUPT. */
+static lumo_status read_seed_size(split_ctx *s, uint32_t *nv, uint32_t *nf)
+{
+    const lumo_pmesh_header *h = &s->pm->h;
+    lumo_status st = read_gamma(&s->br, nv);
+    if (st || (st = read_gamma(&s->br, nf)))
+        return st;
+    *nf -= 1u;
+    if (*nv > h->base_vertices)
+        return LUMO_ERR_RANGE;
+    if (*nf > h->base_faces || (*nv == h->base_vertices && *nf != h->base_faces))
+        return LUMO_ERR_CORRUPT;
+    return LUMO_OK;
+}
+
+/* CODED seed positions: quant_bits per grid integer, x, y, z per vertex
  * (every value fits the grid); with albedo, then 8 bits per channel. */
-static lumo_status read_base_positions(split_ctx *s)
+static lumo_status read_seed_attributes(split_ctx *s, uint32_t nv)
 {
     uint32_t v;
-    for (size_t at = 0; at < 3 * (size_t)s->b->count; at++) {
+    for (size_t at = 0; at < 3 * (size_t)nv; at++) {
         if (read_bits(&s->br, s->pm->h.quant_bits, &v))
             return LUMO_ERR_TRUNCATED;
         s->pm->qpos[at] = (int32_t)v;
     }
-    return LUMO_OK;
-}
-
-/* The base block: bit fields, zero padding, every byte used. */
-static lumo_status run_base_block(split_ctx *s)
-{
-    uint32_t pad;
-    lumo_status st = read_base(s);
-    if (!st && s->coded)
-        st = read_base_positions(s);
-    for (size_t at = 0; !st && s->coded && s->pm->albedo && at < 3 * (size_t)s->b->count; at++) {
-        uint32_t v;
+    for (size_t at = 0; s->pm->albedo && at < 3 * (size_t)nv; at++) {
         if (read_bits(&s->br, 8, &v))
             return LUMO_ERR_TRUNCATED;
         s->pm->albedo[at] = (lumo_q1_14)lumo_pmesh_albedo_q14(v);
     }
+    return LUMO_OK;
+}
+
+/* The splits of the seed up to the base mesh, k = seed ... b - 1: a range
+ * code on the block's bytes after the plain bits, exactly a split
+ * record's (the contexts and the round state carry on). */
+static lumo_status run_seed_splits(split_ctx *s, uint32_t seed, size_t at)
+{
+    lumo_status st = LUMO_OK;
+    s->br.range = 1;
+    s->split0 = seed;
+    if (lumo_pmesh_rc_init(&s->br.rc, s->b->side + at, s->b->side_bytes - (uint32_t)at))
+        return LUMO_ERR_TRUNCATED;
+    for (uint32_t k = seed; k < s->b->count && !st; k++)
+        st = split(s, k);
+    if (!st && !lumo_pmesh_rc_done(&s->br.rc))
+        return LUMO_ERR_CORRUPT;  /* bytes left over, or not the writer's flush */
+    return st;
+}
+
+/* The base block (docs/progressive-mesh.md §2.3 "Base record"): plain
+ * bits, the base mesh's faces (Draco payload streams: their positions are
+ * in the payload) or, CODED, the seed's size, faces, positions and
+ * albedo; zero padding to a byte; then, when the seed is smaller than the
+ * base mesh, the range code of its splits, else nothing (every byte
+ * used). The base mesh must then have exactly base_faces faces. */
+static lumo_status run_base_block(split_ctx *s)
+{
+    uint32_t pad, nv = s->b->count, nf = s->pm->h.base_faces;
+    lumo_status st = s->coded ? read_seed_size(s, &nv, &nf) : LUMO_OK;
+    if (!st)
+        st = read_base_faces(s, nv, nf);
+    if (!st && s->coded)
+        st = read_seed_attributes(s, nv);
     if (st)
         return st;
-    if ((s->br.wb.pos + 7) / 8 != s->b->side_bytes)
+    size_t used = (s->br.wb.pos + 7) / 8;
+    if (used > s->b->side_bytes || (nv == s->b->count && used != s->b->side_bytes))
         return LUMO_ERR_CORRUPT;  /* trailing bytes */
-    if (read_bits(&s->br, (unsigned)(s->br.wb.nbits - s->br.wb.pos), &pad) || pad)
+    if (read_bits(&s->br, (unsigned)(8 * used - s->br.wb.pos), &pad) || pad)
         return LUMO_ERR_CORRUPT;  /* padding bits must be zero */
-    return LUMO_OK;
+    if (nv < s->b->count && (st = run_seed_splits(s, nv, used)))
+        return st;
+    return s->pm->face_count == s->pm->h.base_faces ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
 static lumo_status run_splits(split_ctx *s)

@@ -8,8 +8,9 @@
  * last collapsed first. The result is the indexed face set of the full mesh
  * plus the vertex lookup table (parent[v] < v: the vertex v collapsed onto),
  * with faces ordered by the level at which they appear. Every vertex count
- * k in [base_vertices, vertices] is a level: the faces with level <= k,
- * each corner v resolved by following parent[] until it is below k.
+ * k in [seed_vertices, vertices] is a level: the faces with level <= k,
+ * each corner v resolved by following parent[] until it is below k; the
+ * levels from base_vertices on keep every input vertex within max_error.
  *
  * Units: positions in the input's units (metres in lumo). Memory: every
  * array is malloc'ed; srv_pm_free() releases them.
@@ -36,13 +37,25 @@ typedef struct srv_pm_options {
                                   diagonal (0.05): it would change the shape,
                                   not its detail; every input vertex then stays
                                   that near every level; 0 = no limit */
+    int      seed;             /* 1 (default): after the collapses within
+                                  max_error, go on without the limit to a seed
+                                  mesh of a few vertices (seed_vertices); the
+                                  levels from base_vertices on are the same
+                                  either way; 0: stop at the base mesh */
 } srv_pm_options;
 
 typedef struct srv_pm {
     uint32_t  vertices;        /* n, after welding duplicates */
     uint32_t  faces;           /* after dropping degenerate/duplicate faces */
-    uint32_t  base_vertices;   /* vertices of the coarsest level */
-    uint32_t  base_faces;      /* faces of the coarsest level */
+    uint32_t  base_vertices;   /* vertices of the coarsest level shown (the
+                                  last within max_error) */
+    uint32_t  base_faces;      /* faces of that level */
+    uint32_t  seed_vertices;   /* vertices of the seed mesh (<= base_vertices):
+                                  levels seed_vertices .. base_vertices - 1 go
+                                  past max_error and are never shown; the
+                                  stream's base record builds the base mesh
+                                  from the seed by splits */
+    uint32_t  seed_faces;      /* faces of the seed mesh (level seed_vertices) */
     float    *xyz;             /* 3 * vertices, progressive order */
     uint8_t  *albedo;          /* 3 * vertices (sRGB-agnostic 0..255), or NULL */
     uint32_t *parent;          /* vertices: parent[v] < v (base: parent[v] = v) */

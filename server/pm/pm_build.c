@@ -12,6 +12,7 @@ void srv_pm_default_options(srv_pm_options *o)
     o->flip_cos = 0.2;
     o->round_fraction = 0.1;   /* bench-pm-quality: 0.25 left 13 levels worse than meshoptimizer */
     o->max_error = 0.05;
+    o->seed = 1;
 }
 
 static const uint32_t *g_level; /* qsort context */
@@ -32,15 +33,19 @@ static int cmp_key(const void *a, const void *b)
     return (g_key[i] > g_key[j]) - (g_key[i] < g_key[j]);
 }
 
-/* newv[v]: base vertices keep their relative order at 0..b-1; then the
- * rounds, last round first (the last collapsed streams first); inside a
- * round, whose collapses commute, by the new index of the parent, so the
- * stream's lookup-table entries increase (docs/progressive-mesh.md §2.3).
- * A parent outlives its round, so it is numbered before its children.
- * Without rounds (one collapse each) the step removed at t gets n-1-t. */
+/* newv[v]: the seed's vertices keep their relative order at 0..s-1; then
+ * the rounds, last round first (the last collapsed streams first): the
+ * collapses past max_error (s..b-1, inside the base mesh), then those
+ * within it (b..n-1); inside a round, whose collapses commute, by the new
+ * index of the parent, so the stream's lookup-table entries increase
+ * (docs/progressive-mesh.md §2.3). A parent outlives its round, so it is
+ * numbered before its children. Without rounds (one collapse each) the
+ * step removed at t gets n-1-t. With a seed, the base vertices are
+ * numbered differently, so a round may list its splits in another order
+ * than without one; the level at the end of each round is the same. */
 static int renumber(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, uint32_t *newv)
 {
-    uint32_t n = m->nv, b = 0;
+    uint32_t n = m->nv, s = 0;
     uint32_t *steps = malloc(sizeof *steps * (c->count ? c->count : 1));
     uint32_t *key = malloc(sizeof *key * (c->count ? c->count : 1));
     if (!steps || !key)
@@ -49,8 +54,8 @@ static int renumber(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, uint3
     for (uint32_t t = 0; t < c->count; t++)
         newv[c->removed[t]] = 0;
     for (uint32_t v = 0; v < n; v++)
-        newv[v] = newv[v] == 0 ? UINT32_MAX - 1 : b++;
-    uint32_t next = b;
+        newv[v] = newv[v] == 0 ? UINT32_MAX - 1 : s++;
+    uint32_t next = s;
     for (uint32_t end = c->count; end > 0;) {
         uint32_t start = end - 1;
         while (start > 0 && c->round[start - 1] == c->round[end - 1])
@@ -72,7 +77,7 @@ static int renumber(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, uint3
  * showing k (same winding): the stream then need not say where k sits. */
 static void rotate_faces(srv_pm *pm)
 {
-    for (uint32_t f = pm->base_faces; f < pm->faces; f++) {
+    for (uint32_t f = pm->seed_faces; f < pm->faces; f++) {
         uint32_t *t = pm->tris + 3 * (size_t)f, k = pm->level[f] - 1;
         for (int turn = 0; turn < 2 && srv_pm_resolve(pm, t[0], k + 1) != k; turn++) {
             uint32_t x = t[0];
@@ -85,10 +90,10 @@ static void rotate_faces(srv_pm *pm)
  * then need not say which of an opposite pair is which. */
 static void order_pairs(srv_pm *pm)
 {
-    for (uint32_t f = pm->base_faces; f + 1 < pm->faces; f++) {
+    for (uint32_t f = pm->seed_faces; f + 1 < pm->faces; f++) {
         uint32_t L = pm->level[f];
         if (pm->level[f + 1] != L || (f + 2 < pm->faces && pm->level[f + 2] == L) ||
-            (f > pm->base_faces && pm->level[f - 1] == L))
+            (f > pm->seed_faces && pm->level[f - 1] == L))
             continue;  /* only levels with exactly two faces */
         uint32_t *a = pm->tris + 3 * (size_t)f, *b = a + 3, p = pm->parent[L - 1];
         if (srv_pm_resolve(pm, b[1], L) == p && srv_pm_resolve(pm, a[1], L) != p)
@@ -111,7 +116,8 @@ static int assemble(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, srv_p
     if (renumber(m, c, newv))
         goto done;
     pm->vertices = n, pm->faces = nf;
-    pm->base_vertices = n - c->count;
+    pm->seed_vertices = n - c->count;
+    pm->base_vertices = n - c->bounded;
     for (uint32_t v = 0; v < n; v++) {
         memcpy(pm->xyz + 3 * (size_t)newv[v], m->xyz + 3 * (size_t)v, 3 * sizeof(float));
         if (m->rgb)
@@ -121,10 +127,13 @@ static int assemble(const srv_pm_clean_mesh *m, const srv_pm_collapses *c, srv_p
     }
     for (uint32_t t = 0; t < c->count; t++)
         pm->parent[newv[c->removed[t]]] = newv[c->target[t]];
-    /* A face removed at step t comes back with the vertex removed then. */
+    /* A face removed at step t comes back with the vertex removed then;
+     * the base mesh's faces are those of the seed and those the collapses
+     * past max_error removed (levels up to b). */
     for (uint32_t f = 0; f < nf; f++) {
-        lvl[f] = c->face_die[f] == UINT32_MAX ? pm->base_vertices : newv[c->removed[c->face_die[f]]] + 1;
-        pm->base_faces += c->face_die[f] == UINT32_MAX;
+        lvl[f] = c->face_die[f] == UINT32_MAX ? pm->seed_vertices : newv[c->removed[c->face_die[f]]] + 1;
+        pm->seed_faces += c->face_die[f] == UINT32_MAX;
+        pm->base_faces += lvl[f] <= pm->base_vertices;
         order[f] = f;
     }
     g_level = lvl;

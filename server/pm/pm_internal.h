@@ -28,9 +28,12 @@ void        srv_pm_clean_free(srv_pm_clean_mesh *m);
 /* The collapse sequence of srv_pm_simplify(): at step t vertex removed[t]
  * collapses onto target[t] in round round[t] (non-decreasing; the
  * collapses of one round commute); face_die[f] is the step that removed
- * face f, or UINT32_MAX for faces of the base mesh. */
+ * face f, or UINT32_MAX for faces of the seed mesh (no collapse removed
+ * them). Steps 0 .. bounded - 1 are within max_error (they end at the base
+ * mesh), steps bounded .. count - 1 go on past it (options seed) to the
+ * seed mesh; a round holds only steps of one kind. */
 typedef struct srv_pm_collapses {
-    uint32_t  count;
+    uint32_t  count, bounded;
     uint32_t *removed, *target, *round;
     uint32_t *face_die;
 } srv_pm_collapses;

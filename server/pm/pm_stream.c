@@ -129,26 +129,6 @@ static void add_face(replay *r, const uint32_t t[3])
     r->faces++;
 }
 
-static void write_base(replay *r, bitwriter *w)
-{
-    const srv_pm *pm = r->pm;
-    for (uint32_t f = 0; f < pm->base_faces; f++) {
-        uint32_t t[3];
-        for (int i = 0; i < 3; i++) {
-            t[i] = srv_pm_resolve(pm, pm->tris[3 * (size_t)f + i], pm->base_vertices);
-            put_trunc(w, t[i], pm->base_vertices);
-        }
-        add_face(r, t);
-    }
-    for (size_t at = 0; r->coded && at < 3 * (size_t)pm->base_vertices; at++)
-        put_bits(w, (uint32_t)r->q[at], r->quant_bits);
-    for (size_t at = 0; r->coded && pm->albedo && at < 3 * (size_t)pm->base_vertices; at++)
-        put_bits(w, pm->albedo[at], 8);
-    for (uint32_t v = 0; v < pm->base_vertices; v++)
-        for (int c = 0; c < 3; c++)
-            r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
-}
-
 /* Mirrors read_residual() in pmesh_batch.c: the class c of |v| (its bit
  * length) in adaptive unary by the spread class sc (no end bit at
  * quant_bits), the c - 1 bits under the leading one (the first two
@@ -588,6 +568,59 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
     return 0;
 }
 
+/* The base record's block (docs/progressive-mesh.md §2.3 "Base record"),
+ * mirroring run_base_block() in pmesh_batch.c. Streams with Draco
+ * payloads: the base mesh's faces resolved at b, each index in tb(b),
+ * plain bits. CODED streams: the seed's vertex count and face count + 1
+ * as gamma codes, its faces resolved at s in tb(s), its grid integers
+ * (and albedo) as plain bits; then, when the seed is smaller than the base
+ * mesh, after the zero padding, one range code holding the splits s ..
+ * b - 1 exactly as a split record codes them: the contexts and the round
+ * state (parents, round start, stamps, kinds, albedo answers) carry on
+ * into the split records. Their bits stay out of the stats (split records
+ * only). Returns write_split's -1 for a level it cannot express. */
+static int write_base(replay *r, bitwriter *w)
+{
+    const srv_pm *pm = r->pm;
+    uint32_t b = pm->base_vertices, s = r->coded ? pm->seed_vertices : b;
+    uint32_t sf = r->coded ? pm->seed_faces : pm->base_faces;
+    int rc = 0;
+    if (r->coded) {
+        put_gamma(w, s);
+        put_gamma(w, sf + 1u);
+    }
+    for (uint32_t f = 0; f < sf; f++) {
+        uint32_t t[3];
+        for (int i = 0; i < 3; i++) {
+            t[i] = srv_pm_resolve(pm, pm->tris[3 * (size_t)f + i], s);
+            put_trunc(w, t[i], s);
+        }
+        add_face(r, t);
+    }
+    for (size_t at = 0; r->coded && at < 3 * (size_t)s; at++)
+        put_bits(w, (uint32_t)r->q[at], r->quant_bits);
+    for (size_t at = 0; r->coded && pm->albedo && at < 3 * (size_t)s; at++)
+        put_bits(w, pm->albedo[at], 8);
+    for (uint32_t v = 0; !r->coded && v < b; v++)  /* PREDICTED payload: from the previous vertex */
+        for (int c = 0; c < 3; c++)
+            r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
+    if (s == b)
+        return 0;
+    srv_pm_rc code;
+    srv_pm_stream_stats keep = r->st;
+    bitwriter rw = {{0}, 0, &code};
+    srv_pm_rc_init(&code);
+    for (uint32_t k = s, prev = NIL; k < b && !rc; prev = pm->parent[k++])
+        rc = write_split(r, &rw, k, prev);
+    srv_pm_rc_flush(&code);
+    r->st = keep;
+    srv_buf_put(&w->b, code.out.p ? code.out.p : (const uint8_t *)"", code.out.len);
+    w->b.failed |= code.out.failed;
+    w->nbits = 8 * w->b.len;
+    free(code.out.p);
+    return rc;
+}
+
 /* ---- records -------------------------------------------------------------------- */
 static void grid_of(const srv_pm *pm, int bits, srv_draco_quant *q)
 {
@@ -781,6 +814,8 @@ static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
                                  uint32_t nb)
 {
     const srv_pm *pm = r->pm;
+    /* the first split vertex: the seed's size in a CODED stream */
+    uint32_t split0 = r->coded ? pm->seed_vertices : pm->base_vertices;
     for (uint32_t i = 0; i < nb; i++) {
         uint32_t first = i ? pm->base_vertices + (i - 1) * o->batch_vertices : 0;
         uint32_t count = i ? pm->vertices - first : pm->base_vertices;
@@ -793,9 +828,10 @@ static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
         int rc = 0;   /* write_split: -1 for a level it cannot express */
         lumo_status st = LUMO_OK;
         if (!i)
-            write_base(r, &w);
-        /* parents run on across records: a round rarely ends at a record's end */
-        uint32_t prev0 = i > 1 ? pm->parent[first - 1] : NIL;
+            rc = write_base(r, &w);
+        /* parents run on across records (a round rarely ends at a record's
+         * end), from the base record's splits on */
+        uint32_t prev0 = i && first - 1 >= split0 ? pm->parent[first - 1] : NIL;
         if (i) {
             srv_pm_rc_init(&code);
             w.rc = &code;

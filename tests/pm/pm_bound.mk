@@ -14,6 +14,6 @@ $(PM_BOUND): $(PM_BOUND_OBJS) $(BUILD)/host/libserver.a $(BUILD)/san/liblumo.a
 TEST_STEPS += test-pm-bound
 .PHONY: test-pm-bound
 test-pm-bound: $(PM_BOUND) $(BUILD)/data/cgal/elephant-with-holes.off
-	@st=0; for a in "--gen scan" "--gen holes" "--gen sphere --max-error 0.01" $(PM_MODELS)/bunny.obj \
+	@st=0; for a in "--gen scan --first 100" "--gen holes" "--gen sphere --max-error 0.01" "$(PM_MODELS)/bunny.obj --first 150" \
 	    "$(PM_MODELS)/dragon_11k.ply --max-error 0.01" $(BUILD)/data/cgal/elephant-with-holes.off; do \
 	    $(PM_BOUND) $$a || st=1; done; exit $$st

@@ -12,6 +12,7 @@
 #include "lumo/package.h"
 #include "lumo/pmesh.h"
 #include "pm/pm.h"
+#include "pm/pm_internal.h"
 #include "lumo/wire.h"
 #include "lumo_shared/pmesh_shared.h"
 #include "pm/pm_client.h"
@@ -498,6 +499,84 @@ static void check_rewind(const srv_pm *pm, const uint8_t *s, size_t len, double 
     free(ref);
 }
 
+/* ---- the seed changes nothing from the base mesh on --------------------------- */
+/* Level k of pm as position triples (winding kept), sorted: comparable
+ * across vertex numberings. */
+static size_t level_ptris(const srv_pm *pm, uint32_t k, uint32_t *idx, ptri *out)
+{
+    uint32_t nf = srv_pm_level(pm, k, idx);
+    for (uint32_t f = 0; f < nf; f++) {
+        const uint32_t *t = idx + 3 * (size_t)f;
+        out[f] = canon(pm->xyz + 3 * (size_t)t[0], pm->xyz + 3 * (size_t)t[1], pm->xyz + 3 * (size_t)t[2]);
+    }
+    qsort(out, nf, sizeof *out, cmp_ptri);
+    return nf;
+}
+
+/* Built without the seed (options seed 0), the simplifier's collapses are
+ * exactly the first `bounded` ones of the seeded run, the base mesh is the
+ * same, and so is the level at the end of every round from the base mesh
+ * on (faces as position triples): inside the base mesh the seed numbers the
+ * vertices differently, so a round may list its (commuting) splits in
+ * another order, which changes only levels inside a round. */
+static void check_seed_levels(const pm_test_mesh *in, const srv_pm_options *po, const srv_pm *pm)
+{
+    srv_pm_options off = *po;
+    srv_pm_clean_mesh m;
+    srv_pm_collapses con, coff;
+    srv_pm old;
+    char d[200] = "";
+    int ok = 0;
+    off.seed = 0;
+    memset(&con, 0, sizeof con), memset(&coff, 0, sizeof coff), memset(&old, 0, sizeof old);
+    if (srv_pm_clean(in->xyz, in->rgb, in->nv, in->tris, in->nf, &m))
+        goto out;
+    if (!srv_pm_simplify(&m, po, &con) && !srv_pm_simplify(&m, &off, &coff) &&
+        !srv_pm_build_albedo(in->xyz, in->rgb, in->nv, in->tris, in->nf, &off, &old)) {
+        size_t t = 0;
+        ok = coff.count == con.bounded && coff.bounded == coff.count && old.seed_vertices == old.base_vertices &&
+             old.base_vertices == pm->base_vertices && old.base_faces == pm->base_faces;
+        for (t = 0; ok && t < coff.count; t++)
+            ok = coff.removed[t] == con.removed[t] && coff.target[t] == con.target[t] &&
+                 coff.round[t] == con.round[t];
+        snprintf(d, sizeof d, "%u bounded collapses of %u, %s", con.bounded, con.count,
+                 ok ? "the same without the seed" : "DIFFERENT without the seed");
+        uint32_t *idx = malloc(sizeof *idx * 3 * (size_t)(pm->faces + 1));
+        ptri *a = malloc(sizeof *a * (pm->faces + 1)), *b = malloc(sizeof *b * (pm->faces + 1));
+        uint32_t rounds = 0, same = 0, all = 0, ends = 0;
+        for (t = 0; t <= coff.count; t++)
+            ends += t == 0 || t == coff.count || coff.round[t - 1] != coff.round[t];
+        /* every level of a small mesh; else every round end of up to 64
+         * (more: evenly spread, the base mesh always) */
+        int every = pm->vertices <= 2500;
+        uint32_t stride = every || ends <= 64 ? 1 : (ends + 63) / 64, e = 0;
+        for (t = coff.count + 1; ok && t-- > 0;) {
+            /* t collapses done: level n - t; a round ends where the next
+             * collapse is in a later round (or none is left) */
+            int end = t == 0 || t == coff.count || coff.round[t - 1] != coff.round[t];
+            if (!every && (!end || (e++ % stride && t != coff.count)))
+                continue;
+            uint32_t k = pm->vertices - (uint32_t)t;
+            size_t na = level_ptris(pm, k, idx, a), nb = level_ptris(&old, k, idx, b);
+            int eq = na == nb && !memcmp(a, b, sizeof *a * na);
+            all++, same += eq;
+            if (end)
+                rounds++, ok = eq;
+            if (!ok)
+                snprintf(d, sizeof d, "level %u (end of a round) differs without the seed", k);
+        }
+        if (ok)
+            snprintf(d + strlen(d), sizeof d - strlen(d),
+                     "; %u round ends (of %u) identical from base %u on, %u of %u levels compared", rounds,
+                     ends, pm->base_vertices, same, all);
+        free(idx), free(a), free(b);
+    }
+    srv_pm_clean_free(&m);
+out:
+    srv_pm_collapses_free(&con), srv_pm_collapses_free(&coff), srv_pm_free(&old);
+    check(ok, "levels from the base mesh on as without the seed", d);
+}
+
 /* ---- driver ------------------------------------------------------------------------ */
 int main(int argc, char **argv)
 {
@@ -564,9 +643,10 @@ int main(int argc, char **argv)
     uint8_t *s = NULL;
     size_t len = 0;
     int built = !srv_pm_build_albedo(in.xyz, in.rgb, in.nv, in.tris, in.nf, &po, &pm);
-    snprintf(err, sizeof err, "%u -> %u vertices (%u welded), %u faces (%u dropped), base %u/%u",
+    snprintf(err, sizeof err, "%u -> %u vertices (%u welded), %u faces (%u dropped), base %u/%u, seed %u/%u",
              in.nv, built ? pm.vertices : 0, built ? pm.welded : 0, built ? pm.faces : 0,
-             built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0);
+             built ? pm.dropped_faces : 0, built ? pm.base_vertices : 0, built ? pm.base_faces : 0,
+             built ? pm.seed_vertices : 0, built ? pm.seed_faces : 0);
     check(built, "half-edge collapse build", err);
     if (built && want_base) {
         char got[32];
@@ -579,6 +659,8 @@ int main(int argc, char **argv)
     }
     if (built) {
         check_all_levels(&pm);
+        if (po.seed)
+            check_seed_levels(&in, &po, &pm);
         lumo_pmesh_header sh;
         int streamed = !srv_pm_stream_build(&pm, &so, &s, &len, NULL, NULL) &&
                        !lumo_pmesh_read_header(s, len, &sh);

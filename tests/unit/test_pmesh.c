@@ -13,16 +13,40 @@
 #include "lumo/wire.h"
 
 static const uint8_t k_stream[] = {
-    0x4c, 0x50, 0x4d, 0x31, 0x08, 0x00, 0x26, 0x14, 0x24, 0x04, 0x04, 0x03, 0x06, 0x0a, 0x14, 0x08,
-    0x02, 0x02, 0xaa, 0xd2, 0x7e, 0xbf, 0xb2, 0xa0, 0x5c, 0xbf, 0x08, 0x00, 0x80, 0xbf, 0xd8, 0x10,
-    0x01, 0x40, 0x2b, 0xd1, 0xe8, 0x17, 0x1e, 0xe4, 0xc7, 0x73, 0x5f, 0x39, 0x46, 0xb3, 0x51, 0x1f,
-    0xd8, 0xff, 0x6d, 0x7e, 0x3f, 0xda, 0x7e, 0x51, 0x1f, 0x24, 0x1e, 0x41, 0x85, 0x01, 0x31, 0x12,
-    0xac, 0x42, 0x43, 0xde, 0xe2, 0x57, 0xbc, 0xfa, 0x7c, 0x68, 0x7a, 0x93, 0x9d, 0x48, 0x18, 0xac,
-    0xea, 0xb3, 0x1f, 0x02, 0xf4, 0x68, 0xf7, 0x81, 0x86, 0x68, 0x3c, 0x4c, 0x95, 0xe5, 0xe9, 0x14,
-    0x78, 0x7d, 0x4c, 0x2b, 0xfa, 0xde, 0x1f, 0x4e, 0xec, 0x6f, 0x67, 0x2b, 0xfb, 0x21, 0x1a, 0x01,
-    0xa5, 0x26, 0xcb, 0x43, 0x71, 0x4a, 0xfa, 0xdb, 0xc8, 0xc7, 0xf3, 0x16, 0x90, 0x93, 0x99, 0x45,
-    0x16, 0x4b, 0xf9, 0x7f, 0xc6, 0x32, 0x92, 0xe9, 0x96, 0xe3, 0x25, 0xed, 0xdb, 0x23, 0xfd, 0xb6,
-    0x06, 0xc9, 0x74, 0x35, 0xdd, 0xd7, 0x9c, 0x8c,
+    0x4c, 0x50, 0x4d, 0x31, 0x07, 0x00, 0x44, 0x00, 0x14, 0x00, 0x00, 0x00, 0x24, 0x00, 0x00, 0x00,
+    0x04, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x07, 0x00, 0x00, 0x00,
+    0x06, 0x00, 0x00, 0x00, 0x0a, 0x00, 0x00, 0x00, 0x1a, 0x00, 0x00, 0x00, 0x08, 0x02, 0x02, 0x00,
+    0xaa, 0xd2, 0x7e, 0xbf, 0xb2, 0xa0, 0x5c, 0xbf, 0x08, 0x00, 0x80, 0xbf, 0xd8, 0x10, 0x01, 0x40,
+    0x49, 0x92, 0xb0, 0x56, 0x00, 0x11, 0x00, 0x1c, 0x09, 0xb8, 0x66, 0x84, 0xe5, 0x18, 0xcd, 0x46,
+    0x7d, 0x60, 0xff, 0xb7, 0xf9, 0xfd, 0x68, 0xfb, 0x45, 0x7d, 0x90, 0x00, 0x01, 0x10, 0x00, 0x97,
+    0x99, 0x07, 0x7a, 0x9a, 0x74, 0x95, 0x69, 0xdd, 0xbc, 0xce, 0x12, 0x44, 0xbb, 0x9e, 0xd1, 0xb9,
+    0xf5, 0xb3, 0x00, 0x02, 0x0f, 0x00, 0x11, 0x79, 0xa9, 0x2f, 0x4b, 0x4a, 0x97, 0xd4, 0x49, 0x07,
+    0x66, 0x1e, 0x25, 0x51, 0xa5, 0xa7, 0x42, 0x58, 0x00, 0x03, 0x0e, 0x00, 0xd3, 0x22, 0x3a, 0xf5,
+    0xfb, 0xc0, 0xb7, 0xc4, 0xbc, 0xa7, 0x88, 0x36, 0x40, 0xbc, 0x55, 0x93, 0x0a, 0x96, 0x04, 0x13,
+    0x00, 0xd6, 0x79, 0xa8, 0xc9, 0xa6, 0x12, 0xb4, 0x2d, 0x5f, 0xac, 0x43, 0x35, 0x06, 0x45, 0x49,
+    0xb6, 0x81, 0xd5, 0xbd, 0x64, 0x90, 0xb0, 0x00, 0x05, 0x0e, 0x00, 0xe9, 0xca, 0xd1, 0x0a, 0x91,
+    0xcb, 0xbd, 0xaa, 0xc2, 0x04, 0xb1, 0x40, 0xe7, 0x6f, 0xd7, 0x93, 0xe1, 0x00, 0x06, 0x06, 0x00,
+    0x34, 0x48, 0xa4, 0x2b, 0x9f, 0x85, 0x49, 0xa5, 0x1e, 0x00,
+};
+
+/* tests/pm/pm_check --gen tiny --batch 3 --max-error 0.15 --write-stream
+ * (tests/fuzz/seeds/fuzz_pmesh/tiny_seeded.lpm): a base mesh of 8 vertices
+ * whose record builds it from a seed of 4 by 4 splits in a range code
+ * (docs/progressive-mesh.md §2.3 "Base record"), then 4 split records. */
+static const uint8_t k_seeded[] = {
+    0x4c, 0x50, 0x4d, 0x31, 0x07, 0x00, 0x44, 0x00, 0x14, 0x00, 0x00, 0x00, 0x24, 0x00, 0x00, 0x00,
+    0x08, 0x00, 0x00, 0x00, 0x0c, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x05, 0x00, 0x00, 0x00,
+    0x0c, 0x00, 0x00, 0x00, 0x09, 0x00, 0x00, 0x00, 0x2c, 0x00, 0x00, 0x00, 0x08, 0x02, 0x02, 0x00,
+    0xaa, 0xd2, 0x7e, 0xbf, 0xb2, 0xa0, 0x5c, 0xbf, 0x08, 0x00, 0x80, 0xbf, 0xd8, 0x10, 0x01, 0x40,
+    0xd3, 0xc6, 0xa6, 0x05, 0x00, 0x25, 0x00, 0x7f, 0x7a, 0x82, 0xfc, 0x84, 0xe5, 0x18, 0xcd, 0x46,
+    0x7d, 0x60, 0xff, 0xb7, 0xf9, 0xfd, 0x68, 0xfb, 0x45, 0x7d, 0x90, 0x00, 0x9a, 0x74, 0x95, 0x69,
+    0xdd, 0xbc, 0xce, 0x12, 0x44, 0xbb, 0x9e, 0xd1, 0xbc, 0xd3, 0x52, 0x83, 0x79, 0x92, 0x4d, 0xc0,
+    0x01, 0x0e, 0x00, 0x14, 0xc8, 0xa6, 0x82, 0x70, 0xd0, 0xa8, 0x14, 0x1b, 0x92, 0x46, 0xbb, 0x83,
+    0x0c, 0x5e, 0x48, 0xca, 0x00, 0x02, 0x11, 0x00, 0x69, 0x82, 0x5a, 0xdc, 0xaf, 0xb8, 0x37, 0xfa,
+    0x14, 0xf9, 0xda, 0x31, 0xf1, 0x2b, 0x2c, 0x43, 0x6d, 0xf7, 0xc8, 0x80, 0x00, 0x03, 0x11, 0x00,
+    0xc0, 0xbc, 0x22, 0x9d, 0x8d, 0x23, 0xc8, 0xc0, 0x75, 0xfc, 0x8e, 0xd3, 0x01, 0x2a, 0x51, 0xb0,
+    0xbc, 0x2e, 0x63, 0xa0, 0x00, 0x04, 0x0c, 0x00, 0x27, 0x62, 0x5e, 0x72, 0xbd, 0xca, 0x97, 0x16,
+    0xc9, 0x6b, 0x96, 0x25, 0x1d, 0x43, 0xa0, 0x00,
 };
 
 /* FNV-1a of the final triangles and positions, pinned from the server's
@@ -35,11 +59,14 @@ typedef struct {
     lumo_arena arena;
     uint8_t *mem;
     size_t at;
+    const uint8_t *data;  /* the stream: k_stream unless open_on says */
+    size_t size;
 } fixture;
 
-static void open_fixture(fixture *f)
+static void open_on(fixture *f, const uint8_t *data, size_t size)
 {
-    assert_int_equal(lumo_pmesh_read_header(k_stream, sizeof k_stream, &f->h), LUMO_OK);
+    f->data = data, f->size = size;
+    assert_int_equal(lumo_pmesh_read_header(data, size, &f->h), LUMO_OK);
     size_t n = lumo_pmesh_arena_bytes(&f->h);
     f->mem = malloc(n);
     assert_non_null(f->mem);
@@ -48,12 +75,17 @@ static void open_fixture(fixture *f)
     f->at = f->h.header_bytes;
 }
 
+static void open_fixture(fixture *f)
+{
+    open_on(f, k_stream, sizeof k_stream);
+}
+
 static size_t next_record(const fixture *f, const uint8_t **rec)
 {
     size_t n;
-    assert_int_equal(lumo_pmesh_record_size(k_stream + f->at, sizeof k_stream - f->at, &n), LUMO_OK);
-    assert_true(n <= sizeof k_stream - f->at);
-    *rec = k_stream + f->at;
+    assert_int_equal(lumo_pmesh_record_size(f->data + f->at, f->size - f->at, &n), LUMO_OK);
+    assert_true(n <= f->size - f->at);
+    *rec = f->data + f->at;
     return n;
 }
 
@@ -308,11 +340,10 @@ static void test_full_stream(void **state)
 
 /* Every truncation and every byte flip of every record is rejected and the
  * mesh stays as it was; then the good record applies. */
-static void test_truncation_and_flips(void **state)
+static void truncation_and_flips(const uint8_t *data, size_t size, uint32_t final_hash)
 {
-    (void)state;
     fixture f;
-    open_fixture(&f);
+    open_on(&f, data, size);
     while (!lumo_pmesh_complete(&f.pm)) {
         const uint8_t *rec;
         size_t n = next_record(&f, &rec);
@@ -333,8 +364,16 @@ static void test_truncation_and_flips(void **state)
         free(s.bytes);
         step(&f);
     }
-    assert_int_equal(mesh_hash(&f.pm), FINAL_HASH);
+    if (final_hash)
+        assert_int_equal(mesh_hash(&f.pm), final_hash);
     free(f.mem);
+}
+
+static void test_truncation_and_flips(void **state)
+{
+    (void)state;
+    truncation_and_flips(k_stream, sizeof k_stream, FINAL_HASH);
+    truncation_and_flips(k_seeded, sizeof k_seeded, 0);
 }
 
 /* The record's head (varints and CRC): its length. */
@@ -364,11 +403,10 @@ static void fix_crc(uint8_t *r, size_t n, uint32_t index)
 
 /* Bit flips behind a valid CRC reach the split decoder: each is either
  * rejected with the mesh untouched (the undo log) or yields a valid level. */
-static void test_tampered_batches(void **state)
+static void tampered_batches(const uint8_t *data, size_t size, uint32_t final_hash)
 {
-    (void)state;
     fixture f;
-    open_fixture(&f);
+    open_on(&f, data, size);
     unsigned rejected = 0, accepted = 0;
     while (!lumo_pmesh_complete(&f.pm)) {
         const uint8_t *rec;
@@ -397,7 +435,7 @@ static void test_tampered_batches(void **state)
                 /* rebuild the good state: replay from scratch up to here */
                 size_t at = f.at;
                 free(f.mem);
-                open_fixture(&f);
+                open_on(&f, data, size);
                 while (f.at < at)
                     step(&f);
             }
@@ -408,8 +446,16 @@ static void test_tampered_batches(void **state)
     }
     assert_true(rejected > 0);
     print_message("tampered: %u rejected, %u accepted as another valid level\n", rejected, accepted);
-    assert_int_equal(mesh_hash(&f.pm), FINAL_HASH);
+    if (final_hash)
+        assert_int_equal(mesh_hash(&f.pm), final_hash);
     free(f.mem);
+}
+
+static void test_tampered_batches(void **state)
+{
+    (void)state;
+    tampered_batches(k_stream, sizeof k_stream, FINAL_HASH);
+    tampered_batches(k_seeded, sizeof k_seeded, 0);
 }
 
 static void test_order(void **state)
@@ -518,6 +564,225 @@ static void test_range_code_end(void **state)
     free(f.mem);
 }
 
+/* ---- the base record's seed (docs/progressive-mesh.md §2.3 "Base record") ---- */
+/* Elias gamma code of v >= 1 at bit *pos of buf (LSB first). */
+static void put_gamma(uint8_t *buf, size_t *pos, uint32_t v)
+{
+    unsigned z = 0;
+    while (z < 31 && v >> (z + 1))
+        z++;
+    lumo_wire_put_bits(buf, *pos, 0, z), *pos += z;
+    lumo_wire_put_bits(buf, *pos, 1, 1), *pos += 1;
+    lumo_wire_put_bits(buf, *pos, v & ((1u << z) - 1u), z), *pos += z;
+}
+
+static uint32_t get_gamma(const uint8_t *buf, size_t n, size_t *pos)
+{
+    lumo_wire_bits b;
+    uint32_t z = 0, bit = 0, low = 0;
+    lumo_wire_bits_init(&b, buf, n);
+    b.pos = *pos;
+    while (!bit) {
+        assert_int_equal(lumo_wire_bits_read(&b, 1, &bit), LUMO_OK);
+        z += !bit;
+    }
+    assert_int_equal(lumo_wire_bits_read(&b, z, &low), LUMO_OK);
+    *pos = b.pos;
+    return 1u << z | low;
+}
+
+/* A copy of a stream whose header allows records 16 bytes longer (CRC
+ * fixed), so a byte appended to a record reaches the block's end rules
+ * rather than the LIMIT check. */
+static uint8_t *roomy_copy(const uint8_t *data, size_t size)
+{
+    uint8_t *c = malloc(size);
+    memcpy(c, data, size);
+    put32(c + 40, lumo_wire_le32(c + 40) + 16u);
+    put32(c + 64, lumo_wire_crc32(0, c, 64));
+    return c;
+}
+
+/* Sorted position triples of the current level (numbering-free). */
+static int cmp_tri9(const void *a, const void *b)
+{
+    return memcmp(a, b, 36);
+}
+
+static int32_t *level_tris(const lumo_pmesh *pm)
+{
+    lumo_pmesh_view v;
+    lumo_pmesh_get_view(pm, &v);
+    int32_t *t = malloc(36u * v.face_count + 4);
+    for (uint32_t f = 0; f < v.face_count; f++) {
+        uint32_t r = 0;  /* rotate the smallest corner first, winding kept */
+        for (uint32_t c = 1; c < 3; c++)
+            if (memcmp(v.positions + 3 * v.triangles[3 * f + c], v.positions + 3 * v.triangles[3 * f + r], 12) < 0)
+                r = c;
+        for (uint32_t c = 0; c < 3; c++)
+            memcpy(t + 9 * f + 3 * c, v.positions + 3 * v.triangles[3 * f + (r + c) % 3], 12);
+    }
+    qsort(t, v.face_count, 36, cmp_tri9);
+    return t;
+}
+
+/* The seeded stream: its base record holds a seed of 4 vertices and 4
+ * faces and the 4 splits to the 8-vertex base mesh, which is the first
+ * level shown (no rewind below it); the split records continue its range
+ * code's state; the full mesh is the same as k_stream's (same mesh, same
+ * grid). */
+static void test_seeded_stream(void **state)
+{
+    (void)state;
+    fixture f, g;
+    const uint8_t *rec;
+    open_on(&f, k_seeded, sizeof k_seeded);
+    assert_int_equal(f.h.base_vertices, 8);
+    assert_int_equal(f.h.position_coding, LUMO_PMESH_POS_CODED);
+    size_t n = next_record(&f, &rec), pos = 0;
+    const uint8_t *block = rec + head_bytes(rec, n);
+    assert_int_equal(get_gamma(block, side_bytes(rec, n), &pos), 4);      /* seed vertices */
+    assert_int_equal(get_gamma(block, side_bytes(rec, n), &pos) - 1, 4);  /* seed faces */
+    step(&f);
+    assert_int_equal(f.pm.vertex_count, 8);
+    assert_int_equal(f.pm.face_count, f.h.base_faces);
+    assert_true(f.pm.last_parent < 8);  /* the base's last split, continued by record 1 */
+    check_level(&f.pm);
+    assert_int_equal(lumo_pmesh_rewind(&f.pm, 7), LUMO_ERR_RANGE);  /* seed levels are never shown */
+    while (!lumo_pmesh_complete(&f.pm)) {
+        step(&f);
+        check_level(&f.pm);
+    }
+    assert_int_equal(f.at, sizeof k_seeded);
+    open_fixture(&g);
+    while (!lumo_pmesh_complete(&g.pm))
+        step(&g);
+    assert_int_equal(f.pm.face_count, g.pm.face_count);
+    int32_t *a = level_tris(&f.pm), *b = level_tris(&g.pm);
+    assert_memory_equal(a, b, 36u * f.pm.face_count);
+    free(a), free(b);
+    free(f.mem), free(g.mem);
+}
+
+/* Nothing of a rejected base record stays: no face, no vertex, the range
+ * code's contexts and round state as at the start. */
+static void assert_fresh(const fixture *f, const uint32_t *ctx0)
+{
+    assert_int_equal(f->pm.vertex_count, 0);
+    assert_int_equal(f->pm.face_count, 0);
+    assert_int_equal(f->pm.batches_applied, 0);
+    assert_int_equal(f->pm.last_parent, 0xffffffffu);
+    assert_int_equal(f->pm.round_first, 0);
+    assert_int_equal(f->pm.last_fan, 0);
+    assert_memory_equal(f->pm.ctx, ctx0, LUMO_PMESH_CONTEXTS * sizeof *ctx0);
+    for (uint32_t v = 0; v < f->h.vertices; v++)
+        assert_int_equal(f->pm.round_parent[v], 0);
+    for (uint32_t v = 0; v < f->h.vertices; v++)
+        assert_int_equal(f->pm.head[v], LUMO_PMESH_NIL);
+}
+
+/* Hostile seed fields behind a valid CRC, each with its own error, the
+ * client left as before; then the good base record and the rest apply. */
+static void test_seed_fields(void **state)
+{
+    (void)state;
+    fixture f;
+    const uint8_t *rec;
+    uint32_t ctx0[LUMO_PMESH_CONTEXTS];
+    uint8_t *data = roomy_copy(k_seeded, sizeof k_seeded);
+    open_on(&f, data, sizeof k_seeded);
+    memcpy(ctx0, f.pm.ctx, sizeof ctx0);
+    size_t n = next_record(&f, &rec);
+    uint32_t hb = head_bytes(rec, n), sb = side_bytes(rec, n), b = f.h.base_vertices;
+    const uint8_t *block = rec + hb;
+    uint8_t side[512], *out = malloc(n + 512);
+    assert_true(sb + 8 <= sizeof side);
+    /* the plain part: two gamma codes, 3 * 4 face indices in tb(4) (2
+     * bits each), 3 * 4 grid integers; then zero padding */
+    size_t plain = 5 + 5 + 12 * 2 + 12 * f.h.quant_bits, plain_bytes = (plain + 7) / 8;
+    struct { uint32_t s, sf; lumo_status want; } sizes[] = {
+        {b + 1, 4, LUMO_ERR_RANGE},                   /* a seed larger than the base mesh */
+        {0xffffffffu, 4, LUMO_ERR_RANGE},
+        {4, f.h.base_faces + 1, LUMO_ERR_CORRUPT},    /* more faces than the base mesh */
+        {4, 0xfffffffeu, LUMO_ERR_CORRUPT},
+        {b, 4, LUMO_ERR_CORRUPT},                     /* no splits left to add the faces */
+    };
+    for (size_t c = 0; c < sizeof sizes / sizeof sizes[0]; c++) {
+        size_t pos = 0;
+        memset(side, 0, sizeof side);
+        put_gamma(side, &pos, sizes[c].s);
+        put_gamma(side, &pos, sizes[c].sf + 1);
+        assert_int_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb, out)), sizes[c].want);
+        assert_fresh(&f, ctx0);
+    }
+    memset(side, 0, sizeof side);  /* a gamma code of 32 zeros: CORRUPT; cut short: TRUNCATED */
+    side[4] = 1;
+    assert_int_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, 5, out)), LUMO_ERR_CORRUPT);
+    assert_int_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, 3, out)), LUMO_ERR_TRUNCATED);
+    assert_fresh(&f, ctx0);
+    /* the seed without its splits' range code: cut, or zero bytes of it */
+    assert_true(plain_bytes < sb);
+    assert_int_not_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, block, plain_bytes, out)), LUMO_OK);
+    assert_fresh(&f, ctx0);
+    memcpy(side, block, sb);
+    memset(side + plain_bytes, 0, sb - plain_bytes);
+    assert_int_not_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb, out)), LUMO_OK);
+    assert_fresh(&f, ctx0);
+    /* a padding bit set, or a byte more after the range code */
+    if (plain % 8) {
+        memcpy(side, block, sb);
+        side[plain / 8] |= (uint8_t)(0x80u);
+        assert_int_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb, out)), LUMO_ERR_CORRUPT);
+        assert_fresh(&f, ctx0);
+    }
+    memcpy(side, block, sb);
+    side[sb] = 0;
+    assert_int_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb + 1, out)), LUMO_ERR_CORRUPT);
+    assert_fresh(&f, ctx0);
+    /* the splits' last byte changed: fails late, after splits to undo */
+    memcpy(side, block, sb);
+    side[sb - 1] ^= 0x40u;
+    assert_int_not_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb, out)), LUMO_OK);
+    assert_fresh(&f, ctx0);
+    step(&f);  /* the good copy, then the rest */
+    while (!lumo_pmesh_complete(&f.pm)) {
+        step(&f);
+        check_level(&f.pm);
+    }
+    free(out);
+    free(f.mem);
+    free(data);
+}
+
+/* Without splits (k_stream's seed is its base mesh) the block ends at its
+ * zero padding: a byte more is CORRUPT. */
+static void test_seed_is_base(void **state)
+{
+    (void)state;
+    fixture f;
+    const uint8_t *rec;
+    uint32_t ctx0[LUMO_PMESH_CONTEXTS];
+    uint8_t *data = roomy_copy(k_stream, sizeof k_stream);
+    open_on(&f, data, sizeof k_stream);
+    memcpy(ctx0, f.pm.ctx, sizeof ctx0);
+    size_t n = next_record(&f, &rec), pos = 0;
+    uint32_t hb = head_bytes(rec, n), sb = side_bytes(rec, n);
+    assert_int_equal(get_gamma(rec + hb, sb, &pos), f.h.base_vertices);
+    assert_int_equal(get_gamma(rec + hb, sb, &pos) - 1, f.h.base_faces);
+    uint8_t side[256], *out = malloc(n + 16);
+    assert_true(sb + 1 <= sizeof side);
+    memcpy(side, rec + hb, sb);
+    side[sb] = 0;
+    assert_int_equal(lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb + 1, out)), LUMO_ERR_CORRUPT);
+    assert_fresh(&f, ctx0);
+    step(&f);
+    assert_int_equal(f.pm.vertex_count, f.h.base_vertices);
+    assert_int_equal(f.pm.last_parent, 0xffffffffu);  /* no split yet */
+    free(out);
+    free(f.mem);
+    free(data);
+}
+
 /* The record head's varints (docs/progressive-mesh.md §2.2): minimal
  * LEB128 of at most 5 bytes, the block's size below 2^28 doubled plus the
  * payload flag, a payload size only after the flag and not 0; else
@@ -586,6 +851,9 @@ int main(void)
         cmocka_unit_test(test_range_code_end),
         cmocka_unit_test(test_rewind),
         cmocka_unit_test(test_record_head),
+        cmocka_unit_test(test_seeded_stream),
+        cmocka_unit_test(test_seed_fields),
+        cmocka_unit_test(test_seed_is_base),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -4,7 +4,9 @@
  *   lumo-inspect --stream FILE           the header and every batch record: its
  *                                        index, first vertex, vertices added, faces
  *                                        after it, head / side / Draco / record bytes
- *                                        and offset in the stream
+ *                                        and offset in the stream; the base record
+ *                                        of a CODED stream also its seed mesh
+ *                                        (vertices / faces) and splits
  *   lumo-inspect --lod N --ply OUT FILE  the level with N vertices (N = all)
  *   --mesh I                             the I-th mesh's stream (default 0)
  *
@@ -17,6 +19,7 @@
 #include "lumo_host/options.h"
 #include "lumo_host/package_msg.h"
 #include "inspect.h"
+#include "lumo/wire.h"
 #include "pm/pm_client.h"
 
 static int load(const char *path, uint8_t **data, size_t *len)
@@ -74,6 +77,31 @@ static int open_stream(const char *path, uint32_t mesh, uint8_t **file, srv_pm_c
     return 0;
 }
 
+/* Elias gamma code (docs/progressive-mesh.md §2.3): z zeros, a one, z bits. */
+static int gamma_read(lumo_wire_bits *b, uint32_t *v)
+{
+    uint32_t z = 0, bit = 0, low = 0;
+    while (!bit)
+        if (lumo_wire_bits_read(b, 1, &bit) || (!bit && ++z > 31))
+            return -1;
+    if (lumo_wire_bits_read(b, z, &low))
+        return -1;
+    *v = (uint32_t)1 << z | low;
+    return 0;
+}
+
+/* A CODED base record's seed size, its block's first two fields (§2.3
+ * "Base record"; the client has applied the record, so they are valid). */
+static int seed_size(const uint8_t *block, uint32_t bytes, uint32_t *nv, uint32_t *nf)
+{
+    lumo_wire_bits b;
+    lumo_wire_bits_init(&b, block, bytes);
+    if (gamma_read(&b, nv) || gamma_read(&b, nf))
+        return -1;
+    *nf -= 1;
+    return 0;
+}
+
 static int run_stream(int argc, char **argv)
 {
     uint8_t *file;
@@ -113,9 +141,14 @@ static int run_stream(int argc, char **argv)
             break;
         }
         lumo_pmesh_get_view(&c.pm, &after);
-        printf("%6u %9u %8u %8u %6u %8u %8u %9zu %10zu\n", lumo_pmesh_batches(&c.pm) - 1, before.vertex_count,
+        uint32_t sv, sf;
+        printf("%6u %9u %8u %8u %6u %8u %8u %9zu %10zu", lumo_pmesh_batches(&c.pm) - 1, before.vertex_count,
                after.vertex_count - before.vertex_count, after.face_count, rh.head_bytes, rh.side_bytes,
                rh.draco_bytes, n, at);
+        if (lumo_pmesh_batches(&c.pm) == 1 && h->position_coding == LUMO_PMESH_POS_CODED &&
+            !seed_size(r + rh.head_bytes, rh.side_bytes, &sv, &sf))
+            printf("  seed %u vertices, %u faces, %u splits", sv, sf, after.vertex_count - sv);
+        printf("\n");
     }
     srv_pm_client_close(&c);
     free(file);

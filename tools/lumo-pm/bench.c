@@ -18,6 +18,7 @@
 #include <unistd.h>
 #include "pm/pm_client.h"
 #include "pm/pm_load.h"
+#include "pm/pm_internal.h"
 #include "pm/pm_stream.h"
 
 int bench_main(int argc, char **argv);
@@ -96,13 +97,21 @@ static int stream(const model *m, uint32_t batch, int coding, uint8_t **s, size_
     return stream_bits(m, batch, 0, coding, s, len);
 }
 
-/* Size of `draco_encoder -qp BITS -cl CL` on the cleaned mesh, or 0. */
+/* Size of `draco_encoder -qp BITS -cl CL` on the cleaned mesh, or 0. The
+ * mesh goes in the cleaner's order (the input's, welded), not the
+ * progressive mesh's: Edgebreaker's bytes depend a little on the order
+ * given, and the reference must not move with the simplifier's choices. */
 static long draco_cli_size(const model *m, int bits, int cl)
 {
     char ply[64], drc[64], cmd[256];
+    srv_pm_clean_mesh c;
     snprintf(ply, sizeof ply, "/tmp/lumo-pm-bench-%d.ply", (int)getpid());
     snprintf(drc, sizeof drc, "/tmp/lumo-pm-bench-%d.drc", (int)getpid());
-    if (srv_pm_write_ply(ply, m->pm.xyz, m->pm.vertices, m->pm.tris, m->pm.faces))
+    if (srv_pm_clean(m->xyz, NULL, m->nv, m->tris, m->nf, &c))
+        return 0;
+    int bad = srv_pm_write_ply(ply, c.xyz, c.nv, c.tris, c.nf);
+    srv_pm_clean_free(&c);
+    if (bad)
         return 0;
     snprintf(cmd, sizeof cmd, "draco_encoder -i %s -o %s -qp %d -cl %d >/dev/null 2>&1", ply, drc, bits, cl);
     long size = 0;

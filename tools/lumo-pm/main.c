@@ -32,7 +32,7 @@ typedef struct {
 } args;
 
 static const char k_usage[] =
-    "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--lattice auto|on|off] [--albedo] [--raw]\n"
+    "usage: lumo-pm build IN -o OUT.lumo [--batch N] [--bits B] [--min-vertices N] [--rounds F] [--lattice auto|on|off] [--albedo] [--no-seed] [--raw]\n"
     "                     [--context-stats FILE]\n"
     "       lumo-pm clean IN -o OUT.ply\n"
     "       lumo-pm apply STREAM|PACKAGE [RECORDS]\n"
@@ -45,6 +45,8 @@ static const char k_usage[] =
     "  --lattice M        coordinates copied from the ring (meshes from voxel grids): auto (default:\n"
     "                     built both ways, the smaller kept), on or off\n"
     "  --albedo           stream the per-vertex albedo too\n"
+    "  --no-seed          stop simplifying at the base mesh (default: on to a seed mesh, whose\n"
+    "                     splits up to the base mesh the base record codes; same levels shown)\n"
     "  --context-stats F  write the adaptive bits coded per range-code context to F, one line\n"
     "                     each: context, zeros, ones (tools/pm_priors.py fits the priors from them)\n"
     "  --raw              write the bare stream, not a package (no INFO: lumo-render needs a scene\n"
@@ -99,6 +101,8 @@ static int parse(int argc, char **argv, args *a, char *err, size_t errlen)
             a->raw = 1;
         else if (!strcmp(o, "--albedo"))
             a->albedo = 1;  /* stream the per-vertex albedo too */
+        else if (!strcmp(o, "--no-seed"))
+            a->po.seed = 0;  /* the base record as plain bits only */
         else if (o[0] != '-' && !a->in)
             a->in = o;
         else if (o[0] != '-') {
@@ -197,10 +201,11 @@ static int cmd_build(const args *a, int clean_only)
         goto done;
     lumo_pmesh_header h;
     (void)lumo_pmesh_read_header(s, n, &h);  /* what the per-mesh choices made */
-    printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces, "
-           "%u batches of %u, %u-bit positions%s, %zu bytes, %.2f bits/triangle\n",
+    printf("%s: %u vertices (%u welded), %u faces (%u dropped), base %u vertices / %u faces "
+           "(seed %u / %u), %u batches of %u, %u-bit positions%s, %zu bytes, %.2f bits/triangle\n",
            a->out, pm.vertices, pm.welded, pm.faces, pm.dropped_faces, pm.base_vertices,
-           pm.base_faces, nb, h.batch_vertices, h.quant_bits,
+           pm.base_faces, h.position_coding == LUMO_PMESH_POS_CODED ? pm.seed_vertices : pm.base_vertices,
+           h.position_coding == LUMO_PMESH_POS_CODED ? pm.seed_faces : pm.base_faces, nb, h.batch_vertices, h.quant_bits,
            h.flags & LUMO_PMESH_LATTICE ? " (lattice copies)" : "", n, pm.faces ? 8.0 * n / pm.faces : 0.0);
     double sv = st.splits ? (double)st.splits : 1.0;
     printf("bits per split vertex: parent %.2f, kind %.2f, fan %.2f, mask %.2f, positions %.2f, "
