@@ -134,8 +134,9 @@ static double bits_per_tri(size_t bytes, uint32_t faces)
 static void section_sizes(FILE *o, model *ms, int n)
 {
     fprintf(o, "### Stream size against single-shot Draco\n\n"
-               "Same cleaned mesh (welded, degenerate/duplicate faces dropped) for every column; "
-               "pm = the progressive stream (version 7, header and record framing included; "
+               "Same cleaned mesh (welded, degenerate/duplicate faces dropped) for every column, Draco's in "
+               "the input's order; "
+               "pm = the progressive stream (version %u, header and record framing included; "
                "positions coded in the split records, docs/progressive-mesh.md §2.3 step 5, with lattice "
                "copies where the build found them smaller (lattice column); "
                "v4 payload = the same stream with its residuals in Draco payloads, as version 4 had them (`position_coding` 1)), "
@@ -147,7 +148,8 @@ static void section_sizes(FILE *o, model *ms, int n)
                "| model | triangles | vertices | base | pm 12 bits, 250 | bits/tri | v4 payload | pm absolute | "
                "draco -qp 12 -cl 7 | bits/tri | pm / draco | bits | batch | pm per mesh | bits/tri "
                "| draco same -qp | pm / draco | lattice | build s |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+               LUMO_PMESH_VERSION);
     for (int i = 0; i < n; i++) {
         model *m = &ms[i];
         uint8_t *s1 = NULL, *s0 = NULL, *sa = NULL, *sp = NULL;
@@ -400,7 +402,7 @@ static void section_bits(FILE *o, model *ms, int n)
 {
     fprintf(o, "### Where the bits go (default stream, per split vertex)\n\n"
                "Fan = the fan's geometric rank (or the escape and the explicit first wing and length); "
-               "record heads = index, block and payload sizes as varints plus a CRC-32 "
+               "record heads = the block's size (and a payload's) as varints plus a CRC-32 "
                "(docs/progressive-mesh.md §2).\n\n"
                "| model | parent | kind | fan | mask splits | positions | code flush "
                "| Draco payload | record heads | total bits/vertex | fan splits by rank |\n"
