@@ -599,6 +599,17 @@ static uint8_t *roomy_copy(const uint8_t *data, size_t size, size_t *out_size)
     return c;
 }
 
+/* A fixture on a roomy copy of stream s (the caller frees the copy) and
+ * its contexts as they start, for "as before" checks. */
+static uint8_t *open_roomy(fixture *f, const uint8_t *s, size_t n, uint32_t *ctx0)
+{
+    size_t data_n;
+    uint8_t *data = roomy_copy(s, n, &data_n);
+    open_on(f, data, data_n);
+    memcpy(ctx0, f->pm.ctx, LUMO_PMESH_CONTEXTS * sizeof *ctx0);
+    return data;
+}
+
 /* Sorted position triples of the current level (numbering-free). */
 static int cmp_tri9(const void *a, const void *b)
 {
@@ -685,10 +696,7 @@ static void test_seed_fields(void **state)
     fixture f;
     const uint8_t *rec;
     uint32_t ctx0[LUMO_PMESH_CONTEXTS];
-    size_t data_n;
-    uint8_t *data = roomy_copy(k_seeded, sizeof k_seeded, &data_n);
-    open_on(&f, data, data_n);
-    memcpy(ctx0, f.pm.ctx, sizeof ctx0);
+    uint8_t *data = open_roomy(&f, k_seeded, sizeof k_seeded, ctx0);
     size_t n = next_record(&f, &rec);
     uint32_t hb = head_bytes(rec, n), sb = side_bytes(rec, n), b = f.h.base_vertices;
     const uint8_t *block = rec + hb;
@@ -744,7 +752,7 @@ static void test_seed_fields(void **state)
     if (lumo_pmesh_apply(&f.pm, out, with_side(rec, n, side, sb, 0, out)) == LUMO_OK) {
         check_level(&f.pm);
         free(f.mem);
-        open_on(&f, data, data_n);
+        open_on(&f, data, f.size);
     }
     assert_fresh(&f, ctx0);
     step(&f);  /* the good copy, then the rest */
@@ -765,10 +773,7 @@ static void test_seed_is_base(void **state)
     fixture f;
     const uint8_t *rec;
     uint32_t ctx0[LUMO_PMESH_CONTEXTS];
-    size_t data_n;
-    uint8_t *data = roomy_copy(k_stream, sizeof k_stream, &data_n);
-    open_on(&f, data, data_n);
-    memcpy(ctx0, f.pm.ctx, sizeof ctx0);
+    uint8_t *data = open_roomy(&f, k_stream, sizeof k_stream, ctx0);
     size_t n = next_record(&f, &rec), pos = 0;
     uint32_t hb = head_bytes(rec, n), sb = side_bytes(rec, n);
     assert_int_equal(get_gamma(rec + hb, sb, &pos), f.h.base_vertices);
