@@ -850,17 +850,19 @@ static lumo_status split(split_ctx *s, uint32_t k)
     return s->coded && s->pm->albedo ? read_split_albedo(s, p, k) : LUMO_OK;
 }
 
-/* A split record's block is one range code (pmesh_rc.h). */
-static lumo_status run_split_block(split_ctx *s)
+/* Splits k = from ... to - 1: one range code (pmesh_rc.h) on the block's
+ * bytes from `at` on (a split record's whole block; the base record's
+ * after its seed), ending exactly where the writer's flush ends it. */
+static lumo_status run_range_code(split_ctx *s, uint32_t from, uint32_t to, size_t at)
 {
     lumo_status st = LUMO_OK;
     s->br.range = 1;
-    s->split0 = s->b->first;
-    if (lumo_pmesh_rc_init(&s->br.rc, s->b->side, s->b->side_bytes))
+    s->split0 = from;
+    if (lumo_pmesh_rc_init(&s->br.rc, s->b->side + at, s->b->side_bytes - (uint32_t)at))
         return LUMO_ERR_TRUNCATED;
-    for (uint32_t i = 0; i < s->b->count && !st; i++) {
-        s->pm->split_log[i] = s->log_n;
-        st = split(s, s->b->first + i);
+    for (uint32_t k = from; k < to && !st; k++) {
+        s->pm->split_log[k - from] = s->log_n;
+        st = split(s, k);
     }
     if (!st && !lumo_pmesh_rc_done(&s->br.rc))
         return LUMO_ERR_CORRUPT;  /* bytes left over, or not the writer's flush */
@@ -904,23 +906,6 @@ static lumo_status read_seed_attributes(split_ctx *s, uint32_t nv)
     return LUMO_OK;
 }
 
-/* The splits of the seed up to the base mesh, k = seed ... b - 1: a range
- * code on the block's bytes after the plain bits, exactly a split
- * record's (the contexts and the round state carry on). */
-static lumo_status run_seed_splits(split_ctx *s, uint32_t seed, size_t at)
-{
-    lumo_status st = LUMO_OK;
-    s->br.range = 1;
-    s->split0 = seed;
-    if (lumo_pmesh_rc_init(&s->br.rc, s->b->side + at, s->b->side_bytes - (uint32_t)at))
-        return LUMO_ERR_TRUNCATED;
-    for (uint32_t k = seed; k < s->b->count && !st; k++)
-        st = split(s, k);
-    if (!st && !lumo_pmesh_rc_done(&s->br.rc))
-        return LUMO_ERR_CORRUPT;  /* bytes left over, or not the writer's flush */
-    return st;
-}
-
 /* The base block (docs/progressive-mesh.md §2.3 "Base record"): plain
  * bits, the base mesh's faces (Draco payload streams: their positions are
  * in the payload) or, CODED, the seed's size, faces, positions and
@@ -942,14 +927,15 @@ static lumo_status run_base_block(split_ctx *s)
         return LUMO_ERR_CORRUPT;  /* trailing bytes */
     if (read_bits(&s->br, (unsigned)(8 * used - s->br.wb.pos), &pad) || pad)
         return LUMO_ERR_CORRUPT;  /* padding bits must be zero */
-    if (nv < s->b->count && (st = run_seed_splits(s, nv, used)))
+    if (nv < s->b->count && (st = run_range_code(s, nv, s->b->count, used)))
         return st;
     return s->pm->face_count == s->pm->h.base_faces ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
 static lumo_status run_splits(split_ctx *s)
 {
-    lumo_status st = s->b->first == 0 ? run_base_block(s) : run_split_block(s);
+    lumo_status st = s->b->first == 0 ? run_base_block(s)
+                                      : run_range_code(s, s->b->first, s->b->first + s->b->count, 0);
     if (st)
         return st;
     if (s->b->first + s->b->count == s->pm->h.vertices && s->pm->face_count != s->pm->h.faces)

@@ -568,6 +568,26 @@ static int write_split(replay *r, bitwriter *w, uint32_t k, uint32_t prev)
     return 0;
 }
 
+/* Splits k = from ... to - 1 as one range code (docs/progressive-mesh.md
+ * §2.3), its flushed bytes appended to w's: a split record's whole block,
+ * or the base record's after its seed. prev: the parent of the split
+ * before `from` (NIL for none). 0, or -1 for a level it cannot express. */
+static int write_range_code(replay *r, bitwriter *w, uint32_t from, uint32_t to, uint32_t prev)
+{
+    srv_pm_rc code;
+    bitwriter rw = {{0}, 0, &code};
+    int rc = 0;
+    srv_pm_rc_init(&code);
+    for (uint32_t k = from; k < to && !rc; prev = r->pm->parent[k++])
+        rc = write_split(r, &rw, k, prev);
+    srv_pm_rc_flush(&code);
+    srv_buf_put(&w->b, code.out.p ? code.out.p : (const uint8_t *)"", code.out.len);
+    w->b.failed |= code.out.failed;
+    w->nbits = 8 * w->b.len;
+    free(code.out.p);
+    return rc;
+}
+
 /* The base record's block (docs/progressive-mesh.md §2.3 "Base record"),
  * mirroring run_base_block() in pmesh_batch.c. Streams with Draco
  * payloads: the base mesh's faces resolved at b, each index in tb(b),
@@ -584,7 +604,6 @@ static int write_base(replay *r, bitwriter *w)
     const srv_pm *pm = r->pm;
     uint32_t b = pm->base_vertices, s = r->coded ? pm->seed_vertices : b;
     uint32_t sf = r->coded ? pm->seed_faces : pm->base_faces;
-    int rc = 0;
     if (r->coded) {
         put_gamma(w, s);
         put_gamma(w, sf + 1u);
@@ -606,18 +625,9 @@ static int write_base(replay *r, bitwriter *w)
             r->res[3 * (size_t)v + c] = r->q[3 * (size_t)v + c] - (v ? r->q[3 * (size_t)(v - 1) + c] : 0);
     if (s == b)
         return 0;
-    srv_pm_rc code;
-    srv_pm_stream_stats keep = r->st;
-    bitwriter rw = {{0}, 0, &code};
-    srv_pm_rc_init(&code);
-    for (uint32_t k = s, prev = NIL; k < b && !rc; prev = pm->parent[k++])
-        rc = write_split(r, &rw, k, prev);
-    srv_pm_rc_flush(&code);
+    srv_pm_stream_stats keep = r->st;  /* the stats count the split records */
+    int rc = write_range_code(r, w, s, b, NIL);
     r->st = keep;
-    srv_buf_put(&w->b, code.out.p ? code.out.p : (const uint8_t *)"", code.out.len);
-    w->b.failed |= code.out.failed;
-    w->nbits = 8 * w->b.len;
-    free(code.out.p);
     return rc;
 }
 
@@ -822,26 +832,14 @@ static lumo_status write_batches(replay *r, const srv_pm_stream_options *o,
         if (i && count > o->batch_vertices)
             count = o->batch_vertices;
         bitwriter w = {{0}, 0, NULL};
-        srv_pm_rc code;
         r->faces = r->moves = 0;
         double fields_before = field_bits(&r->st);
         int rc = 0;   /* write_split: -1 for a level it cannot express */
         lumo_status st = LUMO_OK;
-        if (!i)
-            rc = write_base(r, &w);
         /* parents run on across records (a round rarely ends at a record's
          * end), from the base record's splits on */
         uint32_t prev0 = i && first - 1 >= split0 ? pm->parent[first - 1] : NIL;
-        if (i) {
-            srv_pm_rc_init(&code);
-            w.rc = &code;
-        }
-        for (uint32_t k = first, prev = prev0; i && k < first + count && !rc; prev = pm->parent[k++])
-            rc = write_split(r, &w, k, prev);
-        if (i) {
-            srv_pm_rc_flush(&code);
-            w.b = code.out, w.rc = NULL;
-        }
+        rc = i ? write_range_code(r, &w, first, first + count, prev0) : write_base(r, &w);
         if (!rc && !w.b.failed)
             st = write_record(out, i, first, count, r, &w, o, q, &bi[i]);
         if (!rc && !st && i)
