@@ -27,8 +27,6 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
         h->max_batch_faces < h->base_faces || h->max_batch_moves > 3u * h->faces ||
         h->max_batch_bytes < LUMO_PMESH_BATCH_HEAD_MIN)
         return LUMO_ERR_CORRUPT;
-    if (h->batch_count != expected_batches(h))
-        return LUMO_ERR_CORRUPT;
     if (h->quant_bits < 1 || h->quant_bits > LUMO_PMESH_MAX_QBITS ||
         h->position_coding > LUMO_PMESH_POS_CODED ||
         (h->flags & ~(LUMO_PMESH_HAS_ALBEDO | LUMO_PMESH_LATTICE)))
@@ -36,6 +34,16 @@ static lumo_status check_counts(const lumo_pmesh_header *h)
     if (h->position_coding != LUMO_PMESH_POS_CODED && (h->flags & LUMO_PMESH_LATTICE))
         return LUMO_ERR_UNSUPPORTED;  /* lattice copies live in the range code */
     return LUMO_OK;
+}
+
+/* A header the caller filled: its counts, and the batch count they imply
+ * (lumo_pmesh_read_header derives it). */
+static lumo_status check_header(const lumo_pmesh_header *h)
+{
+    lumo_status st = check_counts(h);
+    if (st)
+        return st;
+    return h->batch_count == expected_batches(h) ? LUMO_OK : LUMO_ERR_CORRUPT;
 }
 
 /* The header's fixed tail after the counts: quant_bits, position_coding,
@@ -86,12 +94,9 @@ lumo_status lumo_pmesh_read_header(const uint8_t *d, size_t size, lumo_pmesh_hea
     for (int i = 0; i < 3; i++)
         h.origin_bits[i] = lumo_wire_le32(tail + 3 + 4 * i);
     h.range_bits = lumo_wire_le32(tail + 15);
-    h.batch_count = 0;
-    if (h.vertices <= MAX_COUNT && h.base_vertices >= 1 && h.base_vertices <= h.vertices &&
-        h.batch_vertices >= 1)
-        h.batch_count = expected_batches(&h);
     if ((st = check_counts(&h)))
         return st;
+    h.batch_count = expected_batches(&h);
     for (int i = 0; i < 3; i++)
         if ((st = lumo_f32bits_to_fixed(h.origin_bits[i], LUMO_Q16_SHIFT, &probe)))
             return st;
@@ -155,7 +160,7 @@ static void layout(const lumo_pmesh_header *h, size_t n[NARRAYS], size_t sz[NARR
 size_t lumo_pmesh_arena_bytes(const lumo_pmesh_header *h)
 {
     size_t n[NARRAYS], sz[NARRAYS], total = LUMO_ARENA_SLACK;
-    if (!h || check_counts(h))
+    if (!h || check_header(h))
         return SIZE_MAX;
     layout(h, n, sz);
     for (int i = 0; i < NARRAYS; i++)
@@ -170,7 +175,7 @@ lumo_status lumo_pmesh_init(lumo_pmesh *pm, const lumo_pmesh_header *h, lumo_are
     lumo_status st;
     if (!pm || !h || !arena)
         return LUMO_ERR_ARG;
-    if ((st = check_counts(h)))
+    if ((st = check_header(h)))
         return st;
     lumo_arena_mark mark = lumo_arena_get_mark(arena);
     layout(h, n, sz);

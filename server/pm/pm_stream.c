@@ -708,12 +708,6 @@ static lumo_status write_record(srv_buf *out, uint32_t index, uint32_t first, ui
     return out->failed ? LUMO_ERR_NOMEM : LUMO_OK;
 }
 
-static void put_le32(uint8_t *d, uint32_t v)
-{
-    for (int k = 0; k < 4; k++)
-        d[k] = (uint8_t)(v >> (8 * k));
-}
-
 /* The header (docs/progressive-mesh.md §2.1) into d (LUMO_PMESH_HEADER_MAX
  * bytes); returns its length. */
 static size_t write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_options *o,
@@ -728,17 +722,17 @@ static size_t write_header(uint8_t *d, const srv_pm *pm, const srv_pm_stream_opt
     uint32_t counts[8] = {pm->vertices, pm->faces, pm->base_vertices, pm->base_faces,
                           o->batch_vertices, maxf, maxm, maxb};
     size_t n = 7;
-    put_le32(d, LUMO_PMESH_MAGIC);
-    d[4] = (uint8_t)LUMO_PMESH_VERSION, d[5] = (uint8_t)(LUMO_PMESH_VERSION >> 8);
+    lumo_wire_put_le32(d, LUMO_PMESH_MAGIC);
+    lumo_wire_put_le16(d + 4, (uint16_t)LUMO_PMESH_VERSION);
     for (int i = 0; i < 8; i++)
         n += lumo_wire_put_varint(d + n, counts[i]);
     d[n++] = (uint8_t)q->bits, d[n++] = (uint8_t)o->position_coding;
     d[n++] = (uint8_t)((pm->albedo != NULL) | (o->lattice > 0) << 1);
     for (int i = 0; i < 3; i++, n += 4)
-        put_le32(d + n, f32bits(q->origin[i]));
-    put_le32(d + n, f32bits(q->range)), n += 4;
+        lumo_wire_put_le32(d + n, f32bits(q->origin[i]));
+    lumo_wire_put_le32(d + n, f32bits(q->range)), n += 4;
     d[6] = (uint8_t)(n + 4);
-    put_le32(d + n, lumo_wire_crc32(0, d, n));
+    lumo_wire_put_le32(d + n, lumo_wire_crc32(0, d, n));
     return n + 4;
 }
 
